@@ -1,0 +1,3 @@
+from canspec.cli import main
+
+raise SystemExit(main())

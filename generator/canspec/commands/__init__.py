@@ -1,0 +1,1 @@
+"""Subcommands of `canspec`; each module defines `register(subparsers)`."""

@@ -1,0 +1,27 @@
+"""Helpers shared by subcommands: compile a spec and print its problems."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from canspec.pipeline import Compiled, compile_spec
+from canspec.problems import Problem
+
+
+def print_problems(problems: list[Problem], stream=sys.stderr) -> None:  # type: ignore[no-untyped-def]
+    for p in sorted(problems, key=lambda p: (p.loc is None, p.loc or "", p.message)):  # type: ignore[arg-type,operator]
+        print(p.format(), file=stream)
+
+
+def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False) -> Compiled:
+    compiled = compile_spec(spec)
+    shown = compiled.errors if quiet_warnings else compiled.problems
+    print_problems(shown)
+    if strict and compiled.warnings and compiled.spec is not None:
+        compiled.spec = None
+    return compiled
+
+
+def add_spec_argument(parser, nargs: str | None = "?") -> None:  # type: ignore[no-untyped-def]
+    parser.add_argument("spec", nargs=nargs, default=None, help="spec bundle, directory or file (default: the shipped spec)")

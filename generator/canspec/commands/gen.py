@@ -1,0 +1,66 @@
+"""`canspec gen [SPEC] [-o DIR] [--target NAME...] [--check]`."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from canspec import writer
+from canspec.commands.common import compile_or_report
+from canspec.generate import GenerationError, generate
+from canspec.targets import registry
+
+
+def run(args: argparse.Namespace) -> int:
+    known = registry()
+    names = args.target or list(known)
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        print(f"canspec gen: unknown target {', '.join(unknown)} (known: {', '.join(known)})", file=sys.stderr)
+        return 2
+    compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True)
+    if compiled.spec is None:
+        print("canspec gen: nothing written (fix the errors above)", file=sys.stderr)
+        return 1
+    out = Path(args.output)
+    try:
+        outputs = generate(compiled.spec, names)
+    except GenerationError as exc:
+        print(f"canspec gen: {exc}; nothing written", file=sys.stderr)
+        return 1
+    if out.exists() and not out.is_dir():
+        print(f"canspec gen: {out} exists and is not a directory", file=sys.stderr)
+        return 1
+    plan = writer.plan(out, outputs)
+    if args.check:
+        for rel in plan.write:
+            print(f"{'stale' if (out / rel).exists() else 'missing'}: {out / rel}")
+        for rel in plan.remove:
+            print(f"extra: {out / rel}")
+        if plan.stale:
+            print(f"canspec gen --check: {len(plan.stale)} file(s) out of date; run `canspec gen`", file=sys.stderr)
+            return 1
+        print(f"canspec gen --check: {len(plan.unchanged)} file(s) up to date", file=sys.stderr)
+        return 0
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        writer.clean_stale_temporaries(out)
+        writer.apply(out, plan)
+    except OSError as exc:
+        print(f"canspec gen: cannot write {exc.filename or out}: {exc.strerror}; previous files left unchanged", file=sys.stderr)
+        return 1
+    if not args.quiet:
+        print(f"canspec gen: {len(plan.write)} written, {len(plan.unchanged)} unchanged, {len(plan.remove)} removed in {out}", file=sys.stderr)
+    return 0
+
+
+def register(sub) -> None:  # type: ignore[no-untyped-def]
+    p = sub.add_parser("gen", help="generate targets from a spec")
+    p.add_argument("spec", nargs="?", default=None, help="spec bundle, directory or file (default: the shipped spec)")
+    p.add_argument("-o", "--output", default="generated", help="output directory (default: ./generated)")
+    p.add_argument("-t", "--target", action="append", help="target to generate (repeatable; default: all)")
+    p.add_argument("--check", action="store_true", help="write nothing; list stale or missing files and exit 1 if any")
+    p.add_argument("--strict", action="store_true", help="treat spec warnings as errors")
+    p.add_argument("-q", "--quiet", action="store_true")
+    p.set_defaults(func=run)

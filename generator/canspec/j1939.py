@@ -1,0 +1,27 @@
+"""J1939 29-bit identifier fields (SAE J1939-21): P(3) EDP(1) DP(1) PF(8) PS(8) SA(8)."""
+
+from __future__ import annotations
+
+from canspec.ir import J1939Id
+
+PDU2_MIN_PF = 240  # PF >= 240: broadcast, PS is a group extension
+
+
+def decompose(frame_id: int) -> J1939Id:
+    priority = (frame_id >> 26) & 0x7
+    edp = (frame_id >> 25) & 0x1
+    dp = (frame_id >> 24) & 0x1
+    pf = (frame_id >> 16) & 0xFF
+    ps = (frame_id >> 8) & 0xFF
+    sa = frame_id & 0xFF
+    pdu2 = pf >= PDU2_MIN_PF
+    pgn = (edp << 17) | (dp << 16) | (pf << 8) | (ps if pdu2 else 0)
+    return J1939Id(priority, edp, dp, pf, ps, sa, pgn, None if pdu2 else ps, pdu2)
+
+
+def compose(priority: int, pgn: int, sa: int, da: int | None = None) -> int:
+    """29-bit ID from priority, PGN, source and (for PDU1) destination address."""
+    pf = (pgn >> 8) & 0xFF
+    if pf < PDU2_MIN_PF:
+        pgn = (pgn & 0x3FF00) | ((da if da is not None else 0xFF) & 0xFF)
+    return ((priority & 0x7) << 26) | ((pgn & 0x3FFFF) << 8) | (sa & 0xFF)

@@ -1,0 +1,56 @@
+"""load → resolve → validate → build: one call that gives the IR or the problems."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from canspec import ir
+from canspec.build import build
+from canspec.jsonvalue import message_problems
+from canspec.loader import load
+from canspec.problems import Problem, SpecError, error
+from canspec.resolve import resolve
+from canspec.validate import validate
+
+
+@dataclass
+class Compiled:
+    spec: ir.Spec | None
+    problems: list[Problem]
+
+    @property
+    def errors(self) -> list[Problem]:
+        return [p for p in self.problems if p.severity == "error"]
+
+    @property
+    def warnings(self) -> list[Problem]:
+        return [p for p in self.problems if p.severity == "warning"]
+
+
+def _example_problems(spec: ir.Spec, res: object) -> list[Problem]:
+    out = []
+    for proto, doc in zip(spec.json, res.json):  # type: ignore[attr-defined]
+        for msg, raw in zip(proto.messages, doc.data["messages"]):
+            examples = raw.get("examples", [])
+            for i, example in enumerate(msg.examples):
+                for text in message_problems(msg, example):
+                    out.append(error(f"example {i + 1} of {msg.name!r} is invalid: {text}", examples.loc_of(i), "fix the example or the field definition (and record the erratum)", "json-example"))
+    return out
+
+
+def compile_spec(path: Path | str | None = None) -> Compiled:
+    """Never raises for a bad spec: every problem comes back in `problems`."""
+    try:
+        loaded = load(path)
+    except SpecError as exc:
+        return Compiled(None, exc.problems)
+    res = resolve(loaded)
+    problems = validate(res)
+    if any(p.severity == "error" for p in problems):
+        return Compiled(None, problems)
+    spec = build(loaded, res)
+    problems += _example_problems(spec, res)
+    if any(p.severity == "error" for p in problems):
+        return Compiled(None, problems)
+    return Compiled(spec, problems)

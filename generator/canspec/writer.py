@@ -1,0 +1,96 @@
+"""Write a generated tree atomically: every file is staged next to its target first, and
+only when all are staged are they renamed into place. A failure while staging (a full disk,
+a killed process) leaves every existing file as it was. Unchanged files are not touched, and
+files a previous run generated but this one does not are removed (tracked in a manifest)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+MANIFEST = ".canspec-manifest.json"
+TMP_PREFIX = ".canspec-tmp-"
+
+
+@dataclass
+class Plan:
+    write: dict[str, bytes] = field(default_factory=dict)  # new or changed
+    unchanged: list[str] = field(default_factory=list)
+    remove: list[str] = field(default_factory=list)  # generated before, not now
+
+    @property
+    def stale(self) -> list[str]:
+        return sorted([*self.write, *self.remove])
+
+
+def _read_manifest(out: Path) -> dict[str, dict[str, str]]:
+    try:
+        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+        return {k: dict(v) for k, v in data.get("files", {}).items()}
+    except (OSError, ValueError, AttributeError, TypeError):
+        return {}
+
+
+def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:
+    """What writing `outputs` (target name → relative path → bytes) into `out` would change.
+    Files an earlier run generated for one of these targets, and this run does not, are stale."""
+    owned = _read_manifest(out)
+    targets = set(outputs)
+    manifest = {k: v for k, v in owned.items() if v.get("target") not in targets}
+    files: dict[str, bytes] = {}
+    for target, produced in outputs.items():
+        for rel, data in produced.items():
+            files[rel] = data
+            manifest[rel] = {"sha256": hashlib.sha256(data).hexdigest(), "target": target}
+    everything = dict(files)
+    everything[MANIFEST] = (json.dumps({"generator": "canspec", "files": dict(sorted(manifest.items()))}, indent=1, sort_keys=True) + "\n").encode()
+    p = Plan()
+    for rel, data in sorted(everything.items()):
+        try:
+            same = (out / rel).read_bytes() == data
+        except OSError:
+            same = False
+        if same:
+            p.unchanged.append(rel)
+        else:
+            p.write[rel] = data
+    for rel, info in sorted(owned.items()):
+        if info.get("target") in targets and rel not in files and (out / rel).exists():
+            p.remove.append(rel)
+    return p
+
+
+def apply(out: Path, p: Plan) -> None:
+    staged: list[tuple[str, Path]] = []
+    try:
+        for rel, data in p.write.items():
+            target = out / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, dir=target.parent)
+            staged.append((rel, Path(tmp)))
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data)
+                fh.flush()
+                os.fsync(fh.fileno())
+            os.chmod(tmp, 0o644)
+    except BaseException:
+        for _, tmp in staged:
+            tmp.unlink(missing_ok=True)
+        raise
+    # The manifest goes last so it never describes files that are not in place yet.
+    staged.sort(key=lambda item: item[0] == MANIFEST)
+    for rel, tmp in staged:
+        os.replace(tmp, out / rel)
+    for rel in p.remove:
+        (out / rel).unlink(missing_ok=True)
+
+
+def clean_stale_temporaries(out: Path) -> None:
+    """Remove staging files a killed earlier run left behind."""
+    if out.is_dir():
+        for tmp in out.rglob(f"{TMP_PREFIX}*"):
+            tmp.unlink(missing_ok=True)

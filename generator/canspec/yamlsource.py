@@ -1,0 +1,167 @@
+"""YAML → plain data that remembers where every mapping, key and item came from.
+
+Numbers with a fraction load as Decimal (0.1 stays exactly 0.1), only `true`/`false` are
+booleans (YAML 1.1 would turn the value identifier `off` into False), and a duplicate
+key is an error instead of a silent overwrite.
+"""
+
+from __future__ import annotations
+
+import re
+from decimal import Decimal
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from canspec.problems import Loc, SpecError, error
+
+
+class LocDict(dict):  # type: ignore[type-arg]
+    """A mapping with the location of itself, of each key and of each value."""
+
+    loc: Loc
+    key_locs: dict[Any, Loc]
+    value_locs: dict[Any, Loc]
+
+    def loc_of(self, key: Any) -> Loc:
+        return self.value_locs.get(key) or self.loc
+
+
+class LocList(list):  # type: ignore[type-arg]
+    loc: Loc
+    item_locs: list[Loc]
+
+    def loc_of(self, index: int) -> Loc:
+        return self.item_locs[index] if 0 <= index < len(self.item_locs) else self.loc
+
+
+def loc_of(container: Any, key: Any = None) -> Loc | None:
+    """Best location for `container[key]` (or the container itself)."""
+    if key is not None and isinstance(container, (LocDict, LocList)):
+        return container.loc_of(key)
+    return getattr(container, "loc", None)
+
+
+class _Loader(yaml.SafeLoader):
+    display_name = "<spec>"
+
+
+# YAML 1.2 booleans only.
+_Loader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag != "tag:yaml.org,2002:bool"]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+# Dates stay text (`2020-09-12`), as the spec schema expects.
+_Loader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag != "tag:yaml.org,2002:timestamp"]
+    for first, resolvers in _Loader.yaml_implicit_resolvers.items()
+}
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:bool", re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$"), list("tTfF")
+)
+
+
+def _mark(loader: _Loader, node: yaml.Node) -> Loc:
+    return Loc(loader.display_name, node.start_mark.line + 1, node.start_mark.column + 1)
+
+
+def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LocDict:
+    loader.flatten_mapping(node)
+    data = LocDict()
+    data.loc = _mark(loader, node)
+    data.key_locs = {}
+    data.value_locs = {}
+    for key_node, value_node in node.value:
+        key = loader.construct_object(key_node, deep=True)
+        try:
+            hash(key)
+        except TypeError:
+            raise SpecError([error("a mapping key must be a scalar", _mark(loader, key_node))]) from None
+        if key in data:
+            first = data.key_locs[key]
+            raise SpecError(
+                [
+                    error(
+                        f"duplicate key {key!r} (first defined at line {first.line})",
+                        _mark(loader, key_node),
+                        "each key may appear once per mapping; remove or rename one of them",
+                        "yaml-duplicate-key",
+                    )
+                ]
+            )
+        data[key] = loader.construct_object(value_node, deep=True)
+        data.key_locs[key] = _mark(loader, key_node)
+        data.value_locs[key] = _mark(loader, value_node)
+    return data
+
+
+def _construct_sequence(loader: _Loader, node: yaml.SequenceNode) -> LocList:
+    data = LocList(loader.construct_object(child, deep=True) for child in node.value)
+    data.loc = _mark(loader, node)
+    data.item_locs = [_mark(loader, child) for child in node.value]
+    return data
+
+
+def _construct_float(loader: _Loader, node: yaml.ScalarNode) -> Decimal | float:
+    text = str(loader.construct_scalar(node)).replace("_", "")
+    try:
+        return Decimal(text)
+    except ArithmeticError:
+        return float(loader.construct_yaml_float(node))  # .inf / .nan: kept, rejected by validation
+
+
+_Loader.add_constructor("tag:yaml.org,2002:map", _construct_mapping)
+_Loader.add_constructor("tag:yaml.org,2002:seq", _construct_sequence)
+_Loader.add_constructor("tag:yaml.org,2002:float", _construct_float)
+
+
+def _line_col_of_offset(raw: bytes, offset: int) -> tuple[int, int]:
+    before = raw[:offset]
+    line = before.count(b"\n") + 1
+    col = offset - (before.rfind(b"\n") + 1) + 1
+    return line, col
+
+
+def load_yaml(path: Path, display_name: str | None = None) -> Any:
+    """Parse one YAML file into LocDict/LocList data; every failure is a SpecError."""
+    name = display_name or str(path)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise SpecError([error("file not found", Loc(name), "check the path (and the bundle's `files` list)")]) from None
+    except IsADirectoryError:
+        raise SpecError([error("is a directory, expected a YAML file", Loc(name))]) from None
+    except OSError as exc:
+        raise SpecError([error(f"cannot read file: {exc.strerror}", Loc(name))]) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line, col = _line_col_of_offset(raw, exc.start)
+        raise SpecError(
+            [error(f"not valid UTF-8 (byte 0x{raw[exc.start]:02X})", Loc(name, line, col), "save the file as UTF-8")]
+        ) from None
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    if not text.strip():
+        raise SpecError([error("file is empty", Loc(name), "a spec file starts with `schema_version:` and `kind:`")])
+    loader = _Loader(text)
+    loader.display_name = name
+    try:
+        data = loader.get_single_data()
+    except SpecError:
+        raise
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        loc = Loc(name, mark.line + 1, mark.column + 1) if mark else Loc(name)
+        what = exc.problem or exc.context or "invalid YAML"
+        raise SpecError([error(f"YAML syntax error: {what}", loc, "fix the YAML syntax at this position")]) from None
+    except yaml.YAMLError as exc:
+        raise SpecError([error(f"YAML error: {exc}", Loc(name))]) from None
+    except RecursionError:
+        raise SpecError([error("YAML nesting is too deep", Loc(name))]) from None
+    finally:
+        loader.dispose()
+    if data is None:
+        raise SpecError([error("file holds no data", Loc(name), "a spec file starts with `schema_version:` and `kind:`")])
+    return data

@@ -1,0 +1,32 @@
+"""Shared fixtures: the compiled shipped spec, the repository paths, the generated vectors."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from canspec.pipeline import compile_spec
+
+ROOT = Path(__file__).resolve().parent.parent
+SPEC = ROOT / "spec"
+GENERATED = ROOT / "generated"
+SEEDS = ROOT.parent / "shared" / "seeds"
+
+
+@pytest.fixture(scope="session")
+def spec():
+    compiled = compile_spec(SPEC)
+    assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
+    return compiled.spec
+
+
+@pytest.fixture(scope="session")
+def can(spec):
+    return spec.can
+
+
+@pytest.fixture(scope="session")
+def vectors():
+    return json.loads((GENERATED / "vectors" / "can.json").read_text(encoding="utf-8"))
