@@ -5,11 +5,14 @@ CANSPEC ?= $(PYTHON) -m canspec
 SPEC ?= spec
 OUT ?= generated
 
-# Feature fragments append to these.
+# Feature fragments (mk/*.mk) append to these. Each language's vector runner is a target
+# `roundtrip-<lang>` that reads $(VECTORS) and fails on any mismatch.
 BENCH_TARGETS :=
 TEST_PREREQS :=
+ROUNDTRIP_TARGETS :=
+VECTORS ?= $(OUT)/vectors/can.json
 
-.PHONY: setup gen check test bench clean-build
+.PHONY: setup gen check test bench roundtrip
 
 setup:  ## install everything the generator and the tests need (apt, pip, cargo)
 	bash .ci/setup
@@ -27,3 +30,5 @@ test: $(TEST_PREREQS)  ## run the whole test suite
 -include mk/*.mk
 
 bench: $(BENCH_TARGETS)  ## benchmarks against cantools and peers (prints ratios)
+
+roundtrip: $(ROUNDTRIP_TARGETS)  ## every language's vector runner on $(VECTORS)

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 import pytest
 
-from canspec.pipeline import compile_spec
-
 ROOT = Path(__file__).resolve().parent.parent
+# Test this checkout's generator even when another checkout is pip-installed in editable mode.
+sys.path.insert(0, str(ROOT / "generator"))
+sys.path.insert(0, str(ROOT / "tests"))
+
+from canspec.pipeline import compile_spec  # noqa: E402
 SPEC = ROOT / "spec"
 GENERATED = ROOT / "generated"
 SEEDS = ROOT.parent / "shared" / "seeds"
