@@ -59,7 +59,10 @@ def checksum_ok(msg: ir.Message, data: bytes) -> bool:
 def to_raw(sig: ir.Signal, physical: int | float | str | Fraction) -> int:
     """Physical → raw with the shared rules: round half away from zero; outside the
     documented range (unless it is a special value) or not encodable is an error."""
-    value = exact(physical)
+    try:
+        value = exact(physical)
+    except (ValueError, ArithmeticError, TypeError):
+        raise CodecError(f"{sig.name}: {physical!r} is not a finite number") from None
     raw = round_half_away((value - sig.offset) / sig.factor)
     if any(s.raw == raw for s in sig.specials):
         return raw
