@@ -80,3 +80,13 @@ def test_fingerprint_tracks_wire_not_names(tmp_path, can):
     rescaled = compile_spec(spec_copy).spec.can
     assert rescaled.message("eps_state").fingerprint != can.message("eps_state").fingerprint
     assert len({m.fingerprint for m in can.messages}) == 25
+
+
+def test_names_per_language(can):
+    msg = can.message("rgate_speed_command")
+    assert (msg.names.pascal, msg.names.upper, msg.names.camel) == ("RgateSpeedCommand", "RGATE_SPEED_COMMAND", "rgateSpeedCommand")
+    off = can.message("vehicle_state_1").signal("door_state").value_table.by_raw(0)
+    assert off.name == "off" and off.names.pascal == "Off"  # `off` stays text, not YAML 1.1's False
+    from canspec.naming import names_for
+
+    assert names_for("type").rust == "r#type" and names_for("class").python == "class_" and names_for("default").c == "default_"

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from canspec.naming import Names, names_for
 from canspec.problems import Loc
 
 # Runtime rounding rule shared by every generated language (see encoding.py):
@@ -20,8 +21,18 @@ TIE_EPSILON = 1e-9
 TIE_EPSILON_TEXT = "1e-9"
 
 
+class Named:
+    """`names`: the identifier in every target language's shape (snake, Pascal, C, Rust, ...)."""
+
+    name: str
+
+    @property
+    def names(self) -> Names:
+        return names_for(self.name)
+
+
 @dataclass(frozen=True)
-class ValueEntry:
+class ValueEntry(Named):
     raw: int
     name: str  # lower_snake identifier
     label_zh: str
@@ -29,7 +40,7 @@ class ValueEntry:
 
 
 @dataclass(frozen=True)
-class ValueTable:
+class ValueTable(Named):
     name: str
     entries: tuple[ValueEntry, ...]
 
@@ -38,7 +49,7 @@ class ValueTable:
 
 
 @dataclass(frozen=True)
-class SpecialValue:
+class SpecialValue(Named):
     raw: int
     name: str
     label_zh: str
@@ -59,7 +70,7 @@ class Segment:
 
 
 @dataclass(frozen=True)
-class Signal:
+class Signal(Named):
     name: str
     zh: str
     desc: str
@@ -154,7 +165,7 @@ class J1939Id:
 
 
 @dataclass(frozen=True)
-class Message:
+class Message(Named):
     name: str
     title: str
     zh: str
@@ -191,7 +202,7 @@ class Message:
 
 
 @dataclass(frozen=True)
-class Node:
+class Node(Named):
     name: str
     label: str
     sa: int
@@ -209,7 +220,7 @@ class Bus:
 
 
 @dataclass(frozen=True)
-class CanProtocol:
+class CanProtocol(Named):
     name: str
     title: str
     title_zh: str
@@ -239,7 +250,7 @@ class JsonEnumValue:
 
 
 @dataclass(frozen=True)
-class JsonField:
+class JsonField(Named):
     name: str  # identifier in bindings
     json_name: str  # key on the wire
     type: str  # the document's type name: U8, S16, U64, Float32, BOOL, ASCII ...
@@ -261,7 +272,7 @@ class JsonField:
 
 
 @dataclass(frozen=True)
-class JsonMessage:
+class JsonMessage(Named):
     name: str
     zh: str
     desc: str
@@ -282,7 +293,7 @@ class JsonParty:
 
 
 @dataclass(frozen=True)
-class JsonProtocol:
+class JsonProtocol(Named):
     name: str
     title: str
     title_zh: str

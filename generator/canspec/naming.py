@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import keyword
 import re
+from dataclasses import dataclass
+from functools import lru_cache
 
 C_KEYWORDS = frozenset(
     "auto break case char const continue default do double else enum extern float for goto if inline int long "
@@ -63,6 +65,26 @@ def py_ident(name: str) -> str:
 
 def ts_ident(name: str) -> str:
     return f"{name}_" if name in TS_KEYWORDS else name
+
+
+@dataclass(frozen=True)
+class Names:
+    """One identifier in every shape the targets use."""
+
+    snake: str
+    upper: str
+    pascal: str
+    camel: str
+    c: str
+    rust: str
+    python: str
+    typescript: str
+
+
+@lru_cache(maxsize=None)
+def names_for(name: str) -> Names:
+    s = snake(name)
+    return Names(s, s.upper(), pascal(name), camel(name), c_ident(s), rust_ident(s), py_ident(s), ts_ident(camel(name)))
 
 
 FILTERS = {
