@@ -27,6 +27,7 @@ class Change:
     old: object = None
     new: object = None
     loc: Loc | None = field(default=None, compare=False)  # where in the NEW spec (or old, if removed)
+    position: int = field(default=-1, compare=False)  # start bit of the signal, for ordering
 
     def as_json(self) -> dict:  # type: ignore[type-arg]
         return {
@@ -58,7 +59,7 @@ class _Collector:
 
     def add(self, kind: str, msg: MessageModel, sig: SignalModel | None, detail: str, old: object = None, new: object = None, cls: str | None = None) -> None:
         loc = (sig.loc if sig is not None else None) or msg.loc
-        self.changes.append(Change(kind, cls or KINDS[kind], msg.frame_id, msg.name, sig.name if sig else None, detail, old, new, loc))
+        self.changes.append(Change(kind, cls or KINDS[kind], msg.frame_id, msg.name, sig.name if sig else None, detail, old, new, loc, sig.start if sig else -1))
 
 
 def _both(a: object, b: object) -> bool:
@@ -188,4 +189,4 @@ def compare(old: ProtocolModel, new: ProtocolModel) -> list[Change]:
     for o, n in pairs:
         _message_pair(c, o, n, both_specs)
     kind_order = list(KINDS)
-    return sorted(c.changes, key=lambda ch: (ch.frame_id, ch.message, ch.signal or "", kind_order.index(ch.kind), LADDER.index(ch.cls), ch.detail))
+    return sorted(c.changes, key=lambda ch: (ch.frame_id, ch.message, ch.position, ch.signal or "", kind_order.index(ch.kind), LADDER.index(ch.cls), ch.detail))
