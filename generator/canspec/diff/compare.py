@@ -2,7 +2,7 @@
 
 Messages are matched by frame ID, then by name (an ID change). Signals within a matched
 message are matched by name, then by bit position (a rename), then by printed Chinese name
-over overlapping bits (a rename that also moved) — so a renamed or moved signal is reported as
+(a rename that also moved) — so a renamed or moved signal is reported as
 such, not as a removal plus an addition. Reserved bits are not signals: a signal appearing in
 bits that were reserved or unused is compatible."""
 
@@ -125,7 +125,7 @@ def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[Sig
 
     take(lambda o, n: o.name == n.name)
     take(lambda o, n: (o.start, o.length) == (n.start, n.length))
-    take(lambda o, n: bool(o.zh) and o.zh == n.zh and bool(o.bits & n.bits))
+    take(lambda o, n: bool(o.zh) and o.zh == n.zh)
     return pairs, left_old, left_new
 
 

@@ -1,0 +1,40 @@
+"""Helpers for the diff tests: fixture specs derived from tests/diff/fixtures/base.yaml by
+exact text edits, and the CLI run in-process."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from canspec.cli import main
+from canspec.diff.compare import compare
+from canspec.diff.inputs import load_model
+
+HERE = Path(__file__).resolve().parent
+BASE = HERE / "fixtures" / "base.yaml"
+ROOT = HERE.parent.parent
+
+
+def edited(tmp_path: Path, edits: list[tuple[str, str]], name: str = "new.yaml") -> Path:
+    text = BASE.read_text(encoding="utf-8")
+    for old, new in edits:
+        assert text.count(old) == 1, f"fixture edit does not apply exactly once: {old!r}"
+        text = text.replace(old, new)
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def diff_paths(old: Path | str, new: Path | str):  # type: ignore[no-untyped-def]
+    return compare(load_model(str(old)), load_model(str(new)))
+
+
+@pytest.fixture
+def run_cli(capsys):  # type: ignore[no-untyped-def]
+    def run(*argv: str) -> tuple[int, str, str]:
+        code = main([str(a) for a in argv])
+        out = capsys.readouterr()
+        return code, out.out, out.err
+
+    return run
