@@ -3,6 +3,9 @@ exact text edits, and the CLI run in-process."""
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -38,3 +41,11 @@ def run_cli(capsys):  # type: ignore[no-untyped-def]
         return code, out.out, out.err
 
     return run
+
+
+def run_subprocess(*argv: str) -> tuple[int, str, str]:
+    """The CLI in a child process: for commands whose output goes through foundation helpers
+    that bind sys.stderr at import time (pytest's capture cannot see them in-process)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "generator")}
+    proc = subprocess.run([sys.executable, "-m", "canspec", *map(str, argv)], capture_output=True, text=True, env=env, check=False)
+    return proc.returncode, proc.stdout, proc.stderr
