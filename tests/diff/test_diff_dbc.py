@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from conftest import ROOT, diff_paths
+from diff_helpers import ROOT, diff_paths
 
 pytest.importorskip("cantools")
 

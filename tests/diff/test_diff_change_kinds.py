@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from conftest import BASE, diff_paths, edited
+from diff_helpers import BASE, diff_paths, edited
 
 from canspec.diff.classes import KINDS
 from canspec.diff.compare import compare

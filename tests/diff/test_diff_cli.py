@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from conftest import BASE, ROOT, edited
+from diff_helpers import BASE, ROOT, edited, run_cli  # noqa: F401 (run_cli is a fixture)
 
 SPEC = ROOT / "spec"
 

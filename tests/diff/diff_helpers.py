@@ -1,5 +1,5 @@
-"""Helpers for the diff tests: fixture specs derived from tests/diff/fixtures/base.yaml by
-exact text edits, and the CLI run in-process."""
+"""Helpers for the diff tests (not a conftest.py: the root tests import `conftest` by name):
+fixture specs derived from fixtures/base.yaml by exact text edits, and the CLI run in-process."""
 
 from __future__ import annotations
 

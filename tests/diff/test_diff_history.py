@@ -7,7 +7,7 @@ from __future__ import annotations
 import shutil
 
 import pytest
-from conftest import ROOT, diff_paths, run_subprocess
+from diff_helpers import ROOT, diff_paths, run_cli, run_subprocess  # noqa: F401 (run_cli is a fixture)
 
 from canspec.diff.history import changelog_problems
 from canspec.pipeline import compile_spec

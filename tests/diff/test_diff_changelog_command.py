@@ -3,7 +3,7 @@ come from the document's 变更记录表 (000_67d7e5b461b28960.txt)."""
 
 from __future__ import annotations
 
-from conftest import ROOT
+from diff_helpers import ROOT, run_cli  # noqa: F401 (run_cli is a fixture)
 
 SPEC = ROOT / "spec"
 # V1.0.0, 1.1.0, 1.1.2, 1.2.0, 1.3.0, 1.4.0–1.4.8, 2.0.0–2.0.5
