@@ -3,6 +3,7 @@ fixture specs derived from fixtures/base.yaml by exact text edits, and the CLI r
 
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 import sys
@@ -29,8 +30,19 @@ def edited(tmp_path: Path, edits: list[tuple[str, str]], name: str = "new.yaml")
     return path
 
 
+@functools.lru_cache(maxsize=None)
+def _repo_model(path: str):  # type: ignore[no-untyped-def]
+    return load_model(path)
+
+
+def model(path: Path | str):  # type: ignore[no-untyped-def]
+    """The comparison model of `path`; the repository's own specs and DBC are read once per session."""
+    text = str(path)
+    return _repo_model(text) if Path(text).resolve().is_relative_to(ROOT) else load_model(text)
+
+
 def diff_paths(old: Path | str, new: Path | str):  # type: ignore[no-untyped-def]
-    return compare(load_model(str(old)), load_model(str(new)))
+    return compare(model(old), model(new))
 
 
 @pytest.fixture

@@ -153,3 +153,13 @@ def test_check_command_fails_on_a_changelog_error(tmp_path):
     code, _, err = run_subprocess("check", "-q", dest)
     assert code == 1 and "history/changelog.yaml:" in err and "[changelog-missing]" in err and "Traceback" not in err
     assert run_subprocess("check", "-q", SPEC)[0] == 0
+
+
+def test_since_must_match_the_diff(tmp_path):
+    dest = _copy_spec(tmp_path)
+    gateway = dest / "can" / "gateway.yaml"
+    _edit(gateway, "values: pto_state}", "values: pto_state, since: 2.0.5}")
+    problems = _check(dest)
+    assert [p.rule for p in problems] == ["changelog-since"] and "'pto_state' of 0x1812A0B0" in problems[0].message
+    line = next(i for i, text in enumerate(gateway.read_text(encoding="utf-8").splitlines(), 1) if "name: pto_state" in text)
+    assert problems[0].loc.line == line

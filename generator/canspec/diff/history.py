@@ -76,6 +76,7 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
                 problems.append(error(f"{label} item {n} declares {d['kind']}{what} in 0x{d['message']:08X}, which the diff from {old.version} does not show",
                                       declared.loc_of(j), "remove the entry or make the spec change it describes", "changelog-invented"))
             covered.update(hits)
+    problems.extend(_since_problems(spec, changes, str(newest["version"]), old.version))
     for i, c in enumerate(changes):
         if i not in covered:
             problems.append(error(f"{label}: the diff from {old.version} shows a {c.cls} change that no item records: {_describe(c)}",
@@ -83,3 +84,15 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
                                   f"add an item (with `changes: [{{kind: {c.kind}, message: 0x{c.frame_id:08X}"
                                   + (f", signal: {c.signal}" if c.signal else "") + "}]`) or undo the change", "changelog-missing"))
     return problems
+
+
+def _since_problems(spec: ir.Spec, changes: list[Change], newest: str, previous: str | None) -> list[Problem]:
+    """A signal marked `since: <newest>` must be one the diff shows as added in that version."""
+    added = {(c.frame_id, c.signal) for c in changes if c.kind == "signal_added"} | {(c.frame_id, None) for c in changes if c.kind == "message_added"}
+    out = []
+    for msg in spec.can.messages if spec.can is not None else ():
+        for sig in msg.signals:
+            if sig.since == newest and (msg.frame_id, sig.name) not in added and (msg.frame_id, None) not in added:
+                out.append(error(f"signal {sig.name!r} of 0x{msg.frame_id:08X} says `since: {newest}`, but the diff from {previous} does not show it added",
+                                 sig.loc, "fix `since` or the previous revision", "changelog-since"))
+    return out
