@@ -3,13 +3,13 @@ fixture specs derived from fixtures/base.yaml by exact text edits, and the CLI r
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import io
 import os
 import subprocess
 import sys
 from pathlib import Path
-
-import pytest
 
 from canspec.cli import main
 from canspec.diff.compare import compare
@@ -30,7 +30,7 @@ def edited(tmp_path: Path, edits: list[tuple[str, str]], name: str = "new.yaml")
     return path
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _repo_model(path: str):  # type: ignore[no-untyped-def]
     return load_model(path)
 
@@ -45,14 +45,12 @@ def diff_paths(old: Path | str, new: Path | str):  # type: ignore[no-untyped-def
     return compare(model(old), model(new))
 
 
-@pytest.fixture
-def run_cli(capsys):  # type: ignore[no-untyped-def]
-    def run(*argv: str) -> tuple[int, str, str]:
+def run_cli(*argv: object) -> tuple[int, str, str]:
+    """The CLI in this process: (exit status, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main([str(a) for a in argv])
-        out = capsys.readouterr()
-        return code, out.out, out.err
-
-    return run
+    return code, out.getvalue(), err.getvalue()
 
 
 def run_subprocess(*argv: str) -> tuple[int, str, str]:

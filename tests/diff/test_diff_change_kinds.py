@@ -7,11 +7,10 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from diff_helpers import BASE, diff_paths, edited
-
 from canspec.diff.classes import KINDS
 from canspec.diff.compare import compare
 from canspec.diff.inputs import load_model
+from diff_helpers import BASE, diff_paths, edited
 
 CMD_RESERVED = "      - {role: reserved, start: 16, len: 48}\n"
 NEW_MESSAGE = """  - name: extra

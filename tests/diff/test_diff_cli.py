@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from diff_helpers import BASE, ROOT, edited, run_cli  # noqa: F401 (run_cli is a fixture)
+from diff_helpers import BASE, ROOT, edited, run_cli
 
 SPEC = ROOT / "spec"
 
@@ -28,7 +28,7 @@ EXPECTED = {
 
 @pytest.mark.parametrize("level", list(EXPECTED))
 @pytest.mark.parametrize("pair", list(PAIRS))
-def test_fail_on_exit_codes(tmp_path, run_cli, level, pair):
+def test_fail_on_exit_codes(tmp_path, level, pair):
     new = edited(tmp_path, PAIRS[pair])
     code, _, err = run_cli("diff", BASE, new, "--fail-on", level)
     assert code == EXPECTED[level][pair]
@@ -36,13 +36,13 @@ def test_fail_on_exit_codes(tmp_path, run_cli, level, pair):
 
 
 @pytest.mark.parametrize("pair", list(PAIRS))
-def test_without_fail_on_exit_is_zero(tmp_path, run_cli, pair):
+def test_without_fail_on_exit_is_zero(tmp_path, pair):
     assert run_cli("diff", BASE, edited(tmp_path, PAIRS[pair]))[0] == 0
 
 
 @pytest.mark.parametrize("pair, bump, version", [("none", "none", "1.0.0"), ("docs", "patch", "1.0.1"), ("compatible", "minor", "1.1.0"),
                                                  ("source", "major", "2.0.0"), ("wire", "major", "2.0.0")])
-def test_json_summary_suggests_the_bump(tmp_path, run_cli, pair, bump, version):
+def test_json_summary_suggests_the_bump(tmp_path, pair, bump, version):
     code, out, _ = run_cli("diff", BASE, edited(tmp_path, PAIRS[pair]), "--format", "json")
     data = json.loads(out)
     assert code == 0 and data["format"] == "canspec-diff/1"
@@ -50,7 +50,7 @@ def test_json_summary_suggests_the_bump(tmp_path, run_cli, pair, bump, version):
     assert data["summary"]["strictest"] == (None if pair == "none" else pair)
 
 
-def test_json_change_fields(run_cli):
+def test_json_change_fields():
     _, out, _ = run_cli("diff", SPEC / "history" / "v2.0.4", SPEC, "--format", "json")
     data = json.loads(out)
     assert data["old"]["version"] == "2.0.4" and data["new"]["version"] == "2.0.5"
@@ -60,7 +60,7 @@ def test_json_change_fields(run_cli):
     assert data["summary"]["counts"] == {"wire": 0, "source": 0, "compatible": 5, "docs": 0}
 
 
-def test_markdown_report(run_cli):
+def test_markdown_report():
     _, out, _ = run_cli("diff", SPEC / "history" / "v2.0.3", SPEC / "history" / "v2.0.4", "--format", "markdown")
     assert out.startswith("# Protocol diff: kaiwo_gateway 2.0.3 → kaiwo_gateway 2.0.4\n")
     assert "| compatible | 5 |" in out
@@ -74,34 +74,34 @@ def _bad(run_cli, *argv):
     return err
 
 
-def test_missing_input(run_cli, tmp_path):
+def test_missing_input(tmp_path):
     err = _bad(run_cli, tmp_path / "nope.yaml", SPEC)
     assert "nope.yaml: no such file or directory" in err
 
 
-def test_unreadable_dbc(run_cli, tmp_path):
+def test_unreadable_dbc(tmp_path):
     bad = tmp_path / "bad.dbc"
     bad.write_text("BO_ this is not a dbc\n", encoding="utf-8")
     assert "bad.dbc: not a readable DBC file" in _bad(run_cli, SPEC, bad)
 
 
-def test_wrong_file_type(run_cli, tmp_path):
+def test_wrong_file_type(tmp_path):
     other = tmp_path / "notes.txt"
     other.write_text("hello\n", encoding="utf-8")
     assert "not a spec (.yaml) or DBC (.dbc) file" in _bad(run_cli, other, SPEC)
 
 
-def test_spec_with_errors(run_cli, tmp_path):
+def test_spec_with_errors(tmp_path):
     broken = edited(tmp_path, [("len: 16, factor: 0.1", "len: 70, factor: 0.1")])
     err = _bad(run_cli, BASE, broken)
     assert "the spec has errors (run `canspec check" in err and "new.yaml:" in err
 
 
-def test_yaml_syntax_error(run_cli, tmp_path):
+def test_yaml_syntax_error(tmp_path):
     broken = tmp_path / "broken.yaml"
     broken.write_text("schema_version: 1\nkind: [unclosed\n", encoding="utf-8")
     assert "broken.yaml" in _bad(run_cli, broken, BASE)
 
 
-def test_directory_without_bundle(run_cli, tmp_path):
+def test_directory_without_bundle(tmp_path):
     assert "no canspec.yaml" in _bad(run_cli, tmp_path, BASE)

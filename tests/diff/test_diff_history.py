@@ -7,10 +7,9 @@ from __future__ import annotations
 import shutil
 
 import pytest
-from diff_helpers import ROOT, diff_paths, run_cli, run_subprocess  # noqa: F401 (run_cli is a fixture)
-
 from canspec.diff.history import changelog_problems
 from canspec.pipeline import compile_spec
+from diff_helpers import ROOT, diff_paths, run_cli, run_subprocess
 
 SPEC = ROOT / "spec"
 HISTORY = SPEC / "history"
@@ -46,7 +45,7 @@ def test_consecutive_revisions_reproduce_the_record(old, new, version):
     assert {c.cls for c in changes} == {"compatible"}  # additions in reserved bits and a new message
 
 
-def test_v204_to_v205_text_report(run_cli):
+def test_v204_to_v205_text_report():
     code, out, _ = run_cli("diff", HISTORY / "v2.0.4", SPEC, "--format", "text")
     assert code == 0
     assert "drive_mode_reset (bit 28) added in formerly reserved bits" in out

@@ -68,7 +68,7 @@ def _signal(sig, definitions) -> SignalModel:  # type: ignore[no-untyped-def]
 
 def load_dbc(path: Path, source: str) -> ProtocolModel:
     try:
-        import cantools  # noqa: PLC0415 — optional: only DBC inputs need it
+        import cantools  # optional: only DBC inputs need it
     except ImportError as exc:
         raise InputError(f"{source}: reading DBC files needs cantools (pip install cantools)") from exc
     db = None
@@ -78,7 +78,7 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
             break
         except UnicodeDecodeError:
             continue
-        except Exception as exc:  # noqa: BLE001 — cantools raises many kinds; all mean "not a DBC"
+        except Exception as exc:  # cantools raises many kinds; all mean "not a DBC"
             first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
             raise InputError(f"{source}: not a readable DBC file: {first}") from exc
     if db is None:
