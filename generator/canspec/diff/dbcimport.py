@@ -83,6 +83,8 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
             raise InputError(f"{source}: not a readable DBC file: {first}") from exc
     if db is None:
         raise InputError(f"{source}: not a readable DBC file (neither UTF-8 nor cp1252 text)")
+    if not isinstance(db, cantools.database.can.Database):
+        raise InputError(f"{source}: not a CAN database")
     definitions = getattr(getattr(db, "dbc", None), "attribute_definitions", None) or {}
     messages = []
     for msg in db.messages:
