@@ -48,6 +48,8 @@ def test_json_summary_suggests_the_bump(tmp_path, pair, bump, version):
     assert code == 0 and data["format"] == "canspec-diff/1"
     assert data["summary"]["bump"] == bump and data["summary"]["suggested_version"] == version
     assert data["summary"]["strictest"] == (None if pair == "none" else pair)
+    # every fixture pair keeps version 1.0.0: a change without a version bump is pointed out
+    assert data["summary"]["note"] == (None if pair == "none" else "the new revision's version (1.0.0) is not above the old one (1.0.0)")
 
 
 def test_json_change_fields():
@@ -58,6 +60,7 @@ def test_json_change_fields():
     assert first == {"kind": "signal_added", "class": "compatible", "frame_id": "0x1805B0A0", "message": "autocar_control_command_1",
                      "signal": "drive_mode_reset", "detail": "drive_mode_reset (bit 28) added in formerly reserved bits", "old": None, "new": "drive_mode_reset"}
     assert data["summary"]["counts"] == {"wire": 0, "source": 0, "compatible": 5, "docs": 0}
+    assert data["summary"]["note"] == "2.0.4 → 2.0.5 is a patch bump; the changes suggest minor"
 
 
 def test_markdown_report():

@@ -53,6 +53,7 @@ def test_v204_to_v205_text_report():
     assert "remote_entry_fault (bits 44..47) added in formerly reserved bits" in out
     assert "5 change(s): 0 wire-breaking, 0 source-breaking, 5 compatible, 0 docs" in out
     assert "suggested version bump: minor (2.0.4 → 2.1.0)" in out
+    assert "note: 2.0.4 → 2.0.5 is a patch bump; the changes suggest minor" in out
 
 
 @pytest.mark.parametrize("revision", ["v2.0.4", "v2.0.3", "v2.0.2"])

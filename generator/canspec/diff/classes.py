@@ -80,3 +80,30 @@ def suggest_bump(old_version: str | None, classes: set[str]) -> tuple[str, str |
     major, minor, patch = map(int, parts)
     new = {"major": f"{major + 1}.0.0", "minor": f"{major}.{minor + 1}.0", "patch": f"{major}.{minor}.{patch + 1}"}[bump]
     return bump, new, why
+
+
+def actual_bump(old_version: str | None, new_version: str | None) -> str | None:
+    """major / minor / patch / none for two A.B.C versions ("none": not above); None if not semver."""
+    try:
+        a = tuple(int(p) for p in (old_version or "").split("."))
+        b = tuple(int(p) for p in (new_version or "").split("."))
+    except ValueError:
+        return None
+    if len(a) != 3 or len(b) != 3:
+        return None
+    if b <= a:
+        return "none"
+    return "major" if b[0] != a[0] else ("minor" if b[1] != a[1] else "patch")
+
+
+BUMP_ORDER = ("none", "patch", "minor", "major")
+
+
+def bump_note(old_version: str | None, new_version: str | None, suggested_bump: str) -> str | None:
+    """A remark when the new revision's version says less than its changes do."""
+    actual = actual_bump(old_version, new_version)
+    if actual is None or BUMP_ORDER.index(actual) >= BUMP_ORDER.index(suggested_bump):
+        return None
+    if actual == "none":
+        return f"the new revision's version ({new_version}) is not above the old one ({old_version})"
+    return f"{old_version} → {new_version} is a {actual} bump; the changes suggest {suggested_bump}"
