@@ -1,5 +1,13 @@
 """`canspec diff OLD NEW [--format text|markdown|json] [--fail-on wire|source|compatible|any]`.
 
+Every change is classed, strictest first:
+  wire        an old receiver would decode different values (layout, factor/offset, signedness,
+              unit, ID, DLC, enum meaning, checksum/counter role, removed message or signal)
+  source      the wire is the same but generated identifiers change (renames)
+  compatible  new message, new signal in formerly reserved bits, new enum value, widened range,
+              cycle time, sender/receivers
+  docs        names as printed, descriptions
+
 Exit status: 0 no failing change, 1 a change at or above --fail-on, 2 an input that cannot be
 read (the message says which and why)."""
 
