@@ -163,3 +163,18 @@ def test_since_must_match_the_diff(tmp_path):
     assert [p.rule for p in problems] == ["changelog-since"] and "'pto_state' of 0x1812A0B0" in problems[0].message
     line = next(i for i, text in enumerate(gateway.read_text(encoding="utf-8").splitlines(), 1) if "name: pto_state" in text)
     assert problems[0].loc.line == line
+
+
+@pytest.mark.parametrize("entry, message", [
+    ("{kind: signal_exploded, message: 0x1805B0D0, signal: drive_mode_reset}", "is not one of"),
+    ("{kind: unreconstructed, message: 0x1805B0D0}", "'reason' is required"),
+    ("{kind: signal_added, message: 0x1805B0D0, signal: Drive_Mode}", "does not match"),
+])
+def test_schema_shapes_declared_changes(tmp_path, entry, message):
+    dest = _copy_spec(tmp_path)
+    log = dest / "history" / "changelog.yaml"
+    _edit(log, "          - {kind: signal_added, message: 0x1805B0D0, signal: drive_mode_reset}\n", f"          - {entry}\n")
+    errors = compile_spec(dest).errors
+    line = next(i for i, text in enumerate(log.read_text(encoding="utf-8").splitlines(), 1) if entry in text)
+    assert len(errors) == 1 and errors[0].rule == "schema" and message in errors[0].message
+    assert errors[0].loc.file.endswith("history/changelog.yaml") and errors[0].loc.line == line
