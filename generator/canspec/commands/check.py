@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from canspec.commands.common import compile_or_report
+from canspec.commands.common import compile_or_report, print_problems
+from canspec.diff.history import changelog_problems
 
 
 def run(args: argparse.Namespace) -> int:
@@ -17,6 +18,12 @@ def run(args: argparse.Namespace) -> int:
             failed = True
             continue
         s = compiled.spec
+        # The changelog's newest version must agree with the diff from its `previous` revision.
+        history = changelog_problems(spec, s)
+        print_problems(history)
+        if any(p.severity == "error" or args.strict for p in history):
+            failed = True
+            continue
         if not args.quiet:
             counts = []
             if s.can is not None:

@@ -9,7 +9,8 @@ from canspec.pipeline import Compiled, compile_spec
 from canspec.problems import Problem
 
 
-def print_problems(problems: list[Problem], stream=sys.stderr) -> None:  # type: ignore[no-untyped-def]
+def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignore[no-untyped-def]
+    stream = stream or sys.stderr
     for p in sorted(problems, key=lambda p: (p.loc is None, p.loc or "", p.message)):  # type: ignore[arg-type,operator]
         print(p.format(), file=stream)
 

@@ -1,0 +1,50 @@
+"""`canspec diff OLD NEW [--format text|markdown|json] [--fail-on wire|source|compatible|any]`.
+
+Every change is classed, strictest first:
+  wire        an old receiver would decode different values (layout, factor/offset, signedness,
+              unit, ID, DLC, enum meaning, checksum/counter role, removed message or signal)
+  source      the wire is the same but generated identifiers change (renames)
+  compatible  new message, new signal in formerly reserved bits, new enum value, widened range,
+              cycle time, sender/receivers
+  docs        names as printed, descriptions
+
+Exit status: 0 no failing change, 1 a change at or above --fail-on, 2 an input that cannot be
+read (the message says which and why)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from canspec.diff.classes import FAIL_ON
+from canspec.diff.compare import compare
+from canspec.diff.dbcimport import InputError
+from canspec.diff.inputs import load_model
+from canspec.diff.report import FORMATS
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        old = load_model(args.old)
+        new = load_model(args.new)
+    except InputError as exc:
+        print(f"canspec diff: {exc}", file=sys.stderr)
+        return 2
+    changes = compare(old, new)
+    sys.stdout.write(FORMATS[args.format](old, new, changes))
+    if args.fail_on:
+        failing = [ch for ch in changes if ch.cls in FAIL_ON[args.fail_on]]
+        if failing:
+            print(f"canspec diff: {len(failing)} change(s) at or above --fail-on {args.fail_on}", file=sys.stderr)
+            return 1
+    return 0
+
+
+def register(sub) -> None:  # type: ignore[no-untyped-def]
+    p = sub.add_parser("diff", help="semantic diff of two protocol revisions (specs or DBC files), classed wire/source/compatible/docs",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("old", help="old revision: spec bundle, directory or file, or a .dbc file")
+    p.add_argument("new", help="new revision: spec bundle, directory or file, or a .dbc file")
+    p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
+    p.add_argument("--fail-on", choices=list(FAIL_ON), help="exit 1 if any change is of this class or stricter (any: every change)")
+    p.set_defaults(func=run)

@@ -1,0 +1,8 @@
+"""Semantic diff of two protocol revisions (spec or DBC) with a breaking-change ladder.
+
+model.py   — the comparison model, built from the IR (`from_spec`) or a DBC (`dbcimport.py`)
+compare.py — matching (frame ID, name, bit position) and one `Change` per difference
+classes.py — the ladder wire > source > compatible > docs and the version-bump suggestion
+report.py  — text / markdown / json rendering
+history.py — the changelog-vs-diff check behind `canspec check`
+"""

@@ -1,0 +1,109 @@
+"""The breaking-change ladder, strictest first, and the version bump each class suggests.
+
+wire       an old receiver would decode different values (layout, factor, offset, signedness,
+           unit, ID, DLC, enum meaning, checksum/counter roles, removed message or signal)
+source     the wire is the same but generated identifiers change (renames)
+compatible old code keeps working (new message, new signal in formerly free bits, new enum
+           value, widened range, cycle time, sender/receivers)
+docs       names as printed, descriptions
+"""
+
+from __future__ import annotations
+
+LADDER = ("wire", "source", "compatible", "docs")
+TITLES = {"wire": "wire-breaking", "source": "source-breaking", "compatible": "compatible", "docs": "docs"}
+
+# Every change kind and its class; kinds whose class depends on the change are listed with the
+# strictest class and decided in compare.py (signal_added, signal_range_changed).
+KINDS: dict[str, str] = {
+    "message_added": "compatible",
+    "message_removed": "wire",
+    "message_id_changed": "wire",
+    "message_renamed": "source",
+    "message_dlc_changed": "wire",
+    "message_cycle_changed": "compatible",
+    "message_sender_changed": "compatible",
+    "message_receivers_changed": "compatible",
+    "message_checksum_changed": "wire",
+    "message_multiframe_changed": "wire",
+    "message_title_changed": "docs",
+    "signal_added": "wire",  # compatible when its bits were free (reserved or unused) before
+    "signal_removed": "wire",
+    "signal_renamed": "source",
+    "signal_moved": "wire",
+    "signal_resized": "wire",
+    "signal_rescaled": "wire",
+    "signal_signedness_changed": "wire",
+    "signal_unit_changed": "wire",
+    "signal_range_changed": "wire",  # compatible when only widened
+    "signal_role_changed": "wire",
+    "signal_values_table_renamed": "source",
+    "signal_label_changed": "docs",
+    "signal_description_changed": "docs",
+    "value_added": "compatible",
+    "value_removed": "wire",
+    "value_relabelled": "wire",
+    "value_renamed": "source",
+    "special_added": "compatible",
+    "special_removed": "wire",
+    "special_relabelled": "wire",
+    "special_renamed": "source",
+}
+
+# --fail-on LEVEL fails on changes of these classes.
+FAIL_ON = {
+    "wire": ("wire",),
+    "source": ("wire", "source"),
+    "compatible": ("wire", "source", "compatible"),
+    "any": LADDER,
+}
+
+
+def strictest(classes: list[str] | tuple[str, ...] | set[str]) -> str | None:
+    return next((c for c in LADDER if c in classes), None)
+
+
+def suggest_bump(old_version: str | None, classes: set[str]) -> tuple[str, str | None, str]:
+    """(bump, suggested new version or None, why)."""
+    top = strictest(classes)
+    if top is None:
+        return "none", old_version, "no changes"
+    bump, why = {
+        "wire": ("major", "old receivers would decode different values"),
+        "source": ("major", "generated identifiers change; old and new ECUs still interoperate on the wire"),
+        "compatible": ("minor", "only additions and relaxations"),
+        "docs": ("patch", "names and descriptions only"),
+    }[top]
+    parts = (old_version or "").split(".")
+    if len(parts) != 3 or not all(p.isdigit() for p in parts):
+        return bump, None, why
+    major, minor, patch = map(int, parts)
+    new = {"major": f"{major + 1}.0.0", "minor": f"{major}.{minor + 1}.0", "patch": f"{major}.{minor}.{patch + 1}"}[bump]
+    return bump, new, why
+
+
+def actual_bump(old_version: str | None, new_version: str | None) -> str | None:
+    """major / minor / patch / none for two A.B.C versions ("none": not above); None if not semver."""
+    try:
+        a = tuple(int(p) for p in (old_version or "").split("."))
+        b = tuple(int(p) for p in (new_version or "").split("."))
+    except ValueError:
+        return None
+    if len(a) != 3 or len(b) != 3:
+        return None
+    if b <= a:
+        return "none"
+    return "major" if b[0] != a[0] else ("minor" if b[1] != a[1] else "patch")
+
+
+BUMP_ORDER = ("none", "patch", "minor", "major")
+
+
+def bump_note(old_version: str | None, new_version: str | None, suggested_bump: str) -> str | None:
+    """A remark when the new revision's version says less than its changes do."""
+    actual = actual_bump(old_version, new_version)
+    if actual is None or BUMP_ORDER.index(actual) >= BUMP_ORDER.index(suggested_bump):
+        return None
+    if actual == "none":
+        return f"the new revision's version ({new_version}) is not above the old one ({old_version})"
+    return f"{old_version} → {new_version} is a {actual} bump; the changes suggest {suggested_bump}"

@@ -1,0 +1,192 @@
+"""Match two protocol models and list their differences, one `Change` each.
+
+Messages are matched by frame ID, then by name (an ID change). Signals within a matched
+message are matched by name, then by bit position (a rename), then by printed Chinese name
+(a rename that also moved) — so a renamed or moved signal is reported as
+such, not as a removal plus an addition. Reserved bits are not signals: a signal appearing in
+bits that were reserved or unused is compatible."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from canspec.diff.classes import KINDS, LADDER
+from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, meaningful_entries
+from canspec.problems import Loc
+
+
+@dataclass(frozen=True)
+class Change:
+    kind: str
+    cls: str
+    frame_id: int
+    message: str
+    signal: str | None
+    detail: str
+    old: object = None
+    new: object = None
+    loc: Loc | None = field(default=None, compare=False)  # where in the NEW spec (or old, if removed)
+    position: int = field(default=-1, compare=False)  # start bit of the signal, for ordering
+
+    def as_json(self) -> dict:  # type: ignore[type-arg]
+        return {
+            "kind": self.kind, "class": self.cls, "frame_id": f"0x{self.frame_id:08X}", "message": self.message,
+            "signal": self.signal, "detail": self.detail, "old": _plain(self.old), "new": _plain(self.new),
+        }
+
+
+def _plain(value: object) -> object:
+    if isinstance(value, Fraction):
+        return int(value) if value.denominator == 1 else float(value)
+    if isinstance(value, (tuple, list)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def num(value: Fraction | None) -> str:
+    if value is None:
+        return "-"
+    if value.denominator == 1:
+        return str(value.numerator)
+    text = f"{float(value):.10g}"
+    return text
+
+
+class _Collector:
+    def __init__(self) -> None:
+        self.changes: list[Change] = []
+
+    def add(self, kind: str, msg: MessageModel, sig: SignalModel | None, detail: str, old: object = None, new: object = None, cls: str | None = None) -> None:
+        loc = (sig.loc if sig is not None else None) or msg.loc
+        self.changes.append(Change(kind, cls or KINDS[kind], msg.frame_id, msg.name, sig.name if sig else None, detail, old, new, loc, sig.start if sig else -1))
+
+
+def _both(a: object, b: object) -> bool:
+    return a is not None and b is not None
+
+
+def _entries(c: _Collector, msg: MessageModel, sig: SignalModel, what: str, old: dict[int, Entry], new: dict[int, Entry]) -> None:
+    kind = "value" if what == "value" else "special"
+    for raw in sorted(set(old) | set(new)):
+        o, n = old.get(raw), new.get(raw)
+        if o is None and n is not None:
+            c.add(f"{kind}_added", msg, sig, f"{what} {raw} = {n.name}" + (f" ({n.label})" if n.label else ""), None, n.name)
+        elif n is None and o is not None:
+            c.add(f"{kind}_removed", msg, sig, f"{what} {raw} = {o.name} removed", o.name, None)
+        elif o is not None and n is not None:
+            if _both(o.label, n.label) and o.label != n.label:
+                c.add(f"{kind}_relabelled", msg, sig, f"{what} {raw}: {o.label} → {n.label}" + (f" ({o.name} → {n.name})" if o.name != n.name else ""), o.label, n.label)
+            elif o.name != n.name:
+                c.add(f"{kind}_renamed", msg, sig, f"{what} {raw}: {o.name} → {n.name}", o.name, n.name)
+
+
+def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalModel) -> None:
+    if o.name != n.name:
+        c.add("signal_renamed", msg, n, f"{o.name} → {n.name}", o.name, n.name)
+    if o.start != n.start:
+        c.add("signal_moved", msg, n, f"start bit {o.start} → {n.start}", o.start, n.start)
+    if o.length != n.length:
+        c.add("signal_resized", msg, n, f"length {o.length} → {n.length} bits", o.length, n.length)
+    if (o.factor, o.offset) != (n.factor, n.offset):
+        c.add("signal_rescaled", msg, n, f"factor/offset {num(o.factor)}/{num(o.offset)} → {num(n.factor)}/{num(n.offset)}", [o.factor, o.offset], [n.factor, n.offset])
+    if o.signed != n.signed:
+        c.add("signal_signedness_changed", msg, n, f"{'signed' if o.signed else 'unsigned'} → {'signed' if n.signed else 'unsigned'}", o.signed, n.signed)
+    if o.unit != n.unit:
+        c.add("signal_unit_changed", msg, n, f"unit {o.unit or '(none)'} → {n.unit or '(none)'}", o.unit, n.unit)
+    if (o.minimum, o.maximum) != (n.minimum, n.maximum):
+        widened = n.minimum <= o.minimum and n.maximum >= o.maximum
+        c.add("signal_range_changed", msg, n, f"range [{num(o.minimum)}, {num(o.maximum)}] → [{num(n.minimum)}, {num(n.maximum)}]" + (" (widened)" if widened else ""),
+              [o.minimum, o.maximum], [n.minimum, n.maximum], cls="compatible" if widened else "wire")
+    if o.role != n.role:
+        c.add("signal_role_changed", msg, n, f"role {o.role} → {n.role}", o.role, n.role)
+    if _both(o.values_table, n.values_table) and o.values_table != n.values_table:
+        c.add("signal_values_table_renamed", msg, n, f"value table {o.values_table} → {n.values_table}", o.values_table, n.values_table)
+    if o.values is not None or n.values is not None:
+        _entries(c, msg, n, "value", meaningful_entries(o.values or {}), meaningful_entries(n.values or {}))
+    _entries(c, msg, n, "special", o.specials, n.specials)
+    if _both(o.zh, n.zh) and o.zh != n.zh:
+        c.add("signal_label_changed", msg, n, f"name as printed {o.zh} → {n.zh}", o.zh, n.zh)
+    if _both(o.desc, n.desc) and o.desc != n.desc:
+        c.add("signal_description_changed", msg, n, "description changed", o.desc, n.desc)
+
+
+def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[SignalModel, SignalModel]], list[SignalModel], list[SignalModel]]:
+    pairs: list[tuple[SignalModel, SignalModel]] = []
+    left_old, left_new = list(old.signals), list(new.signals)
+
+    def take(pred) -> None:  # type: ignore[no-untyped-def]
+        for o in list(left_old):
+            cands = [n for n in left_new if pred(o, n)]
+            if len(cands) == 1:
+                pairs.append((o, cands[0]))
+                left_old.remove(o)
+                left_new.remove(cands[0])
+
+    take(lambda o, n: o.name == n.name)
+    take(lambda o, n: (o.start, o.length) == (n.start, n.length))
+    take(lambda o, n: bool(o.zh) and o.zh == n.zh)
+    return pairs, left_old, left_new
+
+
+def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: bool) -> None:
+    if (o.frame_id, o.extended) != (n.frame_id, n.extended):
+        c.add("message_id_changed", n, None, f"frame ID 0x{o.frame_id:08X} → 0x{n.frame_id:08X}", o.frame_id, n.frame_id)
+    if o.name != n.name:
+        c.add("message_renamed", n, None, f"{o.name} → {n.name}", o.name, n.name)
+    if o.dlc != n.dlc:
+        c.add("message_dlc_changed", n, None, f"DLC {o.dlc} → {n.dlc}", o.dlc, n.dlc)
+    if _both(o.cycle_ms, n.cycle_ms) and o.cycle_ms != n.cycle_ms:
+        c.add("message_cycle_changed", n, None, f"cycle {o.cycle_ms} ms → {n.cycle_ms} ms", o.cycle_ms, n.cycle_ms)
+    if _both(o.sender, n.sender) and o.sender != n.sender:
+        c.add("message_sender_changed", n, None, f"sender {o.sender} → {n.sender}", o.sender, n.sender)
+    if _both(o.receivers, n.receivers) and o.receivers != n.receivers:
+        c.add("message_receivers_changed", n, None, f"receivers {', '.join(o.receivers or ())} → {', '.join(n.receivers or ())}", o.receivers, n.receivers)
+    if both_specs and o.checksum != n.checksum:
+        c.add("message_checksum_changed", n, None, f"checksum {_checksum_text(o)} → {_checksum_text(n)}", None, None)
+    if both_specs and o.multiframe != n.multiframe:
+        c.add("message_multiframe_changed", n, None, "multi-frame text layout changed", _plain(o.multiframe), _plain(n.multiframe))
+    for attr in ("title", "zh"):
+        a, b = getattr(o, attr), getattr(n, attr)
+        if _both(a, b) and a != b:
+            c.add("message_title_changed", n, None, f"{'title' if attr == 'title' else 'name as printed'} {a} → {b}", a, b)
+    pairs, removed, added = _match_signals(o, n)
+    old_used = o.used_bits
+    for sig in removed:
+        c.add("signal_removed", n, sig, f"{sig.name} ({sig.span()}) removed", sig.name, None)
+    for sig in added:
+        free = not (sig.bits & old_used) and max(sig.bits) < o.dlc * 8
+        where = "in formerly reserved bits" if free else "over bits that carried another signal"
+        c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
+    for a, b in pairs:
+        _signal_pair(c, n, a, b)
+
+
+def _checksum_text(m: MessageModel) -> str:
+    if m.checksum is None:
+        return "none"
+    alg, byte, covers = m.checksum
+    return f"{alg} of bytes {covers[0]}..{covers[-1]} in byte {byte}"
+
+
+def compare(old: ProtocolModel, new: ProtocolModel) -> list[Change]:
+    c = _Collector()
+    both_specs = old.kind == new.kind == "spec"
+    pairs: list[tuple[MessageModel, MessageModel]] = []
+    left_old = list(old.messages)
+    left_new = list(new.messages)
+    for key in (lambda m: m.frame_id, lambda m: m.name):
+        for o in list(left_old):
+            n = next((x for x in left_new if key(x) == key(o)), None)
+            if n is not None:
+                pairs.append((o, n))
+                left_old.remove(o)
+                left_new.remove(n)
+    for o in left_old:
+        c.add("message_removed", o, None, f"{o.name} removed", o.name, None)
+    for n in left_new:
+        c.add("message_added", n, None, f"{n.name} added ({len(n.signals)} signals)", None, n.name)
+    for o, n in pairs:
+        _message_pair(c, o, n, both_specs)
+    kind_order = list(KINDS)
+    return sorted(c.changes, key=lambda ch: (ch.frame_id, ch.message, ch.position, ch.signal or "", kind_order.index(ch.kind), LADDER.index(ch.cls), ch.detail))

@@ -1,0 +1,108 @@
+"""DBC → comparison model, through cantools. Names and choices map onto the same model as a
+spec; what a DBC cannot say (Chinese names, descriptions, value labels) stays None and is not
+compared. Vector J1939 attributes are read when present: GenMsgCycleTime, SigType
+(MessageCounter / MessageChecksum roles). Special values are read back from the comments canspec
+writes ("0x3FF = no_obstacle (无障碍物)")."""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+from pathlib import Path
+
+from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
+
+
+class InputError(Exception):
+    """A diff input that cannot be read: the message says what and how to fix it."""
+
+
+_SIG_TYPE_ROLES = {"MessageCounter": "counter", "MessageChecksum": "checksum"}
+_SPECIAL = re.compile(r"0x([0-9A-Fa-f]+) = ([A-Za-z_][A-Za-z0-9_]*) \(([^)]*)\)")
+_NO_NODE = "Vector__XXX"
+
+
+def _frac(value: object) -> Fraction:
+    return Fraction(str(value)) if value is not None else Fraction(0)
+
+
+def _attr(obj: object, name: str) -> object:
+    dbc = getattr(obj, "dbc", None)
+    attrs = getattr(dbc, "attributes", None) or {}
+    attr = attrs.get(name)
+    return getattr(attr, "value", None) if attr is not None else None
+
+
+def _role(sig: object, attribute_definitions: dict) -> str:  # type: ignore[type-arg]
+    value = _attr(sig, "SigType")
+    if isinstance(value, int):
+        definition = attribute_definitions.get("SigType")
+        choices = getattr(definition, "choices", None)
+        if choices and 0 <= value < len(choices):
+            value = choices[value]
+    return _SIG_TYPE_ROLES.get(str(value), "data")
+
+
+def _signal(sig, definitions) -> SignalModel:  # type: ignore[no-untyped-def]
+    if sig.byte_order != "little_endian":
+        raise InputError(f"signal {sig.name!r} is big-endian (Motorola); canspec compares Intel-order protocols only")
+    specials = {}
+    for m in _SPECIAL.finditer(sig.comment or ""):
+        specials[int(m.group(1), 16)] = Entry(m.group(2), m.group(3))
+    # canspec lists special values in VAL_ too (so tools show them); they are not enum entries.
+    choices = {int(raw): str(getattr(v, "name", v)) for raw, v in (sig.choices or {}).items()}
+    values = {raw: Entry(name, None) for raw, name in choices.items() if not (raw in specials and specials[raw].name == name)} or None
+    factor, offset = _frac(sig.scale), _frac(sig.offset)
+    lo = _frac(sig.minimum) if sig.minimum is not None else None
+    hi = _frac(sig.maximum) if sig.maximum is not None else None
+    if lo is None or hi is None:  # no range in the DBC: what the bits can carry
+        raw_lo, raw_hi = (-(1 << (sig.length - 1)), (1 << (sig.length - 1)) - 1) if sig.is_signed else (0, (1 << sig.length) - 1)
+        a, b = raw_lo * factor + offset, raw_hi * factor + offset
+        lo, hi = (min(a, b) if lo is None else lo), (max(a, b) if hi is None else hi)
+    return SignalModel(
+        name=sig.name, start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,
+        unit=sig.unit or "", minimum=lo, maximum=hi, role=_role(sig, definitions), values=values, values_table=None,
+        specials=specials, zh=None, desc=None,
+    )
+
+
+def load_dbc(path: Path, source: str) -> ProtocolModel:
+    try:
+        import cantools  # optional: only DBC inputs need it
+    except ImportError as exc:
+        raise InputError(f"{source}: reading DBC files needs cantools (pip install cantools)") from exc
+    db = None
+    for encoding in ("utf-8", "cp1252"):  # canspec writes UTF-8; Vector tools often write cp1252
+        try:
+            db = cantools.database.load_file(str(path), database_format="dbc", strict=False, encoding=encoding)
+            break
+        except UnicodeDecodeError:
+            continue
+        except Exception as exc:  # cantools raises many kinds; all mean "not a DBC"
+            first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise InputError(f"{source}: not a readable DBC file: {first}") from exc
+    if db is None:
+        raise InputError(f"{source}: not a readable DBC file (neither UTF-8 nor cp1252 text)")
+    if not isinstance(db, cantools.database.can.Database):
+        raise InputError(f"{source}: not a CAN database")
+    definitions = getattr(getattr(db, "dbc", None), "attribute_definitions", None) or {}
+    messages = []
+    for msg in db.messages:
+        try:
+            signals = tuple(sorted((_signal(s, definitions) for s in msg.signals), key=lambda s: (s.start, s.length)))
+        except InputError as exc:
+            raise InputError(f"{source}: message {msg.name!r}: {exc}") from exc
+        senders = [s for s in msg.senders if s != _NO_NODE]
+        receivers = sorted({r for s in msg.signals for r in s.receivers if r != _NO_NODE})
+        messages.append(
+            MessageModel(
+                frame_id=msg.frame_id, extended=bool(msg.is_extended_frame), name=msg.name, title=None, zh=None,
+                dlc=msg.length, cycle_ms=msg.cycle_time, sender=senders[0] if senders else "ALL",
+                receivers=tuple(receivers) if receivers else None, signals=signals, checksum=None, multiframe=None,
+            )
+        )
+    version = (getattr(db, "version", None) or "").strip() or None
+    name = path.stem
+    if version and " " in version:  # canspec writes VERSION "<protocol> <version>"
+        name, version = version.rsplit(" ", 1)
+    return ProtocolModel(source, "dbc", name, version, tuple(messages))

@@ -1,0 +1,133 @@
+"""The comparison model: what two revisions are compared on, independent of where they came
+from. A field that a source cannot express (a DBC has no Chinese names) is None and is not
+compared, so a DBC and a spec can be diffed without noise."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from canspec import ir
+from canspec.problems import Loc
+
+# Value-table entries that only mark a raw value as unused ("保留") are not a meaning.
+_RESERVED_LABELS = ("保留", "预留")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One value-table entry or special value: identifier and (when known) the printed label."""
+
+    name: str
+    label: str | None
+
+
+@dataclass(frozen=True)
+class SignalModel:
+    name: str
+    start: int
+    length: int
+    signed: bool
+    factor: Fraction
+    offset: Fraction
+    unit: str
+    minimum: Fraction
+    maximum: Fraction
+    role: str  # data | counter | checksum
+    values: dict[int, Entry] | None  # None: not an enumerated signal
+    values_table: str | None  # the table's name (spec only): generated enum types are named after it
+    specials: dict[int, Entry]
+    zh: str | None
+    desc: str | None
+    loc: Loc | None = None
+
+    @property
+    def bits(self) -> frozenset[int]:
+        return frozenset(range(self.start, self.start + self.length))
+
+    def span(self) -> str:
+        end = self.start + self.length - 1
+        return f"bit {self.start}" if self.length == 1 else f"bits {self.start}..{end}"
+
+
+@dataclass(frozen=True)
+class MessageModel:
+    frame_id: int
+    extended: bool
+    name: str
+    title: str | None
+    zh: str | None
+    dlc: int
+    cycle_ms: int | None
+    sender: str | None
+    receivers: tuple[str, ...] | None
+    signals: tuple[SignalModel, ...]  # data, counter and checksum signals; reserved bits are not signals
+    checksum: tuple[str, int, tuple[int, ...]] | None  # (algorithm, byte, covered bytes), spec only
+    multiframe: tuple[object, ...] | None
+    loc: Loc | None = None
+
+    @property
+    def used_bits(self) -> frozenset[int]:
+        return frozenset(b for s in self.signals for b in s.bits)
+
+    def signal(self, name: str) -> SignalModel | None:
+        return next((s for s in self.signals if s.name == name), None)
+
+
+@dataclass(frozen=True)
+class ProtocolModel:
+    source: str  # what the user passed, for the report
+    kind: str  # "spec" | "dbc"
+    name: str
+    version: str | None
+    messages: tuple[MessageModel, ...]
+
+    def by_id(self, frame_id: int) -> MessageModel | None:
+        return next((m for m in self.messages if m.frame_id == frame_id), None)
+
+    def by_name(self, name: str) -> MessageModel | None:
+        return next((m for m in self.messages if m.name == name), None)
+
+    @property
+    def label(self) -> str:
+        return f"{self.name} {self.version}" if self.version else self.name
+
+
+def meaningful_entries(entries: dict[int, Entry]) -> dict[int, Entry]:
+    """Drop placeholder entries (`reserved_3: 保留`): a reserved raw value carries no meaning."""
+    return {
+        raw: e for raw, e in entries.items()
+        if not (e.name == "reserved" or e.name.startswith("reserved_") or (e.label or "").strip() in _RESERVED_LABELS)
+    }
+
+
+def _signal(sig: ir.Signal) -> SignalModel:
+    values = None
+    if sig.value_table is not None:
+        values = {e.raw: Entry(e.name, e.label_zh) for e in sig.value_table.entries}
+    desc = " / ".join(t for t in (sig.desc, sig.desc_zh) if t)
+    return SignalModel(
+        name=sig.name, start=sig.start, length=sig.length, signed=sig.signed, factor=sig.factor, offset=sig.offset,
+        unit=sig.unit, minimum=sig.phys_min, maximum=sig.phys_max, role=sig.role, values=values,
+        values_table=sig.value_table.name if sig.value_table is not None else None,
+        specials={s.raw: Entry(s.name, s.label_zh) for s in sig.specials}, zh=sig.zh, desc=desc, loc=sig.loc,
+    )
+
+
+def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
+    messages = []
+    for msg in spec.can.messages if spec.can is not None else ():
+        checksum = (msg.checksum.algorithm, msg.checksum.byte, msg.checksum.covers) if msg.checksum else None
+        mf = msg.multiframe
+        multiframe = (mf.index_signal, mf.payload_signal, mf.encoding, mf.text_length, mf.frames, mf.padding) if mf else None
+        messages.append(
+            MessageModel(
+                frame_id=msg.frame_id, extended=msg.is_extended, name=msg.name, title=msg.title, zh=msg.zh, dlc=msg.dlc,
+                cycle_ms=msg.cycle_ms, sender=msg.sender, receivers=tuple(sorted(msg.receivers)),
+                signals=tuple(_signal(s) for s in msg.signals if not s.is_reserved), checksum=checksum,
+                multiframe=multiframe, loc=msg.loc,
+            )
+        )
+    name = spec.can.name if spec.can is not None else spec.name
+    version = spec.can.version if spec.can is not None else spec.version
+    return ProtocolModel(source, "spec", name, version, tuple(messages))

@@ -1,0 +1,118 @@
+"""One fixture pair per change kind: the base spec and one edit of it, with the change and the
+class the ladder of issue 7 gives it (wire > source > compatible > docs), written down here
+from the ladder's definitions rather than taken from the tool."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from canspec.diff.classes import KINDS
+from canspec.diff.compare import compare
+from canspec.diff.inputs import load_model
+from diff_helpers import BASE, diff_paths, edited
+
+CMD_RESERVED = "      - {role: reserved, start: 16, len: 48}\n"
+NEW_MESSAGE = """  - name: extra
+    title: Extra
+    zh: 额外
+    id: 0x1803A0B0
+    j1939: {priority: 6, pf: 0x03, ps: 0xA0, sa: 0xB0}
+    sender: ECU
+    receivers: ALL
+    cycle_ms: 100
+    signals:
+      - {name: level, zh: 液位, start: 0, len: 8, unit: "%", range: [0, 100]}
+"""
+DISTANCE = "      - {name: distance, zh: 距离, start: 16, len: 10, unit: cm, range: [0, 500], special: {0x3FF: [no_obstacle, 无障碍物]}}\n"
+RESERVED_26 = "      - {role: reserved, start: 26, len: 22}\n"
+SPEED = '      - {name: speed, zh: 车速, start: 8, len: 8, offset: -50, unit: km/h, range: [-50, 200], desc: "Vehicle speed."}\n'
+TORQUE = "      - {name: torque, zh: 扭矩, start: 0, len: 16, factor: 0.1, offset: -1000, unit: Nm, range: [-1000, 1000]}\n"
+
+# (case id, edits, expected {(kind, class, signal)})
+CASES = [
+    ("message_added", [("messages:\n", "messages:\n" + NEW_MESSAGE)], {("message_added", "compatible", None)}),
+    ("message_removed", [("  - name: command\n", "  - name: command\n    section: gone\n")], None),  # replaced below
+    ("message_id_changed", [("id: 0x1801B0A0\n    j1939: {priority: 6, pf: 0x01,", "id: 0x1809B0A0\n    j1939: {priority: 6, pf: 0x09,")],
+     {("message_id_changed", "wire", None)}),
+    ("message_renamed", [("  - name: command\n", "  - name: host_command\n")], {("message_renamed", "source", None)}),
+    ("message_dlc_changed", [("    cycle_ms: 20\n", "    cycle_ms: 20\n    dlc: 6\n"), (CMD_RESERVED, "      - {role: reserved, start: 16, len: 32}\n")],
+     {("message_dlc_changed", "wire", None)}),
+    ("message_cycle_changed", [("    cycle_ms: 20\n", "    cycle_ms: 50\n")], {("message_cycle_changed", "compatible", None)}),
+    ("message_receivers_changed", [("    sender: ECU\n    receivers: ALL\n", "    sender: ECU\n    receivers: [HOST]\n")],
+     {("message_receivers_changed", "compatible", None)}),
+    ("message_title_changed", [("    title: Status\n    zh: 状态\n", "    title: Status frame\n    zh: 状态报文\n")],
+     {("message_title_changed", "docs", None)}),
+    ("message_checksum_changed", [("start: 56, len: 8, range: [0, 255], role: checksum}", "start: 56, len: 8, range: [0, 255]}")],
+     {("message_checksum_changed", "wire", None), ("signal_role_changed", "wire", "checksum")}),
+    ("signal_added_in_reserved_bits", [("      - {role: reserved, start: 2, len: 6}\n",
+                                        "      - {name: flag, zh: 标志, start: 2, len: 1, range: [0, 1]}\n      - {role: reserved, start: 3, len: 5}\n")],
+     {("signal_added", "compatible", "flag")}),
+    ("signal_added_over_used_bits", [(DISTANCE, "      - {name: level, zh: 液位, start: 16, len: 8, unit: cm, range: [0, 200]}\n      - {role: reserved, start: 24, len: 2}\n")],
+     {("signal_removed", "wire", "distance"), ("signal_added", "wire", "level")}),
+    ("signal_removed", [(DISTANCE, "      - {role: reserved, start: 16, len: 10}\n")], {("signal_removed", "wire", "distance")}),
+    ("signal_renamed_in_place", [(DISTANCE, DISTANCE.replace("name: distance, zh: 距离", "name: range_cm, zh: 量程"))],
+     {("signal_renamed", "source", "range_cm"), ("signal_label_changed", "docs", "range_cm")}),
+    ("signal_renamed", [(SPEED, SPEED.replace("name: speed", "name: vehicle_speed"))], {("signal_renamed", "source", "vehicle_speed")}),
+    ("signal_moved", [(DISTANCE + RESERVED_26, "      - {role: reserved, start: 16, len: 10}\n" + DISTANCE.replace("start: 16", "start: 26")
+                       + "      - {role: reserved, start: 36, len: 12}\n")], {("signal_moved", "wire", "distance")}),
+    ("signal_renamed_and_moved", [(DISTANCE + RESERVED_26, "      - {role: reserved, start: 16, len: 10}\n"
+                                   + DISTANCE.replace("start: 16", "start: 26").replace("name: distance", "name: range_cm")
+                                   + "      - {role: reserved, start: 36, len: 12}\n")],
+     {("signal_renamed", "source", "range_cm"), ("signal_moved", "wire", "range_cm")}),
+    ("signal_resized", [(DISTANCE + RESERVED_26, DISTANCE.replace("len: 10", "len: 12") + "      - {role: reserved, start: 28, len: 20}\n")],
+     {("signal_resized", "wire", "distance")}),
+    ("signal_rescaled", [(TORQUE, TORQUE.replace("factor: 0.1", "factor: 0.2"))], {("signal_rescaled", "wire", "torque")}),
+    ("signal_signedness_changed", [(TORQUE, TORQUE.replace("len: 16,", "len: 16, signed: true,"))], {("signal_signedness_changed", "wire", "torque")}),
+    ("signal_unit_changed", [(SPEED, SPEED.replace("km/h", "mph"))], {("signal_unit_changed", "wire", "speed")}),
+    ("signal_range_widened", [(SPEED, SPEED.replace("[-50, 200]", "[-50, 205]"))], {("signal_range_changed", "compatible", "speed")}),
+    ("signal_range_narrowed", [(SPEED, SPEED.replace("[-50, 200]", "[-50, 150]"))], {("signal_range_changed", "wire", "speed")}),
+    ("signal_role_changed", [("start: 48, len: 8, range: [0, 255], role: counter}", "start: 48, len: 8, range: [0, 255]}")],
+     {("signal_role_changed", "wire", "counter")}),
+    ("signal_values_table_renamed", [("value_tables:\n  mode:\n", "value_tables:\n  drive_mode:\n"), ("values: mode}", "values: drive_mode}")],
+     {("signal_values_table_renamed", "source", "mode")}),
+    ("signal_label_changed", [(SPEED, SPEED.replace("zh: 车速", "zh: 速度"))], {("signal_label_changed", "docs", "speed")}),
+    ("signal_description_changed", [(SPEED, SPEED.replace("Vehicle speed.", "Vehicle speed over ground."))], {("signal_description_changed", "docs", "speed")}),
+    ("value_added", [("    3: [reserved, 保留]\n", "    3: [manual, 手动]\n")], {("value_added", "compatible", "mode")}),
+    ("value_removed", [("    2: [auto, 自动]\n", "")], {("value_removed", "wire", "mode")}),
+    ("value_relabelled", [("    2: [auto, 自动]\n", "    2: [auto, 自动(节能)]\n")], {("value_relabelled", "wire", "mode")}),
+    ("value_renamed", [("    2: [auto, 自动]\n", "    2: [automatic, 自动]\n")], {("value_renamed", "source", "mode")}),
+    ("special_added", [(SPEED, SPEED.replace("range: [-50, 200],", "range: [-50, 200], special: {0xFF: [invalid, 无效]},"))],
+     {("special_added", "compatible", "speed")}),
+    ("special_removed", [(DISTANCE, DISTANCE.replace(", special: {0x3FF: [no_obstacle, 无障碍物]}", ""))], {("special_removed", "wire", "distance")}),
+    ("special_relabelled", [(DISTANCE, DISTANCE.replace("无障碍物", "传感器故障"))], {("special_relabelled", "wire", "distance")}),
+    ("special_renamed", [(DISTANCE, DISTANCE.replace("no_obstacle", "clear"))], {("special_renamed", "source", "distance")}),
+]
+
+_COMMAND_BLOCK = BASE.read_text(encoding="utf-8").split("  - name: command\n")[1]
+CASES[1] = ("message_removed", [("  - name: command\n" + _COMMAND_BLOCK, "")], {("message_removed", "wire", None)})
+
+
+@pytest.mark.parametrize("case, edits, expected", CASES, ids=[c[0] for c in CASES])
+def test_change_kind(tmp_path, case, edits, expected):
+    new = edited(tmp_path, edits)
+    got = {(c.kind, c.cls, c.signal) for c in diff_paths(BASE, new)}
+    assert got == expected
+
+
+def test_reverse_of_an_addition_is_a_removal(tmp_path):
+    new = edited(tmp_path, [("messages:\n", "messages:\n" + NEW_MESSAGE)])
+    assert {(c.kind, c.cls) for c in diff_paths(new, BASE)} == {("message_removed", "wire")}
+
+
+def test_identical_specs_have_no_changes():
+    assert diff_paths(BASE, BASE) == []
+
+
+def test_sender_and_multiframe_changes_on_the_model():
+    """Kinds a valid fixture edit cannot reach alone (a J1939 sender is tied to the ID's SA)."""
+    old = load_model(str(BASE))
+    msg = old.messages[0]
+    moved = dataclasses.replace(msg, sender="HOST", multiframe=("index", "payload", "ascii", 17, 3, 0))
+    new = dataclasses.replace(old, messages=(moved, *old.messages[1:]))
+    assert {(c.kind, c.cls) for c in compare(old, new)} == {("message_sender_changed", "compatible"), ("message_multiframe_changed", "wire")}
+
+
+def test_every_kind_has_a_fixture():
+    covered = {kind for _, _, expected in CASES for kind, _, _ in expected} | {"message_sender_changed", "message_multiframe_changed"}
+    assert covered == set(KINDS)

@@ -1,0 +1,110 @@
+"""`canspec diff` on the command line: formats, --fail-on exit codes, bad inputs."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from diff_helpers import BASE, ROOT, edited, run_cli
+
+SPEC = ROOT / "spec"
+
+# One fixture pair per strictest class (edits of tests/diff/fixtures/base.yaml).
+PAIRS = {
+    "none": [],
+    "docs": [("    title: Status\n", "    title: Status frame\n")],
+    "compatible": [("    cycle_ms: 20\n", "    cycle_ms: 50\n")],
+    "source": [("  - name: command\n", "  - name: host_command\n")],
+    "wire": [("start: 0, len: 16, factor: 0.1,", "start: 0, len: 16, factor: 0.2,")],
+}
+# Exit status expected for each --fail-on level, by the pair's strictest class.
+EXPECTED = {
+    "wire": {"none": 0, "docs": 0, "compatible": 0, "source": 0, "wire": 1},
+    "source": {"none": 0, "docs": 0, "compatible": 0, "source": 1, "wire": 1},
+    "compatible": {"none": 0, "docs": 0, "compatible": 1, "source": 1, "wire": 1},
+    "any": {"none": 0, "docs": 1, "compatible": 1, "source": 1, "wire": 1},
+}
+
+
+@pytest.mark.parametrize("level", list(EXPECTED))
+@pytest.mark.parametrize("pair", list(PAIRS))
+def test_fail_on_exit_codes(tmp_path, level, pair):
+    new = edited(tmp_path, PAIRS[pair])
+    code, _, err = run_cli("diff", BASE, new, "--fail-on", level)
+    assert code == EXPECTED[level][pair]
+    assert ("at or above --fail-on" in err) == bool(code)
+
+
+@pytest.mark.parametrize("pair", list(PAIRS))
+def test_without_fail_on_exit_is_zero(tmp_path, pair):
+    assert run_cli("diff", BASE, edited(tmp_path, PAIRS[pair]))[0] == 0
+
+
+@pytest.mark.parametrize("pair, bump, version", [("none", "none", "1.0.0"), ("docs", "patch", "1.0.1"), ("compatible", "minor", "1.1.0"),
+                                                 ("source", "major", "2.0.0"), ("wire", "major", "2.0.0")])
+def test_json_summary_suggests_the_bump(tmp_path, pair, bump, version):
+    code, out, _ = run_cli("diff", BASE, edited(tmp_path, PAIRS[pair]), "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["format"] == "canspec-diff/1"
+    assert data["summary"]["bump"] == bump and data["summary"]["suggested_version"] == version
+    assert data["summary"]["strictest"] == (None if pair == "none" else pair)
+    # every fixture pair keeps version 1.0.0: a change without a version bump is pointed out
+    assert data["summary"]["note"] == (None if pair == "none" else "the new revision's version (1.0.0) is not above the old one (1.0.0)")
+
+
+def test_json_change_fields():
+    _, out, _ = run_cli("diff", SPEC / "history" / "v2.0.4", SPEC, "--format", "json")
+    data = json.loads(out)
+    assert data["old"]["version"] == "2.0.4" and data["new"]["version"] == "2.0.5"
+    first = data["changes"][0]
+    assert first == {"kind": "signal_added", "class": "compatible", "frame_id": "0x1805B0A0", "message": "autocar_control_command_1",
+                     "signal": "drive_mode_reset", "detail": "drive_mode_reset (bit 28) added in formerly reserved bits", "old": None, "new": "drive_mode_reset"}
+    assert data["summary"]["counts"] == {"wire": 0, "source": 0, "compatible": 5, "docs": 0}
+    assert data["summary"]["note"] == "2.0.4 → 2.0.5 is a patch bump; the changes suggest minor"
+
+
+def test_markdown_report():
+    _, out, _ = run_cli("diff", SPEC / "history" / "v2.0.3", SPEC / "history" / "v2.0.4", "--format", "markdown")
+    assert out.startswith("# Protocol diff: kaiwo_gateway 2.0.3 → kaiwo_gateway 2.0.4\n")
+    assert "| compatible | 5 |" in out
+    assert "## `0x1807B0D0` tele_control_command_2" in out
+    assert "| compatible | `message_added` |  | tele_control_command_2 added (6 signals) |" in out
+
+
+def _bad(run_cli, *argv):
+    code, out, err = run_cli("diff", *argv)
+    assert code == 2 and out == "" and "Traceback" not in err
+    return err
+
+
+def test_missing_input(tmp_path):
+    err = _bad(run_cli, tmp_path / "nope.yaml", SPEC)
+    assert "nope.yaml: no such file or directory" in err
+
+
+def test_unreadable_dbc(tmp_path):
+    bad = tmp_path / "bad.dbc"
+    bad.write_text("BO_ this is not a dbc\n", encoding="utf-8")
+    assert "bad.dbc: not a readable DBC file" in _bad(run_cli, SPEC, bad)
+
+
+def test_wrong_file_type(tmp_path):
+    other = tmp_path / "notes.txt"
+    other.write_text("hello\n", encoding="utf-8")
+    assert "not a spec (.yaml) or DBC (.dbc) file" in _bad(run_cli, other, SPEC)
+
+
+def test_spec_with_errors(tmp_path):
+    broken = edited(tmp_path, [("len: 16, factor: 0.1", "len: 70, factor: 0.1")])
+    err = _bad(run_cli, BASE, broken)
+    assert "the spec has errors (run `canspec check" in err and "new.yaml:" in err
+
+
+def test_yaml_syntax_error(tmp_path):
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("schema_version: 1\nkind: [unclosed\n", encoding="utf-8")
+    assert "broken.yaml" in _bad(run_cli, broken, BASE)
+
+
+def test_directory_without_bundle(tmp_path):
+    assert "no canspec.yaml" in _bad(run_cli, tmp_path, BASE)
