@@ -1,0 +1,112 @@
+"""Fixtures of the JSON-protocol tests: the shared vectors, the generated schemas, the Python
+bindings, and the results of the validators from other ecosystems (ajv via node, the Rust
+bindings via cargo). Tools come from `.ci/setup.d/60-json.sh` (`make setup`)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+HERE = Path(__file__).resolve().parent
+GENERATED = ROOT / "generated"
+SCHEMAS = GENERATED / "jsonschema"
+VECTORS = GENERATED / "vectors" / "json.json"
+PROTOCOL = "remote_driving"
+PY_BINDINGS = GENERATED / "json" / "python" / PROTOCOL
+RUST_CRATE = GENERATED / "json" / "rust" / PROTOCOL
+TS_DECL = GENERATED / "json" / "typescript" / f"{PROTOCOL}.d.ts"
+BUILD = ROOT / "build"
+NODE_MODULES = BUILD / "json-node" / "node_modules"
+CARGO_TARGET = BUILD / "json-rust"
+RUNNER = HERE / "rust_runner"
+SEED_NAME = "003_6f748d1dddd09f25.txt"
+# shared/ sits beside the clone (CI), or beside the worktrees' parent (a developer's worktree).
+SEED = next((d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent) if (d / "shared" / "seeds" / SEED_NAME).is_file()), ROOT.parent / "shared" / "seeds" / SEED_NAME)
+TOOL_TIMEOUT_S = 900
+
+
+def same(a: Any, b: Any) -> bool:
+    """JSON equality: numbers by value (0 == 0.0), booleans never equal to numbers."""
+    if isinstance(a, bool) or isinstance(b, bool):
+        return type(a) is type(b) and a == b
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return a == b
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    return type(a) is type(b) and a == b
+
+
+def run(cmd: list[str], what: str, **kw: Any) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=TOOL_TIMEOUT_S, check=False, **kw)
+    if proc.returncode != 0:
+        pytest.fail(f"{what} failed ({' '.join(cmd)}):\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}")
+    return proc
+
+
+def require_tool(name: str) -> str:
+    exe = shutil.which(name)
+    if exe is None:
+        pytest.fail(f"{name} is not installed: run `make setup` (.ci/setup.d/60-json.sh)")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def json_vectors() -> dict[str, Any]:
+    return json.loads(VECTORS.read_text(encoding="utf-8"))
+
+
+@pytest.fixture(scope="session")
+def cases(json_vectors: dict[str, Any]) -> list[dict[str, Any]]:
+    (proto,) = [p for p in json_vectors["protocols"] if p["protocol"] == PROTOCOL]
+    return proto["cases"]
+
+
+@pytest.fixture(scope="session")
+def schemas() -> dict[str, dict[str, Any]]:
+    return {p.name.removesuffix(".schema.json"): json.loads(p.read_text(encoding="utf-8")) for p in sorted((SCHEMAS / PROTOCOL).glob("*.schema.json"))}
+
+
+@pytest.fixture(scope="session")
+def rd():
+    """The generated Python bindings package."""
+    sys.path.insert(0, str(PY_BINDINGS))
+    try:
+        import remote_driving  # noqa: PLC0415
+    finally:
+        sys.path.remove(str(PY_BINDINGS))
+    assert Path(remote_driving.__file__).resolve().is_relative_to(PY_BINDINGS)
+    return remote_driving
+
+
+@pytest.fixture(scope="session")
+def ajv_results() -> dict[str, dict[str, Any]]:
+    node = require_tool("node")
+    if not (NODE_MODULES / "ajv").is_dir():
+        pytest.fail(f"ajv is not installed in {NODE_MODULES}: run `make setup` (.ci/setup.d/60-json.sh)")
+    env = {**os.environ, "NODE_PATH": str(NODE_MODULES)}
+    proc = run([node, str(HERE / "node" / "ajv_check.cjs"), str(SCHEMAS), str(VECTORS)], "ajv", env=env)
+    return {r["id"]: r for r in json.loads(proc.stdout)}
+
+
+@pytest.fixture(scope="session")
+def rust_runner() -> Path:
+    cargo = require_tool("cargo")
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    run([cargo, "build", "--quiet", "--locked", "--manifest-path", str(RUNNER / "Cargo.toml")], "cargo build (JSON vectors runner)", env=env)
+    return CARGO_TARGET / "debug" / "json-vectors-runner"
+
+
+@pytest.fixture(scope="session")
+def rust_results(rust_runner: Path) -> dict[str, dict[str, Any]]:
+    proc = run([str(rust_runner), str(VECTORS)], "Rust JSON vectors runner")
+    return {r["id"]: r for r in json.loads(proc.stdout)}
