@@ -17,5 +17,4 @@ fi
 if command -v cargo >/dev/null; then
   cargo fetch --locked --manifest-path tests/json/rust_runner/Cargo.toml
   cargo fetch --locked --manifest-path generated/json/rust/remote_driving/Cargo.toml
-  if command -v rustup >/dev/null; then rustup component add clippy rustfmt >/dev/null 2>&1 || true; fi
 fi

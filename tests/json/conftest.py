@@ -29,7 +29,8 @@ CARGO_TARGET = BUILD / "json-rust"
 RUNNER = HERE / "rust_runner"
 SEED_NAME = "003_6f748d1dddd09f25.txt"
 # shared/ sits beside the clone (CI), or beside the worktrees' parent (a developer's worktree).
-SEED = next((d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent) if (d / "shared" / "seeds" / SEED_NAME).is_file()), ROOT.parent / "shared" / "seeds" / SEED_NAME)
+SEED_CANDIDATES = [d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent)]
+SEED = next((p for p in SEED_CANDIDATES if p.is_file()), SEED_CANDIDATES[0])
 TOOL_TIMEOUT_S = 900
 
 
@@ -42,7 +43,7 @@ def same(a: Any, b: Any) -> bool:
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
     if isinstance(a, list) and isinstance(b, list):
-        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b, strict=True))
     return type(a) is type(b) and a == b
 
 

@@ -8,6 +8,8 @@ import json
 import os
 import subprocess
 
+import pytest
+
 from conftest import CARGO_TARGET, NODE_MODULES, RUST_CRATE, TS_DECL, VECTORS, require_tool, run
 
 # Rules TypeScript's types can see (literal unions, required/excess keys, JSON types); ranges
@@ -52,12 +54,21 @@ def test_rust_runner_check_mode(rust_runner, cases):
     assert f"{len(cases)} passed, 0 failed" in proc.stdout
 
 
-def test_rust_crate_is_clippy_clean_and_formatted():
+def test_rust_crate_is_warning_free_and_formatted():
     cargo = require_tool("cargo")
     env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
-    run([cargo, "clippy", "--quiet", "--locked", "--manifest-path", str(RUST_CRATE / "Cargo.toml"), "--", "-D", "warnings"], "cargo clippy", env=env)
+    manifest = ["--manifest-path", str(RUST_CRATE / "Cargo.toml")]
+    run([cargo, "rustc", "--quiet", "--locked", "--lib", *manifest, "--", "-D", "warnings"], "cargo rustc -D warnings", env=env)
     rustfmt = require_tool("rustfmt")
     run([rustfmt, "--check", "--edition", "2021", str(RUST_CRATE / "src" / "lib.rs")], "rustfmt --check")
+
+
+def test_rust_crate_is_clippy_clean():
+    cargo = require_tool("cargo")
+    if subprocess.run([cargo, "clippy", "--version"], capture_output=True, check=False).returncode != 0:
+        pytest.skip("clippy is not installed with this Rust toolchain (rustup component add clippy)")
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    run([cargo, "clippy", "--quiet", "--locked", "--manifest-path", str(RUST_CRATE / "Cargo.toml"), "--", "-D", "warnings"], "cargo clippy", env=env)
 
 
 def _ts_case(i: int, c: dict) -> str:

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 KEYS = ["ts", "bn", "tr", "bk", "st", "g", "m", "vts", "pL", "spd", "located", "lng", "lat", "alt", "angle", "satCnt", "cmd", "res", "ro"]
 EXAMPLES = [
     {"ts": 1653531739951, "bn": 59842, "tr": 0, "bk": 0, "st": 100, "g": "N", "m": 0, "vts": 0},
-    {"ts": 0, "bn": 9120, "g": "N", "m": 0, "pL": 85, "spd": 45, "located": True, "lng": 116.261115, "lat": 39.948574, "alt": 396.9, "angle": 32.2, "satCnt": 8},
+    {"ts": 0, "bn": 9120, "g": "N", "m": 0, "pL": 85, "spd": 45, "located": True,
+     "lng": 116.261115, "lat": 39.948574, "alt": 396.9, "angle": 32.2, "satCnt": 8},
     {"cmd": 3, "res": 0, "bn": 9120, "ro": True},
     {"cmd": 1, "bn": 9120},
 ]

@@ -9,7 +9,7 @@ from typing import Any
 
 import jsonschema
 import pytest
-from conftest import SEED, PROTOCOL
+from conftest import SEED
 from document_examples import load
 
 # Message order of the document's code blocks (the spec lists them in the same order).
@@ -99,7 +99,7 @@ def test_document_examples_are_valid_and_told_apart(schemas):
     blocks, inline = load(SEED)
     assert len(blocks) == len(DOCUMENT_ORDER) and len(inline) == 1
     whole = validator(schemas["protocol"])
-    for example, name in zip(blocks + inline, DOCUMENT_ORDER + ["control"]):
+    for example, name in zip(blocks + inline, DOCUMENT_ORDER + ["control"], strict=True):
         assert validator(schemas[name]).is_valid(example), (name, example, fields_at_fault(validator(schemas[name]), example))
         assert whole.is_valid(example), (name, example)
         others = [m for m in DOCUMENT_ORDER if m != name and validator(schemas[m]).is_valid(example)]

@@ -12,7 +12,7 @@ from typing import Any
 
 from canspec import ir, jsonmodel
 from canspec.jsonmodel import FieldRule, MessageModel, ProtocolModel
-from canspec.render import header_lines, render
+from canspec.render import render
 from canspec.targets import Target
 
 RUST_INTS = {"U8": "u8", "S8": "i8", "U16": "u16", "S16": "i16", "U32": "u32", "S32": "i32", "U64": "u64", "S64": "i64"}

@@ -37,6 +37,14 @@ def _num(value: Fraction | int | float) -> int | float:
     return out
 
 
+def _beyond(r: FieldRule, bound: int | float, sign: int) -> int | float:
+    """A value just outside a type bound: one step for integers and small bounds; 3% for huge
+    float bounds (±3.4e38), where one decimal step vanishes in the double."""
+    if r.kind == "number" and abs(bound) > 1e15:
+        return float(bound) * 1.03
+    return _num(Fraction(bound) + sign * _step(r))
+
+
 def _in_type(r: FieldRule, v: Fraction) -> bool:
     return (r.type_lo is None or v >= Fraction(r.type_lo)) and (r.type_hi is None or v <= Fraction(r.type_hi))
 
@@ -75,10 +83,9 @@ def invalid_values(r: FieldRule, pm: ProtocolModel) -> list[tuple[Any, str, str]
     out += [(w, "type", f"{key} as {json.dumps(w)}") for w in wrong_type]
     if r.kind in ("integer", "number"):
         step = _step(r)
-        if r.type_lo is not None:
-            out.append((_num(Fraction(r.type_lo) - step) if r.kind == "integer" else -3.5e38 if r.type_lo < -1e38 else _num(Fraction(r.type_lo) - step), "type_range", f"{key} below its {r.field.type} range"))
-        if r.type_hi is not None:
-            out.append((_num(Fraction(r.type_hi) + step) if r.kind == "integer" else 3.5e38 if r.type_hi > 1e38 else _num(Fraction(r.type_hi) + step), "type_range", f"{key} above its {r.field.type} range"))
+        for bound, sign, what in ((r.type_lo, -1, "below"), (r.type_hi, 1, "above")):
+            if bound is not None:
+                out.append((_beyond(r, bound, sign), "type_range", f"{key} {what} its {r.field.type} range"))
         if r.const is not None:
             for c in (0, max(pm.any_plan.command_values) + 1):
                 out.append((c, "cmd", f"cmd {c}: no such command"))
@@ -125,7 +132,8 @@ class _Cases:
             raise AssertionError(f"{m.name} {note}: expected {'valid' if rule is None else rule}, the reference checker says {problems or 'valid'}")
         if field and not any(p.startswith(f"{field}:") for p in problems):
             raise AssertionError(f"{m.name} {note}: fault expected in {field}, the reference checker says {problems}")
-        case: dict[str, Any] = {"id": f"{m.name}/{kind}/{len(self.cases)}", "message": m.name, "receiver": m.receiver, "valid": valid, "kind": kind, "note": note, "json": obj}
+        case: dict[str, Any] = {"id": f"{m.name}/{kind}/{len(self.cases)}", "message": m.name, "receiver": m.receiver, "valid": valid,
+                                "kind": kind, "note": note, "json": obj}
         for label, receiver in (("as_received", m.receiver), ("as_any", None)):
             chosen = jsonmodel.select(self.plans[receiver], obj)
             ok = chosen is not None and not jsonvalue.message_problems(self.pm.protocol.message(chosen), obj)

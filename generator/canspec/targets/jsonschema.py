@@ -28,9 +28,11 @@ DRAFT = "https://json-schema.org/draft/2020-12/schema"
 ANNOTATION = "x-canspec"
 ADDITIONAL_NOTE = (
     "Unknown keys are rejected (additionalProperties: false): the protocol carries no version (erratum J01), so a receiver cannot tell "
-    "a newer sender's field from a misspelt one. 不接受未定义的字段。"
+    "a newer sender's field from a misspelt one."
 )
-PRECISION_NOTE = "Precision is documented (x-canspec.decimals), not enforced: receivers accept any finite number in range."
+ADDITIONAL_NOTE_ZH = "不接受未定义的字段（additionalProperties: false）：协议没有版本号，接收方无法区分新字段和拼写错误。"
+PRECISION_NOTE = "Precision is documented (x-canspec.decimals), not enforced: receivers accept any finite number in range (erratum J11)."
+PRECISION_NOTE_ZH = "有效小数位仅作说明（x-canspec.decimals），不作校验。"
 
 
 def schema_id(protocol: ir.JsonProtocol, name: str) -> str:
@@ -120,9 +122,10 @@ def message_schema(mm: MessageModel, protocol: ir.JsonProtocol) -> dict[str, Any
         ann.update({"cmd": m.cmd, "role": m.role})
     if m.reply_to:
         ann["reply_to"] = m.reply_to
+    zh = f"{m.zh}（{m.sender} → {m.receiver}）。" + ADDITIONAL_NOTE_ZH + (PRECISION_NOTE_ZH if decimals else "")
     return {
         "title": f"{m.name}: {m.zh}",
-        "description": _bilingual(en, m.zh),
+        "description": _bilingual(en, zh),
         "type": "object",
         "properties": {r.key: field_schema(r) for r in mm.rules},
         "required": [r.key for r in mm.rules],
@@ -154,7 +157,8 @@ def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
     who = "any message of the protocol" if p.receiver is None else f"a message sent to {p.receiver}"
     rules = []
     if p.commands:
-        rules.append("a message with `cmd` is the command of that number (" + ", ".join(f"{c}: " + " / ".join(b.message for b in g) for c, g in p.commands) + ")")
+        listing = ", ".join(f"{c}: " + " / ".join(b.message for b in g) for c, g in p.commands)
+        rules.append(f"a message with `cmd` is the command of that number ({listing})")
         for c, g in p.commands:
             for b in g[:-1]:
                 rules.append(f"with cmd {c}, a message carrying {' or '.join(b.markers)} is {b.message}, otherwise {g[-1].message}")
@@ -164,7 +168,8 @@ def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
         rules.append(f"without `cmd`, the message is {p.plain[-1].message}" + (" otherwise" if len(p.plain) > 1 else ""))
     body: dict[str, Any] = {
         "title": f"{pm.protocol.name}: {who}",
-        "description": _bilingual(f"Accepts {who}, telling them apart as follows: " + "; ".join(rules) + ". " + ADDITIONAL_NOTE, pm.protocol.title_zh),
+        "description": _bilingual(f"Accepts {who}, telling them apart as follows: " + "; ".join(rules) + ". " + ADDITIONAL_NOTE,
+                                  pm.protocol.title_zh + ("：任意消息。" if p.receiver is None else f"：发给 {p.receiver} 的消息。") + ADDITIONAL_NOTE_ZH),
         "type": "object",
         ANNOTATION: {"protocol": pm.protocol.name, "version": pm.protocol.version, "receiver": p.receiver, "messages": list(p.messages)},
         "$defs": defs,
