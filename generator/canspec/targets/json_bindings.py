@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
+import textwrap
 from typing import Any
 
 from canspec import ir, jsonmodel
@@ -17,6 +18,7 @@ from canspec.targets import Target
 
 RUST_INTS = {"U8": "u8", "S8": "i8", "U16": "u16", "S16": "i16", "U32": "u32", "S32": "i32", "U64": "u64", "S64": "i64"}
 RUSTFMT_TIMEOUT_S = 60
+PY_LINE = 100  # generated Python stays within this width
 
 
 # --- shared ---------------------------------------------------------------------------------
@@ -48,30 +50,42 @@ def pyrepr(value: Any) -> str:
     return repr(value)
 
 
+def wrap(text: str, indent: int, width: int = PY_LINE) -> str:
+    """Text wrapped to `width`, continuation lines indented by `indent` spaces (docstrings)."""
+    return ("\n" + " " * indent).join(textwrap.wrap(text, width - indent, break_long_words=False, break_on_hyphens=False))
+
+
 def py_type(r: FieldRule) -> str:
     if r.enum is not None:
         return r.enum.name
     return {"integer": "int", "number": "float", "boolean": "bool", "string": "str"}[r.kind]
 
 
-def py_check(mm: MessageModel, r: FieldRule, expr: str) -> str:
-    """The call that type-checks `expr` for field `r` and returns its normalised value."""
+def py_check(mm: MessageModel, r: FieldRule, expr: str, indent: int = 8) -> str:
+    """The call that type-checks `expr` for field `r` and returns its normalised value; its
+    arguments go on their own line when the call would pass PY_LINE characters."""
     name = "self.NAME" if expr.startswith("self.") else "cls.NAME"
-    head = f"{name}, {pyrepr(r.key)}, {expr}"
+    args = [name, pyrepr(r.key), expr]
     if r.kind == "integer":
-        return f"_integer({head}, {r.type_lo!r}, {r.type_hi!r}, {pyrepr(r.type_rule)}, {pyrepr(r.type_range_rule)})"
-    if r.kind == "number":
-        return f"_number({head}, {r.type_lo!r}, {r.type_hi!r}, {pyrepr(r.type_rule)}, {pyrepr(r.type_range_rule)})"
-    if r.kind == "boolean":
-        return f"_boolean({head}, {pyrepr(r.type_rule)})"
-    f = r.field
-    return f"_string({head}, {f.min_length!r}, {f.max_length!r}, {pyrepr(r.type_rule)}, {pyrepr(length_rule(r))})"
+        fn, args = "_integer", [*args, repr(r.type_lo), repr(r.type_hi), pyrepr(r.type_rule), pyrepr(r.type_range_rule)]
+    elif r.kind == "number":
+        fn, args = "_number", [*args, repr(r.type_lo), repr(r.type_hi), pyrepr(r.type_rule), pyrepr(r.type_range_rule)]
+    elif r.kind == "boolean":
+        fn, args = "_boolean", [*args, pyrepr(r.type_rule)]
+    else:
+        f = r.field
+        fn, args = "_string", [*args, repr(f.min_length), repr(f.max_length), pyrepr(r.type_rule), pyrepr(length_rule(r))]
+    one_line = f"{fn}({', '.join(args)})"
+    if indent + len("value = ") + len(one_line) <= PY_LINE:
+        return one_line
+    pad = " " * (indent + 4)
+    return f"{fn}(\n" + "".join(f"{pad}{a},\n" for a in args) + " " * indent + ")"
 
 
 def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/python/{pm.protocol.name}"
     text = render("json_python/messages.py.j2", spec, "json_python", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES,
-                  pyrepr=pyrepr, py_type=py_type, check=py_check, doc=doc)
+                  pyrepr=pyrepr, py_type=py_type, check=py_check, doc=doc, wrap=wrap)
     init = render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, pm=pm)
     pyproject = render("json_python/pyproject.toml.j2", spec, "json_python", p=pm.protocol)
     return {f"{base}/{pm.protocol.name}/messages.py": text.encode(), f"{base}/{pm.protocol.name}/__init__.py": init.encode(),

@@ -144,14 +144,19 @@ class Control:
     """Remote-driving control sent by the vehicle side to the autonomous-driving side. 车端发给自动驾驶端的控制
 
     Sent by vehicle to autonomous.
-    ts ("ts"): Send time, UNIX timestamp in milliseconds since 1970-01-01 00:00:00. U64, ms. 发送此消息的时间
+    ts ("ts"): Send time, UNIX timestamp in milliseconds since 1970-01-01 00:00:00. U64, ms.
+        发送此消息的时间
     bn ("bn"): Message sequence number, incrementing from 0. U64. 消息流水号
     tr ("tr"): Throttle, percent. Float32, [0, 100], 2 decimals (documented). 油门控制量
     bk ("bk"): Brake, percent. Float32, [0, 100], 2 decimals (documented). 刹车控制量
-    st ("st"): Steering; negative turns left, positive right. Float32, [-100, 100], 2 decimals (documented). 方向盘控制量
+    st ("st"): Steering; negative turns left, positive right. Float32, [-100, 100], 2 decimals
+        (documented). 方向盘控制量
     gear ("g"): ASCII, one of N (neutral), D (drive), R (reverse), P (park). 挡位控制量
-    mode ("m"): Control mode. 0 is not in the description but is what the document's examples (and its captured message) send: accepted as 'unspecified' (J02); senders should send 3, 5 or 6. U8, one of 0 (unspecified), 3 (auto), 5 (remote), 6 (remote_auto). 控制模式
-    vts ("vts"): Vehicle timestamp of the last status packet received, UNIX milliseconds. U64, ms. 车辆最后一次状态反馈数据包的车辆时间戳
+    mode ("m"): Control mode. 0 is not in the description but is what the document's examples
+        (and its captured message) send: accepted as 'unspecified' (J02); senders should send 3, 5
+        or 6. U8, one of 0 (unspecified), 3 (auto), 5 (remote), 6 (remote_auto). 控制模式
+    vts ("vts"): Vehicle timestamp of the last status packet received, UNIX milliseconds. U64,
+        ms. 车辆最后一次状态反馈数据包的车辆时间戳
     """
 
     NAME: ClassVar[str] = "control"
@@ -166,37 +171,113 @@ class Control:
     vts: int
 
     def __post_init__(self) -> None:
-        _set(self, "ts", _integer(self.NAME, "ts", self.ts, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
-        value = _number(self.NAME, "tr", self.tr, -3.4028234663852886e+38, 3.4028234663852886e+38, "must be a number (Float32)", "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)")
+        value = _integer(
+            self.NAME,
+            "ts",
+            self.ts,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "ts", value)
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
+        value = _number(
+            self.NAME,
+            "tr",
+            self.tr,
+            -3.4028234663852886e+38,
+            3.4028234663852886e+38,
+            "must be a number (Float32)",
+            "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
+        )
         if not 0 <= value <= 100:
             raise ValidationError(self.NAME, "tr", value, "range", "must be within [0, 100]")
         _set(self, "tr", value)
-        value = _number(self.NAME, "bk", self.bk, -3.4028234663852886e+38, 3.4028234663852886e+38, "must be a number (Float32)", "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)")
+        value = _number(
+            self.NAME,
+            "bk",
+            self.bk,
+            -3.4028234663852886e+38,
+            3.4028234663852886e+38,
+            "must be a number (Float32)",
+            "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
+        )
         if not 0 <= value <= 100:
             raise ValidationError(self.NAME, "bk", value, "range", "must be within [0, 100]")
         _set(self, "bk", value)
-        value = _number(self.NAME, "st", self.st, -3.4028234663852886e+38, 3.4028234663852886e+38, "must be a number (Float32)", "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)")
+        value = _number(
+            self.NAME,
+            "st",
+            self.st,
+            -3.4028234663852886e+38,
+            3.4028234663852886e+38,
+            "must be a number (Float32)",
+            "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
+        )
         if not -100 <= value <= 100:
             raise ValidationError(self.NAME, "st", value, "range", "must be within [-100, 100]")
         _set(self, "st", value)
         if not isinstance(self.gear, ControlGear):
-            value = _string(self.NAME, "g", self.gear, 1, 1, "must be a string (ASCII)", "must be 1..1 characters (ASCII)")
+            value = _string(
+                self.NAME,
+                "g",
+                self.gear,
+                1,
+                1,
+                "must be a string (ASCII)",
+                "must be 1..1 characters (ASCII)",
+            )
             if value not in ("N", "D", "R", "P"):
                 raise ValidationError(self.NAME, "g", value, "enum", "must be one of \"N\", \"D\", \"R\", \"P\"")
             _set(self, "gear", ControlGear(value))
         if not isinstance(self.mode, Mode):
-            value = _integer(self.NAME, "m", self.mode, 0, 255, "must be an integer (U8)", "must be within [0, 255] (U8)")
+            value = _integer(
+                self.NAME,
+                "m",
+                self.mode,
+                0,
+                255,
+                "must be an integer (U8)",
+                "must be within [0, 255] (U8)",
+            )
             if value not in (0, 3, 5, 6):
                 raise ValidationError(self.NAME, "m", value, "enum", "must be one of 0, 3, 5, 6")
             _set(self, "mode", Mode(value))
-        _set(self, "vts", _integer(self.NAME, "vts", self.vts, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "vts",
+            self.vts,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "vts", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "Control":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        return cls(ts=obj["ts"], bn=obj["bn"], tr=obj["tr"], bk=obj["bk"], st=obj["st"], gear=obj["g"], mode=obj["m"], vts=obj["vts"])
+        return cls(
+            ts=obj["ts"],
+            bn=obj["bn"],
+            tr=obj["tr"],
+            bk=obj["bk"],
+            st=obj["st"],
+            gear=obj["g"],
+            mode=obj["m"],
+            vts=obj["vts"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -217,17 +298,25 @@ class Status:
     """Vehicle status sent by the autonomous-driving side to the vehicle side. 自动驾驶端将车辆状态发送给车端
 
     Sent by autonomous to vehicle.
-    ts ("ts"): Send time, UNIX timestamp in milliseconds since 1970-01-01 00:00:00. U64, ms. 发送此消息的时间
+    ts ("ts"): Send time, UNIX timestamp in milliseconds since 1970-01-01 00:00:00. U64, ms.
+        发送此消息的时间
     bn ("bn"): Message sequence number, incrementing from 0. U64. 消息流水号
     gear ("g"): ASCII, one of N (neutral), D (drive), R (reverse), P (park), - (unknown). 挡位控制量
-    mode ("m"): Control mode. 0 is not in the description but is what the document's examples (and its captured message) send: accepted as 'unspecified' (J02); senders should send 3, 5 or 6. U8, one of 0 (unspecified), 3 (auto), 5 (remote), 6 (remote_auto). 控制模式
-    power_level ("pL"): Remaining battery charge, percent; -1: unknown. S8, %, [0, 100], -1 = unknown. 剩余电量百分比
+    mode ("m"): Control mode. 0 is not in the description but is what the document's examples
+        (and its captured message) send: accepted as 'unspecified' (J02); senders should send 3, 5
+        or 6. U8, one of 0 (unspecified), 3 (auto), 5 (remote), 6 (remote_auto). 控制模式
+    power_level ("pL"): Remaining battery charge, percent; -1: unknown. S8, %, [0, 100], -1 =
+        unknown. 剩余电量百分比
     spd ("spd"): Vehicle speed; -1: unknown. S16, km/h, [0, 32767], -1 = unknown. 车速
     located ("located"): true: GPS fix; false: no fix. BOOL. GPS是否定位
-    lng ("lng"): GPS longitude, degrees (east positive). Float64, deg, [-180, 180], 6 decimals (documented). GPS经度
-    lat ("lat"): GPS latitude, degrees (north positive). Float64, deg, [-90, 90], 6 decimals (documented). GPS纬度
-    alt ("alt"): GPS altitude, metres; no documented range: the Float32 range applies. Float32, m, 1 decimal (documented). GPS海拔
-    angle ("angle"): GPS heading, degrees. Float32, deg, [0, 360], 1 decimal (documented). GPS航向角度
+    lng ("lng"): GPS longitude, degrees (east positive). Float64, deg, [-180, 180], 6 decimals
+        (documented). GPS经度
+    lat ("lat"): GPS latitude, degrees (north positive). Float64, deg, [-90, 90], 6 decimals
+        (documented). GPS纬度
+    alt ("alt"): GPS altitude, metres; no documented range: the Float32 range applies. Float32,
+        m, 1 decimal (documented). GPS海拔
+    angle ("angle"): GPS heading, degrees. Float32, deg, [0, 360], 1 decimal (documented).
+        GPS航向角度
     sat_cnt ("satCnt"): Number of GPS satellites in use. U8. 有效GPS卫星数
     """
 
@@ -249,47 +338,153 @@ class Status:
     sat_cnt: int
 
     def __post_init__(self) -> None:
-        _set(self, "ts", _integer(self.NAME, "ts", self.ts, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "ts",
+            self.ts,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "ts", value)
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
         if not isinstance(self.gear, StatusGear):
-            value = _string(self.NAME, "g", self.gear, 1, 1, "must be a string (ASCII)", "must be 1..1 characters (ASCII)")
+            value = _string(
+                self.NAME,
+                "g",
+                self.gear,
+                1,
+                1,
+                "must be a string (ASCII)",
+                "must be 1..1 characters (ASCII)",
+            )
             if value not in ("N", "D", "R", "P", "-"):
                 raise ValidationError(self.NAME, "g", value, "enum", "must be one of \"N\", \"D\", \"R\", \"P\", \"-\"")
             _set(self, "gear", StatusGear(value))
         if not isinstance(self.mode, Mode):
-            value = _integer(self.NAME, "m", self.mode, 0, 255, "must be an integer (U8)", "must be within [0, 255] (U8)")
+            value = _integer(
+                self.NAME,
+                "m",
+                self.mode,
+                0,
+                255,
+                "must be an integer (U8)",
+                "must be within [0, 255] (U8)",
+            )
             if value not in (0, 3, 5, 6):
                 raise ValidationError(self.NAME, "m", value, "enum", "must be one of 0, 3, 5, 6")
             _set(self, "mode", Mode(value))
-        value = _integer(self.NAME, "pL", self.power_level, -128, 127, "must be an integer (S8)", "must be within [-128, 127] (S8)")
+        value = _integer(
+            self.NAME,
+            "pL",
+            self.power_level,
+            -128,
+            127,
+            "must be an integer (S8)",
+            "must be within [-128, 127] (S8)",
+        )
         if not 0 <= value <= 100 and value != -1:
             raise ValidationError(self.NAME, "pL", value, "range", "must be within [0, 100] or -1 (unknown)")
         _set(self, "power_level", value)
-        value = _integer(self.NAME, "spd", self.spd, -32768, 32767, "must be an integer (S16)", "must be within [-32768, 32767] (S16)")
+        value = _integer(
+            self.NAME,
+            "spd",
+            self.spd,
+            -32768,
+            32767,
+            "must be an integer (S16)",
+            "must be within [-32768, 32767] (S16)",
+        )
         if not 0 <= value <= 32767 and value != -1:
             raise ValidationError(self.NAME, "spd", value, "range", "must be within [0, 32767] or -1 (unknown)")
         _set(self, "spd", value)
-        _set(self, "located", _boolean(self.NAME, "located", self.located, "must be true or false (BOOL)"))
-        value = _number(self.NAME, "lng", self.lng, None, None, "must be a number (Float64)", "must be within [-inf, inf] (Float64)")
+        value = _boolean(self.NAME, "located", self.located, "must be true or false (BOOL)")
+        _set(self, "located", value)
+        value = _number(
+            self.NAME,
+            "lng",
+            self.lng,
+            None,
+            None,
+            "must be a number (Float64)",
+            "must be within [-inf, inf] (Float64)",
+        )
         if not -180 <= value <= 180:
             raise ValidationError(self.NAME, "lng", value, "range", "must be within [-180, 180]")
         _set(self, "lng", value)
-        value = _number(self.NAME, "lat", self.lat, None, None, "must be a number (Float64)", "must be within [-inf, inf] (Float64)")
+        value = _number(
+            self.NAME,
+            "lat",
+            self.lat,
+            None,
+            None,
+            "must be a number (Float64)",
+            "must be within [-inf, inf] (Float64)",
+        )
         if not -90 <= value <= 90:
             raise ValidationError(self.NAME, "lat", value, "range", "must be within [-90, 90]")
         _set(self, "lat", value)
-        _set(self, "alt", _number(self.NAME, "alt", self.alt, -3.4028234663852886e+38, 3.4028234663852886e+38, "must be a number (Float32)", "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)"))
-        value = _number(self.NAME, "angle", self.angle, -3.4028234663852886e+38, 3.4028234663852886e+38, "must be a number (Float32)", "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)")
+        value = _number(
+            self.NAME,
+            "alt",
+            self.alt,
+            -3.4028234663852886e+38,
+            3.4028234663852886e+38,
+            "must be a number (Float32)",
+            "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
+        )
+        _set(self, "alt", value)
+        value = _number(
+            self.NAME,
+            "angle",
+            self.angle,
+            -3.4028234663852886e+38,
+            3.4028234663852886e+38,
+            "must be a number (Float32)",
+            "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
+        )
         if not 0 <= value <= 360:
             raise ValidationError(self.NAME, "angle", value, "range", "must be within [0, 360]")
         _set(self, "angle", value)
-        _set(self, "sat_cnt", _integer(self.NAME, "satCnt", self.sat_cnt, 0, 255, "must be an integer (U8)", "must be within [0, 255] (U8)"))
+        value = _integer(
+            self.NAME,
+            "satCnt",
+            self.sat_cnt,
+            0,
+            255,
+            "must be an integer (U8)",
+            "must be within [0, 255] (U8)",
+        )
+        _set(self, "sat_cnt", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "Status":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        return cls(ts=obj["ts"], bn=obj["bn"], gear=obj["g"], mode=obj["m"], power_level=obj["pL"], spd=obj["spd"], located=obj["located"], lng=obj["lng"], lat=obj["lat"], alt=obj["alt"], angle=obj["angle"], sat_cnt=obj["satCnt"])
+        return cls(
+            ts=obj["ts"],
+            bn=obj["bn"],
+            gear=obj["g"],
+            mode=obj["m"],
+            power_level=obj["pL"],
+            spd=obj["spd"],
+            located=obj["located"],
+            lng=obj["lng"],
+            lat=obj["lat"],
+            alt=obj["alt"],
+            angle=obj["angle"],
+            sat_cnt=obj["satCnt"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -323,15 +518,35 @@ class ShutdownRequest:
     bn: int
 
     def __post_init__(self) -> None:
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "ShutdownRequest":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 1 (the cmd of shutdown_request)")
-        return cls(bn=obj["bn"])
+        return cls(
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -355,8 +570,10 @@ class ShutdownReply:
 
     Sent by vehicle to autonomous; cmd 1 (reply).
     Answers `ShutdownRequest`: its `bn` is the request's.
-    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3 (unsupported). 回复消息类型
-    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
+    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3
+        (unsupported). 回复消息类型
+    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's
+        bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
     """
 
     NAME: ClassVar[str] = "shutdown_reply"
@@ -367,19 +584,48 @@ class ShutdownReply:
 
     def __post_init__(self) -> None:
         if not isinstance(self.res, Res):
-            value = _integer(self.NAME, "res", self.res, -128, 127, "must be an integer (S8)", "must be within [-128, 127] (S8)")
+            value = _integer(
+                self.NAME,
+                "res",
+                self.res,
+                -128,
+                127,
+                "must be an integer (S8)",
+                "must be within [-128, 127] (S8)",
+            )
             if value not in (0, -1, -2, -3):
                 raise ValidationError(self.NAME, "res", value, "enum", "must be one of 0, -1, -2, -3")
             _set(self, "res", Res(value))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "ShutdownReply":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 1 (the cmd of shutdown_reply)")
-        return cls(res=obj["res"], bn=obj["bn"])
+        return cls(
+            res=obj["res"],
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -404,15 +650,35 @@ class RestartRequest:
     bn: int
 
     def __post_init__(self) -> None:
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "RestartRequest":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 2 (the cmd of restart_request)")
-        return cls(bn=obj["bn"])
+        return cls(
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -436,8 +702,10 @@ class RestartReply:
 
     Sent by vehicle to autonomous; cmd 2 (reply).
     Answers `RestartRequest`: its `bn` is the request's.
-    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3 (unsupported). 回复消息类型
-    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
+    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3
+        (unsupported). 回复消息类型
+    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's
+        bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
     """
 
     NAME: ClassVar[str] = "restart_reply"
@@ -448,19 +716,48 @@ class RestartReply:
 
     def __post_init__(self) -> None:
         if not isinstance(self.res, Res):
-            value = _integer(self.NAME, "res", self.res, -128, 127, "must be an integer (S8)", "must be within [-128, 127] (S8)")
+            value = _integer(
+                self.NAME,
+                "res",
+                self.res,
+                -128,
+                127,
+                "must be an integer (S8)",
+                "must be within [-128, 127] (S8)",
+            )
             if value not in (0, -1, -2, -3):
                 raise ValidationError(self.NAME, "res", value, "enum", "must be one of 0, -1, -2, -3")
             _set(self, "res", Res(value))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "RestartReply":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 2 (the cmd of restart_reply)")
-        return cls(res=obj["res"], bn=obj["bn"])
+        return cls(
+            res=obj["res"],
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -487,16 +784,38 @@ class RecordRequest:
     ro: bool
 
     def __post_init__(self) -> None:
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
-        _set(self, "ro", _boolean(self.NAME, "ro", self.ro, "must be true or false (BOOL)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
+        value = _boolean(self.NAME, "ro", self.ro, "must be true or false (BOOL)")
+        _set(self, "ro", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "RecordRequest":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 3 (the cmd of record_request)")
-        return cls(bn=obj["bn"], ro=obj["ro"])
+        return cls(
+            bn=obj["bn"],
+            ro=obj["ro"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -521,9 +840,12 @@ class RecordReply:
 
     Sent by vehicle to autonomous; cmd 3 (reply).
     Answers `RecordRequest`: its `bn` is the request's.
-    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3 (unsupported). 回复消息类型
-    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
-    ro ("ro"): Recording state after the command (not an echo of the request's ro): true: recording is on; false: recording is off. BOOL. 录像状态
+    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3
+        (unsupported). 回复消息类型
+    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's
+        bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
+    ro ("ro"): Recording state after the command (not an echo of the request's ro): true:
+        recording is on; false: recording is off. BOOL. 录像状态
     """
 
     NAME: ClassVar[str] = "record_reply"
@@ -535,20 +857,51 @@ class RecordReply:
 
     def __post_init__(self) -> None:
         if not isinstance(self.res, Res):
-            value = _integer(self.NAME, "res", self.res, -128, 127, "must be an integer (S8)", "must be within [-128, 127] (S8)")
+            value = _integer(
+                self.NAME,
+                "res",
+                self.res,
+                -128,
+                127,
+                "must be an integer (S8)",
+                "must be within [-128, 127] (S8)",
+            )
             if value not in (0, -1, -2, -3):
                 raise ValidationError(self.NAME, "res", value, "enum", "must be one of 0, -1, -2, -3")
             _set(self, "res", Res(value))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
-        _set(self, "ro", _boolean(self.NAME, "ro", self.ro, "must be true or false (BOOL)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
+        value = _boolean(self.NAME, "ro", self.ro, "must be true or false (BOOL)")
+        _set(self, "ro", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "RecordReply":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 3 (the cmd of record_reply)")
-        return cls(res=obj["res"], bn=obj["bn"], ro=obj["ro"])
+        return cls(
+            res=obj["res"],
+            bn=obj["bn"],
+            ro=obj["ro"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -574,15 +927,35 @@ class PhotoRequest:
     bn: int
 
     def __post_init__(self) -> None:
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "PhotoRequest":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 4 (the cmd of photo_request)")
-        return cls(bn=obj["bn"])
+        return cls(
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -606,8 +979,10 @@ class PhotoReply:
 
     Sent by vehicle to autonomous; cmd 4 (reply).
     Answers `PhotoRequest`: its `bn` is the request's.
-    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3 (unsupported). 回复消息类型
-    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
+    res ("res"): Result of the command. S8, one of 0 (ok), -1 (failed), -2 (malformed), -3
+        (unsupported). 回复消息类型
+    bn ("bn"): Sequence number of the request this reply answers: the reply echoes the request's
+        bn and has no sequence number of its own. U64. 对应服务器端请求的流水号
     """
 
     NAME: ClassVar[str] = "photo_reply"
@@ -618,19 +993,48 @@ class PhotoReply:
 
     def __post_init__(self) -> None:
         if not isinstance(self.res, Res):
-            value = _integer(self.NAME, "res", self.res, -128, 127, "must be an integer (S8)", "must be within [-128, 127] (S8)")
+            value = _integer(
+                self.NAME,
+                "res",
+                self.res,
+                -128,
+                127,
+                "must be an integer (S8)",
+                "must be within [-128, 127] (S8)",
+            )
             if value not in (0, -1, -2, -3):
                 raise ValidationError(self.NAME, "res", value, "enum", "must be one of 0, -1, -2, -3")
             _set(self, "res", Res(value))
-        _set(self, "bn", _integer(self.NAME, "bn", self.bn, 0, 9007199254740991, "must be an integer (U64)", "must be within [0, 9007199254740991] (U64)"))
+        value = _integer(
+            self.NAME,
+            "bn",
+            self.bn,
+            0,
+            9007199254740991,
+            "must be an integer (U64)",
+            "must be within [0, 9007199254740991] (U64)",
+        )
+        _set(self, "bn", value)
 
     @classmethod
     def from_json(cls, obj: Any) -> "PhotoReply":
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
-        if _integer(cls.NAME, "cmd", obj["cmd"], 0, 65535, "must be an integer (U16)", "must be within [0, 65535] (U16)") != cls.CMD:
+        value = _integer(
+            cls.NAME,
+            "cmd",
+            obj["cmd"],
+            0,
+            65535,
+            "must be an integer (U16)",
+            "must be within [0, 65535] (U16)",
+        )
+        if value != cls.CMD:
             raise ValidationError(cls.NAME, "cmd", obj["cmd"], "cmd", "must be 4 (the cmd of photo_reply)")
-        return cls(res=obj["res"], bn=obj["bn"])
+        return cls(
+            res=obj["res"],
+            bn=obj["bn"],
+        )
 
     def to_json(self) -> Dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
@@ -731,7 +1135,9 @@ def parse(obj: Any, receiver: Optional[str] = None) -> Message:
     """Read any message of the protocol from a decoded JSON value.
 
     With `receiver` (one of RECEIVERS) only what is sent to that party is accepted, and the
-    direction tells the messages apart: autonomous receives shutdown_reply, restart_reply, record_reply, photo_reply, control; vehicle receives shutdown_request, restart_request, record_request, photo_request, status.
+    direction tells the messages apart.
+    autonomous receives shutdown_reply, restart_reply, record_reply, photo_reply, control.
+    vehicle receives shutdown_request, restart_request, record_request, photo_request, status.
     Without it: a message with `cmd` is that command, and a reply when it carries `res`;
     a message without `cmd` carrying tr, bk, st or vts is control, otherwise status.
     Raises ValidationError.
