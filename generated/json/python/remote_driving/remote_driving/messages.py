@@ -47,7 +47,7 @@ def _object(message: str, obj: Any, keys: Tuple[str, ...]) -> Dict[str, Any]:
     for key in keys:
         if key not in obj:
             raise ValidationError(message, key, None, "required", "is required")
-    for key in obj:
+    for key in sorted(obj):  # in code-point order, as every binding reports them
         if key not in keys:
             raise ValidationError(message, str(key), obj[key], "unexpected", "is not a field of " + message)
     return obj

@@ -141,7 +141,13 @@ mod rt {
                 "is required",
             ));
         }
-        if let Some((key, value)) = obj.iter().find(|(k, _)| !keys.contains(&k.as_str())) {
+        // The least unknown key in code-point order, as every binding reports it (whatever
+        // order serde_json's map keeps).
+        if let Some((key, value)) = obj
+            .iter()
+            .filter(|(k, _)| !keys.contains(&k.as_str()))
+            .min_by(|a, b| a.0.cmp(b.0))
+        {
             return Err(err(message, key, value, ErrorCode::Unexpected, unexpected));
         }
         Ok(obj)
