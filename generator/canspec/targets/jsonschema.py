@@ -45,17 +45,25 @@ def _bilingual(en: str, zh: str) -> str:
 
 def _field_description(r: FieldRule) -> str:
     f = r.field
-    facts = [f"{f.type}"]
+    facts, facts_zh = [f.type], [f.type]
     if f.unit:
         facts.append(f"unit {f.unit}")
+        facts_zh.append(f"单位{f.unit}")
     if r.has_range:
-        facts.append(f"range [{'' if r.lo is None else r.lo}, {'' if r.hi is None else r.hi}]")
+        span = f"[{'' if r.lo is None else r.lo}, {'' if r.hi is None else r.hi}]"
+        facts.append(f"range {span}")
+        facts_zh.append(f"值范围为{span}")
     if f.decimals is not None:
         facts.append(f"{f.decimals} decimal places (documented, not enforced)")
+        facts_zh.append(f"有效小数位{f.decimals}位（不作校验）")
     for s in r.sentinels:
         facts.append(f"{s.value}: {s.label.lower()}")
+        facts_zh.append(f"{s.value}：{s.label_zh}")
+    if r.enum is not None:
+        facts.append("values " + ", ".join(f"{e.value} {e.label.lower()}" for e in r.enum.values))
+        facts_zh.append("值为" + "、".join(f"{e.value}（{e.label_zh}）" for e in r.enum.values))
     en = (f.desc + " " if f.desc else "") + "(" + "; ".join(facts) + ")"
-    zh = f.zh + ("；" + f.desc_zh if f.desc_zh else "")
+    zh = f.zh + ("：" + f.desc_zh if f.desc_zh else "") + "；" + "；".join(facts_zh)
     if f.errata:
         en += " Errata: " + ", ".join(f.errata) + "."
     return _bilingual(en, zh)
