@@ -244,6 +244,11 @@ def model(protocol: ir.JsonProtocol) -> ProtocolModel:
         MessageModel(m, pascal(m.name), tuple(_rule(m, f, enums.get((m.name, f.json_name))) for f in m.fields), markers.get(m.name, ()))
         for m in protocol.messages
     )
+    for mm in messages:
+        idents = [r.ident for r in mm.rules]
+        clash = sorted({i for i in idents if idents.count(i) > 1})
+        if clash:
+            raise ValueError(f"JSON message {mm.name!r}: fields share the binding identifier(s) {', '.join(clash)} (give each a distinct `name`)")
     unique_enums: dict[str, EnumType] = {}
     for e in enums.values():
         unique_enums.setdefault(e.name, e)

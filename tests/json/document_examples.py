@@ -28,5 +28,9 @@ def inline_examples(text: str) -> list[dict[str, Any]]:
 
 
 def load(path: Path) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    import pytest  # noqa: PLC0415
+
+    if not path.is_file():
+        pytest.fail(f"the protocol document is missing: {path} (shared/seeds/ must sit beside the clone)")
     text = path.read_text(encoding="utf-8")
     return block_examples(text), inline_examples(text)

@@ -84,3 +84,11 @@ def test_python_bindings_use_only_the_standard_library():
                 assert {a.name.split(".")[0] for a in node.names} <= allowed, path
             elif isinstance(node, ast.ImportFrom) and node.level == 0:
                 assert node.module.split(".")[0] in allowed, (path, node.module)
+
+
+def test_clashing_binding_identifiers_are_refused(spec):
+    (proto,) = spec.json
+    ctrl = proto.message("control")
+    fields = (*ctrl.fields[:-1], dataclasses.replace(ctrl.fields[-1], name="tr"))
+    with pytest.raises(ValueError, match="share the binding identifier"):
+        jsonmodel.model(dataclasses.replace(proto, messages=(dataclasses.replace(ctrl, fields=fields), *proto.messages[1:])))

@@ -6,6 +6,7 @@ literals, check calls) are computed here; the templates only shape the text."""
 from __future__ import annotations
 
 import json
+import keyword
 import shutil
 import subprocess
 import textwrap
@@ -83,6 +84,10 @@ def py_check(mm: MessageModel, r: FieldRule, expr: str, indent: int = 8) -> str:
 
 
 def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
+    for mm in pm.messages:
+        for r in mm.rules:
+            if keyword.iskeyword(r.ident) or keyword.issoftkeyword(r.ident):
+                raise ValueError(f"JSON field {mm.name}.{r.key}: identifier {r.ident!r} is a Python keyword (give the field another `name`)")
     base = f"json/python/{pm.protocol.name}"
     text = render("json_python/messages.py.j2", spec, "json_python", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES,
                   pyrepr=pyrepr, py_type=py_type, check=py_check, doc=doc, wrap=wrap)
