@@ -21,7 +21,7 @@ def pm(spec):
 def test_whole_protocol_plan(pm):
     p = pm.any_plan
     assert p.command_values == (1, 2, 3, 4)
-    for cmd, group in p.commands:
+    for _cmd, group in p.commands:
         assert group[0].markers == ("res",) and group[-1].markers == ()
         assert group[0].message.endswith("_reply") and group[-1].message.endswith("_request")
     assert [(b.message, b.markers) for b in p.plain] == [("control", ("tr", "bk", "st", "vts")), ("status", ())]
