@@ -156,6 +156,9 @@ def protocol_cases(pm: ProtocolModel) -> list[dict[str, Any]]:
         for r in mm.rules:
             for value, kind, note in valid_values(r):
                 c.add(mm, {**base, r.key: value}, kind, note)
+            if r.kind == "integer" and isinstance(base[r.key], int):
+                # JSON has one number type: 9120.0 is the integer 9120 (JSON Schema's rule, and every binding's).
+                c.add(mm, {**base, r.key: float(base[r.key])}, "integral_float", f"{r.key} written as {float(base[r.key])!r}")
         for r in mm.rules:
             missing = {k: v for k, v in base.items() if k != r.key}
             note = f"{r.key} missing"
