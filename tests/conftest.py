@@ -8,15 +8,10 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
-# Test this checkout's generator even when another checkout is pip-installed in editable mode.
-sys.path.insert(0, str(ROOT / "generator"))
-sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from repo_paths import GENERATED, ROOT, SEEDS, SPEC  # noqa: E402,F401
 
 from canspec.pipeline import compile_spec  # noqa: E402
-SPEC = ROOT / "spec"
-GENERATED = ROOT / "generated"
-SEEDS = ROOT.parent / "shared" / "seeds"
 
 
 @pytest.fixture(scope="session")

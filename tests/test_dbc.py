@@ -7,7 +7,7 @@ import cantools
 import canmatrix.formats
 import pytest
 
-from conftest import GENERATED
+from repo_paths import GENERATED
 
 DBC = GENERATED / "dbc" / "kaiwo_gateway.dbc"
 

@@ -8,7 +8,7 @@ import sys
 
 from test_cli_foundation import ENV
 
-from conftest import ROOT
+from repo_paths import ROOT
 
 
 def test_generated_tree_is_up_to_date():

@@ -11,7 +11,7 @@ from canspec import j1939
 from canspec.layout import segments
 from canspec.pipeline import compile_spec
 
-from conftest import SPEC
+from repo_paths import SPEC
 
 
 def test_counts(spec, can):

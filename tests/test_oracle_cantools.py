@@ -8,7 +8,7 @@ import math
 import cantools
 import pytest
 
-from conftest import GENERATED
+from repo_paths import GENERATED
 
 DBC = GENERATED / "dbc" / "kaiwo_gateway.dbc"
 

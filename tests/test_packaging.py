@@ -8,7 +8,7 @@ import shutil
 import subprocess
 import sys
 
-from conftest import GENERATED, ROOT, SPEC
+from repo_paths import GENERATED, ROOT, SPEC
 
 
 def test_wheel_install_runs_outside_the_repo(tmp_path):

@@ -9,7 +9,7 @@ from fractions import Fraction
 
 import pytest
 
-from conftest import ROOT, SEEDS
+from repo_paths import ROOT, SEEDS
 
 DOC = SEEDS / "000_67d7e5b461b28960.txt"
 pytestmark = pytest.mark.skipif(not DOC.exists(), reason="shared/seeds is not beside the repository")

@@ -155,7 +155,7 @@ def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
         return int(v) if t["json"] == "integer" else float(v)
 
     return ir.JsonField(
-        name=key,
+        name=fdef.get("name", key),  # a shared field may give its binding identifier
         json_name=fdef.get("json_name", key),
         type=fdef["type"],
         json_type=t["json"],

@@ -1,0 +1,66 @@
+"""Fixtures of the JSON-protocol tests (paths and helpers: json_support.py)."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from json_support import CARGO_TARGET, HERE, NODE_MODULES, PROTOCOL, PY_BINDINGS, RUNNER, SCHEMAS, VECTORS, require_tool, run  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def json_vectors() -> dict[str, Any]:
+    return json.loads(VECTORS.read_text(encoding="utf-8"))
+
+
+@pytest.fixture(scope="session")
+def cases(json_vectors: dict[str, Any]) -> list[dict[str, Any]]:
+    (proto,) = [p for p in json_vectors["protocols"] if p["protocol"] == PROTOCOL]
+    return proto["cases"]
+
+
+@pytest.fixture(scope="session")
+def schemas() -> dict[str, dict[str, Any]]:
+    return {p.name.removesuffix(".schema.json"): json.loads(p.read_text(encoding="utf-8")) for p in sorted((SCHEMAS / PROTOCOL).glob("*.schema.json"))}
+
+
+@pytest.fixture(scope="session")
+def rd():
+    """The generated Python bindings package."""
+    sys.path.insert(0, str(PY_BINDINGS))
+    try:
+        import remote_driving  # noqa: PLC0415
+    finally:
+        sys.path.remove(str(PY_BINDINGS))
+    assert Path(remote_driving.__file__).resolve().is_relative_to(PY_BINDINGS)
+    return remote_driving
+
+
+@pytest.fixture(scope="session")
+def ajv_results() -> dict[str, dict[str, Any]]:
+    node = require_tool("node")
+    if not (NODE_MODULES / "ajv").is_dir():
+        pytest.fail(f"ajv is not installed in {NODE_MODULES}: run `make setup` (.ci/setup.d/60-json.sh)")
+    env = {**os.environ, "NODE_PATH": str(NODE_MODULES)}
+    proc = run([node, str(HERE / "node" / "ajv_check.cjs"), str(SCHEMAS), str(VECTORS)], "ajv", env=env)
+    return {r["id"]: r for r in json.loads(proc.stdout)}
+
+
+@pytest.fixture(scope="session")
+def rust_runner() -> Path:
+    cargo = require_tool("cargo")
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    run([cargo, "build", "--quiet", "--locked", "--manifest-path", str(RUNNER / "Cargo.toml")], "cargo build (JSON vectors runner)", env=env)
+    return CARGO_TARGET / "debug" / "json-vectors-runner"
+
+
+@pytest.fixture(scope="session")
+def rust_results(rust_runner: Path) -> dict[str, dict[str, Any]]:
+    proc = run([str(rust_runner), str(VECTORS)], "Rust JSON vectors runner")
+    return {r["id"]: r for r in json.loads(proc.stdout)}

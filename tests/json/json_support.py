@@ -1,0 +1,61 @@
+"""Paths and helpers of the JSON-protocol tests (fixtures are in conftest.py): the shared vectors, the generated schemas, the Python
+bindings, and the results of the validators from other ecosystems (ajv via node, the Rust
+bindings via cargo). Tools come from `.ci/setup.d/60-json.sh` (`make setup`)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+HERE = Path(__file__).resolve().parent
+GENERATED = ROOT / "generated"
+SCHEMAS = GENERATED / "jsonschema"
+VECTORS = GENERATED / "vectors" / "json.json"
+PROTOCOL = "remote_driving"
+PY_BINDINGS = GENERATED / "json" / "python" / PROTOCOL
+RUST_CRATE = GENERATED / "json" / "rust" / PROTOCOL
+TS_DECL = GENERATED / "json" / "typescript" / f"{PROTOCOL}.d.ts"
+BUILD = ROOT / "build"
+NODE_MODULES = BUILD / "json-node" / "node_modules"
+CARGO_TARGET = BUILD / "json-rust"
+RUNNER = HERE / "rust_runner"
+SEED_NAME = "003_6f748d1dddd09f25.txt"
+# shared/ sits beside the clone (CI), or beside the worktrees' parent (a developer's worktree).
+SEED_CANDIDATES = [d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent)]
+SEED = next((p for p in SEED_CANDIDATES if p.is_file()), SEED_CANDIDATES[0])
+TOOL_TIMEOUT_S = 900
+
+
+def same(a: Any, b: Any) -> bool:
+    """JSON equality: numbers by value (0 == 0.0), booleans never equal to numbers."""
+    if isinstance(a, bool) or isinstance(b, bool):
+        return type(a) is type(b) and a == b
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return a == b
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b, strict=True))
+    return type(a) is type(b) and a == b
+
+
+def run(cmd: list[str], what: str, **kw: Any) -> subprocess.CompletedProcess[str]:
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=TOOL_TIMEOUT_S, check=False, **kw)
+    if proc.returncode != 0:
+        pytest.fail(f"{what} failed ({' '.join(cmd)}):\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}")
+    return proc
+
+
+def require_tool(name: str) -> str:
+    exe = shutil.which(name)
+    if exe is None:
+        pytest.fail(f"{name} is not installed: run `make setup` (.ci/setup.d/60-json.sh)")
+    return exe

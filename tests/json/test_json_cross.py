@@ -1,0 +1,104 @@
+"""Validators and bindings from other ecosystems on the same vectors: ajv (npm, draft 2020-12,
+strict schema mode) on the generated schemas, the generated Rust crate (built with cargo, lint
+with clippy -D warnings), and the TypeScript declarations under `tsc --strict`."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+
+import pytest
+
+from json_support import CARGO_TARGET, NODE_MODULES, RUST_CRATE, TS_DECL, VECTORS, require_tool, run
+
+# Rules TypeScript's types can see (literal unions, required/excess keys, JSON types); ranges
+# of plain numbers are beyond them.
+TS_VISIBLE = {"object", "required", "unexpected", "enum", "cmd", "length"}
+
+
+def test_ajv_agrees_with_every_vector(cases, ajv_results):
+    bad = []
+    for c in cases:
+        r = ajv_results[c["id"]]
+        if r["own"] != c["valid"]:
+            bad.append((c["id"], "own", r))
+        if r["received"] != (c["as_received"] is not None):
+            bad.append((c["id"], "to_receiver", r))
+        if r["any"] != (c["as_any"] is not None):
+            bad.append((c["id"], "protocol", r))
+        if not c["valid"] and c["field"] not in r["own_fields"]:
+            bad.append((c["id"], "field", c["field"], r["own_fields"]))
+    assert len(ajv_results) == len(cases)
+    assert bad == [], bad[:20]
+
+
+def test_rust_bindings_agree_with_every_vector(cases, rust_results):
+    bad = []
+    for c in cases:
+        r = rust_results[c["id"]]
+        if r["valid"] != c["valid"]:
+            bad.append((c["id"], "valid", r))
+        elif c["valid"] and not (r["roundtrip"] and r["serde"]):
+            bad.append((c["id"], "round trip / serde", r))
+        elif not c["valid"] and (r["field"], r["rule"]) != (c["field"], c["rule"]):
+            bad.append((c["id"], "fault", r.get("error"), c["field"], c["rule"]))
+        if (r["as_received"], r["as_any"]) != (c["as_received"], c["as_any"]):
+            bad.append((c["id"], "dispatch", r["as_received"], r["as_any"]))
+    assert len(rust_results) == len(cases)
+    assert bad == [], bad[:20]
+
+
+def test_rust_runner_check_mode(rust_runner, cases):
+    proc = run([str(rust_runner), "--check", str(VECTORS)], "Rust JSON vectors runner --check")
+    assert f"{len(cases)} passed, 0 failed" in proc.stdout
+
+
+def test_rust_crate_is_warning_free_and_formatted():
+    cargo = require_tool("cargo")
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    manifest = ["--manifest-path", str(RUST_CRATE / "Cargo.toml")]
+    run([cargo, "rustc", "--quiet", "--locked", "--lib", *manifest, "--", "-D", "warnings"], "cargo rustc -D warnings", env=env)
+    rustfmt = require_tool("rustfmt")
+    run([rustfmt, "--check", "--edition", "2021", str(RUST_CRATE / "src" / "lib.rs")], "rustfmt --check")
+
+
+def test_rust_crate_is_clippy_clean():
+    cargo = require_tool("cargo")
+    if subprocess.run([cargo, "clippy", "--version"], capture_output=True, check=False).returncode != 0:
+        pytest.skip("clippy is not installed with this Rust toolchain (rustup component add clippy)")
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    run([cargo, "clippy", "--quiet", "--locked", "--manifest-path", str(RUST_CRATE / "Cargo.toml"), "--", "-D", "warnings"], "cargo clippy", env=env)
+
+
+def _ts_case(i: int, c: dict) -> str:
+    type_name = "".join(w.capitalize() for w in c["message"].split("_"))
+    value = c["json"]
+    visible = c["valid"] is False and (
+        c["rule"] in TS_VISIBLE
+        or (c["rule"] == "type" and not (isinstance(value.get(c["field"]), float) and not isinstance(value.get(c["field"]), bool)))
+        or (c["rule"] == "type_range" and c["field"] in ("m", "res", "cmd"))
+    )
+    if not c["valid"] and not visible:
+        return ""
+    line = f"const c{i}: rd.{type_name} = {json.dumps(value, ensure_ascii=False)};  // {c['id']}\n"
+    return ("// @ts-expect-error\n" if visible else "") + line
+
+
+def test_typescript_declarations_compile_and_type_the_vectors(cases, tmp_path):
+    node = require_tool("node")
+    tsc = NODE_MODULES / "typescript" / "bin" / "tsc"
+    assert tsc.is_file(), f"typescript is not installed in {NODE_MODULES}: run `make setup`"
+    rel = os.path.relpath(TS_DECL.with_suffix("").with_suffix(""), tmp_path)
+    body = [f'import type * as rd from "{rel}";\n', "export {};\n"]
+    body += [_ts_case(i, c) for i, c in enumerate(cases)]
+    body.append("const r: rd.ReplyTo<rd.RecordRequest> = { cmd: 3, res: 0, bn: 1, ro: true };\n")
+    body.append("// @ts-expect-error\nconst w: rd.ReplyTo<rd.PhotoRequest> = { cmd: 3, res: 0, bn: 1 };\n")
+    body.append("const all: rd.Message[] = [r];\nvoid all; void w;\n")
+    src = tmp_path / "vectors.ts"
+    src.write_text("".join(body), encoding="utf-8")
+    opts = ["--noEmit", "--strict", "--noUnusedLocals", "false", "--target", "es2020", "--module", "es2020", "--moduleResolution", "node"]
+    run([node, str(tsc), *opts, str(TS_DECL)], "tsc (declarations)")
+    proc = subprocess.run([node, str(tsc), *opts, str(src)], capture_output=True, text=True, timeout=600, check=False)
+    assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]
+    assert src.read_text().count("@ts-expect-error") > 50
