@@ -3,10 +3,13 @@
 MKDOCS ?= $(PYTHON) -m mkdocs
 export NO_MKDOCS_2_WARNING := 1
 
-.PHONY: docs docs-serve
+.PHONY: docs docs-gen docs-serve
 
-docs: gen  ## build the static HTML handbook into site/ (offline, with search)
+docs-gen:  ## regenerate only generated/docs/ (the Markdown pages, SVG diagrams and nav)
+	$(CANSPEC) gen $(SPEC) -o $(OUT) --target docs
+
+docs: docs-gen  ## build the static HTML handbook into site/ (offline, with search)
 	$(MKDOCS) build --strict --clean
 
-docs-serve: gen  ## preview the handbook on http://127.0.0.1:8000
+docs-serve: docs-gen  ## preview the handbook on http://127.0.0.1:8000
 	$(MKDOCS) serve --strict
