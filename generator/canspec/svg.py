@@ -19,7 +19,7 @@ PALETTE = (
 )
 RESERVED = ("#eeeeee", "#9e9e9e")
 CELL_W = 104
-CELL_H = 44
+CELL_H = 52
 LEFT = 64  # room for the byte labels
 TOP = 40  # room for the bit labels
 FONT = "ui-monospace, 'DejaVu Sans Mono', Menlo, Consolas, monospace"
@@ -103,8 +103,8 @@ def bit_layout(msg: ir.Message) -> str:
         out.append(f'<g class="signal" data-signal={quoteattr(sig.name)}>')
         out.append(f"<title>{escape(f'{sig.name} {sig.zh}'.strip())}: start {sig.start}, length {sig.length}</title>")
         out.append(f'<rect x="{x + 2}" y="{y + 2}" width="{w - 4}" height="{CELL_H - 4}" rx="5" fill="{span.fill}" stroke="{span.stroke}" stroke-width="1.5"/>')
-        out.append(_text(x + w // 2, y + 19, label, 11.5, w - 12, "bold"))
-        out.append(_text(x + w // 2, y + 34, bits, 10, w - 12, colour="#444444"))
+        out.append(_text(x + w // 2, y + 28, label, 11.5, w - 12, "bold"))
+        out.append(_text(x + w // 2, y + 43, bits, 10, w - 12, colour="#444444"))
         out.append("</g>")
     for byte in range(msg.dlc):  # absolute bit numbers (Intel start-bit numbering) in each cell's corner
         for col in range(8):

@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from canspec import pipeline
+from canspec import pipeline, svg
 from canspec.targets import docs
 
 from docs_support import GENERATED_DOCS, ROOT
@@ -69,11 +69,12 @@ def test_message_pages_show_every_signal(can, pages):
             cells = [c.strip() for c in row.split(" | ")]
             assert cells[2:4] == [str(sig.start), str(sig.length)], row
             assert sig.zh in row
+            values = [line for line in page.split("## 取值 Values")[-1].splitlines() if line.startswith(f"| `{sig.name}`")]
             if sig.value_table is not None:
                 for entry in sig.value_table.entries:
-                    assert f"{entry.raw} = {entry.label_zh}" in row
+                    assert f"{entry.raw} = {entry.label_zh}" in values[0]
             for special in sig.specials:
-                assert f"0x{special.raw:X} = {special.label_zh}" in row
+                assert f"0x{special.raw:X} = {special.label_zh}" in values[0]
 
 
 def test_signal_rows_state_document_values(pages):
@@ -94,8 +95,8 @@ def _signal_cells(svg_text: str) -> dict[str, set[tuple[int, int]]]:
     for g in root.iter(f"{SVG}g"):
         rect = g.find(f"{SVG}rect")
         x, y, w = int(rect.get("x")) - 2, int(rect.get("y")) - 2, int(rect.get("width")) + 4
-        byte = (y - 40) // 44
-        left_col, ncols = (x - 64) // 104, w // 104
+        byte = (y - svg.TOP) // svg.CELL_H
+        left_col, ncols = (x - svg.LEFT) // svg.CELL_W, w // svg.CELL_W
         cells = {(byte, 7 - col) for col in range(left_col, left_col + ncols)}
         out.setdefault(g.get("data-signal"), set()).update(cells)
     return out
