@@ -173,11 +173,15 @@ def test_errata_index_without_errata_file(spec, pages):
 def test_errata_file_is_embedded(tmp_path):
     shutil.copytree(ROOT / "spec", tmp_path / "spec")
     (tmp_path / "spec" / "ERRATA.md").write_text(
-        "# Errata\n\n## E10 max angular speed\n\nSee [gateway](can/gateway.yaml) and [E03](#e03).\n\n```\n# not a heading\n```\n",
+        "# Errata\n\n## CAN\n\n| ID | What |\n|---|---|\n| E10 | max angular speed |\n\n"
+        "See [gateway](can/gateway.yaml) and [E03](#e03).\n\n```\n# not a heading\n| E99 | in code |\n```\n",
         encoding="utf-8")
     compiled = pipeline.compile_spec(tmp_path / "spec")
     assert compiled.spec is not None
     page = docs.render_docs(compiled.spec)["docs/errata.md"].decode("utf-8")
-    assert "\n## Errata\n" in page and "\n### E10 max angular speed\n" in page
+    assert "\n# Errata\n" not in page and "\n### CAN\n" in page  # its title dropped, headings one level down
+    assert '| <span id="e10"></span>E10 | max angular speed |' in page
+    assert "### E10 {#cited-e10}" in page and "(#e10)" in page  # the row holds the anchor other pages link to
+    assert "### E03 {#e03}" in page  # not in the file's table: the index entry keeps the anchor
     assert "See gateway (`spec/can/gateway.yaml`) and [E03](#e03)." in page
-    assert "```\n# not a heading\n```" in page
+    assert "```\n# not a heading\n| E99 | in code |\n```" in page

@@ -77,3 +77,30 @@ def test_missing_page_fails_the_strict_build(tmp_path):
     result = mkdocs_build(tmp_path / "site", docs)
     assert result.returncode != 0
     assert "vehicle_state_3.md" in result.stdout + result.stderr
+
+
+def test_site_with_an_errata_file_builds_strictly(tmp_path):
+    # ERRATA.md as the spec ships it: a title, sections, one table row per erratum, links into the YAML.
+    require_mkdocs()
+    import shutil
+
+    from canspec import pipeline
+    from canspec.targets import docs as docs_target
+
+    from docs_support import ROOT
+
+    shutil.copytree(ROOT / "spec", tmp_path / "spec")
+    (tmp_path / "spec" / "ERRATA.md").write_text(
+        "# Errata\n\n## CAN protocol (D)\n\n| ID | Where | Resolution | In the YAML |\n|---|---|---|---|\n"
+        "| E03 | §2 | receivers ALL | [gateway](can/gateway.yaml) |\n| E10 | §3.1 | range stays [0, 512] | `max_angular_speed` |\n",
+        encoding="utf-8")
+    compiled = pipeline.compile_spec(tmp_path / "spec")
+    assert compiled.spec is not None
+    for rel, data in docs_target.render_docs(compiled.spec).items():
+        path = tmp_path / "gen" / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+    result = mkdocs_build(tmp_path / "site", tmp_path / "gen" / "docs")
+    assert result.returncode == 0, result.stdout + result.stderr
+    html = (tmp_path / "site" / "errata.html").read_text(encoding="utf-8")
+    assert 'id="e10"' in html and 'id="cited-e10"' in html and "receivers ALL" in html

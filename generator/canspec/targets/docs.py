@@ -251,19 +251,30 @@ def _erratum_key(eid: str) -> tuple[str, int, str]:
 
 _LINK = re.compile(r"(?<!!)\[([^\]]+)\]\(([^)\s]+)\)")
 _FENCE = re.compile(r"^\s*(```|~~~)")
+_ROW_ID = re.compile(r"^\|\s*([A-Z]+\d+)\s*\|")
+
+
+def errata_row_ids(text: str | None) -> set[str]:
+    """Ids of the errata that ERRATA.md describes in a table row of their own (`| E10 | ...`)."""
+    return {m.group(1) for line in (text or "").splitlines() if (m := _ROW_ID.match(line))}
 
 
 def embed_markdown(text: str) -> str:
-    """ERRATA.md placed under our own page title: headings one level down, and links to files
-    outside the site (e.g. `can/gateway.yaml`) turned into code text so the strict build holds."""
+    """ERRATA.md placed under our own page title: its title dropped, headings one level down,
+    each erratum's table row given the anchor other pages link to (`errata.md#e10`), and links
+    to files outside the site (e.g. `can/gateway.yaml`) turned into code text so the strict build holds."""
+    lines = text.strip().splitlines()
+    if lines and lines[0].startswith("# "):
+        lines = lines[1:]
     out, fenced = [], False
-    for line in text.splitlines():
+    for line in lines:
         if _FENCE.match(line):
             fenced = not fenced
         elif not fenced:
             if line.startswith("#"):
                 line = "#" + line if not line.startswith("######") else line
             line = _LINK.sub(_local_link, line)
+            line = _ROW_ID.sub(lambda m: f'| <span id="{erratum_anchor(m.group(1))}"></span>{m.group(1)} |', line, count=1)
         out.append(line)
     return "\n".join(out).strip() + "\n"
 
@@ -351,7 +362,8 @@ def render_docs(spec: ir.Spec) -> dict[str, bytes]:
                                     g=g, g_minus_1=g - 1, trailer=busload.UNSTUFFED_TRAILER_BITS, fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS)
     for proto in spec.json:
         files[json_page(proto)] = _page("json_protocol.md.j2", spec, proto=proto)
-    files["errata.md"] = _page("errata.md.j2", spec, refs=errata_refs(spec),
+    in_table = errata_row_ids(spec.errata_md)
+    files["errata.md"] = _page("errata.md.j2", spec, refs=errata_refs(spec), in_table=in_table,
                                errata_md=embed_markdown(spec.errata_md) if spec.errata_md else None)
     if spec.changelog is not None:
         files["history.md"] = _page("history.md.j2", spec, can=can, changelog=spec.changelog)
