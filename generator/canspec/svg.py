@@ -74,8 +74,8 @@ def bit_layout(msg: ir.Message) -> str:
     height = TOP + msg.dlc * CELL_H + 8
     title = f"{msg.name} (0x{msg.frame_id:08X}) bit layout"
     out = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" '
-        f'font-family="{FONT}" role="img" aria-label={quoteattr(title)}>',
+        (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" '
+         f'font-family="{FONT}" role="img" aria-label={quoteattr(title)}>'),
         f"<title>{escape(title)}</title>",
         f'<rect x="0" y="0" width="{width}" height="{height}" fill="#ffffff"/>',
         f'<text x="{LEFT // 2}" y="{TOP - 14}" font-size="11" text-anchor="middle" fill="#555555">byte</text>',

@@ -16,7 +16,6 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 import pytest
-
 from docs_support import SCREENSHOTS, built_site, require, require_mkdocs
 
 CHROMIUM = "/usr/bin/chromium"
@@ -25,7 +24,7 @@ WAIT_S = 20
 
 
 class _QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, format, *args):  # noqa: A002 - the base class's name
+    def log_message(self, format, *args):
         pass
 
 

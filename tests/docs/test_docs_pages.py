@@ -9,10 +9,8 @@ import shutil
 import xml.etree.ElementTree as ET
 
 import pytest
-
 from canspec import pipeline, svg
 from canspec.targets import docs
-
 from docs_support import GENERATED_DOCS, ROOT
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -133,13 +131,13 @@ def test_value_tables_page_has_every_entry_and_its_users(can, pages):
 def test_json_protocol_page(spec, pages):
     proto = spec.json[0]
     page = pages[f"json/{proto.name}.md"]
-    examples = [json.loads(block) for block in re.findall(r"```json\n(.*?)\n```", page, re.S)]
+    examples = [json.loads(block) for block in re.findall(r"```json\n(.*?)\n```", page, re.DOTALL)]
     assert examples == [ex for m in proto.messages for ex in m.examples]
     for m in proto.messages:
         assert f"## `{m.name}` — {m.zh}" in page
         for f in m.fields:
             assert f"| `{f.json_name}` | {f.zh} | {f.type} | {f.json_type} |" in page
-    pairs = re.findall(r"^\| (\d) \| \[`(\w+)`\].*?\| \[`(\w+)`\]", page, re.M)
+    pairs = re.findall(r"^\| (\d) \| \[`(\w+)`\].*?\| \[`(\w+)`\]", page, re.MULTILINE)
     assert pairs == [("1", "shutdown_request", "shutdown_reply"), ("2", "restart_request", "restart_reply"),
                      ("3", "record_request", "record_reply"), ("4", "photo_request", "photo_reply")]
     assert "| `pL` | 剩余电量百分比 | S8 | integer | -1 … 100 |" in page and "`-1` = 未知 Unknown (sentinel" in page

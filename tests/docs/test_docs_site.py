@@ -8,11 +8,10 @@ import re
 from pathlib import Path
 
 import pytest
-
 from docs_support import built_site, copy_docs, mkdocs_build, require_mkdocs
 
 # Anything that makes a browser fetch from another host: src/href/srcset/url()/@import/fetch targets.
-EXTERNAL = re.compile(r"""(?:\b(?:src|href|srcset|action|poster|data)\s*=\s*["']?\s*|url\(\s*["']?|@import\s+["']?)(?:https?:)?//""", re.I)
+EXTERNAL = re.compile(r"""(?:\b(?:src|href|srcset|action|poster|data)\s*=\s*["']?\s*|url\(\s*["']?|@import\s+["']?)(?:https?:)?//""", re.IGNORECASE)
 
 
 @pytest.fixture(scope="module")
@@ -86,7 +85,6 @@ def test_site_with_an_errata_file_builds_strictly(tmp_path):
 
     from canspec import pipeline
     from canspec.targets import docs as docs_target
-
     from docs_support import ROOT
 
     shutil.copytree(ROOT / "spec", tmp_path / "spec")

@@ -189,7 +189,7 @@ def json_range(field: ir.JsonField) -> str:
     return ""
 
 
-def _type_bound(value: int | float | None) -> str:
+def _type_bound(value: float | None) -> str:
     if value is None:
         return "—"
     return repr(value) if isinstance(value, float) else str(value)
