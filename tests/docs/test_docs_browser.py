@@ -151,5 +151,5 @@ def test_search_finds_a_signal_by_its_chinese_name(browser, server):
     assert "结果" in meta  # "N 个符合条件的结果"
     marks = [m.text for m in browser.find_elements(By.CSS_SELECTOR, ".md-search-result mark")]
     assert any("方向盘" in m or "角度" in m for m in marks), marks
-    screenshot(browser, "search-方向盘角度指令")
+    screenshot(browser, "search-zh-steering_angle_cmd")
     box.send_keys(Keys.ESCAPE)
