@@ -1,7 +1,8 @@
 """Worst-case CAN bus load of a protocol: frame lengths with bit stuffing, per message, per sender.
 
 Frame length (Davis, Burns, Bril, Lukkien, "Controller Area Network (CAN) schedulability analysis:
-Refuted, revisited and revised", Real-Time Systems 35(3):239-272, 2007, section 3):
+Refuted, revisited and revised", Real-Time Systems 35(3):239-272, 2007 — the worst-case frame
+transmission time C_m of their CAN model, in bits):
 
     C = g + 8n + 13 + floor((g + 8n - 1) / 4)   bits
 
