@@ -22,7 +22,6 @@ from canspec.targets import Target
 
 OUT = "docs/"
 NAV_FILE = "mkdocs.nav.yml"  # merged into the top-level mkdocs.yml by `INHERIT`
-ROLE_LABELS = {"counter": "心跳 counter", "checksum": "校验 checksum", "reserved": "保留 reserved", "data": ""}
 
 
 # --- small text helpers (filters for the templates) ----------------------------------------
@@ -48,10 +47,6 @@ def pct(value: Fraction, places: int = 2) -> str:
 def decimal(value: Fraction, places: int = 1) -> str:
     """A rate rounded half up to `places` decimals, trailing zeros kept: 1600 → 1600.0."""
     return pct(value / 100, places)[:-2]
-
-
-def num_unit(value: Fraction | int | None, unit: str) -> str:
-    return "" if value is None else f"{num(value)} {unit}".strip()
 
 
 # --- pages and anchors ----------------------------------------------------------------------
@@ -327,13 +322,13 @@ def _page(template: str, spec: ir.Spec, **ctx: Any) -> bytes:
 
 
 HELPERS: dict[str, Any] = {
-    "cell": cell, "hex_id": hex_id, "pct": pct, "decimal": decimal, "num_unit": num_unit, "message_page": message_page,
+    "cell": cell, "hex_id": hex_id, "pct": pct, "decimal": decimal, "message_page": message_page,
     "message_svg": message_svg, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor, "json_page": json_page, "vt_anchor": vt_anchor, "erratum_anchor": erratum_anchor,
     "errata_links": errata_links, "doc_range": doc_range, "enc_range": enc_range, "range_note": range_note,
     "value_cell": value_cell, "special_cell": special_cell, "role_cell": role_cell, "bytes_cell": bytes_cell, "byte_list": byte_list,
     "node_label": node_label, "receivers_text": receivers_text, "siblings": siblings, "json_range": json_range,
     "json_values": json_values, "json_example": json_example, "json_pairs": json_pairs, "party_label": party_label,
-    "id_link": id_link, "role_labels": ROLE_LABELS, "tie_epsilon": ir.TIE_EPSILON_TEXT,
+    "id_link": id_link, "tie_epsilon": ir.TIE_EPSILON_TEXT,
 }
 
 
