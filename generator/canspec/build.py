@@ -236,4 +236,10 @@ def build(loaded: LoadedSpec, res: Resolved) -> ir.Spec:
     return ir.Spec(
         name=name, version=version, sha256=loaded.sha256, can=can, json=jsons,
         changelog=build_changelog(res.changelog) if res.changelog is not None else None, generator_version=__version__,
+        errata_md=_errata_text(loaded),
     )
+
+
+def _errata_text(loaded: LoadedSpec) -> str | None:
+    path = loaded.root / "ERRATA.md"
+    return path.read_text(encoding="utf-8").replace("\r\n", "\n") if path.is_file() else None

@@ -63,7 +63,10 @@ def to_raw(sig: ir.Signal, physical: int | float | str | Fraction) -> int:
         value = exact(physical)
     except (ValueError, ArithmeticError, TypeError):
         raise CodecError(f"{sig.name}: {physical!r} is not a finite number") from None
-    raw = round_half_away((value - sig.offset) / sig.factor)
+    q = (value - sig.offset) / sig.factor
+    if not sig.raw_type_min <= q <= sig.raw_type_max:
+        raise CodecError(f"{sig.name}: {physical} does not fit the {sig.length}-bit field")
+    raw = round_half_away(q)
     if any(s.raw == raw for s in sig.specials):
         return raw
     if not sig.check_min <= value <= sig.check_max or not sig.raw_min <= raw <= sig.raw_max:

@@ -348,6 +348,7 @@ class Spec:
     json: tuple[JsonProtocol, ...]
     changelog: Changelog | None
     generator_version: str
+    errata_md: str | None = None  # text of ERRATA.md beside the bundle, if any (rendered by the docs)
 
     @property
     def short_hash(self) -> str:
