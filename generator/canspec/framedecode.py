@@ -1,0 +1,95 @@
+"""Frame decoding straight from the IR, for `canspec decode`: no generated package needed.
+
+Each message becomes a tuple of per-signal plans (shift, mask, sign bit, factor, offset,
+labels), computed once; decoding a frame is then one int.from_bytes and a loop of shifts."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from canspec import ir
+
+
+@dataclass(frozen=True, slots=True)
+class SignalPlan:
+    name: str
+    shift: int
+    mask: int
+    sign_bit: int  # 0 for unsigned signals
+    factor: float | int
+    offset: float | int
+    decimals: int  # places that show every value exactly (0 for integer signals)
+    unit: str
+    labels: dict[int, str]  # value-table entries and special values by raw
+
+
+@dataclass(frozen=True, slots=True)
+class MessagePlan:
+    name: str
+    frame_id: int
+    dlc: int
+    signals: tuple[SignalPlan, ...]
+    checksum_shift: int  # -1 without a checksum
+    checksum_cover: int
+
+
+def value_text(s: SignalPlan, physical: float | int, label: str | None) -> str:
+    """A value as printed: its label, or the number in the signal's precision."""
+    if label is not None:
+        return label
+    return f"{physical:.{s.decimals}f}" if s.decimals else str(physical)
+
+
+def _decimals(value: Fraction) -> int:
+    places = 0
+    while value.denominator != 1 and places < 12:
+        value *= 10
+        places += 1
+    return places
+
+
+def plan_message(msg: ir.Message) -> MessagePlan:
+    signals = []
+    for sig in msg.data_signals:
+        labels: dict[int, str] = {}
+        if sig.value_table is not None:
+            labels.update((e.raw, e.name) for e in sig.value_table.entries)
+        labels.update((s.raw, s.name) for s in sig.specials)
+        as_int = sig.is_integer
+        signals.append(SignalPlan(
+            sig.name, sig.start, sig.mask, 1 << (sig.length - 1) if sig.signed else 0,
+            int(sig.factor) if as_int else float(sig.factor), int(sig.offset) if as_int else float(sig.offset),
+            0 if as_int else max(_decimals(sig.factor), _decimals(sig.offset)), sig.unit, labels,
+        ))
+    shift, cover = -1, 0
+    if msg.checksum is not None:
+        shift = msg.checksum.byte * 8
+        cover = sum(0xFF << (8 * b) for b in msg.checksum.covers)
+    return MessagePlan(msg.name, msg.frame_id, msg.dlc, tuple(signals), shift, cover)
+
+
+def plans(can: ir.CanProtocol) -> dict[int, MessagePlan]:
+    return {m.frame_id: plan_message(m) for m in can.messages}
+
+
+def checksum_ok(plan: MessagePlan, v: int) -> bool:
+    if plan.checksum_shift < 0:
+        return True
+    c = v & plan.checksum_cover
+    x = 0
+    while c:
+        x ^= c & 0xFF
+        c >>= 8
+    return x == (v >> plan.checksum_shift) & 0xFF
+
+
+def decode_values(plan: MessagePlan, v: int) -> list[tuple[SignalPlan, int, float | int, str | None]]:
+    """(signal, raw, physical, label) of every data signal of a frame given as one little-endian integer."""
+    out = []
+    for s in plan.signals:
+        raw = (v >> s.shift) & s.mask
+        if s.sign_bit:
+            raw = (raw ^ s.sign_bit) - s.sign_bit
+        out.append((s, raw, raw * s.factor + s.offset, s.labels.get(raw)))
+    return out
