@@ -77,6 +77,9 @@ from .errors import ChecksumError, FrameLengthError, UnknownFrameError, UnknownS
 
 Buffer: TypeAlias = bytes | bytearray | memoryview
 
+_new = object.__new__
+_from_bytes = int.from_bytes
+
 __all__ = [
     "BY_ID",
     "MESSAGES",
@@ -554,7 +557,7 @@ class AutocarEpsCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -594,35 +597,33 @@ class AutocarEpsCommand:
 def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return AutocarEpsCommand(
-        _EPS_MODE_CMD_8[v & 0xFF],
-        (v >> 8) & 0xFF,
-        ((v >> 16) & 0xFF) * 2,
-        ((v >> 24) & 0xFFFF) * 0.1 - 1080.0,
-        v >> 56,
-    )
+    m = _new(AutocarEpsCommand)  # slot stores are faster than a call of __init__
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
+    m.counter = (v >> 8) & 0xFF
+    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
+    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "eps_ctrl_mode": v & 0xFF,
@@ -787,23 +788,23 @@ class EpsState:
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return EpsState(
-        _EPS_MODE_STATE_8[v & 0xFF],
-        ((v >> 8) & 0xFF) * 0.1 - 12.8,
-        ((v >> 16) & 0xFF) * 0.3 - 38.4,
-        ((v >> 24) & 0xFFFF) * 0.1 - 1080.0,
-        ((v >> 40) & 0x3F) * 2,
-        _EPS_FAULT_LEVEL_2[(v >> 48) & 0x3],
-        v >> 56,
-    )
+    m = _new(EpsState)  # slot stores are faster than a call of __init__
+    m.eps_ctrl_state = _EPS_MODE_STATE_8[v & 0xFF]
+    m.steering_torque = ((v >> 8) & 0xFF) * 0.1 - 12.8
+    m.eps_output_torque = ((v >> 16) & 0xFF) * 0.3 - 38.4
+    m.steering_angle = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.controller_temp = ((v >> 40) & 0x3F) * 2
+    m.eps_fault_level = _EPS_FAULT_LEVEL_2[(v >> 48) & 0x3]
+    m.counter = v >> 56
+    return m
 
 
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "eps_ctrl_state": v & 0xFF,
@@ -944,7 +945,7 @@ class AutocarSpeedCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -984,36 +985,34 @@ class AutocarSpeedCommand:
 def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return AutocarSpeedCommand(
-        (v & 0x3FF) * 0.02 - 9.0,
-        _EPB_2[(v >> 10) & 0x3],
-        _GEAR_4[(v >> 12) & 0xF],
-        (v >> 16) & 0xFF,
-        _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1],
-        v >> 56,
-    )
+    m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
+    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
+    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
+    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
+    m.counter = (v >> 16) & 0xFF
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "accel_cmd": v & 0x3FF,
@@ -1156,7 +1155,7 @@ class DrivingState:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -1186,39 +1185,37 @@ class DrivingState:
 def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingState:
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return DrivingState(
-        _EPB_2[v & 0x3],
-        _GEAR_4[(v >> 2) & 0xF],
-        _BRAKE_STATE_1[(v >> 6) & 0x1],
-        _BRAKE_STATE_1[(v >> 7) & 0x1],
-        ((v >> 8) & 0xFFFF) - 15000,
-        ((v >> 24) & 0xFFFF) - 5000,
-        ((v >> 40) & 0xFF) + 1,
-        ((v >> 48) & 0xFF) * 0.05 - 9.0,
-        v >> 56,
-    )
+    m = _new(DrivingState)  # slot stores are faster than a call of __init__
+    m.epb_state = _EPB_2[v & 0x3]
+    m.gear_state = _GEAR_4[(v >> 2) & 0xF]
+    m.emergency_brake_state = _BRAKE_STATE_1[(v >> 6) & 0x1]
+    m.uss_brake_state = _BRAKE_STATE_1[(v >> 7) & 0x1]
+    m.motor_speed = ((v >> 8) & 0xFFFF) - 15000
+    m.motor_torque = ((v >> 24) & 0xFFFF) - 5000
+    m.motor_speed_ratio = ((v >> 40) & 0xFF) + 1
+    m.current_accel = ((v >> 48) & 0xFF) * 0.05 - 9.0
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingStateRaw:
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "epb_state": v & 0x3,
@@ -1476,41 +1473,41 @@ class AutocarControlCommand1:
 def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return AutocarControlCommand1(
-        _DRIVE_MODE_CMD_AUTOCAR_2[v & 0x3],
-        _DOOR_CMD_2[(v >> 2) & 0x3],
-        _SWITCH_CMD_2[(v >> 4) & 0x3],
-        _SWITCH_CMD_2[(v >> 6) & 0x3],
-        _FLASH_CMD_2[(v >> 8) & 0x3],
-        _FLASH_CMD_2[(v >> 10) & 0x3],
-        _FLASH_CMD_2[(v >> 12) & 0x3],
-        _SWITCH_CMD_2[(v >> 14) & 0x3],
-        _HEADLIGHT_2[(v >> 16) & 0x3],
-        _SWITCH_CMD_2[(v >> 18) & 0x3],
-        _SWITCH_CMD_2[(v >> 20) & 0x3],
-        _SWITCH_CMD_2[(v >> 22) & 0x3],
-        _SWITCH_CMD_2[(v >> 24) & 0x3],
-        _SWITCH_CMD_2[(v >> 26) & 0x3],
-        _MODE_RESET_1[(v >> 28) & 0x1],
-        _SYSTEM_STATE_AUTOCAR_2[(v >> 32) & 0x3],
-        _RELIABILITY_AUTOCAR_2[(v >> 34) & 0x3],
-        _FAULT_LEVEL_AUTOCAR_2[(v >> 36) & 0x3],
-        _LOCK_CMD_2[(v >> 38) & 0x3],
-        _AC_CMD_3[(v >> 40) & 0x7],
-        ((v >> 43) & 0x1F) * 0.5 + 16.0,
-        (v >> 48) & 0xF,
-        (v >> 52) & 0xF,
-        (v >> 56) & 0xF,
-        v >> 60,
-    )
+    m = _new(AutocarControlCommand1)  # slot stores are faster than a call of __init__
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_AUTOCAR_2[v & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
+    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
+    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
+    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
+    m.system_state = _SYSTEM_STATE_AUTOCAR_2[(v >> 32) & 0x3]
+    m.system_reliability = _RELIABILITY_AUTOCAR_2[(v >> 34) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_AUTOCAR_2[(v >> 36) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
+    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
+    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
+    m.protocol_version_a = (v >> 48) & 0xF
+    m.protocol_version_b = (v >> 52) & 0xF
+    m.protocol_version_c = (v >> 56) & 0xF
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "drive_mode_cmd": v & 0x3,
@@ -1899,38 +1896,38 @@ class VehicleState1:
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return VehicleState1(
-        _DRIVE_MODE_STATE_2[v & 0x3],
-        _OFF_ON_1[(v >> 2) & 0x1],
-        _OFF_ON_1[(v >> 3) & 0x1],
-        _OFF_FLASHING_1[(v >> 4) & 0x1],
-        _OFF_FLASHING_1[(v >> 5) & 0x1],
-        _OFF_FLASHING_1[(v >> 6) & 0x1],
-        _OFF_ON_1[(v >> 7) & 0x1],
-        _HEADLIGHT_2[(v >> 8) & 0x3],
-        _OFF_ON_1[(v >> 10) & 0x1],
-        _OFF_ON_1[(v >> 11) & 0x1],
-        _OFF_ON_1[(v >> 12) & 0x1],
-        _OFF_ON_1[(v >> 13) & 0x1],
-        _OFF_ON_1[(v >> 14) & 0x1],
-        _BUTTON_1[(v >> 15) & 0x1],
-        ((v >> 16) & 0xFF) - 50,
-        ((v >> 24) & 0xFF) * 0.5,
-        _POWER_CMD_2[(v >> 32) & 0x3],
-        _CHARGE_STATE_2[(v >> 34) & 0x3],
-        _CHARGE_CONNECTION_2[(v >> 36) & 0x3],
-        _VEHICLE_FAULT_LEVEL_2[(v >> 38) & 0x3],
-        ((v >> 40) & 0xFFFF) * 2,
-        v >> 56,
-    )
+    m = _new(VehicleState1)  # slot stores are faster than a call of __init__
+    m.drive_mode_state = _DRIVE_MODE_STATE_2[v & 0x3]
+    m.door_state = _OFF_ON_1[(v >> 2) & 0x1]
+    m.drl_state = _OFF_ON_1[(v >> 3) & 0x1]
+    m.left_turn_state = _OFF_FLASHING_1[(v >> 4) & 0x1]
+    m.right_turn_state = _OFF_FLASHING_1[(v >> 5) & 0x1]
+    m.hazard_state = _OFF_FLASHING_1[(v >> 6) & 0x1]
+    m.position_light_state = _OFF_ON_1[(v >> 7) & 0x1]
+    m.headlight_state = _HEADLIGHT_2[(v >> 8) & 0x3]
+    m.rear_fog_state = _OFF_ON_1[(v >> 10) & 0x1]
+    m.left_fog_state = _OFF_ON_1[(v >> 11) & 0x1]
+    m.right_fog_state = _OFF_ON_1[(v >> 12) & 0x1]
+    m.dome_light_state = _OFF_ON_1[(v >> 13) & 0x1]
+    m.ambient_light_state = _OFF_ON_1[(v >> 14) & 0x1]
+    m.door_button_state = _BUTTON_1[(v >> 15) & 0x1]
+    m.vehicle_speed = ((v >> 16) & 0xFF) - 50
+    m.soc = ((v >> 24) & 0xFF) * 0.5
+    m.system_power_cmd = _POWER_CMD_2[(v >> 32) & 0x3]
+    m.charge_state = _CHARGE_STATE_2[(v >> 34) & 0x3]
+    m.charge_connection = _CHARGE_CONNECTION_2[(v >> 36) & 0x3]
+    m.vehicle_fault_level = _VEHICLE_FAULT_LEVEL_2[(v >> 38) & 0x3]
+    m.odometer = ((v >> 40) & 0xFFFF) * 2
+    m.counter = v >> 56
+    return m
 
 
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "drive_mode_state": v & 0x3,
@@ -2251,26 +2248,26 @@ class AutocarControlCommand2:
 def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return AutocarControlCommand2(
-        _DOWNHILL_REGEN_ENABLE_1[v & 0x1],
-        _CARGO_LIFT_2[(v >> 1) & 0x3],
-        (v >> 3) & 0xF,
-        _PTO_ENABLE_1[(v >> 7) & 0x1],
-        ((v >> 8) & 0xFF) * 0.5,
-        ((v >> 16) & 0x3FF) * 0.05 - 25.0,
-        ((v >> 26) & 0x3FF) * 0.1 - 40.0,
-        ((v >> 36) & 0x3FF) * 0.2 - 30.0,
-        ((v >> 46) & 0x3FF) * 0.1 - 40.0,
-        v >> 56,
-    )
+    m = _new(AutocarControlCommand2)  # slot stores are faster than a call of __init__
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
+    m.cargo_lift_speed = (v >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
+    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
+    m.chassis_pitch = ((v >> 16) & 0x3FF) * 0.05 - 25.0
+    m.chassis_roll = ((v >> 26) & 0x3FF) * 0.1 - 40.0
+    m.cargo_pitch = ((v >> 36) & 0x3FF) * 0.2 - 30.0
+    m.cargo_roll = ((v >> 46) & 0x3FF) * 0.1 - 40.0
+    m.counter = v >> 56
+    return m
 
 
 def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "downhill_regen_enable": v & 0x1,
@@ -2446,20 +2443,20 @@ class VehicleState2:
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return VehicleState2(
-        (v & 0xFFFF) * 0.2,
-        ((v >> 16) & 0xFFFF) * 0.02 - 500.0,
-        (v >> 32) & 0xFFFF,
-        v >> 48,
-    )
+    m = _new(VehicleState2)  # slot stores are faster than a call of __init__
+    m.battery_voltage = (v & 0xFFFF) * 0.2
+    m.battery_current = ((v >> 16) & 0xFFFF) * 0.02 - 500.0
+    m.battery_charge_energy = (v >> 32) & 0xFFFF
+    m.battery_discharge_energy = v >> 48
+    return m
 
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "battery_voltage": v & 0xFFFF,
@@ -2598,22 +2595,22 @@ class VehicleState3:
 def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return VehicleState3(
-        (v & 0xFF) - 40,
-        ((v >> 8) & 0xFF) - 40,
-        ((v >> 16) & 0xFFF) * 0.0015,
-        ((v >> 28) & 0xFFF) * 0.0015,
-        ((v >> 40) & 0xFF) - 40,
-        ((v >> 48) & 0xFF) - 40,
-    )
+    m = _new(VehicleState3)  # slot stores are faster than a call of __init__
+    m.battery_max_temp = (v & 0xFF) - 40
+    m.battery_min_temp = ((v >> 8) & 0xFF) - 40
+    m.max_cell_voltage = ((v >> 16) & 0xFFF) * 0.0015
+    m.min_cell_voltage = ((v >> 28) & 0xFFF) * 0.0015
+    m.motor_temp = ((v >> 40) & 0xFF) - 40
+    m.motor_controller_temp = ((v >> 48) & 0xFF) - 40
+    return m
 
 
 def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "battery_max_temp": v & 0xFF,
@@ -2788,28 +2785,28 @@ class VehicleState4:
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return VehicleState4(
-        (v & 0xFF) * 0.5 - 30.0,
-        ((v >> 8) & 0xFF) * 0.5 - 30.0,
-        _AC_STATE_4[(v >> 16) & 0xF],
-        _POWER_STATE_2[(v >> 20) & 0x3],
-        _INACTIVE_ACTIVE_1[(v >> 22) & 0x1],
-        _INACTIVE_ACTIVE_1[(v >> 23) & 0x1],
-        (v >> 24) & 0xFFF,
-        _TAKEOVER_STATE_1[(v >> 36) & 0x1],
-        _REMOTE_TAKEOVER_PERMISSION_1[(v >> 39) & 0x1],
-        ((v >> 40) & 0x1F) * 0.5 + 16.0,
-        _PTO_STATE_1[(v >> 45) & 0x1],
-        (v >> 48) * 0.01 - 325.0,
-    )
+    m = _new(VehicleState4)  # slot stores are faster than a call of __init__
+    m.outside_temp = (v & 0xFF) * 0.5 - 30.0
+    m.inside_temp = ((v >> 8) & 0xFF) * 0.5 - 30.0
+    m.ac_state = _AC_STATE_4[(v >> 16) & 0xF]
+    m.vehicle_power_state = _POWER_STATE_2[(v >> 20) & 0x3]
+    m.hill_hold_state = _INACTIVE_ACTIVE_1[(v >> 22) & 0x1]
+    m.regen_brake_state = _INACTIVE_ACTIVE_1[(v >> 23) & 0x1]
+    m.remaining_range = (v >> 24) & 0xFFF
+    m.manual_takeover_state = _TAKEOVER_STATE_1[(v >> 36) & 0x1]
+    m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[(v >> 39) & 0x1]
+    m.ac_set_temp = ((v >> 40) & 0x1F) * 0.5 + 16.0
+    m.pto_state = _PTO_STATE_1[(v >> 45) & 0x1]
+    m.battery_power = (v >> 48) * 0.01 - 325.0
+    return m
 
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "outside_temp": v & 0xFF,
@@ -3120,45 +3117,45 @@ class VehicleFault:
 def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFault:
     if len(data) != 8:
         raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return VehicleFault(
-        _INSULATION_FAULT_LEVEL_2[v & 0x3],
-        _NORMAL_FAULT_1[(v >> 2) & 0x1],
-        _NORMAL_FAULT_1[(v >> 3) & 0x1],
-        _NORMAL_FAULT_1[(v >> 4) & 0x1],
-        _NORMAL_FAULT_1[(v >> 5) & 0x1],
-        _NORMAL_FAULT_1[(v >> 6) & 0x1],
-        _NORMAL_FAULT_1[(v >> 7) & 0x1],
-        _NORMAL_FAULT_1[(v >> 8) & 0x1],
-        _NORMAL_FAULT_1[(v >> 9) & 0x1],
-        _NORMAL_FAULT_1[(v >> 10) & 0x1],
-        _NORMAL_FAULT_1[(v >> 11) & 0x1],
-        _NORMAL_FAULT_1[(v >> 12) & 0x1],
-        _NORMAL_FAULT_1[(v >> 13) & 0x1],
-        _NORMAL_FAULT_1[(v >> 14) & 0x1],
-        _NORMAL_FAULT_1[(v >> 15) & 0x1],
-        _NORMAL_FAULT_1[(v >> 16) & 0x1],
-        _NORMAL_FAULT_1[(v >> 17) & 0x1],
-        _NORMAL_FAULT_1[(v >> 18) & 0x1],
-        _NORMAL_FAULT_1[(v >> 19) & 0x1],
-        _NORMAL_FAULT_1[(v >> 20) & 0x1],
-        _NORMAL_FAULT_1[(v >> 21) & 0x1],
-        _NORMAL_FAULT_1[(v >> 22) & 0x1],
-        _BATTERY_SYSTEM_FAULT_LEVEL_2[(v >> 24) & 0x3],
-        _MOTOR_SYSTEM_FAULT_LEVEL_2[(v >> 26) & 0x3],
-        _UNMANNED_ENTRY_FAULT_4[(v >> 28) & 0xF],
-        (v >> 32) & 0xF,
-        (v >> 36) & 0xF,
-        (v >> 40) & 0xF,
-        _REMOTE_ENTRY_FAULT_4[(v >> 44) & 0xF],
-    )
+    m = _new(VehicleFault)  # slot stores are faster than a call of __init__
+    m.insulation_fault_level = _INSULATION_FAULT_LEVEL_2[v & 0x3]
+    m.dc_fault = _NORMAL_FAULT_1[(v >> 2) & 0x1]
+    m.soc_low = _NORMAL_FAULT_1[(v >> 3) & 0x1]
+    m.cell_undervoltage = _NORMAL_FAULT_1[(v >> 4) & 0x1]
+    m.brake_boost_pressure_fault = _NORMAL_FAULT_1[(v >> 5) & 0x1]
+    m.vacuum_pump_fault = _NORMAL_FAULT_1[(v >> 6) & 0x1]
+    m.vehicle_system_fault = _NORMAL_FAULT_1[(v >> 7) & 0x1]
+    m.battery_overheat = _NORMAL_FAULT_1[(v >> 8) & 0x1]
+    m.motor_overheat = _NORMAL_FAULT_1[(v >> 9) & 0x1]
+    m.traction_battery_fault = _NORMAL_FAULT_1[(v >> 10) & 0x1]
+    m.motor_fault = _NORMAL_FAULT_1[(v >> 11) & 0x1]
+    m.battery_comm_fault = _NORMAL_FAULT_1[(v >> 12) & 0x1]
+    m.motor_comm_fault = _NORMAL_FAULT_1[(v >> 13) & 0x1]
+    m.eps_fault = _NORMAL_FAULT_1[(v >> 14) & 0x1]
+    m.ac_fault = _NORMAL_FAULT_1[(v >> 15) & 0x1]
+    m.aux_battery_fault = _NORMAL_FAULT_1[(v >> 16) & 0x1]
+    m.epb_fault = _NORMAL_FAULT_1[(v >> 17) & 0x1]
+    m.brake_by_wire_fault = _NORMAL_FAULT_1[(v >> 18) & 0x1]
+    m.key_not_detected = _NORMAL_FAULT_1[(v >> 19) & 0x1]
+    m.tire_pressure_low = _NORMAL_FAULT_1[(v >> 20) & 0x1]
+    m.body_motor_fault = _NORMAL_FAULT_1[(v >> 21) & 0x1]
+    m.body_motor_overheat = _NORMAL_FAULT_1[(v >> 22) & 0x1]
+    m.battery_system_fault_level = _BATTERY_SYSTEM_FAULT_LEVEL_2[(v >> 24) & 0x3]
+    m.motor_system_fault_level = _MOTOR_SYSTEM_FAULT_LEVEL_2[(v >> 26) & 0x3]
+    m.unmanned_entry_fault = _UNMANNED_ENTRY_FAULT_4[(v >> 28) & 0xF]
+    m.protocol_version_a = (v >> 32) & 0xF
+    m.protocol_version_b = (v >> 36) & 0xF
+    m.protocol_version_c = (v >> 40) & 0xF
+    m.remote_entry_fault = _REMOTE_ENTRY_FAULT_4[(v >> 44) & 0xF]
+    return m
 
 
 def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFaultRaw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "insulation_fault_level": v & 0x3,
@@ -3475,7 +3472,8 @@ def _decode_vehicle_state_5(data: Buffer, verify_checksum: bool = True) -> Vehic
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_5", 0x1808A0B0, 8, len(data))
 
-    return VehicleState5()
+    m = _new(VehicleState5)  # slot stores are faster than a call of __init__
+    return m
 
 
 def _unpack_vehicle_state_5(data: Buffer, verify_checksum: bool = True) -> VehicleState5Raw:
@@ -3563,7 +3561,7 @@ class RgateEpsCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -3603,35 +3601,33 @@ class RgateEpsCommand:
 def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return RgateEpsCommand(
-        _EPS_MODE_CMD_8[v & 0xFF],
-        (v >> 8) & 0xFF,
-        ((v >> 16) & 0xFF) * 2,
-        ((v >> 24) & 0xFFFF) * 0.1 - 1080.0,
-        v >> 56,
-    )
+    m = _new(RgateEpsCommand)  # slot stores are faster than a call of __init__
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
+    m.counter = (v >> 8) & 0xFF
+    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
+    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "eps_ctrl_mode": v & 0xFF,
@@ -3759,7 +3755,7 @@ class RgateSpeedCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -3799,36 +3795,34 @@ class RgateSpeedCommand:
 def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return RgateSpeedCommand(
-        (v & 0x3FF) * 0.02 - 9.0,
-        _EPB_2[(v >> 10) & 0x3],
-        _GEAR_4[(v >> 12) & 0xF],
-        (v >> 16) & 0xFF,
-        _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1],
-        v >> 56,
-    )
+    m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
+    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
+    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
+    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
+    m.counter = (v >> 16) & 0xFF
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "accel_cmd": v & 0x3FF,
@@ -4068,41 +4062,41 @@ class RgateControlCommand1:
 def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return RgateControlCommand1(
-        _DRIVE_MODE_CMD_RGATE_2[v & 0x3],
-        _DOOR_CMD_2[(v >> 2) & 0x3],
-        _SWITCH_CMD_2[(v >> 4) & 0x3],
-        _SWITCH_CMD_2[(v >> 6) & 0x3],
-        _FLASH_CMD_2[(v >> 8) & 0x3],
-        _FLASH_CMD_2[(v >> 10) & 0x3],
-        _FLASH_CMD_2[(v >> 12) & 0x3],
-        _SWITCH_CMD_2[(v >> 14) & 0x3],
-        _HEADLIGHT_2[(v >> 16) & 0x3],
-        _SWITCH_CMD_2[(v >> 18) & 0x3],
-        _SWITCH_CMD_2[(v >> 20) & 0x3],
-        _SWITCH_CMD_2[(v >> 22) & 0x3],
-        _SWITCH_CMD_2[(v >> 24) & 0x3],
-        _SWITCH_CMD_2[(v >> 26) & 0x3],
-        _MODE_RESET_1[(v >> 28) & 0x1],
-        _LINK_STATE_2[(v >> 32) & 0x3],
-        _RELIABILITY_RGATE_2[(v >> 34) & 0x3],
-        _FAULT_LEVEL_RGATE_2[(v >> 36) & 0x3],
-        _LOCK_CMD_2[(v >> 38) & 0x3],
-        _AC_CMD_3[(v >> 40) & 0x7],
-        ((v >> 43) & 0x1F) * 0.5 + 16.0,
-        (v >> 48) & 0xF,
-        (v >> 52) & 0xF,
-        (v >> 56) & 0xF,
-        v >> 60,
-    )
+    m = _new(RgateControlCommand1)  # slot stores are faster than a call of __init__
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_RGATE_2[v & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
+    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
+    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
+    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
+    m.system_state = _LINK_STATE_2[(v >> 32) & 0x3]
+    m.system_reliability = _RELIABILITY_RGATE_2[(v >> 34) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_RGATE_2[(v >> 36) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
+    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
+    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
+    m.protocol_version_a = (v >> 48) & 0xF
+    m.protocol_version_b = (v >> 52) & 0xF
+    m.protocol_version_c = (v >> 56) & 0xF
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "drive_mode_cmd": v & 0x3,
@@ -4428,22 +4422,22 @@ class RgateControlCommand2:
 def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return RgateControlCommand2(
-        _DOWNHILL_REGEN_ENABLE_1[v & 0x1],
-        _CARGO_LIFT_2[(v >> 1) & 0x3],
-        (v >> 3) & 0xF,
-        _PTO_ENABLE_1[(v >> 7) & 0x1],
-        ((v >> 8) & 0xFF) * 0.5,
-        v >> 56,
-    )
+    m = _new(RgateControlCommand2)  # slot stores are faster than a call of __init__
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
+    m.cargo_lift_speed = (v >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
+    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
+    m.counter = v >> 56
+    return m
 
 
 def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "downhill_regen_enable": v & 0x1,
@@ -4579,19 +4573,19 @@ class DeviceId:
 def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
     if len(data) != 8:
         raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return DeviceId(
-        _DEVICE_TYPE_6[v & 0x3F],
-        _ID_FRAME_INDEX_2[(v >> 6) & 0x3],
-        v >> 8,
-    )
+    m = _new(DeviceId)  # slot stores are faster than a call of __init__
+    m.device_type = _DEVICE_TYPE_6[v & 0x3F]
+    m.id_frame_index = _ID_FRAME_INDEX_2[(v >> 6) & 0x3]
+    m.id_chars = v >> 8
+    return m
 
 
 def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
     if len(data) != 8:
         raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "device_type": v & 0x3F,
@@ -4739,23 +4733,23 @@ class FrontSensorDistance1:
 def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return FrontSensorDistance1(
-        v & 0x3FF,
-        (v >> 10) & 0x3FF,
-        (v >> 20) & 0x3FF,
-        (v >> 30) & 0x3FF,
-        (v >> 40) & 0x3FF,
-        (v >> 50) & 0x3FF,
-        v >> 60,
-    )
+    m = _new(FrontSensorDistance1)  # slot stores are faster than a call of __init__
+    m.sensor_1_distance = v & 0x3FF
+    m.sensor_2_distance = (v >> 10) & 0x3FF
+    m.sensor_3_distance = (v >> 20) & 0x3FF
+    m.sensor_4_distance = (v >> 30) & 0x3FF
+    m.sensor_5_distance = (v >> 40) & 0x3FF
+    m.sensor_6_distance = (v >> 50) & 0x3FF
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "sensor_1_distance": v & 0x3FF,
@@ -4952,30 +4946,30 @@ class FrontSensorDistance2:
 def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return FrontSensorDistance2(
-        v & 0x3FF,
-        (v >> 10) & 0x3FF,
-        (v >> 20) & 0x3FF,
-        _USS_SYSTEM_STATE_2[(v >> 32) & 0x3],
-        _SENSOR_FAULT_1[(v >> 34) & 0x1],
-        _SENSOR_FAULT_1[(v >> 35) & 0x1],
-        _SENSOR_FAULT_1[(v >> 36) & 0x1],
-        _SENSOR_FAULT_1[(v >> 37) & 0x1],
-        _SENSOR_FAULT_1[(v >> 38) & 0x1],
-        _SENSOR_FAULT_1[(v >> 39) & 0x1],
-        _SENSOR_FAULT_1[(v >> 40) & 0x1],
-        _SENSOR_FAULT_1[(v >> 41) & 0x1],
-        _SENSOR_FAULT_1[(v >> 42) & 0x1],
-        v >> 60,
-    )
+    m = _new(FrontSensorDistance2)  # slot stores are faster than a call of __init__
+    m.sensor_7_distance = v & 0x3FF
+    m.sensor_8_distance = (v >> 10) & 0x3FF
+    m.sensor_9_distance = (v >> 20) & 0x3FF
+    m.uss_system_state = _USS_SYSTEM_STATE_2[(v >> 32) & 0x3]
+    m.sensor_1_fault = _SENSOR_FAULT_1[(v >> 34) & 0x1]
+    m.sensor_2_fault = _SENSOR_FAULT_1[(v >> 35) & 0x1]
+    m.sensor_3_fault = _SENSOR_FAULT_1[(v >> 36) & 0x1]
+    m.sensor_4_fault = _SENSOR_FAULT_1[(v >> 37) & 0x1]
+    m.sensor_5_fault = _SENSOR_FAULT_1[(v >> 38) & 0x1]
+    m.sensor_6_fault = _SENSOR_FAULT_1[(v >> 39) & 0x1]
+    m.sensor_7_fault = _SENSOR_FAULT_1[(v >> 40) & 0x1]
+    m.sensor_8_fault = _SENSOR_FAULT_1[(v >> 41) & 0x1]
+    m.sensor_9_fault = _SENSOR_FAULT_1[(v >> 42) & 0x1]
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "sensor_7_distance": v & 0x3FF,
@@ -5219,23 +5213,23 @@ class RearSensorDistance1:
 def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return RearSensorDistance1(
-        v & 0x3FF,
-        (v >> 10) & 0x3FF,
-        (v >> 20) & 0x3FF,
-        (v >> 30) & 0x3FF,
-        (v >> 40) & 0x3FF,
-        (v >> 50) & 0x3FF,
-        v >> 60,
-    )
+    m = _new(RearSensorDistance1)  # slot stores are faster than a call of __init__
+    m.sensor_1_distance = v & 0x3FF
+    m.sensor_2_distance = (v >> 10) & 0x3FF
+    m.sensor_3_distance = (v >> 20) & 0x3FF
+    m.sensor_4_distance = (v >> 30) & 0x3FF
+    m.sensor_5_distance = (v >> 40) & 0x3FF
+    m.sensor_6_distance = (v >> 50) & 0x3FF
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "sensor_1_distance": v & 0x3FF,
@@ -5432,30 +5426,30 @@ class RearSensorDistance2:
 def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return RearSensorDistance2(
-        v & 0x3FF,
-        (v >> 10) & 0x3FF,
-        (v >> 20) & 0x3FF,
-        _USS_SYSTEM_STATE_2[(v >> 32) & 0x3],
-        _SENSOR_FAULT_1[(v >> 34) & 0x1],
-        _SENSOR_FAULT_1[(v >> 35) & 0x1],
-        _SENSOR_FAULT_1[(v >> 36) & 0x1],
-        _SENSOR_FAULT_1[(v >> 37) & 0x1],
-        _SENSOR_FAULT_1[(v >> 38) & 0x1],
-        _SENSOR_FAULT_1[(v >> 39) & 0x1],
-        _SENSOR_FAULT_1[(v >> 40) & 0x1],
-        _SENSOR_FAULT_1[(v >> 41) & 0x1],
-        _SENSOR_FAULT_1[(v >> 42) & 0x1],
-        v >> 60,
-    )
+    m = _new(RearSensorDistance2)  # slot stores are faster than a call of __init__
+    m.sensor_7_distance = v & 0x3FF
+    m.sensor_8_distance = (v >> 10) & 0x3FF
+    m.sensor_9_distance = (v >> 20) & 0x3FF
+    m.uss_system_state = _USS_SYSTEM_STATE_2[(v >> 32) & 0x3]
+    m.sensor_1_fault = _SENSOR_FAULT_1[(v >> 34) & 0x1]
+    m.sensor_2_fault = _SENSOR_FAULT_1[(v >> 35) & 0x1]
+    m.sensor_3_fault = _SENSOR_FAULT_1[(v >> 36) & 0x1]
+    m.sensor_4_fault = _SENSOR_FAULT_1[(v >> 37) & 0x1]
+    m.sensor_5_fault = _SENSOR_FAULT_1[(v >> 38) & 0x1]
+    m.sensor_6_fault = _SENSOR_FAULT_1[(v >> 39) & 0x1]
+    m.sensor_7_fault = _SENSOR_FAULT_1[(v >> 40) & 0x1]
+    m.sensor_8_fault = _SENSOR_FAULT_1[(v >> 41) & 0x1]
+    m.sensor_9_fault = _SENSOR_FAULT_1[(v >> 42) & 0x1]
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "sensor_7_distance": v & 0x3FF,
@@ -5653,7 +5647,7 @@ class TeleEpsCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -5693,35 +5687,33 @@ class TeleEpsCommand:
 def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return TeleEpsCommand(
-        _EPS_MODE_CMD_8[v & 0xFF],
-        (v >> 8) & 0xFF,
-        ((v >> 16) & 0xFF) * 2,
-        ((v >> 24) & 0xFFFF) * 0.1 - 1080.0,
-        v >> 56,
-    )
+    m = _new(TeleEpsCommand)  # slot stores are faster than a call of __init__
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
+    m.counter = (v >> 8) & 0xFF
+    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
+    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "eps_ctrl_mode": v & 0xFF,
@@ -5849,7 +5841,7 @@ class TeleSpeedCommand:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
         if len(data) != 8:
             return False
-        v = int.from_bytes(data, "little")
+        v = _from_bytes(data, "little")
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
         c ^= c >> 16
@@ -5889,36 +5881,34 @@ class TeleSpeedCommand:
 def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
-    return TeleSpeedCommand(
-        (v & 0x3FF) * 0.2 - 100.0,
-        _EPB_2[(v >> 10) & 0x3],
-        _GEAR_4[(v >> 12) & 0xF],
-        (v >> 16) & 0xFF,
-        _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1],
-        v >> 56,
-    )
+    m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
+    m.throttle_brake_cmd = (v & 0x3FF) * 0.2 - 100.0
+    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
+    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
+    m.counter = (v >> 16) & 0xFF
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
+    m.checksum = v >> 56
+    return m
 
 
 def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF)
+        if c & 0xFF:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
 
     return {
         "throttle_brake_cmd": v & 0x3FF,
@@ -6158,41 +6148,41 @@ class TeleControlCommand1:
 def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return TeleControlCommand1(
-        _DRIVE_MODE_CMD_TELE_2[v & 0x3],
-        _DOOR_CMD_2[(v >> 2) & 0x3],
-        _SWITCH_CMD_2[(v >> 4) & 0x3],
-        _SWITCH_CMD_2[(v >> 6) & 0x3],
-        _FLASH_CMD_2[(v >> 8) & 0x3],
-        _FLASH_CMD_2[(v >> 10) & 0x3],
-        _FLASH_CMD_2[(v >> 12) & 0x3],
-        _SWITCH_CMD_2[(v >> 14) & 0x3],
-        _HEADLIGHT_2[(v >> 16) & 0x3],
-        _SWITCH_CMD_2[(v >> 18) & 0x3],
-        _SWITCH_CMD_2[(v >> 20) & 0x3],
-        _SWITCH_CMD_2[(v >> 22) & 0x3],
-        _SWITCH_CMD_2[(v >> 24) & 0x3],
-        _SWITCH_CMD_2[(v >> 26) & 0x3],
-        _MODE_RESET_1[(v >> 28) & 0x1],
-        _LINK_STATE_2[(v >> 32) & 0x3],
-        _RELIABILITY_TELE_2[(v >> 34) & 0x3],
-        _FAULT_LEVEL_TELE_2[(v >> 36) & 0x3],
-        _LOCK_CMD_2[(v >> 38) & 0x3],
-        _AC_CMD_3[(v >> 40) & 0x7],
-        ((v >> 43) & 0x1F) * 0.5 + 16.0,
-        (v >> 48) & 0xF,
-        (v >> 52) & 0xF,
-        (v >> 56) & 0xF,
-        v >> 60,
-    )
+    m = _new(TeleControlCommand1)  # slot stores are faster than a call of __init__
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_TELE_2[v & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
+    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
+    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
+    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
+    m.system_state = _LINK_STATE_2[(v >> 32) & 0x3]
+    m.system_reliability = _RELIABILITY_TELE_2[(v >> 34) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_TELE_2[(v >> 36) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
+    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
+    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
+    m.protocol_version_a = (v >> 48) & 0xF
+    m.protocol_version_b = (v >> 52) & 0xF
+    m.protocol_version_c = (v >> 56) & 0xF
+    m.counter = v >> 60
+    return m
 
 
 def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "drive_mode_cmd": v & 0x3,
@@ -6518,22 +6508,22 @@ class TeleControlCommand2:
 def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
-    return TeleControlCommand2(
-        _DOWNHILL_REGEN_ENABLE_1[v & 0x1],
-        _CARGO_LIFT_2[(v >> 1) & 0x3],
-        (v >> 3) & 0xF,
-        _PTO_ENABLE_1[(v >> 7) & 0x1],
-        ((v >> 8) & 0xFF) * 0.5,
-        v >> 56,
-    )
+    m = _new(TeleControlCommand2)  # slot stores are faster than a call of __init__
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
+    m.cargo_lift_speed = (v >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
+    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
+    m.counter = v >> 56
+    return m
 
 
 def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data))
-    v = int.from_bytes(data, "little")
+    v = _from_bytes(data, "little")
 
     return {
         "downhill_regen_enable": v & 0x1,

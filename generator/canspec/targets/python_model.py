@@ -101,6 +101,7 @@ class PyChecksum:
     shift: int  # bit position of the checksum byte in the frame integer
     cover_mask: str  # hex literal: bytes the XOR covers
     folds: tuple[int, ...]  # shifts that fold the covered bytes into one (XOR)
+    whole_frame: bool  # covers + checksum byte = every byte: a frame is right when all its bytes XOR to 0
 
 
 @dataclass(frozen=True)
@@ -335,7 +336,8 @@ def _message(msg: ir.Message, enum_names: dict[str, str], lookups: dict[tuple[st
         if msg.checksum.algorithm != "xor":
             raise ValueError(f"{msg.name}: checksum algorithm {msg.checksum.algorithm!r} is not supported by the python target")
         cover = sum(0xFF << (8 * b) for b in msg.checksum.covers)
-        checksum = PyChecksum(by_name[msg.checksum.signal].attr, msg.checksum.byte * 8, f"0x{cover:X}", _folds(msg.dlc))
+        whole = sorted((*msg.checksum.covers, msg.checksum.byte)) == list(range(msg.dlc))
+        checksum = PyChecksum(by_name[msg.checksum.signal].attr, msg.checksum.byte * 8, f"0x{cover:X}", _folds(msg.dlc), whole)
     counter = by_name[msg.counter.signal] if msg.counter is not None else None
     mf = None
     if msg.multiframe is not None:
