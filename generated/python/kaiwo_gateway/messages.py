@@ -17,6 +17,7 @@ from typing import ClassVar, TypeAlias, TypedDict, cast
 
 from ._runtime import SignalSpec as _SignalSpec
 from ._runtime import check_raw as _check_raw
+from ._runtime import explain_type_error as _explain_type_error
 from ._runtime import lookup as _lookup
 from ._runtime import physical_to_raw as _to_raw
 from .enums import (
@@ -635,35 +636,52 @@ def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
 
 
 def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
-    x0 = m.eps_ctrl_mode
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 255:
-        r0 = _to_raw(x0, _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE)
-    x1 = m.counter
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 255:
-        r1 = _to_raw(x1, _AUTOCAR_EPS_COMMAND__COUNTER)
-    x2 = m.max_angular_speed
-    if 0 <= x2 <= 512:
-        r2 = int(x2 / 2.0 + 0.5 + 1e-9)
-        if not 0 <= r2 <= 255:
+    try:
+        x0 = m.eps_ctrl_mode
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 255:
+            r0 = _to_raw(x0, _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE)
+        x1 = m.counter
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 255:
+            r1 = _to_raw(x1, _AUTOCAR_EPS_COMMAND__COUNTER)
+        x2 = m.max_angular_speed
+        if 0 <= x2 <= 512:
+            r2 = int(x2 / 2.0 + 0.5 + 1e-9)
+            if not 0 <= r2 <= 255:
+                r2 = _to_raw(x2, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
+        else:
             r2 = _to_raw(x2, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    else:
-        r2 = _to_raw(x2, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    x3 = m.steering_angle_cmd
-    if -1080.0 <= x3 <= 1080.0:
-        r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r3 <= 21600:
+        x3 = m.steering_angle_cmd
+        if -1080.0 <= x3 <= 1080.0:
+            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r3 <= 21600:
+                r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
+        else:
             r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
-    else:
-        r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
-    v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        v = r0 | r1 << 8 | r2 << 16 | r3 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.eps_ctrl_mode,
+                m.counter,
+                m.max_angular_speed,
+                m.steering_angle_cmd,
+            ),
+            (
+                _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE,
+                _AUTOCAR_EPS_COMMAND__COUNTER,
+                _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED,
+                _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_autocar_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -818,48 +836,71 @@ def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw
 
 
 def _encode_eps_state(m: EpsState) -> bytes:
-    x0 = m.eps_ctrl_state
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 255:
-        r0 = _to_raw(x0, _EPS_STATE__EPS_CTRL_STATE)
-    x1 = m.steering_torque
-    if -12.8 <= x1 <= 12.7:
-        r1 = int((x1 + 12.8) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r1 <= 255:
+    try:
+        x0 = m.eps_ctrl_state
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 255:
+            r0 = _to_raw(x0, _EPS_STATE__EPS_CTRL_STATE)
+        x1 = m.steering_torque
+        if -12.8 <= x1 <= 12.7:
+            r1 = int((x1 + 12.8) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r1 <= 255:
+                r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
+        else:
             r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
-    else:
-        r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
-    x2 = m.eps_output_torque
-    if -38.4 <= x2 <= 38.1:
-        r2 = int((x2 + 38.4) / 0.3 + 0.5 + 1e-9)
-        if not 0 <= r2 <= 255:
+        x2 = m.eps_output_torque
+        if -38.4 <= x2 <= 38.1:
+            r2 = int((x2 + 38.4) / 0.3 + 0.5 + 1e-9)
+            if not 0 <= r2 <= 255:
+                r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
+        else:
             r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
-    else:
-        r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
-    x3 = m.steering_angle
-    if -1080.0 <= x3 <= 1080.0:
-        r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r3 <= 21600:
+        x3 = m.steering_angle
+        if -1080.0 <= x3 <= 1080.0:
+            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r3 <= 21600:
+                r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
+        else:
             r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
-    else:
-        r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
-    x4 = m.controller_temp
-    if 0 <= x4 <= 126:
-        r4 = int(x4 / 2.0 + 0.5 + 1e-9)
-        if not 0 <= r4 <= 63:
+        x4 = m.controller_temp
+        if 0 <= x4 <= 126:
+            r4 = int(x4 / 2.0 + 0.5 + 1e-9)
+            if not 0 <= r4 <= 63:
+                r4 = _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
+        else:
             r4 = _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
-    else:
-        r4 = _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
-    x5 = m.eps_fault_level
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 3:
-        r5 = _to_raw(x5, _EPS_STATE__EPS_FAULT_LEVEL)
-    x6 = m.counter
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 255:
-        r6 = _to_raw(x6, _EPS_STATE__COUNTER)
-    v = r0 | r1 << 8 | r2 << 16 | r3 << 24 | r4 << 40 | r5 << 48 | r6 << 56
-    return v.to_bytes(8, "little")
+        x5 = m.eps_fault_level
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 3:
+            r5 = _to_raw(x5, _EPS_STATE__EPS_FAULT_LEVEL)
+        x6 = m.counter
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 255:
+            r6 = _to_raw(x6, _EPS_STATE__COUNTER)
+        v = r0 | r1 << 8 | r2 << 16 | r3 << 24 | r4 << 40 | r5 << 48 | r6 << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.eps_ctrl_state,
+                m.steering_torque,
+                m.eps_output_torque,
+                m.steering_angle,
+                m.controller_temp,
+                m.eps_fault_level,
+                m.counter,
+            ),
+            (
+                _EPS_STATE__EPS_CTRL_STATE,
+                _EPS_STATE__STEERING_TORQUE,
+                _EPS_STATE__EPS_OUTPUT_TORQUE,
+                _EPS_STATE__STEERING_ANGLE,
+                _EPS_STATE__CONTROLLER_TEMP,
+                _EPS_STATE__EPS_FAULT_LEVEL,
+                _EPS_STATE__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_eps_state(raw: Mapping[str, object]) -> bytes:
@@ -1025,36 +1066,55 @@ def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
 
 
 def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
-    x0 = m.accel_cmd
-    if -9.0 <= x0 <= 3.6:
-        r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
-        if not 0 <= r0 <= 630:
+    try:
+        x0 = m.accel_cmd
+        if -9.0 <= x0 <= 3.6:
+            r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
+            if not 0 <= r0 <= 630:
+                r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
+        else:
             r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
-    else:
-        r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
-    x1 = m.epb_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _AUTOCAR_SPEED_COMMAND__EPB_CMD)
-    x2 = m.gear_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _AUTOCAR_SPEED_COMMAND__GEAR_CMD)
-    x3 = m.counter
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 255:
-        r3 = _to_raw(x3, _AUTOCAR_SPEED_COMMAND__COUNTER)
-    x4 = m.emergency_brake_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
-    v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        x1 = m.epb_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _AUTOCAR_SPEED_COMMAND__EPB_CMD)
+        x2 = m.gear_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _AUTOCAR_SPEED_COMMAND__GEAR_CMD)
+        x3 = m.counter
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 255:
+            r3 = _to_raw(x3, _AUTOCAR_SPEED_COMMAND__COUNTER)
+        x4 = m.emergency_brake_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.accel_cmd,
+                m.epb_cmd,
+                m.gear_cmd,
+                m.counter,
+                m.emergency_brake_cmd,
+            ),
+            (
+                _AUTOCAR_SPEED_COMMAND__ACCEL_CMD,
+                _AUTOCAR_SPEED_COMMAND__EPB_CMD,
+                _AUTOCAR_SPEED_COMMAND__GEAR_CMD,
+                _AUTOCAR_SPEED_COMMAND__COUNTER,
+                _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_autocar_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -1231,48 +1291,73 @@ def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
 
 
 def _encode_driving_state(m: DrivingState) -> bytes:
-    x0 = m.epb_state
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 3:
-        r0 = _to_raw(x0, _DRIVING_STATE__EPB_STATE)
-    x1 = m.gear_state
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _DRIVING_STATE__GEAR_STATE)
-    x2 = m.emergency_brake_state
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 1:
-        r2 = _to_raw(x2, _DRIVING_STATE__EMERGENCY_BRAKE_STATE)
-    x3 = m.uss_brake_state
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _DRIVING_STATE__USS_BRAKE_STATE)
-    x4 = m.motor_speed
-    r4 = x4 + 15000
-    if r4.__class__ is not int or not 0 <= r4 <= 30000:
-        r4 = _to_raw(x4, _DRIVING_STATE__MOTOR_SPEED)
-    x5 = m.motor_torque
-    r5 = x5 + 5000
-    if r5.__class__ is not int or not 0 <= r5 <= 10000:
-        r5 = _to_raw(x5, _DRIVING_STATE__MOTOR_TORQUE)
-    x6 = m.motor_speed_ratio
-    r6 = x6 - 1
-    if r6.__class__ is not int or not 0 <= r6 <= 253:
-        r6 = _to_raw(x6, _DRIVING_STATE__MOTOR_SPEED_RATIO)
-    x7 = m.current_accel
-    if -9.0 <= x7 <= 3.6:
-        r7 = int((x7 + 9.0) / 0.05 + 0.5 + 1e-9)
-        if not 0 <= r7 <= 252:
+    try:
+        x0 = m.epb_state
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 3:
+            r0 = _to_raw(x0, _DRIVING_STATE__EPB_STATE)
+        x1 = m.gear_state
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _DRIVING_STATE__GEAR_STATE)
+        x2 = m.emergency_brake_state
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 1:
+            r2 = _to_raw(x2, _DRIVING_STATE__EMERGENCY_BRAKE_STATE)
+        x3 = m.uss_brake_state
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _DRIVING_STATE__USS_BRAKE_STATE)
+        x4 = m.motor_speed
+        r4 = x4 + 15000
+        if r4.__class__ is not int or not 0 <= r4 <= 30000:
+            r4 = _to_raw(x4, _DRIVING_STATE__MOTOR_SPEED)
+        x5 = m.motor_torque
+        r5 = x5 + 5000
+        if r5.__class__ is not int or not 0 <= r5 <= 10000:
+            r5 = _to_raw(x5, _DRIVING_STATE__MOTOR_TORQUE)
+        x6 = m.motor_speed_ratio
+        r6 = x6 - 1
+        if r6.__class__ is not int or not 0 <= r6 <= 253:
+            r6 = _to_raw(x6, _DRIVING_STATE__MOTOR_SPEED_RATIO)
+        x7 = m.current_accel
+        if -9.0 <= x7 <= 3.6:
+            r7 = int((x7 + 9.0) / 0.05 + 0.5 + 1e-9)
+            if not 0 <= r7 <= 252:
+                r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
+        else:
             r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
-    else:
-        r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
-    v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.epb_state,
+                m.gear_state,
+                m.emergency_brake_state,
+                m.uss_brake_state,
+                m.motor_speed,
+                m.motor_torque,
+                m.motor_speed_ratio,
+                m.current_accel,
+            ),
+            (
+                _DRIVING_STATE__EPB_STATE,
+                _DRIVING_STATE__GEAR_STATE,
+                _DRIVING_STATE__EMERGENCY_BRAKE_STATE,
+                _DRIVING_STATE__USS_BRAKE_STATE,
+                _DRIVING_STATE__MOTOR_SPEED,
+                _DRIVING_STATE__MOTOR_TORQUE,
+                _DRIVING_STATE__MOTOR_SPEED_RATIO,
+                _DRIVING_STATE__CURRENT_ACCEL,
+            ),
+        )
+        raise
 
 
 def _pack_driving_state(raw: Mapping[str, object]) -> bytes:
@@ -1539,137 +1624,196 @@ def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
 
 
 def _encode_autocar_control_command_1(m: AutocarControlCommand1) -> bytes:
-    x0 = m.drive_mode_cmd
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 1:
-        r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-    x1 = m.door_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 2:
-        r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD)
-    x2 = m.horn_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD)
-    x3 = m.drl_cmd
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 2:
-        r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD)
-    x4 = m.left_turn_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 2:
-        r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-    x5 = m.right_turn_cmd
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 2:
-        r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-    x6 = m.hazard_cmd
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 2:
-        r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD)
-    x7 = m.position_light_cmd
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 2:
-        r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-    x8 = m.headlight_cmd
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 3:
-        r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-    x9 = m.rear_fog_cmd
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 2:
-        r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD)
-    x10 = m.left_fog_cmd
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 2:
-        r10 = _to_raw(x10, _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-    x11 = m.right_fog_cmd
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 2:
-        r11 = _to_raw(x11, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-    x12 = m.dome_light_cmd
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 2:
-        r12 = _to_raw(x12, _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-    x13 = m.ambient_light_cmd
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 2:
-        r13 = _to_raw(x13, _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-    x14 = m.drive_mode_reset
-    r14 = x14 - 0
-    if r14.__class__ is not int or not 0 <= r14 <= 1:
-        r14 = _to_raw(x14, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-    x15 = m.system_state
-    r15 = x15 - 0
-    if r15.__class__ is not int or not 0 <= r15 <= 3:
-        r15 = _to_raw(x15, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE)
-    x16 = m.system_reliability
-    r16 = x16 - 0
-    if r16.__class__ is not int or not 0 <= r16 <= 3:
-        r16 = _to_raw(x16, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-    x17 = m.system_fault_level
-    r17 = x17 - 0
-    if r17.__class__ is not int or not 0 <= r17 <= 3:
-        r17 = _to_raw(x17, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-    x18 = m.lock_cmd
-    r18 = x18 - 0
-    if r18.__class__ is not int or not 0 <= r18 <= 3:
-        r18 = _to_raw(x18, _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD)
-    x19 = m.ac_cmd
-    r19 = x19 - 0
-    if r19.__class__ is not int or not 0 <= r19 <= 3:
-        r19 = _to_raw(x19, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD)
-    x20 = m.ac_set_temp
-    if 16.0 <= x20 <= 30.0:
-        r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r20 <= 28:
+    try:
+        x0 = m.drive_mode_cmd
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 1:
+            r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        x1 = m.door_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 2:
+            r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD)
+        x2 = m.horn_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD)
+        x3 = m.drl_cmd
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 2:
+            r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD)
+        x4 = m.left_turn_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 2:
+            r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        x5 = m.right_turn_cmd
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 2:
+            r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        x6 = m.hazard_cmd
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 2:
+            r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD)
+        x7 = m.position_light_cmd
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 2:
+            r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        x8 = m.headlight_cmd
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 3:
+            r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        x9 = m.rear_fog_cmd
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 2:
+            r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        x10 = m.left_fog_cmd
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 2:
+            r10 = _to_raw(x10, _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        x11 = m.right_fog_cmd
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 2:
+            r11 = _to_raw(x11, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        x12 = m.dome_light_cmd
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 2:
+            r12 = _to_raw(x12, _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        x13 = m.ambient_light_cmd
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 2:
+            r13 = _to_raw(x13, _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        x14 = m.drive_mode_reset
+        r14 = x14 - 0
+        if r14.__class__ is not int or not 0 <= r14 <= 1:
+            r14 = _to_raw(x14, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        x15 = m.system_state
+        r15 = x15 - 0
+        if r15.__class__ is not int or not 0 <= r15 <= 3:
+            r15 = _to_raw(x15, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE)
+        x16 = m.system_reliability
+        r16 = x16 - 0
+        if r16.__class__ is not int or not 0 <= r16 <= 3:
+            r16 = _to_raw(x16, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        x17 = m.system_fault_level
+        r17 = x17 - 0
+        if r17.__class__ is not int or not 0 <= r17 <= 3:
+            r17 = _to_raw(x17, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        x18 = m.lock_cmd
+        r18 = x18 - 0
+        if r18.__class__ is not int or not 0 <= r18 <= 3:
+            r18 = _to_raw(x18, _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD)
+        x19 = m.ac_cmd
+        r19 = x19 - 0
+        if r19.__class__ is not int or not 0 <= r19 <= 3:
+            r19 = _to_raw(x19, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD)
+        x20 = m.ac_set_temp
+        if 16.0 <= x20 <= 30.0:
+            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r20 <= 28:
+                r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
+        else:
             r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
-    else:
-        r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
-    x21 = m.protocol_version_a
-    r21 = x21 - 0
-    if r21.__class__ is not int or not 0 <= r21 <= 15:
-        r21 = _to_raw(x21, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-    x22 = m.protocol_version_b
-    r22 = x22 - 0
-    if r22.__class__ is not int or not 0 <= r22 <= 15:
-        r22 = _to_raw(x22, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-    x23 = m.protocol_version_c
-    r23 = x23 - 0
-    if r23.__class__ is not int or not 0 <= r23 <= 15:
-        r23 = _to_raw(x23, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-    x24 = m.counter
-    r24 = x24 - 0
-    if r24.__class__ is not int or not 0 <= r24 <= 15:
-        r24 = _to_raw(x24, _AUTOCAR_CONTROL_COMMAND_1__COUNTER)
-    v = (
-        r0
-        | r1 << 2
-        | r2 << 4
-        | r3 << 6
-        | r4 << 8
-        | r5 << 10
-        | r6 << 12
-        | r7 << 14
-        | r8 << 16
-        | r9 << 18
-        | r10 << 20
-        | r11 << 22
-        | r12 << 24
-        | r13 << 26
-        | r14 << 28
-        | r15 << 32
-        | r16 << 34
-        | r17 << 36
-        | r18 << 38
-        | r19 << 40
-        | r20 << 43
-        | r21 << 48
-        | r22 << 52
-        | r23 << 56
-        | r24 << 60
-    )
-    return v.to_bytes(8, "little")
+        x21 = m.protocol_version_a
+        r21 = x21 - 0
+        if r21.__class__ is not int or not 0 <= r21 <= 15:
+            r21 = _to_raw(x21, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        x22 = m.protocol_version_b
+        r22 = x22 - 0
+        if r22.__class__ is not int or not 0 <= r22 <= 15:
+            r22 = _to_raw(x22, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        x23 = m.protocol_version_c
+        r23 = x23 - 0
+        if r23.__class__ is not int or not 0 <= r23 <= 15:
+            r23 = _to_raw(x23, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        x24 = m.counter
+        r24 = x24 - 0
+        if r24.__class__ is not int or not 0 <= r24 <= 15:
+            r24 = _to_raw(x24, _AUTOCAR_CONTROL_COMMAND_1__COUNTER)
+        v = (
+            r0
+            | r1 << 2
+            | r2 << 4
+            | r3 << 6
+            | r4 << 8
+            | r5 << 10
+            | r6 << 12
+            | r7 << 14
+            | r8 << 16
+            | r9 << 18
+            | r10 << 20
+            | r11 << 22
+            | r12 << 24
+            | r13 << 26
+            | r14 << 28
+            | r15 << 32
+            | r16 << 34
+            | r17 << 36
+            | r18 << 38
+            | r19 << 40
+            | r20 << 43
+            | r21 << 48
+            | r22 << 52
+            | r23 << 56
+            | r24 << 60
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.drive_mode_cmd,
+                m.door_cmd,
+                m.horn_cmd,
+                m.drl_cmd,
+                m.left_turn_cmd,
+                m.right_turn_cmd,
+                m.hazard_cmd,
+                m.position_light_cmd,
+                m.headlight_cmd,
+                m.rear_fog_cmd,
+                m.left_fog_cmd,
+                m.right_fog_cmd,
+                m.dome_light_cmd,
+                m.ambient_light_cmd,
+                m.drive_mode_reset,
+                m.system_state,
+                m.system_reliability,
+                m.system_fault_level,
+                m.lock_cmd,
+                m.ac_cmd,
+                m.ac_set_temp,
+                m.protocol_version_a,
+                m.protocol_version_b,
+                m.protocol_version_c,
+                m.counter,
+            ),
+            (
+                _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
+                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE,
+                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
+                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
+                _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__AC_CMD,
+                _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP,
+                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
+                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
+                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
+                _AUTOCAR_CONTROL_COMMAND_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_autocar_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -1956,125 +2100,178 @@ def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _encode_vehicle_state_1(m: VehicleState1) -> bytes:
-    x0 = m.drive_mode_state
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 3:
-        r0 = _to_raw(x0, _VEHICLE_STATE_1__DRIVE_MODE_STATE)
-    x1 = m.door_state
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 1:
-        r1 = _to_raw(x1, _VEHICLE_STATE_1__DOOR_STATE)
-    x2 = m.drl_state
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 1:
-        r2 = _to_raw(x2, _VEHICLE_STATE_1__DRL_STATE)
-    x3 = m.left_turn_state
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _VEHICLE_STATE_1__LEFT_TURN_STATE)
-    x4 = m.right_turn_state
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _VEHICLE_STATE_1__RIGHT_TURN_STATE)
-    x5 = m.hazard_state
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 1:
-        r5 = _to_raw(x5, _VEHICLE_STATE_1__HAZARD_STATE)
-    x6 = m.position_light_state
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 1:
-        r6 = _to_raw(x6, _VEHICLE_STATE_1__POSITION_LIGHT_STATE)
-    x7 = m.headlight_state
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 3:
-        r7 = _to_raw(x7, _VEHICLE_STATE_1__HEADLIGHT_STATE)
-    x8 = m.rear_fog_state
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 1:
-        r8 = _to_raw(x8, _VEHICLE_STATE_1__REAR_FOG_STATE)
-    x9 = m.left_fog_state
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 1:
-        r9 = _to_raw(x9, _VEHICLE_STATE_1__LEFT_FOG_STATE)
-    x10 = m.right_fog_state
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 1:
-        r10 = _to_raw(x10, _VEHICLE_STATE_1__RIGHT_FOG_STATE)
-    x11 = m.dome_light_state
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 1:
-        r11 = _to_raw(x11, _VEHICLE_STATE_1__DOME_LIGHT_STATE)
-    x12 = m.ambient_light_state
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 1:
-        r12 = _to_raw(x12, _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE)
-    x13 = m.door_button_state
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 1:
-        r13 = _to_raw(x13, _VEHICLE_STATE_1__DOOR_BUTTON_STATE)
-    x14 = m.vehicle_speed
-    r14 = x14 + 50
-    if r14.__class__ is not int or not 0 <= r14 <= 250:
-        r14 = _to_raw(x14, _VEHICLE_STATE_1__VEHICLE_SPEED)
-    x15 = m.soc
-    if 0.0 <= x15 <= 125.0:
-        r15 = int(x15 / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r15 <= 250:
+    try:
+        x0 = m.drive_mode_state
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 3:
+            r0 = _to_raw(x0, _VEHICLE_STATE_1__DRIVE_MODE_STATE)
+        x1 = m.door_state
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 1:
+            r1 = _to_raw(x1, _VEHICLE_STATE_1__DOOR_STATE)
+        x2 = m.drl_state
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 1:
+            r2 = _to_raw(x2, _VEHICLE_STATE_1__DRL_STATE)
+        x3 = m.left_turn_state
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _VEHICLE_STATE_1__LEFT_TURN_STATE)
+        x4 = m.right_turn_state
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _VEHICLE_STATE_1__RIGHT_TURN_STATE)
+        x5 = m.hazard_state
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 1:
+            r5 = _to_raw(x5, _VEHICLE_STATE_1__HAZARD_STATE)
+        x6 = m.position_light_state
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 1:
+            r6 = _to_raw(x6, _VEHICLE_STATE_1__POSITION_LIGHT_STATE)
+        x7 = m.headlight_state
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 3:
+            r7 = _to_raw(x7, _VEHICLE_STATE_1__HEADLIGHT_STATE)
+        x8 = m.rear_fog_state
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 1:
+            r8 = _to_raw(x8, _VEHICLE_STATE_1__REAR_FOG_STATE)
+        x9 = m.left_fog_state
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 1:
+            r9 = _to_raw(x9, _VEHICLE_STATE_1__LEFT_FOG_STATE)
+        x10 = m.right_fog_state
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 1:
+            r10 = _to_raw(x10, _VEHICLE_STATE_1__RIGHT_FOG_STATE)
+        x11 = m.dome_light_state
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 1:
+            r11 = _to_raw(x11, _VEHICLE_STATE_1__DOME_LIGHT_STATE)
+        x12 = m.ambient_light_state
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 1:
+            r12 = _to_raw(x12, _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE)
+        x13 = m.door_button_state
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 1:
+            r13 = _to_raw(x13, _VEHICLE_STATE_1__DOOR_BUTTON_STATE)
+        x14 = m.vehicle_speed
+        r14 = x14 + 50
+        if r14.__class__ is not int or not 0 <= r14 <= 250:
+            r14 = _to_raw(x14, _VEHICLE_STATE_1__VEHICLE_SPEED)
+        x15 = m.soc
+        if 0.0 <= x15 <= 125.0:
+            r15 = int(x15 / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r15 <= 250:
+                r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
+        else:
             r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
-    else:
-        r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
-    x16 = m.system_power_cmd
-    r16 = x16 - 0
-    if r16.__class__ is not int or not 0 <= r16 <= 1:
-        r16 = _to_raw(x16, _VEHICLE_STATE_1__SYSTEM_POWER_CMD)
-    x17 = m.charge_state
-    r17 = x17 - 0
-    if r17.__class__ is not int or not 0 <= r17 <= 3:
-        r17 = _to_raw(x17, _VEHICLE_STATE_1__CHARGE_STATE)
-    x18 = m.charge_connection
-    r18 = x18 - 0
-    if r18.__class__ is not int or not 0 <= r18 <= 1:
-        r18 = _to_raw(x18, _VEHICLE_STATE_1__CHARGE_CONNECTION)
-    x19 = m.vehicle_fault_level
-    r19 = x19 - 0
-    if r19.__class__ is not int or not 0 <= r19 <= 3:
-        r19 = _to_raw(x19, _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL)
-    x20 = m.odometer
-    if 0 <= x20 <= 120000:
-        r20 = int(x20 / 2.0 + 0.5 + 1e-9)
-        if not 0 <= r20 <= 60000:
+        x16 = m.system_power_cmd
+        r16 = x16 - 0
+        if r16.__class__ is not int or not 0 <= r16 <= 1:
+            r16 = _to_raw(x16, _VEHICLE_STATE_1__SYSTEM_POWER_CMD)
+        x17 = m.charge_state
+        r17 = x17 - 0
+        if r17.__class__ is not int or not 0 <= r17 <= 3:
+            r17 = _to_raw(x17, _VEHICLE_STATE_1__CHARGE_STATE)
+        x18 = m.charge_connection
+        r18 = x18 - 0
+        if r18.__class__ is not int or not 0 <= r18 <= 1:
+            r18 = _to_raw(x18, _VEHICLE_STATE_1__CHARGE_CONNECTION)
+        x19 = m.vehicle_fault_level
+        r19 = x19 - 0
+        if r19.__class__ is not int or not 0 <= r19 <= 3:
+            r19 = _to_raw(x19, _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL)
+        x20 = m.odometer
+        if 0 <= x20 <= 120000:
+            r20 = int(x20 / 2.0 + 0.5 + 1e-9)
+            if not 0 <= r20 <= 60000:
+                r20 = _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
+        else:
             r20 = _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
-    else:
-        r20 = _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
-    x21 = m.counter
-    r21 = x21 - 0
-    if r21.__class__ is not int or not 0 <= r21 <= 255:
-        r21 = _to_raw(x21, _VEHICLE_STATE_1__COUNTER)
-    v = (
-        r0
-        | r1 << 2
-        | r2 << 3
-        | r3 << 4
-        | r4 << 5
-        | r5 << 6
-        | r6 << 7
-        | r7 << 8
-        | r8 << 10
-        | r9 << 11
-        | r10 << 12
-        | r11 << 13
-        | r12 << 14
-        | r13 << 15
-        | r14 << 16
-        | r15 << 24
-        | r16 << 32
-        | r17 << 34
-        | r18 << 36
-        | r19 << 38
-        | r20 << 40
-        | r21 << 56
-    )
-    return v.to_bytes(8, "little")
+        x21 = m.counter
+        r21 = x21 - 0
+        if r21.__class__ is not int or not 0 <= r21 <= 255:
+            r21 = _to_raw(x21, _VEHICLE_STATE_1__COUNTER)
+        v = (
+            r0
+            | r1 << 2
+            | r2 << 3
+            | r3 << 4
+            | r4 << 5
+            | r5 << 6
+            | r6 << 7
+            | r7 << 8
+            | r8 << 10
+            | r9 << 11
+            | r10 << 12
+            | r11 << 13
+            | r12 << 14
+            | r13 << 15
+            | r14 << 16
+            | r15 << 24
+            | r16 << 32
+            | r17 << 34
+            | r18 << 36
+            | r19 << 38
+            | r20 << 40
+            | r21 << 56
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.drive_mode_state,
+                m.door_state,
+                m.drl_state,
+                m.left_turn_state,
+                m.right_turn_state,
+                m.hazard_state,
+                m.position_light_state,
+                m.headlight_state,
+                m.rear_fog_state,
+                m.left_fog_state,
+                m.right_fog_state,
+                m.dome_light_state,
+                m.ambient_light_state,
+                m.door_button_state,
+                m.vehicle_speed,
+                m.soc,
+                m.system_power_cmd,
+                m.charge_state,
+                m.charge_connection,
+                m.vehicle_fault_level,
+                m.odometer,
+                m.counter,
+            ),
+            (
+                _VEHICLE_STATE_1__DRIVE_MODE_STATE,
+                _VEHICLE_STATE_1__DOOR_STATE,
+                _VEHICLE_STATE_1__DRL_STATE,
+                _VEHICLE_STATE_1__LEFT_TURN_STATE,
+                _VEHICLE_STATE_1__RIGHT_TURN_STATE,
+                _VEHICLE_STATE_1__HAZARD_STATE,
+                _VEHICLE_STATE_1__POSITION_LIGHT_STATE,
+                _VEHICLE_STATE_1__HEADLIGHT_STATE,
+                _VEHICLE_STATE_1__REAR_FOG_STATE,
+                _VEHICLE_STATE_1__LEFT_FOG_STATE,
+                _VEHICLE_STATE_1__RIGHT_FOG_STATE,
+                _VEHICLE_STATE_1__DOME_LIGHT_STATE,
+                _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE,
+                _VEHICLE_STATE_1__DOOR_BUTTON_STATE,
+                _VEHICLE_STATE_1__VEHICLE_SPEED,
+                _VEHICLE_STATE_1__SOC,
+                _VEHICLE_STATE_1__SYSTEM_POWER_CMD,
+                _VEHICLE_STATE_1__CHARGE_STATE,
+                _VEHICLE_STATE_1__CHARGE_CONNECTION,
+                _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL,
+                _VEHICLE_STATE_1__ODOMETER,
+                _VEHICLE_STATE_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_vehicle_state_1(raw: Mapping[str, object]) -> bytes:
@@ -2284,63 +2481,92 @@ def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
 
 
 def _encode_autocar_control_command_2(m: AutocarControlCommand2) -> bytes:
-    x0 = m.downhill_regen_enable
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 1:
-        r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-    x1 = m.cargo_lift
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT)
-    x2 = m.cargo_lift_speed
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 10:
-        r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-    x3 = m.pto_enable
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE)
-    x4 = m.downhill_regen_speed
-    if 0.0 <= x4 <= 125.0:
-        r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r4 <= 250:
+    try:
+        x0 = m.downhill_regen_enable
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 1:
+            r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        x1 = m.cargo_lift
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT)
+        x2 = m.cargo_lift_speed
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 10:
+            r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        x3 = m.pto_enable
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE)
+        x4 = m.downhill_regen_speed
+        if 0.0 <= x4 <= 125.0:
+            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r4 <= 250:
+                r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        else:
             r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    else:
-        r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    x5 = m.chassis_pitch
-    if -25.0 <= x5 <= 25.0:
-        r5 = int((x5 + 25.0) / 0.05 + 0.5 + 1e-9)
-        if not 0 <= r5 <= 1000:
+        x5 = m.chassis_pitch
+        if -25.0 <= x5 <= 25.0:
+            r5 = int((x5 + 25.0) / 0.05 + 0.5 + 1e-9)
+            if not 0 <= r5 <= 1000:
+                r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
+        else:
             r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
-    else:
-        r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
-    x6 = m.chassis_roll
-    if -40.0 <= x6 <= 40.0:
-        r6 = int((x6 + 40.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r6 <= 800:
+        x6 = m.chassis_roll
+        if -40.0 <= x6 <= 40.0:
+            r6 = int((x6 + 40.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r6 <= 800:
+                r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
+        else:
             r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
-    else:
-        r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
-    x7 = m.cargo_pitch
-    if -30.0 <= x7 <= 100.0:
-        r7 = int((x7 + 30.0) / 0.2 + 0.5 + 1e-9)
-        if not 0 <= r7 <= 650:
+        x7 = m.cargo_pitch
+        if -30.0 <= x7 <= 100.0:
+            r7 = int((x7 + 30.0) / 0.2 + 0.5 + 1e-9)
+            if not 0 <= r7 <= 650:
+                r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
+        else:
             r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
-    else:
-        r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
-    x8 = m.cargo_roll
-    if -40.0 <= x8 <= 40.0:
-        r8 = int((x8 + 40.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r8 <= 800:
+        x8 = m.cargo_roll
+        if -40.0 <= x8 <= 40.0:
+            r8 = int((x8 + 40.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r8 <= 800:
+                r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
+        else:
             r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
-    else:
-        r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
-    x9 = m.counter
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 255:
-        r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_2__COUNTER)
-    v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 16 | r6 << 26 | r7 << 36 | r8 << 46 | r9 << 56
-    return v.to_bytes(8, "little")
+        x9 = m.counter
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 255:
+            r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_2__COUNTER)
+        v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 16 | r6 << 26 | r7 << 36 | r8 << 46 | r9 << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.downhill_regen_enable,
+                m.cargo_lift,
+                m.cargo_lift_speed,
+                m.pto_enable,
+                m.downhill_regen_speed,
+                m.chassis_pitch,
+                m.chassis_roll,
+                m.cargo_pitch,
+                m.cargo_roll,
+                m.counter,
+            ),
+            (
+                _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
+                _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT,
+                _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
+                _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE,
+                _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
+                _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH,
+                _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL,
+                _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH,
+                _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL,
+                _AUTOCAR_CONTROL_COMMAND_2__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_autocar_control_command_2(raw: Mapping[str, object]) -> bytes:
@@ -2467,30 +2693,47 @@ def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _encode_vehicle_state_2(m: VehicleState2) -> bytes:
-    x0 = m.battery_voltage
-    if 0.0 <= x0 <= 800.0:
-        r0 = int(x0 / 0.2 + 0.5 + 1e-9)
-        if not 0 <= r0 <= 4000:
+    try:
+        x0 = m.battery_voltage
+        if 0.0 <= x0 <= 800.0:
+            r0 = int(x0 / 0.2 + 0.5 + 1e-9)
+            if not 0 <= r0 <= 4000:
+                r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
+        else:
             r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
-    else:
-        r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
-    x1 = m.battery_current
-    if -500.0 <= x1 <= 800.0:
-        r1 = int((x1 + 500.0) / 0.02 + 0.5 + 1e-9)
-        if not 0 <= r1 <= 65000:
+        x1 = m.battery_current
+        if -500.0 <= x1 <= 800.0:
+            r1 = int((x1 + 500.0) / 0.02 + 0.5 + 1e-9)
+            if not 0 <= r1 <= 65000:
+                r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
+        else:
             r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
-    else:
-        r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
-    x2 = m.battery_charge_energy
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 65535:
-        r2 = _to_raw(x2, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY)
-    x3 = m.battery_discharge_energy
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 65535:
-        r3 = _to_raw(x3, _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY)
-    v = r0 | r1 << 16 | r2 << 32 | r3 << 48
-    return v.to_bytes(8, "little")
+        x2 = m.battery_charge_energy
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 65535:
+            r2 = _to_raw(x2, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY)
+        x3 = m.battery_discharge_energy
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 65535:
+            r3 = _to_raw(x3, _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY)
+        v = r0 | r1 << 16 | r2 << 32 | r3 << 48
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.battery_voltage,
+                m.battery_current,
+                m.battery_charge_energy,
+                m.battery_discharge_energy,
+            ),
+            (
+                _VEHICLE_STATE_2__BATTERY_VOLTAGE,
+                _VEHICLE_STATE_2__BATTERY_CURRENT,
+                _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY,
+                _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY,
+            ),
+        )
+        raise
 
 
 def _pack_vehicle_state_2(raw: Mapping[str, object]) -> bytes:
@@ -2623,38 +2866,59 @@ def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _encode_vehicle_state_3(m: VehicleState3) -> bytes:
-    x0 = m.battery_max_temp
-    r0 = x0 + 40
-    if r0.__class__ is not int or not 0 <= r0 <= 255:
-        r0 = _to_raw(x0, _VEHICLE_STATE_3__BATTERY_MAX_TEMP)
-    x1 = m.battery_min_temp
-    r1 = x1 + 40
-    if r1.__class__ is not int or not 0 <= r1 <= 255:
-        r1 = _to_raw(x1, _VEHICLE_STATE_3__BATTERY_MIN_TEMP)
-    x2 = m.max_cell_voltage
-    if 0.0 <= x2 <= 6.0:
-        r2 = int(x2 / 0.0015 + 0.5 + 1e-9)
-        if not 0 <= r2 <= 4000:
+    try:
+        x0 = m.battery_max_temp
+        r0 = x0 + 40
+        if r0.__class__ is not int or not 0 <= r0 <= 255:
+            r0 = _to_raw(x0, _VEHICLE_STATE_3__BATTERY_MAX_TEMP)
+        x1 = m.battery_min_temp
+        r1 = x1 + 40
+        if r1.__class__ is not int or not 0 <= r1 <= 255:
+            r1 = _to_raw(x1, _VEHICLE_STATE_3__BATTERY_MIN_TEMP)
+        x2 = m.max_cell_voltage
+        if 0.0 <= x2 <= 6.0:
+            r2 = int(x2 / 0.0015 + 0.5 + 1e-9)
+            if not 0 <= r2 <= 4000:
+                r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
+        else:
             r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
-    else:
-        r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
-    x3 = m.min_cell_voltage
-    if 0.0 <= x3 <= 6.0:
-        r3 = int(x3 / 0.0015 + 0.5 + 1e-9)
-        if not 0 <= r3 <= 4000:
+        x3 = m.min_cell_voltage
+        if 0.0 <= x3 <= 6.0:
+            r3 = int(x3 / 0.0015 + 0.5 + 1e-9)
+            if not 0 <= r3 <= 4000:
+                r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
+        else:
             r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
-    else:
-        r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
-    x4 = m.motor_temp
-    r4 = x4 + 40
-    if r4.__class__ is not int or not 0 <= r4 <= 255:
-        r4 = _to_raw(x4, _VEHICLE_STATE_3__MOTOR_TEMP)
-    x5 = m.motor_controller_temp
-    r5 = x5 + 40
-    if r5.__class__ is not int or not 0 <= r5 <= 255:
-        r5 = _to_raw(x5, _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP)
-    v = r0 | r1 << 8 | r2 << 16 | r3 << 28 | r4 << 40 | r5 << 48
-    return v.to_bytes(8, "little")
+        x4 = m.motor_temp
+        r4 = x4 + 40
+        if r4.__class__ is not int or not 0 <= r4 <= 255:
+            r4 = _to_raw(x4, _VEHICLE_STATE_3__MOTOR_TEMP)
+        x5 = m.motor_controller_temp
+        r5 = x5 + 40
+        if r5.__class__ is not int or not 0 <= r5 <= 255:
+            r5 = _to_raw(x5, _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP)
+        v = r0 | r1 << 8 | r2 << 16 | r3 << 28 | r4 << 40 | r5 << 48
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.battery_max_temp,
+                m.battery_min_temp,
+                m.max_cell_voltage,
+                m.min_cell_voltage,
+                m.motor_temp,
+                m.motor_controller_temp,
+            ),
+            (
+                _VEHICLE_STATE_3__BATTERY_MAX_TEMP,
+                _VEHICLE_STATE_3__BATTERY_MIN_TEMP,
+                _VEHICLE_STATE_3__MAX_CELL_VOLTAGE,
+                _VEHICLE_STATE_3__MIN_CELL_VOLTAGE,
+                _VEHICLE_STATE_3__MOTOR_TEMP,
+                _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP,
+            ),
+        )
+        raise
 
 
 def _pack_vehicle_state_3(raw: Mapping[str, object]) -> bytes:
@@ -2825,81 +3089,114 @@ def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _encode_vehicle_state_4(m: VehicleState4) -> bytes:
-    x0 = m.outside_temp
-    if -30.0 <= x0 <= 95.0:
-        r0 = int((x0 + 30.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r0 <= 250:
+    try:
+        x0 = m.outside_temp
+        if -30.0 <= x0 <= 95.0:
+            r0 = int((x0 + 30.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r0 <= 250:
+                r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
+        else:
             r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
-    else:
-        r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
-    x1 = m.inside_temp
-    if -30.0 <= x1 <= 95.0:
-        r1 = int((x1 + 30.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r1 <= 250:
+        x1 = m.inside_temp
+        if -30.0 <= x1 <= 95.0:
+            r1 = int((x1 + 30.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r1 <= 250:
+                r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
+        else:
             r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
-    else:
-        r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
-    x2 = m.ac_state
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 3:
-        r2 = _to_raw(x2, _VEHICLE_STATE_4__AC_STATE)
-    x3 = m.vehicle_power_state
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 3:
-        r3 = _to_raw(x3, _VEHICLE_STATE_4__VEHICLE_POWER_STATE)
-    x4 = m.hill_hold_state
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _VEHICLE_STATE_4__HILL_HOLD_STATE)
-    x5 = m.regen_brake_state
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 1:
-        r5 = _to_raw(x5, _VEHICLE_STATE_4__REGEN_BRAKE_STATE)
-    x6 = m.remaining_range
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 1000:
-        r6 = _to_raw(x6, _VEHICLE_STATE_4__REMAINING_RANGE)
-    x7 = m.manual_takeover_state
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 1:
-        r7 = _to_raw(x7, _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE)
-    x8 = m.remote_driving_allowed
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 1:
-        r8 = _to_raw(x8, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED)
-    x9 = m.ac_set_temp
-    if 16.0 <= x9 <= 30.0:
-        r9 = int((x9 - 16.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r9 <= 28:
+        x2 = m.ac_state
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 3:
+            r2 = _to_raw(x2, _VEHICLE_STATE_4__AC_STATE)
+        x3 = m.vehicle_power_state
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 3:
+            r3 = _to_raw(x3, _VEHICLE_STATE_4__VEHICLE_POWER_STATE)
+        x4 = m.hill_hold_state
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _VEHICLE_STATE_4__HILL_HOLD_STATE)
+        x5 = m.regen_brake_state
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 1:
+            r5 = _to_raw(x5, _VEHICLE_STATE_4__REGEN_BRAKE_STATE)
+        x6 = m.remaining_range
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 1000:
+            r6 = _to_raw(x6, _VEHICLE_STATE_4__REMAINING_RANGE)
+        x7 = m.manual_takeover_state
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 1:
+            r7 = _to_raw(x7, _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE)
+        x8 = m.remote_driving_allowed
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 1:
+            r8 = _to_raw(x8, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED)
+        x9 = m.ac_set_temp
+        if 16.0 <= x9 <= 30.0:
+            r9 = int((x9 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r9 <= 28:
+                r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
+        else:
             r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
-    else:
-        r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
-    x10 = m.pto_state
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 1:
-        r10 = _to_raw(x10, _VEHICLE_STATE_4__PTO_STATE)
-    x11 = m.battery_power
-    if -325.0 <= x11 <= 325.0:
-        r11 = int((x11 + 325.0) / 0.01 + 0.5 + 1e-9)
-        if not 0 <= r11 <= 65000:
+        x10 = m.pto_state
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 1:
+            r10 = _to_raw(x10, _VEHICLE_STATE_4__PTO_STATE)
+        x11 = m.battery_power
+        if -325.0 <= x11 <= 325.0:
+            r11 = int((x11 + 325.0) / 0.01 + 0.5 + 1e-9)
+            if not 0 <= r11 <= 65000:
+                r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
+        else:
             r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
-    else:
-        r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
-    v = (
-        r0
-        | r1 << 8
-        | r2 << 16
-        | r3 << 20
-        | r4 << 22
-        | r5 << 23
-        | r6 << 24
-        | r7 << 36
-        | r8 << 39
-        | r9 << 40
-        | r10 << 45
-        | r11 << 48
-    )
-    return v.to_bytes(8, "little")
+        v = (
+            r0
+            | r1 << 8
+            | r2 << 16
+            | r3 << 20
+            | r4 << 22
+            | r5 << 23
+            | r6 << 24
+            | r7 << 36
+            | r8 << 39
+            | r9 << 40
+            | r10 << 45
+            | r11 << 48
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.outside_temp,
+                m.inside_temp,
+                m.ac_state,
+                m.vehicle_power_state,
+                m.hill_hold_state,
+                m.regen_brake_state,
+                m.remaining_range,
+                m.manual_takeover_state,
+                m.remote_driving_allowed,
+                m.ac_set_temp,
+                m.pto_state,
+                m.battery_power,
+            ),
+            (
+                _VEHICLE_STATE_4__OUTSIDE_TEMP,
+                _VEHICLE_STATE_4__INSIDE_TEMP,
+                _VEHICLE_STATE_4__AC_STATE,
+                _VEHICLE_STATE_4__VEHICLE_POWER_STATE,
+                _VEHICLE_STATE_4__HILL_HOLD_STATE,
+                _VEHICLE_STATE_4__REGEN_BRAKE_STATE,
+                _VEHICLE_STATE_4__REMAINING_RANGE,
+                _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE,
+                _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED,
+                _VEHICLE_STATE_4__AC_SET_TEMP,
+                _VEHICLE_STATE_4__PTO_STATE,
+                _VEHICLE_STATE_4__BATTERY_POWER,
+            ),
+        )
+        raise
 
 
 def _pack_vehicle_state_4(raw: Mapping[str, object]) -> bytes:
@@ -3191,154 +3488,221 @@ def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> Vehicle
 
 
 def _encode_vehicle_fault(m: VehicleFault) -> bytes:
-    x0 = m.insulation_fault_level
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 3:
-        r0 = _to_raw(x0, _VEHICLE_FAULT__INSULATION_FAULT_LEVEL)
-    x1 = m.dc_fault
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 1:
-        r1 = _to_raw(x1, _VEHICLE_FAULT__DC_FAULT)
-    x2 = m.soc_low
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 1:
-        r2 = _to_raw(x2, _VEHICLE_FAULT__SOC_LOW)
-    x3 = m.cell_undervoltage
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _VEHICLE_FAULT__CELL_UNDERVOLTAGE)
-    x4 = m.brake_boost_pressure_fault
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT)
-    x5 = m.vacuum_pump_fault
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 1:
-        r5 = _to_raw(x5, _VEHICLE_FAULT__VACUUM_PUMP_FAULT)
-    x6 = m.vehicle_system_fault
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 1:
-        r6 = _to_raw(x6, _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT)
-    x7 = m.battery_overheat
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 1:
-        r7 = _to_raw(x7, _VEHICLE_FAULT__BATTERY_OVERHEAT)
-    x8 = m.motor_overheat
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 1:
-        r8 = _to_raw(x8, _VEHICLE_FAULT__MOTOR_OVERHEAT)
-    x9 = m.traction_battery_fault
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 1:
-        r9 = _to_raw(x9, _VEHICLE_FAULT__TRACTION_BATTERY_FAULT)
-    x10 = m.motor_fault
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 1:
-        r10 = _to_raw(x10, _VEHICLE_FAULT__MOTOR_FAULT)
-    x11 = m.battery_comm_fault
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 1:
-        r11 = _to_raw(x11, _VEHICLE_FAULT__BATTERY_COMM_FAULT)
-    x12 = m.motor_comm_fault
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 1:
-        r12 = _to_raw(x12, _VEHICLE_FAULT__MOTOR_COMM_FAULT)
-    x13 = m.eps_fault
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 1:
-        r13 = _to_raw(x13, _VEHICLE_FAULT__EPS_FAULT)
-    x14 = m.ac_fault
-    r14 = x14 - 0
-    if r14.__class__ is not int or not 0 <= r14 <= 1:
-        r14 = _to_raw(x14, _VEHICLE_FAULT__AC_FAULT)
-    x15 = m.aux_battery_fault
-    r15 = x15 - 0
-    if r15.__class__ is not int or not 0 <= r15 <= 1:
-        r15 = _to_raw(x15, _VEHICLE_FAULT__AUX_BATTERY_FAULT)
-    x16 = m.epb_fault
-    r16 = x16 - 0
-    if r16.__class__ is not int or not 0 <= r16 <= 1:
-        r16 = _to_raw(x16, _VEHICLE_FAULT__EPB_FAULT)
-    x17 = m.brake_by_wire_fault
-    r17 = x17 - 0
-    if r17.__class__ is not int or not 0 <= r17 <= 1:
-        r17 = _to_raw(x17, _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT)
-    x18 = m.key_not_detected
-    r18 = x18 - 0
-    if r18.__class__ is not int or not 0 <= r18 <= 1:
-        r18 = _to_raw(x18, _VEHICLE_FAULT__KEY_NOT_DETECTED)
-    x19 = m.tire_pressure_low
-    r19 = x19 - 0
-    if r19.__class__ is not int or not 0 <= r19 <= 1:
-        r19 = _to_raw(x19, _VEHICLE_FAULT__TIRE_PRESSURE_LOW)
-    x20 = m.body_motor_fault
-    r20 = x20 - 0
-    if r20.__class__ is not int or not 0 <= r20 <= 1:
-        r20 = _to_raw(x20, _VEHICLE_FAULT__BODY_MOTOR_FAULT)
-    x21 = m.body_motor_overheat
-    r21 = x21 - 0
-    if r21.__class__ is not int or not 0 <= r21 <= 1:
-        r21 = _to_raw(x21, _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT)
-    x22 = m.battery_system_fault_level
-    r22 = x22 - 0
-    if r22.__class__ is not int or not 0 <= r22 <= 3:
-        r22 = _to_raw(x22, _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL)
-    x23 = m.motor_system_fault_level
-    r23 = x23 - 0
-    if r23.__class__ is not int or not 0 <= r23 <= 3:
-        r23 = _to_raw(x23, _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL)
-    x24 = m.unmanned_entry_fault
-    r24 = x24 - 0
-    if r24.__class__ is not int or not 0 <= r24 <= 15:
-        r24 = _to_raw(x24, _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT)
-    x25 = m.protocol_version_a
-    r25 = x25 - 0
-    if r25.__class__ is not int or not 0 <= r25 <= 15:
-        r25 = _to_raw(x25, _VEHICLE_FAULT__PROTOCOL_VERSION_A)
-    x26 = m.protocol_version_b
-    r26 = x26 - 0
-    if r26.__class__ is not int or not 0 <= r26 <= 15:
-        r26 = _to_raw(x26, _VEHICLE_FAULT__PROTOCOL_VERSION_B)
-    x27 = m.protocol_version_c
-    r27 = x27 - 0
-    if r27.__class__ is not int or not 0 <= r27 <= 15:
-        r27 = _to_raw(x27, _VEHICLE_FAULT__PROTOCOL_VERSION_C)
-    x28 = m.remote_entry_fault
-    r28 = x28 - 0
-    if r28.__class__ is not int or not 0 <= r28 <= 15:
-        r28 = _to_raw(x28, _VEHICLE_FAULT__REMOTE_ENTRY_FAULT)
-    v = (
-        r0
-        | r1 << 2
-        | r2 << 3
-        | r3 << 4
-        | r4 << 5
-        | r5 << 6
-        | r6 << 7
-        | r7 << 8
-        | r8 << 9
-        | r9 << 10
-        | r10 << 11
-        | r11 << 12
-        | r12 << 13
-        | r13 << 14
-        | r14 << 15
-        | r15 << 16
-        | r16 << 17
-        | r17 << 18
-        | r18 << 19
-        | r19 << 20
-        | r20 << 21
-        | r21 << 22
-        | r22 << 24
-        | r23 << 26
-        | r24 << 28
-        | r25 << 32
-        | r26 << 36
-        | r27 << 40
-        | r28 << 44
-    )
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.insulation_fault_level
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 3:
+            r0 = _to_raw(x0, _VEHICLE_FAULT__INSULATION_FAULT_LEVEL)
+        x1 = m.dc_fault
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 1:
+            r1 = _to_raw(x1, _VEHICLE_FAULT__DC_FAULT)
+        x2 = m.soc_low
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 1:
+            r2 = _to_raw(x2, _VEHICLE_FAULT__SOC_LOW)
+        x3 = m.cell_undervoltage
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _VEHICLE_FAULT__CELL_UNDERVOLTAGE)
+        x4 = m.brake_boost_pressure_fault
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT)
+        x5 = m.vacuum_pump_fault
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 1:
+            r5 = _to_raw(x5, _VEHICLE_FAULT__VACUUM_PUMP_FAULT)
+        x6 = m.vehicle_system_fault
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 1:
+            r6 = _to_raw(x6, _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT)
+        x7 = m.battery_overheat
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 1:
+            r7 = _to_raw(x7, _VEHICLE_FAULT__BATTERY_OVERHEAT)
+        x8 = m.motor_overheat
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 1:
+            r8 = _to_raw(x8, _VEHICLE_FAULT__MOTOR_OVERHEAT)
+        x9 = m.traction_battery_fault
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 1:
+            r9 = _to_raw(x9, _VEHICLE_FAULT__TRACTION_BATTERY_FAULT)
+        x10 = m.motor_fault
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 1:
+            r10 = _to_raw(x10, _VEHICLE_FAULT__MOTOR_FAULT)
+        x11 = m.battery_comm_fault
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 1:
+            r11 = _to_raw(x11, _VEHICLE_FAULT__BATTERY_COMM_FAULT)
+        x12 = m.motor_comm_fault
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 1:
+            r12 = _to_raw(x12, _VEHICLE_FAULT__MOTOR_COMM_FAULT)
+        x13 = m.eps_fault
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 1:
+            r13 = _to_raw(x13, _VEHICLE_FAULT__EPS_FAULT)
+        x14 = m.ac_fault
+        r14 = x14 - 0
+        if r14.__class__ is not int or not 0 <= r14 <= 1:
+            r14 = _to_raw(x14, _VEHICLE_FAULT__AC_FAULT)
+        x15 = m.aux_battery_fault
+        r15 = x15 - 0
+        if r15.__class__ is not int or not 0 <= r15 <= 1:
+            r15 = _to_raw(x15, _VEHICLE_FAULT__AUX_BATTERY_FAULT)
+        x16 = m.epb_fault
+        r16 = x16 - 0
+        if r16.__class__ is not int or not 0 <= r16 <= 1:
+            r16 = _to_raw(x16, _VEHICLE_FAULT__EPB_FAULT)
+        x17 = m.brake_by_wire_fault
+        r17 = x17 - 0
+        if r17.__class__ is not int or not 0 <= r17 <= 1:
+            r17 = _to_raw(x17, _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT)
+        x18 = m.key_not_detected
+        r18 = x18 - 0
+        if r18.__class__ is not int or not 0 <= r18 <= 1:
+            r18 = _to_raw(x18, _VEHICLE_FAULT__KEY_NOT_DETECTED)
+        x19 = m.tire_pressure_low
+        r19 = x19 - 0
+        if r19.__class__ is not int or not 0 <= r19 <= 1:
+            r19 = _to_raw(x19, _VEHICLE_FAULT__TIRE_PRESSURE_LOW)
+        x20 = m.body_motor_fault
+        r20 = x20 - 0
+        if r20.__class__ is not int or not 0 <= r20 <= 1:
+            r20 = _to_raw(x20, _VEHICLE_FAULT__BODY_MOTOR_FAULT)
+        x21 = m.body_motor_overheat
+        r21 = x21 - 0
+        if r21.__class__ is not int or not 0 <= r21 <= 1:
+            r21 = _to_raw(x21, _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT)
+        x22 = m.battery_system_fault_level
+        r22 = x22 - 0
+        if r22.__class__ is not int or not 0 <= r22 <= 3:
+            r22 = _to_raw(x22, _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL)
+        x23 = m.motor_system_fault_level
+        r23 = x23 - 0
+        if r23.__class__ is not int or not 0 <= r23 <= 3:
+            r23 = _to_raw(x23, _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL)
+        x24 = m.unmanned_entry_fault
+        r24 = x24 - 0
+        if r24.__class__ is not int or not 0 <= r24 <= 15:
+            r24 = _to_raw(x24, _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT)
+        x25 = m.protocol_version_a
+        r25 = x25 - 0
+        if r25.__class__ is not int or not 0 <= r25 <= 15:
+            r25 = _to_raw(x25, _VEHICLE_FAULT__PROTOCOL_VERSION_A)
+        x26 = m.protocol_version_b
+        r26 = x26 - 0
+        if r26.__class__ is not int or not 0 <= r26 <= 15:
+            r26 = _to_raw(x26, _VEHICLE_FAULT__PROTOCOL_VERSION_B)
+        x27 = m.protocol_version_c
+        r27 = x27 - 0
+        if r27.__class__ is not int or not 0 <= r27 <= 15:
+            r27 = _to_raw(x27, _VEHICLE_FAULT__PROTOCOL_VERSION_C)
+        x28 = m.remote_entry_fault
+        r28 = x28 - 0
+        if r28.__class__ is not int or not 0 <= r28 <= 15:
+            r28 = _to_raw(x28, _VEHICLE_FAULT__REMOTE_ENTRY_FAULT)
+        v = (
+            r0
+            | r1 << 2
+            | r2 << 3
+            | r3 << 4
+            | r4 << 5
+            | r5 << 6
+            | r6 << 7
+            | r7 << 8
+            | r8 << 9
+            | r9 << 10
+            | r10 << 11
+            | r11 << 12
+            | r12 << 13
+            | r13 << 14
+            | r14 << 15
+            | r15 << 16
+            | r16 << 17
+            | r17 << 18
+            | r18 << 19
+            | r19 << 20
+            | r20 << 21
+            | r21 << 22
+            | r22 << 24
+            | r23 << 26
+            | r24 << 28
+            | r25 << 32
+            | r26 << 36
+            | r27 << 40
+            | r28 << 44
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.insulation_fault_level,
+                m.dc_fault,
+                m.soc_low,
+                m.cell_undervoltage,
+                m.brake_boost_pressure_fault,
+                m.vacuum_pump_fault,
+                m.vehicle_system_fault,
+                m.battery_overheat,
+                m.motor_overheat,
+                m.traction_battery_fault,
+                m.motor_fault,
+                m.battery_comm_fault,
+                m.motor_comm_fault,
+                m.eps_fault,
+                m.ac_fault,
+                m.aux_battery_fault,
+                m.epb_fault,
+                m.brake_by_wire_fault,
+                m.key_not_detected,
+                m.tire_pressure_low,
+                m.body_motor_fault,
+                m.body_motor_overheat,
+                m.battery_system_fault_level,
+                m.motor_system_fault_level,
+                m.unmanned_entry_fault,
+                m.protocol_version_a,
+                m.protocol_version_b,
+                m.protocol_version_c,
+                m.remote_entry_fault,
+            ),
+            (
+                _VEHICLE_FAULT__INSULATION_FAULT_LEVEL,
+                _VEHICLE_FAULT__DC_FAULT,
+                _VEHICLE_FAULT__SOC_LOW,
+                _VEHICLE_FAULT__CELL_UNDERVOLTAGE,
+                _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT,
+                _VEHICLE_FAULT__VACUUM_PUMP_FAULT,
+                _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT,
+                _VEHICLE_FAULT__BATTERY_OVERHEAT,
+                _VEHICLE_FAULT__MOTOR_OVERHEAT,
+                _VEHICLE_FAULT__TRACTION_BATTERY_FAULT,
+                _VEHICLE_FAULT__MOTOR_FAULT,
+                _VEHICLE_FAULT__BATTERY_COMM_FAULT,
+                _VEHICLE_FAULT__MOTOR_COMM_FAULT,
+                _VEHICLE_FAULT__EPS_FAULT,
+                _VEHICLE_FAULT__AC_FAULT,
+                _VEHICLE_FAULT__AUX_BATTERY_FAULT,
+                _VEHICLE_FAULT__EPB_FAULT,
+                _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT,
+                _VEHICLE_FAULT__KEY_NOT_DETECTED,
+                _VEHICLE_FAULT__TIRE_PRESSURE_LOW,
+                _VEHICLE_FAULT__BODY_MOTOR_FAULT,
+                _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT,
+                _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL,
+                _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL,
+                _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT,
+                _VEHICLE_FAULT__PROTOCOL_VERSION_A,
+                _VEHICLE_FAULT__PROTOCOL_VERSION_B,
+                _VEHICLE_FAULT__PROTOCOL_VERSION_C,
+                _VEHICLE_FAULT__REMOTE_ENTRY_FAULT,
+            ),
+        )
+        raise
 
 
 def _pack_vehicle_fault(raw: Mapping[str, object]) -> bytes:
@@ -3639,35 +4003,52 @@ def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
 
 
 def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
-    x0 = m.eps_ctrl_mode
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 255:
-        r0 = _to_raw(x0, _RGATE_EPS_COMMAND__EPS_CTRL_MODE)
-    x1 = m.counter
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 255:
-        r1 = _to_raw(x1, _RGATE_EPS_COMMAND__COUNTER)
-    x2 = m.max_angular_speed
-    if 0 <= x2 <= 512:
-        r2 = int(x2 / 2.0 + 0.5 + 1e-9)
-        if not 0 <= r2 <= 255:
+    try:
+        x0 = m.eps_ctrl_mode
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 255:
+            r0 = _to_raw(x0, _RGATE_EPS_COMMAND__EPS_CTRL_MODE)
+        x1 = m.counter
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 255:
+            r1 = _to_raw(x1, _RGATE_EPS_COMMAND__COUNTER)
+        x2 = m.max_angular_speed
+        if 0 <= x2 <= 512:
+            r2 = int(x2 / 2.0 + 0.5 + 1e-9)
+            if not 0 <= r2 <= 255:
+                r2 = _to_raw(x2, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
+        else:
             r2 = _to_raw(x2, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    else:
-        r2 = _to_raw(x2, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    x3 = m.steering_angle_cmd
-    if -1080.0 <= x3 <= 1080.0:
-        r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r3 <= 21600:
+        x3 = m.steering_angle_cmd
+        if -1080.0 <= x3 <= 1080.0:
+            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r3 <= 21600:
+                r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        else:
             r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
-    else:
-        r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
-    v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        v = r0 | r1 << 8 | r2 << 16 | r3 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.eps_ctrl_mode,
+                m.counter,
+                m.max_angular_speed,
+                m.steering_angle_cmd,
+            ),
+            (
+                _RGATE_EPS_COMMAND__EPS_CTRL_MODE,
+                _RGATE_EPS_COMMAND__COUNTER,
+                _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED,
+                _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_rgate_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -3835,36 +4216,55 @@ def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
 
 
 def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
-    x0 = m.accel_cmd
-    if -9.0 <= x0 <= 3.6:
-        r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
-        if not 0 <= r0 <= 630:
+    try:
+        x0 = m.accel_cmd
+        if -9.0 <= x0 <= 3.6:
+            r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
+            if not 0 <= r0 <= 630:
+                r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
+        else:
             r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
-    else:
-        r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
-    x1 = m.epb_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _RGATE_SPEED_COMMAND__EPB_CMD)
-    x2 = m.gear_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _RGATE_SPEED_COMMAND__GEAR_CMD)
-    x3 = m.counter
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 255:
-        r3 = _to_raw(x3, _RGATE_SPEED_COMMAND__COUNTER)
-    x4 = m.emergency_brake_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
-    v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        x1 = m.epb_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _RGATE_SPEED_COMMAND__EPB_CMD)
+        x2 = m.gear_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _RGATE_SPEED_COMMAND__GEAR_CMD)
+        x3 = m.counter
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 255:
+            r3 = _to_raw(x3, _RGATE_SPEED_COMMAND__COUNTER)
+        x4 = m.emergency_brake_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.accel_cmd,
+                m.epb_cmd,
+                m.gear_cmd,
+                m.counter,
+                m.emergency_brake_cmd,
+            ),
+            (
+                _RGATE_SPEED_COMMAND__ACCEL_CMD,
+                _RGATE_SPEED_COMMAND__EPB_CMD,
+                _RGATE_SPEED_COMMAND__GEAR_CMD,
+                _RGATE_SPEED_COMMAND__COUNTER,
+                _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_rgate_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -4128,137 +4528,196 @@ def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
 
 
 def _encode_rgate_control_command_1(m: RgateControlCommand1) -> bytes:
-    x0 = m.drive_mode_cmd
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 3:
-        r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-    x1 = m.door_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 2:
-        r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_1__DOOR_CMD)
-    x2 = m.horn_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_1__HORN_CMD)
-    x3 = m.drl_cmd
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 2:
-        r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_1__DRL_CMD)
-    x4 = m.left_turn_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 2:
-        r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-    x5 = m.right_turn_cmd
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 2:
-        r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-    x6 = m.hazard_cmd
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 2:
-        r6 = _to_raw(x6, _RGATE_CONTROL_COMMAND_1__HAZARD_CMD)
-    x7 = m.position_light_cmd
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 2:
-        r7 = _to_raw(x7, _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-    x8 = m.headlight_cmd
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 3:
-        r8 = _to_raw(x8, _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-    x9 = m.rear_fog_cmd
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 2:
-        r9 = _to_raw(x9, _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD)
-    x10 = m.left_fog_cmd
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 2:
-        r10 = _to_raw(x10, _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-    x11 = m.right_fog_cmd
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 2:
-        r11 = _to_raw(x11, _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-    x12 = m.dome_light_cmd
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 2:
-        r12 = _to_raw(x12, _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-    x13 = m.ambient_light_cmd
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 2:
-        r13 = _to_raw(x13, _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-    x14 = m.drive_mode_reset
-    r14 = x14 - 0
-    if r14.__class__ is not int or not 0 <= r14 <= 1:
-        r14 = _to_raw(x14, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-    x15 = m.system_state
-    r15 = x15 - 0
-    if r15.__class__ is not int or not 0 <= r15 <= 3:
-        r15 = _to_raw(x15, _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE)
-    x16 = m.system_reliability
-    r16 = x16 - 0
-    if r16.__class__ is not int or not 0 <= r16 <= 3:
-        r16 = _to_raw(x16, _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-    x17 = m.system_fault_level
-    r17 = x17 - 0
-    if r17.__class__ is not int or not 0 <= r17 <= 3:
-        r17 = _to_raw(x17, _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-    x18 = m.lock_cmd
-    r18 = x18 - 0
-    if r18.__class__ is not int or not 0 <= r18 <= 3:
-        r18 = _to_raw(x18, _RGATE_CONTROL_COMMAND_1__LOCK_CMD)
-    x19 = m.ac_cmd
-    r19 = x19 - 0
-    if r19.__class__ is not int or not 0 <= r19 <= 3:
-        r19 = _to_raw(x19, _RGATE_CONTROL_COMMAND_1__AC_CMD)
-    x20 = m.ac_set_temp
-    if 16.0 <= x20 <= 30.0:
-        r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r20 <= 28:
+    try:
+        x0 = m.drive_mode_cmd
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 3:
+            r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        x1 = m.door_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 2:
+            r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_1__DOOR_CMD)
+        x2 = m.horn_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_1__HORN_CMD)
+        x3 = m.drl_cmd
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 2:
+            r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_1__DRL_CMD)
+        x4 = m.left_turn_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 2:
+            r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        x5 = m.right_turn_cmd
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 2:
+            r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        x6 = m.hazard_cmd
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 2:
+            r6 = _to_raw(x6, _RGATE_CONTROL_COMMAND_1__HAZARD_CMD)
+        x7 = m.position_light_cmd
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 2:
+            r7 = _to_raw(x7, _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        x8 = m.headlight_cmd
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 3:
+            r8 = _to_raw(x8, _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        x9 = m.rear_fog_cmd
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 2:
+            r9 = _to_raw(x9, _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        x10 = m.left_fog_cmd
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 2:
+            r10 = _to_raw(x10, _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        x11 = m.right_fog_cmd
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 2:
+            r11 = _to_raw(x11, _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        x12 = m.dome_light_cmd
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 2:
+            r12 = _to_raw(x12, _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        x13 = m.ambient_light_cmd
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 2:
+            r13 = _to_raw(x13, _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        x14 = m.drive_mode_reset
+        r14 = x14 - 0
+        if r14.__class__ is not int or not 0 <= r14 <= 1:
+            r14 = _to_raw(x14, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        x15 = m.system_state
+        r15 = x15 - 0
+        if r15.__class__ is not int or not 0 <= r15 <= 3:
+            r15 = _to_raw(x15, _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE)
+        x16 = m.system_reliability
+        r16 = x16 - 0
+        if r16.__class__ is not int or not 0 <= r16 <= 3:
+            r16 = _to_raw(x16, _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        x17 = m.system_fault_level
+        r17 = x17 - 0
+        if r17.__class__ is not int or not 0 <= r17 <= 3:
+            r17 = _to_raw(x17, _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        x18 = m.lock_cmd
+        r18 = x18 - 0
+        if r18.__class__ is not int or not 0 <= r18 <= 3:
+            r18 = _to_raw(x18, _RGATE_CONTROL_COMMAND_1__LOCK_CMD)
+        x19 = m.ac_cmd
+        r19 = x19 - 0
+        if r19.__class__ is not int or not 0 <= r19 <= 3:
+            r19 = _to_raw(x19, _RGATE_CONTROL_COMMAND_1__AC_CMD)
+        x20 = m.ac_set_temp
+        if 16.0 <= x20 <= 30.0:
+            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r20 <= 28:
+                r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
+        else:
             r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
-    else:
-        r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
-    x21 = m.protocol_version_a
-    r21 = x21 - 0
-    if r21.__class__ is not int or not 0 <= r21 <= 15:
-        r21 = _to_raw(x21, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-    x22 = m.protocol_version_b
-    r22 = x22 - 0
-    if r22.__class__ is not int or not 0 <= r22 <= 15:
-        r22 = _to_raw(x22, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-    x23 = m.protocol_version_c
-    r23 = x23 - 0
-    if r23.__class__ is not int or not 0 <= r23 <= 15:
-        r23 = _to_raw(x23, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-    x24 = m.counter
-    r24 = x24 - 0
-    if r24.__class__ is not int or not 0 <= r24 <= 15:
-        r24 = _to_raw(x24, _RGATE_CONTROL_COMMAND_1__COUNTER)
-    v = (
-        r0
-        | r1 << 2
-        | r2 << 4
-        | r3 << 6
-        | r4 << 8
-        | r5 << 10
-        | r6 << 12
-        | r7 << 14
-        | r8 << 16
-        | r9 << 18
-        | r10 << 20
-        | r11 << 22
-        | r12 << 24
-        | r13 << 26
-        | r14 << 28
-        | r15 << 32
-        | r16 << 34
-        | r17 << 36
-        | r18 << 38
-        | r19 << 40
-        | r20 << 43
-        | r21 << 48
-        | r22 << 52
-        | r23 << 56
-        | r24 << 60
-    )
-    return v.to_bytes(8, "little")
+        x21 = m.protocol_version_a
+        r21 = x21 - 0
+        if r21.__class__ is not int or not 0 <= r21 <= 15:
+            r21 = _to_raw(x21, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        x22 = m.protocol_version_b
+        r22 = x22 - 0
+        if r22.__class__ is not int or not 0 <= r22 <= 15:
+            r22 = _to_raw(x22, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        x23 = m.protocol_version_c
+        r23 = x23 - 0
+        if r23.__class__ is not int or not 0 <= r23 <= 15:
+            r23 = _to_raw(x23, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        x24 = m.counter
+        r24 = x24 - 0
+        if r24.__class__ is not int or not 0 <= r24 <= 15:
+            r24 = _to_raw(x24, _RGATE_CONTROL_COMMAND_1__COUNTER)
+        v = (
+            r0
+            | r1 << 2
+            | r2 << 4
+            | r3 << 6
+            | r4 << 8
+            | r5 << 10
+            | r6 << 12
+            | r7 << 14
+            | r8 << 16
+            | r9 << 18
+            | r10 << 20
+            | r11 << 22
+            | r12 << 24
+            | r13 << 26
+            | r14 << 28
+            | r15 << 32
+            | r16 << 34
+            | r17 << 36
+            | r18 << 38
+            | r19 << 40
+            | r20 << 43
+            | r21 << 48
+            | r22 << 52
+            | r23 << 56
+            | r24 << 60
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.drive_mode_cmd,
+                m.door_cmd,
+                m.horn_cmd,
+                m.drl_cmd,
+                m.left_turn_cmd,
+                m.right_turn_cmd,
+                m.hazard_cmd,
+                m.position_light_cmd,
+                m.headlight_cmd,
+                m.rear_fog_cmd,
+                m.left_fog_cmd,
+                m.right_fog_cmd,
+                m.dome_light_cmd,
+                m.ambient_light_cmd,
+                m.drive_mode_reset,
+                m.system_state,
+                m.system_reliability,
+                m.system_fault_level,
+                m.lock_cmd,
+                m.ac_cmd,
+                m.ac_set_temp,
+                m.protocol_version_a,
+                m.protocol_version_b,
+                m.protocol_version_c,
+                m.counter,
+            ),
+            (
+                _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
+                _RGATE_CONTROL_COMMAND_1__DOOR_CMD,
+                _RGATE_CONTROL_COMMAND_1__HORN_CMD,
+                _RGATE_CONTROL_COMMAND_1__DRL_CMD,
+                _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD,
+                _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
+                _RGATE_CONTROL_COMMAND_1__HAZARD_CMD,
+                _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
+                _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD,
+                _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD,
+                _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD,
+                _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
+                _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
+                _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
+                _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
+                _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE,
+                _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
+                _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
+                _RGATE_CONTROL_COMMAND_1__LOCK_CMD,
+                _RGATE_CONTROL_COMMAND_1__AC_CMD,
+                _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP,
+                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
+                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
+                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
+                _RGATE_CONTROL_COMMAND_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_rgate_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -4450,35 +4909,56 @@ def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
 
 
 def _encode_rgate_control_command_2(m: RgateControlCommand2) -> bytes:
-    x0 = m.downhill_regen_enable
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 1:
-        r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-    x1 = m.cargo_lift
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT)
-    x2 = m.cargo_lift_speed
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 10:
-        r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-    x3 = m.pto_enable
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE)
-    x4 = m.downhill_regen_speed
-    if 0.0 <= x4 <= 125.0:
-        r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r4 <= 250:
+    try:
+        x0 = m.downhill_regen_enable
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 1:
+            r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        x1 = m.cargo_lift
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT)
+        x2 = m.cargo_lift_speed
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 10:
+            r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        x3 = m.pto_enable
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE)
+        x4 = m.downhill_regen_speed
+        if 0.0 <= x4 <= 125.0:
+            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r4 <= 250:
+                r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        else:
             r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    else:
-        r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    x5 = m.counter
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 255:
-        r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_2__COUNTER)
-    v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
-    return v.to_bytes(8, "little")
+        x5 = m.counter
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 255:
+            r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_2__COUNTER)
+        v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.downhill_regen_enable,
+                m.cargo_lift,
+                m.cargo_lift_speed,
+                m.pto_enable,
+                m.downhill_regen_speed,
+                m.counter,
+            ),
+            (
+                _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
+                _RGATE_CONTROL_COMMAND_2__CARGO_LIFT,
+                _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
+                _RGATE_CONTROL_COMMAND_2__PTO_ENABLE,
+                _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
+                _RGATE_CONTROL_COMMAND_2__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_rgate_control_command_2(raw: Mapping[str, object]) -> bytes:
@@ -4595,20 +5075,35 @@ def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw
 
 
 def _encode_device_id(m: DeviceId) -> bytes:
-    x0 = m.device_type
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 63:
-        r0 = _to_raw(x0, _DEVICE_ID__DEVICE_TYPE)
-    x1 = m.id_frame_index
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _DEVICE_ID__ID_FRAME_INDEX)
-    x2 = m.id_chars
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 72057594037927935:
-        r2 = _to_raw(x2, _DEVICE_ID__ID_CHARS)
-    v = r0 | r1 << 6 | r2 << 8
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.device_type
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 63:
+            r0 = _to_raw(x0, _DEVICE_ID__DEVICE_TYPE)
+        x1 = m.id_frame_index
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _DEVICE_ID__ID_FRAME_INDEX)
+        x2 = m.id_chars
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 72057594037927935:
+            r2 = _to_raw(x2, _DEVICE_ID__ID_CHARS)
+        v = r0 | r1 << 6 | r2 << 8
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.device_type,
+                m.id_frame_index,
+                m.id_chars,
+            ),
+            (
+                _DEVICE_ID__DEVICE_TYPE,
+                _DEVICE_ID__ID_FRAME_INDEX,
+                _DEVICE_ID__ID_CHARS,
+            ),
+        )
+        raise
 
 
 def _pack_device_id(raw: Mapping[str, object]) -> bytes:
@@ -4763,36 +5258,59 @@ def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) 
 
 
 def _encode_front_sensor_distance_1(m: FrontSensorDistance1) -> bytes:
-    x0 = m.sensor_1_distance
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 500:
-        r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
-    x1 = m.sensor_2_distance
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 500:
-        r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
-    x2 = m.sensor_3_distance
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 500:
-        r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
-    x3 = m.sensor_4_distance
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 500:
-        r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
-    x4 = m.sensor_5_distance
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 500:
-        r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
-    x5 = m.sensor_6_distance
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 500:
-        r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
-    x6 = m.counter
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 15:
-        r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_1__COUNTER)
-    v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.sensor_1_distance
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 500:
+            r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
+        x1 = m.sensor_2_distance
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 500:
+            r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
+        x2 = m.sensor_3_distance
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 500:
+            r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
+        x3 = m.sensor_4_distance
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 500:
+            r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
+        x4 = m.sensor_5_distance
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 500:
+            r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
+        x5 = m.sensor_6_distance
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 500:
+            r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
+        x6 = m.counter
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 15:
+            r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_1__COUNTER)
+        v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.sensor_1_distance,
+                m.sensor_2_distance,
+                m.sensor_3_distance,
+                m.sensor_4_distance,
+                m.sensor_5_distance,
+                m.sensor_6_distance,
+                m.counter,
+            ),
+            (
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_front_sensor_distance_1(raw: Mapping[str, object]) -> bytes:
@@ -4990,79 +5508,116 @@ def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) 
 
 
 def _encode_front_sensor_distance_2(m: FrontSensorDistance2) -> bytes:
-    x0 = m.sensor_7_distance
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 500:
-        r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
-    x1 = m.sensor_8_distance
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 500:
-        r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
-    x2 = m.sensor_9_distance
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 500:
-        r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
-    x3 = m.uss_system_state
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 2:
-        r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
-    x4 = m.sensor_1_fault
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
-    x5 = m.sensor_2_fault
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 1:
-        r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
-    x6 = m.sensor_3_fault
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 1:
-        r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
-    x7 = m.sensor_4_fault
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 1:
-        r7 = _to_raw(x7, _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
-    x8 = m.sensor_5_fault
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 1:
-        r8 = _to_raw(x8, _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
-    x9 = m.sensor_6_fault
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 1:
-        r9 = _to_raw(x9, _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
-    x10 = m.sensor_7_fault
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 1:
-        r10 = _to_raw(x10, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
-    x11 = m.sensor_8_fault
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 1:
-        r11 = _to_raw(x11, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
-    x12 = m.sensor_9_fault
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 1:
-        r12 = _to_raw(x12, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
-    x13 = m.counter
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 15:
-        r13 = _to_raw(x13, _FRONT_SENSOR_DISTANCE_2__COUNTER)
-    v = (
-        r0
-        | r1 << 10
-        | r2 << 20
-        | r3 << 32
-        | r4 << 34
-        | r5 << 35
-        | r6 << 36
-        | r7 << 37
-        | r8 << 38
-        | r9 << 39
-        | r10 << 40
-        | r11 << 41
-        | r12 << 42
-        | r13 << 60
-    )
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.sensor_7_distance
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 500:
+            r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
+        x1 = m.sensor_8_distance
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 500:
+            r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
+        x2 = m.sensor_9_distance
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 500:
+            r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
+        x3 = m.uss_system_state
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 2:
+            r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
+        x4 = m.sensor_1_fault
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
+        x5 = m.sensor_2_fault
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 1:
+            r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
+        x6 = m.sensor_3_fault
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 1:
+            r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
+        x7 = m.sensor_4_fault
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 1:
+            r7 = _to_raw(x7, _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
+        x8 = m.sensor_5_fault
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 1:
+            r8 = _to_raw(x8, _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
+        x9 = m.sensor_6_fault
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 1:
+            r9 = _to_raw(x9, _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
+        x10 = m.sensor_7_fault
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 1:
+            r10 = _to_raw(x10, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
+        x11 = m.sensor_8_fault
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 1:
+            r11 = _to_raw(x11, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
+        x12 = m.sensor_9_fault
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 1:
+            r12 = _to_raw(x12, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
+        x13 = m.counter
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 15:
+            r13 = _to_raw(x13, _FRONT_SENSOR_DISTANCE_2__COUNTER)
+        v = (
+            r0
+            | r1 << 10
+            | r2 << 20
+            | r3 << 32
+            | r4 << 34
+            | r5 << 35
+            | r6 << 36
+            | r7 << 37
+            | r8 << 38
+            | r9 << 39
+            | r10 << 40
+            | r11 << 41
+            | r12 << 42
+            | r13 << 60
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.sensor_7_distance,
+                m.sensor_8_distance,
+                m.sensor_9_distance,
+                m.uss_system_state,
+                m.sensor_1_fault,
+                m.sensor_2_fault,
+                m.sensor_3_fault,
+                m.sensor_4_fault,
+                m.sensor_5_fault,
+                m.sensor_6_fault,
+                m.sensor_7_fault,
+                m.sensor_8_fault,
+                m.sensor_9_fault,
+                m.counter,
+            ),
+            (
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE,
+                _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT,
+                _FRONT_SENSOR_DISTANCE_2__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_front_sensor_distance_2(raw: Mapping[str, object]) -> bytes:
@@ -5243,36 +5798,59 @@ def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -
 
 
 def _encode_rear_sensor_distance_1(m: RearSensorDistance1) -> bytes:
-    x0 = m.sensor_1_distance
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 500:
-        r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
-    x1 = m.sensor_2_distance
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 500:
-        r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
-    x2 = m.sensor_3_distance
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 500:
-        r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
-    x3 = m.sensor_4_distance
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 500:
-        r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
-    x4 = m.sensor_5_distance
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 500:
-        r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
-    x5 = m.sensor_6_distance
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 500:
-        r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
-    x6 = m.counter
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 15:
-        r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_1__COUNTER)
-    v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.sensor_1_distance
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 500:
+            r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
+        x1 = m.sensor_2_distance
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 500:
+            r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
+        x2 = m.sensor_3_distance
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 500:
+            r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
+        x3 = m.sensor_4_distance
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 500:
+            r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
+        x4 = m.sensor_5_distance
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 500:
+            r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
+        x5 = m.sensor_6_distance
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 500:
+            r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
+        x6 = m.counter
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 15:
+            r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_1__COUNTER)
+        v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.sensor_1_distance,
+                m.sensor_2_distance,
+                m.sensor_3_distance,
+                m.sensor_4_distance,
+                m.sensor_5_distance,
+                m.sensor_6_distance,
+                m.counter,
+            ),
+            (
+                _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE,
+                _REAR_SENSOR_DISTANCE_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_rear_sensor_distance_1(raw: Mapping[str, object]) -> bytes:
@@ -5470,79 +6048,116 @@ def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -
 
 
 def _encode_rear_sensor_distance_2(m: RearSensorDistance2) -> bytes:
-    x0 = m.sensor_7_distance
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 500:
-        r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
-    x1 = m.sensor_8_distance
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 500:
-        r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
-    x2 = m.sensor_9_distance
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 500:
-        r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
-    x3 = m.uss_system_state
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 2:
-        r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
-    x4 = m.sensor_1_fault
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
-    x5 = m.sensor_2_fault
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 1:
-        r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
-    x6 = m.sensor_3_fault
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 1:
-        r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
-    x7 = m.sensor_4_fault
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 1:
-        r7 = _to_raw(x7, _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
-    x8 = m.sensor_5_fault
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 1:
-        r8 = _to_raw(x8, _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
-    x9 = m.sensor_6_fault
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 1:
-        r9 = _to_raw(x9, _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
-    x10 = m.sensor_7_fault
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 1:
-        r10 = _to_raw(x10, _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
-    x11 = m.sensor_8_fault
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 1:
-        r11 = _to_raw(x11, _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
-    x12 = m.sensor_9_fault
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 1:
-        r12 = _to_raw(x12, _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
-    x13 = m.counter
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 15:
-        r13 = _to_raw(x13, _REAR_SENSOR_DISTANCE_2__COUNTER)
-    v = (
-        r0
-        | r1 << 10
-        | r2 << 20
-        | r3 << 32
-        | r4 << 34
-        | r5 << 35
-        | r6 << 36
-        | r7 << 37
-        | r8 << 38
-        | r9 << 39
-        | r10 << 40
-        | r11 << 41
-        | r12 << 42
-        | r13 << 60
-    )
-    return v.to_bytes(8, "little")
+    try:
+        x0 = m.sensor_7_distance
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 500:
+            r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
+        x1 = m.sensor_8_distance
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 500:
+            r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
+        x2 = m.sensor_9_distance
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 500:
+            r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
+        x3 = m.uss_system_state
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 2:
+            r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
+        x4 = m.sensor_1_fault
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
+        x5 = m.sensor_2_fault
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 1:
+            r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
+        x6 = m.sensor_3_fault
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 1:
+            r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
+        x7 = m.sensor_4_fault
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 1:
+            r7 = _to_raw(x7, _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
+        x8 = m.sensor_5_fault
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 1:
+            r8 = _to_raw(x8, _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
+        x9 = m.sensor_6_fault
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 1:
+            r9 = _to_raw(x9, _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
+        x10 = m.sensor_7_fault
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 1:
+            r10 = _to_raw(x10, _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
+        x11 = m.sensor_8_fault
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 1:
+            r11 = _to_raw(x11, _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
+        x12 = m.sensor_9_fault
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 1:
+            r12 = _to_raw(x12, _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
+        x13 = m.counter
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 15:
+            r13 = _to_raw(x13, _REAR_SENSOR_DISTANCE_2__COUNTER)
+        v = (
+            r0
+            | r1 << 10
+            | r2 << 20
+            | r3 << 32
+            | r4 << 34
+            | r5 << 35
+            | r6 << 36
+            | r7 << 37
+            | r8 << 38
+            | r9 << 39
+            | r10 << 40
+            | r11 << 41
+            | r12 << 42
+            | r13 << 60
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.sensor_7_distance,
+                m.sensor_8_distance,
+                m.sensor_9_distance,
+                m.uss_system_state,
+                m.sensor_1_fault,
+                m.sensor_2_fault,
+                m.sensor_3_fault,
+                m.sensor_4_fault,
+                m.sensor_5_fault,
+                m.sensor_6_fault,
+                m.sensor_7_fault,
+                m.sensor_8_fault,
+                m.sensor_9_fault,
+                m.counter,
+            ),
+            (
+                _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE,
+                _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT,
+                _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT,
+                _REAR_SENSOR_DISTANCE_2__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_rear_sensor_distance_2(raw: Mapping[str, object]) -> bytes:
@@ -5725,35 +6340,52 @@ def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
 
 
 def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
-    x0 = m.eps_ctrl_mode
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 255:
-        r0 = _to_raw(x0, _TELE_EPS_COMMAND__EPS_CTRL_MODE)
-    x1 = m.counter
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 255:
-        r1 = _to_raw(x1, _TELE_EPS_COMMAND__COUNTER)
-    x2 = m.max_angular_speed
-    if 0 <= x2 <= 512:
-        r2 = int(x2 / 2.0 + 0.5 + 1e-9)
-        if not 0 <= r2 <= 255:
+    try:
+        x0 = m.eps_ctrl_mode
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 255:
+            r0 = _to_raw(x0, _TELE_EPS_COMMAND__EPS_CTRL_MODE)
+        x1 = m.counter
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 255:
+            r1 = _to_raw(x1, _TELE_EPS_COMMAND__COUNTER)
+        x2 = m.max_angular_speed
+        if 0 <= x2 <= 512:
+            r2 = int(x2 / 2.0 + 0.5 + 1e-9)
+            if not 0 <= r2 <= 255:
+                r2 = _to_raw(x2, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
+        else:
             r2 = _to_raw(x2, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    else:
-        r2 = _to_raw(x2, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
-    x3 = m.steering_angle_cmd
-    if -1080.0 <= x3 <= 1080.0:
-        r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-        if not 0 <= r3 <= 21600:
+        x3 = m.steering_angle_cmd
+        if -1080.0 <= x3 <= 1080.0:
+            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if not 0 <= r3 <= 21600:
+                r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        else:
             r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
-    else:
-        r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
-    v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        v = r0 | r1 << 8 | r2 << 16 | r3 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.eps_ctrl_mode,
+                m.counter,
+                m.max_angular_speed,
+                m.steering_angle_cmd,
+            ),
+            (
+                _TELE_EPS_COMMAND__EPS_CTRL_MODE,
+                _TELE_EPS_COMMAND__COUNTER,
+                _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED,
+                _TELE_EPS_COMMAND__STEERING_ANGLE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_tele_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -5921,36 +6553,55 @@ def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
 
 
 def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
-    x0 = m.throttle_brake_cmd
-    if -100.0 <= x0 <= 100.0:
-        r0 = int((x0 + 100.0) / 0.2 + 0.5 + 1e-9)
-        if not 0 <= r0 <= 1000:
+    try:
+        x0 = m.throttle_brake_cmd
+        if -100.0 <= x0 <= 100.0:
+            r0 = int((x0 + 100.0) / 0.2 + 0.5 + 1e-9)
+            if not 0 <= r0 <= 1000:
+                r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
+        else:
             r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
-    else:
-        r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
-    x1 = m.epb_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _TELE_SPEED_COMMAND__EPB_CMD)
-    x2 = m.gear_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _TELE_SPEED_COMMAND__GEAR_CMD)
-    x3 = m.counter
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 255:
-        r3 = _to_raw(x3, _TELE_SPEED_COMMAND__COUNTER)
-    x4 = m.emergency_brake_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 1:
-        r4 = _to_raw(x4, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
-    v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
-    c ^= c >> 16
-    c ^= c >> 8
-    v |= (c & 0xFF) << 56
-    return v.to_bytes(8, "little")
+        x1 = m.epb_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _TELE_SPEED_COMMAND__EPB_CMD)
+        x2 = m.gear_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _TELE_SPEED_COMMAND__GEAR_CMD)
+        x3 = m.counter
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 255:
+            r3 = _to_raw(x3, _TELE_SPEED_COMMAND__COUNTER)
+        x4 = m.emergency_brake_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 1:
+            r4 = _to_raw(x4, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
+        c ^= c >> 16
+        c ^= c >> 8
+        v |= (c & 0xFF) << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.throttle_brake_cmd,
+                m.epb_cmd,
+                m.gear_cmd,
+                m.counter,
+                m.emergency_brake_cmd,
+            ),
+            (
+                _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD,
+                _TELE_SPEED_COMMAND__EPB_CMD,
+                _TELE_SPEED_COMMAND__GEAR_CMD,
+                _TELE_SPEED_COMMAND__COUNTER,
+                _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
+            ),
+        )
+        raise
 
 
 def _pack_tele_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -6214,137 +6865,196 @@ def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
 
 
 def _encode_tele_control_command_1(m: TeleControlCommand1) -> bytes:
-    x0 = m.drive_mode_cmd
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 2:
-        r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-    x1 = m.door_cmd
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 2:
-        r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_1__DOOR_CMD)
-    x2 = m.horn_cmd
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 2:
-        r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_1__HORN_CMD)
-    x3 = m.drl_cmd
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 2:
-        r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_1__DRL_CMD)
-    x4 = m.left_turn_cmd
-    r4 = x4 - 0
-    if r4.__class__ is not int or not 0 <= r4 <= 2:
-        r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-    x5 = m.right_turn_cmd
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 2:
-        r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-    x6 = m.hazard_cmd
-    r6 = x6 - 0
-    if r6.__class__ is not int or not 0 <= r6 <= 2:
-        r6 = _to_raw(x6, _TELE_CONTROL_COMMAND_1__HAZARD_CMD)
-    x7 = m.position_light_cmd
-    r7 = x7 - 0
-    if r7.__class__ is not int or not 0 <= r7 <= 2:
-        r7 = _to_raw(x7, _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-    x8 = m.headlight_cmd
-    r8 = x8 - 0
-    if r8.__class__ is not int or not 0 <= r8 <= 3:
-        r8 = _to_raw(x8, _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-    x9 = m.rear_fog_cmd
-    r9 = x9 - 0
-    if r9.__class__ is not int or not 0 <= r9 <= 2:
-        r9 = _to_raw(x9, _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD)
-    x10 = m.left_fog_cmd
-    r10 = x10 - 0
-    if r10.__class__ is not int or not 0 <= r10 <= 2:
-        r10 = _to_raw(x10, _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-    x11 = m.right_fog_cmd
-    r11 = x11 - 0
-    if r11.__class__ is not int or not 0 <= r11 <= 2:
-        r11 = _to_raw(x11, _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-    x12 = m.dome_light_cmd
-    r12 = x12 - 0
-    if r12.__class__ is not int or not 0 <= r12 <= 2:
-        r12 = _to_raw(x12, _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-    x13 = m.ambient_light_cmd
-    r13 = x13 - 0
-    if r13.__class__ is not int or not 0 <= r13 <= 2:
-        r13 = _to_raw(x13, _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-    x14 = m.drive_mode_reset
-    r14 = x14 - 0
-    if r14.__class__ is not int or not 0 <= r14 <= 1:
-        r14 = _to_raw(x14, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-    x15 = m.system_state
-    r15 = x15 - 0
-    if r15.__class__ is not int or not 0 <= r15 <= 3:
-        r15 = _to_raw(x15, _TELE_CONTROL_COMMAND_1__SYSTEM_STATE)
-    x16 = m.system_reliability
-    r16 = x16 - 0
-    if r16.__class__ is not int or not 0 <= r16 <= 3:
-        r16 = _to_raw(x16, _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-    x17 = m.system_fault_level
-    r17 = x17 - 0
-    if r17.__class__ is not int or not 0 <= r17 <= 3:
-        r17 = _to_raw(x17, _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-    x18 = m.lock_cmd
-    r18 = x18 - 0
-    if r18.__class__ is not int or not 0 <= r18 <= 3:
-        r18 = _to_raw(x18, _TELE_CONTROL_COMMAND_1__LOCK_CMD)
-    x19 = m.ac_cmd
-    r19 = x19 - 0
-    if r19.__class__ is not int or not 0 <= r19 <= 3:
-        r19 = _to_raw(x19, _TELE_CONTROL_COMMAND_1__AC_CMD)
-    x20 = m.ac_set_temp
-    if 16.0 <= x20 <= 30.0:
-        r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r20 <= 28:
+    try:
+        x0 = m.drive_mode_cmd
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 2:
+            r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        x1 = m.door_cmd
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 2:
+            r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_1__DOOR_CMD)
+        x2 = m.horn_cmd
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 2:
+            r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_1__HORN_CMD)
+        x3 = m.drl_cmd
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 2:
+            r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_1__DRL_CMD)
+        x4 = m.left_turn_cmd
+        r4 = x4 - 0
+        if r4.__class__ is not int or not 0 <= r4 <= 2:
+            r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        x5 = m.right_turn_cmd
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 2:
+            r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        x6 = m.hazard_cmd
+        r6 = x6 - 0
+        if r6.__class__ is not int or not 0 <= r6 <= 2:
+            r6 = _to_raw(x6, _TELE_CONTROL_COMMAND_1__HAZARD_CMD)
+        x7 = m.position_light_cmd
+        r7 = x7 - 0
+        if r7.__class__ is not int or not 0 <= r7 <= 2:
+            r7 = _to_raw(x7, _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        x8 = m.headlight_cmd
+        r8 = x8 - 0
+        if r8.__class__ is not int or not 0 <= r8 <= 3:
+            r8 = _to_raw(x8, _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        x9 = m.rear_fog_cmd
+        r9 = x9 - 0
+        if r9.__class__ is not int or not 0 <= r9 <= 2:
+            r9 = _to_raw(x9, _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        x10 = m.left_fog_cmd
+        r10 = x10 - 0
+        if r10.__class__ is not int or not 0 <= r10 <= 2:
+            r10 = _to_raw(x10, _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        x11 = m.right_fog_cmd
+        r11 = x11 - 0
+        if r11.__class__ is not int or not 0 <= r11 <= 2:
+            r11 = _to_raw(x11, _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        x12 = m.dome_light_cmd
+        r12 = x12 - 0
+        if r12.__class__ is not int or not 0 <= r12 <= 2:
+            r12 = _to_raw(x12, _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        x13 = m.ambient_light_cmd
+        r13 = x13 - 0
+        if r13.__class__ is not int or not 0 <= r13 <= 2:
+            r13 = _to_raw(x13, _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        x14 = m.drive_mode_reset
+        r14 = x14 - 0
+        if r14.__class__ is not int or not 0 <= r14 <= 1:
+            r14 = _to_raw(x14, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        x15 = m.system_state
+        r15 = x15 - 0
+        if r15.__class__ is not int or not 0 <= r15 <= 3:
+            r15 = _to_raw(x15, _TELE_CONTROL_COMMAND_1__SYSTEM_STATE)
+        x16 = m.system_reliability
+        r16 = x16 - 0
+        if r16.__class__ is not int or not 0 <= r16 <= 3:
+            r16 = _to_raw(x16, _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        x17 = m.system_fault_level
+        r17 = x17 - 0
+        if r17.__class__ is not int or not 0 <= r17 <= 3:
+            r17 = _to_raw(x17, _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        x18 = m.lock_cmd
+        r18 = x18 - 0
+        if r18.__class__ is not int or not 0 <= r18 <= 3:
+            r18 = _to_raw(x18, _TELE_CONTROL_COMMAND_1__LOCK_CMD)
+        x19 = m.ac_cmd
+        r19 = x19 - 0
+        if r19.__class__ is not int or not 0 <= r19 <= 3:
+            r19 = _to_raw(x19, _TELE_CONTROL_COMMAND_1__AC_CMD)
+        x20 = m.ac_set_temp
+        if 16.0 <= x20 <= 30.0:
+            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r20 <= 28:
+                r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
+        else:
             r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
-    else:
-        r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
-    x21 = m.protocol_version_a
-    r21 = x21 - 0
-    if r21.__class__ is not int or not 0 <= r21 <= 15:
-        r21 = _to_raw(x21, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-    x22 = m.protocol_version_b
-    r22 = x22 - 0
-    if r22.__class__ is not int or not 0 <= r22 <= 15:
-        r22 = _to_raw(x22, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-    x23 = m.protocol_version_c
-    r23 = x23 - 0
-    if r23.__class__ is not int or not 0 <= r23 <= 15:
-        r23 = _to_raw(x23, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-    x24 = m.counter
-    r24 = x24 - 0
-    if r24.__class__ is not int or not 0 <= r24 <= 15:
-        r24 = _to_raw(x24, _TELE_CONTROL_COMMAND_1__COUNTER)
-    v = (
-        r0
-        | r1 << 2
-        | r2 << 4
-        | r3 << 6
-        | r4 << 8
-        | r5 << 10
-        | r6 << 12
-        | r7 << 14
-        | r8 << 16
-        | r9 << 18
-        | r10 << 20
-        | r11 << 22
-        | r12 << 24
-        | r13 << 26
-        | r14 << 28
-        | r15 << 32
-        | r16 << 34
-        | r17 << 36
-        | r18 << 38
-        | r19 << 40
-        | r20 << 43
-        | r21 << 48
-        | r22 << 52
-        | r23 << 56
-        | r24 << 60
-    )
-    return v.to_bytes(8, "little")
+        x21 = m.protocol_version_a
+        r21 = x21 - 0
+        if r21.__class__ is not int or not 0 <= r21 <= 15:
+            r21 = _to_raw(x21, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        x22 = m.protocol_version_b
+        r22 = x22 - 0
+        if r22.__class__ is not int or not 0 <= r22 <= 15:
+            r22 = _to_raw(x22, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        x23 = m.protocol_version_c
+        r23 = x23 - 0
+        if r23.__class__ is not int or not 0 <= r23 <= 15:
+            r23 = _to_raw(x23, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        x24 = m.counter
+        r24 = x24 - 0
+        if r24.__class__ is not int or not 0 <= r24 <= 15:
+            r24 = _to_raw(x24, _TELE_CONTROL_COMMAND_1__COUNTER)
+        v = (
+            r0
+            | r1 << 2
+            | r2 << 4
+            | r3 << 6
+            | r4 << 8
+            | r5 << 10
+            | r6 << 12
+            | r7 << 14
+            | r8 << 16
+            | r9 << 18
+            | r10 << 20
+            | r11 << 22
+            | r12 << 24
+            | r13 << 26
+            | r14 << 28
+            | r15 << 32
+            | r16 << 34
+            | r17 << 36
+            | r18 << 38
+            | r19 << 40
+            | r20 << 43
+            | r21 << 48
+            | r22 << 52
+            | r23 << 56
+            | r24 << 60
+        )
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.drive_mode_cmd,
+                m.door_cmd,
+                m.horn_cmd,
+                m.drl_cmd,
+                m.left_turn_cmd,
+                m.right_turn_cmd,
+                m.hazard_cmd,
+                m.position_light_cmd,
+                m.headlight_cmd,
+                m.rear_fog_cmd,
+                m.left_fog_cmd,
+                m.right_fog_cmd,
+                m.dome_light_cmd,
+                m.ambient_light_cmd,
+                m.drive_mode_reset,
+                m.system_state,
+                m.system_reliability,
+                m.system_fault_level,
+                m.lock_cmd,
+                m.ac_cmd,
+                m.ac_set_temp,
+                m.protocol_version_a,
+                m.protocol_version_b,
+                m.protocol_version_c,
+                m.counter,
+            ),
+            (
+                _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
+                _TELE_CONTROL_COMMAND_1__DOOR_CMD,
+                _TELE_CONTROL_COMMAND_1__HORN_CMD,
+                _TELE_CONTROL_COMMAND_1__DRL_CMD,
+                _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD,
+                _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
+                _TELE_CONTROL_COMMAND_1__HAZARD_CMD,
+                _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
+                _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD,
+                _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD,
+                _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD,
+                _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
+                _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
+                _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
+                _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
+                _TELE_CONTROL_COMMAND_1__SYSTEM_STATE,
+                _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
+                _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
+                _TELE_CONTROL_COMMAND_1__LOCK_CMD,
+                _TELE_CONTROL_COMMAND_1__AC_CMD,
+                _TELE_CONTROL_COMMAND_1__AC_SET_TEMP,
+                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
+                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
+                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
+                _TELE_CONTROL_COMMAND_1__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_tele_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -6536,35 +7246,56 @@ def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
 
 
 def _encode_tele_control_command_2(m: TeleControlCommand2) -> bytes:
-    x0 = m.downhill_regen_enable
-    r0 = x0 - 0
-    if r0.__class__ is not int or not 0 <= r0 <= 1:
-        r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-    x1 = m.cargo_lift
-    r1 = x1 - 0
-    if r1.__class__ is not int or not 0 <= r1 <= 3:
-        r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_2__CARGO_LIFT)
-    x2 = m.cargo_lift_speed
-    r2 = x2 - 0
-    if r2.__class__ is not int or not 0 <= r2 <= 10:
-        r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-    x3 = m.pto_enable
-    r3 = x3 - 0
-    if r3.__class__ is not int or not 0 <= r3 <= 1:
-        r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_2__PTO_ENABLE)
-    x4 = m.downhill_regen_speed
-    if 0.0 <= x4 <= 125.0:
-        r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-        if not 0 <= r4 <= 250:
+    try:
+        x0 = m.downhill_regen_enable
+        r0 = x0 - 0
+        if r0.__class__ is not int or not 0 <= r0 <= 1:
+            r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        x1 = m.cargo_lift
+        r1 = x1 - 0
+        if r1.__class__ is not int or not 0 <= r1 <= 3:
+            r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_2__CARGO_LIFT)
+        x2 = m.cargo_lift_speed
+        r2 = x2 - 0
+        if r2.__class__ is not int or not 0 <= r2 <= 10:
+            r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        x3 = m.pto_enable
+        r3 = x3 - 0
+        if r3.__class__ is not int or not 0 <= r3 <= 1:
+            r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_2__PTO_ENABLE)
+        x4 = m.downhill_regen_speed
+        if 0.0 <= x4 <= 125.0:
+            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
+            if not 0 <= r4 <= 250:
+                r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        else:
             r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    else:
-        r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-    x5 = m.counter
-    r5 = x5 - 0
-    if r5.__class__ is not int or not 0 <= r5 <= 255:
-        r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_2__COUNTER)
-    v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
-    return v.to_bytes(8, "little")
+        x5 = m.counter
+        r5 = x5 - 0
+        if r5.__class__ is not int or not 0 <= r5 <= 255:
+            r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_2__COUNTER)
+        v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
+        return v.to_bytes(8, "little")
+    except TypeError:  # a value of the wrong type: say which signal
+        _explain_type_error(
+            (
+                m.downhill_regen_enable,
+                m.cargo_lift,
+                m.cargo_lift_speed,
+                m.pto_enable,
+                m.downhill_regen_speed,
+                m.counter,
+            ),
+            (
+                _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
+                _TELE_CONTROL_COMMAND_2__CARGO_LIFT,
+                _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
+                _TELE_CONTROL_COMMAND_2__PTO_ENABLE,
+                _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
+                _TELE_CONTROL_COMMAND_2__COUNTER,
+            ),
+        )
+        raise
 
 
 def _pack_tele_control_command_2(raw: Mapping[str, object]) -> bytes:
