@@ -99,7 +99,11 @@ def run(path: Path) -> tuple[int, list[str]]:
     count = 0
     for case in vectors["cases"]:
         count += 1
-        for err in check_case(case):
+        try:
+            errors = check_case(case)
+        except (gw.Error, ValueError, TypeError, KeyError) as exc:
+            errors = [f"{type(exc).__name__}: {exc}"]
+        for err in errors:
             failures.append(f"case {count} ({case['message']}, {case['kind']}{', ' + case['note'] if case.get('note') else ''}): {err}")
     for entry in vectors.get("multiframe", []):
         count += 1
