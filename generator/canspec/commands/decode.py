@@ -106,6 +106,7 @@ class Reporter:
 def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
     for lineno, line in enumerate(lines, 1):
+        stats["lines"] = lineno
         progress.advance(len(line), lineno)
         try:
             frame = parse_line(line)
@@ -168,7 +169,7 @@ def run(args: argparse.Namespace) -> int:
     elapsed = time.perf_counter() - started
     problems = sum(report.counts[k] for k in PROBLEM_KINDS)
     counts = ", ".join(f"{report.counts[k]} {k.replace('_', ' ')}" for k in PROBLEM_KINDS)
-    print(f"canspec decode: {stats['frames']:,} frames, {stats['decoded']:,} decoded; problems: {counts}; {elapsed:.2f} s", file=sys.stderr)
+    print(f"canspec decode: {stats['lines']:,} lines, {stats['frames']:,} frames, {stats['decoded']:,} decoded; problems: {counts}; {elapsed:.2f} s", file=sys.stderr)
     return 1 if args.strict and problems else 0
 
 
