@@ -28,24 +28,19 @@ import kaiwo_gateway as gw  # noqa: E402
 from vector_runner import PHYSICAL_KINDS, attr_names  # noqa: E402
 
 
-def best_of(fn: Callable[[], None], repeat: int = 5) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-    return best
-
-
-def per_frame_us(fn: Callable[..., Any], items: list[tuple[Any, ...]], loops: int) -> float:
-    """Time of fn(*item) per item; the loop is the same bare one for both sides."""
-    batch = items * loops
-
-    def body() -> None:
-        for item in batch:
-            fn(*item)
-
-    return best_of(body) / len(batch) * 1e6
+def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],
+            loops: int, rounds: int = 7) -> tuple[float, float]:
+    """µs per call of ours(*item) and theirs(*item): the same bare loop for both, alternated over
+    several rounds so that load on a shared machine hits both sides alike; best round of each."""
+    best = [float("inf"), float("inf")]
+    for _ in range(rounds):
+        for side, (fn, items) in enumerate(((ours, our_items), (theirs, their_items))):
+            batch = items * loops
+            t = time.perf_counter()
+            for item in batch:
+                fn(*item)
+            best[side] = min(best[side], (time.perf_counter() - t) / len(batch) * 1e6)
+    return best[0], best[1]
 
 
 def codec_table(vectors: dict[str, Any], db: Any, loops: int) -> tuple[float, float, float, float]:
@@ -72,10 +67,8 @@ def codec_table(vectors: dict[str, Any], db: Any, loops: int) -> tuple[float, fl
             except Exception:  # noqa: BLE001 - cantools raises several types
                 continue
             ok_pairs.append((c["physical"], m))
-        dec = per_frame_us(gw.decode, frames, loops)
-        cdec = per_frame_us(db.decode_message, frames, loops)
-        enc = per_frame_us(gw.encode, [(m,) for _, m in ok_pairs], loops)
-        cenc = per_frame_us(cmsg.encode, [(p,) for p, _ in ok_pairs], loops)
+        dec, cdec = pair_us(gw.decode, db.decode_message, frames, frames, loops)
+        enc, cenc = pair_us(gw.encode, cmsg.encode, [(m,) for _, m in ok_pairs], [(p,) for p, _ in ok_pairs], loops)
         print(f"{name:28} {dec:10.2f} {cdec:9.2f} {cdec / dec:5.1f}x   {enc:10.2f} {cenc:9.2f} {cenc / enc:5.1f}x")
         for i, value in enumerate((dec, cdec, enc, cenc)):
             totals[i] += value

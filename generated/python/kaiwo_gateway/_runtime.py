@@ -65,13 +65,6 @@ def physical_to_raw(value: object, s: SignalSpec) -> int:
     raise RangeError(s.message, s.signal, value, s.allowed)
 
 
-def explain_type_error(values: tuple[object, ...], specs: tuple[SignalSpec, ...]) -> None:
-    """Raise the TypeError naming the first value that is not a number (None when all are)."""
-    for value, s in zip(values, specs, strict=True):
-        if not isinstance(value, (int, float)):
-            physical_to_raw(value, s)
-
-
 def check_raw(value: object, s: SignalSpec) -> int:
     """A raw value that fits the field, as a plain int, or RawRangeError."""
     if isinstance(value, int) and not isinstance(value, bool) and s.raw_type_min <= value <= s.raw_type_max:

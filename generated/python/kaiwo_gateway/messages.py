@@ -17,7 +17,6 @@ from typing import ClassVar, TypeAlias, TypedDict, cast
 
 from ._runtime import SignalSpec as _SignalSpec
 from ._runtime import check_raw as _check_raw
-from ._runtime import explain_type_error as _explain_type_error
 from ._runtime import lookup as _lookup
 from ._runtime import physical_to_raw as _to_raw
 from .enums import (
@@ -637,14 +636,12 @@ def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
 
 def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
     try:
-        x0 = m.eps_ctrl_mode
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 255:
-            r0 = _to_raw(x0, _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE)
-        x1 = m.counter
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 255:
-            r1 = _to_raw(x1, _AUTOCAR_EPS_COMMAND__COUNTER)
+        r0 = m.eps_ctrl_mode
+        if not 0 <= r0 <= 255:
+            r0 = _to_raw(m.eps_ctrl_mode, _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE)
+        r1 = m.counter
+        if not 0 <= r1 <= 255:
+            r1 = _to_raw(m.counter, _AUTOCAR_EPS_COMMAND__COUNTER)
         x2 = m.max_angular_speed
         if 0 <= x2 <= 512:
             r2 = int(x2 / 2.0 + 0.5 + 1e-9)
@@ -653,12 +650,11 @@ def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        if -1080.0 <= x3 <= 1080.0:
-            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r3 <= 21600:
-                r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
-        else:
-            r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
+        r3 = (
+            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if -1080.0 <= x3 <= 1080.0
+            else _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
+        )
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -666,22 +662,15 @@ def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.eps_ctrl_mode,
-                m.counter,
-                m.max_angular_speed,
-                m.steering_angle_cmd,
-            ),
-            (
-                _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE,
-                _AUTOCAR_EPS_COMMAND__COUNTER,
-                _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED,
-                _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_autocar_eps_command(
+            {
+                "eps_ctrl_mode": _to_raw(m.eps_ctrl_mode, _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE),
+                "counter": _to_raw(m.counter, _AUTOCAR_EPS_COMMAND__COUNTER),
+                "max_angular_speed": _to_raw(m.max_angular_speed, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED),
+                "steering_angle_cmd": _to_raw(m.steering_angle_cmd, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD),
+            }
         )
-        raise
 
 
 def _pack_autocar_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -837,70 +826,41 @@ def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw
 
 def _encode_eps_state(m: EpsState) -> bytes:
     try:
-        x0 = m.eps_ctrl_state
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 255:
-            r0 = _to_raw(x0, _EPS_STATE__EPS_CTRL_STATE)
+        r0 = m.eps_ctrl_state
+        if not 0 <= r0 <= 255:
+            r0 = _to_raw(m.eps_ctrl_state, _EPS_STATE__EPS_CTRL_STATE)
         x1 = m.steering_torque
-        if -12.8 <= x1 <= 12.7:
-            r1 = int((x1 + 12.8) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r1 <= 255:
-                r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
-        else:
-            r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
+        r1 = int((x1 + 12.8) / 0.1 + 0.5 + 1e-9) if -12.8 <= x1 <= 12.7 else _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
         x2 = m.eps_output_torque
-        if -38.4 <= x2 <= 38.1:
-            r2 = int((x2 + 38.4) / 0.3 + 0.5 + 1e-9)
-            if not 0 <= r2 <= 255:
-                r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
-        else:
-            r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
+        r2 = int((x2 + 38.4) / 0.3 + 0.5 + 1e-9) if -38.4 <= x2 <= 38.1 else _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
         x3 = m.steering_angle
-        if -1080.0 <= x3 <= 1080.0:
-            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r3 <= 21600:
-                r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
-        else:
-            r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
+        r3 = (
+            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if -1080.0 <= x3 <= 1080.0
+            else _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
+        )
         x4 = m.controller_temp
-        if 0 <= x4 <= 126:
-            r4 = int(x4 / 2.0 + 0.5 + 1e-9)
-            if not 0 <= r4 <= 63:
-                r4 = _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
-        else:
-            r4 = _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
-        x5 = m.eps_fault_level
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 3:
-            r5 = _to_raw(x5, _EPS_STATE__EPS_FAULT_LEVEL)
-        x6 = m.counter
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 255:
-            r6 = _to_raw(x6, _EPS_STATE__COUNTER)
+        r4 = int(x4 / 2.0 + 0.5 + 1e-9) if 0 <= x4 <= 126 else _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
+        r5 = m.eps_fault_level
+        if not 0 <= r5 <= 3:
+            r5 = _to_raw(m.eps_fault_level, _EPS_STATE__EPS_FAULT_LEVEL)
+        r6 = m.counter
+        if not 0 <= r6 <= 255:
+            r6 = _to_raw(m.counter, _EPS_STATE__COUNTER)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24 | r4 << 40 | r5 << 48 | r6 << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.eps_ctrl_state,
-                m.steering_torque,
-                m.eps_output_torque,
-                m.steering_angle,
-                m.controller_temp,
-                m.eps_fault_level,
-                m.counter,
-            ),
-            (
-                _EPS_STATE__EPS_CTRL_STATE,
-                _EPS_STATE__STEERING_TORQUE,
-                _EPS_STATE__EPS_OUTPUT_TORQUE,
-                _EPS_STATE__STEERING_ANGLE,
-                _EPS_STATE__CONTROLLER_TEMP,
-                _EPS_STATE__EPS_FAULT_LEVEL,
-                _EPS_STATE__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_eps_state(
+            {
+                "eps_ctrl_state": _to_raw(m.eps_ctrl_state, _EPS_STATE__EPS_CTRL_STATE),
+                "steering_torque": _to_raw(m.steering_torque, _EPS_STATE__STEERING_TORQUE),
+                "eps_output_torque": _to_raw(m.eps_output_torque, _EPS_STATE__EPS_OUTPUT_TORQUE),
+                "steering_angle": _to_raw(m.steering_angle, _EPS_STATE__STEERING_ANGLE),
+                "controller_temp": _to_raw(m.controller_temp, _EPS_STATE__CONTROLLER_TEMP),
+                "eps_fault_level": _to_raw(m.eps_fault_level, _EPS_STATE__EPS_FAULT_LEVEL),
+                "counter": _to_raw(m.counter, _EPS_STATE__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_eps_state(raw: Mapping[str, object]) -> bytes:
@@ -1068,28 +1028,21 @@ def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
 def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
     try:
         x0 = m.accel_cmd
-        if -9.0 <= x0 <= 3.6:
-            r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
-            if not 0 <= r0 <= 630:
-                r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
-        else:
-            r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
-        x1 = m.epb_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _AUTOCAR_SPEED_COMMAND__EPB_CMD)
-        x2 = m.gear_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _AUTOCAR_SPEED_COMMAND__GEAR_CMD)
-        x3 = m.counter
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 255:
-            r3 = _to_raw(x3, _AUTOCAR_SPEED_COMMAND__COUNTER)
-        x4 = m.emergency_brake_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        r0 = (
+            int((x0 + 9.0) / 0.02 + 0.5 + 1e-9) if -9.0 <= x0 <= 3.6 else _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
+        )
+        r1 = m.epb_cmd
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.epb_cmd, _AUTOCAR_SPEED_COMMAND__EPB_CMD)
+        r2 = m.gear_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.gear_cmd, _AUTOCAR_SPEED_COMMAND__GEAR_CMD)
+        r3 = m.counter
+        if not 0 <= r3 <= 255:
+            r3 = _to_raw(m.counter, _AUTOCAR_SPEED_COMMAND__COUNTER)
+        r4 = m.emergency_brake_cmd
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.emergency_brake_cmd, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -1097,24 +1050,16 @@ def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.accel_cmd,
-                m.epb_cmd,
-                m.gear_cmd,
-                m.counter,
-                m.emergency_brake_cmd,
-            ),
-            (
-                _AUTOCAR_SPEED_COMMAND__ACCEL_CMD,
-                _AUTOCAR_SPEED_COMMAND__EPB_CMD,
-                _AUTOCAR_SPEED_COMMAND__GEAR_CMD,
-                _AUTOCAR_SPEED_COMMAND__COUNTER,
-                _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_autocar_speed_command(
+            {
+                "accel_cmd": _to_raw(m.accel_cmd, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD),
+                "epb_cmd": _to_raw(m.epb_cmd, _AUTOCAR_SPEED_COMMAND__EPB_CMD),
+                "gear_cmd": _to_raw(m.gear_cmd, _AUTOCAR_SPEED_COMMAND__GEAR_CMD),
+                "counter": _to_raw(m.counter, _AUTOCAR_SPEED_COMMAND__COUNTER),
+                "emergency_brake_cmd": _to_raw(m.emergency_brake_cmd, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD),
+            }
         )
-        raise
 
 
 def _pack_autocar_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -1292,41 +1237,29 @@ def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
 
 def _encode_driving_state(m: DrivingState) -> bytes:
     try:
-        x0 = m.epb_state
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 3:
-            r0 = _to_raw(x0, _DRIVING_STATE__EPB_STATE)
-        x1 = m.gear_state
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _DRIVING_STATE__GEAR_STATE)
-        x2 = m.emergency_brake_state
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 1:
-            r2 = _to_raw(x2, _DRIVING_STATE__EMERGENCY_BRAKE_STATE)
-        x3 = m.uss_brake_state
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _DRIVING_STATE__USS_BRAKE_STATE)
-        x4 = m.motor_speed
-        r4 = x4 + 15000
-        if r4.__class__ is not int or not 0 <= r4 <= 30000:
-            r4 = _to_raw(x4, _DRIVING_STATE__MOTOR_SPEED)
-        x5 = m.motor_torque
-        r5 = x5 + 5000
-        if r5.__class__ is not int or not 0 <= r5 <= 10000:
-            r5 = _to_raw(x5, _DRIVING_STATE__MOTOR_TORQUE)
-        x6 = m.motor_speed_ratio
-        r6 = x6 - 1
-        if r6.__class__ is not int or not 0 <= r6 <= 253:
-            r6 = _to_raw(x6, _DRIVING_STATE__MOTOR_SPEED_RATIO)
+        r0 = m.epb_state
+        if not 0 <= r0 <= 3:
+            r0 = _to_raw(m.epb_state, _DRIVING_STATE__EPB_STATE)
+        r1 = m.gear_state
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.gear_state, _DRIVING_STATE__GEAR_STATE)
+        r2 = m.emergency_brake_state
+        if not 0 <= r2 <= 1:
+            r2 = _to_raw(m.emergency_brake_state, _DRIVING_STATE__EMERGENCY_BRAKE_STATE)
+        r3 = m.uss_brake_state
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.uss_brake_state, _DRIVING_STATE__USS_BRAKE_STATE)
+        r4 = m.motor_speed + 15000
+        if not 0 <= r4 <= 30000:
+            r4 = _to_raw(m.motor_speed, _DRIVING_STATE__MOTOR_SPEED)
+        r5 = m.motor_torque + 5000
+        if not 0 <= r5 <= 10000:
+            r5 = _to_raw(m.motor_torque, _DRIVING_STATE__MOTOR_TORQUE)
+        r6 = m.motor_speed_ratio - 1
+        if not 0 <= r6 <= 253:
+            r6 = _to_raw(m.motor_speed_ratio, _DRIVING_STATE__MOTOR_SPEED_RATIO)
         x7 = m.current_accel
-        if -9.0 <= x7 <= 3.6:
-            r7 = int((x7 + 9.0) / 0.05 + 0.5 + 1e-9)
-            if not 0 <= r7 <= 252:
-                r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
-        else:
-            r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
+        r7 = int((x7 + 9.0) / 0.05 + 0.5 + 1e-9) if -9.0 <= x7 <= 3.6 else _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
         v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -1334,30 +1267,19 @@ def _encode_driving_state(m: DrivingState) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.epb_state,
-                m.gear_state,
-                m.emergency_brake_state,
-                m.uss_brake_state,
-                m.motor_speed,
-                m.motor_torque,
-                m.motor_speed_ratio,
-                m.current_accel,
-            ),
-            (
-                _DRIVING_STATE__EPB_STATE,
-                _DRIVING_STATE__GEAR_STATE,
-                _DRIVING_STATE__EMERGENCY_BRAKE_STATE,
-                _DRIVING_STATE__USS_BRAKE_STATE,
-                _DRIVING_STATE__MOTOR_SPEED,
-                _DRIVING_STATE__MOTOR_TORQUE,
-                _DRIVING_STATE__MOTOR_SPEED_RATIO,
-                _DRIVING_STATE__CURRENT_ACCEL,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_driving_state(
+            {
+                "epb_state": _to_raw(m.epb_state, _DRIVING_STATE__EPB_STATE),
+                "gear_state": _to_raw(m.gear_state, _DRIVING_STATE__GEAR_STATE),
+                "emergency_brake_state": _to_raw(m.emergency_brake_state, _DRIVING_STATE__EMERGENCY_BRAKE_STATE),
+                "uss_brake_state": _to_raw(m.uss_brake_state, _DRIVING_STATE__USS_BRAKE_STATE),
+                "motor_speed": _to_raw(m.motor_speed, _DRIVING_STATE__MOTOR_SPEED),
+                "motor_torque": _to_raw(m.motor_torque, _DRIVING_STATE__MOTOR_TORQUE),
+                "motor_speed_ratio": _to_raw(m.motor_speed_ratio, _DRIVING_STATE__MOTOR_SPEED_RATIO),
+                "current_accel": _to_raw(m.current_accel, _DRIVING_STATE__CURRENT_ACCEL),
+            }
         )
-        raise
 
 
 def _pack_driving_state(raw: Mapping[str, object]) -> bytes:
@@ -1625,109 +1547,84 @@ def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
 
 def _encode_autocar_control_command_1(m: AutocarControlCommand1) -> bytes:
     try:
-        x0 = m.drive_mode_cmd
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 1:
-            r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-        x1 = m.door_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 2:
-            r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD)
-        x2 = m.horn_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD)
-        x3 = m.drl_cmd
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 2:
-            r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD)
-        x4 = m.left_turn_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 2:
-            r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-        x5 = m.right_turn_cmd
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 2:
-            r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-        x6 = m.hazard_cmd
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 2:
-            r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD)
-        x7 = m.position_light_cmd
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 2:
-            r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-        x8 = m.headlight_cmd
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 3:
-            r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-        x9 = m.rear_fog_cmd
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 2:
-            r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD)
-        x10 = m.left_fog_cmd
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 2:
-            r10 = _to_raw(x10, _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-        x11 = m.right_fog_cmd
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 2:
-            r11 = _to_raw(x11, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-        x12 = m.dome_light_cmd
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 2:
-            r12 = _to_raw(x12, _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-        x13 = m.ambient_light_cmd
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 2:
-            r13 = _to_raw(x13, _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-        x14 = m.drive_mode_reset
-        r14 = x14 - 0
-        if r14.__class__ is not int or not 0 <= r14 <= 1:
-            r14 = _to_raw(x14, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-        x15 = m.system_state
-        r15 = x15 - 0
-        if r15.__class__ is not int or not 0 <= r15 <= 3:
-            r15 = _to_raw(x15, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE)
-        x16 = m.system_reliability
-        r16 = x16 - 0
-        if r16.__class__ is not int or not 0 <= r16 <= 3:
-            r16 = _to_raw(x16, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-        x17 = m.system_fault_level
-        r17 = x17 - 0
-        if r17.__class__ is not int or not 0 <= r17 <= 3:
-            r17 = _to_raw(x17, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-        x18 = m.lock_cmd
-        r18 = x18 - 0
-        if r18.__class__ is not int or not 0 <= r18 <= 3:
-            r18 = _to_raw(x18, _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD)
-        x19 = m.ac_cmd
-        r19 = x19 - 0
-        if r19.__class__ is not int or not 0 <= r19 <= 3:
-            r19 = _to_raw(x19, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD)
+        r0 = m.drive_mode_cmd
+        if not 0 <= r0 <= 1:
+            r0 = _to_raw(m.drive_mode_cmd, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        r1 = m.door_cmd
+        if not 0 <= r1 <= 2:
+            r1 = _to_raw(m.door_cmd, _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD)
+        r2 = m.horn_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.horn_cmd, _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD)
+        r3 = m.drl_cmd
+        if not 0 <= r3 <= 2:
+            r3 = _to_raw(m.drl_cmd, _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD)
+        r4 = m.left_turn_cmd
+        if not 0 <= r4 <= 2:
+            r4 = _to_raw(m.left_turn_cmd, _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        r5 = m.right_turn_cmd
+        if not 0 <= r5 <= 2:
+            r5 = _to_raw(m.right_turn_cmd, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        r6 = m.hazard_cmd
+        if not 0 <= r6 <= 2:
+            r6 = _to_raw(m.hazard_cmd, _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD)
+        r7 = m.position_light_cmd
+        if not 0 <= r7 <= 2:
+            r7 = _to_raw(m.position_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        r8 = m.headlight_cmd
+        if not 0 <= r8 <= 3:
+            r8 = _to_raw(m.headlight_cmd, _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        r9 = m.rear_fog_cmd
+        if not 0 <= r9 <= 2:
+            r9 = _to_raw(m.rear_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        r10 = m.left_fog_cmd
+        if not 0 <= r10 <= 2:
+            r10 = _to_raw(m.left_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        r11 = m.right_fog_cmd
+        if not 0 <= r11 <= 2:
+            r11 = _to_raw(m.right_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        r12 = m.dome_light_cmd
+        if not 0 <= r12 <= 2:
+            r12 = _to_raw(m.dome_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        r13 = m.ambient_light_cmd
+        if not 0 <= r13 <= 2:
+            r13 = _to_raw(m.ambient_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        r14 = m.drive_mode_reset
+        if not 0 <= r14 <= 1:
+            r14 = _to_raw(m.drive_mode_reset, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        r15 = m.system_state
+        if not 0 <= r15 <= 3:
+            r15 = _to_raw(m.system_state, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE)
+        r16 = m.system_reliability
+        if not 0 <= r16 <= 3:
+            r16 = _to_raw(m.system_reliability, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        r17 = m.system_fault_level
+        if not 0 <= r17 <= 3:
+            r17 = _to_raw(m.system_fault_level, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        r18 = m.lock_cmd
+        if not 0 <= r18 <= 3:
+            r18 = _to_raw(m.lock_cmd, _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD)
+        r19 = m.ac_cmd
+        if not 0 <= r19 <= 3:
+            r19 = _to_raw(m.ac_cmd, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        if 16.0 <= x20 <= 30.0:
-            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r20 <= 28:
-                r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
-        else:
-            r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
-        x21 = m.protocol_version_a
-        r21 = x21 - 0
-        if r21.__class__ is not int or not 0 <= r21 <= 15:
-            r21 = _to_raw(x21, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-        x22 = m.protocol_version_b
-        r22 = x22 - 0
-        if r22.__class__ is not int or not 0 <= r22 <= 15:
-            r22 = _to_raw(x22, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-        x23 = m.protocol_version_c
-        r23 = x23 - 0
-        if r23.__class__ is not int or not 0 <= r23 <= 15:
-            r23 = _to_raw(x23, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-        x24 = m.counter
-        r24 = x24 - 0
-        if r24.__class__ is not int or not 0 <= r24 <= 15:
-            r24 = _to_raw(x24, _AUTOCAR_CONTROL_COMMAND_1__COUNTER)
+        r20 = (
+            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if 16.0 <= x20 <= 30.0
+            else _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
+        )
+        r21 = m.protocol_version_a
+        if not 0 <= r21 <= 15:
+            r21 = _to_raw(m.protocol_version_a, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        r22 = m.protocol_version_b
+        if not 0 <= r22 <= 15:
+            r22 = _to_raw(m.protocol_version_b, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        r23 = m.protocol_version_c
+        if not 0 <= r23 <= 15:
+            r23 = _to_raw(m.protocol_version_c, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        r24 = m.counter
+        if not 0 <= r24 <= 15:
+            r24 = _to_raw(m.counter, _AUTOCAR_CONTROL_COMMAND_1__COUNTER)
         v = (
             r0
             | r1 << 2
@@ -1756,64 +1653,36 @@ def _encode_autocar_control_command_1(m: AutocarControlCommand1) -> bytes:
             | r24 << 60
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.drive_mode_cmd,
-                m.door_cmd,
-                m.horn_cmd,
-                m.drl_cmd,
-                m.left_turn_cmd,
-                m.right_turn_cmd,
-                m.hazard_cmd,
-                m.position_light_cmd,
-                m.headlight_cmd,
-                m.rear_fog_cmd,
-                m.left_fog_cmd,
-                m.right_fog_cmd,
-                m.dome_light_cmd,
-                m.ambient_light_cmd,
-                m.drive_mode_reset,
-                m.system_state,
-                m.system_reliability,
-                m.system_fault_level,
-                m.lock_cmd,
-                m.ac_cmd,
-                m.ac_set_temp,
-                m.protocol_version_a,
-                m.protocol_version_b,
-                m.protocol_version_c,
-                m.counter,
-            ),
-            (
-                _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
-                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE,
-                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
-                _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
-                _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__AC_CMD,
-                _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP,
-                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
-                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
-                _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
-                _AUTOCAR_CONTROL_COMMAND_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_autocar_control_command_1(
+            {
+                "drive_mode_cmd": _to_raw(m.drive_mode_cmd, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD),
+                "door_cmd": _to_raw(m.door_cmd, _AUTOCAR_CONTROL_COMMAND_1__DOOR_CMD),
+                "horn_cmd": _to_raw(m.horn_cmd, _AUTOCAR_CONTROL_COMMAND_1__HORN_CMD),
+                "drl_cmd": _to_raw(m.drl_cmd, _AUTOCAR_CONTROL_COMMAND_1__DRL_CMD),
+                "left_turn_cmd": _to_raw(m.left_turn_cmd, _AUTOCAR_CONTROL_COMMAND_1__LEFT_TURN_CMD),
+                "right_turn_cmd": _to_raw(m.right_turn_cmd, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_TURN_CMD),
+                "hazard_cmd": _to_raw(m.hazard_cmd, _AUTOCAR_CONTROL_COMMAND_1__HAZARD_CMD),
+                "position_light_cmd": _to_raw(m.position_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__POSITION_LIGHT_CMD),
+                "headlight_cmd": _to_raw(m.headlight_cmd, _AUTOCAR_CONTROL_COMMAND_1__HEADLIGHT_CMD),
+                "rear_fog_cmd": _to_raw(m.rear_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__REAR_FOG_CMD),
+                "left_fog_cmd": _to_raw(m.left_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__LEFT_FOG_CMD),
+                "right_fog_cmd": _to_raw(m.right_fog_cmd, _AUTOCAR_CONTROL_COMMAND_1__RIGHT_FOG_CMD),
+                "dome_light_cmd": _to_raw(m.dome_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__DOME_LIGHT_CMD),
+                "ambient_light_cmd": _to_raw(m.ambient_light_cmd, _AUTOCAR_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD),
+                "drive_mode_reset": _to_raw(m.drive_mode_reset, _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_RESET),
+                "system_state": _to_raw(m.system_state, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_STATE),
+                "system_reliability": _to_raw(m.system_reliability, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY),
+                "system_fault_level": _to_raw(m.system_fault_level, _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL),
+                "lock_cmd": _to_raw(m.lock_cmd, _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD),
+                "ac_cmd": _to_raw(m.ac_cmd, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD),
+                "ac_set_temp": _to_raw(m.ac_set_temp, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP),
+                "protocol_version_a": _to_raw(m.protocol_version_a, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A),
+                "protocol_version_b": _to_raw(m.protocol_version_b, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B),
+                "protocol_version_c": _to_raw(m.protocol_version_c, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C),
+                "counter": _to_raw(m.counter, _AUTOCAR_CONTROL_COMMAND_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_autocar_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -2101,100 +1970,70 @@ def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _encode_vehicle_state_1(m: VehicleState1) -> bytes:
     try:
-        x0 = m.drive_mode_state
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 3:
-            r0 = _to_raw(x0, _VEHICLE_STATE_1__DRIVE_MODE_STATE)
-        x1 = m.door_state
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 1:
-            r1 = _to_raw(x1, _VEHICLE_STATE_1__DOOR_STATE)
-        x2 = m.drl_state
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 1:
-            r2 = _to_raw(x2, _VEHICLE_STATE_1__DRL_STATE)
-        x3 = m.left_turn_state
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _VEHICLE_STATE_1__LEFT_TURN_STATE)
-        x4 = m.right_turn_state
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _VEHICLE_STATE_1__RIGHT_TURN_STATE)
-        x5 = m.hazard_state
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 1:
-            r5 = _to_raw(x5, _VEHICLE_STATE_1__HAZARD_STATE)
-        x6 = m.position_light_state
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 1:
-            r6 = _to_raw(x6, _VEHICLE_STATE_1__POSITION_LIGHT_STATE)
-        x7 = m.headlight_state
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 3:
-            r7 = _to_raw(x7, _VEHICLE_STATE_1__HEADLIGHT_STATE)
-        x8 = m.rear_fog_state
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 1:
-            r8 = _to_raw(x8, _VEHICLE_STATE_1__REAR_FOG_STATE)
-        x9 = m.left_fog_state
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 1:
-            r9 = _to_raw(x9, _VEHICLE_STATE_1__LEFT_FOG_STATE)
-        x10 = m.right_fog_state
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 1:
-            r10 = _to_raw(x10, _VEHICLE_STATE_1__RIGHT_FOG_STATE)
-        x11 = m.dome_light_state
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 1:
-            r11 = _to_raw(x11, _VEHICLE_STATE_1__DOME_LIGHT_STATE)
-        x12 = m.ambient_light_state
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 1:
-            r12 = _to_raw(x12, _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE)
-        x13 = m.door_button_state
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 1:
-            r13 = _to_raw(x13, _VEHICLE_STATE_1__DOOR_BUTTON_STATE)
-        x14 = m.vehicle_speed
-        r14 = x14 + 50
-        if r14.__class__ is not int or not 0 <= r14 <= 250:
-            r14 = _to_raw(x14, _VEHICLE_STATE_1__VEHICLE_SPEED)
+        r0 = m.drive_mode_state
+        if not 0 <= r0 <= 3:
+            r0 = _to_raw(m.drive_mode_state, _VEHICLE_STATE_1__DRIVE_MODE_STATE)
+        r1 = m.door_state
+        if not 0 <= r1 <= 1:
+            r1 = _to_raw(m.door_state, _VEHICLE_STATE_1__DOOR_STATE)
+        r2 = m.drl_state
+        if not 0 <= r2 <= 1:
+            r2 = _to_raw(m.drl_state, _VEHICLE_STATE_1__DRL_STATE)
+        r3 = m.left_turn_state
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.left_turn_state, _VEHICLE_STATE_1__LEFT_TURN_STATE)
+        r4 = m.right_turn_state
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.right_turn_state, _VEHICLE_STATE_1__RIGHT_TURN_STATE)
+        r5 = m.hazard_state
+        if not 0 <= r5 <= 1:
+            r5 = _to_raw(m.hazard_state, _VEHICLE_STATE_1__HAZARD_STATE)
+        r6 = m.position_light_state
+        if not 0 <= r6 <= 1:
+            r6 = _to_raw(m.position_light_state, _VEHICLE_STATE_1__POSITION_LIGHT_STATE)
+        r7 = m.headlight_state
+        if not 0 <= r7 <= 3:
+            r7 = _to_raw(m.headlight_state, _VEHICLE_STATE_1__HEADLIGHT_STATE)
+        r8 = m.rear_fog_state
+        if not 0 <= r8 <= 1:
+            r8 = _to_raw(m.rear_fog_state, _VEHICLE_STATE_1__REAR_FOG_STATE)
+        r9 = m.left_fog_state
+        if not 0 <= r9 <= 1:
+            r9 = _to_raw(m.left_fog_state, _VEHICLE_STATE_1__LEFT_FOG_STATE)
+        r10 = m.right_fog_state
+        if not 0 <= r10 <= 1:
+            r10 = _to_raw(m.right_fog_state, _VEHICLE_STATE_1__RIGHT_FOG_STATE)
+        r11 = m.dome_light_state
+        if not 0 <= r11 <= 1:
+            r11 = _to_raw(m.dome_light_state, _VEHICLE_STATE_1__DOME_LIGHT_STATE)
+        r12 = m.ambient_light_state
+        if not 0 <= r12 <= 1:
+            r12 = _to_raw(m.ambient_light_state, _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE)
+        r13 = m.door_button_state
+        if not 0 <= r13 <= 1:
+            r13 = _to_raw(m.door_button_state, _VEHICLE_STATE_1__DOOR_BUTTON_STATE)
+        r14 = m.vehicle_speed + 50
+        if not 0 <= r14 <= 250:
+            r14 = _to_raw(m.vehicle_speed, _VEHICLE_STATE_1__VEHICLE_SPEED)
         x15 = m.soc
-        if 0.0 <= x15 <= 125.0:
-            r15 = int(x15 / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r15 <= 250:
-                r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
-        else:
-            r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
-        x16 = m.system_power_cmd
-        r16 = x16 - 0
-        if r16.__class__ is not int or not 0 <= r16 <= 1:
-            r16 = _to_raw(x16, _VEHICLE_STATE_1__SYSTEM_POWER_CMD)
-        x17 = m.charge_state
-        r17 = x17 - 0
-        if r17.__class__ is not int or not 0 <= r17 <= 3:
-            r17 = _to_raw(x17, _VEHICLE_STATE_1__CHARGE_STATE)
-        x18 = m.charge_connection
-        r18 = x18 - 0
-        if r18.__class__ is not int or not 0 <= r18 <= 1:
-            r18 = _to_raw(x18, _VEHICLE_STATE_1__CHARGE_CONNECTION)
-        x19 = m.vehicle_fault_level
-        r19 = x19 - 0
-        if r19.__class__ is not int or not 0 <= r19 <= 3:
-            r19 = _to_raw(x19, _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL)
+        r15 = int(x15 / 0.5 + 0.5 + 1e-9) if 0.0 <= x15 <= 125.0 else _to_raw(x15, _VEHICLE_STATE_1__SOC)
+        r16 = m.system_power_cmd
+        if not 0 <= r16 <= 1:
+            r16 = _to_raw(m.system_power_cmd, _VEHICLE_STATE_1__SYSTEM_POWER_CMD)
+        r17 = m.charge_state
+        if not 0 <= r17 <= 3:
+            r17 = _to_raw(m.charge_state, _VEHICLE_STATE_1__CHARGE_STATE)
+        r18 = m.charge_connection
+        if not 0 <= r18 <= 1:
+            r18 = _to_raw(m.charge_connection, _VEHICLE_STATE_1__CHARGE_CONNECTION)
+        r19 = m.vehicle_fault_level
+        if not 0 <= r19 <= 3:
+            r19 = _to_raw(m.vehicle_fault_level, _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL)
         x20 = m.odometer
-        if 0 <= x20 <= 120000:
-            r20 = int(x20 / 2.0 + 0.5 + 1e-9)
-            if not 0 <= r20 <= 60000:
-                r20 = _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
-        else:
-            r20 = _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
-        x21 = m.counter
-        r21 = x21 - 0
-        if r21.__class__ is not int or not 0 <= r21 <= 255:
-            r21 = _to_raw(x21, _VEHICLE_STATE_1__COUNTER)
+        r20 = int(x20 / 2.0 + 0.5 + 1e-9) if 0 <= x20 <= 120000 else _to_raw(x20, _VEHICLE_STATE_1__ODOMETER)
+        r21 = m.counter
+        if not 0 <= r21 <= 255:
+            r21 = _to_raw(m.counter, _VEHICLE_STATE_1__COUNTER)
         v = (
             r0
             | r1 << 2
@@ -2220,58 +2059,33 @@ def _encode_vehicle_state_1(m: VehicleState1) -> bytes:
             | r21 << 56
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.drive_mode_state,
-                m.door_state,
-                m.drl_state,
-                m.left_turn_state,
-                m.right_turn_state,
-                m.hazard_state,
-                m.position_light_state,
-                m.headlight_state,
-                m.rear_fog_state,
-                m.left_fog_state,
-                m.right_fog_state,
-                m.dome_light_state,
-                m.ambient_light_state,
-                m.door_button_state,
-                m.vehicle_speed,
-                m.soc,
-                m.system_power_cmd,
-                m.charge_state,
-                m.charge_connection,
-                m.vehicle_fault_level,
-                m.odometer,
-                m.counter,
-            ),
-            (
-                _VEHICLE_STATE_1__DRIVE_MODE_STATE,
-                _VEHICLE_STATE_1__DOOR_STATE,
-                _VEHICLE_STATE_1__DRL_STATE,
-                _VEHICLE_STATE_1__LEFT_TURN_STATE,
-                _VEHICLE_STATE_1__RIGHT_TURN_STATE,
-                _VEHICLE_STATE_1__HAZARD_STATE,
-                _VEHICLE_STATE_1__POSITION_LIGHT_STATE,
-                _VEHICLE_STATE_1__HEADLIGHT_STATE,
-                _VEHICLE_STATE_1__REAR_FOG_STATE,
-                _VEHICLE_STATE_1__LEFT_FOG_STATE,
-                _VEHICLE_STATE_1__RIGHT_FOG_STATE,
-                _VEHICLE_STATE_1__DOME_LIGHT_STATE,
-                _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE,
-                _VEHICLE_STATE_1__DOOR_BUTTON_STATE,
-                _VEHICLE_STATE_1__VEHICLE_SPEED,
-                _VEHICLE_STATE_1__SOC,
-                _VEHICLE_STATE_1__SYSTEM_POWER_CMD,
-                _VEHICLE_STATE_1__CHARGE_STATE,
-                _VEHICLE_STATE_1__CHARGE_CONNECTION,
-                _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL,
-                _VEHICLE_STATE_1__ODOMETER,
-                _VEHICLE_STATE_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_vehicle_state_1(
+            {
+                "drive_mode_state": _to_raw(m.drive_mode_state, _VEHICLE_STATE_1__DRIVE_MODE_STATE),
+                "door_state": _to_raw(m.door_state, _VEHICLE_STATE_1__DOOR_STATE),
+                "drl_state": _to_raw(m.drl_state, _VEHICLE_STATE_1__DRL_STATE),
+                "left_turn_state": _to_raw(m.left_turn_state, _VEHICLE_STATE_1__LEFT_TURN_STATE),
+                "right_turn_state": _to_raw(m.right_turn_state, _VEHICLE_STATE_1__RIGHT_TURN_STATE),
+                "hazard_state": _to_raw(m.hazard_state, _VEHICLE_STATE_1__HAZARD_STATE),
+                "position_light_state": _to_raw(m.position_light_state, _VEHICLE_STATE_1__POSITION_LIGHT_STATE),
+                "headlight_state": _to_raw(m.headlight_state, _VEHICLE_STATE_1__HEADLIGHT_STATE),
+                "rear_fog_state": _to_raw(m.rear_fog_state, _VEHICLE_STATE_1__REAR_FOG_STATE),
+                "left_fog_state": _to_raw(m.left_fog_state, _VEHICLE_STATE_1__LEFT_FOG_STATE),
+                "right_fog_state": _to_raw(m.right_fog_state, _VEHICLE_STATE_1__RIGHT_FOG_STATE),
+                "dome_light_state": _to_raw(m.dome_light_state, _VEHICLE_STATE_1__DOME_LIGHT_STATE),
+                "ambient_light_state": _to_raw(m.ambient_light_state, _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE),
+                "door_button_state": _to_raw(m.door_button_state, _VEHICLE_STATE_1__DOOR_BUTTON_STATE),
+                "vehicle_speed": _to_raw(m.vehicle_speed, _VEHICLE_STATE_1__VEHICLE_SPEED),
+                "soc": _to_raw(m.soc, _VEHICLE_STATE_1__SOC),
+                "system_power_cmd": _to_raw(m.system_power_cmd, _VEHICLE_STATE_1__SYSTEM_POWER_CMD),
+                "charge_state": _to_raw(m.charge_state, _VEHICLE_STATE_1__CHARGE_STATE),
+                "charge_connection": _to_raw(m.charge_connection, _VEHICLE_STATE_1__CHARGE_CONNECTION),
+                "vehicle_fault_level": _to_raw(m.vehicle_fault_level, _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL),
+                "odometer": _to_raw(m.odometer, _VEHICLE_STATE_1__ODOMETER),
+                "counter": _to_raw(m.counter, _VEHICLE_STATE_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_vehicle_state_1(raw: Mapping[str, object]) -> bytes:
@@ -2482,91 +2296,72 @@ def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
 
 def _encode_autocar_control_command_2(m: AutocarControlCommand2) -> bytes:
     try:
-        x0 = m.downhill_regen_enable
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 1:
-            r0 = _to_raw(x0, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-        x1 = m.cargo_lift
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT)
-        x2 = m.cargo_lift_speed
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 10:
-            r2 = _to_raw(x2, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-        x3 = m.pto_enable
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE)
+        r0 = m.downhill_regen_enable
+        if not 0 <= r0 <= 1:
+            r0 = _to_raw(m.downhill_regen_enable, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        r1 = m.cargo_lift
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.cargo_lift, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT)
+        r2 = m.cargo_lift_speed
+        if not 0 <= r2 <= 10:
+            r2 = _to_raw(m.cargo_lift_speed, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        r3 = m.pto_enable
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.pto_enable, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        if 0.0 <= x4 <= 125.0:
-            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r4 <= 250:
-                r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        else:
-            r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        r4 = (
+            int(x4 / 0.5 + 0.5 + 1e-9)
+            if 0.0 <= x4 <= 125.0
+            else _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        )
         x5 = m.chassis_pitch
-        if -25.0 <= x5 <= 25.0:
-            r5 = int((x5 + 25.0) / 0.05 + 0.5 + 1e-9)
-            if not 0 <= r5 <= 1000:
-                r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
-        else:
-            r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
+        r5 = (
+            int((x5 + 25.0) / 0.05 + 0.5 + 1e-9)
+            if -25.0 <= x5 <= 25.0
+            else _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
+        )
         x6 = m.chassis_roll
-        if -40.0 <= x6 <= 40.0:
-            r6 = int((x6 + 40.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r6 <= 800:
-                r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
-        else:
-            r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
+        r6 = (
+            int((x6 + 40.0) / 0.1 + 0.5 + 1e-9)
+            if -40.0 <= x6 <= 40.0
+            else _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
+        )
         x7 = m.cargo_pitch
-        if -30.0 <= x7 <= 100.0:
-            r7 = int((x7 + 30.0) / 0.2 + 0.5 + 1e-9)
-            if not 0 <= r7 <= 650:
-                r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
-        else:
-            r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
+        r7 = (
+            int((x7 + 30.0) / 0.2 + 0.5 + 1e-9)
+            if -30.0 <= x7 <= 100.0
+            else _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
+        )
         x8 = m.cargo_roll
-        if -40.0 <= x8 <= 40.0:
-            r8 = int((x8 + 40.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r8 <= 800:
-                r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
-        else:
-            r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
-        x9 = m.counter
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 255:
-            r9 = _to_raw(x9, _AUTOCAR_CONTROL_COMMAND_2__COUNTER)
+        r8 = (
+            int((x8 + 40.0) / 0.1 + 0.5 + 1e-9)
+            if -40.0 <= x8 <= 40.0
+            else _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
+        )
+        r9 = m.counter
+        if not 0 <= r9 <= 255:
+            r9 = _to_raw(m.counter, _AUTOCAR_CONTROL_COMMAND_2__COUNTER)
         v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 16 | r6 << 26 | r7 << 36 | r8 << 46 | r9 << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.downhill_regen_enable,
-                m.cargo_lift,
-                m.cargo_lift_speed,
-                m.pto_enable,
-                m.downhill_regen_speed,
-                m.chassis_pitch,
-                m.chassis_roll,
-                m.cargo_pitch,
-                m.cargo_roll,
-                m.counter,
-            ),
-            (
-                _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
-                _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT,
-                _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
-                _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE,
-                _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
-                _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH,
-                _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL,
-                _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH,
-                _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL,
-                _AUTOCAR_CONTROL_COMMAND_2__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_autocar_control_command_2(
+            {
+                "downhill_regen_enable": _to_raw(
+                    m.downhill_regen_enable, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE
+                ),
+                "cargo_lift": _to_raw(m.cargo_lift, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT),
+                "cargo_lift_speed": _to_raw(m.cargo_lift_speed, _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED),
+                "pto_enable": _to_raw(m.pto_enable, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE),
+                "downhill_regen_speed": _to_raw(
+                    m.downhill_regen_speed, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED
+                ),
+                "chassis_pitch": _to_raw(m.chassis_pitch, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH),
+                "chassis_roll": _to_raw(m.chassis_roll, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL),
+                "cargo_pitch": _to_raw(m.cargo_pitch, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH),
+                "cargo_roll": _to_raw(m.cargo_roll, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL),
+                "counter": _to_raw(m.counter, _AUTOCAR_CONTROL_COMMAND_2__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_autocar_control_command_2(raw: Mapping[str, object]) -> bytes:
@@ -2695,45 +2490,32 @@ def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _encode_vehicle_state_2(m: VehicleState2) -> bytes:
     try:
         x0 = m.battery_voltage
-        if 0.0 <= x0 <= 800.0:
-            r0 = int(x0 / 0.2 + 0.5 + 1e-9)
-            if not 0 <= r0 <= 4000:
-                r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
-        else:
-            r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
+        r0 = int(x0 / 0.2 + 0.5 + 1e-9) if 0.0 <= x0 <= 800.0 else _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
         x1 = m.battery_current
-        if -500.0 <= x1 <= 800.0:
-            r1 = int((x1 + 500.0) / 0.02 + 0.5 + 1e-9)
-            if not 0 <= r1 <= 65000:
-                r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
-        else:
-            r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
-        x2 = m.battery_charge_energy
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 65535:
-            r2 = _to_raw(x2, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY)
-        x3 = m.battery_discharge_energy
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 65535:
-            r3 = _to_raw(x3, _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY)
+        r1 = (
+            int((x1 + 500.0) / 0.02 + 0.5 + 1e-9)
+            if -500.0 <= x1 <= 800.0
+            else _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
+        )
+        r2 = m.battery_charge_energy
+        if not 0 <= r2 <= 65535:
+            r2 = _to_raw(m.battery_charge_energy, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY)
+        r3 = m.battery_discharge_energy
+        if not 0 <= r3 <= 65535:
+            r3 = _to_raw(m.battery_discharge_energy, _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY)
         v = r0 | r1 << 16 | r2 << 32 | r3 << 48
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.battery_voltage,
-                m.battery_current,
-                m.battery_charge_energy,
-                m.battery_discharge_energy,
-            ),
-            (
-                _VEHICLE_STATE_2__BATTERY_VOLTAGE,
-                _VEHICLE_STATE_2__BATTERY_CURRENT,
-                _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY,
-                _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_vehicle_state_2(
+            {
+                "battery_voltage": _to_raw(m.battery_voltage, _VEHICLE_STATE_2__BATTERY_VOLTAGE),
+                "battery_current": _to_raw(m.battery_current, _VEHICLE_STATE_2__BATTERY_CURRENT),
+                "battery_charge_energy": _to_raw(m.battery_charge_energy, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY),
+                "battery_discharge_energy": _to_raw(
+                    m.battery_discharge_energy, _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY
+                ),
+            }
         )
-        raise
 
 
 def _pack_vehicle_state_2(raw: Mapping[str, object]) -> bytes:
@@ -2867,58 +2649,35 @@ def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _encode_vehicle_state_3(m: VehicleState3) -> bytes:
     try:
-        x0 = m.battery_max_temp
-        r0 = x0 + 40
-        if r0.__class__ is not int or not 0 <= r0 <= 255:
-            r0 = _to_raw(x0, _VEHICLE_STATE_3__BATTERY_MAX_TEMP)
-        x1 = m.battery_min_temp
-        r1 = x1 + 40
-        if r1.__class__ is not int or not 0 <= r1 <= 255:
-            r1 = _to_raw(x1, _VEHICLE_STATE_3__BATTERY_MIN_TEMP)
+        r0 = m.battery_max_temp + 40
+        if not 0 <= r0 <= 255:
+            r0 = _to_raw(m.battery_max_temp, _VEHICLE_STATE_3__BATTERY_MAX_TEMP)
+        r1 = m.battery_min_temp + 40
+        if not 0 <= r1 <= 255:
+            r1 = _to_raw(m.battery_min_temp, _VEHICLE_STATE_3__BATTERY_MIN_TEMP)
         x2 = m.max_cell_voltage
-        if 0.0 <= x2 <= 6.0:
-            r2 = int(x2 / 0.0015 + 0.5 + 1e-9)
-            if not 0 <= r2 <= 4000:
-                r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
-        else:
-            r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
+        r2 = int(x2 / 0.0015 + 0.5 + 1e-9) if 0.0 <= x2 <= 6.0 else _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
         x3 = m.min_cell_voltage
-        if 0.0 <= x3 <= 6.0:
-            r3 = int(x3 / 0.0015 + 0.5 + 1e-9)
-            if not 0 <= r3 <= 4000:
-                r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
-        else:
-            r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
-        x4 = m.motor_temp
-        r4 = x4 + 40
-        if r4.__class__ is not int or not 0 <= r4 <= 255:
-            r4 = _to_raw(x4, _VEHICLE_STATE_3__MOTOR_TEMP)
-        x5 = m.motor_controller_temp
-        r5 = x5 + 40
-        if r5.__class__ is not int or not 0 <= r5 <= 255:
-            r5 = _to_raw(x5, _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP)
+        r3 = int(x3 / 0.0015 + 0.5 + 1e-9) if 0.0 <= x3 <= 6.0 else _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
+        r4 = m.motor_temp + 40
+        if not 0 <= r4 <= 255:
+            r4 = _to_raw(m.motor_temp, _VEHICLE_STATE_3__MOTOR_TEMP)
+        r5 = m.motor_controller_temp + 40
+        if not 0 <= r5 <= 255:
+            r5 = _to_raw(m.motor_controller_temp, _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 28 | r4 << 40 | r5 << 48
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.battery_max_temp,
-                m.battery_min_temp,
-                m.max_cell_voltage,
-                m.min_cell_voltage,
-                m.motor_temp,
-                m.motor_controller_temp,
-            ),
-            (
-                _VEHICLE_STATE_3__BATTERY_MAX_TEMP,
-                _VEHICLE_STATE_3__BATTERY_MIN_TEMP,
-                _VEHICLE_STATE_3__MAX_CELL_VOLTAGE,
-                _VEHICLE_STATE_3__MIN_CELL_VOLTAGE,
-                _VEHICLE_STATE_3__MOTOR_TEMP,
-                _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_vehicle_state_3(
+            {
+                "battery_max_temp": _to_raw(m.battery_max_temp, _VEHICLE_STATE_3__BATTERY_MAX_TEMP),
+                "battery_min_temp": _to_raw(m.battery_min_temp, _VEHICLE_STATE_3__BATTERY_MIN_TEMP),
+                "max_cell_voltage": _to_raw(m.max_cell_voltage, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE),
+                "min_cell_voltage": _to_raw(m.min_cell_voltage, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE),
+                "motor_temp": _to_raw(m.motor_temp, _VEHICLE_STATE_3__MOTOR_TEMP),
+                "motor_controller_temp": _to_raw(m.motor_controller_temp, _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP),
+            }
         )
-        raise
 
 
 def _pack_vehicle_state_3(raw: Mapping[str, object]) -> bytes:
@@ -3091,65 +2850,41 @@ def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _encode_vehicle_state_4(m: VehicleState4) -> bytes:
     try:
         x0 = m.outside_temp
-        if -30.0 <= x0 <= 95.0:
-            r0 = int((x0 + 30.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r0 <= 250:
-                r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
-        else:
-            r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
+        r0 = int((x0 + 30.0) / 0.5 + 0.5 + 1e-9) if -30.0 <= x0 <= 95.0 else _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
         x1 = m.inside_temp
-        if -30.0 <= x1 <= 95.0:
-            r1 = int((x1 + 30.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r1 <= 250:
-                r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
-        else:
-            r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
-        x2 = m.ac_state
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 3:
-            r2 = _to_raw(x2, _VEHICLE_STATE_4__AC_STATE)
-        x3 = m.vehicle_power_state
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 3:
-            r3 = _to_raw(x3, _VEHICLE_STATE_4__VEHICLE_POWER_STATE)
-        x4 = m.hill_hold_state
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _VEHICLE_STATE_4__HILL_HOLD_STATE)
-        x5 = m.regen_brake_state
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 1:
-            r5 = _to_raw(x5, _VEHICLE_STATE_4__REGEN_BRAKE_STATE)
-        x6 = m.remaining_range
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 1000:
-            r6 = _to_raw(x6, _VEHICLE_STATE_4__REMAINING_RANGE)
-        x7 = m.manual_takeover_state
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 1:
-            r7 = _to_raw(x7, _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE)
-        x8 = m.remote_driving_allowed
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 1:
-            r8 = _to_raw(x8, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED)
+        r1 = int((x1 + 30.0) / 0.5 + 0.5 + 1e-9) if -30.0 <= x1 <= 95.0 else _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
+        r2 = m.ac_state
+        if not 0 <= r2 <= 3:
+            r2 = _to_raw(m.ac_state, _VEHICLE_STATE_4__AC_STATE)
+        r3 = m.vehicle_power_state
+        if not 0 <= r3 <= 3:
+            r3 = _to_raw(m.vehicle_power_state, _VEHICLE_STATE_4__VEHICLE_POWER_STATE)
+        r4 = m.hill_hold_state
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.hill_hold_state, _VEHICLE_STATE_4__HILL_HOLD_STATE)
+        r5 = m.regen_brake_state
+        if not 0 <= r5 <= 1:
+            r5 = _to_raw(m.regen_brake_state, _VEHICLE_STATE_4__REGEN_BRAKE_STATE)
+        r6 = m.remaining_range
+        if not 0 <= r6 <= 1000:
+            r6 = _to_raw(m.remaining_range, _VEHICLE_STATE_4__REMAINING_RANGE)
+        r7 = m.manual_takeover_state
+        if not 0 <= r7 <= 1:
+            r7 = _to_raw(m.manual_takeover_state, _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE)
+        r8 = m.remote_driving_allowed
+        if not 0 <= r8 <= 1:
+            r8 = _to_raw(m.remote_driving_allowed, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED)
         x9 = m.ac_set_temp
-        if 16.0 <= x9 <= 30.0:
-            r9 = int((x9 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r9 <= 28:
-                r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
-        else:
-            r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
-        x10 = m.pto_state
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 1:
-            r10 = _to_raw(x10, _VEHICLE_STATE_4__PTO_STATE)
+        r9 = int((x9 - 16.0) / 0.5 + 0.5 + 1e-9) if 16.0 <= x9 <= 30.0 else _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
+        r10 = m.pto_state
+        if not 0 <= r10 <= 1:
+            r10 = _to_raw(m.pto_state, _VEHICLE_STATE_4__PTO_STATE)
         x11 = m.battery_power
-        if -325.0 <= x11 <= 325.0:
-            r11 = int((x11 + 325.0) / 0.01 + 0.5 + 1e-9)
-            if not 0 <= r11 <= 65000:
-                r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
-        else:
-            r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
+        r11 = (
+            int((x11 + 325.0) / 0.01 + 0.5 + 1e-9)
+            if -325.0 <= x11 <= 325.0
+            else _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
+        )
         v = (
             r0
             | r1 << 8
@@ -3165,38 +2900,23 @@ def _encode_vehicle_state_4(m: VehicleState4) -> bytes:
             | r11 << 48
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.outside_temp,
-                m.inside_temp,
-                m.ac_state,
-                m.vehicle_power_state,
-                m.hill_hold_state,
-                m.regen_brake_state,
-                m.remaining_range,
-                m.manual_takeover_state,
-                m.remote_driving_allowed,
-                m.ac_set_temp,
-                m.pto_state,
-                m.battery_power,
-            ),
-            (
-                _VEHICLE_STATE_4__OUTSIDE_TEMP,
-                _VEHICLE_STATE_4__INSIDE_TEMP,
-                _VEHICLE_STATE_4__AC_STATE,
-                _VEHICLE_STATE_4__VEHICLE_POWER_STATE,
-                _VEHICLE_STATE_4__HILL_HOLD_STATE,
-                _VEHICLE_STATE_4__REGEN_BRAKE_STATE,
-                _VEHICLE_STATE_4__REMAINING_RANGE,
-                _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE,
-                _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED,
-                _VEHICLE_STATE_4__AC_SET_TEMP,
-                _VEHICLE_STATE_4__PTO_STATE,
-                _VEHICLE_STATE_4__BATTERY_POWER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_vehicle_state_4(
+            {
+                "outside_temp": _to_raw(m.outside_temp, _VEHICLE_STATE_4__OUTSIDE_TEMP),
+                "inside_temp": _to_raw(m.inside_temp, _VEHICLE_STATE_4__INSIDE_TEMP),
+                "ac_state": _to_raw(m.ac_state, _VEHICLE_STATE_4__AC_STATE),
+                "vehicle_power_state": _to_raw(m.vehicle_power_state, _VEHICLE_STATE_4__VEHICLE_POWER_STATE),
+                "hill_hold_state": _to_raw(m.hill_hold_state, _VEHICLE_STATE_4__HILL_HOLD_STATE),
+                "regen_brake_state": _to_raw(m.regen_brake_state, _VEHICLE_STATE_4__REGEN_BRAKE_STATE),
+                "remaining_range": _to_raw(m.remaining_range, _VEHICLE_STATE_4__REMAINING_RANGE),
+                "manual_takeover_state": _to_raw(m.manual_takeover_state, _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE),
+                "remote_driving_allowed": _to_raw(m.remote_driving_allowed, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED),
+                "ac_set_temp": _to_raw(m.ac_set_temp, _VEHICLE_STATE_4__AC_SET_TEMP),
+                "pto_state": _to_raw(m.pto_state, _VEHICLE_STATE_4__PTO_STATE),
+                "battery_power": _to_raw(m.battery_power, _VEHICLE_STATE_4__BATTERY_POWER),
+            }
         )
-        raise
 
 
 def _pack_vehicle_state_4(raw: Mapping[str, object]) -> bytes:
@@ -3489,122 +3209,93 @@ def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> Vehicle
 
 def _encode_vehicle_fault(m: VehicleFault) -> bytes:
     try:
-        x0 = m.insulation_fault_level
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 3:
-            r0 = _to_raw(x0, _VEHICLE_FAULT__INSULATION_FAULT_LEVEL)
-        x1 = m.dc_fault
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 1:
-            r1 = _to_raw(x1, _VEHICLE_FAULT__DC_FAULT)
-        x2 = m.soc_low
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 1:
-            r2 = _to_raw(x2, _VEHICLE_FAULT__SOC_LOW)
-        x3 = m.cell_undervoltage
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _VEHICLE_FAULT__CELL_UNDERVOLTAGE)
-        x4 = m.brake_boost_pressure_fault
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT)
-        x5 = m.vacuum_pump_fault
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 1:
-            r5 = _to_raw(x5, _VEHICLE_FAULT__VACUUM_PUMP_FAULT)
-        x6 = m.vehicle_system_fault
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 1:
-            r6 = _to_raw(x6, _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT)
-        x7 = m.battery_overheat
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 1:
-            r7 = _to_raw(x7, _VEHICLE_FAULT__BATTERY_OVERHEAT)
-        x8 = m.motor_overheat
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 1:
-            r8 = _to_raw(x8, _VEHICLE_FAULT__MOTOR_OVERHEAT)
-        x9 = m.traction_battery_fault
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 1:
-            r9 = _to_raw(x9, _VEHICLE_FAULT__TRACTION_BATTERY_FAULT)
-        x10 = m.motor_fault
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 1:
-            r10 = _to_raw(x10, _VEHICLE_FAULT__MOTOR_FAULT)
-        x11 = m.battery_comm_fault
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 1:
-            r11 = _to_raw(x11, _VEHICLE_FAULT__BATTERY_COMM_FAULT)
-        x12 = m.motor_comm_fault
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 1:
-            r12 = _to_raw(x12, _VEHICLE_FAULT__MOTOR_COMM_FAULT)
-        x13 = m.eps_fault
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 1:
-            r13 = _to_raw(x13, _VEHICLE_FAULT__EPS_FAULT)
-        x14 = m.ac_fault
-        r14 = x14 - 0
-        if r14.__class__ is not int or not 0 <= r14 <= 1:
-            r14 = _to_raw(x14, _VEHICLE_FAULT__AC_FAULT)
-        x15 = m.aux_battery_fault
-        r15 = x15 - 0
-        if r15.__class__ is not int or not 0 <= r15 <= 1:
-            r15 = _to_raw(x15, _VEHICLE_FAULT__AUX_BATTERY_FAULT)
-        x16 = m.epb_fault
-        r16 = x16 - 0
-        if r16.__class__ is not int or not 0 <= r16 <= 1:
-            r16 = _to_raw(x16, _VEHICLE_FAULT__EPB_FAULT)
-        x17 = m.brake_by_wire_fault
-        r17 = x17 - 0
-        if r17.__class__ is not int or not 0 <= r17 <= 1:
-            r17 = _to_raw(x17, _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT)
-        x18 = m.key_not_detected
-        r18 = x18 - 0
-        if r18.__class__ is not int or not 0 <= r18 <= 1:
-            r18 = _to_raw(x18, _VEHICLE_FAULT__KEY_NOT_DETECTED)
-        x19 = m.tire_pressure_low
-        r19 = x19 - 0
-        if r19.__class__ is not int or not 0 <= r19 <= 1:
-            r19 = _to_raw(x19, _VEHICLE_FAULT__TIRE_PRESSURE_LOW)
-        x20 = m.body_motor_fault
-        r20 = x20 - 0
-        if r20.__class__ is not int or not 0 <= r20 <= 1:
-            r20 = _to_raw(x20, _VEHICLE_FAULT__BODY_MOTOR_FAULT)
-        x21 = m.body_motor_overheat
-        r21 = x21 - 0
-        if r21.__class__ is not int or not 0 <= r21 <= 1:
-            r21 = _to_raw(x21, _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT)
-        x22 = m.battery_system_fault_level
-        r22 = x22 - 0
-        if r22.__class__ is not int or not 0 <= r22 <= 3:
-            r22 = _to_raw(x22, _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL)
-        x23 = m.motor_system_fault_level
-        r23 = x23 - 0
-        if r23.__class__ is not int or not 0 <= r23 <= 3:
-            r23 = _to_raw(x23, _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL)
-        x24 = m.unmanned_entry_fault
-        r24 = x24 - 0
-        if r24.__class__ is not int or not 0 <= r24 <= 15:
-            r24 = _to_raw(x24, _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT)
-        x25 = m.protocol_version_a
-        r25 = x25 - 0
-        if r25.__class__ is not int or not 0 <= r25 <= 15:
-            r25 = _to_raw(x25, _VEHICLE_FAULT__PROTOCOL_VERSION_A)
-        x26 = m.protocol_version_b
-        r26 = x26 - 0
-        if r26.__class__ is not int or not 0 <= r26 <= 15:
-            r26 = _to_raw(x26, _VEHICLE_FAULT__PROTOCOL_VERSION_B)
-        x27 = m.protocol_version_c
-        r27 = x27 - 0
-        if r27.__class__ is not int or not 0 <= r27 <= 15:
-            r27 = _to_raw(x27, _VEHICLE_FAULT__PROTOCOL_VERSION_C)
-        x28 = m.remote_entry_fault
-        r28 = x28 - 0
-        if r28.__class__ is not int or not 0 <= r28 <= 15:
-            r28 = _to_raw(x28, _VEHICLE_FAULT__REMOTE_ENTRY_FAULT)
+        r0 = m.insulation_fault_level
+        if not 0 <= r0 <= 3:
+            r0 = _to_raw(m.insulation_fault_level, _VEHICLE_FAULT__INSULATION_FAULT_LEVEL)
+        r1 = m.dc_fault
+        if not 0 <= r1 <= 1:
+            r1 = _to_raw(m.dc_fault, _VEHICLE_FAULT__DC_FAULT)
+        r2 = m.soc_low
+        if not 0 <= r2 <= 1:
+            r2 = _to_raw(m.soc_low, _VEHICLE_FAULT__SOC_LOW)
+        r3 = m.cell_undervoltage
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.cell_undervoltage, _VEHICLE_FAULT__CELL_UNDERVOLTAGE)
+        r4 = m.brake_boost_pressure_fault
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.brake_boost_pressure_fault, _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT)
+        r5 = m.vacuum_pump_fault
+        if not 0 <= r5 <= 1:
+            r5 = _to_raw(m.vacuum_pump_fault, _VEHICLE_FAULT__VACUUM_PUMP_FAULT)
+        r6 = m.vehicle_system_fault
+        if not 0 <= r6 <= 1:
+            r6 = _to_raw(m.vehicle_system_fault, _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT)
+        r7 = m.battery_overheat
+        if not 0 <= r7 <= 1:
+            r7 = _to_raw(m.battery_overheat, _VEHICLE_FAULT__BATTERY_OVERHEAT)
+        r8 = m.motor_overheat
+        if not 0 <= r8 <= 1:
+            r8 = _to_raw(m.motor_overheat, _VEHICLE_FAULT__MOTOR_OVERHEAT)
+        r9 = m.traction_battery_fault
+        if not 0 <= r9 <= 1:
+            r9 = _to_raw(m.traction_battery_fault, _VEHICLE_FAULT__TRACTION_BATTERY_FAULT)
+        r10 = m.motor_fault
+        if not 0 <= r10 <= 1:
+            r10 = _to_raw(m.motor_fault, _VEHICLE_FAULT__MOTOR_FAULT)
+        r11 = m.battery_comm_fault
+        if not 0 <= r11 <= 1:
+            r11 = _to_raw(m.battery_comm_fault, _VEHICLE_FAULT__BATTERY_COMM_FAULT)
+        r12 = m.motor_comm_fault
+        if not 0 <= r12 <= 1:
+            r12 = _to_raw(m.motor_comm_fault, _VEHICLE_FAULT__MOTOR_COMM_FAULT)
+        r13 = m.eps_fault
+        if not 0 <= r13 <= 1:
+            r13 = _to_raw(m.eps_fault, _VEHICLE_FAULT__EPS_FAULT)
+        r14 = m.ac_fault
+        if not 0 <= r14 <= 1:
+            r14 = _to_raw(m.ac_fault, _VEHICLE_FAULT__AC_FAULT)
+        r15 = m.aux_battery_fault
+        if not 0 <= r15 <= 1:
+            r15 = _to_raw(m.aux_battery_fault, _VEHICLE_FAULT__AUX_BATTERY_FAULT)
+        r16 = m.epb_fault
+        if not 0 <= r16 <= 1:
+            r16 = _to_raw(m.epb_fault, _VEHICLE_FAULT__EPB_FAULT)
+        r17 = m.brake_by_wire_fault
+        if not 0 <= r17 <= 1:
+            r17 = _to_raw(m.brake_by_wire_fault, _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT)
+        r18 = m.key_not_detected
+        if not 0 <= r18 <= 1:
+            r18 = _to_raw(m.key_not_detected, _VEHICLE_FAULT__KEY_NOT_DETECTED)
+        r19 = m.tire_pressure_low
+        if not 0 <= r19 <= 1:
+            r19 = _to_raw(m.tire_pressure_low, _VEHICLE_FAULT__TIRE_PRESSURE_LOW)
+        r20 = m.body_motor_fault
+        if not 0 <= r20 <= 1:
+            r20 = _to_raw(m.body_motor_fault, _VEHICLE_FAULT__BODY_MOTOR_FAULT)
+        r21 = m.body_motor_overheat
+        if not 0 <= r21 <= 1:
+            r21 = _to_raw(m.body_motor_overheat, _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT)
+        r22 = m.battery_system_fault_level
+        if not 0 <= r22 <= 3:
+            r22 = _to_raw(m.battery_system_fault_level, _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL)
+        r23 = m.motor_system_fault_level
+        if not 0 <= r23 <= 3:
+            r23 = _to_raw(m.motor_system_fault_level, _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL)
+        r24 = m.unmanned_entry_fault
+        if not 0 <= r24 <= 15:
+            r24 = _to_raw(m.unmanned_entry_fault, _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT)
+        r25 = m.protocol_version_a
+        if not 0 <= r25 <= 15:
+            r25 = _to_raw(m.protocol_version_a, _VEHICLE_FAULT__PROTOCOL_VERSION_A)
+        r26 = m.protocol_version_b
+        if not 0 <= r26 <= 15:
+            r26 = _to_raw(m.protocol_version_b, _VEHICLE_FAULT__PROTOCOL_VERSION_B)
+        r27 = m.protocol_version_c
+        if not 0 <= r27 <= 15:
+            r27 = _to_raw(m.protocol_version_c, _VEHICLE_FAULT__PROTOCOL_VERSION_C)
+        r28 = m.remote_entry_fault
+        if not 0 <= r28 <= 15:
+            r28 = _to_raw(m.remote_entry_fault, _VEHICLE_FAULT__REMOTE_ENTRY_FAULT)
         v = (
             r0
             | r1 << 2
@@ -3637,72 +3328,46 @@ def _encode_vehicle_fault(m: VehicleFault) -> bytes:
             | r28 << 44
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.insulation_fault_level,
-                m.dc_fault,
-                m.soc_low,
-                m.cell_undervoltage,
-                m.brake_boost_pressure_fault,
-                m.vacuum_pump_fault,
-                m.vehicle_system_fault,
-                m.battery_overheat,
-                m.motor_overheat,
-                m.traction_battery_fault,
-                m.motor_fault,
-                m.battery_comm_fault,
-                m.motor_comm_fault,
-                m.eps_fault,
-                m.ac_fault,
-                m.aux_battery_fault,
-                m.epb_fault,
-                m.brake_by_wire_fault,
-                m.key_not_detected,
-                m.tire_pressure_low,
-                m.body_motor_fault,
-                m.body_motor_overheat,
-                m.battery_system_fault_level,
-                m.motor_system_fault_level,
-                m.unmanned_entry_fault,
-                m.protocol_version_a,
-                m.protocol_version_b,
-                m.protocol_version_c,
-                m.remote_entry_fault,
-            ),
-            (
-                _VEHICLE_FAULT__INSULATION_FAULT_LEVEL,
-                _VEHICLE_FAULT__DC_FAULT,
-                _VEHICLE_FAULT__SOC_LOW,
-                _VEHICLE_FAULT__CELL_UNDERVOLTAGE,
-                _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT,
-                _VEHICLE_FAULT__VACUUM_PUMP_FAULT,
-                _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT,
-                _VEHICLE_FAULT__BATTERY_OVERHEAT,
-                _VEHICLE_FAULT__MOTOR_OVERHEAT,
-                _VEHICLE_FAULT__TRACTION_BATTERY_FAULT,
-                _VEHICLE_FAULT__MOTOR_FAULT,
-                _VEHICLE_FAULT__BATTERY_COMM_FAULT,
-                _VEHICLE_FAULT__MOTOR_COMM_FAULT,
-                _VEHICLE_FAULT__EPS_FAULT,
-                _VEHICLE_FAULT__AC_FAULT,
-                _VEHICLE_FAULT__AUX_BATTERY_FAULT,
-                _VEHICLE_FAULT__EPB_FAULT,
-                _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT,
-                _VEHICLE_FAULT__KEY_NOT_DETECTED,
-                _VEHICLE_FAULT__TIRE_PRESSURE_LOW,
-                _VEHICLE_FAULT__BODY_MOTOR_FAULT,
-                _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT,
-                _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL,
-                _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL,
-                _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT,
-                _VEHICLE_FAULT__PROTOCOL_VERSION_A,
-                _VEHICLE_FAULT__PROTOCOL_VERSION_B,
-                _VEHICLE_FAULT__PROTOCOL_VERSION_C,
-                _VEHICLE_FAULT__REMOTE_ENTRY_FAULT,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_vehicle_fault(
+            {
+                "insulation_fault_level": _to_raw(m.insulation_fault_level, _VEHICLE_FAULT__INSULATION_FAULT_LEVEL),
+                "dc_fault": _to_raw(m.dc_fault, _VEHICLE_FAULT__DC_FAULT),
+                "soc_low": _to_raw(m.soc_low, _VEHICLE_FAULT__SOC_LOW),
+                "cell_undervoltage": _to_raw(m.cell_undervoltage, _VEHICLE_FAULT__CELL_UNDERVOLTAGE),
+                "brake_boost_pressure_fault": _to_raw(
+                    m.brake_boost_pressure_fault, _VEHICLE_FAULT__BRAKE_BOOST_PRESSURE_FAULT
+                ),
+                "vacuum_pump_fault": _to_raw(m.vacuum_pump_fault, _VEHICLE_FAULT__VACUUM_PUMP_FAULT),
+                "vehicle_system_fault": _to_raw(m.vehicle_system_fault, _VEHICLE_FAULT__VEHICLE_SYSTEM_FAULT),
+                "battery_overheat": _to_raw(m.battery_overheat, _VEHICLE_FAULT__BATTERY_OVERHEAT),
+                "motor_overheat": _to_raw(m.motor_overheat, _VEHICLE_FAULT__MOTOR_OVERHEAT),
+                "traction_battery_fault": _to_raw(m.traction_battery_fault, _VEHICLE_FAULT__TRACTION_BATTERY_FAULT),
+                "motor_fault": _to_raw(m.motor_fault, _VEHICLE_FAULT__MOTOR_FAULT),
+                "battery_comm_fault": _to_raw(m.battery_comm_fault, _VEHICLE_FAULT__BATTERY_COMM_FAULT),
+                "motor_comm_fault": _to_raw(m.motor_comm_fault, _VEHICLE_FAULT__MOTOR_COMM_FAULT),
+                "eps_fault": _to_raw(m.eps_fault, _VEHICLE_FAULT__EPS_FAULT),
+                "ac_fault": _to_raw(m.ac_fault, _VEHICLE_FAULT__AC_FAULT),
+                "aux_battery_fault": _to_raw(m.aux_battery_fault, _VEHICLE_FAULT__AUX_BATTERY_FAULT),
+                "epb_fault": _to_raw(m.epb_fault, _VEHICLE_FAULT__EPB_FAULT),
+                "brake_by_wire_fault": _to_raw(m.brake_by_wire_fault, _VEHICLE_FAULT__BRAKE_BY_WIRE_FAULT),
+                "key_not_detected": _to_raw(m.key_not_detected, _VEHICLE_FAULT__KEY_NOT_DETECTED),
+                "tire_pressure_low": _to_raw(m.tire_pressure_low, _VEHICLE_FAULT__TIRE_PRESSURE_LOW),
+                "body_motor_fault": _to_raw(m.body_motor_fault, _VEHICLE_FAULT__BODY_MOTOR_FAULT),
+                "body_motor_overheat": _to_raw(m.body_motor_overheat, _VEHICLE_FAULT__BODY_MOTOR_OVERHEAT),
+                "battery_system_fault_level": _to_raw(
+                    m.battery_system_fault_level, _VEHICLE_FAULT__BATTERY_SYSTEM_FAULT_LEVEL
+                ),
+                "motor_system_fault_level": _to_raw(
+                    m.motor_system_fault_level, _VEHICLE_FAULT__MOTOR_SYSTEM_FAULT_LEVEL
+                ),
+                "unmanned_entry_fault": _to_raw(m.unmanned_entry_fault, _VEHICLE_FAULT__UNMANNED_ENTRY_FAULT),
+                "protocol_version_a": _to_raw(m.protocol_version_a, _VEHICLE_FAULT__PROTOCOL_VERSION_A),
+                "protocol_version_b": _to_raw(m.protocol_version_b, _VEHICLE_FAULT__PROTOCOL_VERSION_B),
+                "protocol_version_c": _to_raw(m.protocol_version_c, _VEHICLE_FAULT__PROTOCOL_VERSION_C),
+                "remote_entry_fault": _to_raw(m.remote_entry_fault, _VEHICLE_FAULT__REMOTE_ENTRY_FAULT),
+            }
         )
-        raise
 
 
 def _pack_vehicle_fault(raw: Mapping[str, object]) -> bytes:
@@ -4004,14 +3669,12 @@ def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
 
 def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
     try:
-        x0 = m.eps_ctrl_mode
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 255:
-            r0 = _to_raw(x0, _RGATE_EPS_COMMAND__EPS_CTRL_MODE)
-        x1 = m.counter
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 255:
-            r1 = _to_raw(x1, _RGATE_EPS_COMMAND__COUNTER)
+        r0 = m.eps_ctrl_mode
+        if not 0 <= r0 <= 255:
+            r0 = _to_raw(m.eps_ctrl_mode, _RGATE_EPS_COMMAND__EPS_CTRL_MODE)
+        r1 = m.counter
+        if not 0 <= r1 <= 255:
+            r1 = _to_raw(m.counter, _RGATE_EPS_COMMAND__COUNTER)
         x2 = m.max_angular_speed
         if 0 <= x2 <= 512:
             r2 = int(x2 / 2.0 + 0.5 + 1e-9)
@@ -4020,12 +3683,11 @@ def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        if -1080.0 <= x3 <= 1080.0:
-            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r3 <= 21600:
-                r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
-        else:
-            r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        r3 = (
+            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if -1080.0 <= x3 <= 1080.0
+            else _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        )
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -4033,22 +3695,15 @@ def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.eps_ctrl_mode,
-                m.counter,
-                m.max_angular_speed,
-                m.steering_angle_cmd,
-            ),
-            (
-                _RGATE_EPS_COMMAND__EPS_CTRL_MODE,
-                _RGATE_EPS_COMMAND__COUNTER,
-                _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED,
-                _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rgate_eps_command(
+            {
+                "eps_ctrl_mode": _to_raw(m.eps_ctrl_mode, _RGATE_EPS_COMMAND__EPS_CTRL_MODE),
+                "counter": _to_raw(m.counter, _RGATE_EPS_COMMAND__COUNTER),
+                "max_angular_speed": _to_raw(m.max_angular_speed, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED),
+                "steering_angle_cmd": _to_raw(m.steering_angle_cmd, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD),
+            }
         )
-        raise
 
 
 def _pack_rgate_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -4218,28 +3873,19 @@ def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
 def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
     try:
         x0 = m.accel_cmd
-        if -9.0 <= x0 <= 3.6:
-            r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9)
-            if not 0 <= r0 <= 630:
-                r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
-        else:
-            r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
-        x1 = m.epb_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _RGATE_SPEED_COMMAND__EPB_CMD)
-        x2 = m.gear_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _RGATE_SPEED_COMMAND__GEAR_CMD)
-        x3 = m.counter
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 255:
-            r3 = _to_raw(x3, _RGATE_SPEED_COMMAND__COUNTER)
-        x4 = m.emergency_brake_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9) if -9.0 <= x0 <= 3.6 else _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
+        r1 = m.epb_cmd
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.epb_cmd, _RGATE_SPEED_COMMAND__EPB_CMD)
+        r2 = m.gear_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.gear_cmd, _RGATE_SPEED_COMMAND__GEAR_CMD)
+        r3 = m.counter
+        if not 0 <= r3 <= 255:
+            r3 = _to_raw(m.counter, _RGATE_SPEED_COMMAND__COUNTER)
+        r4 = m.emergency_brake_cmd
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.emergency_brake_cmd, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -4247,24 +3893,16 @@ def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.accel_cmd,
-                m.epb_cmd,
-                m.gear_cmd,
-                m.counter,
-                m.emergency_brake_cmd,
-            ),
-            (
-                _RGATE_SPEED_COMMAND__ACCEL_CMD,
-                _RGATE_SPEED_COMMAND__EPB_CMD,
-                _RGATE_SPEED_COMMAND__GEAR_CMD,
-                _RGATE_SPEED_COMMAND__COUNTER,
-                _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rgate_speed_command(
+            {
+                "accel_cmd": _to_raw(m.accel_cmd, _RGATE_SPEED_COMMAND__ACCEL_CMD),
+                "epb_cmd": _to_raw(m.epb_cmd, _RGATE_SPEED_COMMAND__EPB_CMD),
+                "gear_cmd": _to_raw(m.gear_cmd, _RGATE_SPEED_COMMAND__GEAR_CMD),
+                "counter": _to_raw(m.counter, _RGATE_SPEED_COMMAND__COUNTER),
+                "emergency_brake_cmd": _to_raw(m.emergency_brake_cmd, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD),
+            }
         )
-        raise
 
 
 def _pack_rgate_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -4529,109 +4167,84 @@ def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
 
 def _encode_rgate_control_command_1(m: RgateControlCommand1) -> bytes:
     try:
-        x0 = m.drive_mode_cmd
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 3:
-            r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-        x1 = m.door_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 2:
-            r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_1__DOOR_CMD)
-        x2 = m.horn_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_1__HORN_CMD)
-        x3 = m.drl_cmd
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 2:
-            r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_1__DRL_CMD)
-        x4 = m.left_turn_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 2:
-            r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-        x5 = m.right_turn_cmd
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 2:
-            r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-        x6 = m.hazard_cmd
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 2:
-            r6 = _to_raw(x6, _RGATE_CONTROL_COMMAND_1__HAZARD_CMD)
-        x7 = m.position_light_cmd
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 2:
-            r7 = _to_raw(x7, _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-        x8 = m.headlight_cmd
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 3:
-            r8 = _to_raw(x8, _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-        x9 = m.rear_fog_cmd
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 2:
-            r9 = _to_raw(x9, _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD)
-        x10 = m.left_fog_cmd
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 2:
-            r10 = _to_raw(x10, _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-        x11 = m.right_fog_cmd
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 2:
-            r11 = _to_raw(x11, _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-        x12 = m.dome_light_cmd
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 2:
-            r12 = _to_raw(x12, _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-        x13 = m.ambient_light_cmd
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 2:
-            r13 = _to_raw(x13, _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-        x14 = m.drive_mode_reset
-        r14 = x14 - 0
-        if r14.__class__ is not int or not 0 <= r14 <= 1:
-            r14 = _to_raw(x14, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-        x15 = m.system_state
-        r15 = x15 - 0
-        if r15.__class__ is not int or not 0 <= r15 <= 3:
-            r15 = _to_raw(x15, _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE)
-        x16 = m.system_reliability
-        r16 = x16 - 0
-        if r16.__class__ is not int or not 0 <= r16 <= 3:
-            r16 = _to_raw(x16, _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-        x17 = m.system_fault_level
-        r17 = x17 - 0
-        if r17.__class__ is not int or not 0 <= r17 <= 3:
-            r17 = _to_raw(x17, _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-        x18 = m.lock_cmd
-        r18 = x18 - 0
-        if r18.__class__ is not int or not 0 <= r18 <= 3:
-            r18 = _to_raw(x18, _RGATE_CONTROL_COMMAND_1__LOCK_CMD)
-        x19 = m.ac_cmd
-        r19 = x19 - 0
-        if r19.__class__ is not int or not 0 <= r19 <= 3:
-            r19 = _to_raw(x19, _RGATE_CONTROL_COMMAND_1__AC_CMD)
+        r0 = m.drive_mode_cmd
+        if not 0 <= r0 <= 3:
+            r0 = _to_raw(m.drive_mode_cmd, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        r1 = m.door_cmd
+        if not 0 <= r1 <= 2:
+            r1 = _to_raw(m.door_cmd, _RGATE_CONTROL_COMMAND_1__DOOR_CMD)
+        r2 = m.horn_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.horn_cmd, _RGATE_CONTROL_COMMAND_1__HORN_CMD)
+        r3 = m.drl_cmd
+        if not 0 <= r3 <= 2:
+            r3 = _to_raw(m.drl_cmd, _RGATE_CONTROL_COMMAND_1__DRL_CMD)
+        r4 = m.left_turn_cmd
+        if not 0 <= r4 <= 2:
+            r4 = _to_raw(m.left_turn_cmd, _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        r5 = m.right_turn_cmd
+        if not 0 <= r5 <= 2:
+            r5 = _to_raw(m.right_turn_cmd, _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        r6 = m.hazard_cmd
+        if not 0 <= r6 <= 2:
+            r6 = _to_raw(m.hazard_cmd, _RGATE_CONTROL_COMMAND_1__HAZARD_CMD)
+        r7 = m.position_light_cmd
+        if not 0 <= r7 <= 2:
+            r7 = _to_raw(m.position_light_cmd, _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        r8 = m.headlight_cmd
+        if not 0 <= r8 <= 3:
+            r8 = _to_raw(m.headlight_cmd, _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        r9 = m.rear_fog_cmd
+        if not 0 <= r9 <= 2:
+            r9 = _to_raw(m.rear_fog_cmd, _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        r10 = m.left_fog_cmd
+        if not 0 <= r10 <= 2:
+            r10 = _to_raw(m.left_fog_cmd, _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        r11 = m.right_fog_cmd
+        if not 0 <= r11 <= 2:
+            r11 = _to_raw(m.right_fog_cmd, _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        r12 = m.dome_light_cmd
+        if not 0 <= r12 <= 2:
+            r12 = _to_raw(m.dome_light_cmd, _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        r13 = m.ambient_light_cmd
+        if not 0 <= r13 <= 2:
+            r13 = _to_raw(m.ambient_light_cmd, _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        r14 = m.drive_mode_reset
+        if not 0 <= r14 <= 1:
+            r14 = _to_raw(m.drive_mode_reset, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        r15 = m.system_state
+        if not 0 <= r15 <= 3:
+            r15 = _to_raw(m.system_state, _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE)
+        r16 = m.system_reliability
+        if not 0 <= r16 <= 3:
+            r16 = _to_raw(m.system_reliability, _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        r17 = m.system_fault_level
+        if not 0 <= r17 <= 3:
+            r17 = _to_raw(m.system_fault_level, _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        r18 = m.lock_cmd
+        if not 0 <= r18 <= 3:
+            r18 = _to_raw(m.lock_cmd, _RGATE_CONTROL_COMMAND_1__LOCK_CMD)
+        r19 = m.ac_cmd
+        if not 0 <= r19 <= 3:
+            r19 = _to_raw(m.ac_cmd, _RGATE_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        if 16.0 <= x20 <= 30.0:
-            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r20 <= 28:
-                r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        else:
-            r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        x21 = m.protocol_version_a
-        r21 = x21 - 0
-        if r21.__class__ is not int or not 0 <= r21 <= 15:
-            r21 = _to_raw(x21, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-        x22 = m.protocol_version_b
-        r22 = x22 - 0
-        if r22.__class__ is not int or not 0 <= r22 <= 15:
-            r22 = _to_raw(x22, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-        x23 = m.protocol_version_c
-        r23 = x23 - 0
-        if r23.__class__ is not int or not 0 <= r23 <= 15:
-            r23 = _to_raw(x23, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-        x24 = m.counter
-        r24 = x24 - 0
-        if r24.__class__ is not int or not 0 <= r24 <= 15:
-            r24 = _to_raw(x24, _RGATE_CONTROL_COMMAND_1__COUNTER)
+        r20 = (
+            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if 16.0 <= x20 <= 30.0
+            else _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
+        )
+        r21 = m.protocol_version_a
+        if not 0 <= r21 <= 15:
+            r21 = _to_raw(m.protocol_version_a, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        r22 = m.protocol_version_b
+        if not 0 <= r22 <= 15:
+            r22 = _to_raw(m.protocol_version_b, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        r23 = m.protocol_version_c
+        if not 0 <= r23 <= 15:
+            r23 = _to_raw(m.protocol_version_c, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        r24 = m.counter
+        if not 0 <= r24 <= 15:
+            r24 = _to_raw(m.counter, _RGATE_CONTROL_COMMAND_1__COUNTER)
         v = (
             r0
             | r1 << 2
@@ -4660,64 +4273,36 @@ def _encode_rgate_control_command_1(m: RgateControlCommand1) -> bytes:
             | r24 << 60
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.drive_mode_cmd,
-                m.door_cmd,
-                m.horn_cmd,
-                m.drl_cmd,
-                m.left_turn_cmd,
-                m.right_turn_cmd,
-                m.hazard_cmd,
-                m.position_light_cmd,
-                m.headlight_cmd,
-                m.rear_fog_cmd,
-                m.left_fog_cmd,
-                m.right_fog_cmd,
-                m.dome_light_cmd,
-                m.ambient_light_cmd,
-                m.drive_mode_reset,
-                m.system_state,
-                m.system_reliability,
-                m.system_fault_level,
-                m.lock_cmd,
-                m.ac_cmd,
-                m.ac_set_temp,
-                m.protocol_version_a,
-                m.protocol_version_b,
-                m.protocol_version_c,
-                m.counter,
-            ),
-            (
-                _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
-                _RGATE_CONTROL_COMMAND_1__DOOR_CMD,
-                _RGATE_CONTROL_COMMAND_1__HORN_CMD,
-                _RGATE_CONTROL_COMMAND_1__DRL_CMD,
-                _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD,
-                _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
-                _RGATE_CONTROL_COMMAND_1__HAZARD_CMD,
-                _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
-                _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD,
-                _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD,
-                _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD,
-                _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
-                _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
-                _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
-                _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
-                _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE,
-                _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
-                _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
-                _RGATE_CONTROL_COMMAND_1__LOCK_CMD,
-                _RGATE_CONTROL_COMMAND_1__AC_CMD,
-                _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP,
-                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
-                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
-                _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
-                _RGATE_CONTROL_COMMAND_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rgate_control_command_1(
+            {
+                "drive_mode_cmd": _to_raw(m.drive_mode_cmd, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_CMD),
+                "door_cmd": _to_raw(m.door_cmd, _RGATE_CONTROL_COMMAND_1__DOOR_CMD),
+                "horn_cmd": _to_raw(m.horn_cmd, _RGATE_CONTROL_COMMAND_1__HORN_CMD),
+                "drl_cmd": _to_raw(m.drl_cmd, _RGATE_CONTROL_COMMAND_1__DRL_CMD),
+                "left_turn_cmd": _to_raw(m.left_turn_cmd, _RGATE_CONTROL_COMMAND_1__LEFT_TURN_CMD),
+                "right_turn_cmd": _to_raw(m.right_turn_cmd, _RGATE_CONTROL_COMMAND_1__RIGHT_TURN_CMD),
+                "hazard_cmd": _to_raw(m.hazard_cmd, _RGATE_CONTROL_COMMAND_1__HAZARD_CMD),
+                "position_light_cmd": _to_raw(m.position_light_cmd, _RGATE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD),
+                "headlight_cmd": _to_raw(m.headlight_cmd, _RGATE_CONTROL_COMMAND_1__HEADLIGHT_CMD),
+                "rear_fog_cmd": _to_raw(m.rear_fog_cmd, _RGATE_CONTROL_COMMAND_1__REAR_FOG_CMD),
+                "left_fog_cmd": _to_raw(m.left_fog_cmd, _RGATE_CONTROL_COMMAND_1__LEFT_FOG_CMD),
+                "right_fog_cmd": _to_raw(m.right_fog_cmd, _RGATE_CONTROL_COMMAND_1__RIGHT_FOG_CMD),
+                "dome_light_cmd": _to_raw(m.dome_light_cmd, _RGATE_CONTROL_COMMAND_1__DOME_LIGHT_CMD),
+                "ambient_light_cmd": _to_raw(m.ambient_light_cmd, _RGATE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD),
+                "drive_mode_reset": _to_raw(m.drive_mode_reset, _RGATE_CONTROL_COMMAND_1__DRIVE_MODE_RESET),
+                "system_state": _to_raw(m.system_state, _RGATE_CONTROL_COMMAND_1__SYSTEM_STATE),
+                "system_reliability": _to_raw(m.system_reliability, _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY),
+                "system_fault_level": _to_raw(m.system_fault_level, _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL),
+                "lock_cmd": _to_raw(m.lock_cmd, _RGATE_CONTROL_COMMAND_1__LOCK_CMD),
+                "ac_cmd": _to_raw(m.ac_cmd, _RGATE_CONTROL_COMMAND_1__AC_CMD),
+                "ac_set_temp": _to_raw(m.ac_set_temp, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP),
+                "protocol_version_a": _to_raw(m.protocol_version_a, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A),
+                "protocol_version_b": _to_raw(m.protocol_version_b, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B),
+                "protocol_version_c": _to_raw(m.protocol_version_c, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C),
+                "counter": _to_raw(m.counter, _RGATE_CONTROL_COMMAND_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_rgate_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -4910,55 +4495,42 @@ def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
 
 def _encode_rgate_control_command_2(m: RgateControlCommand2) -> bytes:
     try:
-        x0 = m.downhill_regen_enable
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 1:
-            r0 = _to_raw(x0, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-        x1 = m.cargo_lift
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT)
-        x2 = m.cargo_lift_speed
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 10:
-            r2 = _to_raw(x2, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-        x3 = m.pto_enable
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE)
+        r0 = m.downhill_regen_enable
+        if not 0 <= r0 <= 1:
+            r0 = _to_raw(m.downhill_regen_enable, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        r1 = m.cargo_lift
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.cargo_lift, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT)
+        r2 = m.cargo_lift_speed
+        if not 0 <= r2 <= 10:
+            r2 = _to_raw(m.cargo_lift_speed, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        r3 = m.pto_enable
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.pto_enable, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        if 0.0 <= x4 <= 125.0:
-            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r4 <= 250:
-                r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        else:
-            r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        x5 = m.counter
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 255:
-            r5 = _to_raw(x5, _RGATE_CONTROL_COMMAND_2__COUNTER)
+        r4 = (
+            int(x4 / 0.5 + 0.5 + 1e-9)
+            if 0.0 <= x4 <= 125.0
+            else _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        )
+        r5 = m.counter
+        if not 0 <= r5 <= 255:
+            r5 = _to_raw(m.counter, _RGATE_CONTROL_COMMAND_2__COUNTER)
         v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.downhill_regen_enable,
-                m.cargo_lift,
-                m.cargo_lift_speed,
-                m.pto_enable,
-                m.downhill_regen_speed,
-                m.counter,
-            ),
-            (
-                _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
-                _RGATE_CONTROL_COMMAND_2__CARGO_LIFT,
-                _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
-                _RGATE_CONTROL_COMMAND_2__PTO_ENABLE,
-                _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
-                _RGATE_CONTROL_COMMAND_2__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rgate_control_command_2(
+            {
+                "downhill_regen_enable": _to_raw(
+                    m.downhill_regen_enable, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE
+                ),
+                "cargo_lift": _to_raw(m.cargo_lift, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT),
+                "cargo_lift_speed": _to_raw(m.cargo_lift_speed, _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED),
+                "pto_enable": _to_raw(m.pto_enable, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE),
+                "downhill_regen_speed": _to_raw(m.downhill_regen_speed, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED),
+                "counter": _to_raw(m.counter, _RGATE_CONTROL_COMMAND_2__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_rgate_control_command_2(raw: Mapping[str, object]) -> bytes:
@@ -5076,34 +4648,25 @@ def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw
 
 def _encode_device_id(m: DeviceId) -> bytes:
     try:
-        x0 = m.device_type
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 63:
-            r0 = _to_raw(x0, _DEVICE_ID__DEVICE_TYPE)
-        x1 = m.id_frame_index
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _DEVICE_ID__ID_FRAME_INDEX)
-        x2 = m.id_chars
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 72057594037927935:
-            r2 = _to_raw(x2, _DEVICE_ID__ID_CHARS)
+        r0 = m.device_type
+        if not 0 <= r0 <= 63:
+            r0 = _to_raw(m.device_type, _DEVICE_ID__DEVICE_TYPE)
+        r1 = m.id_frame_index
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.id_frame_index, _DEVICE_ID__ID_FRAME_INDEX)
+        r2 = m.id_chars
+        if not 0 <= r2 <= 72057594037927935:
+            r2 = _to_raw(m.id_chars, _DEVICE_ID__ID_CHARS)
         v = r0 | r1 << 6 | r2 << 8
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.device_type,
-                m.id_frame_index,
-                m.id_chars,
-            ),
-            (
-                _DEVICE_ID__DEVICE_TYPE,
-                _DEVICE_ID__ID_FRAME_INDEX,
-                _DEVICE_ID__ID_CHARS,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_device_id(
+            {
+                "device_type": _to_raw(m.device_type, _DEVICE_ID__DEVICE_TYPE),
+                "id_frame_index": _to_raw(m.id_frame_index, _DEVICE_ID__ID_FRAME_INDEX),
+                "id_chars": _to_raw(m.id_chars, _DEVICE_ID__ID_CHARS),
+            }
         )
-        raise
 
 
 def _pack_device_id(raw: Mapping[str, object]) -> bytes:
@@ -5259,58 +4822,41 @@ def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) 
 
 def _encode_front_sensor_distance_1(m: FrontSensorDistance1) -> bytes:
     try:
-        x0 = m.sensor_1_distance
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 500:
-            r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
-        x1 = m.sensor_2_distance
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 500:
-            r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
-        x2 = m.sensor_3_distance
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 500:
-            r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
-        x3 = m.sensor_4_distance
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 500:
-            r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
-        x4 = m.sensor_5_distance
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 500:
-            r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
-        x5 = m.sensor_6_distance
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 500:
-            r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
-        x6 = m.counter
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 15:
-            r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_1__COUNTER)
+        r0 = m.sensor_1_distance
+        if not 0 <= r0 <= 500:
+            r0 = _to_raw(m.sensor_1_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
+        r1 = m.sensor_2_distance
+        if not 0 <= r1 <= 500:
+            r1 = _to_raw(m.sensor_2_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
+        r2 = m.sensor_3_distance
+        if not 0 <= r2 <= 500:
+            r2 = _to_raw(m.sensor_3_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
+        r3 = m.sensor_4_distance
+        if not 0 <= r3 <= 500:
+            r3 = _to_raw(m.sensor_4_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
+        r4 = m.sensor_5_distance
+        if not 0 <= r4 <= 500:
+            r4 = _to_raw(m.sensor_5_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
+        r5 = m.sensor_6_distance
+        if not 0 <= r5 <= 500:
+            r5 = _to_raw(m.sensor_6_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
+        r6 = m.counter
+        if not 0 <= r6 <= 15:
+            r6 = _to_raw(m.counter, _FRONT_SENSOR_DISTANCE_1__COUNTER)
         v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.sensor_1_distance,
-                m.sensor_2_distance,
-                m.sensor_3_distance,
-                m.sensor_4_distance,
-                m.sensor_5_distance,
-                m.sensor_6_distance,
-                m.counter,
-            ),
-            (
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_front_sensor_distance_1(
+            {
+                "sensor_1_distance": _to_raw(m.sensor_1_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE),
+                "sensor_2_distance": _to_raw(m.sensor_2_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE),
+                "sensor_3_distance": _to_raw(m.sensor_3_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE),
+                "sensor_4_distance": _to_raw(m.sensor_4_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE),
+                "sensor_5_distance": _to_raw(m.sensor_5_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE),
+                "sensor_6_distance": _to_raw(m.sensor_6_distance, _FRONT_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE),
+                "counter": _to_raw(m.counter, _FRONT_SENSOR_DISTANCE_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_front_sensor_distance_1(raw: Mapping[str, object]) -> bytes:
@@ -5509,62 +5055,48 @@ def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) 
 
 def _encode_front_sensor_distance_2(m: FrontSensorDistance2) -> bytes:
     try:
-        x0 = m.sensor_7_distance
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 500:
-            r0 = _to_raw(x0, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
-        x1 = m.sensor_8_distance
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 500:
-            r1 = _to_raw(x1, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
-        x2 = m.sensor_9_distance
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 500:
-            r2 = _to_raw(x2, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
-        x3 = m.uss_system_state
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 2:
-            r3 = _to_raw(x3, _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
-        x4 = m.sensor_1_fault
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
-        x5 = m.sensor_2_fault
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 1:
-            r5 = _to_raw(x5, _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
-        x6 = m.sensor_3_fault
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 1:
-            r6 = _to_raw(x6, _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
-        x7 = m.sensor_4_fault
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 1:
-            r7 = _to_raw(x7, _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
-        x8 = m.sensor_5_fault
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 1:
-            r8 = _to_raw(x8, _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
-        x9 = m.sensor_6_fault
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 1:
-            r9 = _to_raw(x9, _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
-        x10 = m.sensor_7_fault
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 1:
-            r10 = _to_raw(x10, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
-        x11 = m.sensor_8_fault
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 1:
-            r11 = _to_raw(x11, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
-        x12 = m.sensor_9_fault
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 1:
-            r12 = _to_raw(x12, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
-        x13 = m.counter
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 15:
-            r13 = _to_raw(x13, _FRONT_SENSOR_DISTANCE_2__COUNTER)
+        r0 = m.sensor_7_distance
+        if not 0 <= r0 <= 500:
+            r0 = _to_raw(m.sensor_7_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
+        r1 = m.sensor_8_distance
+        if not 0 <= r1 <= 500:
+            r1 = _to_raw(m.sensor_8_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
+        r2 = m.sensor_9_distance
+        if not 0 <= r2 <= 500:
+            r2 = _to_raw(m.sensor_9_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
+        r3 = m.uss_system_state
+        if not 0 <= r3 <= 2:
+            r3 = _to_raw(m.uss_system_state, _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
+        r4 = m.sensor_1_fault
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.sensor_1_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
+        r5 = m.sensor_2_fault
+        if not 0 <= r5 <= 1:
+            r5 = _to_raw(m.sensor_2_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
+        r6 = m.sensor_3_fault
+        if not 0 <= r6 <= 1:
+            r6 = _to_raw(m.sensor_3_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
+        r7 = m.sensor_4_fault
+        if not 0 <= r7 <= 1:
+            r7 = _to_raw(m.sensor_4_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
+        r8 = m.sensor_5_fault
+        if not 0 <= r8 <= 1:
+            r8 = _to_raw(m.sensor_5_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
+        r9 = m.sensor_6_fault
+        if not 0 <= r9 <= 1:
+            r9 = _to_raw(m.sensor_6_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
+        r10 = m.sensor_7_fault
+        if not 0 <= r10 <= 1:
+            r10 = _to_raw(m.sensor_7_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
+        r11 = m.sensor_8_fault
+        if not 0 <= r11 <= 1:
+            r11 = _to_raw(m.sensor_8_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
+        r12 = m.sensor_9_fault
+        if not 0 <= r12 <= 1:
+            r12 = _to_raw(m.sensor_9_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
+        r13 = m.counter
+        if not 0 <= r13 <= 15:
+            r13 = _to_raw(m.counter, _FRONT_SENSOR_DISTANCE_2__COUNTER)
         v = (
             r0
             | r1 << 10
@@ -5582,42 +5114,25 @@ def _encode_front_sensor_distance_2(m: FrontSensorDistance2) -> bytes:
             | r13 << 60
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.sensor_7_distance,
-                m.sensor_8_distance,
-                m.sensor_9_distance,
-                m.uss_system_state,
-                m.sensor_1_fault,
-                m.sensor_2_fault,
-                m.sensor_3_fault,
-                m.sensor_4_fault,
-                m.sensor_5_fault,
-                m.sensor_6_fault,
-                m.sensor_7_fault,
-                m.sensor_8_fault,
-                m.sensor_9_fault,
-                m.counter,
-            ),
-            (
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE,
-                _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT,
-                _FRONT_SENSOR_DISTANCE_2__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_front_sensor_distance_2(
+            {
+                "sensor_7_distance": _to_raw(m.sensor_7_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE),
+                "sensor_8_distance": _to_raw(m.sensor_8_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE),
+                "sensor_9_distance": _to_raw(m.sensor_9_distance, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE),
+                "uss_system_state": _to_raw(m.uss_system_state, _FRONT_SENSOR_DISTANCE_2__USS_SYSTEM_STATE),
+                "sensor_1_fault": _to_raw(m.sensor_1_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_1_FAULT),
+                "sensor_2_fault": _to_raw(m.sensor_2_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_2_FAULT),
+                "sensor_3_fault": _to_raw(m.sensor_3_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_3_FAULT),
+                "sensor_4_fault": _to_raw(m.sensor_4_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_4_FAULT),
+                "sensor_5_fault": _to_raw(m.sensor_5_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_5_FAULT),
+                "sensor_6_fault": _to_raw(m.sensor_6_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_6_FAULT),
+                "sensor_7_fault": _to_raw(m.sensor_7_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_7_FAULT),
+                "sensor_8_fault": _to_raw(m.sensor_8_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_8_FAULT),
+                "sensor_9_fault": _to_raw(m.sensor_9_fault, _FRONT_SENSOR_DISTANCE_2__SENSOR_9_FAULT),
+                "counter": _to_raw(m.counter, _FRONT_SENSOR_DISTANCE_2__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_front_sensor_distance_2(raw: Mapping[str, object]) -> bytes:
@@ -5799,58 +5314,41 @@ def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -
 
 def _encode_rear_sensor_distance_1(m: RearSensorDistance1) -> bytes:
     try:
-        x0 = m.sensor_1_distance
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 500:
-            r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
-        x1 = m.sensor_2_distance
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 500:
-            r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
-        x2 = m.sensor_3_distance
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 500:
-            r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
-        x3 = m.sensor_4_distance
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 500:
-            r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
-        x4 = m.sensor_5_distance
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 500:
-            r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
-        x5 = m.sensor_6_distance
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 500:
-            r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
-        x6 = m.counter
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 15:
-            r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_1__COUNTER)
+        r0 = m.sensor_1_distance
+        if not 0 <= r0 <= 500:
+            r0 = _to_raw(m.sensor_1_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE)
+        r1 = m.sensor_2_distance
+        if not 0 <= r1 <= 500:
+            r1 = _to_raw(m.sensor_2_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE)
+        r2 = m.sensor_3_distance
+        if not 0 <= r2 <= 500:
+            r2 = _to_raw(m.sensor_3_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE)
+        r3 = m.sensor_4_distance
+        if not 0 <= r3 <= 500:
+            r3 = _to_raw(m.sensor_4_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE)
+        r4 = m.sensor_5_distance
+        if not 0 <= r4 <= 500:
+            r4 = _to_raw(m.sensor_5_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE)
+        r5 = m.sensor_6_distance
+        if not 0 <= r5 <= 500:
+            r5 = _to_raw(m.sensor_6_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE)
+        r6 = m.counter
+        if not 0 <= r6 <= 15:
+            r6 = _to_raw(m.counter, _REAR_SENSOR_DISTANCE_1__COUNTER)
         v = r0 | r1 << 10 | r2 << 20 | r3 << 30 | r4 << 40 | r5 << 50 | r6 << 60
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.sensor_1_distance,
-                m.sensor_2_distance,
-                m.sensor_3_distance,
-                m.sensor_4_distance,
-                m.sensor_5_distance,
-                m.sensor_6_distance,
-                m.counter,
-            ),
-            (
-                _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE,
-                _REAR_SENSOR_DISTANCE_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rear_sensor_distance_1(
+            {
+                "sensor_1_distance": _to_raw(m.sensor_1_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_1_DISTANCE),
+                "sensor_2_distance": _to_raw(m.sensor_2_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_2_DISTANCE),
+                "sensor_3_distance": _to_raw(m.sensor_3_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_3_DISTANCE),
+                "sensor_4_distance": _to_raw(m.sensor_4_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_4_DISTANCE),
+                "sensor_5_distance": _to_raw(m.sensor_5_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_5_DISTANCE),
+                "sensor_6_distance": _to_raw(m.sensor_6_distance, _REAR_SENSOR_DISTANCE_1__SENSOR_6_DISTANCE),
+                "counter": _to_raw(m.counter, _REAR_SENSOR_DISTANCE_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_rear_sensor_distance_1(raw: Mapping[str, object]) -> bytes:
@@ -6049,62 +5547,48 @@ def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -
 
 def _encode_rear_sensor_distance_2(m: RearSensorDistance2) -> bytes:
     try:
-        x0 = m.sensor_7_distance
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 500:
-            r0 = _to_raw(x0, _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
-        x1 = m.sensor_8_distance
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 500:
-            r1 = _to_raw(x1, _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
-        x2 = m.sensor_9_distance
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 500:
-            r2 = _to_raw(x2, _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
-        x3 = m.uss_system_state
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 2:
-            r3 = _to_raw(x3, _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
-        x4 = m.sensor_1_fault
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
-        x5 = m.sensor_2_fault
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 1:
-            r5 = _to_raw(x5, _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
-        x6 = m.sensor_3_fault
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 1:
-            r6 = _to_raw(x6, _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
-        x7 = m.sensor_4_fault
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 1:
-            r7 = _to_raw(x7, _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
-        x8 = m.sensor_5_fault
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 1:
-            r8 = _to_raw(x8, _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
-        x9 = m.sensor_6_fault
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 1:
-            r9 = _to_raw(x9, _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
-        x10 = m.sensor_7_fault
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 1:
-            r10 = _to_raw(x10, _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
-        x11 = m.sensor_8_fault
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 1:
-            r11 = _to_raw(x11, _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
-        x12 = m.sensor_9_fault
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 1:
-            r12 = _to_raw(x12, _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
-        x13 = m.counter
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 15:
-            r13 = _to_raw(x13, _REAR_SENSOR_DISTANCE_2__COUNTER)
+        r0 = m.sensor_7_distance
+        if not 0 <= r0 <= 500:
+            r0 = _to_raw(m.sensor_7_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE)
+        r1 = m.sensor_8_distance
+        if not 0 <= r1 <= 500:
+            r1 = _to_raw(m.sensor_8_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE)
+        r2 = m.sensor_9_distance
+        if not 0 <= r2 <= 500:
+            r2 = _to_raw(m.sensor_9_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE)
+        r3 = m.uss_system_state
+        if not 0 <= r3 <= 2:
+            r3 = _to_raw(m.uss_system_state, _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE)
+        r4 = m.sensor_1_fault
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.sensor_1_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT)
+        r5 = m.sensor_2_fault
+        if not 0 <= r5 <= 1:
+            r5 = _to_raw(m.sensor_2_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT)
+        r6 = m.sensor_3_fault
+        if not 0 <= r6 <= 1:
+            r6 = _to_raw(m.sensor_3_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT)
+        r7 = m.sensor_4_fault
+        if not 0 <= r7 <= 1:
+            r7 = _to_raw(m.sensor_4_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT)
+        r8 = m.sensor_5_fault
+        if not 0 <= r8 <= 1:
+            r8 = _to_raw(m.sensor_5_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT)
+        r9 = m.sensor_6_fault
+        if not 0 <= r9 <= 1:
+            r9 = _to_raw(m.sensor_6_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT)
+        r10 = m.sensor_7_fault
+        if not 0 <= r10 <= 1:
+            r10 = _to_raw(m.sensor_7_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT)
+        r11 = m.sensor_8_fault
+        if not 0 <= r11 <= 1:
+            r11 = _to_raw(m.sensor_8_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT)
+        r12 = m.sensor_9_fault
+        if not 0 <= r12 <= 1:
+            r12 = _to_raw(m.sensor_9_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT)
+        r13 = m.counter
+        if not 0 <= r13 <= 15:
+            r13 = _to_raw(m.counter, _REAR_SENSOR_DISTANCE_2__COUNTER)
         v = (
             r0
             | r1 << 10
@@ -6122,42 +5606,25 @@ def _encode_rear_sensor_distance_2(m: RearSensorDistance2) -> bytes:
             | r13 << 60
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.sensor_7_distance,
-                m.sensor_8_distance,
-                m.sensor_9_distance,
-                m.uss_system_state,
-                m.sensor_1_fault,
-                m.sensor_2_fault,
-                m.sensor_3_fault,
-                m.sensor_4_fault,
-                m.sensor_5_fault,
-                m.sensor_6_fault,
-                m.sensor_7_fault,
-                m.sensor_8_fault,
-                m.sensor_9_fault,
-                m.counter,
-            ),
-            (
-                _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE,
-                _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT,
-                _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT,
-                _REAR_SENSOR_DISTANCE_2__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_rear_sensor_distance_2(
+            {
+                "sensor_7_distance": _to_raw(m.sensor_7_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_7_DISTANCE),
+                "sensor_8_distance": _to_raw(m.sensor_8_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_8_DISTANCE),
+                "sensor_9_distance": _to_raw(m.sensor_9_distance, _REAR_SENSOR_DISTANCE_2__SENSOR_9_DISTANCE),
+                "uss_system_state": _to_raw(m.uss_system_state, _REAR_SENSOR_DISTANCE_2__USS_SYSTEM_STATE),
+                "sensor_1_fault": _to_raw(m.sensor_1_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_1_FAULT),
+                "sensor_2_fault": _to_raw(m.sensor_2_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_2_FAULT),
+                "sensor_3_fault": _to_raw(m.sensor_3_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_3_FAULT),
+                "sensor_4_fault": _to_raw(m.sensor_4_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_4_FAULT),
+                "sensor_5_fault": _to_raw(m.sensor_5_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_5_FAULT),
+                "sensor_6_fault": _to_raw(m.sensor_6_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_6_FAULT),
+                "sensor_7_fault": _to_raw(m.sensor_7_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_7_FAULT),
+                "sensor_8_fault": _to_raw(m.sensor_8_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_8_FAULT),
+                "sensor_9_fault": _to_raw(m.sensor_9_fault, _REAR_SENSOR_DISTANCE_2__SENSOR_9_FAULT),
+                "counter": _to_raw(m.counter, _REAR_SENSOR_DISTANCE_2__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_rear_sensor_distance_2(raw: Mapping[str, object]) -> bytes:
@@ -6341,14 +5808,12 @@ def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
 
 def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
     try:
-        x0 = m.eps_ctrl_mode
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 255:
-            r0 = _to_raw(x0, _TELE_EPS_COMMAND__EPS_CTRL_MODE)
-        x1 = m.counter
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 255:
-            r1 = _to_raw(x1, _TELE_EPS_COMMAND__COUNTER)
+        r0 = m.eps_ctrl_mode
+        if not 0 <= r0 <= 255:
+            r0 = _to_raw(m.eps_ctrl_mode, _TELE_EPS_COMMAND__EPS_CTRL_MODE)
+        r1 = m.counter
+        if not 0 <= r1 <= 255:
+            r1 = _to_raw(m.counter, _TELE_EPS_COMMAND__COUNTER)
         x2 = m.max_angular_speed
         if 0 <= x2 <= 512:
             r2 = int(x2 / 2.0 + 0.5 + 1e-9)
@@ -6357,12 +5822,11 @@ def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        if -1080.0 <= x3 <= 1080.0:
-            r3 = int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if not 0 <= r3 <= 21600:
-                r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
-        else:
-            r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        r3 = (
+            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
+            if -1080.0 <= x3 <= 1080.0
+            else _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
+        )
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -6370,22 +5834,15 @@ def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.eps_ctrl_mode,
-                m.counter,
-                m.max_angular_speed,
-                m.steering_angle_cmd,
-            ),
-            (
-                _TELE_EPS_COMMAND__EPS_CTRL_MODE,
-                _TELE_EPS_COMMAND__COUNTER,
-                _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED,
-                _TELE_EPS_COMMAND__STEERING_ANGLE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_tele_eps_command(
+            {
+                "eps_ctrl_mode": _to_raw(m.eps_ctrl_mode, _TELE_EPS_COMMAND__EPS_CTRL_MODE),
+                "counter": _to_raw(m.counter, _TELE_EPS_COMMAND__COUNTER),
+                "max_angular_speed": _to_raw(m.max_angular_speed, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED),
+                "steering_angle_cmd": _to_raw(m.steering_angle_cmd, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD),
+            }
         )
-        raise
 
 
 def _pack_tele_eps_command(raw: Mapping[str, object]) -> bytes:
@@ -6555,28 +6012,23 @@ def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
 def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
     try:
         x0 = m.throttle_brake_cmd
-        if -100.0 <= x0 <= 100.0:
-            r0 = int((x0 + 100.0) / 0.2 + 0.5 + 1e-9)
-            if not 0 <= r0 <= 1000:
-                r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
-        else:
-            r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
-        x1 = m.epb_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _TELE_SPEED_COMMAND__EPB_CMD)
-        x2 = m.gear_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _TELE_SPEED_COMMAND__GEAR_CMD)
-        x3 = m.counter
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 255:
-            r3 = _to_raw(x3, _TELE_SPEED_COMMAND__COUNTER)
-        x4 = m.emergency_brake_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 1:
-            r4 = _to_raw(x4, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
+        r0 = (
+            int((x0 + 100.0) / 0.2 + 0.5 + 1e-9)
+            if -100.0 <= x0 <= 100.0
+            else _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
+        )
+        r1 = m.epb_cmd
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.epb_cmd, _TELE_SPEED_COMMAND__EPB_CMD)
+        r2 = m.gear_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.gear_cmd, _TELE_SPEED_COMMAND__GEAR_CMD)
+        r3 = m.counter
+        if not 0 <= r3 <= 255:
+            r3 = _to_raw(m.counter, _TELE_SPEED_COMMAND__COUNTER)
+        r4 = m.emergency_brake_cmd
+        if not 0 <= r4 <= 1:
+            r4 = _to_raw(m.emergency_brake_cmd, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -6584,24 +6036,16 @@ def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
         c ^= c >> 8
         v |= (c & 0xFF) << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.throttle_brake_cmd,
-                m.epb_cmd,
-                m.gear_cmd,
-                m.counter,
-                m.emergency_brake_cmd,
-            ),
-            (
-                _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD,
-                _TELE_SPEED_COMMAND__EPB_CMD,
-                _TELE_SPEED_COMMAND__GEAR_CMD,
-                _TELE_SPEED_COMMAND__COUNTER,
-                _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_tele_speed_command(
+            {
+                "throttle_brake_cmd": _to_raw(m.throttle_brake_cmd, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD),
+                "epb_cmd": _to_raw(m.epb_cmd, _TELE_SPEED_COMMAND__EPB_CMD),
+                "gear_cmd": _to_raw(m.gear_cmd, _TELE_SPEED_COMMAND__GEAR_CMD),
+                "counter": _to_raw(m.counter, _TELE_SPEED_COMMAND__COUNTER),
+                "emergency_brake_cmd": _to_raw(m.emergency_brake_cmd, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD),
+            }
         )
-        raise
 
 
 def _pack_tele_speed_command(raw: Mapping[str, object]) -> bytes:
@@ -6866,109 +6310,84 @@ def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
 
 def _encode_tele_control_command_1(m: TeleControlCommand1) -> bytes:
     try:
-        x0 = m.drive_mode_cmd
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 2:
-            r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
-        x1 = m.door_cmd
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 2:
-            r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_1__DOOR_CMD)
-        x2 = m.horn_cmd
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 2:
-            r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_1__HORN_CMD)
-        x3 = m.drl_cmd
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 2:
-            r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_1__DRL_CMD)
-        x4 = m.left_turn_cmd
-        r4 = x4 - 0
-        if r4.__class__ is not int or not 0 <= r4 <= 2:
-            r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
-        x5 = m.right_turn_cmd
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 2:
-            r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
-        x6 = m.hazard_cmd
-        r6 = x6 - 0
-        if r6.__class__ is not int or not 0 <= r6 <= 2:
-            r6 = _to_raw(x6, _TELE_CONTROL_COMMAND_1__HAZARD_CMD)
-        x7 = m.position_light_cmd
-        r7 = x7 - 0
-        if r7.__class__ is not int or not 0 <= r7 <= 2:
-            r7 = _to_raw(x7, _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
-        x8 = m.headlight_cmd
-        r8 = x8 - 0
-        if r8.__class__ is not int or not 0 <= r8 <= 3:
-            r8 = _to_raw(x8, _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
-        x9 = m.rear_fog_cmd
-        r9 = x9 - 0
-        if r9.__class__ is not int or not 0 <= r9 <= 2:
-            r9 = _to_raw(x9, _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD)
-        x10 = m.left_fog_cmd
-        r10 = x10 - 0
-        if r10.__class__ is not int or not 0 <= r10 <= 2:
-            r10 = _to_raw(x10, _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
-        x11 = m.right_fog_cmd
-        r11 = x11 - 0
-        if r11.__class__ is not int or not 0 <= r11 <= 2:
-            r11 = _to_raw(x11, _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
-        x12 = m.dome_light_cmd
-        r12 = x12 - 0
-        if r12.__class__ is not int or not 0 <= r12 <= 2:
-            r12 = _to_raw(x12, _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
-        x13 = m.ambient_light_cmd
-        r13 = x13 - 0
-        if r13.__class__ is not int or not 0 <= r13 <= 2:
-            r13 = _to_raw(x13, _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
-        x14 = m.drive_mode_reset
-        r14 = x14 - 0
-        if r14.__class__ is not int or not 0 <= r14 <= 1:
-            r14 = _to_raw(x14, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
-        x15 = m.system_state
-        r15 = x15 - 0
-        if r15.__class__ is not int or not 0 <= r15 <= 3:
-            r15 = _to_raw(x15, _TELE_CONTROL_COMMAND_1__SYSTEM_STATE)
-        x16 = m.system_reliability
-        r16 = x16 - 0
-        if r16.__class__ is not int or not 0 <= r16 <= 3:
-            r16 = _to_raw(x16, _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
-        x17 = m.system_fault_level
-        r17 = x17 - 0
-        if r17.__class__ is not int or not 0 <= r17 <= 3:
-            r17 = _to_raw(x17, _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
-        x18 = m.lock_cmd
-        r18 = x18 - 0
-        if r18.__class__ is not int or not 0 <= r18 <= 3:
-            r18 = _to_raw(x18, _TELE_CONTROL_COMMAND_1__LOCK_CMD)
-        x19 = m.ac_cmd
-        r19 = x19 - 0
-        if r19.__class__ is not int or not 0 <= r19 <= 3:
-            r19 = _to_raw(x19, _TELE_CONTROL_COMMAND_1__AC_CMD)
+        r0 = m.drive_mode_cmd
+        if not 0 <= r0 <= 2:
+            r0 = _to_raw(m.drive_mode_cmd, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD)
+        r1 = m.door_cmd
+        if not 0 <= r1 <= 2:
+            r1 = _to_raw(m.door_cmd, _TELE_CONTROL_COMMAND_1__DOOR_CMD)
+        r2 = m.horn_cmd
+        if not 0 <= r2 <= 2:
+            r2 = _to_raw(m.horn_cmd, _TELE_CONTROL_COMMAND_1__HORN_CMD)
+        r3 = m.drl_cmd
+        if not 0 <= r3 <= 2:
+            r3 = _to_raw(m.drl_cmd, _TELE_CONTROL_COMMAND_1__DRL_CMD)
+        r4 = m.left_turn_cmd
+        if not 0 <= r4 <= 2:
+            r4 = _to_raw(m.left_turn_cmd, _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD)
+        r5 = m.right_turn_cmd
+        if not 0 <= r5 <= 2:
+            r5 = _to_raw(m.right_turn_cmd, _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD)
+        r6 = m.hazard_cmd
+        if not 0 <= r6 <= 2:
+            r6 = _to_raw(m.hazard_cmd, _TELE_CONTROL_COMMAND_1__HAZARD_CMD)
+        r7 = m.position_light_cmd
+        if not 0 <= r7 <= 2:
+            r7 = _to_raw(m.position_light_cmd, _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD)
+        r8 = m.headlight_cmd
+        if not 0 <= r8 <= 3:
+            r8 = _to_raw(m.headlight_cmd, _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD)
+        r9 = m.rear_fog_cmd
+        if not 0 <= r9 <= 2:
+            r9 = _to_raw(m.rear_fog_cmd, _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD)
+        r10 = m.left_fog_cmd
+        if not 0 <= r10 <= 2:
+            r10 = _to_raw(m.left_fog_cmd, _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD)
+        r11 = m.right_fog_cmd
+        if not 0 <= r11 <= 2:
+            r11 = _to_raw(m.right_fog_cmd, _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD)
+        r12 = m.dome_light_cmd
+        if not 0 <= r12 <= 2:
+            r12 = _to_raw(m.dome_light_cmd, _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD)
+        r13 = m.ambient_light_cmd
+        if not 0 <= r13 <= 2:
+            r13 = _to_raw(m.ambient_light_cmd, _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD)
+        r14 = m.drive_mode_reset
+        if not 0 <= r14 <= 1:
+            r14 = _to_raw(m.drive_mode_reset, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET)
+        r15 = m.system_state
+        if not 0 <= r15 <= 3:
+            r15 = _to_raw(m.system_state, _TELE_CONTROL_COMMAND_1__SYSTEM_STATE)
+        r16 = m.system_reliability
+        if not 0 <= r16 <= 3:
+            r16 = _to_raw(m.system_reliability, _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY)
+        r17 = m.system_fault_level
+        if not 0 <= r17 <= 3:
+            r17 = _to_raw(m.system_fault_level, _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL)
+        r18 = m.lock_cmd
+        if not 0 <= r18 <= 3:
+            r18 = _to_raw(m.lock_cmd, _TELE_CONTROL_COMMAND_1__LOCK_CMD)
+        r19 = m.ac_cmd
+        if not 0 <= r19 <= 3:
+            r19 = _to_raw(m.ac_cmd, _TELE_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        if 16.0 <= x20 <= 30.0:
-            r20 = int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r20 <= 28:
-                r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        else:
-            r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        x21 = m.protocol_version_a
-        r21 = x21 - 0
-        if r21.__class__ is not int or not 0 <= r21 <= 15:
-            r21 = _to_raw(x21, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
-        x22 = m.protocol_version_b
-        r22 = x22 - 0
-        if r22.__class__ is not int or not 0 <= r22 <= 15:
-            r22 = _to_raw(x22, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
-        x23 = m.protocol_version_c
-        r23 = x23 - 0
-        if r23.__class__ is not int or not 0 <= r23 <= 15:
-            r23 = _to_raw(x23, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
-        x24 = m.counter
-        r24 = x24 - 0
-        if r24.__class__ is not int or not 0 <= r24 <= 15:
-            r24 = _to_raw(x24, _TELE_CONTROL_COMMAND_1__COUNTER)
+        r20 = (
+            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
+            if 16.0 <= x20 <= 30.0
+            else _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
+        )
+        r21 = m.protocol_version_a
+        if not 0 <= r21 <= 15:
+            r21 = _to_raw(m.protocol_version_a, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
+        r22 = m.protocol_version_b
+        if not 0 <= r22 <= 15:
+            r22 = _to_raw(m.protocol_version_b, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B)
+        r23 = m.protocol_version_c
+        if not 0 <= r23 <= 15:
+            r23 = _to_raw(m.protocol_version_c, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C)
+        r24 = m.counter
+        if not 0 <= r24 <= 15:
+            r24 = _to_raw(m.counter, _TELE_CONTROL_COMMAND_1__COUNTER)
         v = (
             r0
             | r1 << 2
@@ -6997,64 +6416,36 @@ def _encode_tele_control_command_1(m: TeleControlCommand1) -> bytes:
             | r24 << 60
         )
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.drive_mode_cmd,
-                m.door_cmd,
-                m.horn_cmd,
-                m.drl_cmd,
-                m.left_turn_cmd,
-                m.right_turn_cmd,
-                m.hazard_cmd,
-                m.position_light_cmd,
-                m.headlight_cmd,
-                m.rear_fog_cmd,
-                m.left_fog_cmd,
-                m.right_fog_cmd,
-                m.dome_light_cmd,
-                m.ambient_light_cmd,
-                m.drive_mode_reset,
-                m.system_state,
-                m.system_reliability,
-                m.system_fault_level,
-                m.lock_cmd,
-                m.ac_cmd,
-                m.ac_set_temp,
-                m.protocol_version_a,
-                m.protocol_version_b,
-                m.protocol_version_c,
-                m.counter,
-            ),
-            (
-                _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD,
-                _TELE_CONTROL_COMMAND_1__DOOR_CMD,
-                _TELE_CONTROL_COMMAND_1__HORN_CMD,
-                _TELE_CONTROL_COMMAND_1__DRL_CMD,
-                _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD,
-                _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD,
-                _TELE_CONTROL_COMMAND_1__HAZARD_CMD,
-                _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD,
-                _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD,
-                _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD,
-                _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD,
-                _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD,
-                _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD,
-                _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD,
-                _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET,
-                _TELE_CONTROL_COMMAND_1__SYSTEM_STATE,
-                _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY,
-                _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL,
-                _TELE_CONTROL_COMMAND_1__LOCK_CMD,
-                _TELE_CONTROL_COMMAND_1__AC_CMD,
-                _TELE_CONTROL_COMMAND_1__AC_SET_TEMP,
-                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A,
-                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B,
-                _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C,
-                _TELE_CONTROL_COMMAND_1__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_tele_control_command_1(
+            {
+                "drive_mode_cmd": _to_raw(m.drive_mode_cmd, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_CMD),
+                "door_cmd": _to_raw(m.door_cmd, _TELE_CONTROL_COMMAND_1__DOOR_CMD),
+                "horn_cmd": _to_raw(m.horn_cmd, _TELE_CONTROL_COMMAND_1__HORN_CMD),
+                "drl_cmd": _to_raw(m.drl_cmd, _TELE_CONTROL_COMMAND_1__DRL_CMD),
+                "left_turn_cmd": _to_raw(m.left_turn_cmd, _TELE_CONTROL_COMMAND_1__LEFT_TURN_CMD),
+                "right_turn_cmd": _to_raw(m.right_turn_cmd, _TELE_CONTROL_COMMAND_1__RIGHT_TURN_CMD),
+                "hazard_cmd": _to_raw(m.hazard_cmd, _TELE_CONTROL_COMMAND_1__HAZARD_CMD),
+                "position_light_cmd": _to_raw(m.position_light_cmd, _TELE_CONTROL_COMMAND_1__POSITION_LIGHT_CMD),
+                "headlight_cmd": _to_raw(m.headlight_cmd, _TELE_CONTROL_COMMAND_1__HEADLIGHT_CMD),
+                "rear_fog_cmd": _to_raw(m.rear_fog_cmd, _TELE_CONTROL_COMMAND_1__REAR_FOG_CMD),
+                "left_fog_cmd": _to_raw(m.left_fog_cmd, _TELE_CONTROL_COMMAND_1__LEFT_FOG_CMD),
+                "right_fog_cmd": _to_raw(m.right_fog_cmd, _TELE_CONTROL_COMMAND_1__RIGHT_FOG_CMD),
+                "dome_light_cmd": _to_raw(m.dome_light_cmd, _TELE_CONTROL_COMMAND_1__DOME_LIGHT_CMD),
+                "ambient_light_cmd": _to_raw(m.ambient_light_cmd, _TELE_CONTROL_COMMAND_1__AMBIENT_LIGHT_CMD),
+                "drive_mode_reset": _to_raw(m.drive_mode_reset, _TELE_CONTROL_COMMAND_1__DRIVE_MODE_RESET),
+                "system_state": _to_raw(m.system_state, _TELE_CONTROL_COMMAND_1__SYSTEM_STATE),
+                "system_reliability": _to_raw(m.system_reliability, _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY),
+                "system_fault_level": _to_raw(m.system_fault_level, _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL),
+                "lock_cmd": _to_raw(m.lock_cmd, _TELE_CONTROL_COMMAND_1__LOCK_CMD),
+                "ac_cmd": _to_raw(m.ac_cmd, _TELE_CONTROL_COMMAND_1__AC_CMD),
+                "ac_set_temp": _to_raw(m.ac_set_temp, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP),
+                "protocol_version_a": _to_raw(m.protocol_version_a, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A),
+                "protocol_version_b": _to_raw(m.protocol_version_b, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B),
+                "protocol_version_c": _to_raw(m.protocol_version_c, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C),
+                "counter": _to_raw(m.counter, _TELE_CONTROL_COMMAND_1__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_tele_control_command_1(raw: Mapping[str, object]) -> bytes:
@@ -7247,55 +6638,42 @@ def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
 
 def _encode_tele_control_command_2(m: TeleControlCommand2) -> bytes:
     try:
-        x0 = m.downhill_regen_enable
-        r0 = x0 - 0
-        if r0.__class__ is not int or not 0 <= r0 <= 1:
-            r0 = _to_raw(x0, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
-        x1 = m.cargo_lift
-        r1 = x1 - 0
-        if r1.__class__ is not int or not 0 <= r1 <= 3:
-            r1 = _to_raw(x1, _TELE_CONTROL_COMMAND_2__CARGO_LIFT)
-        x2 = m.cargo_lift_speed
-        r2 = x2 - 0
-        if r2.__class__ is not int or not 0 <= r2 <= 10:
-            r2 = _to_raw(x2, _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
-        x3 = m.pto_enable
-        r3 = x3 - 0
-        if r3.__class__ is not int or not 0 <= r3 <= 1:
-            r3 = _to_raw(x3, _TELE_CONTROL_COMMAND_2__PTO_ENABLE)
+        r0 = m.downhill_regen_enable
+        if not 0 <= r0 <= 1:
+            r0 = _to_raw(m.downhill_regen_enable, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE)
+        r1 = m.cargo_lift
+        if not 0 <= r1 <= 3:
+            r1 = _to_raw(m.cargo_lift, _TELE_CONTROL_COMMAND_2__CARGO_LIFT)
+        r2 = m.cargo_lift_speed
+        if not 0 <= r2 <= 10:
+            r2 = _to_raw(m.cargo_lift_speed, _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED)
+        r3 = m.pto_enable
+        if not 0 <= r3 <= 1:
+            r3 = _to_raw(m.pto_enable, _TELE_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        if 0.0 <= x4 <= 125.0:
-            r4 = int(x4 / 0.5 + 0.5 + 1e-9)
-            if not 0 <= r4 <= 250:
-                r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        else:
-            r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        x5 = m.counter
-        r5 = x5 - 0
-        if r5.__class__ is not int or not 0 <= r5 <= 255:
-            r5 = _to_raw(x5, _TELE_CONTROL_COMMAND_2__COUNTER)
+        r4 = (
+            int(x4 / 0.5 + 0.5 + 1e-9)
+            if 0.0 <= x4 <= 125.0
+            else _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
+        )
+        r5 = m.counter
+        if not 0 <= r5 <= 255:
+            r5 = _to_raw(m.counter, _TELE_CONTROL_COMMAND_2__COUNTER)
         v = r0 | r1 << 1 | r2 << 3 | r3 << 7 | r4 << 8 | r5 << 56
         return v.to_bytes(8, "little")
-    except TypeError:  # a value of the wrong type: say which signal
-        _explain_type_error(
-            (
-                m.downhill_regen_enable,
-                m.cargo_lift,
-                m.cargo_lift_speed,
-                m.pto_enable,
-                m.downhill_regen_speed,
-                m.counter,
-            ),
-            (
-                _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE,
-                _TELE_CONTROL_COMMAND_2__CARGO_LIFT,
-                _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED,
-                _TELE_CONTROL_COMMAND_2__PTO_ENABLE,
-                _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED,
-                _TELE_CONTROL_COMMAND_2__COUNTER,
-            ),
+    except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all
+        return _pack_tele_control_command_2(
+            {
+                "downhill_regen_enable": _to_raw(
+                    m.downhill_regen_enable, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE
+                ),
+                "cargo_lift": _to_raw(m.cargo_lift, _TELE_CONTROL_COMMAND_2__CARGO_LIFT),
+                "cargo_lift_speed": _to_raw(m.cargo_lift_speed, _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED),
+                "pto_enable": _to_raw(m.pto_enable, _TELE_CONTROL_COMMAND_2__PTO_ENABLE),
+                "downhill_regen_speed": _to_raw(m.downhill_regen_speed, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED),
+                "counter": _to_raw(m.counter, _TELE_CONTROL_COMMAND_2__COUNTER),
+            }
         )
-        raise
 
 
 def _pack_tele_control_command_2(raw: Mapping[str, object]) -> bytes:
@@ -7452,9 +6830,10 @@ _PACKERS: dict[int, Callable[[Mapping[str, object]], bytes]] = {
 
 def decode(frame_id: int, data: Buffer, *, verify_checksum: bool = True) -> Message:
     """The message in a frame: UnknownFrameError, FrameLengthError or ChecksumError when it cannot be."""
-    decoder = _DECODERS.get(frame_id)
-    if decoder is None:
-        raise UnknownFrameError(frame_id)
+    try:
+        decoder = _DECODERS[frame_id]
+    except KeyError:
+        raise UnknownFrameError(frame_id) from None
     return decoder(data, verify_checksum)
 
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.encoding import decimal_text
+from canspec.encoding import decimal_text, to_raw_runtime
 from canspec.naming import pascal, py_ident, snake, upper_snake
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
@@ -86,6 +86,7 @@ class PySignal:
     lo_lit: str  # the physical range check, as literals comparable with the attribute
     hi_lit: str
     q_nonneg: bool  # q >= 0 for every value passing the range check: no sign branch
+    raw_check: bool  # a value passing the range check may still round outside raw_min..raw_max
     raw_min: int
     raw_max: int
     raw_type_min: int
@@ -216,7 +217,7 @@ def _q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     off = sig.offset
     as_int = direct
     if off == 0:
-        expr = f"{x} - 0" if direct else x  # `- 0` turns an IntEnum member into a plain int
+        expr = x
     elif off > 0:
         expr = f"{x} - {num_lit(off, as_int)}"
     else:
@@ -224,6 +225,15 @@ def _q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     if not direct and sig.factor != 1:
         expr = f"({expr}) / {float_lit(sig.factor)}" if off != 0 else f"{expr} / {float_lit(sig.factor)}"
     return expr
+
+
+def _raw_check(sig: ir.Signal, direct: bool) -> bool:
+    """Whether a value inside the (double) range check can round to a raw outside raw_min..raw_max.
+    Rounding is monotonic, so the two ends of the range decide."""
+    if direct:
+        return True
+    ends = (to_raw_runtime(float(sig.check_min), float(sig.factor), float(sig.offset)), to_raw_runtime(float(sig.check_max), float(sig.factor), float(sig.offset)))
+    return not all(sig.raw_min <= raw <= sig.raw_max for raw in ends)
 
 
 def _range_text(sig: ir.Signal) -> str:
@@ -302,7 +312,7 @@ def _signal(msg: ir.Message, sig: ir.Signal, index: int, frame_bits: int, enum_n
         signed=sig.signed, direct=direct, offset_lit=num_lit(sig.offset, sig.offset.denominator == 1) if direct else float_lit(sig.offset),
         offset_float=float_lit(sig.offset), offset_int=str(sig.offset.numerator) if direct else "0", factor_lit=float_lit(sig.factor), lo_lit=lo_lit, hi_lit=hi_lit, q_nonneg=q_nonneg, raw_min=sig.raw_min, raw_max=sig.raw_max,
         raw_type_min=sig.raw_type_min, raw_type_max=sig.raw_type_max, specials=specials, range_text=_range_text(sig),
-        q_expr=_q_expr(sig, direct, f"x{index}"), var=f"x{index}", raw_var=f"r{index}", descriptor=f"_{upper_snake(msg.name)}__{upper_snake(sig.name)}",
+        q_expr=_q_expr(sig, direct, f"m.{attr}" if direct else f"x{index}"), var=f"x{index}", raw_check=_raw_check(sig, direct), raw_var=f"r{index}", descriptor=f"_{upper_snake(msg.name)}__{upper_snake(sig.name)}",
     )
 
 
