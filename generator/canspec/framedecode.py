@@ -6,6 +6,7 @@ labels), computed once; decoding a frame is then one int.from_bytes and a loop o
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 from fractions import Fraction
 
 from canspec import ir
@@ -93,3 +94,41 @@ def decode_values(plan: MessagePlan, v: int) -> list[tuple[SignalPlan, int, floa
             raw = (raw ^ s.sign_bit) - s.sign_bit
         out.append((s, raw, raw * s.factor + s.offset, s.labels.get(raw)))
     return out
+
+
+def signal_text(s: SignalPlan, raw: int) -> str:
+    """`name=value[ unit]` as the text output prints it."""
+    label = s.labels.get(raw)
+    if label is not None:
+        return f"{s.name}={label}"
+    text = value_text(s, raw * s.factor + s.offset, None)
+    return f"{s.name}={text} {s.unit}" if s.unit else f"{s.name}={text}"
+
+
+TABLE_BITS = 10  # fields up to this wide get every text precomputed
+
+
+def text_formatter(plan: MessagePlan) -> Callable[[int], str]:
+    """A function from the frame integer to the text line's fields, compiled once per message:
+    straight-line code with a precomputed text per raw value for narrow fields."""
+    env: dict[str, object] = {"signal_text": signal_text}
+    pieces = []
+    for i, s in enumerate(plan.signals):
+        raw = f"((v >> {s.shift}) & {s.mask})"
+        if s.sign_bit:
+            raw = f"(({raw} ^ {s.sign_bit}) - {s.sign_bit})"
+        if not s.sign_bit and s.mask < (1 << TABLE_BITS):
+            env[f"T{i}"] = tuple(signal_text(s, r) for r in range(s.mask + 1))
+            pieces.append(f"T{i}[{raw}]")
+        elif s.labels:
+            env[f"S{i}"] = s
+            pieces.append(f"signal_text(S{i}, {raw})")
+        else:
+            unit = f" {s.unit}" if s.unit else ""
+            spec = f".{s.decimals}f" if s.decimals else "d"
+            pattern = f"{s.name}=%{spec}{unit}".replace("%", "%%").replace(f"%%{spec}", f"%{spec}", 1)
+            pieces.append(f"{pattern!r} % ({raw} * {s.factor!r} + {s.offset!r})")
+    body = f"', '.join(({', '.join(pieces)},))" if pieces else "''"
+    namespace: dict[str, object] = {}
+    exec(f"def fields(v):\n    return {body}\n", env, namespace)  # noqa: S102 - source built from the IR's numbers and identifiers
+    return namespace["fields"]  # type: ignore[return-value]

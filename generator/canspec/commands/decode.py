@@ -13,7 +13,7 @@ import os
 import sys
 import time
 from collections import Counter
-from typing import IO, Any
+from typing import IO, Any, Callable
 
 from canspec import framedecode
 from canspec.candump import LineError, parse_line
@@ -50,19 +50,26 @@ class Output:
         self.fmt = fmt
         self.out = out
         self.csv = csv.writer(out, lineterminator="\n") if fmt == "csv" else None
+        self._formatters: dict[int, Callable[[int], str]] = {}
         if self.csv is not None:
             self.csv.writerow(["timestamp", "channel", "frame_id", "message", "signal", "raw", "value", "unit", "checksum_ok"])
 
-    def frame(self, frame: Any, plan: framedecode.MessagePlan, values: list[Any], checksum_ok: bool) -> None:
+    def formatter(self, plan: framedecode.MessagePlan) -> Callable[[int], str]:
+        fmt = self._formatters.get(plan.frame_id)
+        if fmt is None:
+            fmt = self._formatters[plan.frame_id] = framedecode.text_formatter(plan)
+        return fmt
+
+    def frame(self, frame: Any, plan: framedecode.MessagePlan, v: int, checksum_ok: bool) -> None:
         fid = f"{frame.frame_id:08X}"
         if self.fmt == "text":
-            fields = ", ".join(
-                f"{s.name}={framedecode.value_text(s, phys, label)}{' ' + s.unit if s.unit and label is None else ''}" for s, _, phys, label in values
-            )
+            fields = self.formatter(plan)(v)
             head = f"({frame.timestamp}) {frame.channel} " if frame.timestamp is not None else (f"{frame.channel} " if frame.channel else "")
             flag = "" if checksum_ok else "  [checksum mismatch]"
             self.out.write(f"{head}{fid} {plan.name}: {fields}{flag}\n")
-        elif self.fmt == "json":
+            return
+        values = framedecode.decode_values(plan, v)
+        if self.fmt == "json":
             record = {
                 "timestamp": float(frame.timestamp) if _is_number(frame.timestamp) else frame.timestamp,
                 "channel": frame.channel,
@@ -127,7 +134,7 @@ def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.Mess
         ok = framedecode.checksum_ok(plan, v)
         if not ok:
             report("checksum", lineno, f"{plan.name} ({plan.frame_id:08X}): checksum mismatch (byte {plan.checksum_shift // 8} is 0x{(v >> plan.checksum_shift) & 0xFF:02X})")
-        output.frame(frame, plan, framedecode.decode_values(plan, v), ok)
+        output.frame(frame, plan, v, ok)
         stats["decoded"] += 1
         stats[plan.name] += 1
     return stats
