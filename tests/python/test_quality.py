@@ -123,3 +123,21 @@ def test_missing_formatter_is_a_clear_generation_error(monkeypatch, spec):
     monkeypatch.setattr(target, "ruff_binary", lambda: (_ for _ in ()).throw(RuntimeError(f"the python target formats its output with ruff: pip install ruff=={target.RUFF_VERSION}")))
     with pytest.raises(GenerationError, match="pip install ruff=="):
         generate(spec, ["python"])
+
+
+def test_wide_enum_fields_use_dict_lookups(tmp_path, spec, monkeypatch):
+    """Enum fields wider than the tuple-lookup limit decode through a dict: render with the limit
+    at 1 bit so every enum takes that path, and run the vectors through that package."""
+    from canspec.targets import python_model
+
+    monkeypatch.setattr(python_model, "MAX_TUPLE_LOOKUP_BITS", 1)
+    for rel, data in target.render_python(spec).items():
+        path = tmp_path / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+    messages = (tmp_path / "python" / "kaiwo_gateway" / "messages.py").read_text()
+    assert "_member(_GEAR_4, " in messages and "_lookup(BrakeState, 1)" in messages
+    env = {"CANSPEC_PYTHON_PACKAGE": str(tmp_path / "python"), "PATH": "/usr/bin:/bin"}
+    proc = run([sys.executable, str(pkgpath.ROOT / "tests" / "python" / "vector_runner.py")], env=env)
+    assert proc.returncode == 0 and ", 0 mismatches" in proc.stdout, proc.stdout[-2000:]
+    assert f"package {tmp_path / 'python' / 'kaiwo_gateway'}" in proc.stdout

@@ -116,7 +116,7 @@ def main(argv: list[str]) -> int:
     count, failures = run(path)
     for f in failures:
         print(f)
-    print(f"python vector runner: {count} cases, {len(failures)} mismatches ({path})")
+    print(f"python vector runner: {count} cases, {len(failures)} mismatches ({path}; package {Path(gw.__file__).parent})")
     return 1 if failures else 0
 
 
