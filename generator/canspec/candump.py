@@ -9,7 +9,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 MAX_DATA = 64
 EXTENDED_ID_DIGITS = 8  # 29-bit IDs are written with 8 hex digits, 11-bit ones with 3
@@ -19,8 +19,7 @@ class LineError(ValueError):
     pass
 
 
-@dataclass(frozen=True, slots=True)
-class Frame:
+class Frame(NamedTuple):
     timestamp: str | None
     channel: str | None
     frame_id: int
@@ -28,11 +27,13 @@ class Frame:
     data: bytes
 
 
+HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
+
+
 def _parse_id(text: str) -> tuple[int, bool]:
-    try:
-        value = int(text, 16)
-    except ValueError:
-        raise LineError(f"frame ID {text!r} is not hexadecimal") from None
+    if not text or not HEX_DIGITS.issuperset(text):  # int() alone would take "-1", "0x1F", "1_0"
+        raise LineError(f"frame ID {text!r} is not hexadecimal")
+    value = int(text, 16)
     extended = len(text) > 3
     if value > (0x1FFFFFFF if extended else 0x7FF):
         raise LineError(f"frame ID {text} does not fit {'29' if extended else '11'} bits")

@@ -182,3 +182,17 @@ def test_compiled_text_formatter_equals_the_generic_decoder(can, vectors):
     plan = framedecode.MessagePlan("m", 1, 8, (s16, s4), -1, 0)
     assert framedecode.text_formatter(plan)((0xFFFF << 8) | 0x8) == "t=-1.5 %, n=lowest"
     assert framedecode.text_formatter(plan)((0x0003 << 8) | 0x7) == "t=0.5 %, n=7"
+
+
+@pytest.mark.parametrize("line", ["-1#00", "0x1F#00", "1_0#00", "+7F#00", "#00", "123#0", "123#R", "(1.0) can0", "(1.0 can0 123#00", "can0 123 [2] 00", "can0 123 [x] 00"])
+def test_malformed_lines(line):
+    with pytest.raises(LineError):
+        parse_line(line)
+
+
+def test_line_forms():
+    assert parse_line("(1.5) vcan0 18FF0123#01.02") == ("1.5", "vcan0", 0x18FF0123, True, b"\x01\x02")
+    assert parse_line("123#") == (None, None, 0x123, False, b"")
+    assert parse_line("1806A0B0##1" + "00" * 12) == (None, None, 0x1806A0B0, True, bytes(12))
+    assert parse_line("  can0  1806A0B0   [2]  0A 0B") == (None, "can0", 0x1806A0B0, True, b"\x0a\x0b")
+    assert parse_line("   ") is None and parse_line("# comment") is None

@@ -112,8 +112,8 @@ class Reporter:
 
 def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
-    for lineno, line in enumerate(lines, 1):
-        stats["lines"] = lineno
+    frames = decoded = lineno = 0
+    for lineno, line in enumerate(lines, 1):  # noqa: B007 - lineno is the line count after the loop
         progress.advance(len(line), lineno)
         try:
             frame = parse_line(line)
@@ -122,7 +122,7 @@ def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.Mess
             continue
         if frame is None:
             continue
-        stats["frames"] += 1
+        frames += 1
         plan = plans.get(frame.frame_id) if frame.extended else None
         if plan is None:
             report("unknown_id", lineno, f"unknown frame ID {frame.frame_id:0{8 if frame.extended else 3}X}")
@@ -135,8 +135,8 @@ def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.Mess
         if not ok:
             report("checksum", lineno, f"{plan.name} ({plan.frame_id:08X}): checksum mismatch (byte {plan.checksum_shift // 8} is 0x{(v >> plan.checksum_shift) & 0xFF:02X})")
         output.frame(frame, plan, v, ok)
-        stats["decoded"] += 1
-        stats[plan.name] += 1
+        decoded += 1
+    stats.update(lines=lineno, frames=frames, decoded=decoded)
     return stats
 
 
