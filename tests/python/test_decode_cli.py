@@ -184,7 +184,7 @@ def test_compiled_text_formatter_equals_the_generic_decoder(can, vectors):
     assert framedecode.text_formatter(plan)((0x0003 << 8) | 0x7) == "t=0.5 %, n=7"
 
 
-@pytest.mark.parametrize("line", ["-1#00", "0x1F#00", "1_0#00", "+7F#00", "#00", "123#0", "123#R", "(1.0) can0", "(1.0 can0 123#00", "can0 123 [2] 00", "can0 123 [x] 00"])
+@pytest.mark.parametrize("line", ["-1#00", "0x1F#00", "1_0#00", "+7F#00", "123#0", "123#R", "(1.0) can0", "(1.0 can0 123#00", "can0 123 [2] 00", "can0 123 [x] 00"])
 def test_malformed_lines(line):
     with pytest.raises(LineError):
         parse_line(line)
