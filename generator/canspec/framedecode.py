@@ -5,8 +5,8 @@ labels), computed once; decoding a frame is then one int.from_bytes and a loop o
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 from fractions import Fraction
 
 from canspec import ir
@@ -35,7 +35,7 @@ class MessagePlan:
     checksum_cover: int
 
 
-def value_text(s: SignalPlan, physical: float | int, label: str | None) -> str:
+def value_text(s: SignalPlan, physical: float, label: str | None) -> str:
     """A value as printed: its label, or the number in the signal's precision."""
     if label is not None:
         return label

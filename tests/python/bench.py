@@ -16,16 +16,15 @@ import sys
 import tempfile
 import time
 from collections import defaultdict
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import pkgpath  # noqa: E402
-
-import cantools  # noqa: E402
-
-import kaiwo_gateway as gw  # noqa: E402
-from vector_runner import PHYSICAL_KINDS, attr_names  # noqa: E402
+import cantools
+import kaiwo_gateway as gw
+import pkgpath
+from vector_runner import PHYSICAL_KINDS, attr_names
 
 
 def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],
@@ -64,9 +63,10 @@ def codec_table(vectors: dict[str, Any], db: Any, loops: int) -> tuple[float, fl
         for c, m in zip(cases, messages):
             try:
                 cmsg.encode(c["physical"])
-            except Exception:  # noqa: BLE001 - cantools raises several types
-                continue
-            ok_pairs.append((c["physical"], m))
+            except cantools.database.EncodeError:
+                pass
+            else:
+                ok_pairs.append((c["physical"], m))
         dec, cdec = pair_us(gw.decode, db.decode_message, frames, frames, loops)
         enc, cenc = pair_us(gw.encode, cmsg.encode, [(m,) for _, m in ok_pairs], [(p,) for p, _ in ok_pairs], loops)
         print(f"{name:28} {dec:10.2f} {cdec:9.2f} {cdec / dec:5.1f}x   {enc:10.2f} {cenc:9.2f} {cenc / enc:5.1f}x")

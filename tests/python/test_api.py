@@ -7,7 +7,6 @@ import dataclasses
 import math
 
 import pytest
-
 from canspec import j1939 as ref_j1939
 
 

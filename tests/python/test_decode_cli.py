@@ -12,11 +12,11 @@ import subprocess
 import sys
 
 import pytest
+from canspec.candump import LineError, parse_line
+from canspec.commands import decode as decode_cmd
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from canspec.candump import LineError, parse_line
-from canspec.commands import decode as decode_cmd
 from python import pkgpath
 
 ENV = dict(os.environ, PYTHONPATH=str(pkgpath.ROOT / "generator"))

@@ -6,7 +6,6 @@ import dataclasses
 from fractions import Fraction
 
 import pytest
-
 from canspec.targets import python_model as pm
 
 

@@ -9,11 +9,10 @@ import math
 from fractions import Fraction
 
 import pytest
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-
 from canspec.pipeline import compile_spec
 from conftest import SPEC as SPEC_DIR  # the root conftest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 CAN = compile_spec(SPEC_DIR).spec.can  # type: ignore[union-attr]
 MESSAGES = [m for m in CAN.messages if any(s.role != "checksum" for s in m.data_signals)]
@@ -24,7 +23,7 @@ def physical_strategy(sig):
     """Physical values a physical encode must accept: the documented range ∩ what the bits carry, plus specials."""
     lo, hi = sig.phys_min, sig.phys_max
     if sig.is_integer:
-        values = st.integers(int(math.ceil(max(lo, sig.check_min))), int(math.floor(min(hi, sig.check_max))))
+        values = st.integers(math.ceil(max(lo, sig.check_min)), math.floor(min(hi, sig.check_max)))
         if sig.factor != 1:  # only multiples of the factor are exact
             values = st.integers(sig.raw_min, sig.raw_max).map(lambda r: int(r * sig.factor + sig.offset))
     else:

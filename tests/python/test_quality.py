@@ -9,8 +9,8 @@ import sys
 import zipfile
 
 import pytest
-
 from canspec.targets import python as target
+
 from python import pkgpath, vector_runner
 
 PKG = pkgpath.PACKAGE_DIR

@@ -15,9 +15,8 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import pkgpath  # noqa: E402
-
-import kaiwo_gateway as gw  # noqa: E402
+import kaiwo_gateway as gw
+import pkgpath
 
 PHYSICAL_KINDS = {"zero", "base", "min", "max", "enum", "special", "tie", "random"}
 

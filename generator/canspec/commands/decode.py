@@ -13,7 +13,8 @@ import os
 import sys
 import time
 from collections import Counter
-from typing import IO, Any, Callable
+from collections.abc import Callable
+from typing import IO, Any
 
 from canspec import framedecode
 from canspec.candump import LineError, parse_line
@@ -113,7 +114,7 @@ class Reporter:
 def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
     frames = decoded = lineno = 0
-    for lineno, line in enumerate(lines, 1):  # noqa: B007 - lineno is the line count after the loop
+    for lineno, line in enumerate(lines, 1):
         progress.advance(len(line), lineno)
         try:
             frame = parse_line(line)
