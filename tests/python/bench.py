@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -21,10 +22,9 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import cantools
-import kaiwo_gateway as gw
-import pkgpath
-from vector_runner import PHYSICAL_KINDS, attr_names
+import cantools  # noqa: E402
+import pkgpath  # noqa: E402  (puts the generated package on sys.path)
+from vector_runner import PHYSICAL_KINDS, attr_names, gw  # noqa: E402
 
 
 def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],
@@ -87,14 +87,17 @@ def write_log(path: Path, vectors: dict[str, Any], frames: int) -> None:
             out.write(f"({1700000000 + i * 0.0005:.6f}) can0 {lines[i % len(lines)]}\n")
 
 
-def timed(cmd: list[str], log: Path, env: dict[str, str]) -> float:
+def timed(cmd: list[str], log: Path, env: dict[str, str]) -> tuple[float, float]:
+    """Wall time and CPU time (user + system) of a command reading the log on stdin."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     with log.open("rb") as stdin:
         proc = subprocess.run(cmd, stdin=stdin, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, check=False)
     elapsed = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed: {proc.stderr.decode()[-500:]}")
-    return elapsed
+    return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def log_table(vectors: dict[str, Any], frames: int) -> None:
@@ -102,11 +105,12 @@ def log_table(vectors: dict[str, Any], frames: int) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         log = Path(tmp) / "bench.log"
         write_log(log, vectors, frames)
-        ours = timed([sys.executable, "-m", "canspec", "decode", "-"], log, env)
-        theirs = timed([sys.executable, "-m", "cantools", "decode", "--single-line", str(pkgpath.DBC)], log, env)
-    print(f"\ncandump log of {frames:,} frames (text output to /dev/null):")
-    print(f"  canspec decode            {ours:8.2f} s  {frames / ours:>10,.0f} frames/s")
-    print(f"  python -m cantools decode {theirs:8.2f} s  {frames / theirs:>10,.0f} frames/s   ratio {theirs / ours:.1f}x")
+        ours, ours_cpu = timed([sys.executable, "-m", "canspec", "decode", "-"], log, env)
+        theirs, theirs_cpu = timed([sys.executable, "-m", "cantools", "decode", "--single-line", str(pkgpath.DBC)], log, env)
+    print(f"\ncandump log of {frames:,} frames (text output to /dev/null):      wall            CPU")
+    print(f"  canspec decode            {ours:8.2f} s {frames / ours:>10,.0f} frames/s   {ours_cpu:7.2f} s")
+    print(f"  python -m cantools decode {theirs:8.2f} s {frames / theirs:>10,.0f} frames/s   {theirs_cpu:7.2f} s")
+    print(f"  ratio (cantools / canspec): wall {theirs / ours:.1f}x, CPU {theirs_cpu / ours_cpu:.1f}x")
 
 
 def main() -> int:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from python import pkgpath
+from python import pkgpath  # noqa: F401  (puts generated/python on sys.path)
 
 
 @pytest.fixture(scope="session")

@@ -8,6 +8,7 @@ Exit 0 when every case agrees, 1 otherwise (each mismatch printed)."""
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import json
 import math
 import sys
@@ -15,8 +16,9 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import kaiwo_gateway as gw
-import pkgpath
+import pkgpath  # noqa: E402  (puts the generated package on sys.path)
+
+gw = importlib.import_module("kaiwo_gateway")
 
 PHYSICAL_KINDS = {"zero", "base", "min", "max", "enum", "special", "tie", "random"}
 

@@ -114,7 +114,7 @@ class Reporter:
 def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
     frames = decoded = lineno = 0
-    for lineno, line in enumerate(lines, 1):
+    for lineno, line in enumerate(lines, 1):  # noqa: B007 - lineno is the line count after the loop
         progress.advance(len(line), lineno)
         try:
             frame = parse_line(line)
