@@ -117,6 +117,9 @@ class PyMultiFrame:
     func_split: str
     func_join: str
     assembler: str
+    total_bytes: int  # frames × bytes per frame
+    last_index: int
+    padding_lit: str  # the padding byte as a bytes literal
 
 
 @dataclass(frozen=True)
@@ -355,7 +358,8 @@ def _message(msg: ir.Message, enum_names: dict[str, str], lookups: dict[tuple[st
         base = snake(msg.name)
         mf = PyMultiFrame(
             by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, m.padding, m.encoding,
-            f"split_{base}_text", f"join_{base}_text", f"{pascal(msg.name)}TextAssembler",
+            f"split_{base}_text", f"join_{base}_text", f"{pascal(msg.name)}TextAssembler", m.frames * m.bytes_per_frame, m.frames - 1,
+            repr(bytes([m.padding])),
         )
     base = snake(msg.name)
     return PyMessage(
