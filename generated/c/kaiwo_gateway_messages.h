@@ -49,7 +49,7 @@ extern "C" {
 #define KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET      (-1080.0)
 #define KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_MIN         (-1080.0)
 #define KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_MAX         (1080.0)
-#define KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 10
+#define KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 100
 
 /** Raw field values of autocar_eps_command (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -237,22 +237,22 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
     return KAIWO_GATEWAY_OK;
 }
 
-/** steering_angle_cmd: raw → physical × 10, integers only. */
+/** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 10800;
+    return (int32_t)raw * 10 - 108000;
 }
 
-/** steering_angle_cmd: physical × 10 → raw, integers only, same rounding and range rules as
+/** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-10801) && value < 54736)) {
+    if (!(value > (-108010) && value < 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-10800), 1);
-    if (value < (-10800) || value > 10800 || r < INT64_C(0) || r > INT64_C(21600)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -282,17 +282,17 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value,
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET        (-12.8)
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_MIN           (-12.8)
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_MAX           (12.7)
-#define KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FIXED_SCALE   10
+#define KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FIXED_SCALE   100
 #define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR      0.3
 #define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET      (-38.4)
 #define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_MIN         (-38.4)
 #define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_MAX         (38.1)
-#define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FIXED_SCALE 10
+#define KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FIXED_SCALE 100
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR         0.1
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET         (-1080.0)
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_MIN            (-1080.0)
 #define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_MAX            (1080.0)
-#define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FIXED_SCALE    10
+#define KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FIXED_SCALE    100
 #define KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR        2.0
 #define KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_OFFSET        (0.0)
 #define KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_MIN           (0.0)
@@ -445,21 +445,21 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
     return KAIWO_GATEWAY_OK;
 }
 
-/** steering_torque: raw → physical × 10, integers only. */
+/** steering_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 128;
+    return (int32_t)raw * 10 - 1280;
 }
 
-/** steering_torque: physical × 10 → raw, integers only, same rounding and range rules as
+/** steering_torque: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_eps_state_steering_torque_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-129) && value < 128)) {
+    if (!(value > (-1290) && value < 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-128), 1);
-    if (value < (-128) || value > 127 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-1280), 10);
+    if (value < (-1280) || value > 1270 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -491,21 +491,21 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** eps_output_torque: raw → physical × 10, integers only. */
+/** eps_output_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 3 - 384;
+    return (int32_t)raw * 30 - 3840;
 }
 
-/** eps_output_torque: physical × 10 → raw, integers only, same rounding and range rules as
+/** eps_output_torque: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_eps_state_eps_output_torque_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-387) && value < 384)) {
+    if (!(value > (-3870) && value < 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-384), 3);
-    if (value < (-384) || value > 381 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-3840), 30);
+    if (value < (-3840) || value > 3810 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -537,21 +537,21 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
     return KAIWO_GATEWAY_OK;
 }
 
-/** steering_angle: raw → physical × 10, integers only. */
+/** steering_angle: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 10800;
+    return (int32_t)raw * 10 - 108000;
 }
 
-/** steering_angle: physical × 10 → raw, integers only, same rounding and range rules as
+/** steering_angle: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_eps_state_steering_angle_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-10801) && value < 54736)) {
+    if (!(value > (-108010) && value < 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-10800), 1);
-    if (value < (-10800) || value > 10800 || r < INT64_C(0) || r > INT64_C(21600)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -981,23 +981,23 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode_fixed(int32_t val
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET                (-15000.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_MIN                   (-15000.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_MAX                   (15000.0)
-#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FIXED_SCALE           1
+#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FIXED_SCALE           10
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FACTOR               1.0
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET               (-5000.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_MIN                  (-5000.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_MAX                  (5000.0)
-#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FIXED_SCALE          1
+#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FIXED_SCALE          10
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_INVALID         255u /**< Invalid */
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FACTOR          1.0
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_OFFSET          (1.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_MIN             (1.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_MAX             (254.0)
-#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FIXED_SCALE     1
+#define KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FIXED_SCALE     10
 #define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR              0.05
 #define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET              (-9.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_MIN                 (-9.0)
 #define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_MAX                 (3.6)
-#define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FIXED_SCALE         100
+#define KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FIXED_SCALE         1000
 
 /** Raw field values of driving_state (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -1283,21 +1283,21 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
     return KAIWO_GATEWAY_OK;
 }
 
-/** motor_speed: raw → physical × 1, integers only. */
+/** motor_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 15000;
+    return (int32_t)raw * 10 - 150000;
 }
 
-/** motor_speed: physical × 1 → raw, integers only, same rounding and range rules as
+/** motor_speed: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_driving_state_motor_speed_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-15001) && value < 50536)) {
+    if (!(value > (-150010) && value < 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-15000), 1);
-    if (value < (-15000) || value > 15000 || r < INT64_C(0) || r > INT64_C(30000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-150000), 10);
+    if (value < (-150000) || value > 150000 || r < INT64_C(0) || r > INT64_C(30000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1329,21 +1329,21 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** motor_torque: raw → physical × 1, integers only. */
+/** motor_torque: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 5000;
+    return (int32_t)raw * 10 - 50000;
 }
 
-/** motor_torque: physical × 1 → raw, integers only, same rounding and range rules as
+/** motor_torque: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_driving_state_motor_torque_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-5001) && value < 60536)) {
+    if (!(value > (-50010) && value < 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-5000), 1);
-    if (value < (-5000) || value > 5000 || r < INT64_C(0) || r > INT64_C(10000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-50000), 10);
+    if (value < (-50000) || value > 50000 || r < INT64_C(0) || r > INT64_C(10000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1377,22 +1377,22 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
     return KAIWO_GATEWAY_OK;
 }
 
-/** motor_speed_ratio: raw → physical × 1, integers only. */
+/** motor_speed_ratio: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed(uint8_t raw) {
-    return (int32_t)raw + 1;
+    return (int32_t)raw * 10 + 10;
 }
 
-/** motor_speed_ratio: physical × 1 → raw, integers only, same rounding and range rules as
+/** motor_speed_ratio: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_driving_state_motor_speed_ratio_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 0 && value < 257)) {
+    if (!(value > 0 && value < 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 1, 1);
+    r = kaiwo_gateway_div_round((int64_t)value - 10, 10);
     if (!(r == 255)) {
-        if (value < 1 || value > 254 || r < INT64_C(0) || r > INT64_C(253)) {
+        if (value < 10 || value > 2540 || r < INT64_C(0) || r > INT64_C(253)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1425,21 +1425,21 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** current_accel: raw → physical × 100, integers only. */
+/** current_accel: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 - 900;
+    return (int32_t)raw * 50 - 9000;
 }
 
-/** current_accel: physical × 100 → raw, integers only, same rounding and range rules as
+/** current_accel: physical × 1000 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_driving_state_current_accel_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-905) && value < 380)) {
+    if (!(value > (-9050) && value < 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-900), 5);
-    if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(252)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-9000), 50);
+    if (value < (-9000) || value > 3600 || r < INT64_C(0) || r > INT64_C(252)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1564,7 +1564,7 @@ kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *r
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET             (16.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_MIN                (16.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_MAX                (30.0)
-#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        10
+#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        100
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR      1.0
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET      (0.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN         (0.0)
@@ -2677,22 +2677,22 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
     return KAIWO_GATEWAY_OK;
 }
 
-/** ac_set_temp: raw → physical × 10, integers only. */
+/** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 + 160;
+    return (int32_t)raw * 50 + 1600;
 }
 
-/** ac_set_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 155 && value < 320)) {
+    if (!(value > 1550 && value < 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 160, 5);
-    if (value < 160 || value > 300 || r < INT64_C(0) || r > INT64_C(28)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2934,12 +2934,12 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode_fixed(int32_t 
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET             (-50.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_MIN                (-50.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_MAX                (200.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FIXED_SCALE        1
+#define KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FIXED_SCALE        10
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR                       0.5
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_OFFSET                       (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_MIN                          (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_MAX                          (125.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FIXED_SCALE                  10
+#define KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FIXED_SCALE                  100
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_FACTOR          1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_OFFSET          (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_MIN             (0.0)
@@ -3753,21 +3753,21 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** vehicle_speed: raw → physical × 1, integers only. */
+/** vehicle_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 50;
+    return (int32_t)raw * 10 - 500;
 }
 
-/** vehicle_speed: physical × 1 → raw, integers only, same rounding and range rules as
+/** vehicle_speed: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-51) && value < 206)) {
+    if (!(value > (-510) && value < 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-50), 1);
-    if (value < (-50) || value > 200 || r < INT64_C(0) || r > INT64_C(250)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-500), 10);
+    if (value < (-500) || value > 2000 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3799,21 +3799,21 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(do
     return KAIWO_GATEWAY_OK;
 }
 
-/** soc: raw → physical × 10, integers only. */
+/** soc: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_1_soc_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5;
+    return (int32_t)raw * 50;
 }
 
-/** soc: physical × 10 → raw, integers only, same rounding and range rules as
+/** soc: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_1_soc_encode(). */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fixed(int32_t value,
                                                                                     uint8_t *raw) {
     int64_t r;
-    if (!(value > (-5) && value < 1280)) {
+    if (!(value > (-50) && value < 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 5);
-    if (value < 0 || value > 1250 || r < INT64_C(0) || r > INT64_C(250)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
+    if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4090,17 +4090,17 @@ kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET      (0.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN         (0.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX         (125.0)
-#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 10
+#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 100
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FACTOR             0.05
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_OFFSET             (-25.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_MIN                (-25.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_MAX                (25.0)
-#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FIXED_SCALE        100
+#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FIXED_SCALE        1000
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FACTOR              0.1
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_OFFSET              (-40.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_MIN                 (-40.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_MAX                 (40.0)
-#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FIXED_SCALE         10
+#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FIXED_SCALE         100
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_FACTOR               0.2
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_OFFSET               (-30.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_MIN                  (-30.0)
@@ -4110,7 +4110,7 @@ kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_OFFSET                (-40.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_MIN                   (-40.0)
 #define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_MAX                   (40.0)
-#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_FIXED_SCALE           10
+#define KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_FIXED_SCALE           100
 
 /** Raw field values of autocar_control_command_2 (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -4411,24 +4411,24 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode(double value
     return KAIWO_GATEWAY_OK;
 }
 
-/** downhill_regen_speed: raw → physical × 10, integers only. */
+/** downhill_regen_speed: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5;
+    return (int32_t)raw * 50;
 }
 
-/** downhill_regen_speed: physical × 10 → raw, integers only, same rounding and range rules as
+/** downhill_regen_speed: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                           uint8_t *raw) {
     int64_t r;
-    if (!(value > (-5) && value < 1280)) {
+    if (!(value > (-50) && value < 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 5);
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 1250 || r < INT64_C(0) || r > INT64_C(250)) {
+        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4461,22 +4461,22 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
     return KAIWO_GATEWAY_OK;
 }
 
-/** chassis_pitch: raw → physical × 100, integers only. */
+/** chassis_pitch: raw → physical × 1000, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 5 - 2500;
+    return (int32_t)raw * 50 - 25000;
 }
 
-/** chassis_pitch: physical × 100 → raw, integers only, same rounding and range rules as
+/** chassis_pitch: physical × 1000 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-2505) && value < 2620)) {
+    if (!(value > (-25050) && value < 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-2500), 5);
-    if (value < (-2500) || value > 2500 || r < INT64_C(0) || r > INT64_C(1000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-25000), 50);
+    if (value < (-25000) || value > 25000 || r < INT64_C(0) || r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4508,22 +4508,22 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
     return KAIWO_GATEWAY_OK;
 }
 
-/** chassis_roll: raw → physical × 10, integers only. */
+/** chassis_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 400;
+    return (int32_t)raw * 10 - 4000;
 }
 
-/** chassis_roll: physical × 10 → raw, integers only, same rounding and range rules as
+/** chassis_roll: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-401) && value < 624)) {
+    if (!(value > (-4010) && value < 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 1);
-    if (value < (-400) || value > 400 || r < INT64_C(0) || r > INT64_C(800)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-4000), 10);
+    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4602,22 +4602,22 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
     return KAIWO_GATEWAY_OK;
 }
 
-/** cargo_roll: raw → physical × 10, integers only. */
+/** cargo_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 400;
+    return (int32_t)raw * 10 - 4000;
 }
 
-/** cargo_roll: physical × 10 → raw, integers only, same rounding and range rules as
+/** cargo_roll: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-401) && value < 624)) {
+    if (!(value > (-4010) && value < 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 1);
-    if (value < (-400) || value > 400 || r < INT64_C(0) || r > INT64_C(800)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-4000), 10);
+    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4917,32 +4917,32 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode_fixed(int32_t valu
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET           (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_MIN              (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_MAX              (215.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FIXED_SCALE      1
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FIXED_SCALE      10
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FACTOR           1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET           (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_MIN              (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_MAX              (215.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FIXED_SCALE      1
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FIXED_SCALE      10
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR           0.0015
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_OFFSET           (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_MIN              (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_MAX              (6.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FIXED_SCALE      10000
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FIXED_SCALE      100000
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR           0.0015
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_OFFSET           (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_MIN              (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_MAX              (6.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FIXED_SCALE      10000
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FIXED_SCALE      100000
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FACTOR                 1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET                 (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_MIN                    (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_MAX                    (215.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FIXED_SCALE            1
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FIXED_SCALE            10
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FACTOR      1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET      (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_MIN         (-40.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_MAX         (215.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FIXED_SCALE 1
+#define KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FIXED_SCALE 10
 
 /** Raw field values of vehicle_state_3 (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -5032,21 +5032,21 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
     return KAIWO_GATEWAY_OK;
 }
 
-/** battery_max_temp: raw → physical × 1, integers only. */
+/** battery_max_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 40;
+    return (int32_t)raw * 10 - 400;
 }
 
-/** battery_max_temp: physical × 1 → raw, integers only, same rounding and range rules as
+/** battery_max_temp: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-41) && value < 216)) {
+    if (!(value > (-410) && value < 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-40), 1);
-    if (value < (-40) || value > 215 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5078,21 +5078,21 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
     return KAIWO_GATEWAY_OK;
 }
 
-/** battery_min_temp: raw → physical × 1, integers only. */
+/** battery_min_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 40;
+    return (int32_t)raw * 10 - 400;
 }
 
-/** battery_min_temp: physical × 1 → raw, integers only, same rounding and range rules as
+/** battery_min_temp: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-41) && value < 216)) {
+    if (!(value > (-410) && value < 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-40), 1);
-    if (value < (-40) || value > 215 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5124,21 +5124,21 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *ra
     return KAIWO_GATEWAY_OK;
 }
 
-/** max_cell_voltage: raw → physical × 10000, integers only. */
+/** max_cell_voltage: raw → physical × 100000, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 15;
+    return (int32_t)raw * 150;
 }
 
-/** max_cell_voltage: physical × 10000 → raw, integers only, same rounding and range rules as
+/** max_cell_voltage: physical × 100000 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-15) && value < 61440)) {
+    if (!(value > (-150) && value < 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 15);
-    if (value < 0 || value > 60000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 150);
+    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5170,21 +5170,21 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *ra
     return KAIWO_GATEWAY_OK;
 }
 
-/** min_cell_voltage: raw → physical × 10000, integers only. */
+/** min_cell_voltage: raw → physical × 100000, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 15;
+    return (int32_t)raw * 150;
 }
 
-/** min_cell_voltage: physical × 10000 → raw, integers only, same rounding and range rules as
+/** min_cell_voltage: physical × 100000 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-15) && value < 61440)) {
+    if (!(value > (-150) && value < 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 15);
-    if (value < 0 || value > 60000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 150);
+    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5216,21 +5216,21 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
     return KAIWO_GATEWAY_OK;
 }
 
-/** motor_temp: raw → physical × 1, integers only. */
+/** motor_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 40;
+    return (int32_t)raw * 10 - 400;
 }
 
-/** motor_temp: physical × 1 → raw, integers only, same rounding and range rules as
+/** motor_temp: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_motor_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-41) && value < 216)) {
+    if (!(value > (-410) && value < 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-40), 1);
-    if (value < (-40) || value > 215 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5262,22 +5262,22 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
     return KAIWO_GATEWAY_OK;
 }
 
-/** motor_controller_temp: raw → physical × 1, integers only. */
+/** motor_controller_temp: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw - 40;
+    return (int32_t)raw * 10 - 400;
 }
 
-/** motor_controller_temp: physical × 1 → raw, integers only, same rounding and range rules as
+/** motor_controller_temp: physical × 10 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-41) && value < 216)) {
+    if (!(value > (-410) && value < 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-40), 1);
-    if (value < (-40) || value > 215 || r < INT64_C(0) || r > INT64_C(255)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5301,12 +5301,12 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET                (-30.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_MIN                   (-30.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_MAX                   (95.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FIXED_SCALE           10
+#define KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FIXED_SCALE           100
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR                 0.5
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET                 (-30.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_MIN                    (-30.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_MAX                    (95.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FIXED_SCALE            10
+#define KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FIXED_SCALE            100
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_FACTOR                    1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_OFFSET                    (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_MIN                       (0.0)
@@ -5346,7 +5346,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET                 (16.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_MIN                    (16.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_MAX                    (30.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FIXED_SCALE            10
+#define KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FIXED_SCALE            100
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_FACTOR                   1.0
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_OFFSET                   (0.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_MIN                      (0.0)
@@ -5356,7 +5356,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET               (-325.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_MIN                  (-325.0)
 #define KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_MAX                  (325.0)
-#define KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FIXED_SCALE          100
+#define KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FIXED_SCALE          1000
 
 /** Raw field values of vehicle_state_4 (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -5469,21 +5469,21 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** outside_temp: raw → physical × 10, integers only. */
+/** outside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 - 300;
+    return (int32_t)raw * 50 - 3000;
 }
 
-/** outside_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** outside_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_4_outside_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-305) && value < 980)) {
+    if (!(value > (-3050) && value < 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-300), 5);
-    if (value < (-300) || value > 950 || r < INT64_C(0) || r > INT64_C(250)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-3000), 50);
+    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5515,21 +5515,21 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** inside_temp: raw → physical × 10, integers only. */
+/** inside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 - 300;
+    return (int32_t)raw * 50 - 3000;
 }
 
-/** inside_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** inside_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_4_inside_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-305) && value < 980)) {
+    if (!(value > (-3050) && value < 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-300), 5);
-    if (value < (-300) || value > 950 || r < INT64_C(0) || r > INT64_C(250)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-3000), 50);
+    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5885,21 +5885,21 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
     return KAIWO_GATEWAY_OK;
 }
 
-/** ac_set_temp: raw → physical × 10, integers only. */
+/** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 + 160;
+    return (int32_t)raw * 50 + 1600;
 }
 
-/** ac_set_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 155 && value < 320)) {
+    if (!(value > 1550 && value < 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 160, 5);
-    if (value < 160 || value > 300 || r < INT64_C(0) || r > INT64_C(28)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5977,21 +5977,21 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
     return KAIWO_GATEWAY_OK;
 }
 
-/** battery_power: raw → physical × 100, integers only. */
+/** battery_power: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 32500;
+    return (int32_t)raw * 10 - 325000;
 }
 
-/** battery_power: physical × 100 → raw, integers only, same rounding and range rules as
+/** battery_power: physical × 1000 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_vehicle_state_4_battery_power_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-32501) && value < 33036)) {
+    if (!(value > (-325010) && value < 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-32500), 1);
-    if (value < (-32500) || value > 32500 || r < INT64_C(0) || r > INT64_C(65000)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-325000), 10);
+    if (value < (-325000) || value > 325000 || r < INT64_C(0) || r > INT64_C(65000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -7727,7 +7727,7 @@ static inline kaiwo_gateway_vehicle_state_5_t kaiwo_gateway_vehicle_state_5_init
 #define KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET      (-1080.0)
 #define KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_MIN         (-1080.0)
 #define KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_MAX         (1080.0)
-#define KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 10
+#define KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 100
 
 /** Raw field values of rgate_eps_command (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -7914,22 +7914,22 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
     return KAIWO_GATEWAY_OK;
 }
 
-/** steering_angle_cmd: raw → physical × 10, integers only. */
+/** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 10800;
+    return (int32_t)raw * 10 - 108000;
 }
 
-/** steering_angle_cmd: physical × 10 → raw, integers only, same rounding and range rules as
+/** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-10801) && value < 54736)) {
+    if (!(value > (-108010) && value < 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-10800), 1);
-    if (value < (-10800) || value > 10800 || r < INT64_C(0) || r > INT64_C(21600)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8347,7 +8347,7 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode_fixed(int32_t value
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET             (16.0)
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_MIN                (16.0)
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_MAX                (30.0)
-#define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        10
+#define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        100
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR      1.0
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET      (0.0)
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN         (0.0)
@@ -9449,21 +9449,21 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
     return KAIWO_GATEWAY_OK;
 }
 
-/** ac_set_temp: raw → physical × 10, integers only. */
+/** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 + 160;
+    return (int32_t)raw * 50 + 1600;
 }
 
-/** ac_set_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 155 && value < 320)) {
+    if (!(value > 1550 && value < 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 160, 5);
-    if (value < 160 || value > 300 || r < INT64_C(0) || r > INT64_C(28)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9651,7 +9651,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode_fixed(int32_t va
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET      (0.0)
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN         (0.0)
 #define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX         (125.0)
-#define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 10
+#define KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 100
 
 /** Raw field values of rgate_control_command_2 (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -9940,24 +9940,24 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode(double value, 
     return KAIWO_GATEWAY_OK;
 }
 
-/** downhill_regen_speed: raw → physical × 10, integers only. */
+/** downhill_regen_speed: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5;
+    return (int32_t)raw * 50;
 }
 
-/** downhill_regen_speed: physical × 10 → raw, integers only, same rounding and range rules as
+/** downhill_regen_speed: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-5) && value < 1280)) {
+    if (!(value > (-50) && value < 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 5);
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 1250 || r < INT64_C(0) || r > INT64_C(250)) {
+        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10140,31 +10140,7 @@ kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw)
     return KAIWO_GATEWAY_OK;
 }
 
-/** id_chars: raw → physical. */
-static inline double kaiwo_gateway_device_id_id_chars_decode(uint64_t raw) {
-    return (double)raw;
-}
-
-/** id_chars: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 72057594037927935.0] or not encodable. */
-static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_chars_encode(double value,
-                                                                             uint64_t *raw) {
-    const double q =
-        (value - KAIWO_GATEWAY_DEVICE_ID_ID_CHARS_OFFSET) / KAIWO_GATEWAY_DEVICE_ID_ID_CHARS_FACTOR;
-    int64_t r;
-    if (!(q > -1.0 && q < 72057594037927936.0)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DEVICE_ID_ID_CHARS_MIN &&
-          value <= KAIWO_GATEWAY_DEVICE_ID_ID_CHARS_MAX) ||
-        r < INT64_C(0) || r > INT64_C(72057594037927935)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    *raw = (uint64_t)r;
-    return KAIWO_GATEWAY_OK;
-}
-
+/* id_chars: 56-bit values are not exact in a double: use the integer functions. */
 /** id_chars: raw → physical × 1, integers only. */
 static inline int64_t kaiwo_gateway_device_id_id_chars_decode_fixed(uint64_t raw) {
     return (int64_t)raw;
@@ -12706,7 +12682,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, 
 #define KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET      (-1080.0)
 #define KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_MIN         (-1080.0)
 #define KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_MAX         (1080.0)
-#define KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 10
+#define KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FIXED_SCALE 100
 
 /** Raw field values of tele_eps_command (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -12893,21 +12869,21 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
     return KAIWO_GATEWAY_OK;
 }
 
-/** steering_angle_cmd: raw → physical × 10, integers only. */
+/** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw - 10800;
+    return (int32_t)raw * 10 - 108000;
 }
 
-/** steering_angle_cmd: physical × 10 → raw, integers only, same rounding and range rules as
+/** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-10801) && value < 54736)) {
+    if (!(value > (-108010) && value < 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-10800), 1);
-    if (value < (-10800) || value > 10800 || r < INT64_C(0) || r > INT64_C(21600)) {
+    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13326,7 +13302,7 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode_fixed(int32_t value,
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET             (16.0)
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_MIN                (16.0)
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_MAX                (30.0)
-#define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        10
+#define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_FIXED_SCALE        100
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR      1.0
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET      (0.0)
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN         (0.0)
@@ -14425,21 +14401,21 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
     return KAIWO_GATEWAY_OK;
 }
 
-/** ac_set_temp: raw → physical × 10, integers only. */
+/** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5 + 160;
+    return (int32_t)raw * 50 + 1600;
 }
 
-/** ac_set_temp: physical × 10 → raw, integers only, same rounding and range rules as
+/** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 155 && value < 320)) {
+    if (!(value > 1550 && value < 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 160, 5);
-    if (value < 160 || value > 300 || r < INT64_C(0) || r > INT64_C(28)) {
+    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14627,7 +14603,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode_fixed(int32_t val
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET      (0.0)
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN         (0.0)
 #define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX         (125.0)
-#define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 10
+#define KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FIXED_SCALE 100
 
 /** Raw field values of tele_control_command_2 (reserved bits are not here: they are sent as 0). */
 typedef struct {
@@ -14915,24 +14891,24 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode(double value, u
     return KAIWO_GATEWAY_OK;
 }
 
-/** downhill_regen_speed: raw → physical × 10, integers only. */
+/** downhill_regen_speed: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 5;
+    return (int32_t)raw * 50;
 }
 
-/** downhill_regen_speed: physical × 10 → raw, integers only, same rounding and range rules as
+/** downhill_regen_speed: physical × 100 → raw, integers only, same rounding and range rules as
  * kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode(). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (!(value > (-5) && value < 1280)) {
+    if (!(value > (-50) && value < 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 5);
+    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 1250 || r < INT64_C(0) || r > INT64_C(250)) {
+        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }

@@ -21,6 +21,7 @@ from canspec.format import c_double
 from canspec.naming import c_ident, snake, upper_snake
 
 MAX_DLC = 8
+DOUBLE_EXACT = 2**53  # integers up to this are exact in an IEEE double
 # A value-table entry named `<layout>_xor_error` is the fault code for a checksum failure of
 # a message with that layout; `message_timeout` is the code for a receive timeout.
 XOR_ERROR_SUFFIX = "_xor_error"
@@ -126,6 +127,7 @@ class CSignal:
     fixed_q_low: str  # fixed input must lie strictly between these before rounding
     fixed_q_high: str
     is_data: bool  # has physical encode/decode (not counter/checksum)
+    has_double: bool  # every raw value is exact in a double (|raw| <= 2^53): double encode/decode exist
     unit: str
     comment: str
 
@@ -225,8 +227,11 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         expr += f" + {c_double(offset)}"
     elif offset < 0:
         expr += f" - {c_double(-offset)}"
-    # fixed point: physical * 10^k is an integer for every raw value and both range bounds
-    k = max(decimals(factor), decimals(offset), decimals(sig.check_min), decimals(sig.check_max))
+    # fixed point: physical * 10^k is an integer for every raw value, both range bounds and
+    # (for scaled signals) every half step, so the integer path can express each rounding tie
+    # and rounds it exactly as the double path does.
+    k = max(decimals(factor), decimals(offset), decimals(sig.check_min), decimals(sig.check_max),
+            0 if sig.is_identity else decimals(factor / 2))
     scale = 10**k
     ff, fo = int(factor * scale), int(offset * scale)
     fmin, fmax = int(sig.check_min * scale), int(sig.check_max * scale)
@@ -259,7 +264,7 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         scale=int_lit(scale), scale_int=scale, fixed_type=ft, fixed_factor=int_lit(ff, fbits), fixed_offset=int_lit(fo, fbits),
         fixed_min=int_lit(fmin, fbits), fixed_max=int_lit(fmax, fbits), fixed_decode_expr=fexpr,
         fixed_q_low=int_lit(fql, fbits), fixed_q_high=int_lit(fqh, fbits),
-        is_data=sig.role == "data", unit=sig.unit, comment=comment,
+        is_data=sig.role == "data", has_double=max(-sig.raw_type_min, sig.raw_type_max) <= DOUBLE_EXACT, unit=sig.unit, comment=comment,
     )
 
 
