@@ -214,7 +214,8 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, 
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 1080.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 1080.0;
 }
 
 /** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -422,7 +423,8 @@ kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw)
 
 /** steering_torque: raw → physical [Nm]. */
 static inline double kaiwo_gateway_eps_state_steering_torque_decode(uint8_t raw) {
-    return (double)raw * 0.1 - 12.8;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 12.8;
 }
 
 /** steering_torque: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -468,7 +470,8 @@ kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw
 
 /** eps_output_torque: raw → physical [Nm]. */
 static inline double kaiwo_gateway_eps_state_eps_output_torque_decode(uint8_t raw) {
-    return (double)raw * 0.3 - 38.4;
+    const double scaled = (double)raw * 0.3;
+    return scaled - 38.4;
 }
 
 /** eps_output_torque: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -514,7 +517,8 @@ kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *r
 
 /** steering_angle: raw → physical [deg]. */
 static inline double kaiwo_gateway_eps_state_steering_angle_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 1080.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 1080.0;
 }
 
 /** steering_angle: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -760,7 +764,8 @@ static inline uint8_t kaiwo_gateway_autocar_speed_command_counter_next(uint8_t c
 
 /** accel_cmd: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_autocar_speed_command_accel_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.02 - 9.0;
+    const double scaled = (double)raw * 0.02;
+    return scaled - 9.0;
 }
 
 /** accel_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -1402,7 +1407,8 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_
 
 /** current_accel: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_driving_state_current_accel_decode(uint8_t raw) {
-    return (double)raw * 0.05 - 9.0;
+    const double scaled = (double)raw * 0.05;
+    return scaled - 9.0;
 }
 
 /** current_accel: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -2654,7 +2660,8 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 + 16.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled + 16.0;
 }
 
 /** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -4438,7 +4445,8 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_
 
 /** chassis_pitch: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode(uint16_t raw) {
-    return (double)raw * 0.05 - 25.0;
+    const double scaled = (double)raw * 0.05;
+    return scaled - 25.0;
 }
 
 /** chassis_pitch: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -4485,7 +4493,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value
 
 /** chassis_roll: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_control_command_2_chassis_roll_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 40.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 40.0;
 }
 
 /** chassis_roll: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -4532,7 +4541,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value,
 
 /** cargo_pitch: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode(uint16_t raw) {
-    return (double)raw * 0.2 - 30.0;
+    const double scaled = (double)raw * 0.2;
+    return scaled - 30.0;
 }
 
 /** cargo_pitch: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -4579,7 +4589,8 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, 
 
 /** cargo_roll: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_control_command_2_cargo_roll_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 40.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 40.0;
 }
 
 /** cargo_roll: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -4762,7 +4773,8 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16
 
 /** battery_current: raw → physical [A]. */
 static inline double kaiwo_gateway_vehicle_state_2_battery_current_decode(uint16_t raw) {
-    return (double)raw * 0.02 - 500.0;
+    const double scaled = (double)raw * 0.02;
+    return scaled - 500.0;
 }
 
 /** battery_current: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -5446,7 +5458,8 @@ static inline kaiwo_gateway_vehicle_state_4_t kaiwo_gateway_vehicle_state_4_init
 
 /** outside_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_outside_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 - 30.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled - 30.0;
 }
 
 /** outside_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -5492,7 +5505,8 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *
 
 /** inside_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_inside_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 - 30.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled - 30.0;
 }
 
 /** inside_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -5862,7 +5876,8 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value,
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_ac_set_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 + 16.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled + 16.0;
 }
 
 /** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -5954,7 +5969,8 @@ kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw
 
 /** battery_power: raw → physical [kW]. */
 static inline double kaiwo_gateway_vehicle_state_4_battery_power_decode(uint16_t raw) {
-    return (double)raw * 0.01 - 325.0;
+    const double scaled = (double)raw * 0.01;
+    return scaled - 325.0;
 }
 
 /** battery_power: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -7891,7 +7907,8 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, ui
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 1080.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 1080.0;
 }
 
 /** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -8046,7 +8063,8 @@ static inline uint8_t kaiwo_gateway_rgate_speed_command_counter_next(uint8_t cou
 
 /** accel_cmd: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_rgate_speed_command_accel_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.02 - 9.0;
+    const double scaled = (double)raw * 0.02;
+    return scaled - 9.0;
 }
 
 /** accel_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -9426,7 +9444,8 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 + 16.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled + 16.0;
 }
 
 /** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -12846,7 +12865,8 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uin
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.1 - 1080.0;
+    const double scaled = (double)raw * 0.1;
+    return scaled - 1080.0;
 }
 
 /** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -13000,7 +13020,8 @@ static inline uint8_t kaiwo_gateway_tele_speed_command_counter_next(uint8_t coun
 
 /** throttle_brake_cmd: raw → physical [%]. */
 static inline double kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode(uint16_t raw) {
-    return (double)raw * 0.2 - 100.0;
+    const double scaled = (double)raw * 0.2;
+    return scaled - 100.0;
 }
 
 /** throttle_brake_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
@@ -14378,7 +14399,8 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t 
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_tele_control_command_1_ac_set_temp_decode(uint8_t raw) {
-    return (double)raw * 0.5 + 16.0;
+    const double scaled = (double)raw * 0.5;
+    return scaled + 16.0;
 }
 
 /** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)

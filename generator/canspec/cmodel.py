@@ -112,7 +112,8 @@ class CSignal:
     offset: str
     check_min: str  # double literals of the documented / encodable range
     check_max: str
-    decode_expr: str  # double from `raw`
+    decode_expr: str  # double from `raw` (and `scaled` when decode_pre is set)
+    decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
     specials: tuple[CSpecial, ...]
     enum: CEnum | None
     # integer-only (fixed-point) path: physical * scale is an integer of fixed_type
@@ -220,13 +221,15 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         unpack = f"({t}){masked}"
     # physical (double)
     factor, offset = sig.factor, sig.offset
+    # Two statements: C compilers may contract `raw * f + o` within one expression into an FMA
+    # (clang does when constant folding), which would round differently from the shared rule.
     expr = "(double)raw"
     if factor != 1:
         expr += f" * {c_double(factor)}"
-    if offset > 0:
-        expr += f" + {c_double(offset)}"
-    elif offset < 0:
-        expr += f" - {c_double(-offset)}"
+    if offset:
+        sign = "+" if offset > 0 else "-"
+        expr = f"scaled {sign} {c_double(abs(offset))}" if factor != 1 else f"{expr} {sign} {c_double(abs(offset))}"
+    decode_pre = f"(double)raw * {c_double(factor)}" if factor != 1 and offset else ""
     # fixed point: physical * 10^k is an integer for every raw value, both range bounds and
     # (for scaled signals) every half step, so the integer path can express each rounding tie
     # and rounds it exactly as the double path does.
@@ -259,7 +262,7 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         raw_min=int_lit(sig.raw_min, 64), raw_max=int_lit(sig.raw_max, 64),
         q_low=c_double(sig.raw_type_min - 1), q_high=c_double(sig.raw_type_max + 1),
         factor=c_double(factor), offset=c_double(offset),
-        check_min=c_double(sig.check_min), check_max=c_double(sig.check_max), decode_expr=expr,
+        check_min=c_double(sig.check_min), check_max=c_double(sig.check_max), decode_expr=expr, decode_pre=decode_pre,
         specials=specials, enum=enums.get(sig.value_table.name) if sig.value_table else None,
         scale=int_lit(scale), scale_int=scale, fixed_type=ft, fixed_factor=int_lit(ff, fbits), fixed_offset=int_lit(fo, fbits),
         fixed_min=int_lit(fmin, fbits), fixed_max=int_lit(fmax, fbits), fixed_decode_expr=fexpr,
