@@ -65,21 +65,24 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_autocar_eps_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = ((uint64_t)src->eps_ctrl_mode) | ((uint64_t)src->counter << 8) |
-        ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -88,19 +91,22 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *dst,
                                          const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->eps_ctrl_mode = (uint8_t)(w & 0xFFu);
-    dst->counter = (uint8_t)((w >> 8) & 0xFFu);
-    dst->max_angular_speed = (uint8_t)((w >> 16) & 0xFFu);
-    dst->steering_angle_cmd = (uint16_t)((w >> 24) & 0xFFFFu);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->eps_ctrl_mode = (uint8_t)(src[0]);
+        dst->counter = (uint8_t)(src[1]);
+        dst->max_angular_speed = (uint8_t)(src[2]);
+        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A autocar_eps_command with every raw field 0. */
@@ -321,46 +327,49 @@ typedef struct {
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_state_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->controller_temp > 63u) | (src->eps_fault_level > 3u)) {
+    if (((uint32_t)(src->controller_temp) > 63u) || ((uint32_t)(src->eps_fault_level) > 3u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->eps_ctrl_state) | ((uint64_t)src->steering_torque << 8) |
-        ((uint64_t)src->eps_output_torque << 16) | ((uint64_t)src->steering_angle << 24) |
-        ((uint64_t)src->controller_temp << 40) | ((uint64_t)src->eps_fault_level << 48) |
-        ((uint64_t)src->counter << 56);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_state);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->steering_torque);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->eps_output_torque);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle >> 8));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->controller_temp);
+        const uint8_t b6 = (uint8_t)((uint32_t)src->eps_fault_level);
+        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->eps_ctrl_state = (uint8_t)(w & 0xFFu);
-    dst->steering_torque = (uint8_t)((w >> 8) & 0xFFu);
-    dst->eps_output_torque = (uint8_t)((w >> 16) & 0xFFu);
-    dst->steering_angle = (uint16_t)((w >> 24) & 0xFFFFu);
-    dst->controller_temp = (uint8_t)((w >> 40) & 0x3Fu);
-    dst->eps_fault_level = (uint8_t)((w >> 48) & 0x3u);
-    dst->counter = (uint8_t)(w >> 56);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->eps_ctrl_state = (uint8_t)(src[0]);
+        dst->steering_torque = (uint8_t)(src[1]);
+        dst->eps_output_torque = (uint8_t)(src[2]);
+        dst->steering_angle = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
+        dst->controller_temp = (uint8_t)((src[5] & 0x3Fu));
+        dst->eps_fault_level = (uint8_t)((src[6] & 0x3u));
+        dst->counter = (uint8_t)(src[7]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A eps_state with every raw field 0. */
@@ -706,26 +715,29 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->accel_cmd > 1023u) | (src->epb_cmd > 3u) | (src->gear_cmd > 15u) |
-        (src->emergency_brake_cmd > 1u)) {
+    if (((uint32_t)(src->accel_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
+        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->accel_cmd) | ((uint64_t)src->epb_cmd << 10) |
-        ((uint64_t)src->gear_cmd << 12) | ((uint64_t)src->counter << 16) |
-        ((uint64_t)src->emergency_brake_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->accel_cmd);
+        const uint8_t b1 =
+            (uint8_t)(((uint32_t)src->accel_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
+                      ((uint32_t)src->gear_cmd << 4));
+        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = 0u;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -734,20 +746,23 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t *dst,
                                            const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->accel_cmd = (uint16_t)(w & 0x3FFu);
-    dst->epb_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->gear_cmd = (uint8_t)((w >> 12) & 0xFu);
-    dst->counter = (uint8_t)((w >> 16) & 0xFFu);
-    dst->emergency_brake_cmd = (uint8_t)((w >> 24) & 0x1u);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->accel_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->gear_cmd = (uint8_t)((src[1] >> 4));
+        dst->counter = (uint8_t)(src[2]);
+        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A autocar_speed_command with every raw field 0. */
@@ -1024,27 +1039,32 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_driving_state_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->epb_state > 3u) | (src->gear_state > 15u) | (src->emergency_brake_state > 1u) |
-        (src->uss_brake_state > 1u)) {
+    if (((uint32_t)(src->epb_state) > 3u) || ((uint32_t)(src->gear_state) > 15u) ||
+        ((uint32_t)(src->emergency_brake_state | src->uss_brake_state) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->epb_state) | ((uint64_t)src->gear_state << 2) |
-        ((uint64_t)src->emergency_brake_state << 6) | ((uint64_t)src->uss_brake_state << 7) |
-        ((uint64_t)src->motor_speed << 8) | ((uint64_t)src->motor_torque << 24) |
-        ((uint64_t)src->motor_speed_ratio << 40) | ((uint64_t)src->current_accel << 48);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->epb_state | ((uint32_t)src->gear_state << 2) |
+                                     ((uint32_t)src->emergency_brake_state << 6) |
+                                     ((uint32_t)src->uss_brake_state << 7));
+        const uint8_t b1 = (uint8_t)((uint32_t)src->motor_speed);
+        const uint8_t b2 = (uint8_t)(((uint32_t)src->motor_speed >> 8));
+        const uint8_t b3 = (uint8_t)((uint32_t)src->motor_torque);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->motor_torque >> 8));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->motor_speed_ratio);
+        const uint8_t b6 = (uint8_t)((uint32_t)src->current_accel);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4 ^ b5 ^ b6);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1053,23 +1073,26 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uint8_t *src,
                                    size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->epb_state = (uint8_t)(w & 0x3u);
-    dst->gear_state = (uint8_t)((w >> 2) & 0xFu);
-    dst->emergency_brake_state = (uint8_t)((w >> 6) & 0x1u);
-    dst->uss_brake_state = (uint8_t)((w >> 7) & 0x1u);
-    dst->motor_speed = (uint16_t)((w >> 8) & 0xFFFFu);
-    dst->motor_torque = (uint16_t)((w >> 24) & 0xFFFFu);
-    dst->motor_speed_ratio = (uint8_t)((w >> 40) & 0xFFu);
-    dst->current_accel = (uint8_t)((w >> 48) & 0xFFu);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->epb_state = (uint8_t)((src[0] & 0x3u));
+        dst->gear_state = (uint8_t)(((src[0] >> 2) & 0xFu));
+        dst->emergency_brake_state = (uint8_t)(((src[0] >> 6) & 0x1u));
+        dst->uss_brake_state = (uint8_t)((src[0] >> 7));
+        dst->motor_speed = (uint16_t)(src[1] | ((uint32_t)src[2] << 8));
+        dst->motor_torque = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
+        dst->motor_speed_ratio = (uint8_t)(src[5]);
+        dst->current_accel = (uint8_t)(src[6]);
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A driving_state with every raw field 0. */
@@ -1626,42 +1649,51 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->drive_mode_cmd > 3u) | (src->door_cmd > 3u) | (src->horn_cmd > 3u) |
-        (src->drl_cmd > 3u) | (src->left_turn_cmd > 3u) | (src->right_turn_cmd > 3u) |
-        (src->hazard_cmd > 3u) | (src->position_light_cmd > 3u) | (src->headlight_cmd > 3u) |
-        (src->rear_fog_cmd > 3u) | (src->left_fog_cmd > 3u) | (src->right_fog_cmd > 3u) |
-        (src->dome_light_cmd > 3u) | (src->ambient_light_cmd > 3u) | (src->drive_mode_reset > 1u) |
-        (src->system_state > 3u) | (src->system_reliability > 3u) | (src->system_fault_level > 3u) |
-        (src->lock_cmd > 3u) | (src->ac_cmd > 7u) | (src->ac_set_temp > 31u) |
-        (src->protocol_version_a > 15u) | (src->protocol_version_b > 15u) |
-        (src->protocol_version_c > 15u) | (src->counter > 15u)) {
+    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
+                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
+                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
+                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
+                    src->ambient_light_cmd | src->system_state | src->system_reliability |
+                    src->system_fault_level | src->lock_cmd) > 3u) ||
+        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
+        ((uint32_t)(src->ac_set_temp) > 31u) ||
+        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
+                    src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->drive_mode_cmd) | ((uint64_t)src->door_cmd << 2) |
-        ((uint64_t)src->horn_cmd << 4) | ((uint64_t)src->drl_cmd << 6) |
-        ((uint64_t)src->left_turn_cmd << 8) | ((uint64_t)src->right_turn_cmd << 10) |
-        ((uint64_t)src->hazard_cmd << 12) | ((uint64_t)src->position_light_cmd << 14) |
-        ((uint64_t)src->headlight_cmd << 16) | ((uint64_t)src->rear_fog_cmd << 18) |
-        ((uint64_t)src->left_fog_cmd << 20) | ((uint64_t)src->right_fog_cmd << 22) |
-        ((uint64_t)src->dome_light_cmd << 24) | ((uint64_t)src->ambient_light_cmd << 26) |
-        ((uint64_t)src->drive_mode_reset << 28) | ((uint64_t)src->system_state << 32) |
-        ((uint64_t)src->system_reliability << 34) | ((uint64_t)src->system_fault_level << 36) |
-        ((uint64_t)src->lock_cmd << 38) | ((uint64_t)src->ac_cmd << 40) |
-        ((uint64_t)src->ac_set_temp << 43) | ((uint64_t)src->protocol_version_a << 48) |
-        ((uint64_t)src->protocol_version_b << 52) | ((uint64_t)src->protocol_version_c << 56) |
-        ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
+                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
+        const uint8_t b1 =
+            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
+                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
+        const uint8_t b2 =
+            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
+                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
+        const uint8_t b3 =
+            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
+                      ((uint32_t)src->drive_mode_reset << 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
+                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
+        const uint8_t b6 =
+            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
+        const uint8_t b7 =
+            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1669,39 +1701,37 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_command_1_t *dst,
                                                const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->drive_mode_cmd = (uint8_t)(w & 0x3u);
-    dst->door_cmd = (uint8_t)((w >> 2) & 0x3u);
-    dst->horn_cmd = (uint8_t)((w >> 4) & 0x3u);
-    dst->drl_cmd = (uint8_t)((w >> 6) & 0x3u);
-    dst->left_turn_cmd = (uint8_t)((w >> 8) & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((w >> 12) & 0x3u);
-    dst->position_light_cmd = (uint8_t)((w >> 14) & 0x3u);
-    dst->headlight_cmd = (uint8_t)((w >> 16) & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((w >> 18) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((w >> 20) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)((w >> 22) & 0x3u);
-    dst->dome_light_cmd = (uint8_t)((w >> 24) & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((w >> 26) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((w >> 28) & 0x1u);
-    dst->system_state = (uint8_t)((w >> 32) & 0x3u);
-    dst->system_reliability = (uint8_t)((w >> 34) & 0x3u);
-    dst->system_fault_level = (uint8_t)((w >> 36) & 0x3u);
-    dst->lock_cmd = (uint8_t)((w >> 38) & 0x3u);
-    dst->ac_cmd = (uint8_t)((w >> 40) & 0x7u);
-    dst->ac_set_temp = (uint8_t)((w >> 43) & 0x1Fu);
-    dst->protocol_version_a = (uint8_t)((w >> 48) & 0xFu);
-    dst->protocol_version_b = (uint8_t)((w >> 52) & 0xFu);
-    dst->protocol_version_c = (uint8_t)((w >> 56) & 0xFu);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
+        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
+        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
+        dst->drl_cmd = (uint8_t)((src[0] >> 6));
+        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
+        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
+        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
+        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
+        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
+        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
+        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
+        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
+        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
+        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
+        dst->system_state = (uint8_t)((src[4] & 0x3u));
+        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
+        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
+        dst->lock_cmd = (uint8_t)((src[4] >> 6));
+        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
+        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
+        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
+        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
+        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A autocar_control_command_1 with every raw field 0. */
@@ -3008,38 +3038,48 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->drive_mode_state > 3u) | (src->door_state > 1u) | (src->drl_state > 1u) |
-        (src->left_turn_state > 1u) | (src->right_turn_state > 1u) | (src->hazard_state > 1u) |
-        (src->position_light_state > 1u) | (src->headlight_state > 3u) |
-        (src->rear_fog_state > 1u) | (src->left_fog_state > 1u) | (src->right_fog_state > 1u) |
-        (src->dome_light_state > 1u) | (src->ambient_light_state > 1u) |
-        (src->door_button_state > 1u) | (src->system_power_cmd > 3u) | (src->charge_state > 3u) |
-        (src->charge_connection > 3u) | (src->vehicle_fault_level > 3u)) {
+    if (((uint32_t)(src->drive_mode_state | src->headlight_state | src->system_power_cmd |
+                    src->charge_state | src->charge_connection | src->vehicle_fault_level) > 3u) ||
+        ((uint32_t)(src->door_state | src->drl_state | src->left_turn_state |
+                    src->right_turn_state | src->hazard_state | src->position_light_state |
+                    src->rear_fog_state | src->left_fog_state | src->right_fog_state |
+                    src->dome_light_state | src->ambient_light_state | src->door_button_state) >
+         1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->drive_mode_state) | ((uint64_t)src->door_state << 2) |
-        ((uint64_t)src->drl_state << 3) | ((uint64_t)src->left_turn_state << 4) |
-        ((uint64_t)src->right_turn_state << 5) | ((uint64_t)src->hazard_state << 6) |
-        ((uint64_t)src->position_light_state << 7) | ((uint64_t)src->headlight_state << 8) |
-        ((uint64_t)src->rear_fog_state << 10) | ((uint64_t)src->left_fog_state << 11) |
-        ((uint64_t)src->right_fog_state << 12) | ((uint64_t)src->dome_light_state << 13) |
-        ((uint64_t)src->ambient_light_state << 14) | ((uint64_t)src->door_button_state << 15) |
-        ((uint64_t)src->vehicle_speed << 16) | ((uint64_t)src->soc << 24) |
-        ((uint64_t)src->system_power_cmd << 32) | ((uint64_t)src->charge_state << 34) |
-        ((uint64_t)src->charge_connection << 36) | ((uint64_t)src->vehicle_fault_level << 38) |
-        ((uint64_t)src->odometer << 40) | ((uint64_t)src->counter << 56);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->drive_mode_state | ((uint32_t)src->door_state << 2) |
+                      ((uint32_t)src->drl_state << 3) | ((uint32_t)src->left_turn_state << 4) |
+                      ((uint32_t)src->right_turn_state << 5) | ((uint32_t)src->hazard_state << 6) |
+                      ((uint32_t)src->position_light_state << 7));
+        const uint8_t b1 =
+            (uint8_t)((uint32_t)src->headlight_state | ((uint32_t)src->rear_fog_state << 2) |
+                      ((uint32_t)src->left_fog_state << 3) | ((uint32_t)src->right_fog_state << 4) |
+                      ((uint32_t)src->dome_light_state << 5) |
+                      ((uint32_t)src->ambient_light_state << 6) |
+                      ((uint32_t)src->door_button_state << 7));
+        const uint8_t b2 = (uint8_t)((uint32_t)src->vehicle_speed);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->soc);
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->system_power_cmd | ((uint32_t)src->charge_state << 2) |
+                      ((uint32_t)src->charge_connection << 4) |
+                      ((uint32_t)src->vehicle_fault_level << 6));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->odometer);
+        const uint8_t b6 = (uint8_t)(((uint32_t)src->odometer >> 8));
+        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -3047,36 +3087,34 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const uint8_t *src,
                                      size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->drive_mode_state = (uint8_t)(w & 0x3u);
-    dst->door_state = (uint8_t)((w >> 2) & 0x1u);
-    dst->drl_state = (uint8_t)((w >> 3) & 0x1u);
-    dst->left_turn_state = (uint8_t)((w >> 4) & 0x1u);
-    dst->right_turn_state = (uint8_t)((w >> 5) & 0x1u);
-    dst->hazard_state = (uint8_t)((w >> 6) & 0x1u);
-    dst->position_light_state = (uint8_t)((w >> 7) & 0x1u);
-    dst->headlight_state = (uint8_t)((w >> 8) & 0x3u);
-    dst->rear_fog_state = (uint8_t)((w >> 10) & 0x1u);
-    dst->left_fog_state = (uint8_t)((w >> 11) & 0x1u);
-    dst->right_fog_state = (uint8_t)((w >> 12) & 0x1u);
-    dst->dome_light_state = (uint8_t)((w >> 13) & 0x1u);
-    dst->ambient_light_state = (uint8_t)((w >> 14) & 0x1u);
-    dst->door_button_state = (uint8_t)((w >> 15) & 0x1u);
-    dst->vehicle_speed = (uint8_t)((w >> 16) & 0xFFu);
-    dst->soc = (uint8_t)((w >> 24) & 0xFFu);
-    dst->system_power_cmd = (uint8_t)((w >> 32) & 0x3u);
-    dst->charge_state = (uint8_t)((w >> 34) & 0x3u);
-    dst->charge_connection = (uint8_t)((w >> 36) & 0x3u);
-    dst->vehicle_fault_level = (uint8_t)((w >> 38) & 0x3u);
-    dst->odometer = (uint16_t)((w >> 40) & 0xFFFFu);
-    dst->counter = (uint8_t)(w >> 56);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->drive_mode_state = (uint8_t)((src[0] & 0x3u));
+        dst->door_state = (uint8_t)(((src[0] >> 2) & 0x1u));
+        dst->drl_state = (uint8_t)(((src[0] >> 3) & 0x1u));
+        dst->left_turn_state = (uint8_t)(((src[0] >> 4) & 0x1u));
+        dst->right_turn_state = (uint8_t)(((src[0] >> 5) & 0x1u));
+        dst->hazard_state = (uint8_t)(((src[0] >> 6) & 0x1u));
+        dst->position_light_state = (uint8_t)((src[0] >> 7));
+        dst->headlight_state = (uint8_t)((src[1] & 0x3u));
+        dst->rear_fog_state = (uint8_t)(((src[1] >> 2) & 0x1u));
+        dst->left_fog_state = (uint8_t)(((src[1] >> 3) & 0x1u));
+        dst->right_fog_state = (uint8_t)(((src[1] >> 4) & 0x1u));
+        dst->dome_light_state = (uint8_t)(((src[1] >> 5) & 0x1u));
+        dst->ambient_light_state = (uint8_t)(((src[1] >> 6) & 0x1u));
+        dst->door_button_state = (uint8_t)((src[1] >> 7));
+        dst->vehicle_speed = (uint8_t)(src[2]);
+        dst->soc = (uint8_t)(src[3]);
+        dst->system_power_cmd = (uint8_t)((src[4] & 0x3u));
+        dst->charge_state = (uint8_t)(((src[4] >> 2) & 0x3u));
+        dst->charge_connection = (uint8_t)(((src[4] >> 4) & 0x3u));
+        dst->vehicle_fault_level = (uint8_t)((src[4] >> 6));
+        dst->odometer = (uint16_t)(src[5] | ((uint32_t)src[6] << 8));
+        dst->counter = (uint8_t)(src[7]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A vehicle_state_1 with every raw field 0. */
@@ -4139,28 +4177,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->downhill_regen_enable > 1u) | (src->cargo_lift > 3u) | (src->cargo_lift_speed > 15u) |
-        (src->pto_enable > 1u) | (src->chassis_pitch > 1023u) | (src->chassis_roll > 1023u) |
-        (src->cargo_pitch > 1023u) | (src->cargo_roll > 1023u)) {
+    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
+        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u) ||
+        ((uint32_t)(src->chassis_pitch | src->chassis_roll | src->cargo_pitch | src->cargo_roll) >
+         1023u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->downhill_regen_enable) | ((uint64_t)src->cargo_lift << 1) |
-        ((uint64_t)src->cargo_lift_speed << 3) | ((uint64_t)src->pto_enable << 7) |
-        ((uint64_t)src->downhill_regen_speed << 8) | ((uint64_t)src->chassis_pitch << 16) |
-        ((uint64_t)src->chassis_roll << 26) | ((uint64_t)src->cargo_pitch << 36) |
-        ((uint64_t)src->cargo_roll << 46) | ((uint64_t)src->counter << 56);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
+                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
+        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->chassis_pitch);
+        const uint8_t b3 =
+            (uint8_t)(((uint32_t)src->chassis_pitch >> 8) | ((uint32_t)src->chassis_roll << 2));
+        const uint8_t b4 =
+            (uint8_t)(((uint32_t)src->chassis_roll >> 6) | ((uint32_t)src->cargo_pitch << 4));
+        const uint8_t b5 =
+            (uint8_t)(((uint32_t)src->cargo_pitch >> 4) | ((uint32_t)src->cargo_roll << 6));
+        const uint8_t b6 = (uint8_t)(((uint32_t)src->cargo_roll >> 2));
+        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4168,24 +4216,22 @@ kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_command_2_t *dst,
                                                const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->downhill_regen_enable = (uint8_t)(w & 0x1u);
-    dst->cargo_lift = (uint8_t)((w >> 1) & 0x3u);
-    dst->cargo_lift_speed = (uint8_t)((w >> 3) & 0xFu);
-    dst->pto_enable = (uint8_t)((w >> 7) & 0x1u);
-    dst->downhill_regen_speed = (uint8_t)((w >> 8) & 0xFFu);
-    dst->chassis_pitch = (uint16_t)((w >> 16) & 0x3FFu);
-    dst->chassis_roll = (uint16_t)((w >> 26) & 0x3FFu);
-    dst->cargo_pitch = (uint16_t)((w >> 36) & 0x3FFu);
-    dst->cargo_roll = (uint16_t)((w >> 46) & 0x3FFu);
-    dst->counter = (uint8_t)(w >> 56);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
+        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
+        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
+        dst->pto_enable = (uint8_t)((src[0] >> 7));
+        dst->downhill_regen_speed = (uint8_t)(src[1]);
+        dst->chassis_pitch = (uint16_t)(src[2] | ((uint32_t)(src[3] & 0x3u) << 8));
+        dst->chassis_roll = (uint16_t)((src[3] >> 2) | ((uint32_t)(src[4] & 0xFu) << 6));
+        dst->cargo_pitch = (uint16_t)((src[4] >> 4) | ((uint32_t)(src[5] & 0x3Fu) << 4));
+        dst->cargo_roll = (uint16_t)((src[5] >> 6) | ((uint32_t)src[6] << 2));
+        dst->counter = (uint8_t)(src[7]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A autocar_control_command_2 with every raw field 0. */
@@ -4682,21 +4728,27 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = ((uint64_t)src->battery_voltage) | ((uint64_t)src->battery_current << 16) |
-        ((uint64_t)src->battery_charge_energy << 32) |
-        ((uint64_t)src->battery_discharge_energy << 48);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->battery_voltage);
+        const uint8_t b1 = (uint8_t)(((uint32_t)src->battery_voltage >> 8));
+        const uint8_t b2 = (uint8_t)((uint32_t)src->battery_current);
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->battery_current >> 8));
+        const uint8_t b4 = (uint8_t)((uint32_t)src->battery_charge_energy);
+        const uint8_t b5 = (uint8_t)(((uint32_t)src->battery_charge_energy >> 8));
+        const uint8_t b6 = (uint8_t)((uint32_t)src->battery_discharge_energy);
+        const uint8_t b7 = (uint8_t)(((uint32_t)src->battery_discharge_energy >> 8));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4704,18 +4756,16 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const uint8_t *src,
                                      size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->battery_voltage = (uint16_t)(w & 0xFFFFu);
-    dst->battery_current = (uint16_t)((w >> 16) & 0xFFFFu);
-    dst->battery_charge_energy = (uint16_t)((w >> 32) & 0xFFFFu);
-    dst->battery_discharge_energy = (uint16_t)(w >> 48);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->battery_voltage = (uint16_t)(src[0] | ((uint32_t)src[1] << 8));
+        dst->battery_current = (uint16_t)(src[2] | ((uint32_t)src[3] << 8));
+        dst->battery_charge_energy = (uint16_t)(src[4] | ((uint32_t)src[5] << 8));
+        dst->battery_discharge_energy = (uint16_t)(src[6] | ((uint32_t)src[7] << 8));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A vehicle_state_2 with every raw field 0. */
@@ -4971,24 +5021,30 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_3_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->max_cell_voltage > 4095u) | (src->min_cell_voltage > 4095u)) {
+    if (((uint32_t)(src->max_cell_voltage | src->min_cell_voltage) > 4095u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->battery_max_temp) | ((uint64_t)src->battery_min_temp << 8) |
-        ((uint64_t)src->max_cell_voltage << 16) | ((uint64_t)src->min_cell_voltage << 28) |
-        ((uint64_t)src->motor_temp << 40) | ((uint64_t)src->motor_controller_temp << 48);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->battery_max_temp);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->battery_min_temp);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->max_cell_voltage);
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->max_cell_voltage >> 8) |
+                                     ((uint32_t)src->min_cell_voltage << 4));
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->min_cell_voltage >> 4));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->motor_temp);
+        const uint8_t b6 = (uint8_t)((uint32_t)src->motor_controller_temp);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = 0u;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4996,20 +5052,18 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const uint8_t *src,
                                      size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->battery_max_temp = (uint8_t)(w & 0xFFu);
-    dst->battery_min_temp = (uint8_t)((w >> 8) & 0xFFu);
-    dst->max_cell_voltage = (uint16_t)((w >> 16) & 0xFFFu);
-    dst->min_cell_voltage = (uint16_t)((w >> 28) & 0xFFFu);
-    dst->motor_temp = (uint8_t)((w >> 40) & 0xFFu);
-    dst->motor_controller_temp = (uint8_t)((w >> 48) & 0xFFu);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->battery_max_temp = (uint8_t)(src[0]);
+        dst->battery_min_temp = (uint8_t)(src[1]);
+        dst->max_cell_voltage = (uint16_t)(src[2] | ((uint32_t)(src[3] & 0xFu) << 8));
+        dst->min_cell_voltage = (uint16_t)((src[3] >> 4) | ((uint32_t)src[4] << 4));
+        dst->motor_temp = (uint8_t)(src[5]);
+        dst->motor_controller_temp = (uint8_t)(src[6]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A vehicle_state_3 with every raw field 0. */
@@ -5396,30 +5450,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_4_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->ac_state > 15u) | (src->vehicle_power_state > 3u) | (src->hill_hold_state > 1u) |
-        (src->regen_brake_state > 1u) | (src->remaining_range > 4095u) |
-        (src->manual_takeover_state > 1u) | (src->remote_driving_allowed > 1u) |
-        (src->ac_set_temp > 31u) | (src->pto_state > 1u)) {
+    if (((uint32_t)(src->ac_state) > 15u) || ((uint32_t)(src->vehicle_power_state) > 3u) ||
+        ((uint32_t)(src->hill_hold_state | src->regen_brake_state | src->manual_takeover_state |
+                    src->remote_driving_allowed | src->pto_state) > 1u) ||
+        ((uint32_t)(src->remaining_range) > 4095u) || ((uint32_t)(src->ac_set_temp) > 31u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->outside_temp) | ((uint64_t)src->inside_temp << 8) |
-        ((uint64_t)src->ac_state << 16) | ((uint64_t)src->vehicle_power_state << 20) |
-        ((uint64_t)src->hill_hold_state << 22) | ((uint64_t)src->regen_brake_state << 23) |
-        ((uint64_t)src->remaining_range << 24) | ((uint64_t)src->manual_takeover_state << 36) |
-        ((uint64_t)src->remote_driving_allowed << 39) | ((uint64_t)src->ac_set_temp << 40) |
-        ((uint64_t)src->pto_state << 45) | ((uint64_t)src->battery_power << 48);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->outside_temp);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->inside_temp);
+        const uint8_t b2 =
+            (uint8_t)((uint32_t)src->ac_state | ((uint32_t)src->vehicle_power_state << 4) |
+                      ((uint32_t)src->hill_hold_state << 6) |
+                      ((uint32_t)src->regen_brake_state << 7));
+        const uint8_t b3 = (uint8_t)((uint32_t)src->remaining_range);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->remaining_range >> 8) |
+                                     ((uint32_t)src->manual_takeover_state << 4) |
+                                     ((uint32_t)src->remote_driving_allowed << 7));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_set_temp | ((uint32_t)src->pto_state << 5));
+        const uint8_t b6 = (uint8_t)((uint32_t)src->battery_power);
+        const uint8_t b7 = (uint8_t)(((uint32_t)src->battery_power >> 8));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -5427,26 +5489,24 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const uint8_t *src,
                                      size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->outside_temp = (uint8_t)(w & 0xFFu);
-    dst->inside_temp = (uint8_t)((w >> 8) & 0xFFu);
-    dst->ac_state = (uint8_t)((w >> 16) & 0xFu);
-    dst->vehicle_power_state = (uint8_t)((w >> 20) & 0x3u);
-    dst->hill_hold_state = (uint8_t)((w >> 22) & 0x1u);
-    dst->regen_brake_state = (uint8_t)((w >> 23) & 0x1u);
-    dst->remaining_range = (uint16_t)((w >> 24) & 0xFFFu);
-    dst->manual_takeover_state = (uint8_t)((w >> 36) & 0x1u);
-    dst->remote_driving_allowed = (uint8_t)((w >> 39) & 0x1u);
-    dst->ac_set_temp = (uint8_t)((w >> 40) & 0x1Fu);
-    dst->pto_state = (uint8_t)((w >> 45) & 0x1u);
-    dst->battery_power = (uint16_t)(w >> 48);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->outside_temp = (uint8_t)(src[0]);
+        dst->inside_temp = (uint8_t)(src[1]);
+        dst->ac_state = (uint8_t)((src[2] & 0xFu));
+        dst->vehicle_power_state = (uint8_t)(((src[2] >> 4) & 0x3u));
+        dst->hill_hold_state = (uint8_t)(((src[2] >> 6) & 0x1u));
+        dst->regen_brake_state = (uint8_t)((src[2] >> 7));
+        dst->remaining_range = (uint16_t)(src[3] | ((uint32_t)(src[4] & 0xFu) << 8));
+        dst->manual_takeover_state = (uint8_t)(((src[4] >> 4) & 0x1u));
+        dst->remote_driving_allowed = (uint8_t)((src[4] >> 7));
+        dst->ac_set_temp = (uint8_t)((src[5] & 0x1Fu));
+        dst->pto_state = (uint8_t)(((src[5] >> 5) & 0x1u));
+        dst->battery_power = (uint16_t)(src[6] | ((uint32_t)src[7] << 8));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A vehicle_state_4 with every raw field 0. */
@@ -6228,49 +6288,59 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_vehicle_fault_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->insulation_fault_level > 3u) | (src->dc_fault > 1u) | (src->soc_low > 1u) |
-        (src->cell_undervoltage > 1u) | (src->brake_boost_pressure_fault > 1u) |
-        (src->vacuum_pump_fault > 1u) | (src->vehicle_system_fault > 1u) |
-        (src->battery_overheat > 1u) | (src->motor_overheat > 1u) |
-        (src->traction_battery_fault > 1u) | (src->motor_fault > 1u) |
-        (src->battery_comm_fault > 1u) | (src->motor_comm_fault > 1u) | (src->eps_fault > 1u) |
-        (src->ac_fault > 1u) | (src->aux_battery_fault > 1u) | (src->epb_fault > 1u) |
-        (src->brake_by_wire_fault > 1u) | (src->key_not_detected > 1u) |
-        (src->tire_pressure_low > 1u) | (src->body_motor_fault > 1u) |
-        (src->body_motor_overheat > 1u) | (src->battery_system_fault_level > 3u) |
-        (src->motor_system_fault_level > 3u) | (src->unmanned_entry_fault > 15u) |
-        (src->protocol_version_a > 15u) | (src->protocol_version_b > 15u) |
-        (src->protocol_version_c > 15u) | (src->remote_entry_fault > 15u)) {
+    if (((uint32_t)(src->insulation_fault_level | src->battery_system_fault_level |
+                    src->motor_system_fault_level) > 3u) ||
+        ((uint32_t)(src->dc_fault | src->soc_low | src->cell_undervoltage |
+                    src->brake_boost_pressure_fault | src->vacuum_pump_fault |
+                    src->vehicle_system_fault | src->battery_overheat | src->motor_overheat |
+                    src->traction_battery_fault | src->motor_fault | src->battery_comm_fault |
+                    src->motor_comm_fault | src->eps_fault | src->ac_fault |
+                    src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
+                    src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
+                    src->body_motor_overheat) > 1u) ||
+        ((uint32_t)(src->unmanned_entry_fault | src->protocol_version_a | src->protocol_version_b |
+                    src->protocol_version_c | src->remote_entry_fault) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->insulation_fault_level) | ((uint64_t)src->dc_fault << 2) |
-        ((uint64_t)src->soc_low << 3) | ((uint64_t)src->cell_undervoltage << 4) |
-        ((uint64_t)src->brake_boost_pressure_fault << 5) | ((uint64_t)src->vacuum_pump_fault << 6) |
-        ((uint64_t)src->vehicle_system_fault << 7) | ((uint64_t)src->battery_overheat << 8) |
-        ((uint64_t)src->motor_overheat << 9) | ((uint64_t)src->traction_battery_fault << 10) |
-        ((uint64_t)src->motor_fault << 11) | ((uint64_t)src->battery_comm_fault << 12) |
-        ((uint64_t)src->motor_comm_fault << 13) | ((uint64_t)src->eps_fault << 14) |
-        ((uint64_t)src->ac_fault << 15) | ((uint64_t)src->aux_battery_fault << 16) |
-        ((uint64_t)src->epb_fault << 17) | ((uint64_t)src->brake_by_wire_fault << 18) |
-        ((uint64_t)src->key_not_detected << 19) | ((uint64_t)src->tire_pressure_low << 20) |
-        ((uint64_t)src->body_motor_fault << 21) | ((uint64_t)src->body_motor_overheat << 22) |
-        ((uint64_t)src->battery_system_fault_level << 24) |
-        ((uint64_t)src->motor_system_fault_level << 26) |
-        ((uint64_t)src->unmanned_entry_fault << 28) | ((uint64_t)src->protocol_version_a << 32) |
-        ((uint64_t)src->protocol_version_b << 36) | ((uint64_t)src->protocol_version_c << 40) |
-        ((uint64_t)src->remote_entry_fault << 44);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->insulation_fault_level | ((uint32_t)src->dc_fault << 2) |
+                      ((uint32_t)src->soc_low << 3) | ((uint32_t)src->cell_undervoltage << 4) |
+                      ((uint32_t)src->brake_boost_pressure_fault << 5) |
+                      ((uint32_t)src->vacuum_pump_fault << 6) |
+                      ((uint32_t)src->vehicle_system_fault << 7));
+        const uint8_t b1 =
+            (uint8_t)((uint32_t)src->battery_overheat | ((uint32_t)src->motor_overheat << 1) |
+                      ((uint32_t)src->traction_battery_fault << 2) |
+                      ((uint32_t)src->motor_fault << 3) | ((uint32_t)src->battery_comm_fault << 4) |
+                      ((uint32_t)src->motor_comm_fault << 5) | ((uint32_t)src->eps_fault << 6) |
+                      ((uint32_t)src->ac_fault << 7));
+        const uint8_t b2 =
+            (uint8_t)((uint32_t)src->aux_battery_fault | ((uint32_t)src->epb_fault << 1) |
+                      ((uint32_t)src->brake_by_wire_fault << 2) |
+                      ((uint32_t)src->key_not_detected << 3) |
+                      ((uint32_t)src->tire_pressure_low << 4) |
+                      ((uint32_t)src->body_motor_fault << 5) |
+                      ((uint32_t)src->body_motor_overheat << 6));
+        const uint8_t b3 = (uint8_t)((uint32_t)src->battery_system_fault_level |
+                                     ((uint32_t)src->motor_system_fault_level << 2) |
+                                     ((uint32_t)src->unmanned_entry_fault << 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
+        const uint8_t b5 =
+            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->remote_entry_fault << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = 0u;
+        dst[7] = 0u;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -6278,43 +6348,41 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uint8_t *src,
                                    size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->insulation_fault_level = (uint8_t)(w & 0x3u);
-    dst->dc_fault = (uint8_t)((w >> 2) & 0x1u);
-    dst->soc_low = (uint8_t)((w >> 3) & 0x1u);
-    dst->cell_undervoltage = (uint8_t)((w >> 4) & 0x1u);
-    dst->brake_boost_pressure_fault = (uint8_t)((w >> 5) & 0x1u);
-    dst->vacuum_pump_fault = (uint8_t)((w >> 6) & 0x1u);
-    dst->vehicle_system_fault = (uint8_t)((w >> 7) & 0x1u);
-    dst->battery_overheat = (uint8_t)((w >> 8) & 0x1u);
-    dst->motor_overheat = (uint8_t)((w >> 9) & 0x1u);
-    dst->traction_battery_fault = (uint8_t)((w >> 10) & 0x1u);
-    dst->motor_fault = (uint8_t)((w >> 11) & 0x1u);
-    dst->battery_comm_fault = (uint8_t)((w >> 12) & 0x1u);
-    dst->motor_comm_fault = (uint8_t)((w >> 13) & 0x1u);
-    dst->eps_fault = (uint8_t)((w >> 14) & 0x1u);
-    dst->ac_fault = (uint8_t)((w >> 15) & 0x1u);
-    dst->aux_battery_fault = (uint8_t)((w >> 16) & 0x1u);
-    dst->epb_fault = (uint8_t)((w >> 17) & 0x1u);
-    dst->brake_by_wire_fault = (uint8_t)((w >> 18) & 0x1u);
-    dst->key_not_detected = (uint8_t)((w >> 19) & 0x1u);
-    dst->tire_pressure_low = (uint8_t)((w >> 20) & 0x1u);
-    dst->body_motor_fault = (uint8_t)((w >> 21) & 0x1u);
-    dst->body_motor_overheat = (uint8_t)((w >> 22) & 0x1u);
-    dst->battery_system_fault_level = (uint8_t)((w >> 24) & 0x3u);
-    dst->motor_system_fault_level = (uint8_t)((w >> 26) & 0x3u);
-    dst->unmanned_entry_fault = (uint8_t)((w >> 28) & 0xFu);
-    dst->protocol_version_a = (uint8_t)((w >> 32) & 0xFu);
-    dst->protocol_version_b = (uint8_t)((w >> 36) & 0xFu);
-    dst->protocol_version_c = (uint8_t)((w >> 40) & 0xFu);
-    dst->remote_entry_fault = (uint8_t)((w >> 44) & 0xFu);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->insulation_fault_level = (uint8_t)((src[0] & 0x3u));
+        dst->dc_fault = (uint8_t)(((src[0] >> 2) & 0x1u));
+        dst->soc_low = (uint8_t)(((src[0] >> 3) & 0x1u));
+        dst->cell_undervoltage = (uint8_t)(((src[0] >> 4) & 0x1u));
+        dst->brake_boost_pressure_fault = (uint8_t)(((src[0] >> 5) & 0x1u));
+        dst->vacuum_pump_fault = (uint8_t)(((src[0] >> 6) & 0x1u));
+        dst->vehicle_system_fault = (uint8_t)((src[0] >> 7));
+        dst->battery_overheat = (uint8_t)((src[1] & 0x1u));
+        dst->motor_overheat = (uint8_t)(((src[1] >> 1) & 0x1u));
+        dst->traction_battery_fault = (uint8_t)(((src[1] >> 2) & 0x1u));
+        dst->motor_fault = (uint8_t)(((src[1] >> 3) & 0x1u));
+        dst->battery_comm_fault = (uint8_t)(((src[1] >> 4) & 0x1u));
+        dst->motor_comm_fault = (uint8_t)(((src[1] >> 5) & 0x1u));
+        dst->eps_fault = (uint8_t)(((src[1] >> 6) & 0x1u));
+        dst->ac_fault = (uint8_t)((src[1] >> 7));
+        dst->aux_battery_fault = (uint8_t)((src[2] & 0x1u));
+        dst->epb_fault = (uint8_t)(((src[2] >> 1) & 0x1u));
+        dst->brake_by_wire_fault = (uint8_t)(((src[2] >> 2) & 0x1u));
+        dst->key_not_detected = (uint8_t)(((src[2] >> 3) & 0x1u));
+        dst->tire_pressure_low = (uint8_t)(((src[2] >> 4) & 0x1u));
+        dst->body_motor_fault = (uint8_t)(((src[2] >> 5) & 0x1u));
+        dst->body_motor_overheat = (uint8_t)(((src[2] >> 6) & 0x1u));
+        dst->battery_system_fault_level = (uint8_t)((src[3] & 0x3u));
+        dst->motor_system_fault_level = (uint8_t)(((src[3] >> 2) & 0x3u));
+        dst->unmanned_entry_fault = (uint8_t)((src[3] >> 4));
+        dst->protocol_version_a = (uint8_t)((src[4] & 0xFu));
+        dst->protocol_version_b = (uint8_t)((src[4] >> 4));
+        dst->protocol_version_c = (uint8_t)((src[5] & 0xFu));
+        dst->remote_entry_fault = (uint8_t)((src[5] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A vehicle_fault with every raw field 0. */
@@ -7759,21 +7827,24 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
                                      const kaiwo_gateway_rgate_eps_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = ((uint64_t)src->eps_ctrl_mode) | ((uint64_t)src->counter << 8) |
-        ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -7782,19 +7853,22 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, const uint8_t *src,
                                        size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->eps_ctrl_mode = (uint8_t)(w & 0xFFu);
-    dst->counter = (uint8_t)((w >> 8) & 0xFFu);
-    dst->max_angular_speed = (uint8_t)((w >> 16) & 0xFFu);
-    dst->steering_angle_cmd = (uint16_t)((w >> 24) & 0xFFFFu);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->eps_ctrl_mode = (uint8_t)(src[0]);
+        dst->counter = (uint8_t)(src[1]);
+        dst->max_angular_speed = (uint8_t)(src[2]);
+        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A rgate_eps_command with every raw field 0. */
@@ -8005,26 +8079,29 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->accel_cmd > 1023u) | (src->epb_cmd > 3u) | (src->gear_cmd > 15u) |
-        (src->emergency_brake_cmd > 1u)) {
+    if (((uint32_t)(src->accel_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
+        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->accel_cmd) | ((uint64_t)src->epb_cmd << 10) |
-        ((uint64_t)src->gear_cmd << 12) | ((uint64_t)src->counter << 16) |
-        ((uint64_t)src->emergency_brake_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->accel_cmd);
+        const uint8_t b1 =
+            (uint8_t)(((uint32_t)src->accel_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
+                      ((uint32_t)src->gear_cmd << 4));
+        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = 0u;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8033,20 +8110,23 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *dst,
                                          const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->accel_cmd = (uint16_t)(w & 0x3FFu);
-    dst->epb_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->gear_cmd = (uint8_t)((w >> 12) & 0xFu);
-    dst->counter = (uint8_t)((w >> 16) & 0xFFu);
-    dst->emergency_brake_cmd = (uint8_t)((w >> 24) & 0x1u);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->accel_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->gear_cmd = (uint8_t)((src[1] >> 4));
+        dst->counter = (uint8_t)(src[2]);
+        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A rgate_speed_command with every raw field 0. */
@@ -8420,42 +8500,51 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->drive_mode_cmd > 3u) | (src->door_cmd > 3u) | (src->horn_cmd > 3u) |
-        (src->drl_cmd > 3u) | (src->left_turn_cmd > 3u) | (src->right_turn_cmd > 3u) |
-        (src->hazard_cmd > 3u) | (src->position_light_cmd > 3u) | (src->headlight_cmd > 3u) |
-        (src->rear_fog_cmd > 3u) | (src->left_fog_cmd > 3u) | (src->right_fog_cmd > 3u) |
-        (src->dome_light_cmd > 3u) | (src->ambient_light_cmd > 3u) | (src->drive_mode_reset > 1u) |
-        (src->system_state > 3u) | (src->system_reliability > 3u) | (src->system_fault_level > 3u) |
-        (src->lock_cmd > 3u) | (src->ac_cmd > 7u) | (src->ac_set_temp > 31u) |
-        (src->protocol_version_a > 15u) | (src->protocol_version_b > 15u) |
-        (src->protocol_version_c > 15u) | (src->counter > 15u)) {
+    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
+                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
+                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
+                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
+                    src->ambient_light_cmd | src->system_state | src->system_reliability |
+                    src->system_fault_level | src->lock_cmd) > 3u) ||
+        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
+        ((uint32_t)(src->ac_set_temp) > 31u) ||
+        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
+                    src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->drive_mode_cmd) | ((uint64_t)src->door_cmd << 2) |
-        ((uint64_t)src->horn_cmd << 4) | ((uint64_t)src->drl_cmd << 6) |
-        ((uint64_t)src->left_turn_cmd << 8) | ((uint64_t)src->right_turn_cmd << 10) |
-        ((uint64_t)src->hazard_cmd << 12) | ((uint64_t)src->position_light_cmd << 14) |
-        ((uint64_t)src->headlight_cmd << 16) | ((uint64_t)src->rear_fog_cmd << 18) |
-        ((uint64_t)src->left_fog_cmd << 20) | ((uint64_t)src->right_fog_cmd << 22) |
-        ((uint64_t)src->dome_light_cmd << 24) | ((uint64_t)src->ambient_light_cmd << 26) |
-        ((uint64_t)src->drive_mode_reset << 28) | ((uint64_t)src->system_state << 32) |
-        ((uint64_t)src->system_reliability << 34) | ((uint64_t)src->system_fault_level << 36) |
-        ((uint64_t)src->lock_cmd << 38) | ((uint64_t)src->ac_cmd << 40) |
-        ((uint64_t)src->ac_set_temp << 43) | ((uint64_t)src->protocol_version_a << 48) |
-        ((uint64_t)src->protocol_version_b << 52) | ((uint64_t)src->protocol_version_c << 56) |
-        ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
+                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
+        const uint8_t b1 =
+            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
+                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
+        const uint8_t b2 =
+            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
+                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
+        const uint8_t b3 =
+            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
+                      ((uint32_t)src->drive_mode_reset << 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
+                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
+        const uint8_t b6 =
+            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
+        const uint8_t b7 =
+            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8463,39 +8552,37 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command_1_t *dst,
                                              const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->drive_mode_cmd = (uint8_t)(w & 0x3u);
-    dst->door_cmd = (uint8_t)((w >> 2) & 0x3u);
-    dst->horn_cmd = (uint8_t)((w >> 4) & 0x3u);
-    dst->drl_cmd = (uint8_t)((w >> 6) & 0x3u);
-    dst->left_turn_cmd = (uint8_t)((w >> 8) & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((w >> 12) & 0x3u);
-    dst->position_light_cmd = (uint8_t)((w >> 14) & 0x3u);
-    dst->headlight_cmd = (uint8_t)((w >> 16) & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((w >> 18) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((w >> 20) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)((w >> 22) & 0x3u);
-    dst->dome_light_cmd = (uint8_t)((w >> 24) & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((w >> 26) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((w >> 28) & 0x1u);
-    dst->system_state = (uint8_t)((w >> 32) & 0x3u);
-    dst->system_reliability = (uint8_t)((w >> 34) & 0x3u);
-    dst->system_fault_level = (uint8_t)((w >> 36) & 0x3u);
-    dst->lock_cmd = (uint8_t)((w >> 38) & 0x3u);
-    dst->ac_cmd = (uint8_t)((w >> 40) & 0x7u);
-    dst->ac_set_temp = (uint8_t)((w >> 43) & 0x1Fu);
-    dst->protocol_version_a = (uint8_t)((w >> 48) & 0xFu);
-    dst->protocol_version_b = (uint8_t)((w >> 52) & 0xFu);
-    dst->protocol_version_c = (uint8_t)((w >> 56) & 0xFu);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
+        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
+        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
+        dst->drl_cmd = (uint8_t)((src[0] >> 6));
+        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
+        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
+        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
+        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
+        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
+        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
+        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
+        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
+        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
+        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
+        dst->system_state = (uint8_t)((src[4] & 0x3u));
+        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
+        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
+        dst->lock_cmd = (uint8_t)((src[4] >> 6));
+        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
+        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
+        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
+        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
+        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A rgate_control_command_1 with every raw field 0. */
@@ -9688,25 +9775,28 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->downhill_regen_enable > 1u) | (src->cargo_lift > 3u) | (src->cargo_lift_speed > 15u) |
-        (src->pto_enable > 1u)) {
+    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
+        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->downhill_regen_enable) | ((uint64_t)src->cargo_lift << 1) |
-        ((uint64_t)src->cargo_lift_speed << 3) | ((uint64_t)src->pto_enable << 7) |
-        ((uint64_t)src->downhill_regen_speed << 8) | ((uint64_t)src->counter << 56);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
+                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
+        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
+        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = 0u;
+        dst[3] = 0u;
+        dst[4] = 0u;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -9714,20 +9804,18 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command_2_t *dst,
                                              const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->downhill_regen_enable = (uint8_t)(w & 0x1u);
-    dst->cargo_lift = (uint8_t)((w >> 1) & 0x3u);
-    dst->cargo_lift_speed = (uint8_t)((w >> 3) & 0xFu);
-    dst->pto_enable = (uint8_t)((w >> 7) & 0x1u);
-    dst->downhill_regen_speed = (uint8_t)((w >> 8) & 0xFFu);
-    dst->counter = (uint8_t)(w >> 56);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
+        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
+        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
+        dst->pto_enable = (uint8_t)((src[0] >> 7));
+        dst->downhill_regen_speed = (uint8_t)(src[1]);
+        dst->counter = (uint8_t)(src[7]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A rgate_control_command_2 with every raw field 0. */
@@ -10023,41 +10111,49 @@ typedef struct {
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_device_id_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->device_type > 63u) | (src->id_frame_index > 3u) |
-        (src->id_chars > UINT64_C(72057594037927935))) {
+    if (((uint32_t)(src->device_type) > 63u) || ((uint32_t)(src->id_frame_index) > 3u) ||
+        ((uint64_t)(src->id_chars) > UINT64_C(72057594037927935))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->device_type) | ((uint64_t)src->id_frame_index << 6) |
-        ((uint64_t)src->id_chars << 8);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->device_type | ((uint32_t)src->id_frame_index << 6));
+        const uint8_t b1 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 0));
+        const uint8_t b2 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 8));
+        const uint8_t b3 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 16));
+        const uint8_t b4 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 24));
+        const uint8_t b5 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 32));
+        const uint8_t b6 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 40));
+        const uint8_t b7 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 48));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->device_type = (uint8_t)(w & 0x3Fu);
-    dst->id_frame_index = (uint8_t)((w >> 6) & 0x3u);
-    dst->id_chars = (uint64_t)(w >> 8);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->device_type = (uint8_t)((src[0] & 0x3Fu));
+        dst->id_frame_index = (uint8_t)((src[0] >> 6));
+        dst->id_chars = (uint64_t)(src[1] | ((uint64_t)src[2] << 8) | ((uint64_t)src[3] << 16) |
+                                   ((uint64_t)src[4] << 24) | ((uint64_t)src[5] << 32) |
+                                   ((uint64_t)src[6] << 40) | ((uint64_t)src[7] << 48));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A device_id with every raw field 0. */
@@ -10254,28 +10350,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->sensor_1_distance > 1023u) | (src->sensor_2_distance > 1023u) |
-        (src->sensor_3_distance > 1023u) | (src->sensor_4_distance > 1023u) |
-        (src->sensor_5_distance > 1023u) | (src->sensor_6_distance > 1023u) |
-        (src->counter > 15u)) {
+    if (((uint32_t)(src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+                    src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance) >
+         1023u) ||
+        ((uint32_t)(src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->sensor_1_distance) | ((uint64_t)src->sensor_2_distance << 10) |
-        ((uint64_t)src->sensor_3_distance << 20) | ((uint64_t)src->sensor_4_distance << 30) |
-        ((uint64_t)src->sensor_5_distance << 40) | ((uint64_t)src->sensor_6_distance << 50) |
-        ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_1_distance);
+        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_1_distance >> 8) |
+                                     ((uint32_t)src->sensor_2_distance << 2));
+        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_2_distance >> 6) |
+                                     ((uint32_t)src->sensor_3_distance << 4));
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_3_distance >> 4) |
+                                     ((uint32_t)src->sensor_4_distance << 6));
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->sensor_4_distance >> 2));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->sensor_5_distance);
+        const uint8_t b6 = (uint8_t)(((uint32_t)src->sensor_5_distance >> 8) |
+                                     ((uint32_t)src->sensor_6_distance << 2));
+        const uint8_t b7 =
+            (uint8_t)(((uint32_t)src->sensor_6_distance >> 6) | ((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10283,21 +10389,19 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance_1_t *dst,
                                              const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->sensor_1_distance = (uint16_t)(w & 0x3FFu);
-    dst->sensor_2_distance = (uint16_t)((w >> 10) & 0x3FFu);
-    dst->sensor_3_distance = (uint16_t)((w >> 20) & 0x3FFu);
-    dst->sensor_4_distance = (uint16_t)((w >> 30) & 0x3FFu);
-    dst->sensor_5_distance = (uint16_t)((w >> 40) & 0x3FFu);
-    dst->sensor_6_distance = (uint16_t)((w >> 50) & 0x3FFu);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->sensor_1_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->sensor_2_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
+        dst->sensor_3_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
+        dst->sensor_4_distance = (uint16_t)((src[3] >> 6) | ((uint32_t)src[4] << 2));
+        dst->sensor_5_distance = (uint16_t)(src[5] | ((uint32_t)(src[6] & 0x3u) << 8));
+        dst->sensor_6_distance = (uint16_t)((src[6] >> 2) | ((uint32_t)(src[7] & 0xFu) << 6));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A front_sensor_distance_1 with every raw field 0. */
@@ -10737,33 +10841,43 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->sensor_7_distance > 1023u) | (src->sensor_8_distance > 1023u) |
-        (src->sensor_9_distance > 1023u) | (src->uss_system_state > 3u) |
-        (src->sensor_1_fault > 1u) | (src->sensor_2_fault > 1u) | (src->sensor_3_fault > 1u) |
-        (src->sensor_4_fault > 1u) | (src->sensor_5_fault > 1u) | (src->sensor_6_fault > 1u) |
-        (src->sensor_7_fault > 1u) | (src->sensor_8_fault > 1u) | (src->sensor_9_fault > 1u) |
-        (src->counter > 15u)) {
+    if (((uint32_t)(src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance) >
+         1023u) ||
+        ((uint32_t)(src->uss_system_state) > 3u) ||
+        ((uint32_t)(src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault |
+                    src->sensor_4_fault | src->sensor_5_fault | src->sensor_6_fault |
+                    src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u) ||
+        ((uint32_t)(src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->sensor_7_distance) | ((uint64_t)src->sensor_8_distance << 10) |
-        ((uint64_t)src->sensor_9_distance << 20) | ((uint64_t)src->uss_system_state << 32) |
-        ((uint64_t)src->sensor_1_fault << 34) | ((uint64_t)src->sensor_2_fault << 35) |
-        ((uint64_t)src->sensor_3_fault << 36) | ((uint64_t)src->sensor_4_fault << 37) |
-        ((uint64_t)src->sensor_5_fault << 38) | ((uint64_t)src->sensor_6_fault << 39) |
-        ((uint64_t)src->sensor_7_fault << 40) | ((uint64_t)src->sensor_8_fault << 41) |
-        ((uint64_t)src->sensor_9_fault << 42) | ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_7_distance);
+        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_7_distance >> 8) |
+                                     ((uint32_t)src->sensor_8_distance << 2));
+        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_8_distance >> 6) |
+                                     ((uint32_t)src->sensor_9_distance << 4));
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_9_distance >> 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2) |
+                      ((uint32_t)src->sensor_2_fault << 3) | ((uint32_t)src->sensor_3_fault << 4) |
+                      ((uint32_t)src->sensor_4_fault << 5) | ((uint32_t)src->sensor_5_fault << 6) |
+                      ((uint32_t)src->sensor_6_fault << 7));
+        const uint8_t b5 =
+            (uint8_t)((uint32_t)src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1) |
+                      ((uint32_t)src->sensor_9_fault << 2));
+        const uint8_t b7 = (uint8_t)(((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = 0u;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10771,28 +10885,26 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance_2_t *dst,
                                              const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->sensor_7_distance = (uint16_t)(w & 0x3FFu);
-    dst->sensor_8_distance = (uint16_t)((w >> 10) & 0x3FFu);
-    dst->sensor_9_distance = (uint16_t)((w >> 20) & 0x3FFu);
-    dst->uss_system_state = (uint8_t)((w >> 32) & 0x3u);
-    dst->sensor_1_fault = (uint8_t)((w >> 34) & 0x1u);
-    dst->sensor_2_fault = (uint8_t)((w >> 35) & 0x1u);
-    dst->sensor_3_fault = (uint8_t)((w >> 36) & 0x1u);
-    dst->sensor_4_fault = (uint8_t)((w >> 37) & 0x1u);
-    dst->sensor_5_fault = (uint8_t)((w >> 38) & 0x1u);
-    dst->sensor_6_fault = (uint8_t)((w >> 39) & 0x1u);
-    dst->sensor_7_fault = (uint8_t)((w >> 40) & 0x1u);
-    dst->sensor_8_fault = (uint8_t)((w >> 41) & 0x1u);
-    dst->sensor_9_fault = (uint8_t)((w >> 42) & 0x1u);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->sensor_7_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->sensor_8_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
+        dst->sensor_9_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
+        dst->uss_system_state = (uint8_t)((src[4] & 0x3u));
+        dst->sensor_1_fault = (uint8_t)(((src[4] >> 2) & 0x1u));
+        dst->sensor_2_fault = (uint8_t)(((src[4] >> 3) & 0x1u));
+        dst->sensor_3_fault = (uint8_t)(((src[4] >> 4) & 0x1u));
+        dst->sensor_4_fault = (uint8_t)(((src[4] >> 5) & 0x1u));
+        dst->sensor_5_fault = (uint8_t)(((src[4] >> 6) & 0x1u));
+        dst->sensor_6_fault = (uint8_t)((src[4] >> 7));
+        dst->sensor_7_fault = (uint8_t)((src[5] & 0x1u));
+        dst->sensor_8_fault = (uint8_t)(((src[5] >> 1) & 0x1u));
+        dst->sensor_9_fault = (uint8_t)(((src[5] >> 2) & 0x1u));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A front_sensor_distance_2 with every raw field 0. */
@@ -11497,28 +11609,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->sensor_1_distance > 1023u) | (src->sensor_2_distance > 1023u) |
-        (src->sensor_3_distance > 1023u) | (src->sensor_4_distance > 1023u) |
-        (src->sensor_5_distance > 1023u) | (src->sensor_6_distance > 1023u) |
-        (src->counter > 15u)) {
+    if (((uint32_t)(src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+                    src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance) >
+         1023u) ||
+        ((uint32_t)(src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->sensor_1_distance) | ((uint64_t)src->sensor_2_distance << 10) |
-        ((uint64_t)src->sensor_3_distance << 20) | ((uint64_t)src->sensor_4_distance << 30) |
-        ((uint64_t)src->sensor_5_distance << 40) | ((uint64_t)src->sensor_6_distance << 50) |
-        ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_1_distance);
+        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_1_distance >> 8) |
+                                     ((uint32_t)src->sensor_2_distance << 2));
+        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_2_distance >> 6) |
+                                     ((uint32_t)src->sensor_3_distance << 4));
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_3_distance >> 4) |
+                                     ((uint32_t)src->sensor_4_distance << 6));
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->sensor_4_distance >> 2));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->sensor_5_distance);
+        const uint8_t b6 = (uint8_t)(((uint32_t)src->sensor_5_distance >> 8) |
+                                     ((uint32_t)src->sensor_6_distance << 2));
+        const uint8_t b7 =
+            (uint8_t)(((uint32_t)src->sensor_6_distance >> 6) | ((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -11526,21 +11648,19 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1_t *dst,
                                             const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->sensor_1_distance = (uint16_t)(w & 0x3FFu);
-    dst->sensor_2_distance = (uint16_t)((w >> 10) & 0x3FFu);
-    dst->sensor_3_distance = (uint16_t)((w >> 20) & 0x3FFu);
-    dst->sensor_4_distance = (uint16_t)((w >> 30) & 0x3FFu);
-    dst->sensor_5_distance = (uint16_t)((w >> 40) & 0x3FFu);
-    dst->sensor_6_distance = (uint16_t)((w >> 50) & 0x3FFu);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->sensor_1_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->sensor_2_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
+        dst->sensor_3_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
+        dst->sensor_4_distance = (uint16_t)((src[3] >> 6) | ((uint32_t)src[4] << 2));
+        dst->sensor_5_distance = (uint16_t)(src[5] | ((uint32_t)(src[6] & 0x3u) << 8));
+        dst->sensor_6_distance = (uint16_t)((src[6] >> 2) | ((uint32_t)(src[7] & 0xFu) << 6));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A rear_sensor_distance_1 with every raw field 0. */
@@ -11977,33 +12097,43 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->sensor_7_distance > 1023u) | (src->sensor_8_distance > 1023u) |
-        (src->sensor_9_distance > 1023u) | (src->uss_system_state > 3u) |
-        (src->sensor_1_fault > 1u) | (src->sensor_2_fault > 1u) | (src->sensor_3_fault > 1u) |
-        (src->sensor_4_fault > 1u) | (src->sensor_5_fault > 1u) | (src->sensor_6_fault > 1u) |
-        (src->sensor_7_fault > 1u) | (src->sensor_8_fault > 1u) | (src->sensor_9_fault > 1u) |
-        (src->counter > 15u)) {
+    if (((uint32_t)(src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance) >
+         1023u) ||
+        ((uint32_t)(src->uss_system_state) > 3u) ||
+        ((uint32_t)(src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault |
+                    src->sensor_4_fault | src->sensor_5_fault | src->sensor_6_fault |
+                    src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u) ||
+        ((uint32_t)(src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->sensor_7_distance) | ((uint64_t)src->sensor_8_distance << 10) |
-        ((uint64_t)src->sensor_9_distance << 20) | ((uint64_t)src->uss_system_state << 32) |
-        ((uint64_t)src->sensor_1_fault << 34) | ((uint64_t)src->sensor_2_fault << 35) |
-        ((uint64_t)src->sensor_3_fault << 36) | ((uint64_t)src->sensor_4_fault << 37) |
-        ((uint64_t)src->sensor_5_fault << 38) | ((uint64_t)src->sensor_6_fault << 39) |
-        ((uint64_t)src->sensor_7_fault << 40) | ((uint64_t)src->sensor_8_fault << 41) |
-        ((uint64_t)src->sensor_9_fault << 42) | ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_7_distance);
+        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_7_distance >> 8) |
+                                     ((uint32_t)src->sensor_8_distance << 2));
+        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_8_distance >> 6) |
+                                     ((uint32_t)src->sensor_9_distance << 4));
+        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_9_distance >> 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2) |
+                      ((uint32_t)src->sensor_2_fault << 3) | ((uint32_t)src->sensor_3_fault << 4) |
+                      ((uint32_t)src->sensor_4_fault << 5) | ((uint32_t)src->sensor_5_fault << 6) |
+                      ((uint32_t)src->sensor_6_fault << 7));
+        const uint8_t b5 =
+            (uint8_t)((uint32_t)src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1) |
+                      ((uint32_t)src->sensor_9_fault << 2));
+        const uint8_t b7 = (uint8_t)(((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = 0u;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12011,28 +12141,26 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2_t *dst,
                                             const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->sensor_7_distance = (uint16_t)(w & 0x3FFu);
-    dst->sensor_8_distance = (uint16_t)((w >> 10) & 0x3FFu);
-    dst->sensor_9_distance = (uint16_t)((w >> 20) & 0x3FFu);
-    dst->uss_system_state = (uint8_t)((w >> 32) & 0x3u);
-    dst->sensor_1_fault = (uint8_t)((w >> 34) & 0x1u);
-    dst->sensor_2_fault = (uint8_t)((w >> 35) & 0x1u);
-    dst->sensor_3_fault = (uint8_t)((w >> 36) & 0x1u);
-    dst->sensor_4_fault = (uint8_t)((w >> 37) & 0x1u);
-    dst->sensor_5_fault = (uint8_t)((w >> 38) & 0x1u);
-    dst->sensor_6_fault = (uint8_t)((w >> 39) & 0x1u);
-    dst->sensor_7_fault = (uint8_t)((w >> 40) & 0x1u);
-    dst->sensor_8_fault = (uint8_t)((w >> 41) & 0x1u);
-    dst->sensor_9_fault = (uint8_t)((w >> 42) & 0x1u);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->sensor_7_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->sensor_8_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
+        dst->sensor_9_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
+        dst->uss_system_state = (uint8_t)((src[4] & 0x3u));
+        dst->sensor_1_fault = (uint8_t)(((src[4] >> 2) & 0x1u));
+        dst->sensor_2_fault = (uint8_t)(((src[4] >> 3) & 0x1u));
+        dst->sensor_3_fault = (uint8_t)(((src[4] >> 4) & 0x1u));
+        dst->sensor_4_fault = (uint8_t)(((src[4] >> 5) & 0x1u));
+        dst->sensor_5_fault = (uint8_t)(((src[4] >> 6) & 0x1u));
+        dst->sensor_6_fault = (uint8_t)((src[4] >> 7));
+        dst->sensor_7_fault = (uint8_t)((src[5] & 0x1u));
+        dst->sensor_8_fault = (uint8_t)(((src[5] >> 1) & 0x1u));
+        dst->sensor_9_fault = (uint8_t)(((src[5] >> 2) & 0x1u));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A rear_sensor_distance_2 with every raw field 0. */
@@ -12717,21 +12845,24 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_tele_eps_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = ((uint64_t)src->eps_ctrl_mode) | ((uint64_t)src->counter << 8) |
-        ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
+        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
+        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12740,19 +12871,22 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, const uint8_t *src,
                                       size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->eps_ctrl_mode = (uint8_t)(w & 0xFFu);
-    dst->counter = (uint8_t)((w >> 8) & 0xFFu);
-    dst->max_angular_speed = (uint8_t)((w >> 16) & 0xFFu);
-    dst->steering_angle_cmd = (uint16_t)((w >> 24) & 0xFFFFu);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->eps_ctrl_mode = (uint8_t)(src[0]);
+        dst->counter = (uint8_t)(src[1]);
+        dst->max_angular_speed = (uint8_t)(src[2]);
+        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A tele_eps_command with every raw field 0. */
@@ -12962,26 +13096,29 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->throttle_brake_cmd > 1023u) | (src->epb_cmd > 3u) | (src->gear_cmd > 15u) |
-        (src->emergency_brake_cmd > 1u)) {
+    if (((uint32_t)(src->throttle_brake_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
+        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->throttle_brake_cmd) | ((uint64_t)src->epb_cmd << 10) |
-        ((uint64_t)src->gear_cmd << 12) | ((uint64_t)src->counter << 16) |
-        ((uint64_t)src->emergency_brake_cmd << 24);
-    w |= (uint64_t)kaiwo_gateway_xor_fold(w) << 56;
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 = (uint8_t)((uint32_t)src->throttle_brake_cmd);
+        const uint8_t b1 =
+            (uint8_t)(((uint32_t)src->throttle_brake_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
+                      ((uint32_t)src->gear_cmd << 4));
+        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
+        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = 0u;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12990,20 +13127,23 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst, const uint8_t *src,
                                         size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->throttle_brake_cmd = (uint16_t)(w & 0x3FFu);
-    dst->epb_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->gear_cmd = (uint8_t)((w >> 12) & 0xFu);
-    dst->counter = (uint8_t)((w >> 16) & 0xFFu);
-    dst->emergency_brake_cmd = (uint8_t)((w >> 24) & 0x1u);
-    dst->checksum = (uint8_t)(w >> 56);
-    return kaiwo_gateway_xor_fold(w) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    {
+        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
+        uint64_t all;
+        bool checksum_ok;
+        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
+        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
+        dst->throttle_brake_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
+        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->gear_cmd = (uint8_t)((src[1] >> 4));
+        dst->counter = (uint8_t)(src[2]);
+        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
+        dst->checksum = (uint8_t)(src[7]);
+        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+    }
 }
 
 /** A tele_speed_command with every raw field 0. */
@@ -13378,42 +13518,51 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_1_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->drive_mode_cmd > 3u) | (src->door_cmd > 3u) | (src->horn_cmd > 3u) |
-        (src->drl_cmd > 3u) | (src->left_turn_cmd > 3u) | (src->right_turn_cmd > 3u) |
-        (src->hazard_cmd > 3u) | (src->position_light_cmd > 3u) | (src->headlight_cmd > 3u) |
-        (src->rear_fog_cmd > 3u) | (src->left_fog_cmd > 3u) | (src->right_fog_cmd > 3u) |
-        (src->dome_light_cmd > 3u) | (src->ambient_light_cmd > 3u) | (src->drive_mode_reset > 1u) |
-        (src->system_state > 3u) | (src->system_reliability > 3u) | (src->system_fault_level > 3u) |
-        (src->lock_cmd > 3u) | (src->ac_cmd > 7u) | (src->ac_set_temp > 31u) |
-        (src->protocol_version_a > 15u) | (src->protocol_version_b > 15u) |
-        (src->protocol_version_c > 15u) | (src->counter > 15u)) {
+    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
+                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
+                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
+                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
+                    src->ambient_light_cmd | src->system_state | src->system_reliability |
+                    src->system_fault_level | src->lock_cmd) > 3u) ||
+        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
+        ((uint32_t)(src->ac_set_temp) > 31u) ||
+        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
+                    src->counter) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->drive_mode_cmd) | ((uint64_t)src->door_cmd << 2) |
-        ((uint64_t)src->horn_cmd << 4) | ((uint64_t)src->drl_cmd << 6) |
-        ((uint64_t)src->left_turn_cmd << 8) | ((uint64_t)src->right_turn_cmd << 10) |
-        ((uint64_t)src->hazard_cmd << 12) | ((uint64_t)src->position_light_cmd << 14) |
-        ((uint64_t)src->headlight_cmd << 16) | ((uint64_t)src->rear_fog_cmd << 18) |
-        ((uint64_t)src->left_fog_cmd << 20) | ((uint64_t)src->right_fog_cmd << 22) |
-        ((uint64_t)src->dome_light_cmd << 24) | ((uint64_t)src->ambient_light_cmd << 26) |
-        ((uint64_t)src->drive_mode_reset << 28) | ((uint64_t)src->system_state << 32) |
-        ((uint64_t)src->system_reliability << 34) | ((uint64_t)src->system_fault_level << 36) |
-        ((uint64_t)src->lock_cmd << 38) | ((uint64_t)src->ac_cmd << 40) |
-        ((uint64_t)src->ac_set_temp << 43) | ((uint64_t)src->protocol_version_a << 48) |
-        ((uint64_t)src->protocol_version_b << 52) | ((uint64_t)src->protocol_version_c << 56) |
-        ((uint64_t)src->counter << 60);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
+                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
+        const uint8_t b1 =
+            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
+                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
+        const uint8_t b2 =
+            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
+                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
+        const uint8_t b3 =
+            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
+                      ((uint32_t)src->drive_mode_reset << 4));
+        const uint8_t b4 =
+            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
+                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
+        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
+        const uint8_t b6 =
+            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
+        const uint8_t b7 =
+            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = b2;
+        dst[3] = b3;
+        dst[4] = b4;
+        dst[5] = b5;
+        dst[6] = b6;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -13421,39 +13570,37 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1_t *dst,
                                             const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->drive_mode_cmd = (uint8_t)(w & 0x3u);
-    dst->door_cmd = (uint8_t)((w >> 2) & 0x3u);
-    dst->horn_cmd = (uint8_t)((w >> 4) & 0x3u);
-    dst->drl_cmd = (uint8_t)((w >> 6) & 0x3u);
-    dst->left_turn_cmd = (uint8_t)((w >> 8) & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((w >> 10) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((w >> 12) & 0x3u);
-    dst->position_light_cmd = (uint8_t)((w >> 14) & 0x3u);
-    dst->headlight_cmd = (uint8_t)((w >> 16) & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((w >> 18) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((w >> 20) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)((w >> 22) & 0x3u);
-    dst->dome_light_cmd = (uint8_t)((w >> 24) & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((w >> 26) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((w >> 28) & 0x1u);
-    dst->system_state = (uint8_t)((w >> 32) & 0x3u);
-    dst->system_reliability = (uint8_t)((w >> 34) & 0x3u);
-    dst->system_fault_level = (uint8_t)((w >> 36) & 0x3u);
-    dst->lock_cmd = (uint8_t)((w >> 38) & 0x3u);
-    dst->ac_cmd = (uint8_t)((w >> 40) & 0x7u);
-    dst->ac_set_temp = (uint8_t)((w >> 43) & 0x1Fu);
-    dst->protocol_version_a = (uint8_t)((w >> 48) & 0xFu);
-    dst->protocol_version_b = (uint8_t)((w >> 52) & 0xFu);
-    dst->protocol_version_c = (uint8_t)((w >> 56) & 0xFu);
-    dst->counter = (uint8_t)(w >> 60);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
+        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
+        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
+        dst->drl_cmd = (uint8_t)((src[0] >> 6));
+        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
+        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
+        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
+        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
+        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
+        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
+        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
+        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
+        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
+        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
+        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
+        dst->system_state = (uint8_t)((src[4] & 0x3u));
+        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
+        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
+        dst->lock_cmd = (uint8_t)((src[4] >> 6));
+        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
+        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
+        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
+        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
+        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
+        dst->counter = (uint8_t)((src[7] >> 4));
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A tele_control_command_1 with every raw field 0. */
@@ -14643,25 +14790,28 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_2_t *src) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if ((src->downhill_regen_enable > 1u) | (src->cargo_lift > 3u) | (src->cargo_lift_speed > 15u) |
-        (src->pto_enable > 1u)) {
+    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
+        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    w = ((uint64_t)src->downhill_regen_enable) | ((uint64_t)src->cargo_lift << 1) |
-        ((uint64_t)src->cargo_lift_speed << 3) | ((uint64_t)src->pto_enable << 7) |
-        ((uint64_t)src->downhill_regen_speed << 8) | ((uint64_t)src->counter << 56);
-    dst[0] = (uint8_t)(w);
-    dst[1] = (uint8_t)(w >> 8);
-    dst[2] = (uint8_t)(w >> 16);
-    dst[3] = (uint8_t)(w >> 24);
-    dst[4] = (uint8_t)(w >> 32);
-    dst[5] = (uint8_t)(w >> 40);
-    dst[6] = (uint8_t)(w >> 48);
-    dst[7] = (uint8_t)(w >> 56);
+    {
+        const uint8_t b0 =
+            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
+                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
+        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
+        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
+        dst[0] = b0;
+        dst[1] = b1;
+        dst[2] = 0u;
+        dst[3] = 0u;
+        dst[4] = 0u;
+        dst[5] = 0u;
+        dst[6] = 0u;
+        dst[7] = b7;
+    }
     return KAIWO_GATEWAY_OK;
 }
 
@@ -14669,20 +14819,18 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2_t *dst,
                                             const uint8_t *src, size_t size) {
-    uint64_t w;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-        ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-        ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-    dst->downhill_regen_enable = (uint8_t)(w & 0x1u);
-    dst->cargo_lift = (uint8_t)((w >> 1) & 0x3u);
-    dst->cargo_lift_speed = (uint8_t)((w >> 3) & 0xFu);
-    dst->pto_enable = (uint8_t)((w >> 7) & 0x1u);
-    dst->downhill_regen_speed = (uint8_t)((w >> 8) & 0xFFu);
-    dst->counter = (uint8_t)(w >> 56);
-    return KAIWO_GATEWAY_OK;
+    {
+        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
+        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
+        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
+        dst->pto_enable = (uint8_t)((src[0] >> 7));
+        dst->downhill_regen_speed = (uint8_t)(src[1]);
+        dst->counter = (uint8_t)(src[7]);
+        return KAIWO_GATEWAY_OK;
+    }
 }
 
 /** A tele_control_command_2 with every raw field 0. */

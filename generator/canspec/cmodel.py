@@ -99,9 +99,10 @@ class CSignal:
     type: str
     length: int
     start: int
-    range_check: str  # C condition true when src->field does not fit its bits; "" when it always fits
-    pack_term: str  # uint64 term OR'ed into the frame word
-    unpack_expr: str  # value from the frame word `w`
+    range_check: str  # C condition true when a signed src->field does not fit its bits
+    needs_check: bool  # unsigned field whose type is wider than its bits
+    pack_terms: tuple[tuple[int, str], ...]  # (byte, term OR'ed into that byte)
+    unpack_expr: str  # value from the frame bytes src[]
     raw_type_min: str
     raw_type_max: str
     raw_min: str  # int64 literals for the physical encode's raw range
@@ -142,12 +143,12 @@ class CMessage:
     type: str
     index_const: str  # enumerator in the message index enum
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
-    range_checks: tuple[str, ...]
-    load_terms: tuple[str, ...]  # uint64 terms making the frame word from src[]
-    store_shifts: tuple[int, ...]  # dst[i] = (uint8_t)(w >> shift)
-    checksum_fold: bool  # checksum covers every other byte: XOR of the whole word folds to 0
-    checksum_terms: tuple[int, ...]  # else: shifts of the covered bytes
-    checksum_shift: int
+    range_checks: tuple[str, ...]  # any true: a field does not fit its bits
+    pack_bytes: tuple[str, ...]  # per frame byte: its value from src (checksum byte: "")
+    checksum_byte: int
+    checksum_xor: str  # XOR of the covered bytes b<i> (pack)
+    checksum_check: str  # XOR of the covered bytes src[i] (unpack)
+    checksum_fold: bool  # covers all other 7 bytes: valid iff the XOR of all 8 bytes is 0
     counter: CSignal | None
     counter_mask: str
     da: str | None
@@ -205,20 +206,38 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     if sig.length > 63 and not sig.signed:
         raise CModelError(f"{msg.name}.{sig.name}: {sig.length}-bit unsigned fields are not supported by the C target")
     fits_type = sig.length == bits
+    wide = 64 if sig.length > 32 else 32
+    acc = f"uint{wide}_t"
     if sig.signed:
         lit = lambda v: int_lit(v, bits)  # noqa: E731
         range_check = "" if fits_type else f"(src->{field} < {lit(sig.raw_type_min)}) | (src->{field} > {lit(sig.raw_type_max)})"
-        pack = f"(((uint64_t)(int64_t)src->{field} & {hex_lit(sig.mask, 64)}) << {sig.start})"
-        sign = 1 << (sig.length - 1)
-        unpack = f"({t})((int64_t)(((w >> {sig.start}) & {hex_lit(sig.mask, 64)}) ^ {hex_lit(sign, 64)}) - (int64_t){hex_lit(sign, 64)})"
+        bits_of = f"((uint64_t)(int64_t)src->{field} & {hex_lit(sig.mask, 64)})"
     else:
         lit = lambda v: uint_lit(v, bits)  # noqa: E731
-        range_check = "" if fits_type else f"(src->{field} > {lit(sig.raw_type_max)})"
-        shift = f" << {sig.start}" if sig.start else ""
-        pack = f"((uint64_t)src->{field}{shift})"
-        shifted = f"(w >> {sig.start})" if sig.start else "w"
-        masked = shifted if sig.start + sig.length == 64 else f"({shifted} & {hex_lit(sig.mask, bits)})"
-        unpack = f"({t}){masked}"
+        range_check = ""
+        bits_of = f"src->{field}"
+    pack_terms = []
+    for seg in sig.segments:
+        value = f"({acc}){bits_of}" if not sig.signed and bits <= 32 else f"(uint32_t)(uint8_t)({bits_of} >> {seg.value_shift})"
+        if not sig.signed and bits <= 32 and seg.value_shift:
+            value = f"({value} >> {seg.value_shift})"
+        pack_terms.append((seg.byte, f"({value} << {seg.byte_shift})" if seg.byte_shift else value))
+    unpack_terms = []
+    for seg in sig.segments:
+        term = f"src[{seg.byte}]"
+        if seg.byte_shift:
+            term = f"({term} >> {seg.byte_shift})"
+        if seg.byte_shift + seg.width < 8:
+            term = f"({term} & {hex_lit((1 << seg.width) - 1)})"
+        if seg.value_shift:
+            term = f"(({acc}){term} << {seg.value_shift})"
+        unpack_terms.append(term)
+    combined = " | ".join(unpack_terms)
+    if sig.signed:
+        sign = 1 << (sig.length - 1)
+        unpack = f"({t})((int64_t)((uint64_t)({combined}) ^ {hex_lit(sign, 64)}) - (int64_t){hex_lit(sign, 64)})"
+    else:
+        unpack = f"({t})({combined})"
     # physical (double)
     factor, offset = sig.factor, sig.offset
     # Two statements: C compilers may contract `raw * f + o` within one expression into an FMA
@@ -257,7 +276,7 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     return CSignal(
         sig=sig, field=field, macro=f"{pmacro}_{upper_snake(msg.name)}_{upper_snake(sig.name)}",
         fn=f"{prefix}_{mname}_{sname}", type=t, length=sig.length, start=sig.start,
-        range_check=range_check, pack_term=pack, unpack_expr=unpack,
+        range_check=range_check, needs_check=not fits_type and not sig.signed, pack_terms=tuple(pack_terms), unpack_expr=unpack,
         raw_type_min=lit(sig.raw_type_min), raw_type_max=lit(sig.raw_type_max),
         raw_min=int_lit(sig.raw_min, 64), raw_max=int_lit(sig.raw_max, 64),
         q_low=c_double(sig.raw_type_min - 1), q_high=c_double(sig.raw_type_max + 1),
@@ -283,28 +302,40 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     mname = snake(msg.name)
     sigs = tuple(_signal(prefix, pmacro, msg, s, enums) for s in msg.data_signals)
     counter = next((c for c in sigs if msg.counter and c.sig.name == msg.counter.signal), None)
-    fold, terms, cshift = False, (), 0
+    ck_byte, ck_xor, ck_check, ck_fold = -1, "", "", False
     xor_codes: list[tuple[str, str]] = []
+    data = [s for s in sigs if not (msg.checksum and s.sig.name == msg.checksum.signal)]
+    byte_terms: dict[int, list[str]] = {}
+    for s in data:
+        for b, term in s.pack_terms:
+            byte_terms.setdefault(b, []).append(term)
     if msg.checksum is not None:
         ck = msg.checksum
         csig = msg.signal(ck.signal)
         if ck.algorithm != "xor" or csig.start != 8 * ck.byte or csig.length != 8:
             raise CModelError(f"{msg.name}: only an XOR checksum filling a whole byte is supported")
-        fold = set(ck.covers) == set(range(msg.dlc)) - {ck.byte}
-        terms = tuple(8 * b for b in ck.covers)
-        cshift = 8 * ck.byte
+        ck_byte = ck.byte
+        ck_xor = " ^ ".join(f"b{b}" for b in ck.covers if b in byte_terms) or "0u"
+        ck_check = " ^ ".join(f"src[{b}]" for b in ck.covers)
+        ck_fold = msg.dlc == 8 and set(ck.covers) == set(range(8)) - {ck.byte}
         for table, cenum in faults:
-            entry = table.entries and next((e for e in table.entries if msg.layout and e.name == f"{msg.layout}{XOR_ERROR_SUFFIX}"), None)
+            entry = next((e for e in table.entries if msg.layout and e.name == f"{msg.layout}{XOR_ERROR_SUFFIX}"), None)
             if entry:
                 xor_codes.append((cenum.table, next(c.const for c in cenum.entries if c.value == entry.raw)))
+    pack_bytes = tuple("" if b == ck_byte else (f"(uint8_t)({' | '.join(byte_terms[b])})" if b in byte_terms else "0u") for b in range(msg.dlc))
+    # Range checks: unsigned fields of one width share one compare (a | b | c > 2^n - 1).
+    groups: dict[tuple[int, int], list[str]] = {}
+    for s in data:
+        if s.needs_check:
+            groups.setdefault((s.length, 64 if s.sig.storage_bits == 64 else 32), []).append(f"src->{s.field}")
+    checks = [f"((uint{w}_t)({' | '.join(fields)}) > {uint_lit((1 << n) - 1, w)})" for (n, w), fields in groups.items()]
+    checks += [s.range_check for s in data if s.range_check]
     j = msg.j1939
     return CMessage(
         msg=msg, name=mname, macro=f"{pmacro}_{upper_snake(msg.name)}", fn=f"{prefix}_{mname}", type=f"{prefix}_{mname}_t",
         index_const=f"{pmacro}_MSG_{upper_snake(msg.name)}", signals=sigs,
-        range_checks=tuple(s.range_check for s in sigs if s.range_check and not (msg.checksum and s.sig.name == msg.checksum.signal)),
-        load_terms=tuple(f"((uint64_t)src[{i}] << {8 * i})" if i else "(uint64_t)src[0]" for i in range(msg.dlc)),
-        store_shifts=tuple(8 * i for i in range(msg.dlc)),
-        checksum_fold=fold, checksum_terms=terms, checksum_shift=cshift,
+        range_checks=tuple(checks), pack_bytes=pack_bytes,
+        checksum_byte=ck_byte, checksum_xor=ck_xor, checksum_check=ck_check, checksum_fold=ck_fold,
         counter=counter, counter_mask=hex_lit(msg.counter.modulo - 1) if msg.counter else "",
         da=hex_lit(j.da) if j.da is not None else None, fault_xor_codes=tuple(xor_codes),
         comment=f"{msg.title} / {msg.zh}" if msg.title else msg.zh,
