@@ -8,3 +8,8 @@ roundtrip-c:  ## C vector runner on $(VECTORS)
 
 bench-c:  ## canspec C vs cantools generate_c_source: pack+unpack ns/frame, .text size
 	$(PYTHON) tests/c/bench.py build/c-bench
+
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz-c
+fuzz-c:  ## libFuzzer (ASan+UBSan) on the C unpack, dispatch, VIN and monitor, FUZZ_SECONDS each
+	$(PYTHON) tests/c/fuzz/run_fuzz.py $(FUZZ_SECONDS) build/c-fuzz
