@@ -7,6 +7,7 @@ the code size of both libraries' pack+unpack functions."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import subprocess
 import sys
@@ -17,6 +18,7 @@ import cbuild
 FRAMES_PER_MESSAGE = 16
 REPS = 61
 CFLAGS = ["-std=gnu99", "-O2"]
+CC = os.environ.get("BENCH_CC", "gcc")
 
 
 def frames_for(cases: list[dict], name: str) -> list[str]:  # type: ignore[type-arg]
@@ -149,14 +151,14 @@ def main(argv: list[str]) -> int:
     objs = []
     for src in ("bench_canspec.c", "bench_cantools.c", "bench_main.c"):
         obj = build / src.replace(".c", ".o")
-        subprocess.run(["gcc", *CFLAGS, *inc, "-c", str(build / src), "-o", str(obj)], check=True)
+        subprocess.run([CC, *CFLAGS, *inc, "-c", str(build / src), "-o", str(obj)], check=True)
         objs.append(str(obj))
     exe = build / "bench"
-    subprocess.run(["gcc", *objs, "-o", str(exe)], check=True)
+    subprocess.run([CC, *objs, "-o", str(exe)], check=True)
     size_a, size_b = build / "size_canspec.o", build / "size_cantools.o"
-    subprocess.run(["gcc", *CFLAGS, *inc, "-c", str(build / "size_canspec.c"), "-o", str(size_a)], check=True)
-    subprocess.run(["gcc", *CFLAGS, *inc, "-c", str(ct / "kaiwo_gateway.c"), "-o", str(size_b)], check=True)
-    print(f"gcc {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
+    subprocess.run([CC, *CFLAGS, *inc, "-c", str(build / "size_canspec.c"), "-o", str(size_a)], check=True)
+    subprocess.run([CC, *CFLAGS, *inc, "-c", str(ct / "kaiwo_gateway.c"), "-o", str(size_b)], check=True)
+    print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
     sys.stdout.flush()
     subprocess.run([str(exe)], check=True)
     pa, pb = symbol_bytes(size_a, r"_(pack|unpack)$"), symbol_bytes(size_b, r"_(pack|unpack)$")
