@@ -1,0 +1,55 @@
+"""Header-only C99 for ECUs (`c/<protocol>*.h`): see cmodel.py for the meaning, templates/c/
+for the text. Output is formatted by clang-format with the committed templates/c/.clang-format,
+run on the text in memory so that generation stays deterministic and atomic."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+
+from canspec import ir, resources
+from canspec.cmodel import build_model
+from canspec.render import render
+from canspec.targets import Target
+
+CLANG_FORMAT = "clang-format"
+STYLE_FILE = ".clang-format"
+# (template, file suffix): one header per concern, each compiles alone.
+HEADERS = (
+    ("c/common.h.j2", "_common.h"),
+    ("c/enums.h.j2", "_enums.h"),
+    ("c/messages.h.j2", "_messages.h"),
+    ("c/dispatch.h.j2", "_dispatch.h"),
+    ("c/text.h.j2", "_text.h"),
+    ("c/monitor.h.j2", "_monitor.h"),
+    ("c/umbrella.h.j2", ".h"),
+)
+
+
+def clang_format(text: str, name: str) -> str:
+    exe = shutil.which(CLANG_FORMAT)
+    if exe is None:
+        raise RuntimeError("clang-format not found: the C target formats its headers with it; install it (Debian: apt-get install clang-format) and run again")
+    style = resources.templates_dir() / "c" / STYLE_FILE
+    proc = subprocess.run(
+        [exe, f"--style=file:{style}", f"--assume-filename={name}"],
+        input=text.encode("utf-8"), capture_output=True, check=False,
+    )
+    if proc.returncode != 0:
+        raise RuntimeError(f"clang-format failed on {name}: {proc.stderr.decode(errors='replace').strip()}")
+    return proc.stdout.decode("utf-8")
+
+
+def render_c(spec: ir.Spec) -> dict[str, bytes]:
+    if spec.can is None:
+        return {}
+    model = build_model(spec)
+    out: dict[str, bytes] = {}
+    for template, suffix in HEADERS:
+        name = f"{model.prefix}{suffix}"
+        out[f"c/{name}"] = clang_format(render(template, spec, "c", c=model), name).encode("utf-8")
+    out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
+    return out
+
+
+TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30)

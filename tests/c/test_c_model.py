@@ -1,0 +1,61 @@
+"""The C target's model (cmodel.py): literal syntax, fixed-point scales, pack plans and clear
+errors for layouts the C target does not support. Expected values from the document."""
+
+from __future__ import annotations
+
+import dataclasses
+from fractions import Fraction
+
+import pytest
+
+from canspec import cmodel
+from canspec.generate import GenerationError, generate
+
+
+def test_literals():
+    assert cmodel.uint_lit(255) == "255u"
+    assert cmodel.uint_lit(2**40, 64) == "UINT64_C(1099511627776)"
+    assert cmodel.int_lit(-1080) == "(-1080)"
+    assert cmodel.hex_lit(0x3FF) == "0x3FFu"
+    assert cmodel.decimals(Fraction(3, 2000)) == 4  # 0.0015
+    with pytest.raises(cmodel.CModelError):
+        cmodel.uint_lit(-1)
+
+
+def test_signal_plans(spec):
+    model = cmodel.build_model(spec)
+    eps = next(m for m in model.messages if m.msg.name == "autocar_eps_command")
+    angle = next(s for s in eps.signals if s.sig.name == "steering_angle_cmd")
+    # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
+    assert angle.scale_int == 100 and angle.fixed_factor == "10" and angle.fixed_offset == "(-108000)"
+    assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
+    assert [b for b, _ in angle.pack_terms] == [3, 4]
+    assert eps.checksum_byte == 7 and eps.checksum_fold
+    assert eps.pack_bytes[5] == "0u" and eps.pack_bytes[6] == "0u"  # reserved bytes 5..6
+    cmd1 = next(m for m in model.messages if m.msg.name == "autocar_control_command_1")
+    assert cmd1.counter is not None and cmd1.counter_mask == "0xFu"
+    dev = next(m for m in model.messages if m.msg.name == "device_id")
+    chars = next(s for s in dev.signals if s.sig.name == "id_chars")
+    assert not chars.has_double and chars.fixed_type == "int64_t" and chars.scale_int == 1
+    fs = next(m for m in model.messages if m.msg.name == "front_sensor_distance_1")
+    dist = fs.signals[0]
+    assert dist.needs_check and [sp.raw for sp in dist.specials] == [0x3FF]
+
+
+def test_fault_code_mapping(spec):
+    model = cmodel.build_model(spec)
+    tables = {ft.enum.table: ft for ft in model.fault_tables}
+    assert set(tables) == {"unmanned_entry_fault", "remote_entry_fault"}
+    assert tables["unmanned_entry_fault"].timeout_const.endswith("MESSAGE_TIMEOUT")
+    codes = {m.msg.name: dict(m.fault_xor_codes) for m in model.messages if m.fault_xor_codes}
+    assert codes["autocar_eps_command"]["unmanned_entry_fault"].endswith("EPS_COMMAND_XOR_ERROR")
+    assert codes["tele_speed_command"]["remote_entry_fault"].endswith("SPEED_COMMAND_XOR_ERROR")
+    assert len(codes) == 6  # the three EPS and three speed commands carry the XOR checksum
+
+
+def test_unsupported_layout_is_a_clear_generation_error(spec):
+    can = spec.can
+    big = dataclasses.replace(can.messages[0], dlc=64)
+    bad = dataclasses.replace(spec, can=dataclasses.replace(can, messages=(big, *can.messages[1:])))
+    with pytest.raises(GenerationError, match=r"target c: autocar_eps_command: DLC 64 > 8"):
+        generate(bad, ["c"])
