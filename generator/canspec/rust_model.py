@@ -65,10 +65,12 @@ def unpack_expr(sig: ir.Signal) -> str:
         left = 64 - sig.start - sig.length
         moved = f"(bits << {left})" if left else "bits"
         return f"(({moved} as i64) >> {64 - sig.length}) as {ty}"
-    shifted = f"(bits >> {sig.start})" if sig.start else "bits"
-    needs_mask = sig.start + sig.length < 64 and sig.length != sig.storage_bits
-    value = f"({shifted} & {int_lit(sig.mask)})" if needs_mask else shifted
-    return value if ty == "u64" else f"{value} as {ty}"
+    shifted = f"bits >> {sig.start}" if sig.start else "bits"
+    if sig.start + sig.length < 64 and sig.length != sig.storage_bits:
+        return f"(({shifted}) & {int_lit(sig.mask)}) as {ty}" if sig.start else f"({shifted} & {int_lit(sig.mask)}) as {ty}"
+    if ty == "u64":
+        return shifted
+    return f"({shifted}) as {ty}" if sig.start else f"{shifted} as {ty}"
 
 
 def pack_expr(sig: ir.Signal, field: str) -> str:
@@ -185,6 +187,9 @@ class RustMessage:
     fields: tuple[RustField, ...]  # data signals except the checksum
     checksum: ir.Checksum | None
     checksum_expr: str  # over `bytes`
+    checksum_fold: bool  # the checksum covers every other byte of an 8-byte frame: fold the word
+    checksum_shift: int  # bit position of the checksum byte in the frame word
+    checksum_clear: str  # frame-word mask without the checksum byte
     counter: RustField | None
     multiframe: dict[str, object] | None
     da: str
@@ -301,9 +306,12 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
     name = pascal(msg.name)
     fields = tuple(build_field(msg, s, enums) for s in msg.data_signals if s.role != "checksum")
     counter = next((f for f in fields if msg.counter and f.name == snake(msg.counter.signal)), None)
-    checksum_expr = ""
+    checksum_expr, fold, shift, clear = "", False, 0, ""
     if msg.checksum:
         checksum_expr = " ^ ".join(f"bytes[{b}]" for b in msg.checksum.covers)
+        fold = msg.dlc == 8 and set(msg.checksum.covers) == set(range(8)) - {msg.checksum.byte}
+        shift = 8 * msg.checksum.byte
+        clear = int_lit(((1 << 64) - 1) ^ (0xFF << shift))
     mf = None
     if msg.multiframe:
         m = msg.multiframe
@@ -325,7 +333,7 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
     for s in msg.data_signals:
         defined |= s.mask << s.start
     da = "None" if msg.j1939.da is None else f"Some(0x{msg.j1939.da:02X})"
-    return RustMessage(msg, name, f"{name}Values", name, fields, msg.checksum, checksum_expr, counter, mf, da,
+    return RustMessage(msg, name, f"{name}Values", name, fields, msg.checksum, checksum_expr, fold, shift, clear, counter, mf, da,
                        _message_doc(msg), int_lit(defined))
 
 

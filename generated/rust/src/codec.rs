@@ -33,11 +33,7 @@ pub struct Scale {
 #[inline(always)]
 fn floor_i64(t: f64) -> i64 {
     let truncated = t as i64; // rounds toward zero, exact in this range
-    if (truncated as f64) > t {
-        truncated - 1
-    } else {
-        truncated
-    }
+    truncated - ((truncated as f64) > t) as i64
 }
 
 /// Round half away from zero, the shared runtime rule:
@@ -45,10 +41,11 @@ fn floor_i64(t: f64) -> i64 {
 /// `|q| < 2^61`.
 #[inline(always)]
 pub fn round_half_away(q: f64) -> i64 {
+    let magnitude = floor_i64((f64::from_bits(q.to_bits() & !(1 << 63)) + 0.5) + TIE_EPSILON); // |q|
     if q >= 0.0 {
-        floor_i64((q + 0.5) + TIE_EPSILON)
+        magnitude
     } else {
-        -floor_i64((-q + 0.5) + TIE_EPSILON)
+        -magnitude
     }
 }
 
@@ -58,26 +55,27 @@ pub fn round_half_away(q: f64) -> i64 {
 #[inline(always)]
 pub fn to_raw(value: f64, scale: &Scale, specials: &[i64]) -> Option<i64> {
     let q = (value - scale.offset) / scale.factor;
-    // NaN fails both comparisons.
-    if !(q >= scale.type_min as f64 && q <= scale.type_max as f64) {
-        return None;
-    }
+    // Within the field's raw range (NaN fails both comparisons); then `raw` is too.
+    let fits = (q >= scale.type_min as f64) & (q <= scale.type_max as f64);
+    // Saturating casts keep `raw` defined when `q` is not in range; `fits` rejects it then.
     let raw = round_half_away(q);
-    if raw < scale.type_min || raw > scale.type_max {
-        return None;
-    }
-    if specials.contains(&raw) {
-        return Some(raw);
-    }
-    if value >= scale.check_min
-        && value <= scale.check_max
-        && raw >= scale.raw_min
-        && raw <= scale.raw_max
-    {
+    let documented = (value >= scale.check_min)
+        & (value <= scale.check_max)
+        & (raw >= scale.raw_min)
+        & (raw <= scale.raw_max);
+    if fits & (documented || specials.contains(&raw)) {
         Some(raw)
     } else {
         None
     }
+}
+
+/// XOR of the eight bytes of a frame word.
+#[inline(always)]
+pub const fn xor_bytes(word: u64) -> u8 {
+    let word = word ^ (word >> 32);
+    let word = word ^ (word >> 16);
+    (word ^ (word >> 8)) as u8
 }
 
 /// The value after `value` of a rolling counter of `bits` bits (wraps to 0).
@@ -126,6 +124,34 @@ mod tests {
         ] {
             assert_eq!(floor_i64(t), t.floor() as i64, "floor({t})");
         }
+    }
+
+    #[test]
+    fn xor_folds_every_byte() {
+        assert_eq!(xor_bytes(0x0102_0408_1020_4080), 0xFF);
+        assert_eq!(xor_bytes(0xAA00_0000_0000_00AA), 0);
+        assert_eq!(xor_bytes(0x0000_0000_0000_0100), 1);
+    }
+
+    #[test]
+    fn to_raw_applies_the_range_rules() {
+        let scale = Scale {
+            factor: 0.02,
+            offset: -9.0,
+            check_min: -9.0,
+            check_max: 3.6,
+            raw_min: 0,
+            raw_max: 630,
+            type_min: 0,
+            type_max: 1023,
+        };
+        assert_eq!(to_raw(-8.99, &scale, &[]), Some(1)); // decimal tie rounds away from zero
+        assert_eq!(to_raw(3.6, &scale, &[]), Some(630));
+        assert_eq!(to_raw(3.62, &scale, &[]), None); // outside the documented range
+        assert_eq!(to_raw(-9.02, &scale, &[]), None); // below the field
+        assert_eq!(to_raw(f64::NAN, &scale, &[]), None);
+        assert_eq!(to_raw(f64::INFINITY, &scale, &[]), None);
+        assert_eq!(to_raw(11.46, &scale, &[1023]), Some(1023)); // a special value passes
     }
 
     #[test]

@@ -135,6 +135,7 @@ impl AutocarEpsCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
@@ -150,6 +151,7 @@ impl AutocarEpsCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         eps_ctrl_mode: u8,
         counter: u8,
@@ -165,6 +167,7 @@ impl AutocarEpsCommand {
     }
 
     /// A message from a struct of physical values (see [`AutocarEpsCommand::new`]).
+    #[inline]
     pub fn from_values(values: &AutocarEpsCommandValues) -> Result<Self, Error> {
         Self::new(
             values.eps_ctrl_mode,
@@ -175,6 +178,7 @@ impl AutocarEpsCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> AutocarEpsCommandValues {
         AutocarEpsCommandValues {
             eps_ctrl_mode: self.eps_ctrl_mode(),
@@ -191,9 +195,8 @@ impl AutocarEpsCommand {
             | u64::from(self.counter) << 8
             | u64::from(self.max_angular_speed) << 16
             | u64::from(self.steering_angle_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -206,15 +209,15 @@ impl AutocarEpsCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             eps_ctrl_mode: bits as u8,
             counter: (bits >> 8) as u8,
@@ -584,6 +587,7 @@ impl EpsState {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         eps_ctrl_state: EpsModeState,
         steering_torque: f64,
@@ -605,6 +609,7 @@ impl EpsState {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         eps_ctrl_state: u8,
         steering_torque: u8,
@@ -626,6 +631,7 @@ impl EpsState {
     }
 
     /// A message from a struct of physical values (see [`EpsState::new`]).
+    #[inline]
     pub fn from_values(values: &EpsStateValues) -> Result<Self, Error> {
         Self::new(
             values.eps_ctrl_state,
@@ -639,6 +645,7 @@ impl EpsState {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> EpsStateValues {
         EpsStateValues {
             eps_ctrl_state: self.eps_ctrl_state(),
@@ -1101,6 +1108,7 @@ impl AutocarSpeedCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         accel_cmd: f64,
         epb_cmd: Epb,
@@ -1118,6 +1126,7 @@ impl AutocarSpeedCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         accel_cmd: u16,
         epb_cmd: u8,
@@ -1135,6 +1144,7 @@ impl AutocarSpeedCommand {
     }
 
     /// A message from a struct of physical values (see [`AutocarSpeedCommand::new`]).
+    #[inline]
     pub fn from_values(values: &AutocarSpeedCommandValues) -> Result<Self, Error> {
         Self::new(
             values.accel_cmd,
@@ -1146,6 +1156,7 @@ impl AutocarSpeedCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> AutocarSpeedCommandValues {
         AutocarSpeedCommandValues {
             accel_cmd: self.accel_cmd(),
@@ -1164,9 +1175,8 @@ impl AutocarSpeedCommand {
             | u64::from(self.gear_cmd) << 12
             | u64::from(self.counter) << 16
             | u64::from(self.emergency_brake_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -1179,15 +1189,15 @@ impl AutocarSpeedCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             accel_cmd: (bits & 1023) as u16,
             epb_cmd: ((bits >> 10) & 3) as u8,
@@ -1633,6 +1643,7 @@ impl DrivingState {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         epb_state: Epb,
@@ -1657,6 +1668,7 @@ impl DrivingState {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         epb_state: u8,
@@ -1681,6 +1693,7 @@ impl DrivingState {
     }
 
     /// A message from a struct of physical values (see [`DrivingState::new`]).
+    #[inline]
     pub fn from_values(values: &DrivingStateValues) -> Result<Self, Error> {
         Self::new(
             values.epb_state,
@@ -1695,6 +1708,7 @@ impl DrivingState {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> DrivingStateValues {
         DrivingStateValues {
             epb_state: self.epb_state(),
@@ -1719,9 +1733,8 @@ impl DrivingState {
             | u64::from(self.motor_torque) << 24
             | u64::from(self.motor_speed_ratio) << 40
             | u64::from(self.current_accel) << 48;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -1734,15 +1747,15 @@ impl DrivingState {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             epb_state: (bits & 3) as u8,
             gear_state: ((bits >> 2) & 15) as u8,
@@ -2415,6 +2428,7 @@ impl AutocarControlCommand1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         drive_mode_cmd: DriveModeCmdAutocar,
@@ -2473,6 +2487,7 @@ impl AutocarControlCommand1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         drive_mode_cmd: u8,
@@ -2531,6 +2546,7 @@ impl AutocarControlCommand1 {
     }
 
     /// A message from a struct of physical values (see [`AutocarControlCommand1::new`]).
+    #[inline]
     pub fn from_values(values: &AutocarControlCommand1Values) -> Result<Self, Error> {
         Self::new(
             values.drive_mode_cmd,
@@ -2562,6 +2578,7 @@ impl AutocarControlCommand1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> AutocarControlCommand1Values {
         AutocarControlCommand1Values {
             drive_mode_cmd: self.drive_mode_cmd(),
@@ -4026,6 +4043,7 @@ impl VehicleState1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         drive_mode_state: DriveModeState,
@@ -4078,6 +4096,7 @@ impl VehicleState1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         drive_mode_state: u8,
@@ -4130,6 +4149,7 @@ impl VehicleState1 {
     }
 
     /// A message from a struct of physical values (see [`VehicleState1::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleState1Values) -> Result<Self, Error> {
         Self::new(
             values.drive_mode_state,
@@ -4158,6 +4178,7 @@ impl VehicleState1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleState1Values {
         VehicleState1Values {
             drive_mode_state: self.drive_mode_state(),
@@ -5392,6 +5413,7 @@ impl AutocarControlCommand2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         downhill_regen_enable: DownhillRegenEnable,
@@ -5420,6 +5442,7 @@ impl AutocarControlCommand2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         downhill_regen_enable: u8,
@@ -5448,6 +5471,7 @@ impl AutocarControlCommand2 {
     }
 
     /// A message from a struct of physical values (see [`AutocarControlCommand2::new`]).
+    #[inline]
     pub fn from_values(values: &AutocarControlCommand2Values) -> Result<Self, Error> {
         Self::new(
             values.downhill_regen_enable,
@@ -5464,6 +5488,7 @@ impl AutocarControlCommand2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> AutocarControlCommand2Values {
         AutocarControlCommand2Values {
             downhill_regen_enable: self.downhill_regen_enable(),
@@ -6083,6 +6108,7 @@ impl VehicleState2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         battery_voltage: f64,
         battery_current: f64,
@@ -6098,6 +6124,7 @@ impl VehicleState2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         battery_voltage: u16,
         battery_current: u16,
@@ -6113,6 +6140,7 @@ impl VehicleState2 {
     }
 
     /// A message from a struct of physical values (see [`VehicleState2::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleState2Values) -> Result<Self, Error> {
         Self::new(
             values.battery_voltage,
@@ -6123,6 +6151,7 @@ impl VehicleState2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleState2Values {
         VehicleState2Values {
             battery_voltage: self.battery_voltage(),
@@ -6512,6 +6541,7 @@ impl VehicleState3 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         battery_max_temp: f64,
         battery_min_temp: f64,
@@ -6531,6 +6561,7 @@ impl VehicleState3 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         battery_max_temp: u8,
         battery_min_temp: u8,
@@ -6550,6 +6581,7 @@ impl VehicleState3 {
     }
 
     /// A message from a struct of physical values (see [`VehicleState3::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleState3Values) -> Result<Self, Error> {
         Self::new(
             values.battery_max_temp,
@@ -6562,6 +6594,7 @@ impl VehicleState3 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleState3Values {
         VehicleState3Values {
             battery_max_temp: self.battery_max_temp(),
@@ -7079,6 +7112,7 @@ impl VehicleState4 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         outside_temp: f64,
@@ -7111,6 +7145,7 @@ impl VehicleState4 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         outside_temp: u8,
@@ -7143,6 +7178,7 @@ impl VehicleState4 {
     }
 
     /// A message from a struct of physical values (see [`VehicleState4::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleState4Values) -> Result<Self, Error> {
         Self::new(
             values.outside_temp,
@@ -7161,6 +7197,7 @@ impl VehicleState4 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleState4Values {
         VehicleState4Values {
             outside_temp: self.outside_temp(),
@@ -8058,6 +8095,7 @@ impl VehicleFault {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         insulation_fault_level: InsulationFaultLevel,
@@ -8124,6 +8162,7 @@ impl VehicleFault {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         insulation_fault_level: u8,
@@ -8190,6 +8229,7 @@ impl VehicleFault {
     }
 
     /// A message from a struct of physical values (see [`VehicleFault::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleFaultValues) -> Result<Self, Error> {
         Self::new(
             values.insulation_fault_level,
@@ -8225,6 +8265,7 @@ impl VehicleFault {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleFaultValues {
         VehicleFaultValues {
             insulation_fault_level: self.insulation_fault_level(),
@@ -9616,22 +9657,26 @@ impl VehicleState5 {
     const ZERO: Self = Self {};
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new() -> Result<Self, Error> {
         Ok(Self::ZERO)
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw() -> Result<Self, Error> {
         Ok(Self::ZERO)
     }
 
     /// A message from a struct of physical values (see [`VehicleState5::new`]).
+    #[inline]
     pub fn from_values(values: &VehicleState5Values) -> Result<Self, Error> {
         let _ = values;
         Ok(Self::ZERO)
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> VehicleState5Values {
         VehicleState5Values {}
     }
@@ -9807,6 +9852,7 @@ impl RgateEpsCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
@@ -9822,6 +9868,7 @@ impl RgateEpsCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         eps_ctrl_mode: u8,
         counter: u8,
@@ -9837,6 +9884,7 @@ impl RgateEpsCommand {
     }
 
     /// A message from a struct of physical values (see [`RgateEpsCommand::new`]).
+    #[inline]
     pub fn from_values(values: &RgateEpsCommandValues) -> Result<Self, Error> {
         Self::new(
             values.eps_ctrl_mode,
@@ -9847,6 +9895,7 @@ impl RgateEpsCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RgateEpsCommandValues {
         RgateEpsCommandValues {
             eps_ctrl_mode: self.eps_ctrl_mode(),
@@ -9863,9 +9912,8 @@ impl RgateEpsCommand {
             | u64::from(self.counter) << 8
             | u64::from(self.max_angular_speed) << 16
             | u64::from(self.steering_angle_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -9878,15 +9926,15 @@ impl RgateEpsCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             eps_ctrl_mode: bits as u8,
             counter: (bits >> 8) as u8,
@@ -10196,6 +10244,7 @@ impl RgateSpeedCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         accel_cmd: f64,
         epb_cmd: Epb,
@@ -10213,6 +10262,7 @@ impl RgateSpeedCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         accel_cmd: u16,
         epb_cmd: u8,
@@ -10230,6 +10280,7 @@ impl RgateSpeedCommand {
     }
 
     /// A message from a struct of physical values (see [`RgateSpeedCommand::new`]).
+    #[inline]
     pub fn from_values(values: &RgateSpeedCommandValues) -> Result<Self, Error> {
         Self::new(
             values.accel_cmd,
@@ -10241,6 +10292,7 @@ impl RgateSpeedCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RgateSpeedCommandValues {
         RgateSpeedCommandValues {
             accel_cmd: self.accel_cmd(),
@@ -10259,9 +10311,8 @@ impl RgateSpeedCommand {
             | u64::from(self.gear_cmd) << 12
             | u64::from(self.counter) << 16
             | u64::from(self.emergency_brake_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -10274,15 +10325,15 @@ impl RgateSpeedCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             accel_cmd: (bits & 1023) as u16,
             epb_cmd: ((bits >> 10) & 3) as u8,
@@ -10839,6 +10890,7 @@ impl RgateControlCommand1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         drive_mode_cmd: DriveModeCmdRgate,
@@ -10897,6 +10949,7 @@ impl RgateControlCommand1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         drive_mode_cmd: u8,
@@ -10955,6 +11008,7 @@ impl RgateControlCommand1 {
     }
 
     /// A message from a struct of physical values (see [`RgateControlCommand1::new`]).
+    #[inline]
     pub fn from_values(values: &RgateControlCommand1Values) -> Result<Self, Error> {
         Self::new(
             values.drive_mode_cmd,
@@ -10986,6 +11040,7 @@ impl RgateControlCommand1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RgateControlCommand1Values {
         RgateControlCommand1Values {
             drive_mode_cmd: self.drive_mode_cmd(),
@@ -12286,6 +12341,7 @@ impl RgateControlCommand2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         downhill_regen_enable: DownhillRegenEnable,
         cargo_lift: CargoLift,
@@ -12305,6 +12361,7 @@ impl RgateControlCommand2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         downhill_regen_enable: u8,
         cargo_lift: u8,
@@ -12324,6 +12381,7 @@ impl RgateControlCommand2 {
     }
 
     /// A message from a struct of physical values (see [`RgateControlCommand2::new`]).
+    #[inline]
     pub fn from_values(values: &RgateControlCommand2Values) -> Result<Self, Error> {
         Self::new(
             values.downhill_regen_enable,
@@ -12336,6 +12394,7 @@ impl RgateControlCommand2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RgateControlCommand2Values {
         RgateControlCommand2Values {
             downhill_regen_enable: self.downhill_regen_enable(),
@@ -12732,6 +12791,7 @@ impl DeviceId {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         device_type: DeviceType,
         id_frame_index: IdFrameIndex,
@@ -12745,6 +12805,7 @@ impl DeviceId {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(device_type: u8, id_frame_index: u8, id_chars: u64) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
         msg.set_device_type_raw(device_type)?;
@@ -12754,11 +12815,13 @@ impl DeviceId {
     }
 
     /// A message from a struct of physical values (see [`DeviceId::new`]).
+    #[inline]
     pub fn from_values(values: &DeviceIdValues) -> Result<Self, Error> {
         Self::new(values.device_type, values.id_frame_index, values.id_chars)
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> DeviceIdValues {
         DeviceIdValues {
             device_type: self.device_type(),
@@ -12789,7 +12852,7 @@ impl DeviceId {
         Ok(Self {
             device_type: (bits & 63) as u8,
             id_frame_index: ((bits >> 6) & 3) as u8,
-            id_chars: (bits >> 8),
+            id_chars: bits >> 8,
         })
     }
 
@@ -13181,6 +13244,7 @@ impl FrontSensorDistance1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         sensor_1_distance: u16,
         sensor_2_distance: u16,
@@ -13202,6 +13266,7 @@ impl FrontSensorDistance1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         sensor_1_distance: u16,
         sensor_2_distance: u16,
@@ -13223,6 +13288,7 @@ impl FrontSensorDistance1 {
     }
 
     /// A message from a struct of physical values (see [`FrontSensorDistance1::new`]).
+    #[inline]
     pub fn from_values(values: &FrontSensorDistance1Values) -> Result<Self, Error> {
         Self::new(
             values.sensor_1_distance,
@@ -13236,6 +13302,7 @@ impl FrontSensorDistance1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> FrontSensorDistance1Values {
         FrontSensorDistance1Values {
             sensor_1_distance: self.sensor_1_distance(),
@@ -13802,6 +13869,7 @@ impl FrontSensorDistance2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         sensor_7_distance: u16,
@@ -13838,6 +13906,7 @@ impl FrontSensorDistance2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         sensor_7_distance: u16,
@@ -13874,6 +13943,7 @@ impl FrontSensorDistance2 {
     }
 
     /// A message from a struct of physical values (see [`FrontSensorDistance2::new`]).
+    #[inline]
     pub fn from_values(values: &FrontSensorDistance2Values) -> Result<Self, Error> {
         Self::new(
             values.sensor_7_distance,
@@ -13894,6 +13964,7 @@ impl FrontSensorDistance2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> FrontSensorDistance2Values {
         FrontSensorDistance2Values {
             sensor_7_distance: self.sensor_7_distance(),
@@ -14714,6 +14785,7 @@ impl RearSensorDistance1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         sensor_1_distance: u16,
         sensor_2_distance: u16,
@@ -14735,6 +14807,7 @@ impl RearSensorDistance1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         sensor_1_distance: u16,
         sensor_2_distance: u16,
@@ -14756,6 +14829,7 @@ impl RearSensorDistance1 {
     }
 
     /// A message from a struct of physical values (see [`RearSensorDistance1::new`]).
+    #[inline]
     pub fn from_values(values: &RearSensorDistance1Values) -> Result<Self, Error> {
         Self::new(
             values.sensor_1_distance,
@@ -14769,6 +14843,7 @@ impl RearSensorDistance1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RearSensorDistance1Values {
         RearSensorDistance1Values {
             sensor_1_distance: self.sensor_1_distance(),
@@ -15335,6 +15410,7 @@ impl RearSensorDistance2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         sensor_7_distance: u16,
@@ -15371,6 +15447,7 @@ impl RearSensorDistance2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         sensor_7_distance: u16,
@@ -15407,6 +15484,7 @@ impl RearSensorDistance2 {
     }
 
     /// A message from a struct of physical values (see [`RearSensorDistance2::new`]).
+    #[inline]
     pub fn from_values(values: &RearSensorDistance2Values) -> Result<Self, Error> {
         Self::new(
             values.sensor_7_distance,
@@ -15427,6 +15505,7 @@ impl RearSensorDistance2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> RearSensorDistance2Values {
         RearSensorDistance2Values {
             sensor_7_distance: self.sensor_7_distance(),
@@ -16232,6 +16311,7 @@ impl TeleEpsCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
@@ -16247,6 +16327,7 @@ impl TeleEpsCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         eps_ctrl_mode: u8,
         counter: u8,
@@ -16262,6 +16343,7 @@ impl TeleEpsCommand {
     }
 
     /// A message from a struct of physical values (see [`TeleEpsCommand::new`]).
+    #[inline]
     pub fn from_values(values: &TeleEpsCommandValues) -> Result<Self, Error> {
         Self::new(
             values.eps_ctrl_mode,
@@ -16272,6 +16354,7 @@ impl TeleEpsCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> TeleEpsCommandValues {
         TeleEpsCommandValues {
             eps_ctrl_mode: self.eps_ctrl_mode(),
@@ -16288,9 +16371,8 @@ impl TeleEpsCommand {
             | u64::from(self.counter) << 8
             | u64::from(self.max_angular_speed) << 16
             | u64::from(self.steering_angle_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -16303,15 +16385,15 @@ impl TeleEpsCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             eps_ctrl_mode: bits as u8,
             counter: (bits >> 8) as u8,
@@ -16621,6 +16703,7 @@ impl TeleSpeedCommand {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         throttle_brake_cmd: f64,
         epb_cmd: Epb,
@@ -16638,6 +16721,7 @@ impl TeleSpeedCommand {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         throttle_brake_cmd: u16,
         epb_cmd: u8,
@@ -16655,6 +16739,7 @@ impl TeleSpeedCommand {
     }
 
     /// A message from a struct of physical values (see [`TeleSpeedCommand::new`]).
+    #[inline]
     pub fn from_values(values: &TeleSpeedCommandValues) -> Result<Self, Error> {
         Self::new(
             values.throttle_brake_cmd,
@@ -16666,6 +16751,7 @@ impl TeleSpeedCommand {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> TeleSpeedCommandValues {
         TeleSpeedCommandValues {
             throttle_brake_cmd: self.throttle_brake_cmd(),
@@ -16684,9 +16770,8 @@ impl TeleSpeedCommand {
             | u64::from(self.gear_cmd) << 12
             | u64::from(self.counter) << 16
             | u64::from(self.emergency_brake_cmd) << 24;
-        let mut bytes = bits.to_le_bytes();
-        bytes[7] = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        bytes
+        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
+        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -16699,15 +16784,15 @@ impl TeleSpeedCommand {
                 actual: data.len(),
             });
         };
-        let expected = bytes[0] ^ bytes[1] ^ bytes[2] ^ bytes[3] ^ bytes[4] ^ bytes[5] ^ bytes[6];
-        if bytes[7] != expected {
+        let bits = u64::from_le_bytes(*bytes);
+        // Every byte XORed together is 0 exactly when the checksum byte is right.
+        if codec::xor_bytes(bits) != 0 {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
-                expected,
+                expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
                 actual: bytes[7],
             });
         }
-        let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
             throttle_brake_cmd: (bits & 1023) as u16,
             epb_cmd: ((bits >> 10) & 3) as u8,
@@ -17266,6 +17351,7 @@ impl TeleControlCommand1 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         drive_mode_cmd: DriveModeCmdTele,
@@ -17324,6 +17410,7 @@ impl TeleControlCommand1 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn from_raw(
         drive_mode_cmd: u8,
@@ -17382,6 +17469,7 @@ impl TeleControlCommand1 {
     }
 
     /// A message from a struct of physical values (see [`TeleControlCommand1::new`]).
+    #[inline]
     pub fn from_values(values: &TeleControlCommand1Values) -> Result<Self, Error> {
         Self::new(
             values.drive_mode_cmd,
@@ -17413,6 +17501,7 @@ impl TeleControlCommand1 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> TeleControlCommand1Values {
         TeleControlCommand1Values {
             drive_mode_cmd: self.drive_mode_cmd(),
@@ -18715,6 +18804,7 @@ impl TeleControlCommand2 {
     };
 
     /// A message from physical values, each checked against its documented range.
+    #[inline]
     pub fn new(
         downhill_regen_enable: DownhillRegenEnable,
         cargo_lift: CargoLift,
@@ -18734,6 +18824,7 @@ impl TeleControlCommand2 {
     }
 
     /// A message from raw values; any raw value that fits its field is accepted.
+    #[inline]
     pub fn from_raw(
         downhill_regen_enable: u8,
         cargo_lift: u8,
@@ -18753,6 +18844,7 @@ impl TeleControlCommand2 {
     }
 
     /// A message from a struct of physical values (see [`TeleControlCommand2::new`]).
+    #[inline]
     pub fn from_values(values: &TeleControlCommand2Values) -> Result<Self, Error> {
         Self::new(
             values.downhill_regen_enable,
@@ -18765,6 +18857,7 @@ impl TeleControlCommand2 {
     }
 
     /// All physical values.
+    #[inline]
     pub fn values(&self) -> TeleControlCommand2Values {
         TeleControlCommand2Values {
             downhill_regen_enable: self.downhill_regen_enable(),
