@@ -157,7 +157,7 @@ class RustField:
     setter: str
     raw_setter: str
     raw_type: str
-    kind: str  # "enum" | "int" | "float"
+    kind: str  # "enum" | "int" (identity) | "scaled_int" (integer factor/offset) | "float"
     phys_type: str
     enum: str | None
     unpack: str
@@ -166,6 +166,7 @@ class RustField:
     refused: str | None  # `value` (raw type) may not come from a physical encode; None: never
     scale: dict[str, str]  # float signals: literals of the codec::Scale
     const_prefix: str  # FIELD_NAME for associated constants
+    factor_lit: str  # the factor as an f64 literal
     specials_slice: str  # float signals: `&[..]` of special raws (i64)
     phys_expr: str  # physical value from `self.<field>`
     specials: tuple[RustSpecial, ...]
@@ -208,6 +209,37 @@ def _phys_expr(sig: ir.Signal, field: str) -> str:
     return expr
 
 
+# Integer factors below this give the same raw value in exact integer arithmetic as the
+# double rule (a non-tie quotient is at least 1/(2·factor) > TIE_EPSILON away from a tie).
+MAX_INT_FACTOR = 500_000_000
+
+
+def scaled_int_type(sig: ir.Signal) -> str | None:
+    """The integer type of a scaled signal whose physical values are all integers (integer
+    factor and offset), holding every physical value and `raw × factor`; None if there is none."""
+    if not sig.is_integer or sig.is_identity or not 0 < sig.factor < MAX_INT_FACTOR or sig.storage_bits > 32:
+        return None
+    ends = [sig.raw_type_min * sig.factor + sig.offset, sig.raw_type_max * sig.factor + sig.offset, sig.raw_type_min * sig.factor, sig.raw_type_max * sig.factor]
+    lo, hi = min(ends), max(ends)
+    for bits in (8, 16, 32):
+        if lo >= 0 and hi < 1 << bits:
+            return f"u{bits}"
+        if -(1 << (bits - 1)) <= lo and hi < 1 << (bits - 1):
+            return f"i{bits}"
+    return None
+
+
+def _int_phys_expr(sig: ir.Signal, field: str, ty: str) -> str:
+    expr = f"self.{field}" if ty == int_type(sig.storage_bits, sig.signed) else f"self.{field} as {ty}"
+    if sig.factor != 1:
+        expr += f" * {int_lit(int(sig.factor))}"
+    if sig.offset > 0:
+        expr += f" + {int_lit(int(sig.offset))}"
+    elif sig.offset < 0:
+        expr += f" - {int_lit(int(-sig.offset))}"
+    return expr
+
+
 def _range_text(lo: Fraction | None, hi: Fraction | None) -> str:
     return "—" if lo is None else f"{num(lo)} … {num(hi)}"
 
@@ -233,15 +265,22 @@ def _field_doc(sig: ir.Signal) -> tuple[str, ...]:
 def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> RustField:
     name = snake(sig.name)
     raw_type = int_type(sig.storage_bits, sig.signed)
+    int_phys = scaled_int_type(sig)
     if sig.value_table is not None:
         kind, phys_type, enum = "enum", enums[sig.value_table.name].name, enums[sig.value_table.name].name
     elif sig.is_identity:
         kind, phys_type, enum = "int", raw_type, None
+    elif int_phys is not None:
+        kind, phys_type, enum = "scaled_int", int_phys, None
     else:
         kind, phys_type, enum = "float", "f64", None
+    if kind == "scaled_int":
+        lo, hi = math.ceil(sig.check_min), math.floor(sig.check_max)
+        bounds = {"check_min": int_lit(lo), "check_max": int_lit(hi), "factor": int_lit(int(sig.factor)), "offset": int_lit(int(sig.offset))}
+    else:
+        bounds = {"check_min": f64_lit(sig.check_min), "check_max": f64_lit(sig.check_max), "factor": f64_lit(sig.factor), "offset": f64_lit(sig.offset)}
     scale = {
-        "factor": f64_lit(sig.factor), "offset": f64_lit(sig.offset),
-        "check_min": f64_lit(sig.check_min), "check_max": f64_lit(sig.check_max),
+        **bounds,
         "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),
         "type_min": int_lit(sig.raw_type_min), "type_max": int_lit(sig.raw_type_max),
     }
@@ -254,9 +293,10 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         getter=rust_ident(name), raw_getter=rust_ident(f"{name}_raw"), setter=f"set_{name}", raw_setter=f"set_{name}_raw",
         raw_type=raw_type, kind=kind, phys_type=phys_type, enum=enum,
         unpack=unpack_expr(sig), pack=pack_expr(sig, rust_ident(name)),
-        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name),
+        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor),
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
-        phys_expr=_phys_expr(sig, rust_ident(name)), specials=specials, doc=_field_doc(sig),
+        phys_expr=_int_phys_expr(sig, rust_ident(name), phys_type) if kind == "scaled_int" else _phys_expr(sig, rust_ident(name)),
+        specials=specials, doc=_field_doc(sig),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
         is_counter=sig.role == "counter",
         strategy_lo=int_lit(sig.raw_min), strategy_hi=int_lit(sig.raw_max),

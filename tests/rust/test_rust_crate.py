@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from canspec.rust_model import build_crate
 from conftest import GENERATED, ROOT
 
 CRATE = GENERATED / "rust"
@@ -28,13 +29,19 @@ def cargo(*args: str, env: dict[str, str] | None = None, check: bool = True) -> 
     return proc
 
 
-def test_cargo_test_passes_and_checks_every_vector(vectors):
+def test_cargo_test_passes_and_checks_every_vector(vectors, can):
     proc = cargo("test", "--locked", "--all-features", "--", "--nocapture")
-    found = re.search(r"rust vectors: (\d+) cases \+ (\d+) multi-frame texts from .*, (\d+) mismatches", proc.stdout)
+    found = re.search(r"rust vectors: (\d+) cases \+ (\d+) multi-frame texts from .*, (\d+) mismatches; (\d+) physical encodes not", proc.stdout)
     assert found, proc.stdout[-3000:]
     assert int(found.group(1)) == len(vectors["cases"])
     assert int(found.group(2)) == len(vectors["multiframe"])
     assert int(found.group(3)) == 0
+    # Only rounding ties of integer-valued signals (e.g. -14999.5 rpm) lack a whole-number input.
+    integer_signals = {(m.msg.name, f.sig.name) for m in build_crate(can).messages for f in m.fields if f.kind == "scaled_int"}
+    integer_ties = [c for c in vectors["cases"] if c["kind"] == "tie" and (c["message"], c["note"].split()[0]) in integer_signals
+                    and not float(c["physical"][c["note"].split()[0]]).is_integer()]
+    assert integer_ties
+    assert int(found.group(4)) == len(integer_ties)
     assert "test result: FAILED" not in proc.stdout
 
 

@@ -72,7 +72,12 @@ def test_crate_model(can):
     assert eps.name == "AutocarEpsCommand" and eps.values == "AutocarEpsCommandValues"
     assert eps.checksum_fold and eps.checksum_shift == 56 and eps.checksum_clear == "0xFF_FFFF_FFFF_FFFF"
     assert [f.name for f in eps.fields] == ["eps_ctrl_mode", "counter", "max_angular_speed", "steering_angle_cmd"]
-    assert [f.kind for f in eps.fields] == ["enum", "int", "float", "float"]
+    # max_angular_speed: factor 2, whole deg/s 0..510 in a u16; steering angle: factor 0.1.
+    assert [f.kind for f in eps.fields] == ["enum", "int", "scaled_int", "float"]
+    assert [f.phys_type for f in eps.fields] == ["EpsModeCmd", "u8", "u16", "f64"]
+    assert eps.fields[2].phys_expr == "self.max_angular_speed as u16 * 2"
+    temp = next(f for m in crate.messages if m.msg.name == "vehicle_state_3" for f in m.fields if f.name == "battery_max_temp")
+    assert (temp.kind, temp.phys_type, temp.phys_expr) == ("scaled_int", "i16", "self.battery_max_temp as i16 - 40")
     assert eps.da == "Some(0xB0)"
     # Bits 40..55 are reserved: the defined bits are everything else.
     assert eps.defined_mask == "0xFF00_00FF_FFFF_FFFF"

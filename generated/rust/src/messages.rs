@@ -62,7 +62,7 @@ pub struct AutocarEpsCommandValues {
     /// Special raw value 0: 不限制角速度 (No limit)
     ///
     /// Errata: E10 (see spec/ERRATA.md)
-    pub max_angular_speed: f64,
+    pub max_angular_speed: u16,
     /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
     ///
     /// 顺时针方向为正
@@ -99,14 +99,14 @@ impl AutocarEpsCommand {
     /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MIN: f64 = 0.0;
+    pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
     /// Largest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MAX: f64 = 512.0;
-    const MAX_ANGULAR_SPEED_SCALE: Scale = Scale {
-        factor: 2.0,
-        offset: 0.0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX,
+    pub const MAX_ANGULAR_SPEED_MAX: u16 = 512;
+    const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
+        factor: 2,
+        offset: 0,
+        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
+        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -139,7 +139,7 @@ impl AutocarEpsCommand {
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
-        max_angular_speed: f64,
+        max_angular_speed: u16,
         steering_angle_cmd: f64,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
@@ -257,7 +257,7 @@ impl AutocarEpsCommand {
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
         self.eps_ctrl_mode = value;
@@ -290,7 +290,7 @@ impl AutocarEpsCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -313,8 +313,8 @@ impl AutocarEpsCommand {
     ///
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
-    pub fn max_angular_speed(&self) -> f64 {
-        self.max_angular_speed as f64 * 2.0
+    pub fn max_angular_speed(&self) -> u16 {
+        self.max_angular_speed as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
@@ -324,9 +324,9 @@ impl AutocarEpsCommand {
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_max_angular_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
+    #[inline(always)]
+    pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.max_angular_speed = raw as u8;
                 Ok(())
@@ -363,7 +363,7 @@ impl AutocarEpsCommand {
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -479,7 +479,7 @@ pub struct EpsStateValues {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 40 | 6 | 2 | 0 | °C | 0 … 126 | 0 … 63 |
-    pub controller_temp: f64,
+    pub controller_temp: u8,
     /// EPS 故障级别
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
@@ -562,14 +562,14 @@ impl EpsState {
         type_max: 65535,
     };
     /// Smallest physical value of `controller_temp` (°C).
-    pub const CONTROLLER_TEMP_MIN: f64 = 0.0;
+    pub const CONTROLLER_TEMP_MIN: u8 = 0;
     /// Largest physical value of `controller_temp` (°C).
-    pub const CONTROLLER_TEMP_MAX: f64 = 126.0;
-    const CONTROLLER_TEMP_SCALE: Scale = Scale {
-        factor: 2.0,
-        offset: 0.0,
-        check_min: Self::CONTROLLER_TEMP_MIN,
-        check_max: Self::CONTROLLER_TEMP_MAX,
+    pub const CONTROLLER_TEMP_MAX: u8 = 126;
+    const CONTROLLER_TEMP_SCALE: codec::IntScale = codec::IntScale {
+        factor: 2,
+        offset: 0,
+        check_min: Self::CONTROLLER_TEMP_MIN as i64,
+        check_max: Self::CONTROLLER_TEMP_MAX as i64,
         raw_min: 0,
         raw_max: 63,
         type_min: 0,
@@ -593,7 +593,7 @@ impl EpsState {
         steering_torque: f64,
         eps_output_torque: f64,
         steering_angle: f64,
-        controller_temp: f64,
+        controller_temp: u8,
         eps_fault_level: EpsFaultLevel,
         counter: u8,
     ) -> Result<Self, Error> {
@@ -718,7 +718,7 @@ impl EpsState {
     }
 
     /// Set `eps_ctrl_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_ctrl_state(&mut self, value: EpsModeState) -> Result<(), Error> {
         let value = value.raw();
         self.eps_ctrl_state = value;
@@ -751,7 +751,7 @@ impl EpsState {
     }
 
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_steering_torque(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::STEERING_TORQUE_SCALE, &[]) {
             Some(raw) => {
@@ -790,7 +790,7 @@ impl EpsState {
     }
 
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_output_torque(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::EPS_OUTPUT_TORQUE_SCALE, &[]) {
             Some(raw) => {
@@ -829,7 +829,7 @@ impl EpsState {
     }
 
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_steering_angle(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::STEERING_ANGLE_SCALE, &[]) {
             Some(raw) => {
@@ -855,8 +855,8 @@ impl EpsState {
     /// |---|---|---|---|---|---|---|
     /// | 40 | 6 | 2 | 0 | °C | 0 … 126 | 0 … 63 |
     #[inline]
-    pub fn controller_temp(&self) -> f64 {
-        self.controller_temp as f64 * 2.0
+    pub fn controller_temp(&self) -> u8 {
+        self.controller_temp * 2
     }
 
     /// Raw value of `controller_temp` (bits 40..46).
@@ -866,9 +866,9 @@ impl EpsState {
     }
 
     /// Set `controller_temp` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_controller_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CONTROLLER_TEMP_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_controller_temp(&mut self, value: u8) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::CONTROLLER_TEMP_SCALE, &[]) {
             Some(raw) => {
                 self.controller_temp = raw as u8;
                 Ok(())
@@ -908,7 +908,7 @@ impl EpsState {
     }
 
     /// Set `eps_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_fault_level(&mut self, value: EpsFaultLevel) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -951,7 +951,7 @@ impl EpsState {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -1240,7 +1240,7 @@ impl AutocarSpeedCommand {
     }
 
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -1282,7 +1282,7 @@ impl AutocarSpeedCommand {
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -1325,7 +1325,7 @@ impl AutocarSpeedCommand {
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -1368,7 +1368,7 @@ impl AutocarSpeedCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -1400,7 +1400,7 @@ impl AutocarSpeedCommand {
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -1520,7 +1520,7 @@ pub struct DrivingStateValues {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 8 | 16 | 1 | -15000 | rpm | -15000 … 15000 | 0 … 30000 |
-    pub motor_speed: f64,
+    pub motor_speed: i32,
     /// 电机扭矩 — Motor torque; positive pushes the vehicle forward.
     ///
     /// 大于0代表驱动力的方向为推动车辆向前，小于0代表驱动力的方向为推动车辆向后
@@ -1528,7 +1528,7 @@ pub struct DrivingStateValues {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 24 | 16 | 1 | -5000 | Nm | -5000 … 5000 | 0 … 10000 |
-    pub motor_torque: f64,
+    pub motor_torque: i32,
     /// 电机转速与车速比值 — Ratio of motor speed to vehicle speed.
     ///
     /// 单位 RPM/KMH，精度 1，偏移 1，无效:FF
@@ -1540,7 +1540,7 @@ pub struct DrivingStateValues {
     /// Special raw value 255: 无效 (Invalid)
     ///
     /// Errata: E19 (see spec/ERRATA.md)
-    pub motor_speed_ratio: f64,
+    pub motor_speed_ratio: u16,
     /// 当前加速度 — Current acceleration; positive towards the vehicle front.
     ///
     /// 大于0代表向车头方向加速
@@ -1573,28 +1573,28 @@ impl DrivingState {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0xAABD0032;
     /// Smallest physical value of `motor_speed` (rpm).
-    pub const MOTOR_SPEED_MIN: f64 = -15000.0;
+    pub const MOTOR_SPEED_MIN: i32 = -15000;
     /// Largest physical value of `motor_speed` (rpm).
-    pub const MOTOR_SPEED_MAX: f64 = 15000.0;
-    const MOTOR_SPEED_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -15000.0,
-        check_min: Self::MOTOR_SPEED_MIN,
-        check_max: Self::MOTOR_SPEED_MAX,
+    pub const MOTOR_SPEED_MAX: i32 = 15000;
+    const MOTOR_SPEED_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -15000,
+        check_min: Self::MOTOR_SPEED_MIN as i64,
+        check_max: Self::MOTOR_SPEED_MAX as i64,
         raw_min: 0,
         raw_max: 30000,
         type_min: 0,
         type_max: 65535,
     };
     /// Smallest physical value of `motor_torque` (Nm).
-    pub const MOTOR_TORQUE_MIN: f64 = -5000.0;
+    pub const MOTOR_TORQUE_MIN: i32 = -5000;
     /// Largest physical value of `motor_torque` (Nm).
-    pub const MOTOR_TORQUE_MAX: f64 = 5000.0;
-    const MOTOR_TORQUE_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -5000.0,
-        check_min: Self::MOTOR_TORQUE_MIN,
-        check_max: Self::MOTOR_TORQUE_MAX,
+    pub const MOTOR_TORQUE_MAX: i32 = 5000;
+    const MOTOR_TORQUE_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -5000,
+        check_min: Self::MOTOR_TORQUE_MIN as i64,
+        check_max: Self::MOTOR_TORQUE_MAX as i64,
         raw_min: 0,
         raw_max: 10000,
         type_min: 0,
@@ -1603,14 +1603,14 @@ impl DrivingState {
     /// 电机转速与车速比值: 无效 (Invalid), raw value of 'motor_speed_ratio'
     pub const MOTOR_SPEED_RATIO_INVALID: u8 = 255;
     /// Smallest physical value of `motor_speed_ratio` (rpm/(km/h)).
-    pub const MOTOR_SPEED_RATIO_MIN: f64 = 1.0;
+    pub const MOTOR_SPEED_RATIO_MIN: u16 = 1;
     /// Largest physical value of `motor_speed_ratio` (rpm/(km/h)).
-    pub const MOTOR_SPEED_RATIO_MAX: f64 = 254.0;
-    const MOTOR_SPEED_RATIO_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: 1.0,
-        check_min: Self::MOTOR_SPEED_RATIO_MIN,
-        check_max: Self::MOTOR_SPEED_RATIO_MAX,
+    pub const MOTOR_SPEED_RATIO_MAX: u16 = 254;
+    const MOTOR_SPEED_RATIO_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: 1,
+        check_min: Self::MOTOR_SPEED_RATIO_MIN as i64,
+        check_max: Self::MOTOR_SPEED_RATIO_MAX as i64,
         raw_min: 0,
         raw_max: 253,
         type_min: 0,
@@ -1650,9 +1650,9 @@ impl DrivingState {
         gear_state: Gear,
         emergency_brake_state: BrakeState,
         uss_brake_state: BrakeState,
-        motor_speed: f64,
-        motor_torque: f64,
-        motor_speed_ratio: f64,
+        motor_speed: i32,
+        motor_torque: i32,
+        motor_speed_ratio: u16,
         current_accel: f64,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
@@ -1791,7 +1791,7 @@ impl DrivingState {
     }
 
     /// Set `epb_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_epb_state(&mut self, value: Epb) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -1832,7 +1832,7 @@ impl DrivingState {
     }
 
     /// Set `gear_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_gear_state(&mut self, value: Gear) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -1873,7 +1873,7 @@ impl DrivingState {
     }
 
     /// Set `emergency_brake_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_emergency_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -1916,7 +1916,7 @@ impl DrivingState {
     }
 
     /// Set `uss_brake_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_uss_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -1948,8 +1948,8 @@ impl DrivingState {
     /// |---|---|---|---|---|---|---|
     /// | 8 | 16 | 1 | -15000 | rpm | -15000 … 15000 | 0 … 30000 |
     #[inline]
-    pub fn motor_speed(&self) -> f64 {
-        self.motor_speed as f64 - 15000.0
+    pub fn motor_speed(&self) -> i32 {
+        self.motor_speed as i32 - 15000
     }
 
     /// Raw value of `motor_speed` (bits 8..24).
@@ -1959,9 +1959,9 @@ impl DrivingState {
     }
 
     /// Set `motor_speed` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_motor_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MOTOR_SPEED_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_motor_speed(&mut self, value: i32) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MOTOR_SPEED_SCALE, &[]) {
             Some(raw) => {
                 self.motor_speed = raw as u16;
                 Ok(())
@@ -1987,8 +1987,8 @@ impl DrivingState {
     /// |---|---|---|---|---|---|---|
     /// | 24 | 16 | 1 | -5000 | Nm | -5000 … 5000 | 0 … 10000 |
     #[inline]
-    pub fn motor_torque(&self) -> f64 {
-        self.motor_torque as f64 - 5000.0
+    pub fn motor_torque(&self) -> i32 {
+        self.motor_torque as i32 - 5000
     }
 
     /// Raw value of `motor_torque` (bits 24..40).
@@ -1998,9 +1998,9 @@ impl DrivingState {
     }
 
     /// Set `motor_torque` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_motor_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MOTOR_TORQUE_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_motor_torque(&mut self, value: i32) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MOTOR_TORQUE_SCALE, &[]) {
             Some(raw) => {
                 self.motor_torque = raw as u16;
                 Ok(())
@@ -2030,8 +2030,8 @@ impl DrivingState {
     ///
     /// Errata: E19 (see spec/ERRATA.md)
     #[inline]
-    pub fn motor_speed_ratio(&self) -> f64 {
-        self.motor_speed_ratio as f64 + 1.0
+    pub fn motor_speed_ratio(&self) -> u16 {
+        self.motor_speed_ratio as u16 + 1
     }
 
     /// Raw value of `motor_speed_ratio` (bits 40..48).
@@ -2041,9 +2041,9 @@ impl DrivingState {
     }
 
     /// Set `motor_speed_ratio` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_motor_speed_ratio(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MOTOR_SPEED_RATIO_SCALE, &[255]) {
+    #[inline(always)]
+    pub fn set_motor_speed_ratio(&mut self, value: u16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MOTOR_SPEED_RATIO_SCALE, &[255]) {
             Some(raw) => {
                 self.motor_speed_ratio = raw as u8;
                 Ok(())
@@ -2080,7 +2080,7 @@ impl DrivingState {
     }
 
     /// Set `current_accel` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_current_accel(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::CURRENT_ACCEL_SCALE, &[]) {
             Some(raw) => {
@@ -2705,7 +2705,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdAutocar) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -2746,7 +2746,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2787,7 +2787,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2828,7 +2828,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2869,7 +2869,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2910,7 +2910,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2951,7 +2951,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -2992,7 +2992,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3033,7 +3033,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3074,7 +3074,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3115,7 +3115,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3156,7 +3156,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3197,7 +3197,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3238,7 +3238,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -3279,7 +3279,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -3320,7 +3320,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_state(&mut self, value: SystemStateAutocar) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3361,7 +3361,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityAutocar) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3402,7 +3402,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelAutocar) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3445,7 +3445,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3488,7 +3488,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -3531,7 +3531,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -3575,7 +3575,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_a(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -3617,7 +3617,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_b(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -3659,7 +3659,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_c(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -3701,7 +3701,7 @@ impl AutocarControlCommand1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -3904,7 +3904,7 @@ pub struct VehicleState1Values {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 16 | 8 | 1 | -50 | km/h | -50 … 200 | 0 … 250 |
-    pub vehicle_speed: f64,
+    pub vehicle_speed: i16,
     /// SOC — Traction battery state of charge.
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
@@ -3940,7 +3940,7 @@ pub struct VehicleState1Values {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 40 | 16 | 2 | 0 | km | 0 … 120000 | 0 … 60000 |
-    pub odometer: f64,
+    pub odometer: u32,
     /// 心跳值
     ///
     /// 每次递增加1
@@ -3975,14 +3975,14 @@ impl VehicleState1 {
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
     /// Smallest physical value of `vehicle_speed` (km/h).
-    pub const VEHICLE_SPEED_MIN: f64 = -50.0;
+    pub const VEHICLE_SPEED_MIN: i16 = -50;
     /// Largest physical value of `vehicle_speed` (km/h).
-    pub const VEHICLE_SPEED_MAX: f64 = 200.0;
-    const VEHICLE_SPEED_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -50.0,
-        check_min: Self::VEHICLE_SPEED_MIN,
-        check_max: Self::VEHICLE_SPEED_MAX,
+    pub const VEHICLE_SPEED_MAX: i16 = 200;
+    const VEHICLE_SPEED_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -50,
+        check_min: Self::VEHICLE_SPEED_MIN as i64,
+        check_max: Self::VEHICLE_SPEED_MAX as i64,
         raw_min: 0,
         raw_max: 250,
         type_min: 0,
@@ -4003,14 +4003,14 @@ impl VehicleState1 {
         type_max: 255,
     };
     /// Smallest physical value of `odometer` (km).
-    pub const ODOMETER_MIN: f64 = 0.0;
+    pub const ODOMETER_MIN: u32 = 0;
     /// Largest physical value of `odometer` (km).
-    pub const ODOMETER_MAX: f64 = 120000.0;
-    const ODOMETER_SCALE: Scale = Scale {
-        factor: 2.0,
-        offset: 0.0,
-        check_min: Self::ODOMETER_MIN,
-        check_max: Self::ODOMETER_MAX,
+    pub const ODOMETER_MAX: u32 = 0x1_D4C0;
+    const ODOMETER_SCALE: codec::IntScale = codec::IntScale {
+        factor: 2,
+        offset: 0,
+        check_min: Self::ODOMETER_MIN as i64,
+        check_max: Self::ODOMETER_MAX as i64,
         raw_min: 0,
         raw_max: 60000,
         type_min: 0,
@@ -4060,13 +4060,13 @@ impl VehicleState1 {
         dome_light_state: OffOn,
         ambient_light_state: OffOn,
         door_button_state: Button,
-        vehicle_speed: f64,
+        vehicle_speed: i16,
         soc: f64,
         system_power_cmd: PowerCmd,
         charge_state: ChargeState,
         charge_connection: ChargeConnection,
         vehicle_fault_level: VehicleFaultLevel,
-        odometer: f64,
+        odometer: u32,
         counter: u8,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
@@ -4296,7 +4296,7 @@ impl VehicleState1 {
     }
 
     /// Set `drive_mode_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_state(&mut self, value: DriveModeState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -4337,7 +4337,7 @@ impl VehicleState1 {
     }
 
     /// Set `door_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_door_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4378,7 +4378,7 @@ impl VehicleState1 {
     }
 
     /// Set `drl_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drl_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4419,7 +4419,7 @@ impl VehicleState1 {
     }
 
     /// Set `left_turn_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4460,7 +4460,7 @@ impl VehicleState1 {
     }
 
     /// Set `right_turn_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4501,7 +4501,7 @@ impl VehicleState1 {
     }
 
     /// Set `hazard_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_hazard_state(&mut self, value: OffFlashing) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4542,7 +4542,7 @@ impl VehicleState1 {
     }
 
     /// Set `position_light_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_position_light_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4583,7 +4583,7 @@ impl VehicleState1 {
     }
 
     /// Set `headlight_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_headlight_state(&mut self, value: Headlight) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -4624,7 +4624,7 @@ impl VehicleState1 {
     }
 
     /// Set `rear_fog_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_rear_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4665,7 +4665,7 @@ impl VehicleState1 {
     }
 
     /// Set `left_fog_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4706,7 +4706,7 @@ impl VehicleState1 {
     }
 
     /// Set `right_fog_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4747,7 +4747,7 @@ impl VehicleState1 {
     }
 
     /// Set `dome_light_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_dome_light_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4788,7 +4788,7 @@ impl VehicleState1 {
     }
 
     /// Set `ambient_light_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ambient_light_state(&mut self, value: OffOn) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4829,7 +4829,7 @@ impl VehicleState1 {
     }
 
     /// Set `door_button_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_door_button_state(&mut self, value: Button) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4859,8 +4859,8 @@ impl VehicleState1 {
     /// |---|---|---|---|---|---|---|
     /// | 16 | 8 | 1 | -50 | km/h | -50 … 200 | 0 … 250 |
     #[inline]
-    pub fn vehicle_speed(&self) -> f64 {
-        self.vehicle_speed as f64 - 50.0
+    pub fn vehicle_speed(&self) -> i16 {
+        self.vehicle_speed as i16 - 50
     }
 
     /// Raw value of `vehicle_speed` (bits 16..24).
@@ -4870,9 +4870,9 @@ impl VehicleState1 {
     }
 
     /// Set `vehicle_speed` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_vehicle_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::VEHICLE_SPEED_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_vehicle_speed(&mut self, value: i16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::VEHICLE_SPEED_SCALE, &[]) {
             Some(raw) => {
                 self.vehicle_speed = raw as u8;
                 Ok(())
@@ -4907,7 +4907,7 @@ impl VehicleState1 {
     }
 
     /// Set `soc` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_soc(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::SOC_SCALE, &[]) {
             Some(raw) => {
@@ -4944,7 +4944,7 @@ impl VehicleState1 {
     }
 
     /// Set `system_power_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_power_cmd(&mut self, value: PowerCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -4985,7 +4985,7 @@ impl VehicleState1 {
     }
 
     /// Set `charge_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_charge_state(&mut self, value: ChargeState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -5026,7 +5026,7 @@ impl VehicleState1 {
     }
 
     /// Set `charge_connection` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_charge_connection(&mut self, value: ChargeConnection) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -5067,7 +5067,7 @@ impl VehicleState1 {
     }
 
     /// Set `vehicle_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_vehicle_fault_level(&mut self, value: VehicleFaultLevel) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -5097,8 +5097,8 @@ impl VehicleState1 {
     /// |---|---|---|---|---|---|---|
     /// | 40 | 16 | 2 | 0 | km | 0 … 120000 | 0 … 60000 |
     #[inline]
-    pub fn odometer(&self) -> f64 {
-        self.odometer as f64 * 2.0
+    pub fn odometer(&self) -> u32 {
+        self.odometer as u32 * 2
     }
 
     /// Raw value of `odometer` (bits 40..56).
@@ -5108,9 +5108,9 @@ impl VehicleState1 {
     }
 
     /// Set `odometer` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_odometer(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::ODOMETER_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_odometer(&mut self, value: u32) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::ODOMETER_SCALE, &[]) {
             Some(raw) => {
                 self.odometer = raw as u16;
                 Ok(())
@@ -5147,7 +5147,7 @@ impl VehicleState1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -5570,7 +5570,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -5611,7 +5611,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -5654,7 +5654,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift_speed(&mut self, value: u8) -> Result<(), Error> {
         if value > 10 {
             return Err(Error::OutOfRange {
@@ -5694,7 +5694,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -5739,7 +5739,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
@@ -5778,7 +5778,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `chassis_pitch` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_chassis_pitch(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::CHASSIS_PITCH_SCALE, &[]) {
             Some(raw) => {
@@ -5822,7 +5822,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `chassis_roll` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_chassis_roll(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::CHASSIS_ROLL_SCALE, &[]) {
             Some(raw) => {
@@ -5866,7 +5866,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `cargo_pitch` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_pitch(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::CARGO_PITCH_SCALE, &[]) {
             Some(raw) => {
@@ -5910,7 +5910,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `cargo_roll` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_roll(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::CARGO_ROLL_SCALE, &[]) {
             Some(raw) => {
@@ -5954,7 +5954,7 @@ impl AutocarControlCommand2 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -6207,7 +6207,7 @@ impl VehicleState2 {
     }
 
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::BATTERY_VOLTAGE_SCALE, &[]) {
             Some(raw) => {
@@ -6246,7 +6246,7 @@ impl VehicleState2 {
     }
 
     /// Set `battery_current` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_current(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::BATTERY_CURRENT_SCALE, &[]) {
             Some(raw) => {
@@ -6283,7 +6283,7 @@ impl VehicleState2 {
     }
 
     /// Set `battery_charge_energy` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_charge_energy(&mut self, value: u16) -> Result<(), Error> {
         self.battery_charge_energy = value;
         Ok(())
@@ -6315,7 +6315,7 @@ impl VehicleState2 {
     }
 
     /// Set `battery_discharge_energy` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_discharge_energy(&mut self, value: u16) -> Result<(), Error> {
         self.battery_discharge_energy = value;
         Ok(())
@@ -6392,13 +6392,13 @@ pub struct VehicleState3Values {
     /// | 0 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     ///
     /// Errata: E22 (see spec/ERRATA.md)
-    pub battery_max_temp: f64,
+    pub battery_max_temp: i16,
     /// 电池最低温度
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 8 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
-    pub battery_min_temp: f64,
+    pub battery_min_temp: i16,
     /// 最高单体电压
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
@@ -6416,13 +6416,13 @@ pub struct VehicleState3Values {
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 40 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
-    pub motor_temp: f64,
+    pub motor_temp: i16,
     /// 电控温度
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
     /// | 48 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
-    pub motor_controller_temp: f64,
+    pub motor_controller_temp: i16,
 }
 
 impl VehicleState3 {
@@ -6447,28 +6447,28 @@ impl VehicleState3 {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0x82E78623;
     /// Smallest physical value of `battery_max_temp` (°C).
-    pub const BATTERY_MAX_TEMP_MIN: f64 = -40.0;
+    pub const BATTERY_MAX_TEMP_MIN: i16 = -40;
     /// Largest physical value of `battery_max_temp` (°C).
-    pub const BATTERY_MAX_TEMP_MAX: f64 = 215.0;
-    const BATTERY_MAX_TEMP_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -40.0,
-        check_min: Self::BATTERY_MAX_TEMP_MIN,
-        check_max: Self::BATTERY_MAX_TEMP_MAX,
+    pub const BATTERY_MAX_TEMP_MAX: i16 = 215;
+    const BATTERY_MAX_TEMP_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -40,
+        check_min: Self::BATTERY_MAX_TEMP_MIN as i64,
+        check_max: Self::BATTERY_MAX_TEMP_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
         type_max: 255,
     };
     /// Smallest physical value of `battery_min_temp` (°C).
-    pub const BATTERY_MIN_TEMP_MIN: f64 = -40.0;
+    pub const BATTERY_MIN_TEMP_MIN: i16 = -40;
     /// Largest physical value of `battery_min_temp` (°C).
-    pub const BATTERY_MIN_TEMP_MAX: f64 = 215.0;
-    const BATTERY_MIN_TEMP_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -40.0,
-        check_min: Self::BATTERY_MIN_TEMP_MIN,
-        check_max: Self::BATTERY_MIN_TEMP_MAX,
+    pub const BATTERY_MIN_TEMP_MAX: i16 = 215;
+    const BATTERY_MIN_TEMP_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -40,
+        check_min: Self::BATTERY_MIN_TEMP_MIN as i64,
+        check_max: Self::BATTERY_MIN_TEMP_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6503,28 +6503,28 @@ impl VehicleState3 {
         type_max: 4095,
     };
     /// Smallest physical value of `motor_temp` (°C).
-    pub const MOTOR_TEMP_MIN: f64 = -40.0;
+    pub const MOTOR_TEMP_MIN: i16 = -40;
     /// Largest physical value of `motor_temp` (°C).
-    pub const MOTOR_TEMP_MAX: f64 = 215.0;
-    const MOTOR_TEMP_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -40.0,
-        check_min: Self::MOTOR_TEMP_MIN,
-        check_max: Self::MOTOR_TEMP_MAX,
+    pub const MOTOR_TEMP_MAX: i16 = 215;
+    const MOTOR_TEMP_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -40,
+        check_min: Self::MOTOR_TEMP_MIN as i64,
+        check_max: Self::MOTOR_TEMP_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
         type_max: 255,
     };
     /// Smallest physical value of `motor_controller_temp` (°C).
-    pub const MOTOR_CONTROLLER_TEMP_MIN: f64 = -40.0;
+    pub const MOTOR_CONTROLLER_TEMP_MIN: i16 = -40;
     /// Largest physical value of `motor_controller_temp` (°C).
-    pub const MOTOR_CONTROLLER_TEMP_MAX: f64 = 215.0;
-    const MOTOR_CONTROLLER_TEMP_SCALE: Scale = Scale {
-        factor: 1.0,
-        offset: -40.0,
-        check_min: Self::MOTOR_CONTROLLER_TEMP_MIN,
-        check_max: Self::MOTOR_CONTROLLER_TEMP_MAX,
+    pub const MOTOR_CONTROLLER_TEMP_MAX: i16 = 215;
+    const MOTOR_CONTROLLER_TEMP_SCALE: codec::IntScale = codec::IntScale {
+        factor: 1,
+        offset: -40,
+        check_min: Self::MOTOR_CONTROLLER_TEMP_MIN as i64,
+        check_max: Self::MOTOR_CONTROLLER_TEMP_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6543,12 +6543,12 @@ impl VehicleState3 {
     /// A message from physical values, each checked against its documented range.
     #[inline]
     pub fn new(
-        battery_max_temp: f64,
-        battery_min_temp: f64,
+        battery_max_temp: i16,
+        battery_min_temp: i16,
         max_cell_voltage: f64,
         min_cell_voltage: f64,
-        motor_temp: f64,
-        motor_controller_temp: f64,
+        motor_temp: i16,
+        motor_controller_temp: i16,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
         msg.set_battery_max_temp(battery_max_temp)?;
@@ -6647,8 +6647,8 @@ impl VehicleState3 {
     ///
     /// Errata: E22 (see spec/ERRATA.md)
     #[inline]
-    pub fn battery_max_temp(&self) -> f64 {
-        self.battery_max_temp as f64 - 40.0
+    pub fn battery_max_temp(&self) -> i16 {
+        self.battery_max_temp as i16 - 40
     }
 
     /// Raw value of `battery_max_temp` (bits 0..8).
@@ -6658,9 +6658,9 @@ impl VehicleState3 {
     }
 
     /// Set `battery_max_temp` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_battery_max_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_MAX_TEMP_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_battery_max_temp(&mut self, value: i16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::BATTERY_MAX_TEMP_SCALE, &[]) {
             Some(raw) => {
                 self.battery_max_temp = raw as u8;
                 Ok(())
@@ -6684,8 +6684,8 @@ impl VehicleState3 {
     /// |---|---|---|---|---|---|---|
     /// | 8 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
-    pub fn battery_min_temp(&self) -> f64 {
-        self.battery_min_temp as f64 - 40.0
+    pub fn battery_min_temp(&self) -> i16 {
+        self.battery_min_temp as i16 - 40
     }
 
     /// Raw value of `battery_min_temp` (bits 8..16).
@@ -6695,9 +6695,9 @@ impl VehicleState3 {
     }
 
     /// Set `battery_min_temp` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_battery_min_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_MIN_TEMP_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_battery_min_temp(&mut self, value: i16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::BATTERY_MIN_TEMP_SCALE, &[]) {
             Some(raw) => {
                 self.battery_min_temp = raw as u8;
                 Ok(())
@@ -6732,7 +6732,7 @@ impl VehicleState3 {
     }
 
     /// Set `max_cell_voltage` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_max_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::MAX_CELL_VOLTAGE_SCALE, &[]) {
             Some(raw) => {
@@ -6774,7 +6774,7 @@ impl VehicleState3 {
     }
 
     /// Set `min_cell_voltage` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_min_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::MIN_CELL_VOLTAGE_SCALE, &[]) {
             Some(raw) => {
@@ -6805,8 +6805,8 @@ impl VehicleState3 {
     /// |---|---|---|---|---|---|---|
     /// | 40 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
-    pub fn motor_temp(&self) -> f64 {
-        self.motor_temp as f64 - 40.0
+    pub fn motor_temp(&self) -> i16 {
+        self.motor_temp as i16 - 40
     }
 
     /// Raw value of `motor_temp` (bits 40..48).
@@ -6816,9 +6816,9 @@ impl VehicleState3 {
     }
 
     /// Set `motor_temp` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_motor_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MOTOR_TEMP_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_motor_temp(&mut self, value: i16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MOTOR_TEMP_SCALE, &[]) {
             Some(raw) => {
                 self.motor_temp = raw as u8;
                 Ok(())
@@ -6842,8 +6842,8 @@ impl VehicleState3 {
     /// |---|---|---|---|---|---|---|
     /// | 48 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
-    pub fn motor_controller_temp(&self) -> f64 {
-        self.motor_controller_temp as f64 - 40.0
+    pub fn motor_controller_temp(&self) -> i16 {
+        self.motor_controller_temp as i16 - 40
     }
 
     /// Raw value of `motor_controller_temp` (bits 48..56).
@@ -6853,9 +6853,9 @@ impl VehicleState3 {
     }
 
     /// Set `motor_controller_temp` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_motor_controller_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MOTOR_CONTROLLER_TEMP_SCALE, &[]) {
+    #[inline(always)]
+    pub fn set_motor_controller_temp(&mut self, value: i16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MOTOR_CONTROLLER_TEMP_SCALE, &[]) {
             Some(raw) => {
                 self.motor_controller_temp = raw as u8;
                 Ok(())
@@ -7277,7 +7277,7 @@ impl VehicleState4 {
     }
 
     /// Set `outside_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_outside_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::OUTSIDE_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -7314,7 +7314,7 @@ impl VehicleState4 {
     }
 
     /// Set `inside_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_inside_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::INSIDE_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -7351,7 +7351,7 @@ impl VehicleState4 {
     }
 
     /// Set `ac_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_state(&mut self, value: AcState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -7392,7 +7392,7 @@ impl VehicleState4 {
     }
 
     /// Set `vehicle_power_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_vehicle_power_state(&mut self, value: PowerState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -7433,7 +7433,7 @@ impl VehicleState4 {
     }
 
     /// Set `hill_hold_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_hill_hold_state(&mut self, value: InactiveActive) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -7474,7 +7474,7 @@ impl VehicleState4 {
     }
 
     /// Set `regen_brake_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_regen_brake_state(&mut self, value: InactiveActive) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -7515,7 +7515,7 @@ impl VehicleState4 {
     }
 
     /// Set `remaining_range` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_remaining_range(&mut self, value: u16) -> Result<(), Error> {
         if value > 1000 {
             return Err(Error::OutOfRange {
@@ -7555,7 +7555,7 @@ impl VehicleState4 {
     }
 
     /// Set `manual_takeover_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_manual_takeover_state(&mut self, value: TakeoverState) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -7596,7 +7596,7 @@ impl VehicleState4 {
     }
 
     /// Set `remote_driving_allowed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_remote_driving_allowed(
         &mut self,
         value: RemoteTakeoverPermission,
@@ -7640,7 +7640,7 @@ impl VehicleState4 {
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -7682,7 +7682,7 @@ impl VehicleState4 {
     }
 
     /// Set `pto_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_pto_state(&mut self, value: PtoState) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -7725,7 +7725,7 @@ impl VehicleState4 {
     }
 
     /// Set `battery_power` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_power(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::BATTERY_POWER_SCALE, &[]) {
             Some(raw) => {
@@ -8396,7 +8396,7 @@ impl VehicleFault {
     }
 
     /// Set `insulation_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_insulation_fault_level(&mut self, value: InsulationFaultLevel) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -8439,7 +8439,7 @@ impl VehicleFault {
     }
 
     /// Set `dc_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_dc_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8480,7 +8480,7 @@ impl VehicleFault {
     }
 
     /// Set `soc_low` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_soc_low(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8521,7 +8521,7 @@ impl VehicleFault {
     }
 
     /// Set `cell_undervoltage` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cell_undervoltage(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8562,7 +8562,7 @@ impl VehicleFault {
     }
 
     /// Set `brake_boost_pressure_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_brake_boost_pressure_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8603,7 +8603,7 @@ impl VehicleFault {
     }
 
     /// Set `vacuum_pump_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_vacuum_pump_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8644,7 +8644,7 @@ impl VehicleFault {
     }
 
     /// Set `vehicle_system_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_vehicle_system_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8685,7 +8685,7 @@ impl VehicleFault {
     }
 
     /// Set `battery_overheat` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8726,7 +8726,7 @@ impl VehicleFault {
     }
 
     /// Set `motor_overheat` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8767,7 +8767,7 @@ impl VehicleFault {
     }
 
     /// Set `traction_battery_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_traction_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8808,7 +8808,7 @@ impl VehicleFault {
     }
 
     /// Set `motor_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8849,7 +8849,7 @@ impl VehicleFault {
     }
 
     /// Set `battery_comm_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8890,7 +8890,7 @@ impl VehicleFault {
     }
 
     /// Set `motor_comm_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_motor_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8931,7 +8931,7 @@ impl VehicleFault {
     }
 
     /// Set `eps_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -8972,7 +8972,7 @@ impl VehicleFault {
     }
 
     /// Set `ac_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9015,7 +9015,7 @@ impl VehicleFault {
     }
 
     /// Set `aux_battery_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_aux_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9056,7 +9056,7 @@ impl VehicleFault {
     }
 
     /// Set `epb_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_epb_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9097,7 +9097,7 @@ impl VehicleFault {
     }
 
     /// Set `brake_by_wire_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_brake_by_wire_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9138,7 +9138,7 @@ impl VehicleFault {
     }
 
     /// Set `key_not_detected` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_key_not_detected(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9179,7 +9179,7 @@ impl VehicleFault {
     }
 
     /// Set `tire_pressure_low` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_tire_pressure_low(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9220,7 +9220,7 @@ impl VehicleFault {
     }
 
     /// Set `body_motor_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_body_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9261,7 +9261,7 @@ impl VehicleFault {
     }
 
     /// Set `body_motor_overheat` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_body_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -9302,7 +9302,7 @@ impl VehicleFault {
     }
 
     /// Set `battery_system_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_battery_system_fault_level(
         &mut self,
         value: BatterySystemFaultLevel,
@@ -9346,7 +9346,7 @@ impl VehicleFault {
     }
 
     /// Set `motor_system_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_motor_system_fault_level(
         &mut self,
         value: MotorSystemFaultLevel,
@@ -9392,7 +9392,7 @@ impl VehicleFault {
     }
 
     /// Set `unmanned_entry_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_unmanned_entry_fault(&mut self, value: UnmannedEntryFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 15 {
@@ -9435,7 +9435,7 @@ impl VehicleFault {
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_a(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -9477,7 +9477,7 @@ impl VehicleFault {
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_b(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -9519,7 +9519,7 @@ impl VehicleFault {
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_c(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -9563,7 +9563,7 @@ impl VehicleFault {
     }
 
     /// Set `remote_entry_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_remote_entry_fault(&mut self, value: RemoteEntryFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 15 {
@@ -9779,7 +9779,7 @@ pub struct RgateEpsCommandValues {
     /// Special raw value 0: 不限制角速度 (No limit)
     ///
     /// Errata: E10 (see spec/ERRATA.md)
-    pub max_angular_speed: f64,
+    pub max_angular_speed: u16,
     /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
     ///
     /// 顺时针方向为正
@@ -9816,14 +9816,14 @@ impl RgateEpsCommand {
     /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MIN: f64 = 0.0;
+    pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
     /// Largest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MAX: f64 = 512.0;
-    const MAX_ANGULAR_SPEED_SCALE: Scale = Scale {
-        factor: 2.0,
-        offset: 0.0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX,
+    pub const MAX_ANGULAR_SPEED_MAX: u16 = 512;
+    const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
+        factor: 2,
+        offset: 0,
+        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
+        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -9856,7 +9856,7 @@ impl RgateEpsCommand {
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
-        max_angular_speed: f64,
+        max_angular_speed: u16,
         steering_angle_cmd: f64,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
@@ -9974,7 +9974,7 @@ impl RgateEpsCommand {
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
         self.eps_ctrl_mode = value;
@@ -10007,7 +10007,7 @@ impl RgateEpsCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -10030,8 +10030,8 @@ impl RgateEpsCommand {
     ///
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
-    pub fn max_angular_speed(&self) -> f64 {
-        self.max_angular_speed as f64 * 2.0
+    pub fn max_angular_speed(&self) -> u16 {
+        self.max_angular_speed as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
@@ -10041,9 +10041,9 @@ impl RgateEpsCommand {
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_max_angular_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
+    #[inline(always)]
+    pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.max_angular_speed = raw as u8;
                 Ok(())
@@ -10080,7 +10080,7 @@ impl RgateEpsCommand {
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -10376,7 +10376,7 @@ impl RgateSpeedCommand {
     }
 
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -10418,7 +10418,7 @@ impl RgateSpeedCommand {
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -10461,7 +10461,7 @@ impl RgateSpeedCommand {
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -10504,7 +10504,7 @@ impl RgateSpeedCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -10536,7 +10536,7 @@ impl RgateSpeedCommand {
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -11167,7 +11167,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdRgate) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11208,7 +11208,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11249,7 +11249,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11290,7 +11290,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11331,7 +11331,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11372,7 +11372,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11413,7 +11413,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11454,7 +11454,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11495,7 +11495,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11536,7 +11536,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11577,7 +11577,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11618,7 +11618,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11659,7 +11659,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11700,7 +11700,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -11741,7 +11741,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -11782,7 +11782,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11823,7 +11823,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityRgate) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11864,7 +11864,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelRgate) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11907,7 +11907,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11950,7 +11950,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -11993,7 +11993,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -12037,7 +12037,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_a(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -12079,7 +12079,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_b(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -12121,7 +12121,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_c(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -12163,7 +12163,7 @@ impl RgateControlCommand1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -12464,7 +12464,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -12505,7 +12505,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -12548,7 +12548,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift_speed(&mut self, value: u8) -> Result<(), Error> {
         if value > 10 {
             return Err(Error::OutOfRange {
@@ -12588,7 +12588,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -12633,7 +12633,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
@@ -12672,7 +12672,7 @@ impl RgateControlCommand2 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -12875,7 +12875,7 @@ impl DeviceId {
     }
 
     /// Set `device_type` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_device_type(&mut self, value: DeviceType) -> Result<(), Error> {
         let value = value.raw();
         if value > 63 {
@@ -12918,7 +12918,7 @@ impl DeviceId {
     }
 
     /// Set `id_frame_index` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_id_frame_index(&mut self, value: IdFrameIndex) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -12961,7 +12961,7 @@ impl DeviceId {
     }
 
     /// Set `id_chars` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_id_chars(&mut self, value: u64) -> Result<(), Error> {
         if value > 0xFF_FFFF_FFFF_FFFF {
             return Err(Error::OutOfRange {
@@ -13377,7 +13377,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_1_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_1_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13419,7 +13419,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_2_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_2_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13461,7 +13461,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_3_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_3_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13503,7 +13503,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_4_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_4_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13545,7 +13545,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_5_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_5_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13587,7 +13587,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `sensor_6_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_6_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -13629,7 +13629,7 @@ impl FrontSensorDistance1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -14060,7 +14060,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_7_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_7_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -14102,7 +14102,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_8_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_8_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -14144,7 +14144,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_9_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_9_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -14184,7 +14184,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -14225,7 +14225,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14266,7 +14266,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14307,7 +14307,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14348,7 +14348,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14389,7 +14389,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14430,7 +14430,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14471,7 +14471,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14512,7 +14512,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14553,7 +14553,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -14596,7 +14596,7 @@ impl FrontSensorDistance2 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -14918,7 +14918,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_1_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_1_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -14960,7 +14960,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_2_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_2_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15002,7 +15002,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_3_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_3_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15044,7 +15044,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_4_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_4_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15086,7 +15086,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_5_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_5_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15128,7 +15128,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `sensor_6_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_6_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15170,7 +15170,7 @@ impl RearSensorDistance1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -15601,7 +15601,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_7_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_7_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15643,7 +15643,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_8_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_8_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15685,7 +15685,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_9_distance` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_9_distance(&mut self, value: u16) -> Result<(), Error> {
         if value != 1023 && value > 500 {
             return Err(Error::OutOfRange {
@@ -15725,7 +15725,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -15766,7 +15766,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -15807,7 +15807,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -15848,7 +15848,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -15889,7 +15889,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -15930,7 +15930,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -15971,7 +15971,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -16012,7 +16012,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -16053,7 +16053,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -16094,7 +16094,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -16137,7 +16137,7 @@ impl RearSensorDistance2 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -16238,7 +16238,7 @@ pub struct TeleEpsCommandValues {
     /// Special raw value 0: 不限制角速度 (No limit)
     ///
     /// Errata: E10 (see spec/ERRATA.md)
-    pub max_angular_speed: f64,
+    pub max_angular_speed: u16,
     /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
     ///
     /// 顺时针方向为正
@@ -16275,14 +16275,14 @@ impl TeleEpsCommand {
     /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MIN: f64 = 0.0;
+    pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
     /// Largest physical value of `max_angular_speed` (deg/s).
-    pub const MAX_ANGULAR_SPEED_MAX: f64 = 512.0;
-    const MAX_ANGULAR_SPEED_SCALE: Scale = Scale {
-        factor: 2.0,
-        offset: 0.0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX,
+    pub const MAX_ANGULAR_SPEED_MAX: u16 = 512;
+    const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
+        factor: 2,
+        offset: 0,
+        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
+        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -16315,7 +16315,7 @@ impl TeleEpsCommand {
     pub fn new(
         eps_ctrl_mode: EpsModeCmd,
         counter: u8,
-        max_angular_speed: f64,
+        max_angular_speed: u16,
         steering_angle_cmd: f64,
     ) -> Result<Self, Error> {
         let mut msg = Self::ZERO;
@@ -16433,7 +16433,7 @@ impl TeleEpsCommand {
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
         self.eps_ctrl_mode = value;
@@ -16466,7 +16466,7 @@ impl TeleEpsCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -16489,8 +16489,8 @@ impl TeleEpsCommand {
     ///
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
-    pub fn max_angular_speed(&self) -> f64 {
-        self.max_angular_speed as f64 * 2.0
+    pub fn max_angular_speed(&self) -> u16 {
+        self.max_angular_speed as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
@@ -16500,9 +16500,9 @@ impl TeleEpsCommand {
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
-    #[inline]
-    pub fn set_max_angular_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
+    #[inline(always)]
+    pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
+        match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.max_angular_speed = raw as u8;
                 Ok(())
@@ -16539,7 +16539,7 @@ impl TeleEpsCommand {
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -16835,7 +16835,7 @@ impl TeleSpeedCommand {
     }
 
     /// Set `throttle_brake_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_throttle_brake_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::THROTTLE_BRAKE_CMD_SCALE, &[]) {
             Some(raw) => {
@@ -16877,7 +16877,7 @@ impl TeleSpeedCommand {
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -16920,7 +16920,7 @@ impl TeleSpeedCommand {
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -16963,7 +16963,7 @@ impl TeleSpeedCommand {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
@@ -16995,7 +16995,7 @@ impl TeleSpeedCommand {
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -17628,7 +17628,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdTele) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17669,7 +17669,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17710,7 +17710,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17751,7 +17751,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17792,7 +17792,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17833,7 +17833,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17874,7 +17874,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17915,7 +17915,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -17956,7 +17956,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -17997,7 +17997,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -18038,7 +18038,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -18079,7 +18079,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -18120,7 +18120,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -18161,7 +18161,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 2 {
@@ -18202,7 +18202,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -18245,7 +18245,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -18286,7 +18286,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityTele) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -18327,7 +18327,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelTele) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -18370,7 +18370,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -18413,7 +18413,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -18456,7 +18456,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
             Some(raw) => {
@@ -18500,7 +18500,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_a(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -18542,7 +18542,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_b(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -18584,7 +18584,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_protocol_version_c(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -18626,7 +18626,7 @@ impl TeleControlCommand1 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         if value > 15 {
             return Err(Error::OutOfRange {
@@ -18927,7 +18927,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -18968,7 +18968,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
         let value = value.raw();
         if value > 3 {
@@ -19011,7 +19011,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_cargo_lift_speed(&mut self, value: u8) -> Result<(), Error> {
         if value > 10 {
             return Err(Error::OutOfRange {
@@ -19051,7 +19051,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
         let value = value.raw();
         if value > 1 {
@@ -19096,7 +19096,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
@@ -19135,7 +19135,7 @@ impl TeleControlCommand2 {
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
-    #[inline]
+    #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
         self.counter = value;
         Ok(())
