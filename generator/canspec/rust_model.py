@@ -167,6 +167,7 @@ class RustField:
     scale: dict[str, str]  # float signals: literals of the codec::Scale
     const_prefix: str  # FIELD_NAME for associated constants
     factor_lit: str  # the factor as an f64 literal
+    to_raw: str  # the codec function for physical → raw (scaled kinds)
     specials_slice: str  # float signals: `&[..]` of special raws (i64)
     phys_expr: str  # physical value from `self.<field>`
     specials: tuple[RustSpecial, ...]
@@ -229,6 +230,29 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
     return None
 
 
+def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool]:
+    """Whether, for this signal, a value inside the documented range can never fail the other
+    checks of the shared rule (q inside the field's raw range, raw inside [raw_min, raw_max]);
+    and whether q is then never negative. Proof by monotonicity: q = (x - offset) / factor and
+    the rounding are non-decreasing in x in IEEE arithmetic, and Python floats are the same
+    doubles the generated code uses, so checking both ends of the documented range suffices.
+    Signals with special values keep the full rule."""
+    if sig.specials or sig.factor <= 0:
+        return False, False
+    from canspec.encoding import to_raw_runtime
+
+    f, o = float(sig.factor), float(sig.offset)
+    lo, hi = float(sig.check_min), float(sig.check_max)
+    if sig.is_integer:  # the integer path compares whole values: its ends are the whole ones inside
+        lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
+    q_lo, q_hi = (lo - o) / f, (hi - o) / f
+    if not (sig.raw_type_min <= q_lo and q_hi <= sig.raw_type_max):
+        return False, False
+    if not (sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
+        return False, False
+    return True, q_lo >= 0
+
+
 def _int_phys_expr(sig: ir.Signal, field: str, ty: str) -> str:
     expr = f"self.{field}" if ty == int_type(sig.storage_bits, sig.signed) else f"self.{field} as {ty}"
     if sig.factor != 1:
@@ -284,6 +308,11 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),
         "type_min": int_lit(sig.raw_type_min), "type_max": int_lit(sig.raw_type_max),
     }
+    suffices, nonnegative = documented_range_suffices(sig)
+    if kind == "scaled_int":
+        to_raw = "to_raw_int_documented" if suffices else "to_raw_int"
+    else:
+        to_raw = ("to_raw_documented_unsigned" if nonnegative else "to_raw_documented") if suffices else "to_raw"
     specials = tuple(
         RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label}), raw value of `{name}`"))
         for s in sig.specials
@@ -293,7 +322,7 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         getter=rust_ident(name), raw_getter=rust_ident(f"{name}_raw"), setter=f"set_{name}", raw_setter=f"set_{name}_raw",
         raw_type=raw_type, kind=kind, phys_type=phys_type, enum=enum,
         unpack=unpack_expr(sig), pack=pack_expr(sig, rust_ident(name)),
-        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor),
+        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor), to_raw=to_raw,
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
         phys_expr=_int_phys_expr(sig, rust_ident(name), phys_type) if kind == "scaled_int" else _phys_expr(sig, rust_ident(name)),
         specials=specials, doc=_field_doc(sig),

@@ -112,6 +112,43 @@ pub fn to_raw_int(value: i64, scale: &IntScale, specials: &[i64]) -> Option<i64>
     }
 }
 
+/// [`to_raw`] for a signal without special values whose documented range the generator has
+/// proven to imply the other checks (q inside the field, raw inside its allowed range): the
+/// same result with one range check.
+#[inline(always)]
+pub fn to_raw_documented(value: f64, scale: &Scale) -> Option<i64> {
+    if (value >= scale.check_min) & (value <= scale.check_max) {
+        Some(round_half_away((value - scale.offset) / scale.factor))
+    } else {
+        None
+    }
+}
+
+/// [`to_raw_documented`] where the documented range also makes `q` non-negative.
+#[inline(always)]
+pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
+    if (value >= scale.check_min) & (value <= scale.check_max) {
+        Some(floor_i64(
+            ((value - scale.offset) / scale.factor + 0.5) + TIE_EPSILON,
+        ))
+    } else {
+        None
+    }
+}
+
+/// [`to_raw_int`] for a signal the generator has proven its documented range suffices for
+/// (see [`to_raw_documented`]).
+#[inline(always)]
+pub fn to_raw_int_documented(value: i64, scale: &IntScale) -> Option<i64> {
+    if (value >= scale.check_min) & (value <= scale.check_max) {
+        let n = value - scale.offset;
+        let magnitude = (2 * n.abs() + scale.factor) / (2 * scale.factor);
+        Some(if n >= 0 { magnitude } else { -magnitude })
+    } else {
+        None
+    }
+}
+
 /// XOR of the eight bytes of a frame word.
 #[inline(always)]
 pub const fn xor_bytes(word: u64) -> u8 {

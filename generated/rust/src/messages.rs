@@ -365,7 +365,7 @@ impl AutocarEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -753,7 +753,7 @@ impl EpsState {
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_TORQUE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_TORQUE_SCALE) {
             Some(raw) => {
                 self.steering_torque = raw as u8;
                 Ok(())
@@ -792,7 +792,7 @@ impl EpsState {
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_output_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::EPS_OUTPUT_TORQUE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::EPS_OUTPUT_TORQUE_SCALE) {
             Some(raw) => {
                 self.eps_output_torque = raw as u8;
                 Ok(())
@@ -831,7 +831,7 @@ impl EpsState {
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_SCALE) {
             Some(raw) => {
                 self.steering_angle = raw as u16;
                 Ok(())
@@ -868,7 +868,7 @@ impl EpsState {
     /// Set `controller_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_controller_temp(&mut self, value: u8) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::CONTROLLER_TEMP_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::CONTROLLER_TEMP_SCALE) {
             Some(raw) => {
                 self.controller_temp = raw as u8;
                 Ok(())
@@ -1242,7 +1242,7 @@ impl AutocarSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
                 self.accel_cmd = raw as u16;
                 Ok(())
@@ -1961,7 +1961,7 @@ impl DrivingState {
     /// Set `motor_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_speed(&mut self, value: i32) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::MOTOR_SPEED_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_SPEED_SCALE) {
             Some(raw) => {
                 self.motor_speed = raw as u16;
                 Ok(())
@@ -2000,7 +2000,7 @@ impl DrivingState {
     /// Set `motor_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_torque(&mut self, value: i32) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::MOTOR_TORQUE_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_TORQUE_SCALE) {
             Some(raw) => {
                 self.motor_torque = raw as u16;
                 Ok(())
@@ -2082,7 +2082,7 @@ impl DrivingState {
     /// Set `current_accel` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_current_accel(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CURRENT_ACCEL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CURRENT_ACCEL_SCALE) {
             Some(raw) => {
                 self.current_accel = raw as u8;
                 Ok(())
@@ -3533,7 +3533,7 @@ impl AutocarControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -4872,7 +4872,7 @@ impl VehicleState1 {
     /// Set `vehicle_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_speed(&mut self, value: i16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::VEHICLE_SPEED_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::VEHICLE_SPEED_SCALE) {
             Some(raw) => {
                 self.vehicle_speed = raw as u8;
                 Ok(())
@@ -4909,7 +4909,7 @@ impl VehicleState1 {
     /// Set `soc` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_soc(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::SOC_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::SOC_SCALE) {
             Some(raw) => {
                 self.soc = raw as u8;
                 Ok(())
@@ -5110,7 +5110,7 @@ impl VehicleState1 {
     /// Set `odometer` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_odometer(&mut self, value: u32) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::ODOMETER_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::ODOMETER_SCALE) {
             Some(raw) => {
                 self.odometer = raw as u16;
                 Ok(())
@@ -5780,7 +5780,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CHASSIS_PITCH_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_PITCH_SCALE) {
             Some(raw) => {
                 self.chassis_pitch = raw as u16;
                 Ok(())
@@ -5824,7 +5824,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CHASSIS_ROLL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_ROLL_SCALE) {
             Some(raw) => {
                 self.chassis_roll = raw as u16;
                 Ok(())
@@ -5868,7 +5868,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CARGO_PITCH_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CARGO_PITCH_SCALE) {
             Some(raw) => {
                 self.cargo_pitch = raw as u16;
                 Ok(())
@@ -5912,7 +5912,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CARGO_ROLL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CARGO_ROLL_SCALE) {
             Some(raw) => {
                 self.cargo_roll = raw as u16;
                 Ok(())
@@ -6209,7 +6209,7 @@ impl VehicleState2 {
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.battery_voltage = raw as u16;
                 Ok(())
@@ -6248,7 +6248,7 @@ impl VehicleState2 {
     /// Set `battery_current` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_current(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_CURRENT_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_CURRENT_SCALE) {
             Some(raw) => {
                 self.battery_current = raw as u16;
                 Ok(())
@@ -6660,7 +6660,7 @@ impl VehicleState3 {
     /// Set `battery_max_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_max_temp(&mut self, value: i16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::BATTERY_MAX_TEMP_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::BATTERY_MAX_TEMP_SCALE) {
             Some(raw) => {
                 self.battery_max_temp = raw as u8;
                 Ok(())
@@ -6697,7 +6697,7 @@ impl VehicleState3 {
     /// Set `battery_min_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_min_temp(&mut self, value: i16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::BATTERY_MIN_TEMP_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::BATTERY_MIN_TEMP_SCALE) {
             Some(raw) => {
                 self.battery_min_temp = raw as u8;
                 Ok(())
@@ -6734,7 +6734,7 @@ impl VehicleState3 {
     /// Set `max_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_max_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MAX_CELL_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::MAX_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.max_cell_voltage = raw as u16;
                 Ok(())
@@ -6776,7 +6776,7 @@ impl VehicleState3 {
     /// Set `min_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_min_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MIN_CELL_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::MIN_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.min_cell_voltage = raw as u16;
                 Ok(())
@@ -6818,7 +6818,7 @@ impl VehicleState3 {
     /// Set `motor_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_temp(&mut self, value: i16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::MOTOR_TEMP_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_TEMP_SCALE) {
             Some(raw) => {
                 self.motor_temp = raw as u8;
                 Ok(())
@@ -6855,7 +6855,7 @@ impl VehicleState3 {
     /// Set `motor_controller_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_controller_temp(&mut self, value: i16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::MOTOR_CONTROLLER_TEMP_SCALE, &[]) {
+        match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_CONTROLLER_TEMP_SCALE) {
             Some(raw) => {
                 self.motor_controller_temp = raw as u8;
                 Ok(())
@@ -7279,7 +7279,7 @@ impl VehicleState4 {
     /// Set `outside_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_outside_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::OUTSIDE_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::OUTSIDE_TEMP_SCALE) {
             Some(raw) => {
                 self.outside_temp = raw as u8;
                 Ok(())
@@ -7316,7 +7316,7 @@ impl VehicleState4 {
     /// Set `inside_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_inside_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::INSIDE_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::INSIDE_TEMP_SCALE) {
             Some(raw) => {
                 self.inside_temp = raw as u8;
                 Ok(())
@@ -7642,7 +7642,7 @@ impl VehicleState4 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -7727,7 +7727,7 @@ impl VehicleState4 {
     /// Set `battery_power` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_power(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_POWER_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_POWER_SCALE) {
             Some(raw) => {
                 self.battery_power = raw as u16;
                 Ok(())
@@ -10082,7 +10082,7 @@ impl RgateEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -10378,7 +10378,7 @@ impl RgateSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
                 self.accel_cmd = raw as u16;
                 Ok(())
@@ -11995,7 +11995,7 @@ impl RgateControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -16541,7 +16541,7 @@ impl TeleEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -16837,7 +16837,7 @@ impl TeleSpeedCommand {
     /// Set `throttle_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_throttle_brake_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::THROTTLE_BRAKE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::THROTTLE_BRAKE_CMD_SCALE) {
             Some(raw) => {
                 self.throttle_brake_cmd = raw as u16;
                 Ok(())
@@ -18458,7 +18458,7 @@ impl TeleControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
