@@ -215,7 +215,7 @@ impl AutocarEpsCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -1195,7 +1195,7 @@ impl AutocarSpeedCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -1753,7 +1753,7 @@ impl DrivingState {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -9932,7 +9932,7 @@ impl RgateEpsCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -10331,7 +10331,7 @@ impl RgateSpeedCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -16391,7 +16391,7 @@ impl TeleEpsCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
@@ -16790,7 +16790,7 @@ impl TeleSpeedCommand {
             return Err(Error::Checksum {
                 frame_id: Self::FRAME_ID,
                 expected: codec::xor_bytes(bits & 0xFF_FFFF_FFFF_FFFF),
-                actual: bytes[7],
+                actual: (bits >> 56) as u8,
             });
         }
         Ok(Self {
