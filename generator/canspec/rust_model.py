@@ -137,6 +137,7 @@ class RustEnum:
     repr: str
     variants: tuple[RustVariant, ...]
     other: str
+    other_tag: int  # discriminant of the catch-all: the first raw value the table leaves free
 
 
 @dataclass(frozen=True)
@@ -346,7 +347,11 @@ def build_enum(table: ir.ValueTable, signals: list[ir.Signal]) -> RustEnum:
             raise ValueError(f"value table {table.name}: entries give the Rust variant {vname} twice; rename one")
         seen.add(vname)
         variants.append(RustVariant(vname, e.raw, doc_text(f"{e.raw}: {e.label_zh} — {e.label}")))
-    return RustEnum(pascal(table.name), table.name, int_type(bits, False), tuple(variants), OTHER_VARIANT)
+    used = {e.raw for e in table.entries}
+    free = next((v for v in range(1 << bits) if v not in used), None)
+    if free is None:
+        raise ValueError(f"value table {table.name}: defines every {bits}-bit value; the Rust target needs one free for its catch-all")
+    return RustEnum(pascal(table.name), table.name, int_type(bits, False), tuple(variants), OTHER_VARIANT, free)
 
 
 def _message_doc(msg: ir.Message) -> tuple[str, ...]:

@@ -7,17 +7,19 @@
 /// Value table `ac_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum AcCmd {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 制冷 — Cool
-    Cool,
+    Cool = 1,
     /// 2: 制热 — Heat
-    Heat,
+    Heat = 2,
     /// 3: 关闭 — Turn off
-    TurnOff,
+    TurnOff = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl AcCmd {
@@ -63,17 +65,19 @@ impl From<AcCmd> for u8 {
 /// Value table `ac_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum AcState {
     /// 0: 关机 — Off
-    Off,
+    Off = 0,
     /// 1: 制冷 — Cool
-    Cool,
+    Cool = 1,
     /// 2: 制热 — Heat
-    Heat,
+    Heat = 2,
     /// 3: 自动 — Auto
-    Auto,
+    Auto = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl AcState {
@@ -119,17 +123,19 @@ impl From<AcState> for u8 {
 /// Value table `battery_system_fault_level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum BatterySystemFaultLevel {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 轻微故障，对应自动恢复的轻微故障 — Minor
-    Minor,
+    Minor = 1,
     /// 2: 一般故障，对应自动恢复的一般故障 — General
-    General,
+    General = 2,
     /// 3: 严重故障，对应需立即下电的严重故障，需查明原因方可重新上电 — Severe
-    Severe,
+    Severe = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl BatterySystemFaultLevel {
@@ -175,13 +181,15 @@ impl From<BatterySystemFaultLevel> for u8 {
 /// Value table `brake_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum BrakeState {
     /// 0: 未制动 — Not braking
-    NotBraking,
+    NotBraking = 0,
     /// 1: 制动 — Braking
-    Braking,
+    Braking = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl BrakeState {
@@ -223,13 +231,15 @@ impl From<BrakeState> for u8 {
 /// Value table `button`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum Button {
     /// 0: 未被按下 — Released
-    Released,
+    Released = 0,
     /// 1: 被按下 — Pressed
-    Pressed,
+    Pressed = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl Button {
@@ -271,17 +281,19 @@ impl From<Button> for u8 {
 /// Value table `cargo_lift`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum CargoLift {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 举升倾倒货箱/拨叉向上波动 — Raise
-    Raise,
+    Raise = 1,
     /// 2: 下降收回货箱/拨叉向下波动 — Lower
-    Lower,
+    Lower = 2,
     /// 3: 停止 — Stop
-    Stop,
+    Stop = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl CargoLift {
@@ -327,13 +339,15 @@ impl From<CargoLift> for u8 {
 /// Value table `charge_connection`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ChargeConnection {
     /// 0: 未连接 — Disconnected
-    Disconnected,
+    Disconnected = 0,
     /// 1: 充电枪已插入 — Plugged in
-    PluggedIn,
+    PluggedIn = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl ChargeConnection {
@@ -375,17 +389,19 @@ impl From<ChargeConnection> for u8 {
 /// Value table `charge_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ChargeState {
     /// 0: 无需充电 — Not needed
-    NotNeeded,
+    NotNeeded = 0,
     /// 1: 充电完成 — Complete
-    Complete,
+    Complete = 1,
     /// 2: 充电中 — Charging
-    Charging,
+    Charging = 2,
     /// 3: 电量低，需要充电 — Low battery
-    LowBattery,
+    LowBattery = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl ChargeState {
@@ -431,13 +447,15 @@ impl From<ChargeState> for u8 {
 /// Value table `device_type`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DeviceType {
     /// 0: 车辆 — Vehicle
-    Vehicle,
+    Vehicle = 0,
     /// 1: 远程驾驶舱 — Remote cockpit
-    RemoteCockpit,
+    RemoteCockpit = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl DeviceType {
@@ -479,17 +497,19 @@ impl From<DeviceType> for u8 {
 /// Value table `door_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DoorCmd {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 开门 — Open
-    Open,
+    Open = 1,
     /// 2: 关门 — Close
-    Close,
+    Close = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl DoorCmd {
@@ -535,13 +555,15 @@ impl From<DoorCmd> for u8 {
 /// Value table `downhill_regen_enable`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DownhillRegenEnable {
     /// 0: 关闭下坡制动回收 — Disabled
-    Disabled,
+    Disabled = 0,
     /// 1: 开启下坡制动回收 — Enabled
-    Enabled,
+    Enabled = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl DownhillRegenEnable {
@@ -583,17 +605,19 @@ impl From<DownhillRegenEnable> for u8 {
 /// Value table `drive_mode_cmd_autocar`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DriveModeCmdAutocar {
     /// 0: 手动驾驶模式(传统驾驶模式) — Manual
-    Manual,
+    Manual = 0,
     /// 1: 自动驾驶模式 — Autonomous
-    Autonomous,
+    Autonomous = 1,
     /// 2: 保留 — Reserved 2
-    Reserved2,
+    Reserved2 = 2,
     /// 3: 保留 — Reserved 3
-    Reserved3,
+    Reserved3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl DriveModeCmdAutocar {
@@ -639,17 +663,19 @@ impl From<DriveModeCmdAutocar> for u8 {
 /// Value table `drive_mode_cmd_rgate`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DriveModeCmdRgate {
     /// 0: 手动驾驶模式(传统驾驶模式) — Manual
-    Manual,
+    Manual = 0,
     /// 1: 保留 — Reserved 1
-    Reserved1,
+    Reserved1 = 1,
     /// 2: 保留 — Reserved 2
-    Reserved2,
+    Reserved2 = 2,
     /// 3: 远程驾驶模式 — Remote
-    Remote,
+    Remote = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl DriveModeCmdRgate {
@@ -695,17 +721,19 @@ impl From<DriveModeCmdRgate> for u8 {
 /// Value table `drive_mode_cmd_tele`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DriveModeCmdTele {
     /// 0: 手动驾驶模式(传统驾驶模式) — Manual
-    Manual,
+    Manual = 0,
     /// 1: 保留 — Reserved 1
-    Reserved1,
+    Reserved1 = 1,
     /// 2: 遥控驾驶模式 — Tele
-    Tele,
+    Tele = 2,
     /// 3: 保留 — Reserved 3
-    Reserved3,
+    Reserved3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl DriveModeCmdTele {
@@ -751,17 +779,19 @@ impl From<DriveModeCmdTele> for u8 {
 /// Value table `drive_mode_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum DriveModeState {
     /// 0: 手动驾驶模式(传统驾驶模式) — Manual
-    Manual,
+    Manual = 0,
     /// 1: 自动驾驶模式 — Autonomous
-    Autonomous,
+    Autonomous = 1,
     /// 2: 遥控驾驶模式 — Tele
-    Tele,
+    Tele = 2,
     /// 3: 远程驾驶模式 — Remote
-    Remote,
+    Remote = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl DriveModeState {
@@ -807,13 +837,15 @@ impl From<DriveModeState> for u8 {
 /// Value table `emergency_brake_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum EmergencyBrakeCmd {
     /// 0: 正常 — Normal
-    Normal,
+    Normal = 0,
     /// 1: 紧急制动(车身、遥控器等人工操作设备上紧急制动按钮按下) — Emergency brake
-    EmergencyBrake,
+    EmergencyBrake = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl EmergencyBrakeCmd {
@@ -855,17 +887,19 @@ impl From<EmergencyBrakeCmd> for u8 {
 /// Value table `epb`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum Epb {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 拉起手刹(停车驻车) — Apply
-    Apply,
+    Apply = 1,
     /// 2: 释放手刹 — Release
-    Release,
+    Release = 2,
     /// 3: 行进间制动(紧急辅助制动) — Dynamic brake
-    DynamicBrake,
+    DynamicBrake = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl Epb {
@@ -911,17 +945,19 @@ impl From<Epb> for u8 {
 /// Value table `eps_fault_level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum EpsFaultLevel {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 轻微故障，响应速度下降，响应精度下降 — Minor
-    Minor,
+    Minor = 1,
     /// 2: 一般故障，自动控制模式失效，只支持助力模式 — General
-    General,
+    General = 2,
     /// 3: 严重故障：EPS 关机停止控制 — Severe
-    Severe,
+    Severe = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl EpsFaultLevel {
@@ -967,15 +1003,17 @@ impl From<EpsFaultLevel> for u8 {
 /// Value table `eps_mode_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum EpsModeCmd {
     /// 0: 停止控制 — Stop control
-    StopControl,
+    StopControl = 0,
     /// 16: 手动控制方式(助力模式) — Manual assist
-    ManualAssist,
+    ManualAssist = 16,
     /// 32: 自动控制方式(角度控制方式) — Auto angle
-    AutoAngle,
+    AutoAngle = 32,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 1,
 }
 
 impl EpsModeCmd {
@@ -1019,19 +1057,21 @@ impl From<EpsModeCmd> for u8 {
 /// Value table `eps_mode_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum EpsModeState {
     /// 0: 停止控制 — Stop control
-    StopControl,
+    StopControl = 0,
     /// 16: 手动控制方式(助力模式) — Manual assist
-    ManualAssist,
+    ManualAssist = 16,
     /// 32: 自动控制方式(角度控制方式) — Auto angle
-    AutoAngle,
+    AutoAngle = 32,
     /// 85: 异或错误 — Xor error
-    XorError,
+    XorError = 85,
     /// 86: 通讯故障 — Comm fault
-    CommFault,
+    CommFault = 86,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 1,
 }
 
 impl EpsModeState {
@@ -1079,17 +1119,19 @@ impl From<EpsModeState> for u8 {
 /// Value table `fault_level_autocar`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum FaultLevelAutocar {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 1 级故障，轻微故障，警告提示 — Level 1
-    Level1,
+    Level1 = 1,
     /// 2: 2 级故障，一般故障，跛行降速行驶 — Level 2
-    Level2,
+    Level2 = 2,
     /// 3: 3 级故障，严重故障，立即停车(退出自动驾驶状态) — Level 3
-    Level3,
+    Level3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl FaultLevelAutocar {
@@ -1135,17 +1177,19 @@ impl From<FaultLevelAutocar> for u8 {
 /// Value table `fault_level_rgate`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum FaultLevelRgate {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 1 级故障，轻微故障，警告提示 — Level 1
-    Level1,
+    Level1 = 1,
     /// 2: 2 级故障，一般故障，跛行降速行驶 — Level 2
-    Level2,
+    Level2 = 2,
     /// 3: 3 级故障，严重故障，立即停车(退出远程驾驶状态) — Level 3
-    Level3,
+    Level3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl FaultLevelRgate {
@@ -1191,17 +1235,19 @@ impl From<FaultLevelRgate> for u8 {
 /// Value table `fault_level_tele`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum FaultLevelTele {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 1 级故障，轻微故障，警告提示 — Level 1
-    Level1,
+    Level1 = 1,
     /// 2: 2 级故障，一般故障，跛行降速行驶 — Level 2
-    Level2,
+    Level2 = 2,
     /// 3: 遥控器与接收机通讯异常，需立即停车(退出遥控驾驶状态) — Link lost
-    LinkLost,
+    LinkLost = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl FaultLevelTele {
@@ -1247,17 +1293,19 @@ impl From<FaultLevelTele> for u8 {
 /// Value table `flash_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum FlashCmd {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 开启(闪烁) — Flash
-    Flash,
+    Flash = 1,
     /// 2: 关闭 — Turn off
-    TurnOff,
+    TurnOff = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl FlashCmd {
@@ -1303,17 +1351,19 @@ impl From<FlashCmd> for u8 {
 /// Value table `gear`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum Gear {
     /// 0: N档 — Neutral
-    Neutral,
+    Neutral = 0,
     /// 1: D档 — Drive
-    Drive,
+    Drive = 1,
     /// 2: R档 — Reverse
-    Reverse,
+    Reverse = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl Gear {
@@ -1359,17 +1409,19 @@ impl From<Gear> for u8 {
 /// Value table `headlight`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum Headlight {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 近光开启 — Low beam
-    LowBeam,
+    LowBeam = 1,
     /// 2: 远光开启 — High beam
-    HighBeam,
+    HighBeam = 2,
     /// 3: 关闭 — Turn off
-    TurnOff,
+    TurnOff = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl Headlight {
@@ -1415,17 +1467,19 @@ impl From<Headlight> for u8 {
 /// Value table `id_frame_index`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum IdFrameIndex {
     /// 0: 第一帧 — Frame 1
-    Frame1,
+    Frame1 = 0,
     /// 1: 第二帧 — Frame 2
-    Frame2,
+    Frame2 = 1,
     /// 2: 第三帧 — Frame 3
-    Frame3,
+    Frame3 = 2,
     /// 3: 第四帧(暂时不用) — Frame 4 unused
-    Frame4Unused,
+    Frame4Unused = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl IdFrameIndex {
@@ -1471,13 +1525,15 @@ impl From<IdFrameIndex> for u8 {
 /// Value table `inactive_active`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum InactiveActive {
     /// 0: 未启动 — Inactive
-    Inactive,
+    Inactive = 0,
     /// 1: 启动 — Active
-    Active,
+    Active = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl InactiveActive {
@@ -1519,17 +1575,19 @@ impl From<InactiveActive> for u8 {
 /// Value table `insulation_fault_level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum InsulationFaultLevel {
     /// 0: 正常 — Normal
-    Normal,
+    Normal = 0,
     /// 1: 一般故障，小于 500 Ω/V 且大于 100 Ω/V，停车后检查 — General
-    General,
+    General = 1,
     /// 2: 严重故障，小于 100 Ω/V，切断高压，立即检查 — Severe
-    Severe,
+    Severe = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl InsulationFaultLevel {
@@ -1575,17 +1633,19 @@ impl From<InsulationFaultLevel> for u8 {
 /// Value table `link_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum LinkState {
     /// 0: 连接中 — Connecting
-    Connecting,
+    Connecting = 0,
     /// 1: 连接完成 — Connected
-    Connected,
+    Connected = 1,
     /// 2: 断开中 — Disconnecting
-    Disconnecting,
+    Disconnecting = 2,
     /// 3: 连接断开 — Disconnected
-    Disconnected,
+    Disconnected = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl LinkState {
@@ -1631,17 +1691,19 @@ impl From<LinkState> for u8 {
 /// Value table `lock_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum LockCmd {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 上锁 — Lock
-    Lock,
+    Lock = 1,
     /// 2: 解锁 — Unlock
-    Unlock,
+    Unlock = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl LockCmd {
@@ -1687,13 +1749,15 @@ impl From<LockCmd> for u8 {
 /// Value table `mode_reset`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ModeReset {
     /// 0: 无请求 — No request
-    NoRequest,
+    NoRequest = 0,
     /// 1: 请求控制模式复位 — Reset request
-    ResetRequest,
+    ResetRequest = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl ModeReset {
@@ -1735,17 +1799,19 @@ impl From<ModeReset> for u8 {
 /// Value table `motor_system_fault_level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum MotorSystemFaultLevel {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 轻微故障，电机需降功率输出 — Minor
-    Minor,
+    Minor = 1,
     /// 2: 一般故障，电机需停止输出 — General
-    General,
+    General = 2,
     /// 3: 严重故障，需要断电的严重故障(对应 MCU 协议 3、4 级故障) — Severe
-    Severe,
+    Severe = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl MotorSystemFaultLevel {
@@ -1791,13 +1857,15 @@ impl From<MotorSystemFaultLevel> for u8 {
 /// Value table `normal_fault`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum NormalFault {
     /// 0: 正常 — Normal
-    Normal,
+    Normal = 0,
     /// 1: 故障 — Fault
-    Fault,
+    Fault = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl NormalFault {
@@ -1839,13 +1907,15 @@ impl From<NormalFault> for u8 {
 /// Value table `off_flashing`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum OffFlashing {
     /// 0: 关闭 — Off
-    Off,
+    Off = 0,
     /// 1: 闪烁 — Flashing
-    Flashing,
+    Flashing = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl OffFlashing {
@@ -1887,13 +1957,15 @@ impl From<OffFlashing> for u8 {
 /// Value table `off_on`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum OffOn {
     /// 0: 关闭 — Off
-    Off,
+    Off = 0,
     /// 1: 打开 — On
-    On,
+    On = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl OffOn {
@@ -1935,17 +2007,19 @@ impl From<OffOn> for u8 {
 /// Value table `power_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum PowerCmd {
     /// 0: 启动 — Start
-    Start,
+    Start = 0,
     /// 1: 关机 — Shutdown
-    Shutdown,
+    Shutdown = 1,
     /// 2: 保留 — Reserved 2
-    Reserved2,
+    Reserved2 = 2,
     /// 3: 保留 — Reserved 3
-    Reserved3,
+    Reserved3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl PowerCmd {
@@ -1991,17 +2065,19 @@ impl From<PowerCmd> for u8 {
 /// Value table `power_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum PowerState {
     /// 0: OFF 档 — Off
-    Off,
+    Off = 0,
     /// 1: ACC 档 — Acc
-    Acc,
+    Acc = 1,
     /// 2: ON 档 — On
-    On,
+    On = 2,
     /// 3: Ready 档 — Ready
-    Ready,
+    Ready = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl PowerState {
@@ -2047,13 +2123,15 @@ impl From<PowerState> for u8 {
 /// Value table `pto_enable`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum PtoEnable {
     /// 0: 取力器无效无法上装 — Disabled
-    Disabled,
+    Disabled = 0,
     /// 1: 取力器使能允许上装 — Enabled
-    Enabled,
+    Enabled = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl PtoEnable {
@@ -2095,13 +2173,15 @@ impl From<PtoEnable> for u8 {
 /// Value table `pto_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum PtoState {
     /// 0: 取力未打开 — Off
-    Off,
+    Off = 0,
     /// 1: 取力已打开 — On
-    On,
+    On = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl PtoState {
@@ -2143,17 +2223,19 @@ impl From<PtoState> for u8 {
 /// Value table `reliability_autocar`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ReliabilityAutocar {
     /// 0: 不可信状态，需要立刻人工接管 — Untrusted
-    Untrusted,
+    Untrusted = 0,
     /// 1: 低质量，需要人工监视，随时接管 — Low quality
-    LowQuality,
+    LowQuality = 1,
     /// 2: 最佳状态，完全自动控制 — Optimal
-    Optimal,
+    Optimal = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl ReliabilityAutocar {
@@ -2199,17 +2281,19 @@ impl From<ReliabilityAutocar> for u8 {
 /// Value table `reliability_rgate`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ReliabilityRgate {
     /// 0: 不可信状态，需要立刻人工接管 — Untrusted
-    Untrusted,
+    Untrusted = 0,
     /// 1: 低质量，需要人工监视，随时接管 — Low quality
-    LowQuality,
+    LowQuality = 1,
     /// 2: 最佳状态，完全远程控制 — Optimal
-    Optimal,
+    Optimal = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl ReliabilityRgate {
@@ -2255,17 +2339,19 @@ impl From<ReliabilityRgate> for u8 {
 /// Value table `reliability_tele`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum ReliabilityTele {
     /// 0: 不可信状态，连接出现故障 — Untrusted
-    Untrusted,
+    Untrusted = 0,
     /// 1: 低质量，需要人工监视 — Low quality
-    LowQuality,
+    LowQuality = 1,
     /// 2: 最佳状态，连接可靠 — Optimal
-    Optimal,
+    Optimal = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl ReliabilityTele {
@@ -2311,25 +2397,27 @@ impl From<ReliabilityTele> for u8 {
 /// Value table `remote_entry_fault`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum RemoteEntryFault {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 整车系统故障级别 — Vehicle fault level
-    VehicleFaultLevel,
+    VehicleFaultLevel = 1,
     /// 2: 远程驾驶系统故障级别 — System fault level
-    SystemFaultLevel,
+    SystemFaultLevel = 2,
     /// 3: 远程驾驶系统可靠性故障 — Reliability fault
-    ReliabilityFault,
+    ReliabilityFault = 3,
     /// 4: 远程驾驶系统启动状态异常 — Startup state abnormal
-    StartupStateAbnormal,
+    StartupStateAbnormal = 4,
     /// 5: R-GATE EPS Command 异或校验错误 — Eps command xor error
-    EpsCommandXorError,
+    EpsCommandXorError = 5,
     /// 6: R-GATE Speed Command 异或校验错误 — Speed command xor error
-    SpeedCommandXorError,
+    SpeedCommandXorError = 6,
     /// 7: 发送报文超时(远程驾驶系统失联) — Message timeout
-    MessageTimeout,
+    MessageTimeout = 7,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 8,
 }
 
 impl RemoteEntryFault {
@@ -2383,13 +2471,15 @@ impl From<RemoteEntryFault> for u8 {
 /// Value table `remote_takeover_permission`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum RemoteTakeoverPermission {
     /// 0: 禁止远程驾驶接管 — Forbidden
-    Forbidden,
+    Forbidden = 0,
     /// 1: 允许远程驾驶接管 — Allowed
-    Allowed,
+    Allowed = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl RemoteTakeoverPermission {
@@ -2431,13 +2521,15 @@ impl From<RemoteTakeoverPermission> for u8 {
 /// Value table `sensor_fault`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum SensorFault {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 故障 — Fault
-    Fault,
+    Fault = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl SensorFault {
@@ -2479,17 +2571,19 @@ impl From<SensorFault> for u8 {
 /// Value table `switch_cmd`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum SwitchCmd {
     /// 0: 无动作 — No action
-    NoAction,
+    NoAction = 0,
     /// 1: 开启 — Turn on
-    TurnOn,
+    TurnOn = 1,
     /// 2: 关闭 — Turn off
-    TurnOff,
+    TurnOff = 2,
     /// 3: 保留 — Reserved
-    Reserved,
+    Reserved = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl SwitchCmd {
@@ -2535,17 +2629,19 @@ impl From<SwitchCmd> for u8 {
 /// Value table `system_state_autocar`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum SystemStateAutocar {
     /// 0: 启动中 — Starting
-    Starting,
+    Starting = 0,
     /// 1: 启动完成 — Started
-    Started,
+    Started = 1,
     /// 2: 关机中 — Shutting down
-    ShuttingDown,
+    ShuttingDown = 2,
     /// 3: 关机完成 — Shut down
-    ShutDown,
+    ShutDown = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl SystemStateAutocar {
@@ -2591,13 +2687,15 @@ impl From<SystemStateAutocar> for u8 {
 /// Value table `takeover_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum TakeoverState {
     /// 0: 未被人工接管 — Not taken over
-    NotTakenOver,
+    NotTakenOver = 0,
     /// 1: 已被人工接管 — Taken over
-    TakenOver,
+    TakenOver = 1,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 2,
 }
 
 impl TakeoverState {
@@ -2639,25 +2737,27 @@ impl From<TakeoverState> for u8 {
 /// Value table `unmanned_entry_fault`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum UnmannedEntryFault {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 整车系统故障级别 — Vehicle fault level
-    VehicleFaultLevel,
+    VehicleFaultLevel = 1,
     /// 2: 无人驾驶系统故障级别 — System fault level
-    SystemFaultLevel,
+    SystemFaultLevel = 2,
     /// 3: 无人驾驶系统可靠性故障 — Reliability fault
-    ReliabilityFault,
+    ReliabilityFault = 3,
     /// 4: 无人驾驶系统启动状态异常 — Startup state abnormal
-    StartupStateAbnormal,
+    StartupStateAbnormal = 4,
     /// 5: AUTOCAR EPS Command 异或校验错误 — Eps command xor error
-    EpsCommandXorError,
+    EpsCommandXorError = 5,
     /// 6: AUTOCAR Speed Command 异或校验错误 — Speed command xor error
-    SpeedCommandXorError,
+    SpeedCommandXorError = 6,
     /// 7: 发送报文超时(无人驾驶系统失联) — Message timeout
-    MessageTimeout,
+    MessageTimeout = 7,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 8,
 }
 
 impl UnmannedEntryFault {
@@ -2711,15 +2811,17 @@ impl From<UnmannedEntryFault> for u8 {
 /// Value table `uss_system_state`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum UssSystemState {
     /// 0: 待机 — Standby
-    Standby,
+    Standby = 0,
     /// 1: 工作中 — Working
-    Working,
+    Working = 1,
     /// 2: 故障 — Fault
-    Fault,
+    Fault = 2,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 3,
 }
 
 impl UssSystemState {
@@ -2763,17 +2865,19 @@ impl From<UssSystemState> for u8 {
 /// Value table `vehicle_fault_level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Discriminants equal the raw values, so converting either way compiles to a compare, not a jump.
+#[repr(u8)]
 pub enum VehicleFaultLevel {
     /// 0: 无故障 — No fault
-    NoFault,
+    NoFault = 0,
     /// 1: 1级故障，轻微故障，警告提示 — Level 1
-    Level1,
+    Level1 = 1,
     /// 2: 2级故障，一般故障，跛行降速行驶 — Level 2
-    Level2,
+    Level2 = 2,
     /// 3: 3级故障，严重故障，转向系统、动力系统失效，立即停车(退出自动驾驶状态) — Level 3
-    Level3,
+    Level3 = 3,
     /// A raw value the table does not define.
-    _Other(u8),
+    _Other(u8) = 4,
 }
 
 impl VehicleFaultLevel {
