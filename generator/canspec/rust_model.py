@@ -237,8 +237,9 @@ def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool]:
     and whether q is then never negative. Proof by monotonicity: q = (x - offset) / factor and
     the rounding are non-decreasing in x in IEEE arithmetic, and Python floats are the same
     doubles the generated code uses, so checking both ends of the documented range suffices.
-    Signals with special values keep the full rule."""
-    if sig.specials or sig.factor <= 0:
+    (Special values are checked by the full rule, which callers fall back to outside the
+    documented range.)"""
+    if sig.factor <= 0:
         return False, False
     from canspec.encoding import to_raw_runtime
 
@@ -311,7 +312,9 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
     }
     suffices, nonnegative = documented_range_suffices(sig)
     if kind == "scaled_int":
-        to_raw = "to_raw_int_documented" if suffices else "to_raw_int"
+        to_raw = ("to_raw_int_documented_or_special" if sig.specials else "to_raw_int_documented") if suffices else "to_raw_int"
+    elif suffices and sig.specials:
+        to_raw = "to_raw_documented_or_special"
     else:
         to_raw = ("to_raw_documented_unsigned" if nonnegative else "to_raw_documented") if suffices else "to_raw"
     specials = tuple(

@@ -136,6 +136,16 @@ pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
     }
 }
 
+/// [`to_raw_documented`] for a signal with special values: inside the documented range the
+/// shortcut, outside it the full rule (which lets the special values through).
+#[inline(always)]
+pub fn to_raw_documented_or_special(value: f64, scale: &Scale, specials: &[i64]) -> Option<i64> {
+    match to_raw_documented(value, scale) {
+        Some(raw) => Some(raw),
+        None => to_raw(value, scale, specials),
+    }
+}
+
 /// [`to_raw_int`] for a signal the generator has proven its documented range suffices for
 /// (see [`to_raw_documented`]).
 #[inline(always)]
@@ -146,6 +156,20 @@ pub fn to_raw_int_documented(value: i64, scale: &IntScale) -> Option<i64> {
         Some(if n >= 0 { magnitude } else { -magnitude })
     } else {
         None
+    }
+}
+
+/// [`to_raw_int_documented`] for a signal with special values (see
+/// [`to_raw_documented_or_special`]).
+#[inline(always)]
+pub fn to_raw_int_documented_or_special(
+    value: i64,
+    scale: &IntScale,
+    specials: &[i64],
+) -> Option<i64> {
+    match to_raw_int_documented(value, scale) {
+        Some(raw) => Some(raw),
+        None => to_raw_int(value, scale, specials),
     }
 }
 

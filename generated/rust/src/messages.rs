@@ -2043,7 +2043,11 @@ impl DrivingState {
     /// Set `motor_speed_ratio` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_speed_ratio(&mut self, value: u16) -> Result<(), Error> {
-        match codec::to_raw_int(i64::from(value), &Self::MOTOR_SPEED_RATIO_SCALE, &[255]) {
+        match codec::to_raw_int_documented_or_special(
+            i64::from(value),
+            &Self::MOTOR_SPEED_RATIO_SCALE,
+            &[255],
+        ) {
             Some(raw) => {
                 self.motor_speed_ratio = raw as u8;
                 Ok(())
@@ -5741,7 +5745,7 @@ impl AutocarControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
@@ -12635,7 +12639,7 @@ impl RgateControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
@@ -19098,7 +19102,7 @@ impl TeleControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
