@@ -173,6 +173,7 @@ class RustField:
     phys_expr: str  # physical value from `self.<field>`
     specials: tuple[RustSpecial, ...]
     doc: tuple[str, ...]
+    short_doc: str  # one line: name, range and unit
     table_row: str
     is_counter: bool
     strategy_lo: str  # test strategy: physical-encodable raw range (for the round-trip tests)
@@ -318,7 +319,7 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
     else:
         to_raw = ("to_raw_documented_unsigned" if nonnegative else "to_raw_documented") if suffices else "to_raw"
     specials = tuple(
-        RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label}), raw value of `{name}`"))
+        RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label})") + f", raw value of `{name}`")
         for s in sig.specials
     )
     return RustField(
@@ -330,6 +331,7 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
         phys_expr=_int_phys_expr(sig, rust_ident(name), phys_type) if kind == "scaled_int" else _phys_expr(sig, rust_ident(name)),
         specials=specials, doc=_field_doc(sig),
+        short_doc=doc_text(f"{sig.zh}: {_range_text(sig.check_min, sig.check_max)} {sig.unit}".rstrip()),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
         is_counter=sig.role == "counter",
         strategy_lo=int_lit(sig.raw_min), strategy_hi=int_lit(sig.raw_max),

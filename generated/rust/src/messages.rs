@@ -39,37 +39,13 @@ pub struct AutocarEpsCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AutocarEpsCommandValues {
-    /// EPS 控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// EPS 控制模式: 0 … 255 (see [`AutocarEpsCommand::eps_ctrl_mode`]).
     pub eps_ctrl_mode: EpsModeCmd,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`AutocarEpsCommand::counter`]).
     pub counter: u8,
-    /// 最大角速度 — Maximum steering angular speed; 0 means no limit.
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 2 | 0 | deg/s | 0 … 512 | 0 … 255 |
-    ///
-    /// Special raw value 0: 不限制角速度 (No limit)
-    ///
-    /// Errata: E10 (see spec/ERRATA.md)
+    /// 最大角速度: 0 … 512 deg/s (see [`AutocarEpsCommand::max_angular_speed`]).
     pub max_angular_speed: u16,
-    /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
-    ///
-    /// 顺时针方向为正
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
+    /// 方向盘角度指令: -1080 … 1080 deg (see [`AutocarEpsCommand::steering_angle_cmd`]).
     pub steering_angle_cmd: f64,
 }
 
@@ -96,7 +72,7 @@ impl AutocarEpsCommand {
     pub const FINGERPRINT: u32 = 0x81223118;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
+    /// 最大角速度: 不限制角速度 (No limit), raw value of `max_angular_speed`
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
     pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
@@ -444,55 +420,19 @@ pub struct EpsState {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EpsStateValues {
-    /// EPS 控制状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// EPS 控制状态: 0 … 255 (see [`EpsState::eps_ctrl_state`]).
     pub eps_ctrl_state: EpsModeState,
-    /// 方向盘力矩 — Driver torque on the steering wheel; clockwise positive.
-    ///
-    /// 顺时针方向为正(司机施加在方向盘上的力)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 0.1 | -12.8 | Nm | -12.8 … 12.7 | 0 … 255 |
+    /// 方向盘力矩: -12.8 … 12.7 Nm (see [`EpsState::steering_torque`]).
     pub steering_torque: f64,
-    /// EPS 输出力矩 — EPS motor output torque; clockwise positive.
-    ///
-    /// 顺时针方向为正
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 0.3 | -38.4 | Nm | -38.4 … 38.1 | 0 … 255 |
+    /// EPS 输出力矩: -38.4 … 38.1 Nm (see [`EpsState::eps_output_torque`]).
     pub eps_output_torque: f64,
-    /// 方向盘角度 — Steering wheel angle; clockwise positive.
-    ///
-    /// 顺时针方向为正
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
+    /// 方向盘角度: -1080 … 1080 deg (see [`EpsState::steering_angle`]).
     pub steering_angle: f64,
-    /// 控制器温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 6 | 2 | 0 | °C | 0 … 126 | 0 … 63 |
+    /// 控制器温度: 0 … 126 °C (see [`EpsState::controller_temp`]).
     pub controller_temp: u8,
-    /// EPS 故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// EPS 故障级别: 0 … 3 (see [`EpsState::eps_fault_level`]).
     pub eps_fault_level: EpsFaultLevel,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`EpsState::counter`]).
     pub counter: u8,
 }
 
@@ -1021,43 +961,15 @@ pub struct AutocarSpeedCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AutocarSpeedCommandValues {
-    /// 加速度指令 — Acceleration request; positive accelerates towards the vehicle front.
-    ///
-    /// 大于0代表向车头方向加速
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 0.02 | -9 | m/s² | -9 … 3.6 | 0 … 630 |
+    /// 加速度指令: -9 … 3.6 m/s² (see [`AutocarSpeedCommand::accel_cmd`]).
     pub accel_cmd: f64,
-    /// 电子手刹指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电子手刹指令: 0 … 3 (see [`AutocarSpeedCommand::epb_cmd`]).
     pub epb_cmd: Epb,
-    /// 档位指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 4 | 1 | 0 | — | 0 … 2 | 0 … 2 |
-    ///
-    /// Errata: E11 (see spec/ERRATA.md)
+    /// 档位指令: 0 … 2 (see [`AutocarSpeedCommand::gear_cmd`]).
     pub gear_cmd: Gear,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`AutocarSpeedCommand::counter`]).
     pub counter: u8,
-    /// 紧急制动指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
-    ///
-    /// Errata: E12 (see spec/ERRATA.md)
+    /// 紧急制动指令: 0 … 1 (see [`AutocarSpeedCommand::emergency_brake_cmd`]).
     pub emergency_brake_cmd: EmergencyBrakeCmd,
 }
 
@@ -1487,67 +1399,21 @@ pub struct DrivingState {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DrivingStateValues {
-    /// 电子手刹状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电子手刹状态: 0 … 3 (see [`DrivingState::epb_state`]).
     pub epb_state: Epb,
-    /// 档位状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 4 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 档位状态: 0 … 3 (see [`DrivingState::gear_state`]).
     pub gear_state: Gear,
-    /// 紧急制动状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 紧急制动状态: 0 … 1 (see [`DrivingState::emergency_brake_state`]).
     pub emergency_brake_state: BrakeState,
-    /// 超声波雷达制动状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
-    ///
-    /// Errata: E18 (see spec/ERRATA.md)
+    /// 超声波雷达制动状态: 0 … 1 (see [`DrivingState::uss_brake_state`]).
     pub uss_brake_state: BrakeState,
-    /// 电机转速 — Motor speed; positive drives the vehicle forward.
-    ///
-    /// 大于0代表车辆向前行驶，小于0代表车辆后退
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 16 | 1 | -15000 | rpm | -15000 … 15000 | 0 … 30000 |
+    /// 电机转速: -15000 … 15000 rpm (see [`DrivingState::motor_speed`]).
     pub motor_speed: i32,
-    /// 电机扭矩 — Motor torque; positive pushes the vehicle forward.
-    ///
-    /// 大于0代表驱动力的方向为推动车辆向前，小于0代表驱动力的方向为推动车辆向后
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 16 | 1 | -5000 | Nm | -5000 … 5000 | 0 … 10000 |
+    /// 电机扭矩: -5000 … 5000 Nm (see [`DrivingState::motor_torque`]).
     pub motor_torque: i32,
-    /// 电机转速与车速比值 — Ratio of motor speed to vehicle speed.
-    ///
-    /// 单位 RPM/KMH，精度 1，偏移 1，无效:FF
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 8 | 1 | 1 | rpm/(km/h) | 1 … 254 | 0 … 253 |
-    ///
-    /// Special raw value 255: 无效 (Invalid)
-    ///
-    /// Errata: E19 (see spec/ERRATA.md)
+    /// 电机转速与车速比值: 1 … 254 rpm/(km/h) (see [`DrivingState::motor_speed_ratio`]).
     pub motor_speed_ratio: u16,
-    /// 当前加速度 — Current acceleration; positive towards the vehicle front.
-    ///
-    /// 大于0代表向车头方向加速
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 8 | 0.05 | -9 | m/s² | -9 … 3.6 | 0 … 252 |
+    /// 当前加速度: -9 … 3.6 m/s² (see [`DrivingState::current_accel`]).
     pub current_accel: f64,
 }
 
@@ -1600,7 +1466,7 @@ impl DrivingState {
         type_min: 0,
         type_max: 65535,
     };
-    /// 电机转速与车速比值: 无效 (Invalid), raw value of 'motor_speed_ratio'
+    /// 电机转速与车速比值: 无效 (Invalid), raw value of `motor_speed_ratio`
     pub const MOTOR_SPEED_RATIO_INVALID: u8 = 255;
     /// Smallest physical value of `motor_speed_ratio` (rpm/(km/h)).
     pub const MOTOR_SPEED_RATIO_MIN: u16 = 1;
@@ -2199,169 +2065,55 @@ pub struct AutocarControlCommand1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AutocarControlCommand1Values {
-    /// 自驾控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 自驾控制模式: 0 … 1 (see [`AutocarControlCommand1::drive_mode_cmd`]).
     pub drive_mode_cmd: DriveModeCmdAutocar,
-    /// 车门控制指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 车门控制指令: 0 … 2 (see [`AutocarControlCommand1::door_cmd`]).
     pub door_cmd: DoorCmd,
-    /// 喇叭控制
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 喇叭控制: 0 … 2 (see [`AutocarControlCommand1::horn_cmd`]).
     pub horn_cmd: SwitchCmd,
-    /// 昼间行车灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 昼间行车灯: 0 … 2 (see [`AutocarControlCommand1::drl_cmd`]).
     pub drl_cmd: SwitchCmd,
-    /// 左转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左转向: 0 … 2 (see [`AutocarControlCommand1::left_turn_cmd`]).
     pub left_turn_cmd: FlashCmd,
-    /// 右转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右转向: 0 … 2 (see [`AutocarControlCommand1::right_turn_cmd`]).
     pub right_turn_cmd: FlashCmd,
-    /// 警示灯(双闪)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 警示灯(双闪): 0 … 2 (see [`AutocarControlCommand1::hazard_cmd`]).
     pub hazard_cmd: FlashCmd,
-    /// 示宽灯(位置灯)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 示宽灯(位置灯): 0 … 2 (see [`AutocarControlCommand1::position_light_cmd`]).
     pub position_light_cmd: SwitchCmd,
-    /// 大灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 大灯: 0 … 3 (see [`AutocarControlCommand1::headlight_cmd`]).
     pub headlight_cmd: Headlight,
-    /// 后雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 后雾灯: 0 … 2 (see [`AutocarControlCommand1::rear_fog_cmd`]).
     pub rear_fog_cmd: SwitchCmd,
-    /// 左雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左雾灯: 0 … 2 (see [`AutocarControlCommand1::left_fog_cmd`]).
     pub left_fog_cmd: SwitchCmd,
-    /// 右雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右雾灯: 0 … 2 (see [`AutocarControlCommand1::right_fog_cmd`]).
     pub right_fog_cmd: SwitchCmd,
-    /// 内顶灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 内顶灯: 0 … 2 (see [`AutocarControlCommand1::dome_light_cmd`]).
     pub dome_light_cmd: SwitchCmd,
-    /// 氛围灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 氛围灯: 0 … 2 (see [`AutocarControlCommand1::ambient_light_cmd`]).
     pub ambient_light_cmd: SwitchCmd,
-    /// 驾驶模式复位
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 驾驶模式复位: 0 … 1 (see [`AutocarControlCommand1::drive_mode_reset`]).
     pub drive_mode_reset: ModeReset,
-    /// 智能系统状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 智能系统状态: 0 … 3 (see [`AutocarControlCommand1::system_state`]).
     pub system_state: SystemStateAutocar,
-    /// 智能系统可靠性
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 智能系统可靠性: 0 … 3 (see [`AutocarControlCommand1::system_reliability`]).
     pub system_reliability: ReliabilityAutocar,
-    /// 智能系统故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 智能系统故障级别: 0 … 3 (see [`AutocarControlCommand1::system_fault_level`]).
     pub system_fault_level: FaultLevelAutocar,
-    /// 车辆解锁/上锁
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
-    ///
-    /// Errata: E15 (see spec/ERRATA.md)
+    /// 车辆解锁/上锁: 0 … 3 (see [`AutocarControlCommand1::lock_cmd`]).
     pub lock_cmd: LockCmd,
-    /// 车内冷暖空调控制 — Cabin air-conditioning mode request; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 3 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 车内冷暖空调控制: 0 … 3 (see [`AutocarControlCommand1::ac_cmd`]).
     pub ac_cmd: AcCmd,
-    /// 车内空调设置温度 — Cabin temperature set point; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
+    /// 车内空调设置温度: 16 … 30 °C (see [`AutocarControlCommand1::ac_set_temp`]).
     pub ac_set_temp: f64,
-    /// 协议版本号 A — Protocol version A of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 A: 0 … 15 (see [`AutocarControlCommand1::protocol_version_a`]).
     pub protocol_version_a: u8,
-    /// 协议版本号 B — Protocol version B of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 52 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 B: 0 … 15 (see [`AutocarControlCommand1::protocol_version_b`]).
     pub protocol_version_b: u8,
-    /// 协议版本号 C — Protocol version C of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 C: 0 … 15 (see [`AutocarControlCommand1::protocol_version_c`]).
     pub protocol_version_c: u8,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳值: 0 … 15 (see [`AutocarControlCommand1::counter`]).
     pub counter: u8,
 }
 
@@ -3819,139 +3571,49 @@ pub struct VehicleState1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct VehicleState1Values {
-    /// 驾驶控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 驾驶控制模式: 0 … 3 (see [`VehicleState1::drive_mode_state`]).
     pub drive_mode_state: DriveModeState,
-    /// 车门状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 车门状态: 0 … 1 (see [`VehicleState1::door_state`]).
     pub door_state: OffOn,
-    /// 昼间行车灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 3 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 昼间行车灯: 0 … 1 (see [`VehicleState1::drl_state`]).
     pub drl_state: OffOn,
-    /// 左转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 4 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 左转向: 0 … 1 (see [`VehicleState1::left_turn_state`]).
     pub left_turn_state: OffFlashing,
-    /// 右转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 5 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 右转向: 0 … 1 (see [`VehicleState1::right_turn_state`]).
     pub right_turn_state: OffFlashing,
-    /// 警示灯(双闪)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 警示灯(双闪): 0 … 1 (see [`VehicleState1::hazard_state`]).
     pub hazard_state: OffFlashing,
-    /// 示宽灯(位置灯)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 示宽灯(位置灯): 0 … 1 (see [`VehicleState1::position_light_state`]).
     pub position_light_state: OffOn,
-    /// 大灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 大灯: 0 … 3 (see [`VehicleState1::headlight_state`]).
     pub headlight_state: Headlight,
-    /// 后雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 后雾灯: 0 … 1 (see [`VehicleState1::rear_fog_state`]).
     pub rear_fog_state: OffOn,
-    /// 左雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 11 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 左雾灯: 0 … 1 (see [`VehicleState1::left_fog_state`]).
     pub left_fog_state: OffOn,
-    /// 右雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 右雾灯: 0 … 1 (see [`VehicleState1::right_fog_state`]).
     pub right_fog_state: OffOn,
-    /// 内顶灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 13 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 内顶灯: 0 … 1 (see [`VehicleState1::dome_light_state`]).
     pub dome_light_state: OffOn,
-    /// 氛围灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 14 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 氛围灯: 0 … 1 (see [`VehicleState1::ambient_light_state`]).
     pub ambient_light_state: OffOn,
-    /// 车门按键状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 15 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 车门按键状态: 0 … 1 (see [`VehicleState1::door_button_state`]).
     pub door_button_state: Button,
-    /// 车速
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 1 | -50 | km/h | -50 … 200 | 0 … 250 |
+    /// 车速: -50 … 200 km/h (see [`VehicleState1::vehicle_speed`]).
     pub vehicle_speed: i16,
-    /// SOC — Traction battery state of charge.
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 8 | 0.5 | 0 | % | 0 … 125 | 0 … 250 |
+    /// SOC: 0 … 125 % (see [`VehicleState1::soc`]).
     pub soc: f64,
-    /// 智能系统电源指令 — Power command from the vehicle to the smart driving system.
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 智能系统电源指令: 0 … 1 (see [`VehicleState1::system_power_cmd`]).
     pub system_power_cmd: PowerCmd,
-    /// 充电状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 充电状态: 0 … 3 (see [`VehicleState1::charge_state`]).
     pub charge_state: ChargeState,
-    /// 充电连接指示
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 充电连接指示: 0 … 1 (see [`VehicleState1::charge_connection`]).
     pub charge_connection: ChargeConnection,
-    /// 整车故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 整车故障级别: 0 … 3 (see [`VehicleState1::vehicle_fault_level`]).
     pub vehicle_fault_level: VehicleFaultLevel,
-    /// 总里程
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 16 | 2 | 0 | km | 0 … 120000 | 0 … 60000 |
+    /// 总里程: 0 … 120000 km (see [`VehicleState1::odometer`]).
     pub odometer: u32,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`VehicleState1::counter`]).
     pub counter: u8,
 }
 
@@ -5229,81 +4891,25 @@ pub struct AutocarControlCommand2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AutocarControlCommand2Values {
-    /// 下坡制动回收使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 下坡制动回收使能: 0 … 1 (see [`AutocarControlCommand2::downhill_regen_enable`]).
     pub downhill_regen_enable: DownhillRegenEnable,
-    /// 货箱上装
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 货箱上装: 0 … 3 (see [`AutocarControlCommand2::cargo_lift`]).
     pub cargo_lift: CargoLift,
-    /// 货箱上装速度 — Lift/lower motor speed level; 0 stationary, 10 fastest.
-    ///
-    /// 举升和下降电机速度等级，0:静止，10最快速度。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
+    /// 货箱上装速度: 0 … 10 (see [`AutocarControlCommand2::cargo_lift_speed`]).
     pub cargo_lift_speed: u8,
-    /// 取力使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 取力使能: 0 … 1 (see [`AutocarControlCommand2::pto_enable`]).
     pub pto_enable: PtoEnable,
-    /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
-    ///
-    /// 0:默认车速;1~125:设定下坡车速。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 0.5 | 0 | km/h | 0 … 125 | 0 … 250 |
-    ///
-    /// Special raw value 0: 默认车速 (Default speed)
+    /// 下坡制动回收速度: 0 … 125 km/h (see [`AutocarControlCommand2::downhill_regen_speed`]).
     pub downhill_regen_speed: f64,
-    /// 底盘俯仰角 — Chassis pitch; leaning back positive.
-    ///
-    /// 后仰为正，前倾为负。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 10 | 0.05 | -25 | deg | -25 … 25 | 0 … 1000 |
+    /// 底盘俯仰角: -25 … 25 deg (see [`AutocarControlCommand2::chassis_pitch`]).
     pub chassis_pitch: f64,
-    /// 底盘侧倾角 — Chassis roll; right positive.
-    ///
-    /// 左倾负，右倾正。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 26 | 10 | 0.1 | -40 | deg | -40 … 40 | 0 … 800 |
+    /// 底盘侧倾角: -40 … 40 deg (see [`AutocarControlCommand2::chassis_roll`]).
     pub chassis_roll: f64,
-    /// 货箱俯仰角 — Cargo box pitch; leaning back positive.
-    ///
-    /// 后仰为正，前倾为负。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 10 | 0.2 | -30 | deg | -30 … 100 | 0 … 650 |
+    /// 货箱俯仰角: -30 … 100 deg (see [`AutocarControlCommand2::cargo_pitch`]).
     pub cargo_pitch: f64,
-    /// 货箱侧倾角 — Cargo box roll; right positive.
-    ///
-    /// 左倾负，右倾正。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 46 | 10 | 0.1 | -40 | deg | -40 … 40 | 0 … 800 |
+    /// 货箱侧倾角: -40 … 40 deg (see [`AutocarControlCommand2::cargo_roll`]).
     pub cargo_roll: f64,
-    /// 心跳
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳: 0 … 255 (see [`AutocarControlCommand2::counter`]).
     pub counter: u8,
 }
 
@@ -5330,7 +4936,7 @@ impl AutocarControlCommand2 {
     pub const FINGERPRINT: u32 = 0x2A48757D;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of 'downhill_regen_speed'
+    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of `downhill_regen_speed`
     pub const DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: u8 = 0;
     /// Smallest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
@@ -6024,33 +5630,13 @@ pub struct VehicleState2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct VehicleState2Values {
-    /// 动力电池电压
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 16 | 0.2 | 0 | V | 0 … 800 | 0 … 4000 |
+    /// 动力电池电压: 0 … 800 V (see [`VehicleState2::battery_voltage`]).
     pub battery_voltage: f64,
-    /// 动力电池电流 — Traction battery current; positive discharges, negative charges.
-    ///
-    /// 正电流表示电池放电，负电流表示电池充电
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 16 | 0.02 | -500 | A | -500 … 800 | 0 … 65000 |
+    /// 动力电池电流: -500 … 800 A (see [`VehicleState2::battery_current`]).
     pub battery_current: f64,
-    /// 电池组累计充电电量
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 16 | 1 | 0 | kWh | 0 … 65535 | 0 … 65535 |
+    /// 电池组累计充电电量: 0 … 65535 kWh (see [`VehicleState2::battery_charge_energy`]).
     pub battery_charge_energy: u16,
-    /// 电池组累计放电电量
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 16 | 1 | 0 | kWh | 0 … 65535 | 0 … 65535 |
-    ///
-    /// Errata: E21 (see spec/ERRATA.md)
+    /// 电池组累计放电电量: 0 … 65535 kWh (see [`VehicleState2::battery_discharge_energy`]).
     pub battery_discharge_energy: u16,
 }
 
@@ -6389,43 +5975,17 @@ pub struct VehicleState3 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct VehicleState3Values {
-    /// 电池最高温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
-    ///
-    /// Errata: E22 (see spec/ERRATA.md)
+    /// 电池最高温度: -40 … 215 °C (see [`VehicleState3::battery_max_temp`]).
     pub battery_max_temp: i16,
-    /// 电池最低温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
+    /// 电池最低温度: -40 … 215 °C (see [`VehicleState3::battery_min_temp`]).
     pub battery_min_temp: i16,
-    /// 最高单体电压
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 12 | 0.0015 | 0 | V | 0 … 6 | 0 … 4000 |
+    /// 最高单体电压: 0 … 6 V (see [`VehicleState3::max_cell_voltage`]).
     pub max_cell_voltage: f64,
-    /// 最低单体电压
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 28 | 12 | 0.0015 | 0 | V | 0 … 6 | 0 … 4000 |
+    /// 最低单体电压: 0 … 6 V (see [`VehicleState3::min_cell_voltage`]).
     pub min_cell_voltage: f64,
-    /// 电机温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
+    /// 电机温度: -40 … 215 °C (see [`VehicleState3::motor_temp`]).
     pub motor_temp: i16,
-    /// 电控温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
+    /// 电控温度: -40 … 215 °C (see [`VehicleState3::motor_controller_temp`]).
     pub motor_controller_temp: i16,
 }
 
@@ -6946,79 +6506,29 @@ pub struct VehicleState4 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct VehicleState4Values {
-    /// 车外温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 0.5 | -30 | °C | -30 … 95 | 0 … 250 |
+    /// 车外温度: -30 … 95 °C (see [`VehicleState4::outside_temp`]).
     pub outside_temp: f64,
-    /// 车内温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 0.5 | -30 | °C | -30 … 95 | 0 … 250 |
+    /// 车内温度: -30 … 95 °C (see [`VehicleState4::inside_temp`]).
     pub inside_temp: f64,
-    /// 冷暖空调状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 4 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 冷暖空调状态: 0 … 3 (see [`VehicleState4::ac_state`]).
     pub ac_state: AcState,
-    /// 整车动力状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 整车动力状态: 0 … 3 (see [`VehicleState4::vehicle_power_state`]).
     pub vehicle_power_state: PowerState,
-    /// 坡道辅助驻坡
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 22 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 坡道辅助驻坡: 0 … 1 (see [`VehicleState4::hill_hold_state`]).
     pub hill_hold_state: InactiveActive,
-    /// 再生制动
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 23 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 再生制动: 0 … 1 (see [`VehicleState4::regen_brake_state`]).
     pub regen_brake_state: InactiveActive,
-    /// 剩余里程
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 12 | 1 | 0 | km | 0 … 1000 | 0 … 1000 |
+    /// 剩余里程: 0 … 1000 km (see [`VehicleState4::remaining_range`]).
     pub remaining_range: u16,
-    /// 人工接管状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 人工接管状态: 0 … 1 (see [`VehicleState4::manual_takeover_state`]).
     pub manual_takeover_state: TakeoverState,
-    /// 允许远程驾驶
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 39 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 允许远程驾驶: 0 … 1 (see [`VehicleState4::remote_driving_allowed`]).
     pub remote_driving_allowed: RemoteTakeoverPermission,
-    /// 空调设置温度
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
+    /// 空调设置温度: 16 … 30 °C (see [`VehicleState4::ac_set_temp`]).
     pub ac_set_temp: f64,
-    /// 取力状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 45 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 取力状态: 0 … 1 (see [`VehicleState4::pto_state`]).
     pub pto_state: PtoState,
-    /// 电池功率
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 16 | 0.01 | -325 | kW | -325 … 325 | 0 … 65000 |
-    ///
-    /// Errata: E23 (see spec/ERRATA.md)
+    /// 电池功率: -325 … 325 kW (see [`VehicleState4::battery_power`]).
     pub battery_power: f64,
 }
 
@@ -7852,195 +7362,63 @@ pub struct VehicleFault {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct VehicleFaultValues {
-    /// 绝缘故障等级
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 绝缘故障等级: 0 … 3 (see [`VehicleFault::insulation_fault_level`]).
     pub insulation_fault_level: InsulationFaultLevel,
-    /// DC 故障 — DC-DC fault; the smart driving system's supply is affected (limp).
-    ///
-    /// 故障，智控系统供电将受影响，跛行
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// DC 故障: 0 … 1 (see [`VehicleFault::dc_fault`]).
     pub dc_fault: NormalFault,
-    /// SOC 过低
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 3 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// SOC 过低: 0 … 1 (see [`VehicleFault::soc_low`]).
     pub soc_low: NormalFault,
-    /// 单体/电池组电压过低
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 4 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 单体/电池组电压过低: 0 … 1 (see [`VehicleFault::cell_undervoltage`]).
     pub cell_undervoltage: NormalFault,
-    /// 制动助力压力异常
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 5 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 制动助力压力异常: 0 … 1 (see [`VehicleFault::brake_boost_pressure_fault`]).
     pub brake_boost_pressure_fault: NormalFault,
-    /// 真空泵/气泵故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 真空泵/气泵故障: 0 … 1 (see [`VehicleFault::vacuum_pump_fault`]).
     pub vacuum_pump_fault: NormalFault,
-    /// 车辆系统故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 车辆系统故障: 0 … 1 (see [`VehicleFault::vehicle_system_fault`]).
     pub vehicle_system_fault: NormalFault,
-    /// 电池过热
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电池过热: 0 … 1 (see [`VehicleFault::battery_overheat`]).
     pub battery_overheat: NormalFault,
-    /// 电机过热
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 9 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电机过热: 0 … 1 (see [`VehicleFault::motor_overheat`]).
     pub motor_overheat: NormalFault,
-    /// 动力电池故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 动力电池故障: 0 … 1 (see [`VehicleFault::traction_battery_fault`]).
     pub traction_battery_fault: NormalFault,
-    /// 电机故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 11 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电机故障: 0 … 1 (see [`VehicleFault::motor_fault`]).
     pub motor_fault: NormalFault,
-    /// 电池通讯异常
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电池通讯异常: 0 … 1 (see [`VehicleFault::battery_comm_fault`]).
     pub battery_comm_fault: NormalFault,
-    /// 电机通讯异常
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 13 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电机通讯异常: 0 … 1 (see [`VehicleFault::motor_comm_fault`]).
     pub motor_comm_fault: NormalFault,
-    /// EPS 故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 14 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// EPS 故障: 0 … 1 (see [`VehicleFault::eps_fault`]).
     pub eps_fault: NormalFault,
-    /// 空调故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 15 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 空调故障: 0 … 1 (see [`VehicleFault::ac_fault`]).
     pub ac_fault: NormalFault,
-    /// 12/24 辅助电池异常 — 12/24 V auxiliary battery abnormal; the smart driving system should shut down soon.
-    ///
-    /// 故障(智能系统需尽快关机)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 12/24 辅助电池异常: 0 … 1 (see [`VehicleFault::aux_battery_fault`]).
     pub aux_battery_fault: NormalFault,
-    /// 电子手刹故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 17 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 电子手刹故障: 0 … 1 (see [`VehicleFault::epb_fault`]).
     pub epb_fault: NormalFault,
-    /// 线控制动系统故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 18 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 线控制动系统故障: 0 … 1 (see [`VehicleFault::brake_by_wire_fault`]).
     pub brake_by_wire_fault: NormalFault,
-    /// 未检测到钥匙
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 19 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 未检测到钥匙: 0 … 1 (see [`VehicleFault::key_not_detected`]).
     pub key_not_detected: NormalFault,
-    /// 胎压过低
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 胎压过低: 0 … 1 (see [`VehicleFault::tire_pressure_low`]).
     pub tire_pressure_low: NormalFault,
-    /// 上装电机故障
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 21 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 上装电机故障: 0 … 1 (see [`VehicleFault::body_motor_fault`]).
     pub body_motor_fault: NormalFault,
-    /// 上装电机过热
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 22 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 上装电机过热: 0 … 1 (see [`VehicleFault::body_motor_overheat`]).
     pub body_motor_overheat: NormalFault,
-    /// 电池系统故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电池系统故障级别: 0 … 3 (see [`VehicleFault::battery_system_fault_level`]).
     pub battery_system_fault_level: BatterySystemFaultLevel,
-    /// 电机系统故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 26 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电机系统故障级别: 0 … 3 (see [`VehicleFault::motor_system_fault_level`]).
     pub motor_system_fault_level: MotorSystemFaultLevel,
-    /// 无法进入无人驾驶故障状态 — Why the vehicle cannot enter unmanned driving; 8-15 reserved.
-    ///
-    /// 其他:保留
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 28 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 无法进入无人驾驶故障状态: 0 … 15 (see [`VehicleFault::unmanned_entry_fault`]).
     pub unmanned_entry_fault: UnmannedEntryFault,
-    /// 协议版本号 A — Protocol version A of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16 (see spec/ERRATA.md)
+    /// 协议版本号 A: 0 … 15 (see [`VehicleFault::protocol_version_a`]).
     pub protocol_version_a: u8,
-    /// 协议版本号 B — Protocol version B of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16 (see spec/ERRATA.md)
+    /// 协议版本号 B: 0 … 15 (see [`VehicleFault::protocol_version_b`]).
     pub protocol_version_b: u8,
-    /// 协议版本号 C — Protocol version C of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16 (see spec/ERRATA.md)
+    /// 协议版本号 C: 0 … 15 (see [`VehicleFault::protocol_version_c`]).
     pub protocol_version_c: u8,
-    /// 无法进入远程驾驶系统故障状态 — Why the vehicle cannot enter remote driving; 8-15 reserved.
-    ///
-    /// 其他:保留
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 44 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E25 (see spec/ERRATA.md)
+    /// 无法进入远程驾驶系统故障状态: 0 … 15 (see [`VehicleFault::remote_entry_fault`]).
     pub remote_entry_fault: RemoteEntryFault,
 }
 
@@ -9760,37 +9138,13 @@ pub struct RgateEpsCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RgateEpsCommandValues {
-    /// EPS 控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// EPS 控制模式: 0 … 255 (see [`RgateEpsCommand::eps_ctrl_mode`]).
     pub eps_ctrl_mode: EpsModeCmd,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`RgateEpsCommand::counter`]).
     pub counter: u8,
-    /// 最大角速度 — Maximum steering angular speed; 0 means no limit.
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 2 | 0 | deg/s | 0 … 512 | 0 … 255 |
-    ///
-    /// Special raw value 0: 不限制角速度 (No limit)
-    ///
-    /// Errata: E10 (see spec/ERRATA.md)
+    /// 最大角速度: 0 … 512 deg/s (see [`RgateEpsCommand::max_angular_speed`]).
     pub max_angular_speed: u16,
-    /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
-    ///
-    /// 顺时针方向为正
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
+    /// 方向盘角度指令: -1080 … 1080 deg (see [`RgateEpsCommand::steering_angle_cmd`]).
     pub steering_angle_cmd: f64,
 }
 
@@ -9817,7 +9171,7 @@ impl RgateEpsCommand {
     pub const FINGERPRINT: u32 = 0xA4FD056D;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
+    /// 最大角速度: 不限制角速度 (No limit), raw value of `max_angular_speed`
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
     pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
@@ -10161,43 +9515,15 @@ pub struct RgateSpeedCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RgateSpeedCommandValues {
-    /// 加速度指令 — Acceleration request; positive accelerates towards the vehicle front.
-    ///
-    /// 大于0代表向车头方向加速
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 0.02 | -9 | m/s² | -9 … 3.6 | 0 … 630 |
+    /// 加速度指令: -9 … 3.6 m/s² (see [`RgateSpeedCommand::accel_cmd`]).
     pub accel_cmd: f64,
-    /// 电子手刹指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电子手刹指令: 0 … 3 (see [`RgateSpeedCommand::epb_cmd`]).
     pub epb_cmd: Epb,
-    /// 档位指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 4 | 1 | 0 | — | 0 … 2 | 0 … 2 |
-    ///
-    /// Errata: E11 (see spec/ERRATA.md)
+    /// 档位指令: 0 … 2 (see [`RgateSpeedCommand::gear_cmd`]).
     pub gear_cmd: Gear,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`RgateSpeedCommand::counter`]).
     pub counter: u8,
-    /// 紧急制动指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
-    ///
-    /// Errata: E12 (see spec/ERRATA.md)
+    /// 紧急制动指令: 0 … 1 (see [`RgateSpeedCommand::emergency_brake_cmd`]).
     pub emergency_brake_cmd: EmergencyBrakeCmd,
 }
 
@@ -10661,169 +9987,55 @@ pub struct RgateControlCommand1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RgateControlCommand1Values {
-    /// 自驾控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 自驾控制模式: 0 … 3 (see [`RgateControlCommand1::drive_mode_cmd`]).
     pub drive_mode_cmd: DriveModeCmdRgate,
-    /// 车门控制指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 车门控制指令: 0 … 2 (see [`RgateControlCommand1::door_cmd`]).
     pub door_cmd: DoorCmd,
-    /// 喇叭控制
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 喇叭控制: 0 … 2 (see [`RgateControlCommand1::horn_cmd`]).
     pub horn_cmd: SwitchCmd,
-    /// 昼间行车灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 昼间行车灯: 0 … 2 (see [`RgateControlCommand1::drl_cmd`]).
     pub drl_cmd: SwitchCmd,
-    /// 左转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左转向: 0 … 2 (see [`RgateControlCommand1::left_turn_cmd`]).
     pub left_turn_cmd: FlashCmd,
-    /// 右转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右转向: 0 … 2 (see [`RgateControlCommand1::right_turn_cmd`]).
     pub right_turn_cmd: FlashCmd,
-    /// 警示灯(双闪)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 警示灯(双闪): 0 … 2 (see [`RgateControlCommand1::hazard_cmd`]).
     pub hazard_cmd: FlashCmd,
-    /// 示宽灯(位置灯)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 示宽灯(位置灯): 0 … 2 (see [`RgateControlCommand1::position_light_cmd`]).
     pub position_light_cmd: SwitchCmd,
-    /// 大灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 大灯: 0 … 3 (see [`RgateControlCommand1::headlight_cmd`]).
     pub headlight_cmd: Headlight,
-    /// 后雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 后雾灯: 0 … 2 (see [`RgateControlCommand1::rear_fog_cmd`]).
     pub rear_fog_cmd: SwitchCmd,
-    /// 左雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左雾灯: 0 … 2 (see [`RgateControlCommand1::left_fog_cmd`]).
     pub left_fog_cmd: SwitchCmd,
-    /// 右雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右雾灯: 0 … 2 (see [`RgateControlCommand1::right_fog_cmd`]).
     pub right_fog_cmd: SwitchCmd,
-    /// 内顶灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 内顶灯: 0 … 2 (see [`RgateControlCommand1::dome_light_cmd`]).
     pub dome_light_cmd: SwitchCmd,
-    /// 氛围灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 氛围灯: 0 … 2 (see [`RgateControlCommand1::ambient_light_cmd`]).
     pub ambient_light_cmd: SwitchCmd,
-    /// 驾驶模式复位
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 驾驶模式复位: 0 … 1 (see [`RgateControlCommand1::drive_mode_reset`]).
     pub drive_mode_reset: ModeReset,
-    /// 远程驾驶系统状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 远程驾驶系统状态: 0 … 3 (see [`RgateControlCommand1::system_state`]).
     pub system_state: LinkState,
-    /// 远程驾驶系统可靠性
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 远程驾驶系统可靠性: 0 … 3 (see [`RgateControlCommand1::system_reliability`]).
     pub system_reliability: ReliabilityRgate,
-    /// 远程驾驶系统故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 远程驾驶系统故障级别: 0 … 3 (see [`RgateControlCommand1::system_fault_level`]).
     pub system_fault_level: FaultLevelRgate,
-    /// 车辆解锁/上锁
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
-    ///
-    /// Errata: E15 (see spec/ERRATA.md)
+    /// 车辆解锁/上锁: 0 … 3 (see [`RgateControlCommand1::lock_cmd`]).
     pub lock_cmd: LockCmd,
-    /// 车内冷暖空调控制 — Cabin air-conditioning mode request; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 3 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 车内冷暖空调控制: 0 … 3 (see [`RgateControlCommand1::ac_cmd`]).
     pub ac_cmd: AcCmd,
-    /// 车内空调设置温度 — Cabin temperature set point; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
+    /// 车内空调设置温度: 16 … 30 °C (see [`RgateControlCommand1::ac_set_temp`]).
     pub ac_set_temp: f64,
-    /// 协议版本号 A — Protocol version A of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 A: 0 … 15 (see [`RgateControlCommand1::protocol_version_a`]).
     pub protocol_version_a: u8,
-    /// 协议版本号 B — Protocol version B of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 52 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 B: 0 … 15 (see [`RgateControlCommand1::protocol_version_b`]).
     pub protocol_version_b: u8,
-    /// 协议版本号 C — Protocol version C of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 C: 0 … 15 (see [`RgateControlCommand1::protocol_version_c`]).
     pub protocol_version_c: u8,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳值: 0 … 15 (see [`RgateControlCommand1::counter`]).
     pub counter: u8,
 }
 
@@ -12249,49 +11461,17 @@ pub struct RgateControlCommand2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RgateControlCommand2Values {
-    /// 下坡制动回收使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 下坡制动回收使能: 0 … 1 (see [`RgateControlCommand2::downhill_regen_enable`]).
     pub downhill_regen_enable: DownhillRegenEnable,
-    /// 货箱上装
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 货箱上装: 0 … 3 (see [`RgateControlCommand2::cargo_lift`]).
     pub cargo_lift: CargoLift,
-    /// 货箱上装速度 — Lift/lower motor speed level; 0 stationary, 10 fastest.
-    ///
-    /// 举升和下降电机速度等级，0:静止，10最快速度。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
+    /// 货箱上装速度: 0 … 10 (see [`RgateControlCommand2::cargo_lift_speed`]).
     pub cargo_lift_speed: u8,
-    /// 取力使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 取力使能: 0 … 1 (see [`RgateControlCommand2::pto_enable`]).
     pub pto_enable: PtoEnable,
-    /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
-    ///
-    /// 0:默认车速;1~125:设定下坡车速。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 0.5 | 0 | km/h | 0 … 125 | 0 … 250 |
-    ///
-    /// Special raw value 0: 默认车速 (Default speed)
+    /// 下坡制动回收速度: 0 … 125 km/h (see [`RgateControlCommand2::downhill_regen_speed`]).
     pub downhill_regen_speed: f64,
-    /// 心跳
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳: 0 … 255 (see [`RgateControlCommand2::counter`]).
     pub counter: u8,
 }
 
@@ -12318,7 +11498,7 @@ impl RgateControlCommand2 {
     pub const FINGERPRINT: u32 = 0x0154B73E;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of 'downhill_regen_speed'
+    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of `downhill_regen_speed`
     pub const DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: u8 = 0;
     /// Smallest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
@@ -12740,29 +11920,11 @@ pub struct DeviceId {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DeviceIdValues {
-    /// 设备类型 — Device type; 2-63 reserved.
-    ///
-    /// 02~63:预留
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 6 | 1 | 0 | — | 0 … 63 | 0 … 63 |
+    /// 设备类型: 0 … 63 (see [`DeviceId::device_type`]).
     pub device_type: DeviceType,
-    /// ID 序号
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
-    ///
-    /// Errata: E26 (see spec/ERRATA.md)
+    /// ID 序号: 0 … 3 (see [`DeviceId::id_frame_index`]).
     pub id_frame_index: IdFrameIndex,
-    /// ID — Seven ASCII characters of the VIN, first character in byte 2.
-    ///
-    /// ASCII 字符(VIN 码)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 56 | 1 | 0 | — | 0 … 72057594037927935 | 0 … 0xFF_FFFF_FFFF_FFFF |
+    /// ID: 0 … 72057594037927935 (see [`DeviceId::id_chars`]).
     pub id_chars: u64,
 }
 
@@ -13143,61 +12305,19 @@ pub struct FrontSensorDistance1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FrontSensorDistance1Values {
-    /// 传感器 1 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 1 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_1_distance`]).
     pub sensor_1_distance: u16,
-    /// 传感器 2 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 2 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_2_distance`]).
     pub sensor_2_distance: u16,
-    /// 传感器 3 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 3 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_3_distance`]).
     pub sensor_3_distance: u16,
-    /// 传感器 4 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 30 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 4 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_4_distance`]).
     pub sensor_4_distance: u16,
-    /// 传感器 5 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 5 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_5_distance`]).
     pub sensor_5_distance: u16,
-    /// 传感器 6 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 50 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 6 距离: 0 … 500 cm (see [`FrontSensorDistance1::sensor_6_distance`]).
     pub sensor_6_distance: u16,
-    /// 心跳
-    ///
-    /// 递增1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳: 0 … 15 (see [`FrontSensorDistance1::counter`]).
     pub counter: u8,
 }
 
@@ -13224,17 +12344,17 @@ impl FrontSensorDistance1 {
     pub const FINGERPRINT: u32 = 0x4A961E4E;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 4;
-    /// 传感器 1 距离: 无障碍物 (No obstacle), raw value of 'sensor_1_distance'
+    /// 传感器 1 距离: 无障碍物 (No obstacle), raw value of `sensor_1_distance`
     pub const SENSOR_1_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 2 距离: 无障碍物 (No obstacle), raw value of 'sensor_2_distance'
+    /// 传感器 2 距离: 无障碍物 (No obstacle), raw value of `sensor_2_distance`
     pub const SENSOR_2_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 3 距离: 无障碍物 (No obstacle), raw value of 'sensor_3_distance'
+    /// 传感器 3 距离: 无障碍物 (No obstacle), raw value of `sensor_3_distance`
     pub const SENSOR_3_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 4 距离: 无障碍物 (No obstacle), raw value of 'sensor_4_distance'
+    /// 传感器 4 距离: 无障碍物 (No obstacle), raw value of `sensor_4_distance`
     pub const SENSOR_4_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 5 距离: 无障碍物 (No obstacle), raw value of 'sensor_5_distance'
+    /// 传感器 5 距离: 无障碍物 (No obstacle), raw value of `sensor_5_distance`
     pub const SENSOR_5_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of 'sensor_6_distance'
+    /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of `sensor_6_distance`
     pub const SENSOR_6_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
     const ZERO: Self = Self {
@@ -13731,97 +12851,33 @@ pub struct FrontSensorDistance2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FrontSensorDistance2Values {
-    /// 传感器 7 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 7 距离: 0 … 500 cm (see [`FrontSensorDistance2::sensor_7_distance`]).
     pub sensor_7_distance: u16,
-    /// 传感器 8 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 8 距离: 0 … 500 cm (see [`FrontSensorDistance2::sensor_8_distance`]).
     pub sensor_8_distance: u16,
-    /// 传感器 9 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 9 距离: 0 … 500 cm (see [`FrontSensorDistance2::sensor_9_distance`]).
     pub sensor_9_distance: u16,
-    /// 超声波雷达系统工作状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 超声波雷达系统工作状态: 0 … 2 (see [`FrontSensorDistance2::uss_system_state`]).
     pub uss_system_state: UssSystemState,
-    /// 传感器 1 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 1 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_1_fault`]).
     pub sensor_1_fault: SensorFault,
-    /// 传感器 2 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 35 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 2 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_2_fault`]).
     pub sensor_2_fault: SensorFault,
-    /// 传感器 3 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 3 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_3_fault`]).
     pub sensor_3_fault: SensorFault,
-    /// 传感器 4 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 37 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 4 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_4_fault`]).
     pub sensor_4_fault: SensorFault,
-    /// 传感器 5 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 5 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_5_fault`]).
     pub sensor_5_fault: SensorFault,
-    /// 传感器 6 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 39 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 6 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_6_fault`]).
     pub sensor_6_fault: SensorFault,
-    /// 传感器 7 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 7 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_7_fault`]).
     pub sensor_7_fault: SensorFault,
-    /// 传感器 8 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 41 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 8 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_8_fault`]).
     pub sensor_8_fault: SensorFault,
-    /// 传感器 9 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 42 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 9 故障状态: 0 … 1 (see [`FrontSensorDistance2::sensor_9_fault`]).
     pub sensor_9_fault: SensorFault,
-    /// 心跳
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳: 0 … 15 (see [`FrontSensorDistance2::counter`]).
     pub counter: u8,
 }
 
@@ -13848,11 +12904,11 @@ impl FrontSensorDistance2 {
     pub const FINGERPRINT: u32 = 0x1357CDC0;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 4;
-    /// 传感器 7 距离: 无障碍物 (No obstacle), raw value of 'sensor_7_distance'
+    /// 传感器 7 距离: 无障碍物 (No obstacle), raw value of `sensor_7_distance`
     pub const SENSOR_7_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 8 距离: 无障碍物 (No obstacle), raw value of 'sensor_8_distance'
+    /// 传感器 8 距离: 无障碍物 (No obstacle), raw value of `sensor_8_distance`
     pub const SENSOR_8_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of 'sensor_9_distance'
+    /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of `sensor_9_distance`
     pub const SENSOR_9_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
     const ZERO: Self = Self {
@@ -14684,61 +13740,19 @@ pub struct RearSensorDistance1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RearSensorDistance1Values {
-    /// 传感器 1 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 1 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_1_distance`]).
     pub sensor_1_distance: u16,
-    /// 传感器 2 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 2 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_2_distance`]).
     pub sensor_2_distance: u16,
-    /// 传感器 3 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 3 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_3_distance`]).
     pub sensor_3_distance: u16,
-    /// 传感器 4 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 30 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 4 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_4_distance`]).
     pub sensor_4_distance: u16,
-    /// 传感器 5 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 5 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_5_distance`]).
     pub sensor_5_distance: u16,
-    /// 传感器 6 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 50 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 6 距离: 0 … 500 cm (see [`RearSensorDistance1::sensor_6_distance`]).
     pub sensor_6_distance: u16,
-    /// 心跳
-    ///
-    /// 递增1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳: 0 … 15 (see [`RearSensorDistance1::counter`]).
     pub counter: u8,
 }
 
@@ -14765,17 +13779,17 @@ impl RearSensorDistance1 {
     pub const FINGERPRINT: u32 = 0x7750EC73;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 4;
-    /// 传感器 1 距离: 无障碍物 (No obstacle), raw value of 'sensor_1_distance'
+    /// 传感器 1 距离: 无障碍物 (No obstacle), raw value of `sensor_1_distance`
     pub const SENSOR_1_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 2 距离: 无障碍物 (No obstacle), raw value of 'sensor_2_distance'
+    /// 传感器 2 距离: 无障碍物 (No obstacle), raw value of `sensor_2_distance`
     pub const SENSOR_2_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 3 距离: 无障碍物 (No obstacle), raw value of 'sensor_3_distance'
+    /// 传感器 3 距离: 无障碍物 (No obstacle), raw value of `sensor_3_distance`
     pub const SENSOR_3_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 4 距离: 无障碍物 (No obstacle), raw value of 'sensor_4_distance'
+    /// 传感器 4 距离: 无障碍物 (No obstacle), raw value of `sensor_4_distance`
     pub const SENSOR_4_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 5 距离: 无障碍物 (No obstacle), raw value of 'sensor_5_distance'
+    /// 传感器 5 距离: 无障碍物 (No obstacle), raw value of `sensor_5_distance`
     pub const SENSOR_5_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of 'sensor_6_distance'
+    /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of `sensor_6_distance`
     pub const SENSOR_6_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
     const ZERO: Self = Self {
@@ -15272,97 +14286,33 @@ pub struct RearSensorDistance2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RearSensorDistance2Values {
-    /// 传感器 7 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 7 距离: 0 … 500 cm (see [`RearSensorDistance2::sensor_7_distance`]).
     pub sensor_7_distance: u16,
-    /// 传感器 8 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 8 距离: 0 … 500 cm (see [`RearSensorDistance2::sensor_8_distance`]).
     pub sensor_8_distance: u16,
-    /// 传感器 9 距离
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 10 | 1 | 0 | cm | 0 … 500 | 0 … 500 |
-    ///
-    /// Special raw value 1023: 无障碍物 (No obstacle)
+    /// 传感器 9 距离: 0 … 500 cm (see [`RearSensorDistance2::sensor_9_distance`]).
     pub sensor_9_distance: u16,
-    /// 超声波雷达系统工作状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 超声波雷达系统工作状态: 0 … 2 (see [`RearSensorDistance2::uss_system_state`]).
     pub uss_system_state: UssSystemState,
-    /// 传感器 1 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 1 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_1_fault`]).
     pub sensor_1_fault: SensorFault,
-    /// 传感器 2 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 35 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 2 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_2_fault`]).
     pub sensor_2_fault: SensorFault,
-    /// 传感器 3 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 3 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_3_fault`]).
     pub sensor_3_fault: SensorFault,
-    /// 传感器 4 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 37 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 4 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_4_fault`]).
     pub sensor_4_fault: SensorFault,
-    /// 传感器 5 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 5 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_5_fault`]).
     pub sensor_5_fault: SensorFault,
-    /// 传感器 6 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 39 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 6 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_6_fault`]).
     pub sensor_6_fault: SensorFault,
-    /// 传感器 7 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 7 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_7_fault`]).
     pub sensor_7_fault: SensorFault,
-    /// 传感器 8 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 41 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 8 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_8_fault`]).
     pub sensor_8_fault: SensorFault,
-    /// 传感器 9 故障状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 42 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 传感器 9 故障状态: 0 … 1 (see [`RearSensorDistance2::sensor_9_fault`]).
     pub sensor_9_fault: SensorFault,
-    /// 心跳
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳: 0 … 15 (see [`RearSensorDistance2::counter`]).
     pub counter: u8,
 }
 
@@ -15389,11 +14339,11 @@ impl RearSensorDistance2 {
     pub const FINGERPRINT: u32 = 0xA73DA35E;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 4;
-    /// 传感器 7 距离: 无障碍物 (No obstacle), raw value of 'sensor_7_distance'
+    /// 传感器 7 距离: 无障碍物 (No obstacle), raw value of `sensor_7_distance`
     pub const SENSOR_7_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 8 距离: 无障碍物 (No obstacle), raw value of 'sensor_8_distance'
+    /// 传感器 8 距离: 无障碍物 (No obstacle), raw value of `sensor_8_distance`
     pub const SENSOR_8_DISTANCE_NO_OBSTACLE: u16 = 1023;
-    /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of 'sensor_9_distance'
+    /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of `sensor_9_distance`
     pub const SENSOR_9_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
     const ZERO: Self = Self {
@@ -16219,37 +15169,13 @@ pub struct TeleEpsCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TeleEpsCommandValues {
-    /// EPS 控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// EPS 控制模式: 0 … 255 (see [`TeleEpsCommand::eps_ctrl_mode`]).
     pub eps_ctrl_mode: EpsModeCmd,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`TeleEpsCommand::counter`]).
     pub counter: u8,
-    /// 最大角速度 — Maximum steering angular speed; 0 means no limit.
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 2 | 0 | deg/s | 0 … 512 | 0 … 255 |
-    ///
-    /// Special raw value 0: 不限制角速度 (No limit)
-    ///
-    /// Errata: E10 (see spec/ERRATA.md)
+    /// 最大角速度: 0 … 512 deg/s (see [`TeleEpsCommand::max_angular_speed`]).
     pub max_angular_speed: u16,
-    /// 方向盘角度指令 — Steering wheel angle request; clockwise positive.
-    ///
-    /// 顺时针方向为正
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
+    /// 方向盘角度指令: -1080 … 1080 deg (see [`TeleEpsCommand::steering_angle_cmd`]).
     pub steering_angle_cmd: f64,
 }
 
@@ -16276,7 +15202,7 @@ impl TeleEpsCommand {
     pub const FINGERPRINT: u32 = 0x99A629AE;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 最大角速度: 不限制角速度 (No limit), raw value of 'max_angular_speed'
+    /// 最大角速度: 不限制角速度 (No limit), raw value of `max_angular_speed`
     pub const MAX_ANGULAR_SPEED_NO_LIMIT: u8 = 0;
     /// Smallest physical value of `max_angular_speed` (deg/s).
     pub const MAX_ANGULAR_SPEED_MIN: u16 = 0;
@@ -16620,43 +15546,15 @@ pub struct TeleSpeedCommand {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TeleSpeedCommandValues {
-    /// 遥控器油门刹车指令 — Throttle (positive) or brake (negative) request, outside body-work operation.
-    ///
-    /// 非上装作业:大于0代表油门开度，小于0代表刹车。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 10 | 0.2 | -100 | % | -100 … 100 | 0 … 1000 |
+    /// 遥控器油门刹车指令: -100 … 100 % (see [`TeleSpeedCommand::throttle_brake_cmd`]).
     pub throttle_brake_cmd: f64,
-    /// 电子手刹指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 电子手刹指令: 0 … 3 (see [`TeleSpeedCommand::epb_cmd`]).
     pub epb_cmd: Epb,
-    /// 档位指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 4 | 1 | 0 | — | 0 … 2 | 0 … 2 |
-    ///
-    /// Errata: E11 (see spec/ERRATA.md)
+    /// 档位指令: 0 … 2 (see [`TeleSpeedCommand::gear_cmd`]).
     pub gear_cmd: Gear,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳值: 0 … 255 (see [`TeleSpeedCommand::counter`]).
     pub counter: u8,
-    /// 紧急制动指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
-    ///
-    /// Errata: E12 (see spec/ERRATA.md)
+    /// 紧急制动指令: 0 … 1 (see [`TeleSpeedCommand::emergency_brake_cmd`]).
     pub emergency_brake_cmd: EmergencyBrakeCmd,
 }
 
@@ -17120,171 +16018,55 @@ pub struct TeleControlCommand1 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TeleControlCommand1Values {
-    /// 自遥控控制模式
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 自遥控控制模式: 0 … 2 (see [`TeleControlCommand1::drive_mode_cmd`]).
     pub drive_mode_cmd: DriveModeCmdTele,
-    /// 车门控制指令
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 2 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 车门控制指令: 0 … 2 (see [`TeleControlCommand1::door_cmd`]).
     pub door_cmd: DoorCmd,
-    /// 喇叭控制
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 喇叭控制: 0 … 2 (see [`TeleControlCommand1::horn_cmd`]).
     pub horn_cmd: SwitchCmd,
-    /// 昼间行车灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 昼间行车灯: 0 … 2 (see [`TeleControlCommand1::drl_cmd`]).
     pub drl_cmd: SwitchCmd,
-    /// 左转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左转向: 0 … 2 (see [`TeleControlCommand1::left_turn_cmd`]).
     pub left_turn_cmd: FlashCmd,
-    /// 右转向
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右转向: 0 … 2 (see [`TeleControlCommand1::right_turn_cmd`]).
     pub right_turn_cmd: FlashCmd,
-    /// 警示灯(双闪)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 警示灯(双闪): 0 … 2 (see [`TeleControlCommand1::hazard_cmd`]).
     pub hazard_cmd: FlashCmd,
-    /// 示宽灯(位置灯)
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 示宽灯(位置灯): 0 … 2 (see [`TeleControlCommand1::position_light_cmd`]).
     pub position_light_cmd: SwitchCmd,
-    /// 大灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 大灯: 0 … 3 (see [`TeleControlCommand1::headlight_cmd`]).
     pub headlight_cmd: Headlight,
-    /// 后雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 后雾灯: 0 … 2 (see [`TeleControlCommand1::rear_fog_cmd`]).
     pub rear_fog_cmd: SwitchCmd,
-    /// 左雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 左雾灯: 0 … 2 (see [`TeleControlCommand1::left_fog_cmd`]).
     pub left_fog_cmd: SwitchCmd,
-    /// 右雾灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 右雾灯: 0 … 2 (see [`TeleControlCommand1::right_fog_cmd`]).
     pub right_fog_cmd: SwitchCmd,
-    /// 内顶灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 内顶灯: 0 … 2 (see [`TeleControlCommand1::dome_light_cmd`]).
     pub dome_light_cmd: SwitchCmd,
-    /// 氛围灯
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
+    /// 氛围灯: 0 … 2 (see [`TeleControlCommand1::ambient_light_cmd`]).
     pub ambient_light_cmd: SwitchCmd,
-    /// 驾驶模式复位
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 驾驶模式复位: 0 … 1 (see [`TeleControlCommand1::drive_mode_reset`]).
     pub drive_mode_reset: ModeReset,
-    /// 遥控驾驶系统状态
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 32 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
-    ///
-    /// Errata: E28 (see spec/ERRATA.md)
+    /// 遥控驾驶系统状态: 0 … 3 (see [`TeleControlCommand1::system_state`]).
     pub system_state: LinkState,
-    /// 遥控驾驶系统可靠性
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 遥控驾驶系统可靠性: 0 … 3 (see [`TeleControlCommand1::system_reliability`]).
     pub system_reliability: ReliabilityTele,
-    /// 遥控驾驶系统故障级别
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 遥控驾驶系统故障级别: 0 … 3 (see [`TeleControlCommand1::system_fault_level`]).
     pub system_fault_level: FaultLevelTele,
-    /// 车辆解锁/上锁
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 38 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
-    ///
-    /// Errata: E15 (see spec/ERRATA.md)
+    /// 车辆解锁/上锁: 0 … 3 (see [`TeleControlCommand1::lock_cmd`]).
     pub lock_cmd: LockCmd,
-    /// 车内冷暖空调控制 — Cabin air-conditioning mode request; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 40 | 3 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 车内冷暖空调控制: 0 … 3 (see [`TeleControlCommand1::ac_cmd`]).
     pub ac_cmd: AcCmd,
-    /// 车内空调设置温度 — Cabin temperature set point; remembered across power cycles.
-    ///
-    /// 注:断电记忆
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
+    /// 车内空调设置温度: 16 … 30 °C (see [`TeleControlCommand1::ac_set_temp`]).
     pub ac_set_temp: f64,
-    /// 协议版本号 A — Protocol version A of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 48 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 A: 0 … 15 (see [`TeleControlCommand1::protocol_version_a`]).
     pub protocol_version_a: u8,
-    /// 协议版本号 B — Protocol version B of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 52 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 B: 0 … 15 (see [`TeleControlCommand1::protocol_version_b`]).
     pub protocol_version_b: u8,
-    /// 协议版本号 C — Protocol version C of A.B.C
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
-    ///
-    /// Errata: E16, E17 (see spec/ERRATA.md)
+    /// 协议版本号 C: 0 … 15 (see [`TeleControlCommand1::protocol_version_c`]).
     pub protocol_version_c: u8,
-    /// 心跳值
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
+    /// 心跳值: 0 … 15 (see [`TeleControlCommand1::counter`]).
     pub counter: u8,
 }
 
@@ -18712,49 +17494,17 @@ pub struct TeleControlCommand2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TeleControlCommand2Values {
-    /// 下坡制动回收使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 下坡制动回收使能: 0 … 1 (see [`TeleControlCommand2::downhill_regen_enable`]).
     pub downhill_regen_enable: DownhillRegenEnable,
-    /// 货箱上装
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
+    /// 货箱上装: 0 … 3 (see [`TeleControlCommand2::cargo_lift`]).
     pub cargo_lift: CargoLift,
-    /// 货箱上装速度 — Lift/lower motor speed level; 0 stationary, 10 fastest.
-    ///
-    /// 举升和下降电机速度等级，0:静止，10最快速度。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
+    /// 货箱上装速度: 0 … 10 (see [`TeleControlCommand2::cargo_lift_speed`]).
     pub cargo_lift_speed: u8,
-    /// 取力使能
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
+    /// 取力使能: 0 … 1 (see [`TeleControlCommand2::pto_enable`]).
     pub pto_enable: PtoEnable,
-    /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
-    ///
-    /// 0:默认车速;1~125:设定下坡车速。
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 8 | 8 | 0.5 | 0 | km/h | 0 … 125 | 0 … 250 |
-    ///
-    /// Special raw value 0: 默认车速 (Default speed)
+    /// 下坡制动回收速度: 0 … 125 km/h (see [`TeleControlCommand2::downhill_regen_speed`]).
     pub downhill_regen_speed: f64,
-    /// 心跳
-    ///
-    /// 每次递增加1
-    ///
-    /// | start bit | length | factor | offset | unit | range | raw |
-    /// |---|---|---|---|---|---|---|
-    /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
+    /// 心跳: 0 … 255 (see [`TeleControlCommand2::counter`]).
     pub counter: u8,
 }
 
@@ -18781,7 +17531,7 @@ impl TeleControlCommand2 {
     pub const FINGERPRINT: u32 = 0x0D84BB61;
     /// Bits of the rolling counter `counter`.
     pub const COUNTER_BITS: u32 = 8;
-    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of 'downhill_regen_speed'
+    /// 下坡制动回收速度: 默认车速 (Default speed), raw value of `downhill_regen_speed`
     pub const DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: u8 = 0;
     /// Smallest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
