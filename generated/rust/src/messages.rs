@@ -95,6 +95,7 @@ impl AutocarEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -466,6 +467,7 @@ impl EpsState {
     const STEERING_TORQUE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -12.8,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_TORQUE_MIN,
         check_max: Self::STEERING_TORQUE_MAX,
         raw_min: 0,
@@ -480,6 +482,7 @@ impl EpsState {
     const EPS_OUTPUT_TORQUE_SCALE: Scale = Scale {
         factor: 0.3,
         offset: -38.4,
+        reciprocal: 1.0 / 0.3,
         check_min: Self::EPS_OUTPUT_TORQUE_MIN,
         check_max: Self::EPS_OUTPUT_TORQUE_MAX,
         raw_min: 0,
@@ -494,6 +497,7 @@ impl EpsState {
     const STEERING_ANGLE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_MIN,
         check_max: Self::STEERING_ANGLE_MAX,
         raw_min: 0,
@@ -1003,6 +1007,7 @@ impl AutocarSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
+        reciprocal: 1.0 / 0.02,
         check_min: Self::ACCEL_CMD_MIN,
         check_max: Self::ACCEL_CMD_MAX,
         raw_min: 0,
@@ -1489,6 +1494,7 @@ impl DrivingState {
     const CURRENT_ACCEL_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -9.0,
+        reciprocal: 1.0 / 0.05,
         check_min: Self::CURRENT_ACCEL_MIN,
         check_max: Self::CURRENT_ACCEL_MAX,
         raw_min: 0,
@@ -2147,6 +2153,7 @@ impl AutocarControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -3661,6 +3668,7 @@ impl VehicleState1 {
     const SOC_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::SOC_MIN,
         check_max: Self::SOC_MAX,
         raw_min: 0,
@@ -4945,6 +4953,7 @@ impl AutocarControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
@@ -4959,6 +4968,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_PITCH_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -25.0,
+        reciprocal: 1.0 / 0.05,
         check_min: Self::CHASSIS_PITCH_MIN,
         check_max: Self::CHASSIS_PITCH_MAX,
         raw_min: 0,
@@ -4973,6 +4983,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::CHASSIS_ROLL_MIN,
         check_max: Self::CHASSIS_ROLL_MAX,
         raw_min: 0,
@@ -4987,6 +4998,7 @@ impl AutocarControlCommand2 {
     const CARGO_PITCH_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -30.0,
+        reciprocal: 1.0 / 0.2,
         check_min: Self::CARGO_PITCH_MIN,
         check_max: Self::CARGO_PITCH_MAX,
         raw_min: 0,
@@ -5001,6 +5013,7 @@ impl AutocarControlCommand2 {
     const CARGO_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::CARGO_ROLL_MIN,
         check_max: Self::CARGO_ROLL_MAX,
         raw_min: 0,
@@ -5668,6 +5681,7 @@ impl VehicleState2 {
     const BATTERY_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.2,
         offset: 0.0,
+        reciprocal: 1.0 / 0.2,
         check_min: Self::BATTERY_VOLTAGE_MIN,
         check_max: Self::BATTERY_VOLTAGE_MAX,
         raw_min: 0,
@@ -5682,6 +5696,7 @@ impl VehicleState2 {
     const BATTERY_CURRENT_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -500.0,
+        reciprocal: 1.0 / 0.02,
         check_min: Self::BATTERY_CURRENT_MIN,
         check_max: Self::BATTERY_CURRENT_MAX,
         raw_min: 0,
@@ -6045,6 +6060,7 @@ impl VehicleState3 {
     const MAX_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
+        reciprocal: 1.0 / 0.0015,
         check_min: Self::MAX_CELL_VOLTAGE_MIN,
         check_max: Self::MAX_CELL_VOLTAGE_MAX,
         raw_min: 0,
@@ -6059,6 +6075,7 @@ impl VehicleState3 {
     const MIN_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
+        reciprocal: 1.0 / 0.0015,
         check_min: Self::MIN_CELL_VOLTAGE_MIN,
         check_max: Self::MIN_CELL_VOLTAGE_MAX,
         raw_min: 0,
@@ -6560,6 +6577,7 @@ impl VehicleState4 {
     const OUTSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::OUTSIDE_TEMP_MIN,
         check_max: Self::OUTSIDE_TEMP_MAX,
         raw_min: 0,
@@ -6574,6 +6592,7 @@ impl VehicleState4 {
     const INSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::INSIDE_TEMP_MIN,
         check_max: Self::INSIDE_TEMP_MAX,
         raw_min: 0,
@@ -6588,6 +6607,7 @@ impl VehicleState4 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -6602,6 +6622,7 @@ impl VehicleState4 {
     const BATTERY_POWER_SCALE: Scale = Scale {
         factor: 0.01,
         offset: -325.0,
+        reciprocal: 1.0 / 0.01,
         check_min: Self::BATTERY_POWER_MIN,
         check_max: Self::BATTERY_POWER_MAX,
         raw_min: 0,
@@ -9194,6 +9215,7 @@ impl RgateEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -9557,6 +9579,7 @@ impl RgateSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
+        reciprocal: 1.0 / 0.02,
         check_min: Self::ACCEL_CMD_MIN,
         check_max: Self::ACCEL_CMD_MAX,
         raw_min: 0,
@@ -10069,6 +10092,7 @@ impl RgateControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -11507,6 +11531,7 @@ impl RgateControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
@@ -15225,6 +15250,7 @@ impl TeleEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
+        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -15588,6 +15614,7 @@ impl TeleSpeedCommand {
     const THROTTLE_BRAKE_CMD_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -100.0,
+        reciprocal: 1.0 / 0.2,
         check_min: Self::THROTTLE_BRAKE_CMD_MIN,
         check_max: Self::THROTTLE_BRAKE_CMD_MAX,
         raw_min: 0,
@@ -16100,6 +16127,7 @@ impl TeleControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -17540,6 +17568,7 @@ impl TeleControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
+        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
