@@ -15,8 +15,6 @@ pub struct Scale {
     pub factor: f64,
     /// physical = raw × factor + offset
     pub offset: f64,
-    /// `1 / factor`, rounded: lets most conversions multiply instead of divide.
-    pub reciprocal: f64,
     /// Smallest physical value a caller may pass (the documented range).
     pub check_min: f64,
     /// Largest physical value a caller may pass (the documented range).
@@ -29,28 +27,6 @@ pub struct Scale {
     pub type_min: i64,
     /// Largest raw value the field's bits hold.
     pub type_max: i64,
-}
-
-/// 2^-46: how close to an integer `(n × reciprocal + 0.5) + ε` may come, relative to its size,
-/// before the multiplication could round differently from the division.
-const QUOTIENT_MARGIN: f64 = 1.0 / 70_368_744_177_664.0;
-
-/// `floor((n / factor + 0.5) + ε)` for `n >= 0`, exactly, usually without dividing. The
-/// product `n × reciprocal` is within 2^-51 (relative) of the quotient `n / factor` both
-/// rounded, and the two additions keep the sums within 2^-50 of each other; so wherever the
-/// product's sum lies more than 2^-46 (relative) from an integer, both sums have the same
-/// floor. Only then is the product used; near an integer (a rounding tie) it divides.
-#[inline(always)]
-fn round_quotient_unsigned(n: f64, factor: f64, reciprocal: f64) -> i64 {
-    let t = (n * reciprocal + 0.5) + TIE_EPSILON;
-    let floor = floor_i64(t);
-    let fraction = t - floor as f64; // exact (Sterbenz)
-    let margin = t * QUOTIENT_MARGIN;
-    if (fraction > margin) & (fraction < 1.0 - margin) {
-        floor
-    } else {
-        floor_i64((n / factor + 0.5) + TIE_EPSILON)
-    }
 }
 
 /// 1.5 × 2^52: adding it to `0 <= t < 2^51` leaves `t` rounded to an integer in the low
@@ -164,10 +140,8 @@ pub fn to_raw_documented(value: f64, scale: &Scale) -> Option<i64> {
 #[inline(always)]
 pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
     if (value >= scale.check_min) & (value <= scale.check_max) {
-        Some(round_quotient_unsigned(
-            value - scale.offset,
-            scale.factor,
-            scale.reciprocal,
+        Some(floor_i64(
+            ((value - scale.offset) / scale.factor + 0.5) + TIE_EPSILON,
         ))
     } else {
         None
@@ -284,7 +258,6 @@ mod tests {
         let scale = Scale {
             factor: 0.02,
             offset: -9.0,
-            reciprocal: 50.0,
             check_min: -9.0,
             check_max: 3.6,
             raw_min: 0,
@@ -317,7 +290,6 @@ mod tests {
         let float = Scale {
             factor: 2.0,
             offset: 0.0,
-            reciprocal: 0.5,
             check_min: 0.0,
             check_max: 512.0,
             raw_min: 0,
@@ -346,7 +318,6 @@ mod tests {
         let float = Scale {
             factor: 1.0,
             offset: -40.0,
-            reciprocal: 1.0,
             check_min: -40.0,
             check_max: 215.0,
             raw_min: 0,
@@ -375,58 +346,6 @@ mod tests {
             let t = f64::from_bits((exponent << 52) | (state & 0x000F_FFFF_FFFF_FFFF));
             let t = if i % 2 == 0 { t } else { -t };
             assert_eq!(floor_i64(t), t.floor() as i64, "floor({t})");
-        }
-    }
-
-    #[test]
-    fn multiplying_by_the_reciprocal_rounds_like_dividing() {
-        let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        for factor in [
-            0.1, 0.02, 0.2, 0.05, 0.0015, 0.3, 0.01, 0.5, 0.25, 0.7, 1e-5, 3.0,
-        ] {
-            let reciprocal = 1.0 / factor;
-            let exact = |n: f64| floor_i64((n / factor + 0.5) + TIE_EPSILON);
-            // Every tie (k + 0.5) × factor, computed as decimal inputs are, and its neighbours.
-            for k in 0..70_000u32 {
-                let tie = (f64::from(k) + 0.5) * factor;
-                for n in [
-                    tie,
-                    f64::from_bits(tie.to_bits() + 1),
-                    f64::from_bits(tie.to_bits() - 1),
-                    f64::from(k) * factor,
-                ] {
-                    assert_eq!(
-                        round_quotient_unsigned(n, factor, reciprocal),
-                        exact(n),
-                        "{n} / {factor}"
-                    );
-                }
-                // Where the sum lands on an integer: q = k + 0.5 - ε, and the doubles around it.
-                let edge = ((f64::from(k) + 0.5) - TIE_EPSILON) * factor;
-                for step in 0..16u64 {
-                    for n in [
-                        f64::from_bits(edge.to_bits() + step),
-                        f64::from_bits(edge.to_bits() - step),
-                    ] {
-                        assert_eq!(
-                            round_quotient_unsigned(n, factor, reciprocal),
-                            exact(n),
-                            "{n} / {factor}"
-                        );
-                    }
-                }
-            }
-            for _ in 0..300_000 {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                let n = (state >> 11) as f64 / (1u64 << 53) as f64 * 70_000.0 * factor;
-                assert_eq!(
-                    round_quotient_unsigned(n, factor, reciprocal),
-                    exact(n),
-                    "{n} / {factor}"
-                );
-            }
         }
     }
 

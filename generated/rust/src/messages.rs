@@ -95,7 +95,6 @@ impl AutocarEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -467,7 +466,6 @@ impl EpsState {
     const STEERING_TORQUE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -12.8,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_TORQUE_MIN,
         check_max: Self::STEERING_TORQUE_MAX,
         raw_min: 0,
@@ -482,7 +480,6 @@ impl EpsState {
     const EPS_OUTPUT_TORQUE_SCALE: Scale = Scale {
         factor: 0.3,
         offset: -38.4,
-        reciprocal: 1.0 / 0.3,
         check_min: Self::EPS_OUTPUT_TORQUE_MIN,
         check_max: Self::EPS_OUTPUT_TORQUE_MAX,
         raw_min: 0,
@@ -497,7 +494,6 @@ impl EpsState {
     const STEERING_ANGLE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_MIN,
         check_max: Self::STEERING_ANGLE_MAX,
         raw_min: 0,
@@ -1007,7 +1003,6 @@ impl AutocarSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
-        reciprocal: 1.0 / 0.02,
         check_min: Self::ACCEL_CMD_MIN,
         check_max: Self::ACCEL_CMD_MAX,
         raw_min: 0,
@@ -1494,7 +1489,6 @@ impl DrivingState {
     const CURRENT_ACCEL_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -9.0,
-        reciprocal: 1.0 / 0.05,
         check_min: Self::CURRENT_ACCEL_MIN,
         check_max: Self::CURRENT_ACCEL_MAX,
         raw_min: 0,
@@ -2153,7 +2147,6 @@ impl AutocarControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -3668,7 +3661,6 @@ impl VehicleState1 {
     const SOC_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::SOC_MIN,
         check_max: Self::SOC_MAX,
         raw_min: 0,
@@ -4953,7 +4945,6 @@ impl AutocarControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
@@ -4968,7 +4959,6 @@ impl AutocarControlCommand2 {
     const CHASSIS_PITCH_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -25.0,
-        reciprocal: 1.0 / 0.05,
         check_min: Self::CHASSIS_PITCH_MIN,
         check_max: Self::CHASSIS_PITCH_MAX,
         raw_min: 0,
@@ -4983,7 +4973,6 @@ impl AutocarControlCommand2 {
     const CHASSIS_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::CHASSIS_ROLL_MIN,
         check_max: Self::CHASSIS_ROLL_MAX,
         raw_min: 0,
@@ -4998,7 +4987,6 @@ impl AutocarControlCommand2 {
     const CARGO_PITCH_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -30.0,
-        reciprocal: 1.0 / 0.2,
         check_min: Self::CARGO_PITCH_MIN,
         check_max: Self::CARGO_PITCH_MAX,
         raw_min: 0,
@@ -5013,7 +5001,6 @@ impl AutocarControlCommand2 {
     const CARGO_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::CARGO_ROLL_MIN,
         check_max: Self::CARGO_ROLL_MAX,
         raw_min: 0,
@@ -5681,7 +5668,6 @@ impl VehicleState2 {
     const BATTERY_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.2,
         offset: 0.0,
-        reciprocal: 1.0 / 0.2,
         check_min: Self::BATTERY_VOLTAGE_MIN,
         check_max: Self::BATTERY_VOLTAGE_MAX,
         raw_min: 0,
@@ -5696,7 +5682,6 @@ impl VehicleState2 {
     const BATTERY_CURRENT_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -500.0,
-        reciprocal: 1.0 / 0.02,
         check_min: Self::BATTERY_CURRENT_MIN,
         check_max: Self::BATTERY_CURRENT_MAX,
         raw_min: 0,
@@ -6060,7 +6045,6 @@ impl VehicleState3 {
     const MAX_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
-        reciprocal: 1.0 / 0.0015,
         check_min: Self::MAX_CELL_VOLTAGE_MIN,
         check_max: Self::MAX_CELL_VOLTAGE_MAX,
         raw_min: 0,
@@ -6075,7 +6059,6 @@ impl VehicleState3 {
     const MIN_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
-        reciprocal: 1.0 / 0.0015,
         check_min: Self::MIN_CELL_VOLTAGE_MIN,
         check_max: Self::MIN_CELL_VOLTAGE_MAX,
         raw_min: 0,
@@ -6577,7 +6560,6 @@ impl VehicleState4 {
     const OUTSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::OUTSIDE_TEMP_MIN,
         check_max: Self::OUTSIDE_TEMP_MAX,
         raw_min: 0,
@@ -6592,7 +6574,6 @@ impl VehicleState4 {
     const INSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::INSIDE_TEMP_MIN,
         check_max: Self::INSIDE_TEMP_MAX,
         raw_min: 0,
@@ -6607,7 +6588,6 @@ impl VehicleState4 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -6622,7 +6602,6 @@ impl VehicleState4 {
     const BATTERY_POWER_SCALE: Scale = Scale {
         factor: 0.01,
         offset: -325.0,
-        reciprocal: 1.0 / 0.01,
         check_min: Self::BATTERY_POWER_MIN,
         check_max: Self::BATTERY_POWER_MAX,
         raw_min: 0,
@@ -9215,7 +9194,6 @@ impl RgateEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -9579,7 +9557,6 @@ impl RgateSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
-        reciprocal: 1.0 / 0.02,
         check_min: Self::ACCEL_CMD_MIN,
         check_max: Self::ACCEL_CMD_MAX,
         raw_min: 0,
@@ -10092,7 +10069,6 @@ impl RgateControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -11531,7 +11507,6 @@ impl RgateControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
@@ -15250,7 +15225,6 @@ impl TeleEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        reciprocal: 1.0 / 0.1,
         check_min: Self::STEERING_ANGLE_CMD_MIN,
         check_max: Self::STEERING_ANGLE_CMD_MAX,
         raw_min: 0,
@@ -15614,7 +15588,6 @@ impl TeleSpeedCommand {
     const THROTTLE_BRAKE_CMD_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -100.0,
-        reciprocal: 1.0 / 0.2,
         check_min: Self::THROTTLE_BRAKE_CMD_MIN,
         check_max: Self::THROTTLE_BRAKE_CMD_MAX,
         raw_min: 0,
@@ -16127,7 +16100,6 @@ impl TeleControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::AC_SET_TEMP_MIN,
         check_max: Self::AC_SET_TEMP_MAX,
         raw_min: 0,
@@ -17568,7 +17540,6 @@ impl TeleControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        reciprocal: 1.0 / 0.5,
         check_min: Self::DOWNHILL_REGEN_SPEED_MIN,
         check_max: Self::DOWNHILL_REGEN_SPEED_MAX,
         raw_min: 0,
