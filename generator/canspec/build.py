@@ -38,6 +38,10 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     raw_min, raw_max = max(tmin, math.ceil(lo_q)), min(tmax, math.floor(hi_q))
     phys_a, phys_b = raw_min * factor + offset, raw_max * factor + offset
     phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
+    check_min = doc_min if doc_min is not None else phys_min
+    check_max = doc_max if doc_max is not None else phys_max
+    is_integer = factor.denominator == 1 and offset.denominator == 1
+    tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset) for raw, (ident, zh) in sorted(sig.get("special", {}).items())
     )
@@ -61,13 +65,15 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         raw_max=raw_max,
         phys_min=phys_min,
         phys_max=phys_max,
-        check_min=doc_min if doc_min is not None else phys_min,
-        check_max=doc_max if doc_max is not None else phys_max,
+        check_min=check_min,
+        check_max=check_max,
+        accept_min=check_min - tolerance,
+        accept_max=check_max + tolerance,
         storage_bits=storage_bits(length),
         value_table=tables.get(sig["values"]) if sig.get("values") else None,
         specials=specials,
         segments=segments(sig["start"], length),
-        is_integer=factor.denominator == 1 and offset.denominator == 1,
+        is_integer=is_integer,
         is_identity=factor == 1 and offset == 0,
         since=str(sig["since"]) if sig.get("since") else None,
         errata=tuple(sig.get("errata", ())),

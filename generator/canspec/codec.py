@@ -69,7 +69,7 @@ def to_raw(sig: ir.Signal, physical: int | float | str | Fraction) -> int:
     raw = round_half_away(q)
     if any(s.raw == raw for s in sig.specials):
         return raw
-    if not sig.check_min <= value <= sig.check_max or not sig.raw_min <= raw <= sig.raw_max:
+    if not sig.accept_min <= value <= sig.accept_max or not sig.raw_min <= raw <= sig.raw_max:
         raise CodecError(
             f"{sig.name}: {physical} is outside the allowed range [{float(sig.phys_min):g}, {float(sig.phys_max):g}]"
         )

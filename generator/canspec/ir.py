@@ -90,8 +90,13 @@ class Signal(Named):
     raw_max: int
     phys_min: Fraction  # physical values of raw_min / raw_max
     phys_max: Fraction
-    check_min: Fraction  # the physical range check: documented range, else the encodable one
+    check_min: Fraction  # the physical range: documented range, else the encodable one
     check_max: Fraction
+    # What the runtime range check compares against: check_min/max widened by |factor| × TIE_EPSILON
+    # for non-integer scaling, so a value decoded in doubles (252 × 0.05 − 9 = 3.6000000000000014)
+    # re-encodes, while 3.605 is still out of [-9, 3.6].
+    accept_min: Fraction
+    accept_max: Fraction
     storage_bits: int  # 8 / 16 / 32 / 64: narrowest unsigned/signed container
     value_table: ValueTable | None
     specials: tuple[SpecialValue, ...]

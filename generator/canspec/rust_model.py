@@ -245,7 +245,7 @@ def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool]:
     from canspec.encoding import to_raw_runtime
 
     f, o = float(sig.factor), float(sig.offset)
-    lo, hi = float(sig.check_min), float(sig.check_max)
+    lo, hi = float(sig.accept_min), float(sig.accept_max)
     if sig.is_integer:  # the integer path compares whole values: its ends are the whole ones inside
         lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
     q_lo, q_hi = (lo - o) / f, (hi - o) / f
@@ -305,7 +305,8 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         lo, hi = math.ceil(sig.check_min), math.floor(sig.check_max)
         bounds = {"check_min": int_lit(lo), "check_max": int_lit(hi), "factor": int_lit(int(sig.factor)), "offset": int_lit(int(sig.offset))}
     else:
-        bounds = {"check_min": f64_lit(sig.check_min), "check_max": f64_lit(sig.check_max), "factor": f64_lit(sig.factor), "offset": f64_lit(sig.offset)}
+        bounds = {"check_min": f64_lit(sig.check_min), "check_max": f64_lit(sig.check_max), "accept_min": f64_lit(sig.accept_min), "accept_max": f64_lit(sig.accept_max),
+                  "factor": f64_lit(sig.factor), "offset": f64_lit(sig.offset)}
     scale = {
         **bounds,
         "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),

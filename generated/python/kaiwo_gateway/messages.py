@@ -202,18 +202,18 @@ _VEHICLE_FAULT_LEVEL_2 = _lookup(VehicleFaultLevel, 2)
 _AUTOCAR_EPS_COMMAND__EPS_CTRL_MODE = _SignalSpec("autocar_eps_command", "eps_ctrl_mode", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _AUTOCAR_EPS_COMMAND__COUNTER = _SignalSpec("autocar_eps_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED = _SignalSpec("autocar_eps_command", "max_angular_speed", False, 2.0, 0.0, 0, 0, 512, 0, 255, 0, 255, frozenset((0,)), "[0, 512] deg/s or 0 (no_limit)")
-_AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("autocar_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0, 1080.0, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
+_AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("autocar_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0000000001, 1080.0000000001, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
 _AUTOCAR_EPS_COMMAND__CHECKSUM = _SignalSpec("autocar_eps_command", "checksum", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _AUTOCAR_EPS_COMMAND_SIGNALS: frozenset[str] = frozenset(("eps_ctrl_mode", "counter", "max_angular_speed", "steering_angle_cmd", "checksum",))
 _EPS_STATE__EPS_CTRL_STATE = _SignalSpec("eps_state", "eps_ctrl_state", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
-_EPS_STATE__STEERING_TORQUE = _SignalSpec("eps_state", "steering_torque", False, 0.1, -12.8, 0, -12.8, 12.7, 0, 255, 0, 255, frozenset(()), "[-12.8, 12.7] Nm")
-_EPS_STATE__EPS_OUTPUT_TORQUE = _SignalSpec("eps_state", "eps_output_torque", False, 0.3, -38.4, 0, -38.4, 38.1, 0, 255, 0, 255, frozenset(()), "[-38.4, 38.1] Nm")
-_EPS_STATE__STEERING_ANGLE = _SignalSpec("eps_state", "steering_angle", False, 0.1, -1080.0, 0, -1080.0, 1080.0, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
+_EPS_STATE__STEERING_TORQUE = _SignalSpec("eps_state", "steering_torque", False, 0.1, -12.8, 0, -12.8000000001, 12.7000000001, 0, 255, 0, 255, frozenset(()), "[-12.8, 12.7] Nm")
+_EPS_STATE__EPS_OUTPUT_TORQUE = _SignalSpec("eps_state", "eps_output_torque", False, 0.3, -38.4, 0, -38.4000000003, 38.1000000003, 0, 255, 0, 255, frozenset(()), "[-38.4, 38.1] Nm")
+_EPS_STATE__STEERING_ANGLE = _SignalSpec("eps_state", "steering_angle", False, 0.1, -1080.0, 0, -1080.0000000001, 1080.0000000001, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
 _EPS_STATE__CONTROLLER_TEMP = _SignalSpec("eps_state", "controller_temp", False, 2.0, 0.0, 0, 0, 126, 0, 63, 0, 63, frozenset(()), "[0, 126] °C")
 _EPS_STATE__EPS_FAULT_LEVEL = _SignalSpec("eps_state", "eps_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _EPS_STATE__COUNTER = _SignalSpec("eps_state", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _EPS_STATE_SIGNALS: frozenset[str] = frozenset(("eps_ctrl_state", "steering_torque", "eps_output_torque", "steering_angle", "controller_temp", "eps_fault_level", "counter",))
-_AUTOCAR_SPEED_COMMAND__ACCEL_CMD = _SignalSpec("autocar_speed_command", "accel_cmd", False, 0.02, -9.0, 0, -9.0, 3.6, 0, 630, 0, 1023, frozenset(()), "[-9, 3.6] m/s²")
+_AUTOCAR_SPEED_COMMAND__ACCEL_CMD = _SignalSpec("autocar_speed_command", "accel_cmd", False, 0.02, -9.0, 0, -9.00000000002, 3.60000000002, 0, 630, 0, 1023, frozenset(()), "[-9, 3.6] m/s²")
 _AUTOCAR_SPEED_COMMAND__EPB_CMD = _SignalSpec("autocar_speed_command", "epb_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_SPEED_COMMAND__GEAR_CMD = _SignalSpec("autocar_speed_command", "gear_cmd", True, 1.0, 0.0, 0, 0, 2, 0, 2, 0, 15, frozenset(()), "[0, 2]")
 _AUTOCAR_SPEED_COMMAND__COUNTER = _SignalSpec("autocar_speed_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
@@ -227,7 +227,7 @@ _DRIVING_STATE__USS_BRAKE_STATE = _SignalSpec("driving_state", "uss_brake_state"
 _DRIVING_STATE__MOTOR_SPEED = _SignalSpec("driving_state", "motor_speed", True, 1.0, -15000.0, -15000, -15000, 15000, 0, 30000, 0, 65535, frozenset(()), "[-15000, 15000] rpm")
 _DRIVING_STATE__MOTOR_TORQUE = _SignalSpec("driving_state", "motor_torque", True, 1.0, -5000.0, -5000, -5000, 5000, 0, 10000, 0, 65535, frozenset(()), "[-5000, 5000] Nm")
 _DRIVING_STATE__MOTOR_SPEED_RATIO = _SignalSpec("driving_state", "motor_speed_ratio", True, 1.0, 1.0, 1, 1, 254, 0, 253, 0, 255, frozenset((255,)), "[1, 254] rpm/(km/h) or 256 (invalid)")
-_DRIVING_STATE__CURRENT_ACCEL = _SignalSpec("driving_state", "current_accel", False, 0.05, -9.0, 0, -9.0, 3.6, 0, 252, 0, 255, frozenset(()), "[-9, 3.6] m/s²")
+_DRIVING_STATE__CURRENT_ACCEL = _SignalSpec("driving_state", "current_accel", False, 0.05, -9.0, 0, -9.00000000005, 3.60000000005, 0, 252, 0, 255, frozenset(()), "[-9, 3.6] m/s²")
 _DRIVING_STATE__CHECKSUM = _SignalSpec("driving_state", "checksum", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _DRIVING_STATE_SIGNALS: frozenset[str] = frozenset(("epb_state", "gear_state", "emergency_brake_state", "uss_brake_state", "motor_speed", "motor_torque", "motor_speed_ratio", "current_accel", "checksum",))
 _AUTOCAR_CONTROL_COMMAND_1__DRIVE_MODE_CMD = _SignalSpec("autocar_control_command_1", "drive_mode_cmd", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 3, frozenset(()), "[0, 1]")
@@ -250,7 +250,7 @@ _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_RELIABILITY = _SignalSpec("autocar_control_co
 _AUTOCAR_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL = _SignalSpec("autocar_control_command_1", "system_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_CONTROL_COMMAND_1__LOCK_CMD = _SignalSpec("autocar_control_command_1", "lock_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_CONTROL_COMMAND_1__AC_CMD = _SignalSpec("autocar_control_command_1", "ac_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 7, frozenset(()), "[0, 3]")
-_AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("autocar_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 16.0, 30.0, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
+_AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("autocar_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 15.9999999995, 30.0000000005, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
 _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A = _SignalSpec("autocar_control_command_1", "protocol_version_a", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_B = _SignalSpec("autocar_control_command_1", "protocol_version_b", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_C = _SignalSpec("autocar_control_command_1", "protocol_version_c", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
@@ -271,7 +271,7 @@ _VEHICLE_STATE_1__DOME_LIGHT_STATE = _SignalSpec("vehicle_state_1", "dome_light_
 _VEHICLE_STATE_1__AMBIENT_LIGHT_STATE = _SignalSpec("vehicle_state_1", "ambient_light_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _VEHICLE_STATE_1__DOOR_BUTTON_STATE = _SignalSpec("vehicle_state_1", "door_button_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _VEHICLE_STATE_1__VEHICLE_SPEED = _SignalSpec("vehicle_state_1", "vehicle_speed", True, 1.0, -50.0, -50, -50, 200, 0, 250, 0, 255, frozenset(()), "[-50, 200] km/h")
-_VEHICLE_STATE_1__SOC = _SignalSpec("vehicle_state_1", "soc", False, 0.5, 0.0, 0, 0.0, 125.0, 0, 250, 0, 255, frozenset(()), "[0, 125] %")
+_VEHICLE_STATE_1__SOC = _SignalSpec("vehicle_state_1", "soc", False, 0.5, 0.0, 0, -5e-10, 125.0000000005, 0, 250, 0, 255, frozenset(()), "[0, 125] %")
 _VEHICLE_STATE_1__SYSTEM_POWER_CMD = _SignalSpec("vehicle_state_1", "system_power_cmd", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 3, frozenset(()), "[0, 1]")
 _VEHICLE_STATE_1__CHARGE_STATE = _SignalSpec("vehicle_state_1", "charge_state", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _VEHICLE_STATE_1__CHARGE_CONNECTION = _SignalSpec("vehicle_state_1", "charge_connection", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 3, frozenset(()), "[0, 1]")
@@ -283,27 +283,27 @@ _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE = _SignalSpec("autocar_control
 _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT = _SignalSpec("autocar_control_command_2", "cargo_lift", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED = _SignalSpec("autocar_control_command_2", "cargo_lift_speed", True, 1.0, 0.0, 0, 0, 10, 0, 10, 0, 15, frozenset(()), "[0, 10]")
 _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE = _SignalSpec("autocar_control_command_2", "pto_enable", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
-_AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("autocar_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, 0.0, 125.0, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
-_AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH = _SignalSpec("autocar_control_command_2", "chassis_pitch", False, 0.05, -25.0, 0, -25.0, 25.0, 0, 1000, 0, 1023, frozenset(()), "[-25, 25] deg")
-_AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL = _SignalSpec("autocar_control_command_2", "chassis_roll", False, 0.1, -40.0, 0, -40.0, 40.0, 0, 800, 0, 1023, frozenset(()), "[-40, 40] deg")
-_AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH = _SignalSpec("autocar_control_command_2", "cargo_pitch", False, 0.2, -30.0, 0, -30.0, 100.0, 0, 650, 0, 1023, frozenset(()), "[-30, 100] deg")
-_AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL = _SignalSpec("autocar_control_command_2", "cargo_roll", False, 0.1, -40.0, 0, -40.0, 40.0, 0, 800, 0, 1023, frozenset(()), "[-40, 40] deg")
+_AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("autocar_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, -5e-10, 125.0000000005, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
+_AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH = _SignalSpec("autocar_control_command_2", "chassis_pitch", False, 0.05, -25.0, 0, -25.00000000005, 25.00000000005, 0, 1000, 0, 1023, frozenset(()), "[-25, 25] deg")
+_AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL = _SignalSpec("autocar_control_command_2", "chassis_roll", False, 0.1, -40.0, 0, -40.0000000001, 40.0000000001, 0, 800, 0, 1023, frozenset(()), "[-40, 40] deg")
+_AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH = _SignalSpec("autocar_control_command_2", "cargo_pitch", False, 0.2, -30.0, 0, -30.0000000002, 100.0000000002, 0, 650, 0, 1023, frozenset(()), "[-30, 100] deg")
+_AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL = _SignalSpec("autocar_control_command_2", "cargo_roll", False, 0.1, -40.0, 0, -40.0000000001, 40.0000000001, 0, 800, 0, 1023, frozenset(()), "[-40, 40] deg")
 _AUTOCAR_CONTROL_COMMAND_2__COUNTER = _SignalSpec("autocar_control_command_2", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _AUTOCAR_CONTROL_COMMAND_2_SIGNALS: frozenset[str] = frozenset(("downhill_regen_enable", "cargo_lift", "cargo_lift_speed", "pto_enable", "downhill_regen_speed", "chassis_pitch", "chassis_roll", "cargo_pitch", "cargo_roll", "counter",))
-_VEHICLE_STATE_2__BATTERY_VOLTAGE = _SignalSpec("vehicle_state_2", "battery_voltage", False, 0.2, 0.0, 0, 0.0, 800.0, 0, 4000, 0, 65535, frozenset(()), "[0, 800] V")
-_VEHICLE_STATE_2__BATTERY_CURRENT = _SignalSpec("vehicle_state_2", "battery_current", False, 0.02, -500.0, 0, -500.0, 800.0, 0, 65000, 0, 65535, frozenset(()), "[-500, 800] A")
+_VEHICLE_STATE_2__BATTERY_VOLTAGE = _SignalSpec("vehicle_state_2", "battery_voltage", False, 0.2, 0.0, 0, -2e-10, 800.0000000002, 0, 4000, 0, 65535, frozenset(()), "[0, 800] V")
+_VEHICLE_STATE_2__BATTERY_CURRENT = _SignalSpec("vehicle_state_2", "battery_current", False, 0.02, -500.0, 0, -500.00000000002, 800.00000000002, 0, 65000, 0, 65535, frozenset(()), "[-500, 800] A")
 _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY = _SignalSpec("vehicle_state_2", "battery_charge_energy", True, 1.0, 0.0, 0, 0, 65535, 0, 65535, 0, 65535, frozenset(()), "[0, 65535] kWh")
 _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY = _SignalSpec("vehicle_state_2", "battery_discharge_energy", True, 1.0, 0.0, 0, 0, 65535, 0, 65535, 0, 65535, frozenset(()), "[0, 65535] kWh")
 _VEHICLE_STATE_2_SIGNALS: frozenset[str] = frozenset(("battery_voltage", "battery_current", "battery_charge_energy", "battery_discharge_energy",))
 _VEHICLE_STATE_3__BATTERY_MAX_TEMP = _SignalSpec("vehicle_state_3", "battery_max_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
 _VEHICLE_STATE_3__BATTERY_MIN_TEMP = _SignalSpec("vehicle_state_3", "battery_min_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
-_VEHICLE_STATE_3__MAX_CELL_VOLTAGE = _SignalSpec("vehicle_state_3", "max_cell_voltage", False, 0.0015, 0.0, 0, 0.0, 6.0, 0, 4000, 0, 4095, frozenset(()), "[0, 6] V")
-_VEHICLE_STATE_3__MIN_CELL_VOLTAGE = _SignalSpec("vehicle_state_3", "min_cell_voltage", False, 0.0015, 0.0, 0, 0.0, 6.0, 0, 4000, 0, 4095, frozenset(()), "[0, 6] V")
+_VEHICLE_STATE_3__MAX_CELL_VOLTAGE = _SignalSpec("vehicle_state_3", "max_cell_voltage", False, 0.0015, 0.0, 0, -1.5e-12, 6.0000000000015, 0, 4000, 0, 4095, frozenset(()), "[0, 6] V")
+_VEHICLE_STATE_3__MIN_CELL_VOLTAGE = _SignalSpec("vehicle_state_3", "min_cell_voltage", False, 0.0015, 0.0, 0, -1.5e-12, 6.0000000000015, 0, 4000, 0, 4095, frozenset(()), "[0, 6] V")
 _VEHICLE_STATE_3__MOTOR_TEMP = _SignalSpec("vehicle_state_3", "motor_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
 _VEHICLE_STATE_3__MOTOR_CONTROLLER_TEMP = _SignalSpec("vehicle_state_3", "motor_controller_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
 _VEHICLE_STATE_3_SIGNALS: frozenset[str] = frozenset(("battery_max_temp", "battery_min_temp", "max_cell_voltage", "min_cell_voltage", "motor_temp", "motor_controller_temp",))
-_VEHICLE_STATE_4__OUTSIDE_TEMP = _SignalSpec("vehicle_state_4", "outside_temp", False, 0.5, -30.0, 0, -30.0, 95.0, 0, 250, 0, 255, frozenset(()), "[-30, 95] °C")
-_VEHICLE_STATE_4__INSIDE_TEMP = _SignalSpec("vehicle_state_4", "inside_temp", False, 0.5, -30.0, 0, -30.0, 95.0, 0, 250, 0, 255, frozenset(()), "[-30, 95] °C")
+_VEHICLE_STATE_4__OUTSIDE_TEMP = _SignalSpec("vehicle_state_4", "outside_temp", False, 0.5, -30.0, 0, -30.0000000005, 95.0000000005, 0, 250, 0, 255, frozenset(()), "[-30, 95] °C")
+_VEHICLE_STATE_4__INSIDE_TEMP = _SignalSpec("vehicle_state_4", "inside_temp", False, 0.5, -30.0, 0, -30.0000000005, 95.0000000005, 0, 250, 0, 255, frozenset(()), "[-30, 95] °C")
 _VEHICLE_STATE_4__AC_STATE = _SignalSpec("vehicle_state_4", "ac_state", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 15, frozenset(()), "[0, 3]")
 _VEHICLE_STATE_4__VEHICLE_POWER_STATE = _SignalSpec("vehicle_state_4", "vehicle_power_state", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _VEHICLE_STATE_4__HILL_HOLD_STATE = _SignalSpec("vehicle_state_4", "hill_hold_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
@@ -311,9 +311,9 @@ _VEHICLE_STATE_4__REGEN_BRAKE_STATE = _SignalSpec("vehicle_state_4", "regen_brak
 _VEHICLE_STATE_4__REMAINING_RANGE = _SignalSpec("vehicle_state_4", "remaining_range", True, 1.0, 0.0, 0, 0, 1000, 0, 1000, 0, 4095, frozenset(()), "[0, 1000] km")
 _VEHICLE_STATE_4__MANUAL_TAKEOVER_STATE = _SignalSpec("vehicle_state_4", "manual_takeover_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED = _SignalSpec("vehicle_state_4", "remote_driving_allowed", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
-_VEHICLE_STATE_4__AC_SET_TEMP = _SignalSpec("vehicle_state_4", "ac_set_temp", False, 0.5, 16.0, 0, 16.0, 30.0, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
+_VEHICLE_STATE_4__AC_SET_TEMP = _SignalSpec("vehicle_state_4", "ac_set_temp", False, 0.5, 16.0, 0, 15.9999999995, 30.0000000005, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
 _VEHICLE_STATE_4__PTO_STATE = _SignalSpec("vehicle_state_4", "pto_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
-_VEHICLE_STATE_4__BATTERY_POWER = _SignalSpec("vehicle_state_4", "battery_power", False, 0.01, -325.0, 0, -325.0, 325.0, 0, 65000, 0, 65535, frozenset(()), "[-325, 325] kW")
+_VEHICLE_STATE_4__BATTERY_POWER = _SignalSpec("vehicle_state_4", "battery_power", False, 0.01, -325.0, 0, -325.00000000001, 325.00000000001, 0, 65000, 0, 65535, frozenset(()), "[-325, 325] kW")
 _VEHICLE_STATE_4_SIGNALS: frozenset[str] = frozenset(("outside_temp", "inside_temp", "ac_state", "vehicle_power_state", "hill_hold_state", "regen_brake_state", "remaining_range", "manual_takeover_state", "remote_driving_allowed", "ac_set_temp", "pto_state", "battery_power",))
 _VEHICLE_FAULT__INSULATION_FAULT_LEVEL = _SignalSpec("vehicle_fault", "insulation_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _VEHICLE_FAULT__DC_FAULT = _SignalSpec("vehicle_fault", "dc_fault", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
@@ -349,10 +349,10 @@ _VEHICLE_STATE_5_SIGNALS: frozenset[str] = frozenset(())
 _RGATE_EPS_COMMAND__EPS_CTRL_MODE = _SignalSpec("rgate_eps_command", "eps_ctrl_mode", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _RGATE_EPS_COMMAND__COUNTER = _SignalSpec("rgate_eps_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED = _SignalSpec("rgate_eps_command", "max_angular_speed", False, 2.0, 0.0, 0, 0, 512, 0, 255, 0, 255, frozenset((0,)), "[0, 512] deg/s or 0 (no_limit)")
-_RGATE_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("rgate_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0, 1080.0, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
+_RGATE_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("rgate_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0000000001, 1080.0000000001, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
 _RGATE_EPS_COMMAND__CHECKSUM = _SignalSpec("rgate_eps_command", "checksum", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _RGATE_EPS_COMMAND_SIGNALS: frozenset[str] = frozenset(("eps_ctrl_mode", "counter", "max_angular_speed", "steering_angle_cmd", "checksum",))
-_RGATE_SPEED_COMMAND__ACCEL_CMD = _SignalSpec("rgate_speed_command", "accel_cmd", False, 0.02, -9.0, 0, -9.0, 3.6, 0, 630, 0, 1023, frozenset(()), "[-9, 3.6] m/s²")
+_RGATE_SPEED_COMMAND__ACCEL_CMD = _SignalSpec("rgate_speed_command", "accel_cmd", False, 0.02, -9.0, 0, -9.00000000002, 3.60000000002, 0, 630, 0, 1023, frozenset(()), "[-9, 3.6] m/s²")
 _RGATE_SPEED_COMMAND__EPB_CMD = _SignalSpec("rgate_speed_command", "epb_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _RGATE_SPEED_COMMAND__GEAR_CMD = _SignalSpec("rgate_speed_command", "gear_cmd", True, 1.0, 0.0, 0, 0, 2, 0, 2, 0, 15, frozenset(()), "[0, 2]")
 _RGATE_SPEED_COMMAND__COUNTER = _SignalSpec("rgate_speed_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
@@ -379,7 +379,7 @@ _RGATE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY = _SignalSpec("rgate_control_comman
 _RGATE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL = _SignalSpec("rgate_control_command_1", "system_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _RGATE_CONTROL_COMMAND_1__LOCK_CMD = _SignalSpec("rgate_control_command_1", "lock_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _RGATE_CONTROL_COMMAND_1__AC_CMD = _SignalSpec("rgate_control_command_1", "ac_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 7, frozenset(()), "[0, 3]")
-_RGATE_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("rgate_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 16.0, 30.0, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
+_RGATE_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("rgate_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 15.9999999995, 30.0000000005, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
 _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A = _SignalSpec("rgate_control_command_1", "protocol_version_a", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B = _SignalSpec("rgate_control_command_1", "protocol_version_b", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C = _SignalSpec("rgate_control_command_1", "protocol_version_c", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
@@ -389,7 +389,7 @@ _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE = _SignalSpec("rgate_control_com
 _RGATE_CONTROL_COMMAND_2__CARGO_LIFT = _SignalSpec("rgate_control_command_2", "cargo_lift", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _RGATE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED = _SignalSpec("rgate_control_command_2", "cargo_lift_speed", True, 1.0, 0.0, 0, 0, 10, 0, 10, 0, 15, frozenset(()), "[0, 10]")
 _RGATE_CONTROL_COMMAND_2__PTO_ENABLE = _SignalSpec("rgate_control_command_2", "pto_enable", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
-_RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("rgate_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, 0.0, 125.0, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
+_RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("rgate_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, -5e-10, 125.0000000005, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
 _RGATE_CONTROL_COMMAND_2__COUNTER = _SignalSpec("rgate_control_command_2", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _RGATE_CONTROL_COMMAND_2_SIGNALS: frozenset[str] = frozenset(("downhill_regen_enable", "cargo_lift", "cargo_lift_speed", "pto_enable", "downhill_regen_speed", "counter",))
 _DEVICE_ID__DEVICE_TYPE = _SignalSpec("device_id", "device_type", True, 1.0, 0.0, 0, 0, 63, 0, 63, 0, 63, frozenset(()), "[0, 63]")
@@ -445,10 +445,10 @@ _REAR_SENSOR_DISTANCE_2_SIGNALS: frozenset[str] = frozenset(("sensor_7_distance"
 _TELE_EPS_COMMAND__EPS_CTRL_MODE = _SignalSpec("tele_eps_command", "eps_ctrl_mode", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _TELE_EPS_COMMAND__COUNTER = _SignalSpec("tele_eps_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED = _SignalSpec("tele_eps_command", "max_angular_speed", False, 2.0, 0.0, 0, 0, 512, 0, 255, 0, 255, frozenset((0,)), "[0, 512] deg/s or 0 (no_limit)")
-_TELE_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("tele_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0, 1080.0, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
+_TELE_EPS_COMMAND__STEERING_ANGLE_CMD = _SignalSpec("tele_eps_command", "steering_angle_cmd", False, 0.1, -1080.0, 0, -1080.0000000001, 1080.0000000001, 0, 21600, 0, 65535, frozenset(()), "[-1080, 1080] deg")
 _TELE_EPS_COMMAND__CHECKSUM = _SignalSpec("tele_eps_command", "checksum", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _TELE_EPS_COMMAND_SIGNALS: frozenset[str] = frozenset(("eps_ctrl_mode", "counter", "max_angular_speed", "steering_angle_cmd", "checksum",))
-_TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD = _SignalSpec("tele_speed_command", "throttle_brake_cmd", False, 0.2, -100.0, 0, -100.0, 100.0, 0, 1000, 0, 1023, frozenset(()), "[-100, 100] %")
+_TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD = _SignalSpec("tele_speed_command", "throttle_brake_cmd", False, 0.2, -100.0, 0, -100.0000000002, 100.0000000002, 0, 1000, 0, 1023, frozenset(()), "[-100, 100] %")
 _TELE_SPEED_COMMAND__EPB_CMD = _SignalSpec("tele_speed_command", "epb_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _TELE_SPEED_COMMAND__GEAR_CMD = _SignalSpec("tele_speed_command", "gear_cmd", True, 1.0, 0.0, 0, 0, 2, 0, 2, 0, 15, frozenset(()), "[0, 2]")
 _TELE_SPEED_COMMAND__COUNTER = _SignalSpec("tele_speed_command", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
@@ -475,7 +475,7 @@ _TELE_CONTROL_COMMAND_1__SYSTEM_RELIABILITY = _SignalSpec("tele_control_command_
 _TELE_CONTROL_COMMAND_1__SYSTEM_FAULT_LEVEL = _SignalSpec("tele_control_command_1", "system_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _TELE_CONTROL_COMMAND_1__LOCK_CMD = _SignalSpec("tele_control_command_1", "lock_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _TELE_CONTROL_COMMAND_1__AC_CMD = _SignalSpec("tele_control_command_1", "ac_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 7, frozenset(()), "[0, 3]")
-_TELE_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("tele_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 16.0, 30.0, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
+_TELE_CONTROL_COMMAND_1__AC_SET_TEMP = _SignalSpec("tele_control_command_1", "ac_set_temp", False, 0.5, 16.0, 0, 15.9999999995, 30.0000000005, 0, 28, 0, 31, frozenset(()), "[16, 30] °C")
 _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A = _SignalSpec("tele_control_command_1", "protocol_version_a", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_B = _SignalSpec("tele_control_command_1", "protocol_version_b", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
 _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_C = _SignalSpec("tele_control_command_1", "protocol_version_c", True, 1.0, 0.0, 0, 0, 15, 0, 15, 0, 15, frozenset(()), "[0, 15]")
@@ -485,7 +485,7 @@ _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE = _SignalSpec("tele_control_comma
 _TELE_CONTROL_COMMAND_2__CARGO_LIFT = _SignalSpec("tele_control_command_2", "cargo_lift", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _TELE_CONTROL_COMMAND_2__CARGO_LIFT_SPEED = _SignalSpec("tele_control_command_2", "cargo_lift_speed", True, 1.0, 0.0, 0, 0, 10, 0, 10, 0, 15, frozenset(()), "[0, 10]")
 _TELE_CONTROL_COMMAND_2__PTO_ENABLE = _SignalSpec("tele_control_command_2", "pto_enable", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
-_TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("tele_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, 0.0, 125.0, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
+_TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED = _SignalSpec("tele_control_command_2", "downhill_regen_speed", False, 0.5, 0.0, 0, -5e-10, 125.0000000005, 0, 250, 0, 255, frozenset((0,)), "[0, 125] km/h or 0 (default_speed)")
 _TELE_CONTROL_COMMAND_2__COUNTER = _SignalSpec("tele_control_command_2", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _TELE_CONTROL_COMMAND_2_SIGNALS: frozenset[str] = frozenset(("downhill_regen_enable", "cargo_lift", "cargo_lift_speed", "pto_enable", "downhill_regen_speed", "counter",))
 # fmt: on
@@ -650,11 +650,11 @@ def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        r3 = (
-            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if -1080.0 <= x3 <= 1080.0
-            else _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
-        )
+        if -1080.0000000001 <= x3 <= 1080.0000000001:
+            q = (x3 + 1080.0) / 0.1
+            r3 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -830,15 +830,23 @@ def _encode_eps_state(m: EpsState) -> bytes:
         if not 0 <= r0 <= 255:
             r0 = _to_raw(m.eps_ctrl_state, _EPS_STATE__EPS_CTRL_STATE)
         x1 = m.steering_torque
-        r1 = int((x1 + 12.8) / 0.1 + 0.5 + 1e-9) if -12.8 <= x1 <= 12.7 else _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
+        if -12.8000000001 <= x1 <= 12.7000000001:
+            q = (x1 + 12.8) / 0.1
+            r1 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r1 = _to_raw(x1, _EPS_STATE__STEERING_TORQUE)
         x2 = m.eps_output_torque
-        r2 = int((x2 + 38.4) / 0.3 + 0.5 + 1e-9) if -38.4 <= x2 <= 38.1 else _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
+        if -38.4000000003 <= x2 <= 38.1000000003:
+            q = (x2 + 38.4) / 0.3
+            r2 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r2 = _to_raw(x2, _EPS_STATE__EPS_OUTPUT_TORQUE)
         x3 = m.steering_angle
-        r3 = (
-            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if -1080.0 <= x3 <= 1080.0
-            else _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
-        )
+        if -1080.0000000001 <= x3 <= 1080.0000000001:
+            q = (x3 + 1080.0) / 0.1
+            r3 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r3 = _to_raw(x3, _EPS_STATE__STEERING_ANGLE)
         x4 = m.controller_temp
         r4 = int(x4 / 2.0 + 0.5 + 1e-9) if 0 <= x4 <= 126 else _to_raw(x4, _EPS_STATE__CONTROLLER_TEMP)
         r5 = m.eps_fault_level
@@ -1028,9 +1036,11 @@ def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
 def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
     try:
         x0 = m.accel_cmd
-        r0 = (
-            int((x0 + 9.0) / 0.02 + 0.5 + 1e-9) if -9.0 <= x0 <= 3.6 else _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
-        )
+        if -9.00000000002 <= x0 <= 3.60000000002:
+            q = (x0 + 9.0) / 0.02
+            r0 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r0 = _to_raw(x0, _AUTOCAR_SPEED_COMMAND__ACCEL_CMD)
         r1 = m.epb_cmd
         if not 0 <= r1 <= 3:
             r1 = _to_raw(m.epb_cmd, _AUTOCAR_SPEED_COMMAND__EPB_CMD)
@@ -1259,7 +1269,11 @@ def _encode_driving_state(m: DrivingState) -> bytes:
         if not 0 <= r6 <= 253:
             r6 = _to_raw(m.motor_speed_ratio, _DRIVING_STATE__MOTOR_SPEED_RATIO)
         x7 = m.current_accel
-        r7 = int((x7 + 9.0) / 0.05 + 0.5 + 1e-9) if -9.0 <= x7 <= 3.6 else _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
+        if -9.00000000005 <= x7 <= 3.60000000005:
+            q = (x7 + 9.0) / 0.05
+            r7 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
         v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -1608,11 +1622,11 @@ def _encode_autocar_control_command_1(m: AutocarControlCommand1) -> bytes:
         if not 0 <= r19 <= 3:
             r19 = _to_raw(m.ac_cmd, _AUTOCAR_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        r20 = (
-            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if 16.0 <= x20 <= 30.0
-            else _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
-        )
+        if 15.9999999995 <= x20 <= 30.0000000005:
+            q = (x20 - 16.0) / 0.5
+            r20 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r20 = _to_raw(x20, _AUTOCAR_CONTROL_COMMAND_1__AC_SET_TEMP)
         r21 = m.protocol_version_a
         if not 0 <= r21 <= 15:
             r21 = _to_raw(m.protocol_version_a, _AUTOCAR_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
@@ -2016,7 +2030,11 @@ def _encode_vehicle_state_1(m: VehicleState1) -> bytes:
         if not 0 <= r14 <= 250:
             r14 = _to_raw(m.vehicle_speed, _VEHICLE_STATE_1__VEHICLE_SPEED)
         x15 = m.soc
-        r15 = int(x15 / 0.5 + 0.5 + 1e-9) if 0.0 <= x15 <= 125.0 else _to_raw(x15, _VEHICLE_STATE_1__SOC)
+        if -5e-10 <= x15 <= 125.0000000005:
+            q = x15 / 0.5
+            r15 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r15 = _to_raw(x15, _VEHICLE_STATE_1__SOC)
         r16 = m.system_power_cmd
         if not 0 <= r16 <= 1:
             r16 = _to_raw(m.system_power_cmd, _VEHICLE_STATE_1__SYSTEM_POWER_CMD)
@@ -2309,35 +2327,35 @@ def _encode_autocar_control_command_2(m: AutocarControlCommand2) -> bytes:
         if not 0 <= r3 <= 1:
             r3 = _to_raw(m.pto_enable, _AUTOCAR_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        r4 = (
-            int(x4 / 0.5 + 0.5 + 1e-9)
-            if 0.0 <= x4 <= 125.0
-            else _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        )
+        if -5e-10 <= x4 <= 125.0000000005:
+            q = x4 / 0.5
+            r4 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r4 = _to_raw(x4, _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
         x5 = m.chassis_pitch
-        r5 = (
-            int((x5 + 25.0) / 0.05 + 0.5 + 1e-9)
-            if -25.0 <= x5 <= 25.0
-            else _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
-        )
+        if -25.00000000005 <= x5 <= 25.00000000005:
+            q = (x5 + 25.0) / 0.05
+            r5 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r5 = _to_raw(x5, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_PITCH)
         x6 = m.chassis_roll
-        r6 = (
-            int((x6 + 40.0) / 0.1 + 0.5 + 1e-9)
-            if -40.0 <= x6 <= 40.0
-            else _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
-        )
+        if -40.0000000001 <= x6 <= 40.0000000001:
+            q = (x6 + 40.0) / 0.1
+            r6 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r6 = _to_raw(x6, _AUTOCAR_CONTROL_COMMAND_2__CHASSIS_ROLL)
         x7 = m.cargo_pitch
-        r7 = (
-            int((x7 + 30.0) / 0.2 + 0.5 + 1e-9)
-            if -30.0 <= x7 <= 100.0
-            else _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
-        )
+        if -30.0000000002 <= x7 <= 100.0000000002:
+            q = (x7 + 30.0) / 0.2
+            r7 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r7 = _to_raw(x7, _AUTOCAR_CONTROL_COMMAND_2__CARGO_PITCH)
         x8 = m.cargo_roll
-        r8 = (
-            int((x8 + 40.0) / 0.1 + 0.5 + 1e-9)
-            if -40.0 <= x8 <= 40.0
-            else _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
-        )
+        if -40.0000000001 <= x8 <= 40.0000000001:
+            q = (x8 + 40.0) / 0.1
+            r8 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r8 = _to_raw(x8, _AUTOCAR_CONTROL_COMMAND_2__CARGO_ROLL)
         r9 = m.counter
         if not 0 <= r9 <= 255:
             r9 = _to_raw(m.counter, _AUTOCAR_CONTROL_COMMAND_2__COUNTER)
@@ -2490,13 +2508,17 @@ def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _encode_vehicle_state_2(m: VehicleState2) -> bytes:
     try:
         x0 = m.battery_voltage
-        r0 = int(x0 / 0.2 + 0.5 + 1e-9) if 0.0 <= x0 <= 800.0 else _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
+        if -2e-10 <= x0 <= 800.0000000002:
+            q = x0 / 0.2
+            r0 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r0 = _to_raw(x0, _VEHICLE_STATE_2__BATTERY_VOLTAGE)
         x1 = m.battery_current
-        r1 = (
-            int((x1 + 500.0) / 0.02 + 0.5 + 1e-9)
-            if -500.0 <= x1 <= 800.0
-            else _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
-        )
+        if -500.00000000002 <= x1 <= 800.00000000002:
+            q = (x1 + 500.0) / 0.02
+            r1 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r1 = _to_raw(x1, _VEHICLE_STATE_2__BATTERY_CURRENT)
         r2 = m.battery_charge_energy
         if not 0 <= r2 <= 65535:
             r2 = _to_raw(m.battery_charge_energy, _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY)
@@ -2656,9 +2678,17 @@ def _encode_vehicle_state_3(m: VehicleState3) -> bytes:
         if not 0 <= r1 <= 255:
             r1 = _to_raw(m.battery_min_temp, _VEHICLE_STATE_3__BATTERY_MIN_TEMP)
         x2 = m.max_cell_voltage
-        r2 = int(x2 / 0.0015 + 0.5 + 1e-9) if 0.0 <= x2 <= 6.0 else _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
+        if -1.5e-12 <= x2 <= 6.0000000000015:
+            q = x2 / 0.0015
+            r2 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r2 = _to_raw(x2, _VEHICLE_STATE_3__MAX_CELL_VOLTAGE)
         x3 = m.min_cell_voltage
-        r3 = int(x3 / 0.0015 + 0.5 + 1e-9) if 0.0 <= x3 <= 6.0 else _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
+        if -1.5e-12 <= x3 <= 6.0000000000015:
+            q = x3 / 0.0015
+            r3 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r3 = _to_raw(x3, _VEHICLE_STATE_3__MIN_CELL_VOLTAGE)
         r4 = m.motor_temp + 40
         if not 0 <= r4 <= 255:
             r4 = _to_raw(m.motor_temp, _VEHICLE_STATE_3__MOTOR_TEMP)
@@ -2850,9 +2880,17 @@ def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _encode_vehicle_state_4(m: VehicleState4) -> bytes:
     try:
         x0 = m.outside_temp
-        r0 = int((x0 + 30.0) / 0.5 + 0.5 + 1e-9) if -30.0 <= x0 <= 95.0 else _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
+        if -30.0000000005 <= x0 <= 95.0000000005:
+            q = (x0 + 30.0) / 0.5
+            r0 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r0 = _to_raw(x0, _VEHICLE_STATE_4__OUTSIDE_TEMP)
         x1 = m.inside_temp
-        r1 = int((x1 + 30.0) / 0.5 + 0.5 + 1e-9) if -30.0 <= x1 <= 95.0 else _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
+        if -30.0000000005 <= x1 <= 95.0000000005:
+            q = (x1 + 30.0) / 0.5
+            r1 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r1 = _to_raw(x1, _VEHICLE_STATE_4__INSIDE_TEMP)
         r2 = m.ac_state
         if not 0 <= r2 <= 3:
             r2 = _to_raw(m.ac_state, _VEHICLE_STATE_4__AC_STATE)
@@ -2875,16 +2913,20 @@ def _encode_vehicle_state_4(m: VehicleState4) -> bytes:
         if not 0 <= r8 <= 1:
             r8 = _to_raw(m.remote_driving_allowed, _VEHICLE_STATE_4__REMOTE_DRIVING_ALLOWED)
         x9 = m.ac_set_temp
-        r9 = int((x9 - 16.0) / 0.5 + 0.5 + 1e-9) if 16.0 <= x9 <= 30.0 else _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
+        if 15.9999999995 <= x9 <= 30.0000000005:
+            q = (x9 - 16.0) / 0.5
+            r9 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r9 = _to_raw(x9, _VEHICLE_STATE_4__AC_SET_TEMP)
         r10 = m.pto_state
         if not 0 <= r10 <= 1:
             r10 = _to_raw(m.pto_state, _VEHICLE_STATE_4__PTO_STATE)
         x11 = m.battery_power
-        r11 = (
-            int((x11 + 325.0) / 0.01 + 0.5 + 1e-9)
-            if -325.0 <= x11 <= 325.0
-            else _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
-        )
+        if -325.00000000001 <= x11 <= 325.00000000001:
+            q = (x11 + 325.0) / 0.01
+            r11 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r11 = _to_raw(x11, _VEHICLE_STATE_4__BATTERY_POWER)
         v = (
             r0
             | r1 << 8
@@ -3683,11 +3725,11 @@ def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        r3 = (
-            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if -1080.0 <= x3 <= 1080.0
-            else _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
-        )
+        if -1080.0000000001 <= x3 <= 1080.0000000001:
+            q = (x3 + 1080.0) / 0.1
+            r3 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -3873,7 +3915,11 @@ def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
 def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
     try:
         x0 = m.accel_cmd
-        r0 = int((x0 + 9.0) / 0.02 + 0.5 + 1e-9) if -9.0 <= x0 <= 3.6 else _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
+        if -9.00000000002 <= x0 <= 3.60000000002:
+            q = (x0 + 9.0) / 0.02
+            r0 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r0 = _to_raw(x0, _RGATE_SPEED_COMMAND__ACCEL_CMD)
         r1 = m.epb_cmd
         if not 0 <= r1 <= 3:
             r1 = _to_raw(m.epb_cmd, _RGATE_SPEED_COMMAND__EPB_CMD)
@@ -4228,11 +4274,11 @@ def _encode_rgate_control_command_1(m: RgateControlCommand1) -> bytes:
         if not 0 <= r19 <= 3:
             r19 = _to_raw(m.ac_cmd, _RGATE_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        r20 = (
-            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if 16.0 <= x20 <= 30.0
-            else _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        )
+        if 15.9999999995 <= x20 <= 30.0000000005:
+            q = (x20 - 16.0) / 0.5
+            r20 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r20 = _to_raw(x20, _RGATE_CONTROL_COMMAND_1__AC_SET_TEMP)
         r21 = m.protocol_version_a
         if not 0 <= r21 <= 15:
             r21 = _to_raw(m.protocol_version_a, _RGATE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
@@ -4508,11 +4554,11 @@ def _encode_rgate_control_command_2(m: RgateControlCommand2) -> bytes:
         if not 0 <= r3 <= 1:
             r3 = _to_raw(m.pto_enable, _RGATE_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        r4 = (
-            int(x4 / 0.5 + 0.5 + 1e-9)
-            if 0.0 <= x4 <= 125.0
-            else _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        )
+        if -5e-10 <= x4 <= 125.0000000005:
+            q = x4 / 0.5
+            r4 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r4 = _to_raw(x4, _RGATE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
         r5 = m.counter
         if not 0 <= r5 <= 255:
             r5 = _to_raw(m.counter, _RGATE_CONTROL_COMMAND_2__COUNTER)
@@ -5822,11 +5868,11 @@ def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
         else:
             r2 = _to_raw(x2, _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
         x3 = m.steering_angle_cmd
-        r3 = (
-            int((x3 + 1080.0) / 0.1 + 0.5 + 1e-9)
-            if -1080.0 <= x3 <= 1080.0
-            else _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
-        )
+        if -1080.0000000001 <= x3 <= 1080.0000000001:
+            q = (x3 + 1080.0) / 0.1
+            r3 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
         c = v & 0xFFFFFFFFFFFFFF
         c ^= c >> 32
@@ -6012,11 +6058,11 @@ def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
 def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
     try:
         x0 = m.throttle_brake_cmd
-        r0 = (
-            int((x0 + 100.0) / 0.2 + 0.5 + 1e-9)
-            if -100.0 <= x0 <= 100.0
-            else _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
-        )
+        if -100.0000000002 <= x0 <= 100.0000000002:
+            q = (x0 + 100.0) / 0.2
+            r0 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r0 = _to_raw(x0, _TELE_SPEED_COMMAND__THROTTLE_BRAKE_CMD)
         r1 = m.epb_cmd
         if not 0 <= r1 <= 3:
             r1 = _to_raw(m.epb_cmd, _TELE_SPEED_COMMAND__EPB_CMD)
@@ -6371,11 +6417,11 @@ def _encode_tele_control_command_1(m: TeleControlCommand1) -> bytes:
         if not 0 <= r19 <= 3:
             r19 = _to_raw(m.ac_cmd, _TELE_CONTROL_COMMAND_1__AC_CMD)
         x20 = m.ac_set_temp
-        r20 = (
-            int((x20 - 16.0) / 0.5 + 0.5 + 1e-9)
-            if 16.0 <= x20 <= 30.0
-            else _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
-        )
+        if 15.9999999995 <= x20 <= 30.0000000005:
+            q = (x20 - 16.0) / 0.5
+            r20 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r20 = _to_raw(x20, _TELE_CONTROL_COMMAND_1__AC_SET_TEMP)
         r21 = m.protocol_version_a
         if not 0 <= r21 <= 15:
             r21 = _to_raw(m.protocol_version_a, _TELE_CONTROL_COMMAND_1__PROTOCOL_VERSION_A)
@@ -6651,11 +6697,11 @@ def _encode_tele_control_command_2(m: TeleControlCommand2) -> bytes:
         if not 0 <= r3 <= 1:
             r3 = _to_raw(m.pto_enable, _TELE_CONTROL_COMMAND_2__PTO_ENABLE)
         x4 = m.downhill_regen_speed
-        r4 = (
-            int(x4 / 0.5 + 0.5 + 1e-9)
-            if 0.0 <= x4 <= 125.0
-            else _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
-        )
+        if -5e-10 <= x4 <= 125.0000000005:
+            q = x4 / 0.5
+            r4 = int(q + 0.5 + 1e-9) if q >= 0 else -int(-q + 0.5 + 1e-9)
+        else:
+            r4 = _to_raw(x4, _TELE_CONTROL_COMMAND_2__DOWNHILL_REGEN_SPEED)
         r5 = m.counter
         if not 0 <= r5 <= 255:
             r5 = _to_raw(m.counter, _TELE_CONTROL_COMMAND_2__COUNTER)

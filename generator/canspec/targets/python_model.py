@@ -235,7 +235,7 @@ def _raw_check(sig: ir.Signal, direct: bool) -> bool:
     Rounding is monotonic, so the two ends of the range decide."""
     if direct:
         return True
-    ends = (to_raw_runtime(float(sig.check_min), float(sig.factor), float(sig.offset)), to_raw_runtime(float(sig.check_max), float(sig.factor), float(sig.offset)))
+    ends = (to_raw_runtime(float(sig.accept_min), float(sig.factor), float(sig.offset)), to_raw_runtime(float(sig.accept_max), float(sig.factor), float(sig.offset)))
     return not all(sig.raw_min <= raw <= sig.raw_max for raw in ends)
 
 
@@ -301,7 +301,7 @@ def _signal(msg: ir.Message, sig: ir.Signal, index: int, frame_bits: int, enum_n
         default = f"{enum}.{upper_snake(entry.name)}" if entry is not None else str(default_raw)
     else:
         default = num_lit(default_phys, as_int)
-    lo, hi = sig.check_min, sig.check_max
+    lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
     lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else float_lit(lo)
     hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else float_lit(hi)
     q_nonneg = sig.factor > 0 and float(lo) - float(sig.offset) >= 0
