@@ -130,6 +130,10 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
         message, hint = _describe(err)
         container, key = _walk(data, err.absolute_path)
         loc = (container.loc_of(key) if key is not None else container.loc) if isinstance(container, (LocDict, LocList)) else top
+        if err.validator == "additionalProperties" and key is None and isinstance(container, LocDict):
+            # Point at the unknown key itself, not at the mapping holding it.
+            extra = [k for k in container if k not in err.schema.get("properties", {})]
+            loc = container.key_locs.get(extra[0], loc) if extra else loc
         if (loc, message) in seen:
             continue
         seen.add((loc, message))
@@ -171,7 +175,7 @@ def load(spec: Path | str | None = None) -> LoadedSpec:
                 problems.extend(exc.problems)
                 continue
             if doc.kind == "bundle":
-                problems.append(error("a bundle cannot include another bundle", files.loc_of(i)))
+                problems.append(error("a bundle cannot include another bundle", files.loc_of(i), "list the other bundle's files instead", "nested-bundle"))
             loaded.documents.append(doc)
         if problems:
             raise SpecError(problems)
