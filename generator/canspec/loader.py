@@ -111,7 +111,7 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
     if "schema_version" not in data:
         return [error("missing `schema_version`", data.loc, "start the file with `schema_version: 1` (see spec/schema/CHANGELOG.md)", "schema-version")]
     if not isinstance(version, int) or isinstance(version, bool):
-        return [error(f"`schema_version` must be an integer, got {version!r}", data.loc_of("schema_version"), None, "schema-version")]
+        return [error(f"`schema_version` must be an integer, got {_kind_of(version)}", data.loc_of("schema_version"), None, "schema-version")]
     if version not in SUPPORTED_SCHEMA_VERSIONS:
         newest = max(SUPPORTED_SCHEMA_VERSIONS)
         hint = (
@@ -145,7 +145,7 @@ def _load_document(path: Path) -> Document:
     name = display_name(path)
     data = load_yaml(path, name)
     if not isinstance(data, LocDict):
-        raise SpecError([error(f"expected a mapping at the top of the file, got {type(data).__name__}", getattr(data, "loc", Loc(name)), "a spec file starts with `schema_version:` and `kind:`")])
+        raise SpecError([error(f"expected a mapping at the top of the file, got {_kind_of(data)}", getattr(data, "loc", Loc(name, 1, 1)), "a spec file starts with `schema_version:` and `kind:`")])
     problems = schema_problems(data, name)
     if problems:
         raise SpecError(problems)
@@ -155,6 +155,14 @@ def _load_document(path: Path) -> Document:
 def load(spec: Path | str | None = None) -> LoadedSpec:
     """Load the spec at `spec` (default: the shipped one). Raises SpecError."""
     path = Path(spec) if spec is not None else resources.default_spec()
+    try:
+        return _load(path)
+    except OSError as exc:  # e.g. a directory on the way that we may not search
+        where = Path(exc.filename) if exc.filename else path
+        raise SpecError([error(f"cannot access: {exc.strerror}", Loc(display_name(where)), "check the path and its permissions")]) from None
+
+
+def _load(path: Path) -> LoadedSpec:
     if path.is_dir():
         manifest = path / "canspec.yaml"
         if not manifest.is_file():
@@ -169,6 +177,11 @@ def load(spec: Path | str | None = None) -> LoadedSpec:
         problems: list[Problem] = []
         files = first.data["files"]
         for i, rel in enumerate(files):
+            if not (path.parent / rel).is_file():
+                # Point at the bundle's entry: that is the line to fix.
+                what = "is a directory" if (path.parent / rel).is_dir() else "does not exist"
+                problems.append(error(f"bundle file {rel!r} {what}", files.loc_of(i), f"paths are relative to {display_name(path.parent) or '.'}/"))
+                continue
             try:
                 doc = _load_document(path.parent / rel)
             except SpecError as exc:

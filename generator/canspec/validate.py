@@ -29,11 +29,11 @@ def version_key(text: str) -> tuple[int, ...]:
 
 
 def _finite(value: Any) -> bool:
-    if isinstance(value, Decimal):
-        return value.is_finite()
-    if isinstance(value, float):
-        return math.isfinite(value)
-    return True
+    """A finite number that a double can hold (generated code computes in doubles)."""
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:  # an int beyond the double range
+        return False
 
 
 def _frac(value: Any) -> Fraction:
@@ -129,7 +129,8 @@ def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
 @rule
 def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
-        frame_bits = 8 * msg.get("dlc", 8)
+        dlc = msg.get("dlc", 8)
+        frame_bits = 8 * dlc if 0 <= dlc <= 8 else 64  # a bad DLC is reported by dlc-range
         owners: list[str | None] = [None] * 64
         for sig in _signals(msg):
             start, length = sig["start"], sig["len"]
@@ -146,9 +147,9 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                 owners[b] = owners[b] or sig["name"]
             for key in ("factor", "offset"):
                 if not _finite(sig[key]):
-                    yield error(f"signal {sig['name']!r}: {key} must be a finite number", sig.loc_of(key), None, "nonfinite")
-            if _finite(sig["factor"]) and sig["factor"] == 0:
-                yield error(f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
+                    yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
+            if _finite(sig["factor"]) and float(sig["factor"]) == 0:
+                yield error(f"signal {sig['name']!r} has factor {sig['factor']} (0 as a double)", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
 
 
 @rule
@@ -156,10 +157,10 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
         for sig in _signals(msg):
             rng = sig.get("range")
-            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
+            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or float(sig["factor"]) == 0 or not _finite(sig["offset"]):
                 continue
             if not all(_finite(v) for v in rng):
-                yield error(f"signal {sig['name']!r}: range must be finite numbers", sig.loc_of("range"), None, "nonfinite")
+                yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
                 continue
             lo, hi = _frac(rng[0]), _frac(rng[1])
             if lo > hi:
@@ -251,8 +252,8 @@ def multiframes(can: ResolvedCan) -> Iterator[Problem]:
         for key, sig in (("index", index), ("payload", payload)):
             if sig is None:
                 yield error(f"multiframe {key} {mf[key]!r} is not a signal of {msg['name']!r}", mf.loc_of(key), None, "multiframe")
-        if index is None or payload is None:
-            continue
+        if index is None or payload is None or not (1 <= index["len"] <= 64 and 1 <= payload["len"] <= 64):
+            continue  # a bad length is reported by signal-length
         if payload["start"] % 8 or payload["len"] % 8 or payload["factor"] != 1 or payload["offset"] != 0:
             yield error(f"multiframe payload {payload['name']!r} must be whole bytes with factor 1, offset 0", mf.loc_of("payload"), None, "multiframe")
             continue
@@ -268,6 +269,10 @@ def _json_rules(doc: Any) -> Iterator[Problem]:
     types = data["types"]
     shared = data.get("fields", LocDict())
     parties = {p["name"] for p in data["parties"]}
+    for tname, tdef in types.items():
+        for key in ("min", "max"):
+            if key in tdef and not _finite(tdef[key]):
+                yield error(f"type {tname!r}: {key} must be a finite number within the range of a double", tdef.loc_of(key), None, "nonfinite")
     for fname, fdef in shared.items():
         if fdef["type"] not in types:
             yield error(f"field {fname!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")
