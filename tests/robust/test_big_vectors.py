@@ -87,3 +87,17 @@ def test_every_language_runner_agrees_on_the_big_file(big_file: Path) -> None:
         pytest.skip("`make -n roundtrip` runs nothing yet: no roundtrip-<lang> runners (C/Python/Rust) are in this checkout")
     proc = subprocess.run(["make", "--no-print-directory", "roundtrip", f"VECTORS={big_file}"], cwd=ROOT, capture_output=True, text=True, timeout=1800)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+
+
+def test_pluggable_encoder_path_reproduces_the_reference(tmp_path: Path) -> None:
+    """`--encoder module:attr` rebuilds every case through that encoder. Plugging in the
+    reference codec through that path must give the same file (but for `generated_by`): this is
+    the path the generated Python encoder will take."""
+    files = {}
+    for name, extra in (("default", []), ("plugged", ["--encoder", "big_vectors:ReferenceEncoder"])):
+        files[name] = tmp_path / f"{name}.json"
+        subprocess.run([sys.executable, str(ROOT / "tools" / "big_vectors.py"), "-o", str(files[name]), "--cases", "3000", *extra],
+                       env=canspec_env(), check=True, capture_output=True, timeout=600)
+    default, plugged = (json.loads(files[n].read_text(encoding="utf-8")) for n in ("default", "plugged"))
+    assert "ReferenceEncoder" in plugged.pop("generated_by") and default.pop("generated_by")
+    assert plugged == default
