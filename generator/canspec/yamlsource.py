@@ -23,7 +23,7 @@ class LocDict(dict):  # type: ignore[type-arg]
     loc: Loc
     key_locs: dict[Any, Loc]
     value_locs: dict[Any, Loc]
-    key_nodes: dict[Any, int]  # while loading only: which YAML node each key came from
+    key_nodes: dict[Any, int]  # id of the YAML node each key came from (merge-key overrides)
 
     def loc_of(self, key: Any) -> Loc:
         return self.value_locs.get(key) or self.loc
@@ -51,7 +51,7 @@ MAX_VALUES = 5_000_000  # mapping entries and list items after expanding aliases
 
 try:  # libyaml's scanner and parser when PyYAML has them: about 4x faster on big specs
     from yaml.cyaml import CParser as _CParser
-except ImportError:  # pragma: no cover - PyYAML built without libyaml
+except ImportError:  # PyYAML built without libyaml (tests/robust/test_yaml_fallback.py)
     _CParser = None
 
 if _CParser is not None:
@@ -73,7 +73,7 @@ if _CParser is not None:
         get_node = yaml.composer.Composer.get_node
         check_node = yaml.composer.Composer.check_node
 
-else:  # pragma: no cover
+else:
 
     class _Base(yaml.SafeLoader):  # type: ignore[no-redef]
         positions_in_bytes = False
@@ -109,7 +109,8 @@ def _mark(loader: _Loader, node: yaml.Node) -> Loc:
 
 
 def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LocDict:
-    # Keys written in this mapping; keys merged in with `<<:` may be overridden by them.
+    # Keys written in this mapping. Only those may not repeat: keys merged in with `<<:` are
+    # overridden by them, and among merged mappings the first listed wins (PyYAML's order).
     explicit = {id(k) for k, _ in node.value if k.tag != "tag:yaml.org,2002:merge"}
     loader.flatten_mapping(node)
     data = LocDict()
@@ -123,7 +124,7 @@ def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> LocDict:
             hash(key)
         except TypeError:
             raise SpecError([error("a mapping key must be a scalar", _mark(loader, key_node))]) from None
-        if key in data and not (id(key_node) in explicit and data.key_nodes[key] not in explicit):
+        if key in data and id(key_node) in explicit and data.key_nodes[key] in explicit:
             first = data.key_locs[key]
             raise SpecError(
                 [

@@ -203,3 +203,16 @@ def test_gen_into_unwritable_places(tmp_path: Path) -> None:
     proc = run_canspec("gen", ROOT / "spec", "-o", tmp_path / "a_file" / "sub", "-t", "dbc")
     assert_no_traceback(proc)
     assert proc.returncode == 1 and "cannot write" in proc.stderr, proc.stderr
+
+
+def test_merge_keys_and_anchors_are_not_duplicates(tmp_path: Path) -> None:
+    """`<<: *base` then an explicit key overrides the merged one (YAML merge semantics); the
+    first of several merged mappings wins; only keys written twice are duplicates."""
+    from canspec.yamlsource import load_yaml
+
+    text = VALID_CAN.replace("  - {name: CTRL, sa: 0xA0}\n", "  - &ctrl {name: CTRL, sa: 0xA0}\n  - {<<: *ctrl, name: TELE, sa: 0xD0}\n")
+    (tmp_path / "merge.yaml").write_text(text, encoding="utf-8")
+    proc = run_canspec("check", "merge.yaml", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    (tmp_path / "order.yaml").write_text("a: &a {x: 1, y: 1}\nb: &b {x: 2, z: 2}\nc: {<<: [*a, *b], z: 3}\n", encoding="utf-8")
+    assert load_yaml(tmp_path / "order.yaml")["c"] == {"x": 1, "y": 1, "z": 3}
