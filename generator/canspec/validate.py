@@ -29,11 +29,13 @@ def version_key(text: str) -> tuple[int, ...]:
 
 
 def _finite(value: Any) -> bool:
-    """A finite number that a double can hold (generated code computes in doubles)."""
+    """A finite number that a double can hold (generated code computes in doubles): not
+    infinite or NaN, not beyond the double range, and not so small it becomes 0."""
     try:
-        return math.isfinite(float(value))
+        as_double = float(value)
     except OverflowError:  # an int beyond the double range
         return False
+    return math.isfinite(as_double) and (as_double != 0 or value == 0)
 
 
 def _frac(value: Any) -> Fraction:
@@ -148,8 +150,8 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
             for key in ("factor", "offset"):
                 if not _finite(sig[key]):
                     yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
-            if _finite(sig["factor"]) and float(sig["factor"]) == 0:
-                yield error(f"signal {sig['name']!r} has factor {sig['factor']} (0 as a double)", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
+            if _finite(sig["factor"]) and sig["factor"] == 0:
+                yield error(f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
 
 
 @rule
@@ -157,7 +159,7 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
         for sig in _signals(msg):
             rng = sig.get("range")
-            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or float(sig["factor"]) == 0 or not _finite(sig["offset"]):
+            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
                 continue
             if not all(_finite(v) for v in rng):
                 yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
@@ -169,10 +171,20 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
             ends = sorted([tmin * factor + offset, tmax * factor + offset])
-            if lo < ends[0] or hi > ends[1]:
+            if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, tmin, tmax):
+                yield error(
+                    f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
+                    sig.loc_of("range"), "check offset, factor, length and range against the document", "range-empty")
+            elif lo < ends[0] or hi > ends[1]:
                 yield warning(
                     f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} can encode [{_num(ends[0])}, {_num(ends[1])}]",
                     sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
+
+
+def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, tmin: int, tmax: int) -> bool:
+    """True when no raw value of the field maps into [lo, hi] (build.py would get raw_min > raw_max)."""
+    qa, qb = sorted([(lo - offset) / factor, (hi - offset) / factor])
+    return max(tmin, math.ceil(qa)) > min(tmax, math.floor(qb))
 
 
 def _num(f: Fraction) -> str:
@@ -228,7 +240,7 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(f"{role} {sig['name']!r} must be unsigned with factor 1 and offset 0", sig.loc_of("role"), None, f"{role}-shape")
             full = [0, (1 << sig["len"]) - 1] if 1 <= sig["len"] <= 64 else None
             rng = sig.get("range")
-            if rng is not None and full is not None and [_frac(rng[0]), _frac(rng[1])] != full:
+            if rng is not None and full is not None and all(_finite(v) for v in rng) and [_frac(rng[0]), _frac(rng[1])] != full:
                 yield error(
                     f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}",
                     sig.loc_of("range"), f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
