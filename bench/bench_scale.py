@@ -21,7 +21,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
-import synth_spec  # noqa: E402
+import synth_spec
 
 TARGET_SECONDS = 2.0
 
@@ -36,7 +36,7 @@ def timed(*args: str | Path) -> tuple[float, float]:
     """Wall and CPU seconds of one `canspec` run (fails loudly if the run fails)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "canspec", *map(str, args)], env=_env(), capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-m", "canspec", *map(str, args)], env=_env(), capture_output=True, text=True, check=False)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode != 0:
@@ -67,7 +67,9 @@ def main() -> int:
         synth_spec.synthesize(spec, 2000, 30000, seed=1)
         specs.append(("synthetic 30k signals", spec, 2000))
 
-    print(f"{'spec':24} {'messages':>8} | {'check wall':>10} {'check cpu':>9} {'x 1st':>6} {'ms/msg':>7} | {'gen wall':>9} {'gen cpu':>8} {'x 1st':>6} {'ms/msg':>7} | {'output':>8}")
+    print(
+        f"{'spec':24} {'messages':>8} | {'check wall':>10} {'check cpu':>9} {'x 1st':>6} {'ms/msg':>7} | {'gen wall':>9} {'gen cpu':>8} {'x 1st':>6} {'ms/msg':>7} | {'output':>8}"
+    )
     first: tuple[int, float, float] | None = None
     for label, spec, messages in specs:
         check_wall, check_cpu = timed("check", "-q", spec)
@@ -83,8 +85,10 @@ def main() -> int:
         extra = messages - n0
         mc = f"{(check_cpu - c0) / extra * 1e3:6.2f}" if extra > 0 else "     -"
         mg = f"{(gen_cpu - g0) / extra * 1e3:6.2f}" if extra > 0 else "     -"
-        print(f"{label:24} {messages:8d} | {check_wall:9.2f}s {check_cpu:8.2f}s {check_cpu / c0:6.1f} {mc} | "
-              f"{gen_wall:8.2f}s {gen_cpu:7.2f}s {gen_cpu / g0:6.1f} {mg} | {size / 1e6:6.1f}MB")
+        print(
+            f"{label:24} {messages:8d} | {check_wall:9.2f}s {check_cpu:8.2f}s {check_cpu / c0:6.1f} {mc} | "
+            f"{gen_wall:8.2f}s {gen_cpu:7.2f}s {gen_cpu / g0:6.1f} {mg} | {size / 1e6:6.1f}MB"
+        )
         if not args.keep:
             shutil.rmtree(out, ignore_errors=True)
 
@@ -98,7 +102,9 @@ def main() -> int:
     wall, cpu = min(runs)
     verdict = "OK" if wall < TARGET_SECONDS else "OVER TARGET"
     print(f"shipped spec, all targets: gen {wall:.2f}s wall ({cpu:.2f}s cpu), best of 3; target < {TARGET_SECONDS:.0f}s: {verdict}")
-    print(f"(x 1st: CPU relative to the first row; ms/msg: CPU per message beyond the first row, constant when growth is linear. load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)")
+    print(
+        f"(x 1st: CPU relative to the first row; ms/msg: CPU per message beyond the first row, constant when growth is linear. load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)"
+    )
     if not args.keep:
         for _, spec, _ in specs:
             shutil.rmtree(spec, ignore_errors=True)

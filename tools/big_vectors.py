@@ -33,10 +33,10 @@ from typing import Any, Protocol
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "generator"))
 
-from canspec import codec, ir  # noqa: E402
-from canspec.encoding import to_raw_exact, to_raw_runtime  # noqa: E402
-from canspec.pipeline import compile_spec  # noqa: E402
-from canspec.targets.vectors import base_raw, build_vectors  # noqa: E402
+from canspec import codec, ir
+from canspec.encoding import to_raw_exact, to_raw_runtime
+from canspec.pipeline import compile_spec
+from canspec.targets.vectors import base_raw, build_vectors
 
 
 class Encoder(Protocol):
@@ -116,8 +116,11 @@ class CaseMaker:
                 return self.case(msg, raw, "tie", {sig.name: tie[0]}, note=f"{sig.name} tie {tie[0]!r} -> raw {tie[1]}")
         if choice < 0.25:  # a value the field holds but the documented range excludes
             sig = rng.choice(sigs)
-            outside = [v for v in (sig.raw_type_min, sig.raw_min - 1, sig.raw_max + 1, sig.raw_type_max)
-                       if sig.raw_type_min <= v <= sig.raw_type_max and not sig.raw_allowed(v)]
+            outside = [
+                v
+                for v in (sig.raw_type_min, sig.raw_min - 1, sig.raw_max + 1, sig.raw_type_max)
+                if sig.raw_type_min <= v <= sig.raw_type_max and not sig.raw_allowed(v)
+            ]
             if outside:
                 raw = {s.name: base_raw(s) for s in sigs}
                 raw[sig.name] = rng.choice(outside)
@@ -131,10 +134,12 @@ def build(spec: ir.Spec, cases: int, seed: int, encoder: Encoder) -> dict[str, A
     maker = CaseMaker(encoder)
     by_name = {m.name: m for m in spec.can.messages}
     if not isinstance(encoder, ReferenceEncoder):  # the regular cases' bytes and physicals from this encoder too
+
         def again(c: dict[str, Any]) -> dict[str, Any]:
             msg = by_name[c["message"]]
             raw = {k: v for k, v in c["raw"].items() if msg.checksum is None or k != msg.checksum.signal}
             return maker.case(msg, raw, c["kind"], c["physical"] if c["kind"] == "tie" else None, c.get("note", ""))
+
         doc["cases"] = [again(c) for c in doc["cases"]]
     rng = random.Random(seed)
     # Messages without signals (layout_undefined) have one frame, already in the regular cases.
@@ -168,8 +173,11 @@ def main(argv: list[str] | None = None) -> int:
     kinds: dict[str, int] = {}
     for c in doc["cases"]:
         kinds[c["kind"]] = kinds.get(c["kind"], 0) + 1
-    print(f"big_vectors: {len(doc['cases'])} cases over {len(compiled.spec.can.messages)} messages -> {args.output} "
-          f"({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))})", file=sys.stderr)
+    print(
+        f"big_vectors: {len(doc['cases'])} cases over {len(compiled.spec.can.messages)} messages -> {args.output} "
+        f"({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))})",
+        file=sys.stderr,
+    )
     return 0
 
 

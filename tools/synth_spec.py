@@ -25,9 +25,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 SHIPPED = ROOT / "spec"
 
-_MESSAGE_START = re.compile(r"^  - name: ([a-z0-9_]+)\s*$", re.M)
-_ID = re.compile(r"^    id: 0x([0-9A-Fa-f]+)\s*$", re.M)
-_J1939 = re.compile(r"^(    j1939: \{.*?)pf: 0x[0-9A-Fa-f]+, ps: 0x[0-9A-Fa-f]+(.*)$", re.M)
+_MESSAGE_START = re.compile(r"^  - name: ([a-z0-9_]+)\s*$", re.MULTILINE)
+_ID = re.compile(r"^    id: 0x([0-9A-Fa-f]+)\s*$", re.MULTILINE)
+_J1939 = re.compile(r"^(    j1939: \{.*?)pf: 0x[0-9A-Fa-f]+, ps: 0x[0-9A-Fa-f]+(.*)$", re.MULTILINE)
 
 
 def _copy_message(block: str, suffix: str, index: int) -> str:
@@ -133,7 +133,8 @@ def synthesize(out: Path, messages: int, signals: int, seed: int) -> tuple[int, 
             f"  - name: msg_{i:05d}\n    id: 0x{frame_id:08X}\n"
             f"    j1939: {{priority: 6, pf: 0x{pf:02X}, ps: 0x{ps:02X}, sa: 0x{sa:02X}}}\n"
             f"    sender: {sender}\n    receivers: ALL\n    cycle_ms: {rng.choice([10, 20, 50, 100, 1000])}\n    signals:\n"
-            + "\n".join(_signal_lines(rng, count)) + "\n"
+            + "\n".join(_signal_lines(rng, count))
+            + "\n"
         )
     (out / "can" / "synthetic.yaml").write_text("".join(parts), encoding="utf-8")
     (out / "canspec.yaml").write_text("schema_version: 1\nkind: bundle\nname: synthetic\nfiles:\n  - can/synthetic.yaml\n", encoding="utf-8")

@@ -22,11 +22,16 @@ def canspec_env(**extra: str) -> dict[str, str]:
 def run_canspec(*args: str | Path, cwd: Path | str | None = None, timeout: float = 300, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [sys.executable, "-m", "canspec", *map(str, args)],
-        cwd=cwd or ROOT, env=env or canspec_env(), capture_output=True, text=True, timeout=timeout,
+        cwd=cwd or ROOT,
+        env=env or canspec_env(),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
     )
 
 
-_EXCEPTION_LINE = re.compile(r"^[A-Za-z_.]*(Error|Exception|Interrupt)(: |$)", re.M)
+_EXCEPTION_LINE = re.compile(r"^[A-Za-z_.]*(Error|Exception|Interrupt)(: |$)", re.MULTILINE)
 
 
 def assert_no_traceback(proc: subprocess.CompletedProcess[str]) -> None:

@@ -12,7 +12,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from robust_util import FIXTURES, ROOT, assert_no_traceback, canspec_env, run_canspec
 
 BROKEN = FIXTURES / "broken"
@@ -149,8 +148,10 @@ def test_read_errors_are_reported_in_process(tmp_path: Path, monkeypatch: pytest
     spec = tmp_path / "spec.yaml"
     spec.write_text(VALID_CAN, encoding="utf-8")
     for code in (errno.EACCES, errno.EIO):
+
         def refuse(self: Path, code: int = code) -> bytes:
             raise OSError(code, os.strerror(code), str(self))
+
         monkeypatch.setattr(Path, "read_bytes", refuse)
         assert cli.main(["check", str(spec)]) == 1
         err = capsys.readouterr().err
@@ -177,7 +178,7 @@ def test_unreadable_file_and_directories(tmp_path: Path) -> None:
     secret = tmp_path / "secret.yaml"
     secret.write_text(VALID_CAN, encoding="utf-8")
     secret.chmod(0)
-    probe = subprocess.run([*prefix, sys.executable, "-c", f"open({str(secret)!r}).read()"], capture_output=True, text=True)
+    probe = subprocess.run([*prefix, sys.executable, "-c", f"open({str(secret)!r}).read()"], capture_output=True, text=True, check=False)
     if probe.returncode == 0 or (prefix and probe.returncode != 0 and "PermissionError" not in probe.stderr):
         pytest.skip(f"cannot run without permission overrides here (as uid {os.geteuid()}): {probe.stderr.strip()[-200:]}")
     locked = tmp_path / "locked"  # a spec directory we may not list or enter
@@ -185,10 +186,20 @@ def test_unreadable_file_and_directories(tmp_path: Path) -> None:
     (locked / "canspec.yaml").write_text(VALID_CAN, encoding="utf-8")
     locked.chmod(0)
     try:
-        for target, words in (("secret.yaml", "secret.yaml: error: cannot read file: Permission denied"),
-                              ("locked", "locked/canspec.yaml: error: cannot access: Permission denied"),
-                              ("locked/canspec.yaml", "locked/canspec.yaml: error: cannot access: Permission denied")):
-            proc = subprocess.run([*prefix, sys.executable, "-m", "canspec", "check", target], cwd=tmp_path, env=canspec_env(), capture_output=True, text=True, timeout=120)
+        for target, words in (
+            ("secret.yaml", "secret.yaml: error: cannot read file: Permission denied"),
+            ("locked", "locked/canspec.yaml: error: cannot access: Permission denied"),
+            ("locked/canspec.yaml", "locked/canspec.yaml: error: cannot access: Permission denied"),
+        ):
+            proc = subprocess.run(
+                [*prefix, sys.executable, "-m", "canspec", "check", target],
+                cwd=tmp_path,
+                env=canspec_env(),
+                capture_output=True,
+                text=True,
+                timeout=120,
+                check=False,
+            )
             assert_no_traceback(proc)
             assert proc.returncode == 1 and words in proc.stderr, proc.stderr
     finally:

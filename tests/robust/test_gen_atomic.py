@@ -15,7 +15,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from robust_util import ROOT, assert_no_traceback, canspec_env, run_canspec
 
 TMP_PREFIX = ".canspec-tmp-"
@@ -73,8 +72,9 @@ def test_expected_output_differs_everywhere(previous: Path, expected: dict[str, 
 
 
 @pytest.mark.parametrize("breakage", ["{% for x in %}\n", "{{ spec.no_such_field }}\n"], ids=["syntax", "undefined"])
-def test_template_error_leaves_output_untouched(breakage: str, previous: Path, edited_spec: Path, tmp_path: Path,
-                                                monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+def test_template_error_leaves_output_untouched(
+    breakage: str, previous: Path, edited_spec: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
     from canspec import render, resources
 
     templates = tmp_path / "templates"
@@ -94,8 +94,9 @@ def test_template_error_leaves_output_untouched(breakage: str, previous: Path, e
 
 
 @pytest.mark.parametrize("fail_at", [1, 2, "last"])
-def test_full_disk_while_staging_leaves_output_untouched(fail_at: int | str, previous: Path, edited_spec: Path, expected: dict[str, bytes],
-                                                         monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+def test_full_disk_while_staging_leaves_output_untouched(
+    fail_at: int | str, previous: Path, edited_spec: Path, expected: dict[str, bytes], monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
     before = snapshot(previous)
     calls = {"n": 0}
     real_fsync = os.fsync
@@ -128,8 +129,15 @@ def test_file_size_limit_in_a_real_process(previous: Path, edited_spec: Path) ->
     """A real write failure (RLIMIT_FSIZE → EFBIG) in a real `canspec gen` process."""
     before = snapshot(previous)
     assert max(len(v) for v in before.values()) > 64 * 1024, "some output must exceed the limit"
-    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(edited_spec), "-o", str(previous)],
-                          env=canspec_env(), capture_output=True, text=True, preexec_fn=_limit_file_size, timeout=300)
+    proc = subprocess.run(
+        [sys.executable, "-m", "canspec", "gen", str(edited_spec), "-o", str(previous)],
+        env=canspec_env(),
+        capture_output=True,
+        text=True,
+        preexec_fn=_limit_file_size,
+        timeout=300,
+        check=False,
+    )
     assert_no_traceback(proc)
     assert proc.returncode == 1 and "File too large" in proc.stderr and "previous files left unchanged" in proc.stderr, proc.stderr
     assert snapshot(previous) == before and not leftovers(previous)
@@ -141,7 +149,10 @@ def test_real_full_disk_on_tmpfs(edited_spec: Path, tmp_path: Path) -> None:
     mnt.mkdir()
     total = sum(map(len, snapshot(ROOT / "generated").values()))
     size_kib = total * 3 // 2 // 1024  # room for the old files, not for old + staged new ones
-    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size_kib}k", "tmpfs", str(mnt)], capture_output=True).returncode != 0:
+    if (
+        os.geteuid() != 0
+        or subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size_kib}k", "tmpfs", str(mnt)], capture_output=True, check=False).returncode != 0
+    ):
         pytest.skip("cannot mount a small tmpfs here (needs root); the monkeypatched and RLIMIT tests cover ENOSPC/EFBIG")
     try:
         out = mnt / "generated"
@@ -174,8 +185,9 @@ sys.exit(main(sys.argv[3:]))
 
 
 def run_killed(hook: str, n: int, *args: str | Path) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-c", KILL_SHIM, hook, str(n), "gen", *map(str, args)],
-                          env=canspec_env(), capture_output=True, text=True, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-c", KILL_SHIM, hook, str(n), "gen", *map(str, args)], env=canspec_env(), capture_output=True, text=True, timeout=300, check=False
+    )
 
 
 def test_killed_while_staging_leaves_output_untouched_and_rerun_recovers(previous: Path, edited_spec: Path, expected: dict[str, bytes]) -> None:

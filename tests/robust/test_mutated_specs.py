@@ -10,16 +10,64 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
 from robust_util import FIXTURES
 
 BASES = [(FIXTURES / "valid" / n).read_text(encoding="utf-8") for n in ("minimal_can.yaml", "minimal_json.yaml")]
 # `key: value` inside flow mappings and block mappings alike.
 VALUE = re.compile(r"(?<=[\s{,])([a-z_0-9]+): ([^,{}\[\]\n]+|\[[^\[\]\n]*\])")
-NASTY = ["0", "-1", "1", "2", "7", "8", "9", "63", "64", "65", "255", "256", "-128", "0x1FFFFFFF", "0x20000000", "4294967296",
-         "1180591620717411303424", "-1180591620717411303424", "0.5", "-0.5", "1.0e+400", "1.0e-400", "-0.0", ".nan", ".inf", "-.inf",
-         "0.1", "0.001", "1000000.5", "''", "x", "null", "true", "false", "[]", "{}", "[1, 2]", "[2, 1]", "[0, 1, 2]", "[.nan, 1]",
-         "[1.0e+400, 2]", "'2.0.5'", "1.0.0", "ALL", "ECU", "CTRL", "mode", "counter", "checksum", "reserved", "U8"]
+NASTY = [
+    "0",
+    "-1",
+    "1",
+    "2",
+    "7",
+    "8",
+    "9",
+    "63",
+    "64",
+    "65",
+    "255",
+    "256",
+    "-128",
+    "0x1FFFFFFF",
+    "0x20000000",
+    "4294967296",
+    "1180591620717411303424",
+    "-1180591620717411303424",
+    "0.5",
+    "-0.5",
+    "1.0e+400",
+    "1.0e-400",
+    "-0.0",
+    ".nan",
+    ".inf",
+    "-.inf",
+    "0.1",
+    "0.001",
+    "1000000.5",
+    "''",
+    "x",
+    "null",
+    "true",
+    "false",
+    "[]",
+    "{}",
+    "[1, 2]",
+    "[2, 1]",
+    "[0, 1, 2]",
+    "[.nan, 1]",
+    "[1.0e+400, 2]",
+    "'2.0.5'",
+    "1.0.0",
+    "ALL",
+    "ECU",
+    "CTRL",
+    "mode",
+    "counter",
+    "checksum",
+    "reserved",
+    "U8",
+]
 
 
 @st.composite
@@ -28,7 +76,7 @@ def mutated(draw: st.DrawFn) -> str:
     spots = list(VALUE.finditer(text))
     for _ in range(draw(st.integers(1, 3))):
         m = draw(st.sampled_from(spots))
-        text = text[: m.start(2)] + draw(st.sampled_from(NASTY)) + text[m.end(2):]
+        text = text[: m.start(2)] + draw(st.sampled_from(NASTY)) + text[m.end(2) :]
         spots = list(VALUE.finditer(text))
     return text
 

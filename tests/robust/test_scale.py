@@ -11,11 +11,10 @@ from pathlib import Path
 
 import cantools
 import pytest
-
 from robust_util import ROOT, assert_no_traceback, run_canspec
 
 sys.path.insert(0, str(ROOT / "tools"))
-import synth_spec  # noqa: E402
+import synth_spec
 
 
 @pytest.fixture(scope="module")
