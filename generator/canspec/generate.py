@@ -6,6 +6,7 @@ from __future__ import annotations
 import jinja2
 
 from canspec import ir
+from canspec.pipeline import paused_gc
 from canspec.targets import registry
 
 
@@ -19,7 +20,8 @@ def generate(spec: ir.Spec, names: list[str]) -> dict[str, dict[str, bytes]]:
     seen: dict[str, str] = {}
     for name in names:
         try:
-            produced = targets[name].render(spec)
+            with paused_gc():
+                produced = targets[name].render(spec)
         except jinja2.TemplateError as exc:
             where = f"{exc.filename}:{exc.lineno}: " if isinstance(exc, jinja2.TemplateSyntaxError) else ""
             raise GenerationError(f"target {name}: template error: {where}{exc}") from None

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -40,8 +41,8 @@ class LoadedSpec:
 
 
 def display_name(path: Path) -> str:
-    try:
-        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    try:  # abspath, not resolve: a symlink is shown as the user named it
+        return str(Path(os.path.abspath(path)).relative_to(Path.cwd().resolve()))
     except ValueError:
         return str(path)
 
@@ -111,7 +112,7 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
     if "schema_version" not in data:
         return [error("missing `schema_version`", data.loc, "start the file with `schema_version: 1` (see spec/schema/CHANGELOG.md)", "schema-version")]
     if not isinstance(version, int) or isinstance(version, bool):
-        return [error(f"`schema_version` must be an integer, got {version!r}", data.loc_of("schema_version"), None, "schema-version")]
+        return [error(f"`schema_version` must be an integer, got {_kind_of(version)}", data.loc_of("schema_version"), None, "schema-version")]
     if version not in SUPPORTED_SCHEMA_VERSIONS:
         newest = max(SUPPORTED_SCHEMA_VERSIONS)
         hint = (
@@ -130,6 +131,10 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
         message, hint = _describe(err)
         container, key = _walk(data, err.absolute_path)
         loc = (container.loc_of(key) if key is not None else container.loc) if isinstance(container, (LocDict, LocList)) else top
+        if err.validator == "additionalProperties" and key is None and isinstance(container, LocDict):
+            # Point at the unknown key itself, not at the mapping holding it.
+            extra = [k for k in container if k not in err.schema.get("properties", {})]
+            loc = container.key_locs.get(extra[0], loc) if extra else loc
         if (loc, message) in seen:
             continue
         seen.add((loc, message))
@@ -141,7 +146,7 @@ def _load_document(path: Path) -> Document:
     name = display_name(path)
     data = load_yaml(path, name)
     if not isinstance(data, LocDict):
-        raise SpecError([error(f"expected a mapping at the top of the file, got {type(data).__name__}", getattr(data, "loc", Loc(name)), "a spec file starts with `schema_version:` and `kind:`")])
+        raise SpecError([error(f"expected a mapping at the top of the file, got {_kind_of(data)}", getattr(data, "loc", Loc(name, 1, 1)), "a spec file starts with `schema_version:` and `kind:`")])
     problems = schema_problems(data, name)
     if problems:
         raise SpecError(problems)
@@ -151,6 +156,14 @@ def _load_document(path: Path) -> Document:
 def load(spec: Path | str | None = None) -> LoadedSpec:
     """Load the spec at `spec` (default: the shipped one). Raises SpecError."""
     path = Path(spec) if spec is not None else resources.default_spec()
+    try:
+        return _load(path)
+    except OSError as exc:  # e.g. a directory on the way that we may not search
+        where = Path(exc.filename) if exc.filename else path
+        raise SpecError([error(f"cannot access: {exc.strerror}", Loc(display_name(where)), "check the path and its permissions")]) from None
+
+
+def _load(path: Path) -> LoadedSpec:
     if path.is_dir():
         manifest = path / "canspec.yaml"
         if not manifest.is_file():
@@ -165,13 +178,18 @@ def load(spec: Path | str | None = None) -> LoadedSpec:
         problems: list[Problem] = []
         files = first.data["files"]
         for i, rel in enumerate(files):
+            if not (path.parent / rel).is_file():
+                # Point at the bundle's entry: that is the line to fix.
+                what = "is a directory" if (path.parent / rel).is_dir() else "does not exist"
+                problems.append(error(f"bundle file {rel!r} {what}", files.loc_of(i), f"paths are relative to {display_name(path.parent) or '.'}/"))
+                continue
             try:
                 doc = _load_document(path.parent / rel)
             except SpecError as exc:
                 problems.extend(exc.problems)
                 continue
             if doc.kind == "bundle":
-                problems.append(error("a bundle cannot include another bundle", files.loc_of(i)))
+                problems.append(error("a bundle cannot include another bundle", files.loc_of(i), "list the other bundle's files instead", "nested-bundle"))
             loaded.documents.append(doc)
         if problems:
             raise SpecError(problems)

@@ -29,11 +29,13 @@ def version_key(text: str) -> tuple[int, ...]:
 
 
 def _finite(value: Any) -> bool:
-    if isinstance(value, Decimal):
-        return value.is_finite()
-    if isinstance(value, float):
-        return math.isfinite(value)
-    return True
+    """A finite number that a double can hold (generated code computes in doubles): not
+    infinite or NaN, not beyond the double range, and not so small it becomes 0."""
+    try:
+        as_double = float(value)
+    except OverflowError:  # an int beyond the double range
+        return False
+    return math.isfinite(as_double) and (as_double != 0 or value == 0)
 
 
 def _frac(value: Any) -> Fraction:
@@ -129,7 +131,8 @@ def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
 @rule
 def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
-        frame_bits = 8 * msg.get("dlc", 8)
+        dlc = msg.get("dlc", 8)
+        frame_bits = 8 * dlc if 0 <= dlc <= 8 else 64  # a bad DLC is reported by dlc-range
         owners: list[str | None] = [None] * 64
         for sig in _signals(msg):
             start, length = sig["start"], sig["len"]
@@ -146,7 +149,7 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                 owners[b] = owners[b] or sig["name"]
             for key in ("factor", "offset"):
                 if not _finite(sig[key]):
-                    yield error(f"signal {sig['name']!r}: {key} must be a finite number", sig.loc_of(key), None, "nonfinite")
+                    yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
             if _finite(sig["factor"]) and sig["factor"] == 0:
                 yield error(f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
 
@@ -159,7 +162,7 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
             if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
                 continue
             if not all(_finite(v) for v in rng):
-                yield error(f"signal {sig['name']!r}: range must be finite numbers", sig.loc_of("range"), None, "nonfinite")
+                yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
                 continue
             lo, hi = _frac(rng[0]), _frac(rng[1])
             if lo > hi:
@@ -168,10 +171,20 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
             ends = sorted([tmin * factor + offset, tmax * factor + offset])
-            if lo < ends[0] or hi > ends[1]:
+            if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, tmin, tmax):
+                yield error(
+                    f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
+                    sig.loc_of("range"), "check offset, factor, length and range against the document", "range-empty")
+            elif lo < ends[0] or hi > ends[1]:
                 yield warning(
                     f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} can encode [{_num(ends[0])}, {_num(ends[1])}]",
                     sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
+
+
+def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, tmin: int, tmax: int) -> bool:
+    """True when no raw value of the field maps into [lo, hi] (build.py would get raw_min > raw_max)."""
+    qa, qb = sorted([(lo - offset) / factor, (hi - offset) / factor])
+    return max(tmin, math.ceil(qa)) > min(tmax, math.floor(qb))
 
 
 def _num(f: Fraction) -> str:
@@ -227,7 +240,7 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(f"{role} {sig['name']!r} must be unsigned with factor 1 and offset 0", sig.loc_of("role"), None, f"{role}-shape")
             full = [0, (1 << sig["len"]) - 1] if 1 <= sig["len"] <= 64 else None
             rng = sig.get("range")
-            if rng is not None and full is not None and [_frac(rng[0]), _frac(rng[1])] != full:
+            if rng is not None and full is not None and all(_finite(v) for v in rng) and [_frac(rng[0]), _frac(rng[1])] != full:
                 yield error(
                     f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}",
                     sig.loc_of("range"), f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
@@ -251,8 +264,8 @@ def multiframes(can: ResolvedCan) -> Iterator[Problem]:
         for key, sig in (("index", index), ("payload", payload)):
             if sig is None:
                 yield error(f"multiframe {key} {mf[key]!r} is not a signal of {msg['name']!r}", mf.loc_of(key), None, "multiframe")
-        if index is None or payload is None:
-            continue
+        if index is None or payload is None or not (1 <= index["len"] <= 64 and 1 <= payload["len"] <= 64):
+            continue  # a bad length is reported by signal-length
         if payload["start"] % 8 or payload["len"] % 8 or payload["factor"] != 1 or payload["offset"] != 0:
             yield error(f"multiframe payload {payload['name']!r} must be whole bytes with factor 1, offset 0", mf.loc_of("payload"), None, "multiframe")
             continue
@@ -268,6 +281,10 @@ def _json_rules(doc: Any) -> Iterator[Problem]:
     types = data["types"]
     shared = data.get("fields", LocDict())
     parties = {p["name"] for p in data["parties"]}
+    for tname, tdef in types.items():
+        for key in ("min", "max"):
+            if key in tdef and not _finite(tdef[key]):
+                yield error(f"type {tname!r}: {key} must be a finite number within the range of a double", tdef.loc_of(key), None, "nonfinite")
     for fname, fdef in shared.items():
         if fdef["type"] not in types:
             yield error(f"field {fname!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")

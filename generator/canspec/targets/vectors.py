@@ -9,6 +9,7 @@ raw bytes in the `raw_only` cases), and counters and checksums are filled in.
 
 from __future__ import annotations
 
+import functools
 import json
 import random
 import zlib
@@ -16,7 +17,7 @@ from fractions import Fraction
 from typing import Any
 
 from canspec import codec, ir
-from canspec.encoding import json_number, to_raw_exact, to_raw_runtime
+from canspec.encoding import to_raw_exact, to_raw_runtime
 from canspec.targets import Target
 
 RANDOM_CASES = 50
@@ -29,12 +30,28 @@ def base_raw(sig: ir.Signal) -> int:
     return min(max(0, sig.raw_min), sig.raw_max)
 
 
-def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, Any] | None = None, note: str = "") -> dict[str, Any]:
+Scales = tuple[tuple[str, int, int, int], ...]
+
+
+def _scales(msg: ir.Message) -> Scales:
+    """Per data signal (name, a, b, d) with raw * factor + offset == (raw * a + b) / d in integers:
+    the same numbers as json_number(codec.to_physical(...)) (int when exact, else the correctly
+    rounded double of the quotient), without Fraction arithmetic for each of many cases."""
+    return tuple(
+        (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
+        for s in msg.data_signals
+    )
+
+
+def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, Any] | None = None, note: str = "", *, scales: Scales | None = None) -> dict[str, Any]:
     raw = dict(raw)
     data = codec.pack(msg, raw)
     if msg.checksum is not None:
         raw[msg.checksum.signal] = data[msg.checksum.byte]
-    phys = {s.name: json_number(codec.to_physical(s, raw[s.name])) for s in msg.data_signals}
+    phys: dict[str, Any] = {}
+    for name, a, b, d in scales if scales is not None else _scales(msg):
+        n = raw[name] * a + b
+        phys[name] = n // d if n % d == 0 else n / d
     if physical:
         phys.update(physical)
     case = {"message": msg.name, "frame_id": msg.frame_id, "data": data.hex().upper(), "raw": raw, "physical": phys, "kind": kind}
@@ -61,25 +78,26 @@ def _ties(sig: ir.Signal) -> list[tuple[Fraction, int]]:
 
 def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
     sigs = [s for s in msg.data_signals if s.role != "checksum"]
+    case = functools.partial(_case, msg, scales=_scales(msg))
     base = {s.name: base_raw(s) for s in sigs}
     cases = []
     zero = {s.name: 0 for s in sigs}
     if all(s.raw_allowed(0) for s in sigs):
-        cases.append(_case(msg, zero, "zero"))
+        cases.append(case(zero, "zero"))
     else:
-        cases.append(_case(msg, zero, "raw_only", note="all-zero frame; some zero raw values lie outside the documented range"))
-    cases.append(_case(msg, base, "base"))
+        cases.append(case(zero, "raw_only", note="all-zero frame; some zero raw values lie outside the documented range"))
+    cases.append(case(base, "base"))
     for sig in sigs:
-        cases.append(_case(msg, {**base, sig.name: sig.raw_min}, "min", note=sig.name))
-        cases.append(_case(msg, {**base, sig.name: sig.raw_max}, "max", note=sig.name))
+        cases.append(case({**base, sig.name: sig.raw_min}, "min", note=sig.name))
+        cases.append(case({**base, sig.name: sig.raw_max}, "max", note=sig.name))
         if sig.value_table is not None:
             for entry in sig.value_table.entries:
                 kind = "enum" if sig.raw_allowed(entry.raw) else "raw_only"
-                cases.append(_case(msg, {**base, sig.name: entry.raw}, kind, note=f"{sig.name}={entry.name}"))
+                cases.append(case({**base, sig.name: entry.raw}, kind, note=f"{sig.name}={entry.name}"))
         for special in sig.specials:
-            cases.append(_case(msg, {**base, sig.name: special.raw}, "special", note=f"{sig.name}={special.name}"))
+            cases.append(case({**base, sig.name: special.raw}, "special", note=f"{sig.name}={special.name}"))
         for tie, expected in _ties(sig):
-            cases.append(_case(msg, {**base, sig.name: expected}, "tie", {sig.name: float(tie)}, note=f"{sig.name} tie {float(tie)!r} -> raw {expected}"))
+            cases.append(case({**base, sig.name: expected}, "tie", {sig.name: float(tie)}, note=f"{sig.name} tie {float(tie)!r} -> raw {expected}"))
     rng = random.Random(zlib.crc32(msg.name.encode()))
     for _ in range(RANDOM_CASES if sigs else 0):
         raw = {}
@@ -88,7 +106,7 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
                 raw[s.name] = rng.choice(s.specials).raw
             else:
                 raw[s.name] = rng.randint(s.raw_min, s.raw_max)
-        cases.append(_case(msg, raw, "random"))
+        cases.append(case(raw, "random"))
     return cases
 
 
