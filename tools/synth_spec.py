@@ -45,7 +45,10 @@ def replicate(out: Path, copies: int) -> tuple[int, int]:
     """The shipped spec with its messages repeated `copies` times; returns (messages, copies)."""
     if out.exists():
         shutil.rmtree(out)
-    shutil.copytree(SHIPPED, out, ignore=shutil.ignore_patterns("ERRATA.md", "*.md"))
+    shutil.copytree(SHIPPED, out, ignore=shutil.ignore_patterns("ERRATA.md", "*.md", "v[0-9]*"))
+    # The revisions are not copied (a replicated spec is no revision of V2.0.4): drop `previous:`.
+    log = out / "history" / "changelog.yaml"
+    log.write_text(re.sub(r"^previous: .*\n", "", log.read_text(encoding="utf-8"), flags=re.MULTILINE), encoding="utf-8")
     can = out / "can" / "gateway.yaml"
     text = can.read_text(encoding="utf-8")
     head, body = text.split("\nmessages:\n", 1)

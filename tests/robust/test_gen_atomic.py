@@ -32,7 +32,12 @@ def leftovers(out: Path) -> list[str]:
 def previous(tmp_path: Path) -> Path:
     """A copy of the repository's generated/ (what a user has before running gen)."""
     out = tmp_path / "generated"
-    shutil.copytree(ROOT / "generated", out)
+    # What canspec wrote (per its manifest), not what tests and builds leave beside it
+    # (__pycache__, cargo's Cargo.lock).
+    manifest = json.loads((ROOT / "generated" / ".canspec-manifest.json").read_text(encoding="utf-8"))
+    for rel in [*manifest["files"], ".canspec-manifest.json"]:
+        (out / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / "generated" / rel, out / rel)
     (out / "USER_NOTES.txt").write_text("not canspec's: must survive every run\n")
     return out
 

@@ -57,6 +57,9 @@ def test_replicated_shipped_spec(copies: int, tmp_path: Path) -> None:
     proc = run_canspec("check", spec)
     assert proc.returncode == 0, proc.stderr
     assert f"kaiwo_gateway 2.0.5: ok ({25 * copies} messages, {264 * copies} signals" in proc.stderr
-    if copies == 1:  # 1x is the shipped spec itself
+    if copies == 1:  # 1x is the shipped spec itself, without its reconstructed revisions
         for f in (ROOT / "spec").rglob("*.yaml"):
-            assert (spec / f.relative_to(ROOT / "spec")).read_bytes() == f.read_bytes()
+            rel = f.relative_to(ROOT / "spec")
+            if rel.parts[0] == "history":
+                continue
+            assert (spec / rel).read_bytes() == f.read_bytes()

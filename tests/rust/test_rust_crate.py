@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from canspec.rust_model import build_crate
-from conftest import GENERATED, ROOT
+from repo_paths import GENERATED, ROOT
 
 CRATE = GENERATED / "rust"
 pytestmark = pytest.mark.skipif(shutil.which("cargo") is None, reason="cargo is not installed")

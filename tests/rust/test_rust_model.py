@@ -11,7 +11,7 @@ import pytest
 from canspec import rust_model as rm
 from canspec.generate import GenerationError, generate
 from canspec.targets import rust as rust_target
-from conftest import GENERATED
+from repo_paths import GENERATED
 
 
 def sig(can, message, name):
