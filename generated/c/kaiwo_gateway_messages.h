@@ -1839,7 +1839,9 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
     {
         uint64_t p0;
         uint64_t p1;
+        uint64_t p1g;
         uint64_t p2;
+        uint64_t p2g;
         uint64_t p3;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -1869,18 +1871,18 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
         p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
         p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
         p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1 = (p1 | (p1 >> 2)) & UINT64_C(0x30100C300C300C3);
-        p1 = (p1 | (p1 >> 4)) & UINT64_C(0x300100F00C0300F);
-        p1 = (p1 | (p1 >> 8)) & UINT64_C(0x310000FC0003F);
-        p1 = (p1 | (p1 >> 16)) & UINT64_C(0x3100000000FFF);
-        p1 = (p1 | (p1 >> 32)) & UINT64_C(0x31FFF);
-        p2 = (p2 & UINT64_C(0xF0F0F0007030303)) | ((p2 >> 1) & UINT64_C(0xF80000000));
-        p2 = (p2 & UINT64_C(0x30003)) | ((p2 >> 2) & UINT64_C(0x3C3C3C3E1C000C0));
-        p2 = (p2 & UINT64_C(0x3C003C001C00003)) | ((p2 >> 4) & UINT64_C(0x3C003E00300C));
-        p2 = (p2 | (p2 >> 8)) & UINT64_C(0x3C0003FFFC0003F);
-        p2 = (p2 | (p2 >> 16)) & UINT64_C(0x3C00000003FFFFF);
-        p2 = (p2 | (p2 >> 32)) & UINT64_C(0x3FFFFFF);
-        w = p0 | (p1 << 16) | (p2 << 34) | (p3 << 60);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC);
 #else
@@ -1919,23 +1921,21 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x31FFF);
-        r2 = (v >> 34) & UINT64_C(0x3FFFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
         r3 = (v >> 60);
         r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
         r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
         r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 32)) & UINT64_C(0x3100000000FFF);
-        r1 = (r1 | (r1 << 16)) & UINT64_C(0x310000FC0003F);
-        r1 = (r1 | (r1 << 8)) & UINT64_C(0x300100F00C0300F);
-        r1 = (r1 | (r1 << 4)) & UINT64_C(0x30100C300C300C3);
-        r1 = (r1 | (r1 << 2)) & UINT64_C(0x301030303030303);
-        r2 = (r2 | (r2 << 32)) & UINT64_C(0x3C00000003FFFFF);
-        r2 = (r2 | (r2 << 16)) & UINT64_C(0x3C0003FFFC0003F);
-        r2 = (r2 | (r2 << 8)) & UINT64_C(0x3C03FC03FC0300F);
-        r2 = (r2 & UINT64_C(0x3C003C001C00003)) | ((r2 << 4) & UINT64_C(0x3C003E00300C0));
-        r2 = (r2 & UINT64_C(0x30003)) | ((r2 << 2) & UINT64_C(0xF0F0F0F87000300));
-        r2 = (r2 & UINT64_C(0xF0F0F0007030303)) | ((r2 << 1) & UINT64_C(0x1F00000000));
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
         kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
@@ -3310,6 +3310,7 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
     }
     {
         uint64_t p0;
+        uint64_t p0g;
         uint64_t p1;
         uint64_t p2;
         uint64_t w;
@@ -3334,6 +3335,11 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
              (p2 & UINT64_C(0xFCFCFCFC))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
+        p0g = (p0 & UINT64_C(0x3));
+        p0 &= UINT64_C(0x301010101010100);
+        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x300030003000300);
+        p0 = (p0 | (p0 >> 14)) & UINT64_C(0xF0000000F00);
+        p0 = (p0 | (p0 >> 28)) & UINT64_C(0xFF00);
         p1 = (p1 & UINT64_C(0xFFFF000100010001)) | ((p1 >> 7) & UINT64_C(0x200020002));
         p1 = (p1 & UINT64_C(0x300000003)) | ((p1 >> 14) & UINT64_C(0x3FFFC0000000C));
         p1 = (p1 | (p1 >> 28)) & UINT64_C(0x3FFFFF);
@@ -3341,11 +3347,7 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
         p2 = (p2 & UINT64_C(0xFFFFFF00030003)) | ((p2 >> 6) & UINT64_C(0xC000C));
         p2 = (p2 & UINT64_C(0xFFFFFF0000000F)) | ((p2 >> 12) & UINT64_C(0xF0));
         p2 = (p2 | (p2 >> 24)) & UINT64_C(0xFFFFFFFF);
-        w = (p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0x100)) >> 6) |
-            ((p0 & UINT64_C(0x10000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 20) |
-            ((p0 & UINT64_C(0x100000000)) >> 27) | ((p0 & UINT64_C(0x10000000000)) >> 34) |
-            ((p0 & UINT64_C(0x1000000000000)) >> 41) | ((p0 & UINT64_C(0x300000000000000)) >> 48) |
-            (p1 << 10) | (p2 << 32);
+        w = (p0 >> 6) | p0g | (p1 << 10) | (p2 << 32);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
 #else
@@ -3382,12 +3384,13 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = (v & UINT64_C(0x3)) | ((v & UINT64_C(0x4)) << 6) | ((v & UINT64_C(0x8)) << 13) |
-             ((v & UINT64_C(0x10)) << 20) | ((v & UINT64_C(0x20)) << 27) |
-             ((v & UINT64_C(0x40)) << 34) | ((v & UINT64_C(0x80)) << 41) |
-             ((v & UINT64_C(0x300)) << 48);
+        r0 = (v << 6) & UINT64_C(0xFF00);
         r1 = (v >> 10) & UINT64_C(0x3FFFFF);
         r2 = (v >> 32);
+        r0 = (r0 | (r0 << 28)) & UINT64_C(0xF0000000F00);
+        r0 = (r0 | (r0 << 14)) & UINT64_C(0x300030003000300);
+        r0 = (r0 | (r0 << 7)) & UINT64_C(0x301010101010100);
+        r0 |= (v & UINT64_C(0x3));
         r1 = (r1 | (r1 << 28)) & UINT64_C(0x3FFFF0000000F);
         r1 = (r1 & UINT64_C(0x300000003)) | ((r1 << 14) & UINT64_C(0xFFFF000000030000));
         r1 = (r1 & UINT64_C(0xFFFF000100010001)) | ((r1 << 7) & UINT64_C(0x10001000100));
@@ -5899,6 +5902,7 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
     {
         uint64_t p0;
         uint64_t p1;
+        uint64_t p1g;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
@@ -5915,11 +5919,13 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
         if (((p0 & UINT64_C(0xF000FEFEFCF00000)) | (p1 & UINT64_C(0xFEE0FEFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
+        p1g = ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1000000)) << 21) |
+              ((p1 & UINT64_C(0xFFFF00000000)) << 16);
+        p1 &= UINT64_C(0x1F0001);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F1);
         w = (p0 & UINT64_C(0xFFFFF)) | ((p0 & UINT64_C(0x3000000)) >> 4) |
             ((p0 & UINT64_C(0x100000000)) >> 10) | ((p0 & UINT64_C(0x10000000000)) >> 17) |
-            ((p0 & UINT64_C(0xFFF000000000000)) >> 24) | ((p1 & UINT64_C(0x1)) << 36) |
-            ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1F0000)) << 24) |
-            ((p1 & UINT64_C(0x1000000)) << 21) | ((p1 & UINT64_C(0xFFFF00000000)) << 16);
+            ((p0 & UINT64_C(0xFFF000000000000)) >> 24) | (p1 << 36) | p1g;
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_4_DLC);
 #else
@@ -5958,9 +5964,10 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
         r0 = (v & UINT64_C(0xFFFFF)) | ((v & UINT64_C(0x300000)) << 4) |
              ((v & UINT64_C(0x400000)) << 10) | ((v & UINT64_C(0x800000)) << 17) |
              ((v & UINT64_C(0xFFF000000)) << 24);
-        r1 = ((v & UINT64_C(0x1000000000)) >> 36) | ((v & UINT64_C(0x8000000000)) >> 31) |
-             ((v & UINT64_C(0x1F0000000000)) >> 24) | ((v & UINT64_C(0x200000000000)) >> 21) |
-             ((v & UINT64_C(0xFFFF000000000000)) >> 16);
+        r1 = (v >> 36) & UINT64_C(0x1F1);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1F0001);
+        r1 |= ((v & UINT64_C(0x8000000000)) >> 31) | ((v & UINT64_C(0x200000000000)) >> 21) |
+              ((v & UINT64_C(0xFFFF000000000000)) >> 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
         kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
@@ -6802,8 +6809,10 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
     }
     {
         uint64_t p0;
+        uint64_t p0g;
         uint64_t p1;
         uint64_t p2;
+        uint64_t p2g;
         uint64_t p3;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -6834,21 +6843,23 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
              (p2 & UINT64_C(0xFCFCFEFEFEFEFEFE)) | (p3 & UINT64_C(0xF0F0F0F0F0))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
+        p0g = (p0 & UINT64_C(0x3));
+        p0 &= UINT64_C(0x101010101010100);
+        p0 = (p0 | (p0 >> 28)) & UINT64_C(0x111111100);
+        p0 = (p0 | (p0 >> 14)) & UINT64_C(0x155500);
+        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x7F00);
         p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
         p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
         p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
+        p2g = ((p2 & UINT64_C(0x3000000000000)) >> 24) | ((p2 & UINT64_C(0x300000000000000)) >> 30);
+        p2 &= UINT64_C(0x10101010101);
+        p2 = (p2 | (p2 >> 28)) & UINT64_C(0x1011111);
+        p2 = (p2 | (p2 >> 14)) & UINT64_C(0x1515);
+        p2 = (p2 | (p2 >> 7)) & UINT64_C(0x3F);
         p3 = (p3 | (p3 >> 4)) & UINT64_C(0xF00FF00FF);
         p3 = (p3 | (p3 >> 8)) & UINT64_C(0xF0000FFFF);
         p3 = (p3 | (p3 >> 16)) & UINT64_C(0xFFFFF);
-        w = (p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0x100)) >> 6) |
-            ((p0 & UINT64_C(0x10000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 20) |
-            ((p0 & UINT64_C(0x100000000)) >> 27) | ((p0 & UINT64_C(0x10000000000)) >> 34) |
-            ((p0 & UINT64_C(0x1000000000000)) >> 41) | ((p0 & UINT64_C(0x100000000000000)) >> 48) |
-            (p1 << 9) | ((p2 & UINT64_C(0x1)) << 17) | ((p2 & UINT64_C(0x100)) << 10) |
-            ((p2 & UINT64_C(0x10000)) << 3) | ((p2 & UINT64_C(0x1000000)) >> 4) |
-            ((p2 & UINT64_C(0x100000000)) >> 11) | ((p2 & UINT64_C(0x10000000000)) >> 18) |
-            ((p2 & UINT64_C(0x3000000000000)) >> 24) | ((p2 & UINT64_C(0x300000000000000)) >> 30) |
-            (p3 << 28);
+        w = (p0 >> 6) | p0g | (p1 << 9) | (p2 << 17) | p2g | (p3 << 28);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
 #else
@@ -6886,19 +6897,21 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = (v & UINT64_C(0x3)) | ((v & UINT64_C(0x4)) << 6) | ((v & UINT64_C(0x8)) << 13) |
-             ((v & UINT64_C(0x10)) << 20) | ((v & UINT64_C(0x20)) << 27) |
-             ((v & UINT64_C(0x40)) << 34) | ((v & UINT64_C(0x80)) << 41) |
-             ((v & UINT64_C(0x100)) << 48);
+        r0 = (v << 6) & UINT64_C(0x7F00);
         r1 = (v >> 9) & UINT64_C(0xFF);
-        r2 = ((v & UINT64_C(0x20000)) >> 17) | ((v & UINT64_C(0x40000)) >> 10) |
-             ((v & UINT64_C(0x80000)) >> 3) | ((v & UINT64_C(0x100000)) << 4) |
-             ((v & UINT64_C(0x200000)) << 11) | ((v & UINT64_C(0x400000)) << 18) |
-             ((v & UINT64_C(0x3000000)) << 24) | ((v & UINT64_C(0xC000000)) << 30);
+        r2 = (v >> 17) & UINT64_C(0x3F);
         r3 = (v >> 28) & UINT64_C(0xFFFFF);
+        r0 = (r0 | (r0 << 7)) & UINT64_C(0x155500);
+        r0 = (r0 | (r0 << 14)) & UINT64_C(0x111111100);
+        r0 = (r0 | (r0 << 28)) & UINT64_C(0x101010101010100);
+        r0 |= (v & UINT64_C(0x3));
         r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
         r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
         r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
+        r2 = (r2 | (r2 << 7)) & UINT64_C(0x1515);
+        r2 = (r2 | (r2 << 14)) & UINT64_C(0x1011111);
+        r2 = (r2 | (r2 << 28)) & UINT64_C(0x10101010101);
+        r2 |= ((v & UINT64_C(0x3000000)) << 24) | ((v & UINT64_C(0xC000000)) << 30);
         r3 = (r3 | (r3 << 16)) & UINT64_C(0xF0000FFFF);
         r3 = (r3 | (r3 << 8)) & UINT64_C(0xF00FF00FF);
         r3 = (r3 | (r3 << 4)) & UINT64_C(0xF0F0F0F0F);
@@ -9162,7 +9175,9 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
     {
         uint64_t p0;
         uint64_t p1;
+        uint64_t p1g;
         uint64_t p2;
+        uint64_t p2g;
         uint64_t p3;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -9192,18 +9207,18 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
         p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
         p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
         p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1 = (p1 | (p1 >> 2)) & UINT64_C(0x30100C300C300C3);
-        p1 = (p1 | (p1 >> 4)) & UINT64_C(0x300100F00C0300F);
-        p1 = (p1 | (p1 >> 8)) & UINT64_C(0x310000FC0003F);
-        p1 = (p1 | (p1 >> 16)) & UINT64_C(0x3100000000FFF);
-        p1 = (p1 | (p1 >> 32)) & UINT64_C(0x31FFF);
-        p2 = (p2 & UINT64_C(0xF0F0F0007030303)) | ((p2 >> 1) & UINT64_C(0xF80000000));
-        p2 = (p2 & UINT64_C(0x30003)) | ((p2 >> 2) & UINT64_C(0x3C3C3C3E1C000C0));
-        p2 = (p2 & UINT64_C(0x3C003C001C00003)) | ((p2 >> 4) & UINT64_C(0x3C003E00300C));
-        p2 = (p2 | (p2 >> 8)) & UINT64_C(0x3C0003FFFC0003F);
-        p2 = (p2 | (p2 >> 16)) & UINT64_C(0x3C00000003FFFFF);
-        p2 = (p2 | (p2 >> 32)) & UINT64_C(0x3FFFFFF);
-        w = p0 | (p1 << 16) | (p2 << 34) | (p3 << 60);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC);
 #else
@@ -9242,23 +9257,21 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x31FFF);
-        r2 = (v >> 34) & UINT64_C(0x3FFFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
         r3 = (v >> 60);
         r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
         r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
         r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 32)) & UINT64_C(0x3100000000FFF);
-        r1 = (r1 | (r1 << 16)) & UINT64_C(0x310000FC0003F);
-        r1 = (r1 | (r1 << 8)) & UINT64_C(0x300100F00C0300F);
-        r1 = (r1 | (r1 << 4)) & UINT64_C(0x30100C300C300C3);
-        r1 = (r1 | (r1 << 2)) & UINT64_C(0x301030303030303);
-        r2 = (r2 | (r2 << 32)) & UINT64_C(0x3C00000003FFFFF);
-        r2 = (r2 | (r2 << 16)) & UINT64_C(0x3C0003FFFC0003F);
-        r2 = (r2 | (r2 << 8)) & UINT64_C(0x3C03FC03FC0300F);
-        r2 = (r2 & UINT64_C(0x3C003C001C00003)) | ((r2 << 4) & UINT64_C(0x3C003E00300C0));
-        r2 = (r2 & UINT64_C(0x30003)) | ((r2 << 2) & UINT64_C(0xF0F0F0F87000300));
-        r2 = (r2 & UINT64_C(0xF0F0F0007030303)) | ((r2 << 1) & UINT64_C(0x1F00000000));
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
         kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
@@ -14599,7 +14612,9 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
     {
         uint64_t p0;
         uint64_t p1;
+        uint64_t p1g;
         uint64_t p2;
+        uint64_t p2g;
         uint64_t p3;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -14629,18 +14644,18 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
         p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
         p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
         p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1 = (p1 | (p1 >> 2)) & UINT64_C(0x30100C300C300C3);
-        p1 = (p1 | (p1 >> 4)) & UINT64_C(0x300100F00C0300F);
-        p1 = (p1 | (p1 >> 8)) & UINT64_C(0x310000FC0003F);
-        p1 = (p1 | (p1 >> 16)) & UINT64_C(0x3100000000FFF);
-        p1 = (p1 | (p1 >> 32)) & UINT64_C(0x31FFF);
-        p2 = (p2 & UINT64_C(0xF0F0F0007030303)) | ((p2 >> 1) & UINT64_C(0xF80000000));
-        p2 = (p2 & UINT64_C(0x30003)) | ((p2 >> 2) & UINT64_C(0x3C3C3C3E1C000C0));
-        p2 = (p2 & UINT64_C(0x3C003C001C00003)) | ((p2 >> 4) & UINT64_C(0x3C003E00300C));
-        p2 = (p2 | (p2 >> 8)) & UINT64_C(0x3C0003FFFC0003F);
-        p2 = (p2 | (p2 >> 16)) & UINT64_C(0x3C00000003FFFFF);
-        p2 = (p2 | (p2 >> 32)) & UINT64_C(0x3FFFFFF);
-        w = p0 | (p1 << 16) | (p2 << 34) | (p3 << 60);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC);
 #else
@@ -14679,23 +14694,21 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x31FFF);
-        r2 = (v >> 34) & UINT64_C(0x3FFFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
         r3 = (v >> 60);
         r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
         r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
         r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 32)) & UINT64_C(0x3100000000FFF);
-        r1 = (r1 | (r1 << 16)) & UINT64_C(0x310000FC0003F);
-        r1 = (r1 | (r1 << 8)) & UINT64_C(0x300100F00C0300F);
-        r1 = (r1 | (r1 << 4)) & UINT64_C(0x30100C300C300C3);
-        r1 = (r1 | (r1 << 2)) & UINT64_C(0x301030303030303);
-        r2 = (r2 | (r2 << 32)) & UINT64_C(0x3C00000003FFFFF);
-        r2 = (r2 | (r2 << 16)) & UINT64_C(0x3C0003FFFC0003F);
-        r2 = (r2 | (r2 << 8)) & UINT64_C(0x3C03FC03FC0300F);
-        r2 = (r2 & UINT64_C(0x3C003C001C00003)) | ((r2 << 4) & UINT64_C(0x3C003E00300C0));
-        r2 = (r2 & UINT64_C(0x30003)) | ((r2 << 2) & UINT64_C(0xF0F0F0F87000300));
-        r2 = (r2 & UINT64_C(0xF0F0F0007030303)) | ((r2 << 1) & UINT64_C(0x1F00000000));
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
         kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);

@@ -149,6 +149,7 @@ class CRun:
     offset: int  # little-endian word path: the run's bytes in the struct
     nbytes: int  # (up to the next run: includes padding, never another run's field)
     pad_mask: str  # pack: mask clearing padding bytes read with the fields ("" if none)
+    extra: str  # pack: a second local for the fields moved by groups beside SWAR steps ("" if none)
 
 
 @dataclass(frozen=True)
@@ -328,19 +329,19 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
         else:
             stores.append((f.name, f"({s.type}){var}" if slot == 0 else f"({s.type})({var} >> {slot})"))
             loads.append(_shifted(f"(uint64_t)src->{f.name}", slot))
-    if run.groups:
-        top = (1 << cwords.WORD) - 1
-        moves = [_shifted(f"(v & {m(g.frame)})", g.shift) for g in run.groups]
-        kept = [g for g in (cwords.Group(g.shift, g.frame & ~drop) for g in run.groups) if g.frame]
-        backs = [_shifted(f"({var} & {m(((g.frame << g.shift) if g.shift >= 0 else (g.frame >> -g.shift)) & top)})", -g.shift) for g in kept]
+    top = (1 << cwords.WORD) - 1
+    moves = [_shifted(f"(v & {m(g.frame)})", g.shift) for g in run.groups]
+    kept = [g for g in (cwords.Group(g.shift, g.frame & ~drop) for g in run.groups) if g.frame]
+    backs = [_shifted(f"({var} & {m(((g.frame << g.shift) if g.shift >= 0 else (g.frame >> -g.shift)) & top)})", -g.shift) for g in kept]
+    if run.swar == 0:
         return CRun(
             run=run, var=var, unpack_init=" | ".join(moves), unpack_steps=(), stores=tuple(stores),
-            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", **place,
+            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="", **place,
         )
-    # unpack: from the frame word to the slots
+    # SWAR part: from the frame word to the slots and back
     init = _shifted("v", run.base)
     remaining = cwords.WORD - max(0, -run.base)
-    needed = run.first != (((1 << remaining) - 1) << max(0, run.base)) & ((1 << cwords.WORD) - 1)
+    needed = run.first != (((1 << remaining) - 1) << max(0, run.base)) & top
     init = f"{init} & {m(run.first)}" if needed else init
     ups, downs = [], []
     for st in run.steps:
@@ -348,16 +349,27 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
             ups.append(f"{var} = ({var} | ({var} << {st.shift})) & {m(st.after)};")
         else:
             ups.append(f"{var} = ({var} & {m(st.stay)}) | (({var} << {st.shift}) & {m(st.after & ~st.stay)});")
+    extra = ""
+    placed = _shifted(var, -run.base)
+    if run.groups:  # the other fields move by groups, from the frame word / before the steps
+        ups.append(f"{var} |= {' | '.join(moves)};")
+        if backs:
+            extra = f"{var}g"
+            downs.append(f"{extra} = {' | '.join(backs)};")
+            placed = f"{placed} | {extra}"
+        downs.append(f"{var} &= {m(run.swar_mask)};")
+    elif pad:
+        downs.append(pad)
     for st in reversed(run.steps):
         if st.simple_back:
             downs.append(f"{var} = ({var} | ({var} >> {st.shift})) & {m(st.before)};")
         else:
             downs.append(f"{var} = ({var} & {m(st.stay)}) | (({var} >> {st.shift}) & {m(st.before & ~st.stay)});")
+    place["pad_mask"] = ""  # in the steps
     return CRun(
         run=run, var=var, unpack_init=init, unpack_steps=tuple(ups), stores=tuple(stores),
-        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=_shifted(var, -run.base), **place,
+        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra, **place,
     )
-
 
 def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum], faults: list[tuple[ir.ValueTable, CEnum]]) -> CMessage:
     if msg.dlc > MAX_DLC:
@@ -399,7 +411,7 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     range_terms += [f"(uint64_t)({s.range_check})" for s in data if s.range_check]
     frame_load = " | ".join(f"(uint64_t)src[{b}]" if b == 0 else f"((uint64_t)src[{b}] << {8 * b})" for b in range(msg.dlc))
     frame_word = " | ".join(r.placed for r in pack_runs) or "0u"
-    if msg.checksum is not None and any(f.name == ck_field and not r.run.groups for r in pack_runs for f in r.run.fields):
+    if msg.checksum is not None and any(f.name == ck_field and r.run.swar != 0 for r in pack_runs for f in r.run.fields):
         frame_word = f"({frame_word}) & {hex_lit(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
     frame_stores = tuple(f"(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})" for b in range(msg.dlc))
     j = msg.j1939

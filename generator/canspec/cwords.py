@@ -70,7 +70,12 @@ class Run:
     first: int  # SWAR: mask of the fields right after the base shift
     final: int  # mask of the fields in their slots
     check: int  # pack: slot bits that must be 0 (fields wider than their bits)
-    groups: tuple[Group, ...] = ()  # instead of base/steps: one move per distinct distance
+    groups: tuple[Group, ...] = ()  # the other fields: one move per distinct distance
+    swar: int = -1  # mask of the slots the SWAR steps fill (-1: all of `final`; 0: no steps)
+
+    @property
+    def swar_mask(self) -> int:
+        return self.final if self.swar < 0 else self.swar
 
     @property
     def cost(self) -> int:
@@ -150,17 +155,46 @@ def _plan(fields: tuple[Field, ...], slots: tuple[int, ...], descending: bool) -
     return Run(fields, slots, base, tuple(steps), first, final, check)
 
 
+def _groups(fields: list[Field], slots: list[int]) -> tuple[Group, ...]:
+    by_shift: dict[int, int] = {}
+    for f, s in zip(fields, slots):
+        by_shift[s - f.start] = by_shift.get(s - f.start, 0) | _bits(f.start, f.length)
+    return tuple(Group(d, m) for d, m in sorted(by_shift.items()))
+
+
 def _grouped(fields: tuple[Field, ...], slots: tuple[int, ...]) -> Run | None:
     """Plan that moves the fields of each distinct distance together (always possible)."""
     final = _occupied(fields, list(slots))
     if final is None:
         return None
-    by_shift: dict[int, int] = {}
-    for f, s in zip(fields, slots):
-        by_shift[s - f.start] = by_shift.get(s - f.start, 0) | _bits(f.start, f.length)
-    groups = tuple(Group(d, m) for d, m in sorted(by_shift.items()))
     check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
-    return Run(fields, slots, 0, (), 0, final, check, groups)
+    return Run(fields, slots, 0, (), 0, final, check, _groups(list(fields), list(slots)), 0)
+
+
+def _hybrids(fields: tuple[Field, ...], slots: tuple[int, ...]) -> list[Run]:
+    """SWAR steps for the fields whose distances form a regular pattern (distance = b + k*c),
+    grouped moves for the rest."""
+    final = _occupied(fields, list(slots))
+    if final is None:
+        return []
+    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    deltas = [s - f.start for f, s in zip(fields, slots)]
+    subsets = set()
+    for b in deltas:
+        for c in {d - b for d in deltas if d > b}:
+            subset = tuple(i for i, d in enumerate(deltas) if d >= b and (d - b) % c == 0)
+            if 2 <= len(subset) < len(fields):
+                subsets.add(subset)
+    out = []
+    for subset in sorted(subsets):
+        rest = [i for i in range(len(fields)) if i not in subset]
+        for descending in (True, False):
+            part = _plan(tuple(fields[i] for i in subset), tuple(slots[i] for i in subset), descending)
+            if part is None:
+                continue
+            groups = _groups([fields[i] for i in rest], [slots[i] for i in rest])
+            out.append(Run(fields, slots, part.base, part.steps, part.first, final, check, groups, part.final))
+    return out
 
 
 def _imm_cost(mask: int) -> int:
@@ -171,10 +205,11 @@ def _imm_cost(mask: int) -> int:
 def run_cost(run: Run) -> int:
     """Rough instruction count of unpack + pack of the run (moves, masks, one merged access
     per run) — only used to compare plans of the same fields."""
+    n = sum(2 * (3 + _imm_cost(g.frame)) - (2 if not g.shift else 0) for g in run.groups)
+    if run.swar == 0:
+        return n + 2 + (1 + _imm_cost(run.check) if run.check else 0)
     if run.groups:
-        return sum(2 * (3 + _imm_cost(g.frame)) - (2 if not g.shift else 0) for g in run.groups) + 2 + (
-            1 + _imm_cost(run.check) if run.check else 0)
-    n = 0
+        n += 4 + _imm_cost(run.swar_mask)  # combine both parts, both ways; isolate the SWAR part
     n += 2 + _imm_cost(run.first)  # base shift + mask
     for st in run.steps:
         n += (3 if st.simple else 4) + _imm_cost(st.after)
@@ -196,6 +231,7 @@ def plan_run(fields: tuple[Field, ...], offsets: tuple[int, ...]) -> Run | None:
     plans = [p for p in (_plan(fields, slots, True), _plan(fields, slots, False)) if p is not None]
     if not any(f.signed for f in fields):
         plans += [p for p in (_grouped(fields, slots),) if p is not None]
+        plans += _hybrids(fields, slots)
     return min(plans, key=run_cost) if plans else None
 
 
@@ -245,31 +281,33 @@ def _plan_dp(fields: list[Field], offsets: list[int]) -> tuple[Run, ...]:
 def unpack_run(run: Run, v: int) -> list[int]:
     """Execute the unpack plan on a frame word (what the C does): the fields' raw bit values.
     Used by the tests as an oracle check of the plans."""
-    if run.groups:
-        x = 0
-        for g in run.groups:
-            x |= (((v & g.frame) << g.shift) if g.shift >= 0 else ((v & g.frame) >> -g.shift)) & _ALL
-        return [(x >> s) & ((1 << f.length) - 1) for f, s in zip(run.fields, run.slots)]
+    extra = 0
+    for g in run.groups:
+        extra |= (((v & g.frame) << g.shift) if g.shift >= 0 else ((v & g.frame) >> -g.shift)) & _ALL
+    if run.swar == 0:
+        return [(extra >> s) & ((1 << f.length) - 1) for f, s in zip(run.fields, run.slots)]
     x = ((v << run.base) if run.base >= 0 else (v >> -run.base)) & _ALL & run.first
     for st in run.steps:
         if st.simple:
             x = (x | (x << st.shift)) & _ALL & st.after
         else:
             x = (x & st.stay) | ((x << st.shift) & st.after & ~st.stay)
+    x |= extra
     return [(x >> s) & ((1 << f.length) - 1) for f, s in zip(run.fields, run.slots)]
 
 
 def pack_run(run: Run, values: list[int]) -> int:
     """Execute the pack plan: the frame bits of these field values (in range)."""
     x = sum(val << s for val, s in zip(values, run.slots))
-    if run.groups:
-        out = 0
-        for g in run.groups:
-            out |= (x >> g.shift) & g.frame if g.shift >= 0 else (x << -g.shift) & g.frame
-        return out
+    extra = 0
+    for g in run.groups:
+        extra |= (x >> g.shift) & g.frame if g.shift >= 0 else (x << -g.shift) & g.frame
+    if run.swar == 0:
+        return extra
+    x &= run.swar_mask
     for st in reversed(run.steps):
         if st.simple_back:
             x = (x | (x >> st.shift)) & st.before
         else:
             x = (x & st.stay) | ((x >> st.shift) & st.before & ~st.stay)
-    return ((x >> run.base) if run.base >= 0 else (x << -run.base)) & _ALL
+    return (((x >> run.base) if run.base >= 0 else (x << -run.base)) & _ALL) | extra
