@@ -83,6 +83,14 @@ def test_vector_runner_all_cases(build, vectors):
     assert f", {len(vectors['multiframe'])} multi-frame texts" in out
 
 
+def test_vector_runner_byte_wise_path(build, vectors):
+    """The portable byte-wise pack/unpack (big-endian hosts, or CANSPEC users who turn the
+    little-endian word path off) agrees with the vectors too."""
+    exe = cbuild.build_runner(build, "gcc", [*cbuild.STRICT[:-1], "-DKAIWO_GATEWAY_LE_WORDS=0"], name="runner-bytes")
+    lines = cbuild.vectors_lines(cbuild.DEFAULT_VECTORS, build)
+    _check_runner(exe, lines, len(vectors["cases"]))
+
+
 def test_vector_runner_reports_mismatches(build, vectors):
     """The runner is not a rubber stamp: a wrong byte, raw value or physical value fails it."""
     exe = cbuild.build_runner(build, "gcc", name="runner-neg")
