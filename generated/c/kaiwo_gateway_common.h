@@ -121,12 +121,16 @@ static inline void kaiwo_gateway_le_store(void *p, uint64_t w, size_t n) {
 }
 #endif
 
-/** XOR of the eight bytes of a little-endian frame word. */
-static inline uint8_t kaiwo_gateway_xor_fold(uint64_t w) {
-    w ^= w >> 32;
+/** XOR of the four bytes of a word. */
+static inline uint8_t kaiwo_gateway_xor_fold32(uint32_t w) {
     w ^= w >> 16;
     w ^= w >> 8;
     return (uint8_t)w;
+}
+
+/** XOR of the eight bytes of a little-endian frame word. */
+static inline uint8_t kaiwo_gateway_xor_fold(uint64_t w) {
+    return kaiwo_gateway_xor_fold32((uint32_t)(w ^ (w >> 32)));
 }
 
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */

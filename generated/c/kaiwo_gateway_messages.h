@@ -821,7 +821,7 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
         }
         w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
             ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
 #else
@@ -8713,7 +8713,7 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
         }
         w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
             ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
 #else
@@ -14149,7 +14149,7 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
         }
         w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
             ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
 #else

@@ -390,7 +390,9 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
         ck_field = c_ident(snake(ck.signal))
         ck_fold = msg.dlc == 8 and set(ck.covers) == set(range(8)) - {ck.byte}
         if ck_fold:  # the checksum byte is 0 in `w`: the XOR of all of its bytes is the checksum
-            ck_pack = f"((uint64_t){prefix}_xor_fold(w) << {8 * ck.byte})"
+            used = {b for s in data for seg in s.sig.segments for b in (seg.byte,)}
+            fold = f"{prefix}_xor_fold32((uint32_t)w)" if max(used, default=0) < 4 else f"{prefix}_xor_fold(w)"
+            ck_pack = f"((uint64_t){fold} << {8 * ck.byte})"
             ck_ok = f"{prefix}_xor_fold(v) == 0u"
         else:
             covered = " ^ ".join(_byte_of("w", b) for b in ck.covers) or "0u"
