@@ -317,8 +317,7 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     storage = sum(((1 << f.storage) - 1) << s for f, s in zip(run.fields, run.slots))
     # group moves mask their fields; SWAR steps need zeros around them
     pad = "" if run.groups or storage == (1 << (8 * nbytes)) - 1 else f"{var} &= {hex_lit(storage, 64)};"
-    place = dict(offset=offset, nbytes=nbytes, pad_mask=pad)
-    m = lambda mask: hex_lit(mask, 64)  # noqa: E731
+    m = lambda mask: hex_lit(mask, 64)
     stores, loads = [], []
     for f, slot in zip(run.fields, run.slots):
         s = by_field[f.name]
@@ -336,7 +335,8 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     if run.swar == 0:
         return CRun(
             run=run, var=var, unpack_init=" | ".join(moves), unpack_steps=(), stores=tuple(stores),
-            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="", **place,
+            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="",
+            offset=offset, nbytes=nbytes, pad_mask=pad,
         )
     # SWAR part: from the frame word to the slots and back
     init = _shifted("v", run.base)
@@ -365,10 +365,10 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
             downs.append(f"{var} = ({var} | ({var} >> {st.shift})) & {m(st.before)};")
         else:
             downs.append(f"{var} = ({var} & {m(st.stay)}) | (({var} >> {st.shift}) & {m(st.before & ~st.stay)});")
-    place["pad_mask"] = ""  # in the steps
     return CRun(
         run=run, var=var, unpack_init=init, unpack_steps=tuple(ups), stores=tuple(stores),
-        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra, **place,
+        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra,
+        offset=offset, nbytes=nbytes, pad_mask="",  # the padding mask is in the steps
     )
 
 def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum], faults: list[tuple[ir.ValueTable, CEnum]]) -> CMessage:
@@ -415,7 +415,7 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     frame_word = " | ".join(r.placed for r in pack_runs) or "0u"
     if msg.checksum is not None and any(f.name == ck_field and r.run.swar != 0 for r in pack_runs for f in r.run.fields):
         frame_word = f"({frame_word}) & {hex_lit(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
-    frame_stores = tuple(f"(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})" for b in range(msg.dlc))
+    frame_stores = tuple("(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})" for b in range(msg.dlc))
     j = msg.j1939
     return CMessage(
         msg=msg, name=mname, macro=f"{pmacro}_{upper_snake(msg.name)}", fn=f"{prefix}_{mname}", type=f"{prefix}_{mname}_t",
