@@ -133,6 +133,14 @@ static inline uint8_t kaiwo_gateway_xor_fold(uint64_t w) {
     return kaiwo_gateway_xor_fold32((uint32_t)(w ^ (w >> 32)));
 }
 
+/** Whether the XOR of the eight bytes of a word is 0 (a frame whose XOR checksum byte is right):
+ * the last fold step is a compare of two bytes. */
+static inline bool kaiwo_gateway_xor_is_zero(uint64_t w) {
+    const uint32_t x = (uint32_t)w ^ (uint32_t)(w >> 32);
+    const uint32_t y = x ^ (x >> 16);
+    return (uint8_t)y == (uint8_t)(y >> 8);
+}
+
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */
 #define KAIWO_GATEWAY_J1939_PDU2_MIN_PF    240u
 #define KAIWO_GATEWAY_J1939_GLOBAL_ADDRESS 0xFFu

@@ -138,7 +138,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -870,7 +870,7 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -1243,7 +1243,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
         dst->current_accel = (uint8_t)(r1 >> 8);
         dst->checksum = (uint8_t)(r1 >> 16);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -8470,7 +8470,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -8762,7 +8762,7 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -13907,7 +13907,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -14198,7 +14198,7 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
         dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        return kaiwo_gateway_xor_fold(v) == 0u ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 

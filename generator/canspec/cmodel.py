@@ -393,7 +393,7 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
             used = {b for s in data for seg in s.sig.segments for b in (seg.byte,)}
             fold = f"{prefix}_xor_fold32((uint32_t)w)" if max(used, default=0) < 4 else f"{prefix}_xor_fold(w)"
             ck_pack = f"((uint64_t){fold} << {8 * ck.byte})"
-            ck_ok = f"{prefix}_xor_fold(v) == 0u"
+            ck_ok = f"{prefix}_xor_is_zero(v)"
         else:
             covered = " ^ ".join(_byte_of("w", b) for b in ck.covers) or "0u"
             ck_pack = f"((uint64_t)(uint8_t)({covered}) << {8 * ck.byte})"
