@@ -127,8 +127,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0xFFFFFF)) |
-             ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -857,9 +856,8 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0x3FF)) |
-             ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -1187,7 +1185,7 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
         p1 &= UINT64_C(0xFFFFFF);
         w = ((p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0xF00)) >> 6) |
              ((p0 & UINT64_C(0x10000)) >> 10) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-             ((p0 & UINT64_C(0xFFFFFFFF00000000)) >> 24) | (p1 << 40)) &
+             ((p0 >> 32) << 8) | (p1 << 40)) &
             UINT64_C(0xFFFFFFFFFFFFFF);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
 #if KAIWO_GATEWAY_LE_WORDS
@@ -1227,7 +1225,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = (v & UINT64_C(0x3)) | ((v & UINT64_C(0x3C)) << 6) | ((v & UINT64_C(0x40)) << 10) |
-             ((v & UINT64_C(0x80)) << 17) | ((v & UINT64_C(0xFFFFFFFF00)) << 24);
+             ((v & UINT64_C(0x80)) << 17) | ((v >> 8) << 32);
         r1 = (v >> 40);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
@@ -5441,8 +5439,7 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
         if (((p0 & UINT64_C(0xF000F0000000))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = (p0 & UINT64_C(0xFFFFFFF)) | ((p0 & UINT64_C(0xFFF00000000)) >> 4) |
-            ((p0 & UINT64_C(0xFFFF000000000000)) >> 8);
+        w = (p0 & UINT64_C(0xFFFFFFF)) | ((p0 & UINT64_C(0xFFF00000000)) >> 4) | ((p0 >> 48) << 40);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_3_DLC);
 #else
@@ -5477,8 +5474,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = (v & UINT64_C(0xFFFFFFF)) | ((v & UINT64_C(0xFFF0000000)) << 4) |
-             ((v & UINT64_C(0xFFFF0000000000)) << 8);
+        r0 = (v & UINT64_C(0xFFFFFFF)) | ((v & UINT64_C(0xFFF0000000)) << 4) | ((v >> 40) << 48);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -5920,7 +5916,7 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
             return KAIWO_GATEWAY_ERR_RANGE;
         }
         p1g = ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1000000)) << 21) |
-              ((p1 & UINT64_C(0xFFFF00000000)) << 16);
+              ((p1 >> 32) << 48);
         p1 &= UINT64_C(0x1F0001);
         p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F1);
         w = (p0 & UINT64_C(0xFFFFF)) | ((p0 & UINT64_C(0x3000000)) >> 4) |
@@ -5967,7 +5963,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
         r1 = (v >> 36) & UINT64_C(0x1F1);
         r1 = (r1 | (r1 << 12)) & UINT64_C(0x1F0001);
         r1 |= ((v & UINT64_C(0x8000000000)) >> 31) | ((v & UINT64_C(0x200000000000)) >> 21) |
-              ((v & UINT64_C(0xFFFF000000000000)) >> 16);
+              ((v >> 48) << 32);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
         kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
@@ -8459,8 +8455,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0xFFFFFF)) |
-             ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -8749,9 +8744,8 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0x3FF)) |
-             ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -10527,9 +10521,9 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 & UINT64_C(0xFF0000000000)) << 16) | (p0 & UINT64_C(0x1)) |
-            ((p0 & UINT64_C(0x300)) >> 7) | ((p0 & UINT64_C(0xF0000)) >> 13) |
-            ((p0 & UINT64_C(0x1000000)) >> 17) | ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+            ((p0 & UINT64_C(0xFF00000000)) >> 24);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
 #else
@@ -10564,9 +10558,9 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 16) | (v & UINT64_C(0x1)) |
-             ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
-             ((v & UINT64_C(0x80)) << 17) | ((v & UINT64_C(0xFF00)) << 24);
+        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
+             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
+             ((v & UINT64_C(0xFF00)) << 24);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
 #else
@@ -13896,8 +13890,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0xFFFFFF)) |
-             ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -14185,9 +14178,8 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 8) | (v & UINT64_C(0x3FF)) |
-             ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -15961,9 +15953,9 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 & UINT64_C(0xFF0000000000)) << 16) | (p0 & UINT64_C(0x1)) |
-            ((p0 & UINT64_C(0x300)) >> 7) | ((p0 & UINT64_C(0xF0000)) >> 13) |
-            ((p0 & UINT64_C(0x1000000)) >> 17) | ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+            ((p0 & UINT64_C(0xFF00000000)) >> 24);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
 #else
@@ -15998,9 +15990,9 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v & UINT64_C(0xFF00000000000000)) >> 16) | (v & UINT64_C(0x1)) |
-             ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
-             ((v & UINT64_C(0x80)) << 17) | ((v & UINT64_C(0xFF00)) << 24);
+        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
+             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
+             ((v & UINT64_C(0xFF00)) << 24);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
 #else

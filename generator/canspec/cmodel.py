@@ -304,6 +304,26 @@ def _shifted(expr: str, shift: int) -> str:
     return f"({expr} << {shift})" if shift > 0 else f"({expr} >> {-shift})"
 
 
+IMM32 = 0x7FFFFFFF  # x86-64 and/or/test take sign-extended 32-bit immediates: wider masks cost a load
+
+
+def _move(word: str, mask: int, shift: int) -> str:
+    """C text of (word & mask) moved by `shift` bits (negative: right). A contiguous mask that
+    starts or ends at a word edge, before or after the move, and is too wide for an immediate
+    either side, is cut out by two shifts instead (no mask constant)."""
+    top = (1 << 64) - 1
+    moved = ((mask << shift) if shift >= 0 else (mask >> -shift)) & top
+    lo = (mask & -mask).bit_length() - 1
+    n = mask.bit_length() - lo
+    dest = lo + shift
+    if mask == ((1 << n) - 1) << lo and mask > IMM32 and moved > IMM32:
+        if lo + n == 64 or dest + n == 64:  # nothing above it before, or nothing left above after
+            return _shifted(f"({word} >> {lo})" if lo else word, dest)
+        if lo == 0 or dest == 0:  # nothing below it before, or nothing left below after
+            return _shifted(f"({word} << {64 - n - lo})" if 64 - n - lo else word, dest - (64 - n))
+    return _shifted(f"({word} & {hex_lit(mask, 64)})", shift)
+
+
 def _runs(sigs: list[CSignal] | tuple[CSignal, ...], offsets: dict[str, int], size: int, letter: str, drop: int) -> tuple[CRun, ...]:
     fields = [cwords.Field(s.field, s.start, s.length, s.sig.storage_bits, s.sig.signed, s.needs_check) for s in sigs]
     by_field = {s.field: s for s in sigs}
@@ -329,9 +349,9 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
             stores.append((f.name, f"({s.type}){var}" if slot == 0 else f"({s.type})({var} >> {slot})"))
             loads.append(_shifted(f"(uint64_t)src->{f.name}", slot))
     top = (1 << cwords.WORD) - 1
-    moves = [_shifted(f"(v & {m(g.frame)})", g.shift) for g in run.groups]
+    moves = [_move("v", g.frame, g.shift) for g in run.groups]
     kept = [g for g in (cwords.Group(g.shift, g.frame & ~drop) for g in run.groups) if g.frame]
-    backs = [_shifted(f"({var} & {m(((g.frame << g.shift) if g.shift >= 0 else (g.frame >> -g.shift)) & top)})", -g.shift) for g in kept]
+    backs = [_move(var, ((g.frame << g.shift) if g.shift >= 0 else (g.frame >> -g.shift)) & top, -g.shift) for g in kept]
     if run.swar == 0:
         return CRun(
             run=run, var=var, unpack_init=" | ".join(moves), unpack_steps=(), stores=tuple(stores),
