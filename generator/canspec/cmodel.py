@@ -150,6 +150,7 @@ class CRun:
     nbytes: int  # (up to the next run: includes padding, never another run's field)
     pad_mask: str  # pack: mask clearing padding bytes read with the fields ("" if none)
     extra: str  # pack: a second local for the fields moved by groups beside SWAR steps ("" if none)
+    le_value: str  # unpack, word path: the slot word as stored (a signed field sign-extended)
 
 
 @dataclass(frozen=True)
@@ -337,6 +338,12 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     storage = sum(((1 << f.storage) - 1) << s for f, s in zip(run.fields, run.slots))
     # group moves mask their fields; SWAR steps need zeros around them
     pad = "" if run.groups or storage == (1 << (8 * nbytes)) - 1 else f"{var} &= {hex_lit(storage, 64)};"
+    le_value = var
+    signed = next((f for f in run.fields if f.signed), None)
+    if signed is not None:  # alone in its run: the struct holds it sign-extended to its type
+        sign = hex_lit(1 << (signed.length - 1), 64)
+        pad = f"{var} &= {hex_lit((1 << signed.length) - 1, 64)};"
+        le_value = f"(uint64_t)((int64_t)({var} ^ {sign}) - (int64_t){sign})"
     m = lambda mask: hex_lit(mask, 64)
     stores, loads = [], []
     for f, slot in zip(run.fields, run.slots):
@@ -355,7 +362,7 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     if run.swar == 0:
         return CRun(
             run=run, var=var, unpack_init=" | ".join(moves), unpack_steps=(), stores=tuple(stores),
-            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="",
+            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="", le_value=le_value,
             offset=offset, nbytes=nbytes, pad_mask=pad,
         )
     # SWAR part: from the frame word to the slots and back
@@ -387,7 +394,7 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
             downs.append(f"{var} = ({var} & {m(st.stay)}) | (({var} >> {st.shift}) & {m(st.before & ~st.stay)});")
     return CRun(
         run=run, var=var, unpack_init=init, unpack_steps=tuple(ups), stores=tuple(stores),
-        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra,
+        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra, le_value=le_value,
         offset=offset, nbytes=nbytes, pad_mask="",  # the padding mask is in the steps
     )
 
