@@ -6,7 +6,7 @@ BENCH_TARGETS += bench-c
 roundtrip-c:  ## C vector runner on $(VECTORS)
 	$(PYTHON) tests/c/cbuild.py $(VECTORS) build/c
 
-bench-c:  ## canspec C vs cantools generate_c_source: pack+unpack ns/frame, .text size
+bench-c:  ## canspec C vs cantools generate_c_source: pack+unpack ns and callgrind instructions (call and inline modes), code size
 	$(PYTHON) tests/c/bench.py build/c-bench
 
 FUZZ_SECONDS ?= 60

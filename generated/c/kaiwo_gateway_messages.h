@@ -59,6 +59,18 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_autocar_eps_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_autocar_eps_command_layout_check
+    [(offsetof(kaiwo_gateway_autocar_eps_command_t, eps_ctrl_mode) == 0u &&
+      offsetof(kaiwo_gateway_autocar_eps_command_t, counter) == 1u &&
+      offsetof(kaiwo_gateway_autocar_eps_command_t, max_angular_speed) == 2u &&
+      offsetof(kaiwo_gateway_autocar_eps_command_t, steering_angle_cmd) == 4u &&
+      offsetof(kaiwo_gateway_autocar_eps_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_autocar_eps_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -69,19 +81,29 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
+#endif
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -95,17 +117,27 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->eps_ctrl_mode = (uint8_t)(src[0]);
-        dst->counter = (uint8_t)(src[1]);
-        dst->max_angular_speed = (uint8_t)(src[2]);
-        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->eps_ctrl_mode = (uint8_t)r0;
+        dst->counter = (uint8_t)(r0 >> 8);
+        dst->max_angular_speed = (uint8_t)(r0 >> 16);
+        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -322,6 +354,20 @@ typedef struct {
         eps_fault_level; /**< EPS 故障级别; bits 48..49; values: kaiwo_gateway_eps_fault_level_t */
     uint8_t counter;     /**< 心跳值; bits 56..63; counter */
 } kaiwo_gateway_eps_state_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_eps_state_layout_check
+    [(offsetof(kaiwo_gateway_eps_state_t, eps_ctrl_state) == 0u &&
+      offsetof(kaiwo_gateway_eps_state_t, steering_torque) == 1u &&
+      offsetof(kaiwo_gateway_eps_state_t, eps_output_torque) == 2u &&
+      offsetof(kaiwo_gateway_eps_state_t, steering_angle) == 4u &&
+      offsetof(kaiwo_gateway_eps_state_t, controller_temp) == 6u &&
+      offsetof(kaiwo_gateway_eps_state_t, eps_fault_level) == 7u &&
+      offsetof(kaiwo_gateway_eps_state_t, counter) == 8u &&
+      sizeof(kaiwo_gateway_eps_state_t) == 10u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -330,26 +376,36 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->controller_temp) > 63u) || ((uint32_t)(src->eps_fault_level) > 3u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_state);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->steering_torque);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->eps_output_torque);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle >> 8));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->controller_temp);
-        const uint8_t b6 = (uint8_t)((uint32_t)src->eps_fault_level);
-        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 2u);
+#else
+        p0 = (uint64_t)src->eps_ctrl_state | ((uint64_t)src->steering_torque << 8) |
+             ((uint64_t)src->eps_output_torque << 16) | ((uint64_t)src->steering_angle << 32) |
+             ((uint64_t)src->controller_temp << 48) | ((uint64_t)src->eps_fault_level << 56);
+        p1 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFCC0000000000000))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 &= UINT64_C(0xFF);
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8) | (p1 << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_EPS_STATE_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -361,13 +417,31 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->eps_ctrl_state = (uint8_t)(src[0]);
-        dst->steering_torque = (uint8_t)(src[1]);
-        dst->eps_output_torque = (uint8_t)(src[2]);
-        dst->steering_angle = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
-        dst->controller_temp = (uint8_t)((src[5] & 0x3Fu));
-        dst->eps_fault_level = (uint8_t)((src[6] & 0x3u));
-        dst->counter = (uint8_t)(src[7]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_EPS_STATE_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0x33FFFFF000000)) << 8);
+        r1 = (v >> 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 2u);
+#else
+        dst->eps_ctrl_state = (uint8_t)r0;
+        dst->steering_torque = (uint8_t)(r0 >> 8);
+        dst->eps_output_torque = (uint8_t)(r0 >> 16);
+        dst->steering_angle = (uint16_t)(r0 >> 32);
+        dst->controller_temp = (uint8_t)(r0 >> 48);
+        dst->eps_fault_level = (uint8_t)(r0 >> 56);
+        dst->counter = (uint8_t)r1;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -709,6 +783,19 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_autocar_speed_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_autocar_speed_command_layout_check
+    [(offsetof(kaiwo_gateway_autocar_speed_command_t, accel_cmd) == 0u &&
+      offsetof(kaiwo_gateway_autocar_speed_command_t, epb_cmd) == 2u &&
+      offsetof(kaiwo_gateway_autocar_speed_command_t, gear_cmd) == 3u &&
+      offsetof(kaiwo_gateway_autocar_speed_command_t, counter) == 4u &&
+      offsetof(kaiwo_gateway_autocar_speed_command_t, emergency_brake_cmd) == 5u &&
+      offsetof(kaiwo_gateway_autocar_speed_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_autocar_speed_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -718,25 +805,34 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->accel_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
-        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->accel_cmd);
-        const uint8_t b1 =
-            (uint8_t)(((uint32_t)src->accel_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
-                      ((uint32_t)src->gear_cmd << 4));
-        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = 0u;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
+             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+#endif
+        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
+            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -750,18 +846,29 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->accel_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->gear_cmd = (uint8_t)((src[1] >> 4));
-        dst->counter = (uint8_t)(src[2]);
-        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->accel_cmd = (uint16_t)r0;
+        dst->epb_cmd = (uint8_t)(r0 >> 16);
+        dst->gear_cmd = (uint8_t)(r0 >> 24);
+        dst->counter = (uint8_t)(r0 >> 32);
+        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -1033,6 +1140,22 @@ typedef struct {
     uint8_t current_accel;     /**< 当前加速度 [m/s²]; bits 48..55 */
     uint8_t checksum;          /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_driving_state_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_driving_state_layout_check
+    [(offsetof(kaiwo_gateway_driving_state_t, epb_state) == 0u &&
+      offsetof(kaiwo_gateway_driving_state_t, gear_state) == 1u &&
+      offsetof(kaiwo_gateway_driving_state_t, emergency_brake_state) == 2u &&
+      offsetof(kaiwo_gateway_driving_state_t, uss_brake_state) == 3u &&
+      offsetof(kaiwo_gateway_driving_state_t, motor_speed) == 4u &&
+      offsetof(kaiwo_gateway_driving_state_t, motor_torque) == 6u &&
+      offsetof(kaiwo_gateway_driving_state_t, motor_speed_ratio) == 8u &&
+      offsetof(kaiwo_gateway_driving_state_t, current_accel) == 9u &&
+      offsetof(kaiwo_gateway_driving_state_t, checksum) == 10u &&
+      sizeof(kaiwo_gateway_driving_state_t) == 12u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -1042,28 +1165,41 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->epb_state) > 3u) || ((uint32_t)(src->gear_state) > 15u) ||
-        ((uint32_t)(src->emergency_brake_state | src->uss_brake_state) > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->epb_state | ((uint32_t)src->gear_state << 2) |
-                                     ((uint32_t)src->emergency_brake_state << 6) |
-                                     ((uint32_t)src->uss_brake_state << 7));
-        const uint8_t b1 = (uint8_t)((uint32_t)src->motor_speed);
-        const uint8_t b2 = (uint8_t)(((uint32_t)src->motor_speed >> 8));
-        const uint8_t b3 = (uint8_t)((uint32_t)src->motor_torque);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->motor_torque >> 8));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->motor_speed_ratio);
-        const uint8_t b6 = (uint8_t)((uint32_t)src->current_accel);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4 ^ b5 ^ b6);
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 4u);
+#else
+        p0 = (uint64_t)src->epb_state | ((uint64_t)src->gear_state << 8) |
+             ((uint64_t)src->emergency_brake_state << 16) | ((uint64_t)src->uss_brake_state << 24) |
+             ((uint64_t)src->motor_speed << 32) | ((uint64_t)src->motor_torque << 48);
+        p1 = (uint64_t)src->motor_speed_ratio | ((uint64_t)src->current_accel << 8) |
+             ((uint64_t)src->checksum << 16);
+#endif
+        if (((p0 & UINT64_C(0xFEFEF0FC))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 &= UINT64_C(0xFFFFFF);
+        w = ((p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0xF00)) >> 6) |
+             ((p0 & UINT64_C(0x10000)) >> 10) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+             ((p0 >> 32) << 8) | (p1 << 40)) &
+            UINT64_C(0xFFFFFFFFFFFFFF);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_DRIVING_STATE_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -1077,21 +1213,35 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->epb_state = (uint8_t)((src[0] & 0x3u));
-        dst->gear_state = (uint8_t)(((src[0] >> 2) & 0xFu));
-        dst->emergency_brake_state = (uint8_t)(((src[0] >> 6) & 0x1u));
-        dst->uss_brake_state = (uint8_t)((src[0] >> 7));
-        dst->motor_speed = (uint16_t)(src[1] | ((uint32_t)src[2] << 8));
-        dst->motor_torque = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
-        dst->motor_speed_ratio = (uint8_t)(src[5]);
-        dst->current_accel = (uint8_t)(src[6]);
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_DRIVING_STATE_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3)) | ((v & UINT64_C(0x3C)) << 6) | ((v & UINT64_C(0x40)) << 10) |
+             ((v & UINT64_C(0x80)) << 17) | ((v >> 8) << 32);
+        r1 = (v >> 40);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 4u);
+#else
+        dst->epb_state = (uint8_t)r0;
+        dst->gear_state = (uint8_t)(r0 >> 8);
+        dst->emergency_brake_state = (uint8_t)(r0 >> 16);
+        dst->uss_brake_state = (uint8_t)(r0 >> 24);
+        dst->motor_speed = (uint16_t)(r0 >> 32);
+        dst->motor_torque = (uint16_t)(r0 >> 48);
+        dst->motor_speed_ratio = (uint8_t)r1;
+        dst->current_accel = (uint8_t)(r1 >> 8);
+        dst->checksum = (uint8_t)(r1 >> 16);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -1643,6 +1793,38 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_autocar_control_command_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_autocar_control_command_1_layout_check
+    [(offsetof(kaiwo_gateway_autocar_control_command_1_t, drive_mode_cmd) == 0u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, door_cmd) == 1u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, horn_cmd) == 2u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, drl_cmd) == 3u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, left_turn_cmd) == 4u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, right_turn_cmd) == 5u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, hazard_cmd) == 6u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, position_light_cmd) == 7u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, headlight_cmd) == 8u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, rear_fog_cmd) == 9u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, left_fog_cmd) == 10u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, right_fog_cmd) == 11u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, dome_light_cmd) == 12u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, ambient_light_cmd) == 13u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, drive_mode_reset) == 14u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_state) == 15u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_reliability) == 16u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_fault_level) == 17u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, lock_cmd) == 18u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, ac_cmd) == 19u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, ac_set_temp) == 20u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_a) == 21u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_b) == 22u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_c) == 23u &&
+      offsetof(kaiwo_gateway_autocar_control_command_1_t, counter) == 24u &&
+      sizeof(kaiwo_gateway_autocar_control_command_1_t) == 25u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -1652,47 +1834,65 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
-                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
-                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
-                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
-                    src->ambient_light_cmd | src->system_state | src->system_reliability |
-                    src->system_fault_level | src->lock_cmd) > 3u) ||
-        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
-        ((uint32_t)(src->ac_set_temp) > 31u) ||
-        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
-                    src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
-                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
-        const uint8_t b1 =
-            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
-                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
-        const uint8_t b2 =
-            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
-                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
-        const uint8_t b3 =
-            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
-                      ((uint32_t)src->drive_mode_reset << 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
-                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
-        const uint8_t b6 =
-            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
-        const uint8_t b7 =
-            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p1g;
+        uint64_t p2;
+        uint64_t p2g;
+        uint64_t p3;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
+        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
+#else
+        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
+             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
+             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
+             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
+        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
+             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
+             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
+             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
+        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
+             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
+             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
+             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
+        p3 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
+             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
+        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
+        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -1705,31 +1905,67 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
-        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
-        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
-        dst->drl_cmd = (uint8_t)((src[0] >> 6));
-        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
-        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
-        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
-        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
-        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
-        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
-        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
-        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
-        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
-        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
-        dst->system_state = (uint8_t)((src[4] & 0x3u));
-        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
-        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
-        dst->lock_cmd = (uint8_t)((src[4] >> 6));
-        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
-        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
-        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
-        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
-        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+        uint64_t r3;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = v & UINT64_C(0xFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
+        r3 = (v >> 60);
+        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
+        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
+        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
+#else
+        dst->drive_mode_cmd = (uint8_t)r0;
+        dst->door_cmd = (uint8_t)(r0 >> 8);
+        dst->horn_cmd = (uint8_t)(r0 >> 16);
+        dst->drl_cmd = (uint8_t)(r0 >> 24);
+        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
+        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
+        dst->hazard_cmd = (uint8_t)(r0 >> 48);
+        dst->position_light_cmd = (uint8_t)(r0 >> 56);
+        dst->headlight_cmd = (uint8_t)r1;
+        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
+        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
+        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
+        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
+        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
+        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
+        dst->system_state = (uint8_t)(r1 >> 56);
+        dst->system_reliability = (uint8_t)r2;
+        dst->system_fault_level = (uint8_t)(r2 >> 8);
+        dst->lock_cmd = (uint8_t)(r2 >> 16);
+        dst->ac_cmd = (uint8_t)(r2 >> 24);
+        dst->ac_set_temp = (uint8_t)(r2 >> 32);
+        dst->protocol_version_a = (uint8_t)(r2 >> 40);
+        dst->protocol_version_b = (uint8_t)(r2 >> 48);
+        dst->protocol_version_c = (uint8_t)(r2 >> 56);
+        dst->counter = (uint8_t)r3;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -3032,6 +3268,35 @@ typedef struct {
     uint16_t odometer; /**< 总里程 [km]; bits 40..55 */
     uint8_t counter;   /**< 心跳值; bits 56..63; counter */
 } kaiwo_gateway_vehicle_state_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_vehicle_state_1_layout_check
+    [(offsetof(kaiwo_gateway_vehicle_state_1_t, drive_mode_state) == 0u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, door_state) == 1u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, drl_state) == 2u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, left_turn_state) == 3u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, right_turn_state) == 4u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, hazard_state) == 5u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, position_light_state) == 6u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, headlight_state) == 7u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, rear_fog_state) == 8u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, left_fog_state) == 9u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, right_fog_state) == 10u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, dome_light_state) == 11u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, ambient_light_state) == 12u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, door_button_state) == 13u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, vehicle_speed) == 14u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, soc) == 15u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, system_power_cmd) == 16u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, charge_state) == 17u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, charge_connection) == 18u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, vehicle_fault_level) == 19u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, odometer) == 20u &&
+      offsetof(kaiwo_gateway_vehicle_state_1_t, counter) == 22u &&
+      sizeof(kaiwo_gateway_vehicle_state_1_t) == 24u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -3041,44 +3306,58 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->drive_mode_state | src->headlight_state | src->system_power_cmd |
-                    src->charge_state | src->charge_connection | src->vehicle_fault_level) > 3u) ||
-        ((uint32_t)(src->door_state | src->drl_state | src->left_turn_state |
-                    src->right_turn_state | src->hazard_state | src->position_light_state |
-                    src->rear_fog_state | src->left_fog_state | src->right_fog_state |
-                    src->dome_light_state | src->ambient_light_state | src->door_button_state) >
-         1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->drive_mode_state | ((uint32_t)src->door_state << 2) |
-                      ((uint32_t)src->drl_state << 3) | ((uint32_t)src->left_turn_state << 4) |
-                      ((uint32_t)src->right_turn_state << 5) | ((uint32_t)src->hazard_state << 6) |
-                      ((uint32_t)src->position_light_state << 7));
-        const uint8_t b1 =
-            (uint8_t)((uint32_t)src->headlight_state | ((uint32_t)src->rear_fog_state << 2) |
-                      ((uint32_t)src->left_fog_state << 3) | ((uint32_t)src->right_fog_state << 4) |
-                      ((uint32_t)src->dome_light_state << 5) |
-                      ((uint32_t)src->ambient_light_state << 6) |
-                      ((uint32_t)src->door_button_state << 7));
-        const uint8_t b2 = (uint8_t)((uint32_t)src->vehicle_speed);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->soc);
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->system_power_cmd | ((uint32_t)src->charge_state << 2) |
-                      ((uint32_t)src->charge_connection << 4) |
-                      ((uint32_t)src->vehicle_fault_level << 6));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->odometer);
-        const uint8_t b6 = (uint8_t)(((uint32_t)src->odometer >> 8));
-        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p0g;
+        uint64_t p1;
+        uint64_t p2;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
+#else
+        p0 = (uint64_t)src->drive_mode_state | ((uint64_t)src->door_state << 8) |
+             ((uint64_t)src->drl_state << 16) | ((uint64_t)src->left_turn_state << 24) |
+             ((uint64_t)src->right_turn_state << 32) | ((uint64_t)src->hazard_state << 40) |
+             ((uint64_t)src->position_light_state << 48) | ((uint64_t)src->headlight_state << 56);
+        p1 = (uint64_t)src->rear_fog_state | ((uint64_t)src->left_fog_state << 8) |
+             ((uint64_t)src->right_fog_state << 16) | ((uint64_t)src->dome_light_state << 24) |
+             ((uint64_t)src->ambient_light_state << 32) | ((uint64_t)src->door_button_state << 40) |
+             ((uint64_t)src->vehicle_speed << 48) | ((uint64_t)src->soc << 56);
+        p2 = (uint64_t)src->system_power_cmd | ((uint64_t)src->charge_state << 8) |
+             ((uint64_t)src->charge_connection << 16) | ((uint64_t)src->vehicle_fault_level << 24) |
+             ((uint64_t)src->odometer << 32) | ((uint64_t)src->counter << 48);
+#endif
+        if (((p0 & UINT64_C(0xFCFEFEFEFEFEFEFC)) | (p1 & UINT64_C(0xFEFEFEFEFEFE)) |
+             (p2 & UINT64_C(0xFCFCFCFC))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p0g = (p0 & UINT64_C(0x3));
+        p0 &= UINT64_C(0x301010101010100);
+        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x300030003000300);
+        p0 = (p0 | (p0 >> 14)) & UINT64_C(0xF0000000F00);
+        p0 = (p0 | (p0 >> 28)) & UINT64_C(0xFF00);
+        p1 = (p1 & UINT64_C(0xFFFF000100010001)) | ((p1 >> 7) & UINT64_C(0x200020002));
+        p1 = (p1 & UINT64_C(0x300000003)) | ((p1 >> 14) & UINT64_C(0x3FFFC0000000C));
+        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x3FFFFF);
+        p2 &= UINT64_C(0xFFFFFFFFFFFFFF);
+        p2 = (p2 & UINT64_C(0xFFFFFF00030003)) | ((p2 >> 6) & UINT64_C(0xC000C));
+        p2 = (p2 & UINT64_C(0xFFFFFF0000000F)) | ((p2 >> 12) & UINT64_C(0xF0));
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0xFFFFFFFF);
+        w = (p0 >> 6) | p0g | (p1 << 10) | (p2 << 32);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -3091,28 +3370,59 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->drive_mode_state = (uint8_t)((src[0] & 0x3u));
-        dst->door_state = (uint8_t)(((src[0] >> 2) & 0x1u));
-        dst->drl_state = (uint8_t)(((src[0] >> 3) & 0x1u));
-        dst->left_turn_state = (uint8_t)(((src[0] >> 4) & 0x1u));
-        dst->right_turn_state = (uint8_t)(((src[0] >> 5) & 0x1u));
-        dst->hazard_state = (uint8_t)(((src[0] >> 6) & 0x1u));
-        dst->position_light_state = (uint8_t)((src[0] >> 7));
-        dst->headlight_state = (uint8_t)((src[1] & 0x3u));
-        dst->rear_fog_state = (uint8_t)(((src[1] >> 2) & 0x1u));
-        dst->left_fog_state = (uint8_t)(((src[1] >> 3) & 0x1u));
-        dst->right_fog_state = (uint8_t)(((src[1] >> 4) & 0x1u));
-        dst->dome_light_state = (uint8_t)(((src[1] >> 5) & 0x1u));
-        dst->ambient_light_state = (uint8_t)(((src[1] >> 6) & 0x1u));
-        dst->door_button_state = (uint8_t)((src[1] >> 7));
-        dst->vehicle_speed = (uint8_t)(src[2]);
-        dst->soc = (uint8_t)(src[3]);
-        dst->system_power_cmd = (uint8_t)((src[4] & 0x3u));
-        dst->charge_state = (uint8_t)(((src[4] >> 2) & 0x3u));
-        dst->charge_connection = (uint8_t)(((src[4] >> 4) & 0x3u));
-        dst->vehicle_fault_level = (uint8_t)((src[4] >> 6));
-        dst->odometer = (uint16_t)(src[5] | ((uint32_t)src[6] << 8));
-        dst->counter = (uint8_t)(src[7]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v << 6) & UINT64_C(0xFF00);
+        r1 = (v >> 10) & UINT64_C(0x3FFFFF);
+        r2 = (v >> 32);
+        r0 = (r0 | (r0 << 28)) & UINT64_C(0xF0000000F00);
+        r0 = (r0 | (r0 << 14)) & UINT64_C(0x300030003000300);
+        r0 = (r0 | (r0 << 7)) & UINT64_C(0x301010101010100);
+        r0 |= (v & UINT64_C(0x3));
+        r1 = (r1 | (r1 << 28)) & UINT64_C(0x3FFFF0000000F);
+        r1 = (r1 & UINT64_C(0x300000003)) | ((r1 << 14) & UINT64_C(0xFFFF000000030000));
+        r1 = (r1 & UINT64_C(0xFFFF000100010001)) | ((r1 << 7) & UINT64_C(0x10001000100));
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0xFFFFFF000000FF);
+        r2 = (r2 & UINT64_C(0xFFFFFF0000000F)) | ((r2 << 12) & UINT64_C(0xF0000));
+        r2 = (r2 & UINT64_C(0xFFFFFF00030003)) | ((r2 << 6) & UINT64_C(0x3000300));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
+#else
+        dst->drive_mode_state = (uint8_t)r0;
+        dst->door_state = (uint8_t)(r0 >> 8);
+        dst->drl_state = (uint8_t)(r0 >> 16);
+        dst->left_turn_state = (uint8_t)(r0 >> 24);
+        dst->right_turn_state = (uint8_t)(r0 >> 32);
+        dst->hazard_state = (uint8_t)(r0 >> 40);
+        dst->position_light_state = (uint8_t)(r0 >> 48);
+        dst->headlight_state = (uint8_t)(r0 >> 56);
+        dst->rear_fog_state = (uint8_t)r1;
+        dst->left_fog_state = (uint8_t)(r1 >> 8);
+        dst->right_fog_state = (uint8_t)(r1 >> 16);
+        dst->dome_light_state = (uint8_t)(r1 >> 24);
+        dst->ambient_light_state = (uint8_t)(r1 >> 32);
+        dst->door_button_state = (uint8_t)(r1 >> 40);
+        dst->vehicle_speed = (uint8_t)(r1 >> 48);
+        dst->soc = (uint8_t)(r1 >> 56);
+        dst->system_power_cmd = (uint8_t)r2;
+        dst->charge_state = (uint8_t)(r2 >> 8);
+        dst->charge_connection = (uint8_t)(r2 >> 16);
+        dst->vehicle_fault_level = (uint8_t)(r2 >> 24);
+        dst->odometer = (uint16_t)(r2 >> 32);
+        dst->counter = (uint8_t)(r2 >> 48);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -4171,6 +4481,23 @@ typedef struct {
     uint16_t cargo_roll;          /**< 货箱侧倾角 [deg]; bits 46..55 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_autocar_control_command_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_autocar_control_command_2_layout_check
+    [(offsetof(kaiwo_gateway_autocar_control_command_2_t, downhill_regen_enable) == 0u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_lift) == 1u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_lift_speed) == 2u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, pto_enable) == 3u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, downhill_regen_speed) == 4u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, chassis_pitch) == 6u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, chassis_roll) == 8u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_pitch) == 10u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_roll) == 12u &&
+      offsetof(kaiwo_gateway_autocar_control_command_2_t, counter) == 14u &&
+      sizeof(kaiwo_gateway_autocar_control_command_2_t) == 16u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -4180,34 +4507,42 @@ kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
-        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u) ||
-        ((uint32_t)(src->chassis_pitch | src->chassis_roll | src->cargo_pitch | src->cargo_roll) >
-         1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
-                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
-        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->chassis_pitch);
-        const uint8_t b3 =
-            (uint8_t)(((uint32_t)src->chassis_pitch >> 8) | ((uint32_t)src->chassis_roll << 2));
-        const uint8_t b4 =
-            (uint8_t)(((uint32_t)src->chassis_roll >> 6) | ((uint32_t)src->cargo_pitch << 4));
-        const uint8_t b5 =
-            (uint8_t)(((uint32_t)src->cargo_pitch >> 4) | ((uint32_t)src->cargo_roll << 6));
-        const uint8_t b6 = (uint8_t)(((uint32_t)src->cargo_roll >> 2));
-        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+#else
+        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
+             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->chassis_pitch << 48);
+        p1 = (uint64_t)src->chassis_roll | ((uint64_t)src->cargo_pitch << 16) |
+             ((uint64_t)src->cargo_roll << 32) | ((uint64_t)src->counter << 48);
+#endif
+        if (((p0 & UINT64_C(0xFC000000FEF0FCFE)) | (p1 & UINT64_C(0xFC00FC00FC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 &= UINT64_C(0xFFFFFFFFFFFFFF);
+        p1 = (p1 & UINT64_C(0x3FF000003FF)) | ((p1 >> 6) & UINT64_C(0x3FC00000FFC00));
+        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0x3FFFF00000));
+        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+            ((p0 & UINT64_C(0xFF00000000)) >> 24) | ((p0 & UINT64_C(0x3FF000000000000)) >> 32) |
+            (p1 << 26);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -4220,16 +4555,38 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
-        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
-        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
-        dst->pto_enable = (uint8_t)((src[0] >> 7));
-        dst->downhill_regen_speed = (uint8_t)(src[1]);
-        dst->chassis_pitch = (uint16_t)(src[2] | ((uint32_t)(src[3] & 0x3u) << 8));
-        dst->chassis_roll = (uint16_t)((src[3] >> 2) | ((uint32_t)(src[4] & 0xFu) << 6));
-        dst->cargo_pitch = (uint16_t)((src[4] >> 4) | ((uint32_t)(src[5] & 0x3Fu) << 4));
-        dst->cargo_roll = (uint16_t)((src[5] >> 6) | ((uint32_t)src[6] << 2));
-        dst->counter = (uint8_t)(src[7]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
+             ((v & UINT64_C(0x80)) << 17) | ((v & UINT64_C(0xFF00)) << 24) |
+             ((v & UINT64_C(0x3FF0000)) << 32);
+        r1 = (v >> 26);
+        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0x3FFFF00000000));
+        r1 = (r1 & UINT64_C(0x3FF000003FF)) | ((r1 << 6) & UINT64_C(0xFF000003FF0000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+#else
+        dst->downhill_regen_enable = (uint8_t)r0;
+        dst->cargo_lift = (uint8_t)(r0 >> 8);
+        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
+        dst->pto_enable = (uint8_t)(r0 >> 24);
+        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
+        dst->chassis_pitch = (uint16_t)(r0 >> 48);
+        dst->chassis_roll = (uint16_t)r1;
+        dst->cargo_pitch = (uint16_t)(r1 >> 16);
+        dst->cargo_roll = (uint16_t)(r1 >> 32);
+        dst->counter = (uint8_t)(r1 >> 48);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -4722,6 +5079,17 @@ typedef struct {
     uint16_t battery_charge_energy;    /**< 电池组累计充电电量 [kWh]; bits 32..47 */
     uint16_t battery_discharge_energy; /**< 电池组累计放电电量 [kWh]; bits 48..63 */
 } kaiwo_gateway_vehicle_state_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_vehicle_state_2_layout_check
+    [(offsetof(kaiwo_gateway_vehicle_state_2_t, battery_voltage) == 0u &&
+      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_current) == 2u &&
+      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_charge_energy) == 4u &&
+      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_discharge_energy) == 6u &&
+      sizeof(kaiwo_gateway_vehicle_state_2_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -4732,22 +5100,28 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->battery_voltage);
-        const uint8_t b1 = (uint8_t)(((uint32_t)src->battery_voltage >> 8));
-        const uint8_t b2 = (uint8_t)((uint32_t)src->battery_current);
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->battery_current >> 8));
-        const uint8_t b4 = (uint8_t)((uint32_t)src->battery_charge_energy);
-        const uint8_t b5 = (uint8_t)(((uint32_t)src->battery_charge_energy >> 8));
-        const uint8_t b6 = (uint8_t)((uint32_t)src->battery_discharge_energy);
-        const uint8_t b7 = (uint8_t)(((uint32_t)src->battery_discharge_energy >> 8));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->battery_voltage | ((uint64_t)src->battery_current << 16) |
+             ((uint64_t)src->battery_charge_energy << 32) |
+             ((uint64_t)src->battery_discharge_energy << 48);
+#endif
+        w = p0;
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -4760,10 +5134,25 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->battery_voltage = (uint16_t)(src[0] | ((uint32_t)src[1] << 8));
-        dst->battery_current = (uint16_t)(src[2] | ((uint32_t)src[3] << 8));
-        dst->battery_charge_energy = (uint16_t)(src[4] | ((uint32_t)src[5] << 8));
-        dst->battery_discharge_energy = (uint16_t)(src[6] | ((uint32_t)src[7] << 8));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = v;
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->battery_voltage = (uint16_t)r0;
+        dst->battery_current = (uint16_t)(r0 >> 16);
+        dst->battery_charge_energy = (uint16_t)(r0 >> 32);
+        dst->battery_discharge_energy = (uint16_t)(r0 >> 48);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -5015,6 +5404,19 @@ typedef struct {
     uint8_t motor_temp;            /**< 电机温度 [°C]; bits 40..47 */
     uint8_t motor_controller_temp; /**< 电控温度 [°C]; bits 48..55 */
 } kaiwo_gateway_vehicle_state_3_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_vehicle_state_3_layout_check
+    [(offsetof(kaiwo_gateway_vehicle_state_3_t, battery_max_temp) == 0u &&
+      offsetof(kaiwo_gateway_vehicle_state_3_t, battery_min_temp) == 1u &&
+      offsetof(kaiwo_gateway_vehicle_state_3_t, max_cell_voltage) == 2u &&
+      offsetof(kaiwo_gateway_vehicle_state_3_t, min_cell_voltage) == 4u &&
+      offsetof(kaiwo_gateway_vehicle_state_3_t, motor_temp) == 6u &&
+      offsetof(kaiwo_gateway_vehicle_state_3_t, motor_controller_temp) == 7u &&
+      sizeof(kaiwo_gateway_vehicle_state_3_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -5024,26 +5426,32 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->max_cell_voltage | src->min_cell_voltage) > 4095u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->battery_max_temp);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->battery_min_temp);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->max_cell_voltage);
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->max_cell_voltage >> 8) |
-                                     ((uint32_t)src->min_cell_voltage << 4));
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->min_cell_voltage >> 4));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->motor_temp);
-        const uint8_t b6 = (uint8_t)((uint32_t)src->motor_controller_temp);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = 0u;
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->battery_max_temp | ((uint64_t)src->battery_min_temp << 8) |
+             ((uint64_t)src->max_cell_voltage << 16) | ((uint64_t)src->min_cell_voltage << 32) |
+             ((uint64_t)src->motor_temp << 48) | ((uint64_t)src->motor_controller_temp << 56);
+#endif
+        if (((p0 & UINT64_C(0xF000F0000000))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = (p0 & UINT64_C(0xFFFFFFF)) | ((p0 & UINT64_C(0xFFF00000000)) >> 4) | ((p0 >> 48) << 40);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_3_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -5056,12 +5464,27 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->battery_max_temp = (uint8_t)(src[0]);
-        dst->battery_min_temp = (uint8_t)(src[1]);
-        dst->max_cell_voltage = (uint16_t)(src[2] | ((uint32_t)(src[3] & 0xFu) << 8));
-        dst->min_cell_voltage = (uint16_t)((src[3] >> 4) | ((uint32_t)src[4] << 4));
-        dst->motor_temp = (uint8_t)(src[5]);
-        dst->motor_controller_temp = (uint8_t)(src[6]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_3_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0xFFFFFFF)) | ((v & UINT64_C(0xFFF0000000)) << 4) | ((v >> 40) << 48);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->battery_max_temp = (uint8_t)r0;
+        dst->battery_min_temp = (uint8_t)(r0 >> 8);
+        dst->max_cell_voltage = (uint16_t)(r0 >> 16);
+        dst->min_cell_voltage = (uint16_t)(r0 >> 32);
+        dst->motor_temp = (uint8_t)(r0 >> 48);
+        dst->motor_controller_temp = (uint8_t)(r0 >> 56);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -5444,6 +5867,25 @@ typedef struct {
     uint8_t pto_state;      /**< 取力状态; bits 45..45; values: kaiwo_gateway_pto_state_t */
     uint16_t battery_power; /**< 电池功率 [kW]; bits 48..63 */
 } kaiwo_gateway_vehicle_state_4_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_vehicle_state_4_layout_check
+    [(offsetof(kaiwo_gateway_vehicle_state_4_t, outside_temp) == 0u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, inside_temp) == 1u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, ac_state) == 2u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, vehicle_power_state) == 3u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, hill_hold_state) == 4u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, regen_brake_state) == 5u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, remaining_range) == 6u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, manual_takeover_state) == 8u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, remote_driving_allowed) == 9u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, ac_set_temp) == 10u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, pto_state) == 11u &&
+      offsetof(kaiwo_gateway_vehicle_state_4_t, battery_power) == 12u &&
+      sizeof(kaiwo_gateway_vehicle_state_4_t) == 14u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -5453,34 +5895,45 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->ac_state) > 15u) || ((uint32_t)(src->vehicle_power_state) > 3u) ||
-        ((uint32_t)(src->hill_hold_state | src->regen_brake_state | src->manual_takeover_state |
-                    src->remote_driving_allowed | src->pto_state) > 1u) ||
-        ((uint32_t)(src->remaining_range) > 4095u) || ((uint32_t)(src->ac_set_temp) > 31u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->outside_temp);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->inside_temp);
-        const uint8_t b2 =
-            (uint8_t)((uint32_t)src->ac_state | ((uint32_t)src->vehicle_power_state << 4) |
-                      ((uint32_t)src->hill_hold_state << 6) |
-                      ((uint32_t)src->regen_brake_state << 7));
-        const uint8_t b3 = (uint8_t)((uint32_t)src->remaining_range);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->remaining_range >> 8) |
-                                     ((uint32_t)src->manual_takeover_state << 4) |
-                                     ((uint32_t)src->remote_driving_allowed << 7));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_set_temp | ((uint32_t)src->pto_state << 5));
-        const uint8_t b6 = (uint8_t)((uint32_t)src->battery_power);
-        const uint8_t b7 = (uint8_t)(((uint32_t)src->battery_power >> 8));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p1g;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
+#else
+        p0 = (uint64_t)src->outside_temp | ((uint64_t)src->inside_temp << 8) |
+             ((uint64_t)src->ac_state << 16) | ((uint64_t)src->vehicle_power_state << 24) |
+             ((uint64_t)src->hill_hold_state << 32) | ((uint64_t)src->regen_brake_state << 40) |
+             ((uint64_t)src->remaining_range << 48);
+        p1 = (uint64_t)src->manual_takeover_state | ((uint64_t)src->remote_driving_allowed << 8) |
+             ((uint64_t)src->ac_set_temp << 16) | ((uint64_t)src->pto_state << 24) |
+             ((uint64_t)src->battery_power << 32);
+#endif
+        if (((p0 & UINT64_C(0xF000FEFEFCF00000)) | (p1 & UINT64_C(0xFEE0FEFE))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1g = ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1000000)) << 21) |
+              ((p1 >> 32) << 48);
+        p1 &= UINT64_C(0x1F0001);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F1);
+        w = (p0 & UINT64_C(0xFFFFF)) | ((p0 & UINT64_C(0x3000000)) >> 4) |
+            ((p0 & UINT64_C(0x100000000)) >> 10) | ((p0 & UINT64_C(0x10000000000)) >> 17) |
+            ((p0 & UINT64_C(0xFFF000000000000)) >> 24) | (p1 << 36) | p1g;
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_4_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -5493,18 +5946,41 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->outside_temp = (uint8_t)(src[0]);
-        dst->inside_temp = (uint8_t)(src[1]);
-        dst->ac_state = (uint8_t)((src[2] & 0xFu));
-        dst->vehicle_power_state = (uint8_t)(((src[2] >> 4) & 0x3u));
-        dst->hill_hold_state = (uint8_t)(((src[2] >> 6) & 0x1u));
-        dst->regen_brake_state = (uint8_t)((src[2] >> 7));
-        dst->remaining_range = (uint16_t)(src[3] | ((uint32_t)(src[4] & 0xFu) << 8));
-        dst->manual_takeover_state = (uint8_t)(((src[4] >> 4) & 0x1u));
-        dst->remote_driving_allowed = (uint8_t)((src[4] >> 7));
-        dst->ac_set_temp = (uint8_t)((src[5] & 0x1Fu));
-        dst->pto_state = (uint8_t)(((src[5] >> 5) & 0x1u));
-        dst->battery_power = (uint16_t)(src[6] | ((uint32_t)src[7] << 8));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_4_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0xFFFFF)) | ((v & UINT64_C(0x300000)) << 4) |
+             ((v & UINT64_C(0x400000)) << 10) | ((v & UINT64_C(0x800000)) << 17) |
+             ((v & UINT64_C(0xFFF000000)) << 24);
+        r1 = (v >> 36) & UINT64_C(0x1F1);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1F0001);
+        r1 |= ((v & UINT64_C(0x8000000000)) >> 31) | ((v & UINT64_C(0x200000000000)) >> 21) |
+              ((v >> 48) << 32);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
+#else
+        dst->outside_temp = (uint8_t)r0;
+        dst->inside_temp = (uint8_t)(r0 >> 8);
+        dst->ac_state = (uint8_t)(r0 >> 16);
+        dst->vehicle_power_state = (uint8_t)(r0 >> 24);
+        dst->hill_hold_state = (uint8_t)(r0 >> 32);
+        dst->regen_brake_state = (uint8_t)(r0 >> 40);
+        dst->remaining_range = (uint16_t)(r0 >> 48);
+        dst->manual_takeover_state = (uint8_t)r1;
+        dst->remote_driving_allowed = (uint8_t)(r1 >> 8);
+        dst->ac_set_temp = (uint8_t)(r1 >> 16);
+        dst->pto_state = (uint8_t)(r1 >> 24);
+        dst->battery_power = (uint16_t)(r1 >> 32);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -6282,6 +6758,42 @@ typedef struct {
     uint8_t
         remote_entry_fault; /**< 无法进入远程驾驶系统故障状态; bits 44..47; values: kaiwo_gateway_remote_entry_fault_t */
 } kaiwo_gateway_vehicle_fault_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_vehicle_fault_layout_check
+    [(offsetof(kaiwo_gateway_vehicle_fault_t, insulation_fault_level) == 0u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, dc_fault) == 1u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, soc_low) == 2u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, cell_undervoltage) == 3u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, brake_boost_pressure_fault) == 4u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, vacuum_pump_fault) == 5u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, vehicle_system_fault) == 6u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, battery_overheat) == 7u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, motor_overheat) == 8u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, traction_battery_fault) == 9u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, motor_fault) == 10u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, battery_comm_fault) == 11u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, motor_comm_fault) == 12u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, eps_fault) == 13u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, ac_fault) == 14u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, aux_battery_fault) == 15u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, epb_fault) == 16u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, brake_by_wire_fault) == 17u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, key_not_detected) == 18u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, tire_pressure_low) == 19u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, body_motor_fault) == 20u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, body_motor_overheat) == 21u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, battery_system_fault_level) == 22u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, motor_system_fault_level) == 23u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, unmanned_entry_fault) == 24u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_a) == 25u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_b) == 26u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_c) == 27u &&
+      offsetof(kaiwo_gateway_vehicle_fault_t, remote_entry_fault) == 28u &&
+      sizeof(kaiwo_gateway_vehicle_fault_t) == 29u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -6291,55 +6803,71 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->insulation_fault_level | src->battery_system_fault_level |
-                    src->motor_system_fault_level) > 3u) ||
-        ((uint32_t)(src->dc_fault | src->soc_low | src->cell_undervoltage |
-                    src->brake_boost_pressure_fault | src->vacuum_pump_fault |
-                    src->vehicle_system_fault | src->battery_overheat | src->motor_overheat |
-                    src->traction_battery_fault | src->motor_fault | src->battery_comm_fault |
-                    src->motor_comm_fault | src->eps_fault | src->ac_fault |
-                    src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
-                    src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
-                    src->body_motor_overheat) > 1u) ||
-        ((uint32_t)(src->unmanned_entry_fault | src->protocol_version_a | src->protocol_version_b |
-                    src->protocol_version_c | src->remote_entry_fault) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->insulation_fault_level | ((uint32_t)src->dc_fault << 2) |
-                      ((uint32_t)src->soc_low << 3) | ((uint32_t)src->cell_undervoltage << 4) |
-                      ((uint32_t)src->brake_boost_pressure_fault << 5) |
-                      ((uint32_t)src->vacuum_pump_fault << 6) |
-                      ((uint32_t)src->vehicle_system_fault << 7));
-        const uint8_t b1 =
-            (uint8_t)((uint32_t)src->battery_overheat | ((uint32_t)src->motor_overheat << 1) |
-                      ((uint32_t)src->traction_battery_fault << 2) |
-                      ((uint32_t)src->motor_fault << 3) | ((uint32_t)src->battery_comm_fault << 4) |
-                      ((uint32_t)src->motor_comm_fault << 5) | ((uint32_t)src->eps_fault << 6) |
-                      ((uint32_t)src->ac_fault << 7));
-        const uint8_t b2 =
-            (uint8_t)((uint32_t)src->aux_battery_fault | ((uint32_t)src->epb_fault << 1) |
-                      ((uint32_t)src->brake_by_wire_fault << 2) |
-                      ((uint32_t)src->key_not_detected << 3) |
-                      ((uint32_t)src->tire_pressure_low << 4) |
-                      ((uint32_t)src->body_motor_fault << 5) |
-                      ((uint32_t)src->body_motor_overheat << 6));
-        const uint8_t b3 = (uint8_t)((uint32_t)src->battery_system_fault_level |
-                                     ((uint32_t)src->motor_system_fault_level << 2) |
-                                     ((uint32_t)src->unmanned_entry_fault << 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
-        const uint8_t b5 =
-            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->remote_entry_fault << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = 0u;
-        dst[7] = 0u;
+        uint64_t p0;
+        uint64_t p0g;
+        uint64_t p1;
+        uint64_t p2;
+        uint64_t p2g;
+        uint64_t p3;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
+        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 5u);
+#else
+        p0 = (uint64_t)src->insulation_fault_level | ((uint64_t)src->dc_fault << 8) |
+             ((uint64_t)src->soc_low << 16) | ((uint64_t)src->cell_undervoltage << 24) |
+             ((uint64_t)src->brake_boost_pressure_fault << 32) |
+             ((uint64_t)src->vacuum_pump_fault << 40) |
+             ((uint64_t)src->vehicle_system_fault << 48) | ((uint64_t)src->battery_overheat << 56);
+        p1 = (uint64_t)src->motor_overheat | ((uint64_t)src->traction_battery_fault << 8) |
+             ((uint64_t)src->motor_fault << 16) | ((uint64_t)src->battery_comm_fault << 24) |
+             ((uint64_t)src->motor_comm_fault << 32) | ((uint64_t)src->eps_fault << 40) |
+             ((uint64_t)src->ac_fault << 48) | ((uint64_t)src->aux_battery_fault << 56);
+        p2 = (uint64_t)src->epb_fault | ((uint64_t)src->brake_by_wire_fault << 8) |
+             ((uint64_t)src->key_not_detected << 16) | ((uint64_t)src->tire_pressure_low << 24) |
+             ((uint64_t)src->body_motor_fault << 32) | ((uint64_t)src->body_motor_overheat << 40) |
+             ((uint64_t)src->battery_system_fault_level << 48) |
+             ((uint64_t)src->motor_system_fault_level << 56);
+        p3 = (uint64_t)src->unmanned_entry_fault | ((uint64_t)src->protocol_version_a << 8) |
+             ((uint64_t)src->protocol_version_b << 16) | ((uint64_t)src->protocol_version_c << 24) |
+             ((uint64_t)src->remote_entry_fault << 32);
+#endif
+        if (((p0 & UINT64_C(0xFEFEFEFEFEFEFEFC)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
+             (p2 & UINT64_C(0xFCFCFEFEFEFEFEFE)) | (p3 & UINT64_C(0xF0F0F0F0F0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p0g = (p0 & UINT64_C(0x3));
+        p0 &= UINT64_C(0x101010101010100);
+        p0 = (p0 | (p0 >> 28)) & UINT64_C(0x111111100);
+        p0 = (p0 | (p0 >> 14)) & UINT64_C(0x155500);
+        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x7F00);
+        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
+        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
+        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
+        p2g = ((p2 & UINT64_C(0x3000000000000)) >> 24) | ((p2 & UINT64_C(0x300000000000000)) >> 30);
+        p2 &= UINT64_C(0x10101010101);
+        p2 = (p2 | (p2 >> 28)) & UINT64_C(0x1011111);
+        p2 = (p2 | (p2 >> 14)) & UINT64_C(0x1515);
+        p2 = (p2 | (p2 >> 7)) & UINT64_C(0x3F);
+        p3 = (p3 | (p3 >> 4)) & UINT64_C(0xF00FF00FF);
+        p3 = (p3 | (p3 >> 8)) & UINT64_C(0xF0000FFFF);
+        p3 = (p3 | (p3 >> 16)) & UINT64_C(0xFFFFF);
+        w = (p0 >> 6) | p0g | (p1 << 9) | (p2 << 17) | p2g | (p3 << 28);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -6352,35 +6880,73 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->insulation_fault_level = (uint8_t)((src[0] & 0x3u));
-        dst->dc_fault = (uint8_t)(((src[0] >> 2) & 0x1u));
-        dst->soc_low = (uint8_t)(((src[0] >> 3) & 0x1u));
-        dst->cell_undervoltage = (uint8_t)(((src[0] >> 4) & 0x1u));
-        dst->brake_boost_pressure_fault = (uint8_t)(((src[0] >> 5) & 0x1u));
-        dst->vacuum_pump_fault = (uint8_t)(((src[0] >> 6) & 0x1u));
-        dst->vehicle_system_fault = (uint8_t)((src[0] >> 7));
-        dst->battery_overheat = (uint8_t)((src[1] & 0x1u));
-        dst->motor_overheat = (uint8_t)(((src[1] >> 1) & 0x1u));
-        dst->traction_battery_fault = (uint8_t)(((src[1] >> 2) & 0x1u));
-        dst->motor_fault = (uint8_t)(((src[1] >> 3) & 0x1u));
-        dst->battery_comm_fault = (uint8_t)(((src[1] >> 4) & 0x1u));
-        dst->motor_comm_fault = (uint8_t)(((src[1] >> 5) & 0x1u));
-        dst->eps_fault = (uint8_t)(((src[1] >> 6) & 0x1u));
-        dst->ac_fault = (uint8_t)((src[1] >> 7));
-        dst->aux_battery_fault = (uint8_t)((src[2] & 0x1u));
-        dst->epb_fault = (uint8_t)(((src[2] >> 1) & 0x1u));
-        dst->brake_by_wire_fault = (uint8_t)(((src[2] >> 2) & 0x1u));
-        dst->key_not_detected = (uint8_t)(((src[2] >> 3) & 0x1u));
-        dst->tire_pressure_low = (uint8_t)(((src[2] >> 4) & 0x1u));
-        dst->body_motor_fault = (uint8_t)(((src[2] >> 5) & 0x1u));
-        dst->body_motor_overheat = (uint8_t)(((src[2] >> 6) & 0x1u));
-        dst->battery_system_fault_level = (uint8_t)((src[3] & 0x3u));
-        dst->motor_system_fault_level = (uint8_t)(((src[3] >> 2) & 0x3u));
-        dst->unmanned_entry_fault = (uint8_t)((src[3] >> 4));
-        dst->protocol_version_a = (uint8_t)((src[4] & 0xFu));
-        dst->protocol_version_b = (uint8_t)((src[4] >> 4));
-        dst->protocol_version_c = (uint8_t)((src[5] & 0xFu));
-        dst->remote_entry_fault = (uint8_t)((src[5] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+        uint64_t r3;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v << 6) & UINT64_C(0x7F00);
+        r1 = (v >> 9) & UINT64_C(0xFF);
+        r2 = (v >> 17) & UINT64_C(0x3F);
+        r3 = (v >> 28) & UINT64_C(0xFFFFF);
+        r0 = (r0 | (r0 << 7)) & UINT64_C(0x155500);
+        r0 = (r0 | (r0 << 14)) & UINT64_C(0x111111100);
+        r0 = (r0 | (r0 << 28)) & UINT64_C(0x101010101010100);
+        r0 |= (v & UINT64_C(0x3));
+        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
+        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
+        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
+        r2 = (r2 | (r2 << 7)) & UINT64_C(0x1515);
+        r2 = (r2 | (r2 << 14)) & UINT64_C(0x1011111);
+        r2 = (r2 | (r2 << 28)) & UINT64_C(0x10101010101);
+        r2 |= ((v & UINT64_C(0x3000000)) << 24) | ((v & UINT64_C(0xC000000)) << 30);
+        r3 = (r3 | (r3 << 16)) & UINT64_C(0xF0000FFFF);
+        r3 = (r3 | (r3 << 8)) & UINT64_C(0xF00FF00FF);
+        r3 = (r3 | (r3 << 4)) & UINT64_C(0xF0F0F0F0F);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 5u);
+#else
+        dst->insulation_fault_level = (uint8_t)r0;
+        dst->dc_fault = (uint8_t)(r0 >> 8);
+        dst->soc_low = (uint8_t)(r0 >> 16);
+        dst->cell_undervoltage = (uint8_t)(r0 >> 24);
+        dst->brake_boost_pressure_fault = (uint8_t)(r0 >> 32);
+        dst->vacuum_pump_fault = (uint8_t)(r0 >> 40);
+        dst->vehicle_system_fault = (uint8_t)(r0 >> 48);
+        dst->battery_overheat = (uint8_t)(r0 >> 56);
+        dst->motor_overheat = (uint8_t)r1;
+        dst->traction_battery_fault = (uint8_t)(r1 >> 8);
+        dst->motor_fault = (uint8_t)(r1 >> 16);
+        dst->battery_comm_fault = (uint8_t)(r1 >> 24);
+        dst->motor_comm_fault = (uint8_t)(r1 >> 32);
+        dst->eps_fault = (uint8_t)(r1 >> 40);
+        dst->ac_fault = (uint8_t)(r1 >> 48);
+        dst->aux_battery_fault = (uint8_t)(r1 >> 56);
+        dst->epb_fault = (uint8_t)r2;
+        dst->brake_by_wire_fault = (uint8_t)(r2 >> 8);
+        dst->key_not_detected = (uint8_t)(r2 >> 16);
+        dst->tire_pressure_low = (uint8_t)(r2 >> 24);
+        dst->body_motor_fault = (uint8_t)(r2 >> 32);
+        dst->body_motor_overheat = (uint8_t)(r2 >> 40);
+        dst->battery_system_fault_level = (uint8_t)(r2 >> 48);
+        dst->motor_system_fault_level = (uint8_t)(r2 >> 56);
+        dst->unmanned_entry_fault = (uint8_t)r3;
+        dst->protocol_version_a = (uint8_t)(r3 >> 8);
+        dst->protocol_version_b = (uint8_t)(r3 >> 16);
+        dst->protocol_version_c = (uint8_t)(r3 >> 24);
+        dst->remote_entry_fault = (uint8_t)(r3 >> 32);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -7821,6 +8387,18 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_rgate_eps_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rgate_eps_command_layout_check
+    [(offsetof(kaiwo_gateway_rgate_eps_command_t, eps_ctrl_mode) == 0u &&
+      offsetof(kaiwo_gateway_rgate_eps_command_t, counter) == 1u &&
+      offsetof(kaiwo_gateway_rgate_eps_command_t, max_angular_speed) == 2u &&
+      offsetof(kaiwo_gateway_rgate_eps_command_t, steering_angle_cmd) == 4u &&
+      offsetof(kaiwo_gateway_rgate_eps_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_rgate_eps_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -7831,19 +8409,29 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
+#endif
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -7857,17 +8445,27 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->eps_ctrl_mode = (uint8_t)(src[0]);
-        dst->counter = (uint8_t)(src[1]);
-        dst->max_angular_speed = (uint8_t)(src[2]);
-        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->eps_ctrl_mode = (uint8_t)r0;
+        dst->counter = (uint8_t)(r0 >> 8);
+        dst->max_angular_speed = (uint8_t)(r0 >> 16);
+        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -8073,6 +8671,19 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_rgate_speed_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rgate_speed_command_layout_check
+    [(offsetof(kaiwo_gateway_rgate_speed_command_t, accel_cmd) == 0u &&
+      offsetof(kaiwo_gateway_rgate_speed_command_t, epb_cmd) == 2u &&
+      offsetof(kaiwo_gateway_rgate_speed_command_t, gear_cmd) == 3u &&
+      offsetof(kaiwo_gateway_rgate_speed_command_t, counter) == 4u &&
+      offsetof(kaiwo_gateway_rgate_speed_command_t, emergency_brake_cmd) == 5u &&
+      offsetof(kaiwo_gateway_rgate_speed_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_rgate_speed_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -8082,25 +8693,34 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->accel_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
-        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->accel_cmd);
-        const uint8_t b1 =
-            (uint8_t)(((uint32_t)src->accel_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
-                      ((uint32_t)src->gear_cmd << 4));
-        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = 0u;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
+             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+#endif
+        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
+            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -8114,18 +8734,29 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->accel_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->gear_cmd = (uint8_t)((src[1] >> 4));
-        dst->counter = (uint8_t)(src[2]);
-        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->accel_cmd = (uint16_t)r0;
+        dst->epb_cmd = (uint8_t)(r0 >> 16);
+        dst->gear_cmd = (uint8_t)(r0 >> 24);
+        dst->counter = (uint8_t)(r0 >> 32);
+        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -8494,6 +9125,38 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_rgate_control_command_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rgate_control_command_1_layout_check
+    [(offsetof(kaiwo_gateway_rgate_control_command_1_t, drive_mode_cmd) == 0u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, door_cmd) == 1u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, horn_cmd) == 2u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, drl_cmd) == 3u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, left_turn_cmd) == 4u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, right_turn_cmd) == 5u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, hazard_cmd) == 6u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, position_light_cmd) == 7u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, headlight_cmd) == 8u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, rear_fog_cmd) == 9u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, left_fog_cmd) == 10u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, right_fog_cmd) == 11u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, dome_light_cmd) == 12u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, ambient_light_cmd) == 13u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, drive_mode_reset) == 14u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_state) == 15u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_reliability) == 16u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_fault_level) == 17u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, lock_cmd) == 18u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, ac_cmd) == 19u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, ac_set_temp) == 20u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_a) == 21u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_b) == 22u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_c) == 23u &&
+      offsetof(kaiwo_gateway_rgate_control_command_1_t, counter) == 24u &&
+      sizeof(kaiwo_gateway_rgate_control_command_1_t) == 25u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -8503,47 +9166,65 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
-                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
-                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
-                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
-                    src->ambient_light_cmd | src->system_state | src->system_reliability |
-                    src->system_fault_level | src->lock_cmd) > 3u) ||
-        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
-        ((uint32_t)(src->ac_set_temp) > 31u) ||
-        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
-                    src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
-                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
-        const uint8_t b1 =
-            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
-                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
-        const uint8_t b2 =
-            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
-                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
-        const uint8_t b3 =
-            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
-                      ((uint32_t)src->drive_mode_reset << 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
-                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
-        const uint8_t b6 =
-            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
-        const uint8_t b7 =
-            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p1g;
+        uint64_t p2;
+        uint64_t p2g;
+        uint64_t p3;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
+        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
+#else
+        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
+             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
+             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
+             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
+        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
+             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
+             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
+             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
+        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
+             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
+             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
+             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
+        p3 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
+             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
+        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
+        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -8556,31 +9237,67 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
-        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
-        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
-        dst->drl_cmd = (uint8_t)((src[0] >> 6));
-        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
-        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
-        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
-        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
-        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
-        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
-        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
-        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
-        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
-        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
-        dst->system_state = (uint8_t)((src[4] & 0x3u));
-        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
-        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
-        dst->lock_cmd = (uint8_t)((src[4] >> 6));
-        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
-        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
-        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
-        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
-        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+        uint64_t r3;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = v & UINT64_C(0xFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
+        r3 = (v >> 60);
+        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
+        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
+        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
+#else
+        dst->drive_mode_cmd = (uint8_t)r0;
+        dst->door_cmd = (uint8_t)(r0 >> 8);
+        dst->horn_cmd = (uint8_t)(r0 >> 16);
+        dst->drl_cmd = (uint8_t)(r0 >> 24);
+        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
+        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
+        dst->hazard_cmd = (uint8_t)(r0 >> 48);
+        dst->position_light_cmd = (uint8_t)(r0 >> 56);
+        dst->headlight_cmd = (uint8_t)r1;
+        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
+        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
+        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
+        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
+        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
+        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
+        dst->system_state = (uint8_t)(r1 >> 56);
+        dst->system_reliability = (uint8_t)r2;
+        dst->system_fault_level = (uint8_t)(r2 >> 8);
+        dst->lock_cmd = (uint8_t)(r2 >> 16);
+        dst->ac_cmd = (uint8_t)(r2 >> 24);
+        dst->ac_set_temp = (uint8_t)(r2 >> 32);
+        dst->protocol_version_a = (uint8_t)(r2 >> 40);
+        dst->protocol_version_b = (uint8_t)(r2 >> 48);
+        dst->protocol_version_c = (uint8_t)(r2 >> 56);
+        dst->counter = (uint8_t)r3;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -9769,6 +10486,19 @@ typedef struct {
     uint8_t downhill_regen_speed; /**< 下坡制动回收速度 [km/h]; bits 8..15 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_rgate_control_command_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rgate_control_command_2_layout_check
+    [(offsetof(kaiwo_gateway_rgate_control_command_2_t, downhill_regen_enable) == 0u &&
+      offsetof(kaiwo_gateway_rgate_control_command_2_t, cargo_lift) == 1u &&
+      offsetof(kaiwo_gateway_rgate_control_command_2_t, cargo_lift_speed) == 2u &&
+      offsetof(kaiwo_gateway_rgate_control_command_2_t, pto_enable) == 3u &&
+      offsetof(kaiwo_gateway_rgate_control_command_2_t, downhill_regen_speed) == 4u &&
+      offsetof(kaiwo_gateway_rgate_control_command_2_t, counter) == 5u &&
+      sizeof(kaiwo_gateway_rgate_control_command_2_t) == 6u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -9778,24 +10508,34 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
-        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
-                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
-        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
-        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = 0u;
-        dst[3] = 0u;
-        dst[4] = 0u;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+#else
+        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
+             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+#endif
+        if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -9808,12 +10548,29 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
-        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
-        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
-        dst->pto_enable = (uint8_t)((src[0] >> 7));
-        dst->downhill_regen_speed = (uint8_t)(src[1]);
-        dst->counter = (uint8_t)(src[7]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
+             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
+             ((v & UINT64_C(0xFF00)) << 24);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+#else
+        dst->downhill_regen_enable = (uint8_t)r0;
+        dst->cargo_lift = (uint8_t)(r0 >> 8);
+        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
+        dst->pto_enable = (uint8_t)(r0 >> 24);
+        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
+        dst->counter = (uint8_t)(r0 >> 40);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -10106,6 +10863,17 @@ typedef struct {
     uint8_t id_frame_index; /**< ID 序号; bits 6..7; values: kaiwo_gateway_id_frame_index_t */
     uint64_t id_chars;      /**< ID; bits 8..63 */
 } kaiwo_gateway_device_id_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char
+    kaiwo_gateway_device_id_layout_check[(offsetof(kaiwo_gateway_device_id_t, device_type) == 0u &&
+                                          offsetof(kaiwo_gateway_device_id_t, id_frame_index) ==
+                                              1u &&
+                                          offsetof(kaiwo_gateway_device_id_t, id_chars) == 8u &&
+                                          sizeof(kaiwo_gateway_device_id_t) == 16u)
+                                             ? 1
+                                             : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -10114,28 +10882,33 @@ kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_devi
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->device_type) > 63u) || ((uint32_t)(src->id_frame_index) > 3u) ||
-        ((uint64_t)(src->id_chars) > UINT64_C(72057594037927935))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->device_type | ((uint32_t)src->id_frame_index << 6));
-        const uint8_t b1 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 0));
-        const uint8_t b2 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 8));
-        const uint8_t b3 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 16));
-        const uint8_t b4 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 24));
-        const uint8_t b5 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 32));
-        const uint8_t b6 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 40));
-        const uint8_t b7 = (uint8_t)((uint32_t)(uint8_t)(src->id_chars >> 48));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+#else
+        p0 = (uint64_t)src->device_type | ((uint64_t)src->id_frame_index << 8);
+        p1 = (uint64_t)src->id_chars;
+#endif
+        if (((p0 & UINT64_C(0xFCC0)) | (p1 & UINT64_C(0xFF00000000000000))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = (p0 & UINT64_C(0x3F)) | ((p0 & UINT64_C(0x300)) >> 2) | (p1 << 8);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_DEVICE_ID_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -10147,11 +10920,27 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->device_type = (uint8_t)((src[0] & 0x3Fu));
-        dst->id_frame_index = (uint8_t)((src[0] >> 6));
-        dst->id_chars = (uint64_t)(src[1] | ((uint64_t)src[2] << 8) | ((uint64_t)src[3] << 16) |
-                                   ((uint64_t)src[4] << 24) | ((uint64_t)src[5] << 32) |
-                                   ((uint64_t)src[6] << 40) | ((uint64_t)src[7] << 48));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_DEVICE_ID_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3F)) | ((v & UINT64_C(0xC0)) << 2);
+        r1 = (v >> 8);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+#else
+        dst->device_type = (uint8_t)r0;
+        dst->id_frame_index = (uint8_t)(r0 >> 8);
+        dst->id_chars = (uint64_t)r1;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -10344,6 +11133,20 @@ typedef struct {
     uint16_t sensor_6_distance; /**< 传感器 6 距离 [cm]; bits 50..59 */
     uint8_t counter;            /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_front_sensor_distance_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_front_sensor_distance_1_layout_check
+    [(offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_1_distance) == 0u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_2_distance) == 2u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_3_distance) == 4u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_4_distance) == 6u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_5_distance) == 8u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_6_distance) == 10u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_1_t, counter) == 12u &&
+      sizeof(kaiwo_gateway_front_sensor_distance_1_t) == 14u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -10353,34 +11156,40 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
-                    src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance) >
-         1023u) ||
-        ((uint32_t)(src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_1_distance);
-        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_1_distance >> 8) |
-                                     ((uint32_t)src->sensor_2_distance << 2));
-        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_2_distance >> 6) |
-                                     ((uint32_t)src->sensor_3_distance << 4));
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_3_distance >> 4) |
-                                     ((uint32_t)src->sensor_4_distance << 6));
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->sensor_4_distance >> 2));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->sensor_5_distance);
-        const uint8_t b6 = (uint8_t)(((uint32_t)src->sensor_5_distance >> 8) |
-                                     ((uint32_t)src->sensor_6_distance << 2));
-        const uint8_t b7 =
-            (uint8_t)(((uint32_t)src->sensor_6_distance >> 6) | ((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
+#else
+        p0 = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 16) |
+             ((uint64_t)src->sensor_3_distance << 32) | ((uint64_t)src->sensor_4_distance << 48);
+        p1 = (uint64_t)src->sensor_5_distance | ((uint64_t)src->sensor_6_distance << 16) |
+             ((uint64_t)src->counter << 32);
+#endif
+        if (((p0 & UINT64_C(0xFC00FC00FC00FC00)) | (p1 & UINT64_C(0xF0FC00FC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 &= UINT64_C(0xFFFFFFFFFF);
+        p1 = (p1 & UINT64_C(0xF000003FF)) | ((p1 >> 6) & UINT64_C(0xFFC00));
+        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0xF00000));
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
+            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3FF000000000000)) >> 18) |
+            (p1 << 40);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -10393,13 +11202,34 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->sensor_1_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->sensor_2_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
-        dst->sensor_3_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
-        dst->sensor_4_distance = (uint16_t)((src[3] >> 6) | ((uint32_t)src[4] << 2));
-        dst->sensor_5_distance = (uint16_t)(src[5] | ((uint32_t)(src[6] & 0x3u) << 8));
-        dst->sensor_6_distance = (uint16_t)((src[6] >> 2) | ((uint32_t)(src[7] & 0xFu) << 6));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
+             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0xFFC0000000)) << 18);
+        r1 = (v >> 40);
+        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0xF00000000));
+        r1 = (r1 & UINT64_C(0xF000003FF)) | ((r1 << 6) & UINT64_C(0x3FF0000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
+#else
+        dst->sensor_1_distance = (uint16_t)r0;
+        dst->sensor_2_distance = (uint16_t)(r0 >> 16);
+        dst->sensor_3_distance = (uint16_t)(r0 >> 32);
+        dst->sensor_4_distance = (uint16_t)(r0 >> 48);
+        dst->sensor_5_distance = (uint16_t)r1;
+        dst->sensor_6_distance = (uint16_t)(r1 >> 16);
+        dst->counter = (uint8_t)(r1 >> 32);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -10835,6 +11665,27 @@ typedef struct {
         sensor_9_fault; /**< 传感器 9 故障状态; bits 42..42; values: kaiwo_gateway_sensor_fault_t */
     uint8_t counter; /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_front_sensor_distance_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_front_sensor_distance_2_layout_check
+    [(offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_7_distance) == 0u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_8_distance) == 2u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_9_distance) == 4u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, uss_system_state) == 6u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_1_fault) == 7u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_2_fault) == 8u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_3_fault) == 9u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_4_fault) == 10u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_5_fault) == 11u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_6_fault) == 12u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_7_fault) == 13u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_8_fault) == 14u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_9_fault) == 15u &&
+      offsetof(kaiwo_gateway_front_sensor_distance_2_t, counter) == 16u &&
+      sizeof(kaiwo_gateway_front_sensor_distance_2_t) == 18u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -10844,39 +11695,48 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance) >
-         1023u) ||
-        ((uint32_t)(src->uss_system_state) > 3u) ||
-        ((uint32_t)(src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault |
-                    src->sensor_4_fault | src->sensor_5_fault | src->sensor_6_fault |
-                    src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u) ||
-        ((uint32_t)(src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_7_distance);
-        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_7_distance >> 8) |
-                                     ((uint32_t)src->sensor_8_distance << 2));
-        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_8_distance >> 6) |
-                                     ((uint32_t)src->sensor_9_distance << 4));
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_9_distance >> 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2) |
-                      ((uint32_t)src->sensor_2_fault << 3) | ((uint32_t)src->sensor_3_fault << 4) |
-                      ((uint32_t)src->sensor_4_fault << 5) | ((uint32_t)src->sensor_5_fault << 6) |
-                      ((uint32_t)src->sensor_6_fault << 7));
-        const uint8_t b5 =
-            (uint8_t)((uint32_t)src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1) |
-                      ((uint32_t)src->sensor_9_fault << 2));
-        const uint8_t b7 = (uint8_t)(((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = 0u;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p2;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 2u);
+#else
+        p0 = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 16) |
+             ((uint64_t)src->sensor_9_distance << 32) | ((uint64_t)src->uss_system_state << 48) |
+             ((uint64_t)src->sensor_1_fault << 56);
+        p1 = (uint64_t)src->sensor_2_fault | ((uint64_t)src->sensor_3_fault << 8) |
+             ((uint64_t)src->sensor_4_fault << 16) | ((uint64_t)src->sensor_5_fault << 24) |
+             ((uint64_t)src->sensor_6_fault << 32) | ((uint64_t)src->sensor_7_fault << 40) |
+             ((uint64_t)src->sensor_8_fault << 48) | ((uint64_t)src->sensor_9_fault << 56);
+        p2 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFEFCFC00FC00FC00)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
+             (p2 & UINT64_C(0xF0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
+        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
+        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
+        p2 &= UINT64_C(0xFF);
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
+            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3000000000000)) >> 16) |
+            ((p0 & UINT64_C(0x100000000000000)) >> 22) | (p1 << 35) | (p2 << 60);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -10889,20 +11749,46 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->sensor_7_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->sensor_8_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
-        dst->sensor_9_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
-        dst->uss_system_state = (uint8_t)((src[4] & 0x3u));
-        dst->sensor_1_fault = (uint8_t)(((src[4] >> 2) & 0x1u));
-        dst->sensor_2_fault = (uint8_t)(((src[4] >> 3) & 0x1u));
-        dst->sensor_3_fault = (uint8_t)(((src[4] >> 4) & 0x1u));
-        dst->sensor_4_fault = (uint8_t)(((src[4] >> 5) & 0x1u));
-        dst->sensor_5_fault = (uint8_t)(((src[4] >> 6) & 0x1u));
-        dst->sensor_6_fault = (uint8_t)((src[4] >> 7));
-        dst->sensor_7_fault = (uint8_t)((src[5] & 0x1u));
-        dst->sensor_8_fault = (uint8_t)(((src[5] >> 1) & 0x1u));
-        dst->sensor_9_fault = (uint8_t)(((src[5] >> 2) & 0x1u));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
+             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0x300000000)) << 16) |
+             ((v & UINT64_C(0x400000000)) << 22);
+        r1 = (v >> 35) & UINT64_C(0xFF);
+        r2 = (v >> 60);
+        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
+        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
+        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 2u);
+#else
+        dst->sensor_7_distance = (uint16_t)r0;
+        dst->sensor_8_distance = (uint16_t)(r0 >> 16);
+        dst->sensor_9_distance = (uint16_t)(r0 >> 32);
+        dst->uss_system_state = (uint8_t)(r0 >> 48);
+        dst->sensor_1_fault = (uint8_t)(r0 >> 56);
+        dst->sensor_2_fault = (uint8_t)r1;
+        dst->sensor_3_fault = (uint8_t)(r1 >> 8);
+        dst->sensor_4_fault = (uint8_t)(r1 >> 16);
+        dst->sensor_5_fault = (uint8_t)(r1 >> 24);
+        dst->sensor_6_fault = (uint8_t)(r1 >> 32);
+        dst->sensor_7_fault = (uint8_t)(r1 >> 40);
+        dst->sensor_8_fault = (uint8_t)(r1 >> 48);
+        dst->sensor_9_fault = (uint8_t)(r1 >> 56);
+        dst->counter = (uint8_t)r2;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -11603,6 +12489,20 @@ typedef struct {
     uint16_t sensor_6_distance; /**< 传感器 6 距离 [cm]; bits 50..59 */
     uint8_t counter;            /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_rear_sensor_distance_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rear_sensor_distance_1_layout_check
+    [(offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_1_distance) == 0u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_2_distance) == 2u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_3_distance) == 4u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_4_distance) == 6u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_5_distance) == 8u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_6_distance) == 10u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, counter) == 12u &&
+      sizeof(kaiwo_gateway_rear_sensor_distance_1_t) == 14u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -11612,34 +12512,40 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
-                    src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance) >
-         1023u) ||
-        ((uint32_t)(src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_1_distance);
-        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_1_distance >> 8) |
-                                     ((uint32_t)src->sensor_2_distance << 2));
-        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_2_distance >> 6) |
-                                     ((uint32_t)src->sensor_3_distance << 4));
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_3_distance >> 4) |
-                                     ((uint32_t)src->sensor_4_distance << 6));
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->sensor_4_distance >> 2));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->sensor_5_distance);
-        const uint8_t b6 = (uint8_t)(((uint32_t)src->sensor_5_distance >> 8) |
-                                     ((uint32_t)src->sensor_6_distance << 2));
-        const uint8_t b7 =
-            (uint8_t)(((uint32_t)src->sensor_6_distance >> 6) | ((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
+#else
+        p0 = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 16) |
+             ((uint64_t)src->sensor_3_distance << 32) | ((uint64_t)src->sensor_4_distance << 48);
+        p1 = (uint64_t)src->sensor_5_distance | ((uint64_t)src->sensor_6_distance << 16) |
+             ((uint64_t)src->counter << 32);
+#endif
+        if (((p0 & UINT64_C(0xFC00FC00FC00FC00)) | (p1 & UINT64_C(0xF0FC00FC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 &= UINT64_C(0xFFFFFFFFFF);
+        p1 = (p1 & UINT64_C(0xF000003FF)) | ((p1 >> 6) & UINT64_C(0xFFC00));
+        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0xF00000));
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
+            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3FF000000000000)) >> 18) |
+            (p1 << 40);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -11652,13 +12558,34 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->sensor_1_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->sensor_2_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
-        dst->sensor_3_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
-        dst->sensor_4_distance = (uint16_t)((src[3] >> 6) | ((uint32_t)src[4] << 2));
-        dst->sensor_5_distance = (uint16_t)(src[5] | ((uint32_t)(src[6] & 0x3u) << 8));
-        dst->sensor_6_distance = (uint16_t)((src[6] >> 2) | ((uint32_t)(src[7] & 0xFu) << 6));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
+             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0xFFC0000000)) << 18);
+        r1 = (v >> 40);
+        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0xF00000000));
+        r1 = (r1 & UINT64_C(0xF000003FF)) | ((r1 << 6) & UINT64_C(0x3FF0000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
+#else
+        dst->sensor_1_distance = (uint16_t)r0;
+        dst->sensor_2_distance = (uint16_t)(r0 >> 16);
+        dst->sensor_3_distance = (uint16_t)(r0 >> 32);
+        dst->sensor_4_distance = (uint16_t)(r0 >> 48);
+        dst->sensor_5_distance = (uint16_t)r1;
+        dst->sensor_6_distance = (uint16_t)(r1 >> 16);
+        dst->counter = (uint8_t)(r1 >> 32);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -12091,6 +13018,27 @@ typedef struct {
         sensor_9_fault; /**< 传感器 9 故障状态; bits 42..42; values: kaiwo_gateway_sensor_fault_t */
     uint8_t counter; /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_rear_sensor_distance_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_rear_sensor_distance_2_layout_check
+    [(offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_7_distance) == 0u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_8_distance) == 2u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_9_distance) == 4u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, uss_system_state) == 6u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_1_fault) == 7u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_2_fault) == 8u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_3_fault) == 9u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_4_fault) == 10u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_5_fault) == 11u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_6_fault) == 12u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_7_fault) == 13u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_8_fault) == 14u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_9_fault) == 15u &&
+      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, counter) == 16u &&
+      sizeof(kaiwo_gateway_rear_sensor_distance_2_t) == 18u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -12100,39 +13048,48 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance) >
-         1023u) ||
-        ((uint32_t)(src->uss_system_state) > 3u) ||
-        ((uint32_t)(src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault |
-                    src->sensor_4_fault | src->sensor_5_fault | src->sensor_6_fault |
-                    src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u) ||
-        ((uint32_t)(src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->sensor_7_distance);
-        const uint8_t b1 = (uint8_t)(((uint32_t)src->sensor_7_distance >> 8) |
-                                     ((uint32_t)src->sensor_8_distance << 2));
-        const uint8_t b2 = (uint8_t)(((uint32_t)src->sensor_8_distance >> 6) |
-                                     ((uint32_t)src->sensor_9_distance << 4));
-        const uint8_t b3 = (uint8_t)(((uint32_t)src->sensor_9_distance >> 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2) |
-                      ((uint32_t)src->sensor_2_fault << 3) | ((uint32_t)src->sensor_3_fault << 4) |
-                      ((uint32_t)src->sensor_4_fault << 5) | ((uint32_t)src->sensor_5_fault << 6) |
-                      ((uint32_t)src->sensor_6_fault << 7));
-        const uint8_t b5 =
-            (uint8_t)((uint32_t)src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1) |
-                      ((uint32_t)src->sensor_9_fault << 2));
-        const uint8_t b7 = (uint8_t)(((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = 0u;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p2;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 2u);
+#else
+        p0 = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 16) |
+             ((uint64_t)src->sensor_9_distance << 32) | ((uint64_t)src->uss_system_state << 48) |
+             ((uint64_t)src->sensor_1_fault << 56);
+        p1 = (uint64_t)src->sensor_2_fault | ((uint64_t)src->sensor_3_fault << 8) |
+             ((uint64_t)src->sensor_4_fault << 16) | ((uint64_t)src->sensor_5_fault << 24) |
+             ((uint64_t)src->sensor_6_fault << 32) | ((uint64_t)src->sensor_7_fault << 40) |
+             ((uint64_t)src->sensor_8_fault << 48) | ((uint64_t)src->sensor_9_fault << 56);
+        p2 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFEFCFC00FC00FC00)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
+             (p2 & UINT64_C(0xF0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
+        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
+        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
+        p2 &= UINT64_C(0xFF);
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
+            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3000000000000)) >> 16) |
+            ((p0 & UINT64_C(0x100000000000000)) >> 22) | (p1 << 35) | (p2 << 60);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -12145,20 +13102,46 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->sensor_7_distance = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->sensor_8_distance = (uint16_t)((src[1] >> 2) | ((uint32_t)(src[2] & 0xFu) << 6));
-        dst->sensor_9_distance = (uint16_t)((src[2] >> 4) | ((uint32_t)(src[3] & 0x3Fu) << 4));
-        dst->uss_system_state = (uint8_t)((src[4] & 0x3u));
-        dst->sensor_1_fault = (uint8_t)(((src[4] >> 2) & 0x1u));
-        dst->sensor_2_fault = (uint8_t)(((src[4] >> 3) & 0x1u));
-        dst->sensor_3_fault = (uint8_t)(((src[4] >> 4) & 0x1u));
-        dst->sensor_4_fault = (uint8_t)(((src[4] >> 5) & 0x1u));
-        dst->sensor_5_fault = (uint8_t)(((src[4] >> 6) & 0x1u));
-        dst->sensor_6_fault = (uint8_t)((src[4] >> 7));
-        dst->sensor_7_fault = (uint8_t)((src[5] & 0x1u));
-        dst->sensor_8_fault = (uint8_t)(((src[5] >> 1) & 0x1u));
-        dst->sensor_9_fault = (uint8_t)(((src[5] >> 2) & 0x1u));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
+             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0x300000000)) << 16) |
+             ((v & UINT64_C(0x400000000)) << 22);
+        r1 = (v >> 35) & UINT64_C(0xFF);
+        r2 = (v >> 60);
+        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
+        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
+        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 2u);
+#else
+        dst->sensor_7_distance = (uint16_t)r0;
+        dst->sensor_8_distance = (uint16_t)(r0 >> 16);
+        dst->sensor_9_distance = (uint16_t)(r0 >> 32);
+        dst->uss_system_state = (uint8_t)(r0 >> 48);
+        dst->sensor_1_fault = (uint8_t)(r0 >> 56);
+        dst->sensor_2_fault = (uint8_t)r1;
+        dst->sensor_3_fault = (uint8_t)(r1 >> 8);
+        dst->sensor_4_fault = (uint8_t)(r1 >> 16);
+        dst->sensor_5_fault = (uint8_t)(r1 >> 24);
+        dst->sensor_6_fault = (uint8_t)(r1 >> 32);
+        dst->sensor_7_fault = (uint8_t)(r1 >> 40);
+        dst->sensor_8_fault = (uint8_t)(r1 >> 48);
+        dst->sensor_9_fault = (uint8_t)(r1 >> 56);
+        dst->counter = (uint8_t)r2;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -12839,6 +13822,18 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_tele_eps_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_tele_eps_command_layout_check
+    [(offsetof(kaiwo_gateway_tele_eps_command_t, eps_ctrl_mode) == 0u &&
+      offsetof(kaiwo_gateway_tele_eps_command_t, counter) == 1u &&
+      offsetof(kaiwo_gateway_tele_eps_command_t, max_angular_speed) == 2u &&
+      offsetof(kaiwo_gateway_tele_eps_command_t, steering_angle_cmd) == 4u &&
+      offsetof(kaiwo_gateway_tele_eps_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_tele_eps_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -12849,19 +13844,29 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->eps_ctrl_mode);
-        const uint8_t b1 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b2 = (uint8_t)((uint32_t)src->max_angular_speed);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->steering_angle_cmd);
-        const uint8_t b4 = (uint8_t)(((uint32_t)src->steering_angle_cmd >> 8));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3 ^ b4);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
+#endif
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -12875,17 +13880,27 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->eps_ctrl_mode = (uint8_t)(src[0]);
-        dst->counter = (uint8_t)(src[1]);
-        dst->max_angular_speed = (uint8_t)(src[2]);
-        dst->steering_angle_cmd = (uint16_t)(src[3] | ((uint32_t)src[4] << 8));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->eps_ctrl_mode = (uint8_t)r0;
+        dst->counter = (uint8_t)(r0 >> 8);
+        dst->max_angular_speed = (uint8_t)(r0 >> 16);
+        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -13090,6 +14105,19 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_tele_speed_command_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_tele_speed_command_layout_check
+    [(offsetof(kaiwo_gateway_tele_speed_command_t, throttle_brake_cmd) == 0u &&
+      offsetof(kaiwo_gateway_tele_speed_command_t, epb_cmd) == 2u &&
+      offsetof(kaiwo_gateway_tele_speed_command_t, gear_cmd) == 3u &&
+      offsetof(kaiwo_gateway_tele_speed_command_t, counter) == 4u &&
+      offsetof(kaiwo_gateway_tele_speed_command_t, emergency_brake_cmd) == 5u &&
+      offsetof(kaiwo_gateway_tele_speed_command_t, checksum) == 6u &&
+      sizeof(kaiwo_gateway_tele_speed_command_t) == 8u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -13099,25 +14127,34 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->throttle_brake_cmd) > 1023u) || ((uint32_t)(src->epb_cmd) > 3u) ||
-        ((uint32_t)(src->gear_cmd) > 15u) || ((uint32_t)(src->emergency_brake_cmd) > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 = (uint8_t)((uint32_t)src->throttle_brake_cmd);
-        const uint8_t b1 =
-            (uint8_t)(((uint32_t)src->throttle_brake_cmd >> 8) | ((uint32_t)src->epb_cmd << 2) |
-                      ((uint32_t)src->gear_cmd << 4));
-        const uint8_t b2 = (uint8_t)((uint32_t)src->counter);
-        const uint8_t b3 = (uint8_t)((uint32_t)src->emergency_brake_cmd);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = 0u;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = (uint8_t)(b0 ^ b1 ^ b2 ^ b3);
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+#else
+        p0 = (uint64_t)src->throttle_brake_cmd | ((uint64_t)src->epb_cmd << 16) |
+             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+#endif
+        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
+            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
+        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -13131,18 +14168,29 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* Fields are read straight from src (as stores to dst may alias it, compilers keep them simple). */
-        uint64_t all;
-        bool checksum_ok;
-        memcpy(&all, src, sizeof all); /* XOR of all bytes: independent of the host's byte order */
-        checksum_ok = kaiwo_gateway_xor_fold(all) == 0u;
-        dst->throttle_brake_cmd = (uint16_t)(src[0] | ((uint32_t)(src[1] & 0x3u) << 8));
-        dst->epb_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->gear_cmd = (uint8_t)((src[1] >> 4));
-        dst->counter = (uint8_t)(src[2]);
-        dst->emergency_brake_cmd = (uint8_t)((src[3] & 0x1u));
-        dst->checksum = (uint8_t)(src[7]);
-        return checksum_ok ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+#else
+        dst->throttle_brake_cmd = (uint16_t)r0;
+        dst->epb_cmd = (uint8_t)(r0 >> 16);
+        dst->gear_cmd = (uint8_t)(r0 >> 24);
+        dst->counter = (uint8_t)(r0 >> 32);
+        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
+#endif
+        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
 
@@ -13512,6 +14560,38 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_tele_control_command_1_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_tele_control_command_1_layout_check
+    [(offsetof(kaiwo_gateway_tele_control_command_1_t, drive_mode_cmd) == 0u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, door_cmd) == 1u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, horn_cmd) == 2u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, drl_cmd) == 3u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, left_turn_cmd) == 4u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, right_turn_cmd) == 5u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, hazard_cmd) == 6u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, position_light_cmd) == 7u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, headlight_cmd) == 8u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, rear_fog_cmd) == 9u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, left_fog_cmd) == 10u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, right_fog_cmd) == 11u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, dome_light_cmd) == 12u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, ambient_light_cmd) == 13u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, drive_mode_reset) == 14u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, system_state) == 15u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, system_reliability) == 16u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, system_fault_level) == 17u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, lock_cmd) == 18u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, ac_cmd) == 19u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, ac_set_temp) == 20u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_a) == 21u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_b) == 22u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_c) == 23u &&
+      offsetof(kaiwo_gateway_tele_control_command_1_t, counter) == 24u &&
+      sizeof(kaiwo_gateway_tele_control_command_1_t) == 25u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -13521,47 +14601,65 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd |
-                    src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd |
-                    src->position_light_cmd | src->headlight_cmd | src->rear_fog_cmd |
-                    src->left_fog_cmd | src->right_fog_cmd | src->dome_light_cmd |
-                    src->ambient_light_cmd | src->system_state | src->system_reliability |
-                    src->system_fault_level | src->lock_cmd) > 3u) ||
-        ((uint32_t)(src->drive_mode_reset) > 1u) || ((uint32_t)(src->ac_cmd) > 7u) ||
-        ((uint32_t)(src->ac_set_temp) > 31u) ||
-        ((uint32_t)(src->protocol_version_a | src->protocol_version_b | src->protocol_version_c |
-                    src->counter) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2) |
-                      ((uint32_t)src->horn_cmd << 4) | ((uint32_t)src->drl_cmd << 6));
-        const uint8_t b1 =
-            (uint8_t)((uint32_t)src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2) |
-                      ((uint32_t)src->hazard_cmd << 4) | ((uint32_t)src->position_light_cmd << 6));
-        const uint8_t b2 =
-            (uint8_t)((uint32_t)src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2) |
-                      ((uint32_t)src->left_fog_cmd << 4) | ((uint32_t)src->right_fog_cmd << 6));
-        const uint8_t b3 =
-            (uint8_t)((uint32_t)src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2) |
-                      ((uint32_t)src->drive_mode_reset << 4));
-        const uint8_t b4 =
-            (uint8_t)((uint32_t)src->system_state | ((uint32_t)src->system_reliability << 2) |
-                      ((uint32_t)src->system_fault_level << 4) | ((uint32_t)src->lock_cmd << 6));
-        const uint8_t b5 = (uint8_t)((uint32_t)src->ac_cmd | ((uint32_t)src->ac_set_temp << 3));
-        const uint8_t b6 =
-            (uint8_t)((uint32_t)src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4));
-        const uint8_t b7 =
-            (uint8_t)((uint32_t)src->protocol_version_c | ((uint32_t)src->counter << 4));
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = b2;
-        dst[3] = b3;
-        dst[4] = b4;
-        dst[5] = b5;
-        dst[6] = b6;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t p1;
+        uint64_t p1g;
+        uint64_t p2;
+        uint64_t p2g;
+        uint64_t p3;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
+        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
+        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
+        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
+#else
+        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
+             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
+             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
+             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
+        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
+             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
+             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
+             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
+        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
+             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
+             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
+             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
+        p3 = (uint64_t)src->counter;
+#endif
+        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
+             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
+        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
+        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
+        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
+        p1 &= UINT64_C(0x1030303030303);
+        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
+        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
+        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
+        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
+              (p2 & UINT64_C(0xF00000000000000));
+        p2 &= UINT64_C(0xF000007030303);
+        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
+        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
+        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
+        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -13574,31 +14672,67 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->drive_mode_cmd = (uint8_t)((src[0] & 0x3u));
-        dst->door_cmd = (uint8_t)(((src[0] >> 2) & 0x3u));
-        dst->horn_cmd = (uint8_t)(((src[0] >> 4) & 0x3u));
-        dst->drl_cmd = (uint8_t)((src[0] >> 6));
-        dst->left_turn_cmd = (uint8_t)((src[1] & 0x3u));
-        dst->right_turn_cmd = (uint8_t)(((src[1] >> 2) & 0x3u));
-        dst->hazard_cmd = (uint8_t)(((src[1] >> 4) & 0x3u));
-        dst->position_light_cmd = (uint8_t)((src[1] >> 6));
-        dst->headlight_cmd = (uint8_t)((src[2] & 0x3u));
-        dst->rear_fog_cmd = (uint8_t)(((src[2] >> 2) & 0x3u));
-        dst->left_fog_cmd = (uint8_t)(((src[2] >> 4) & 0x3u));
-        dst->right_fog_cmd = (uint8_t)((src[2] >> 6));
-        dst->dome_light_cmd = (uint8_t)((src[3] & 0x3u));
-        dst->ambient_light_cmd = (uint8_t)(((src[3] >> 2) & 0x3u));
-        dst->drive_mode_reset = (uint8_t)(((src[3] >> 4) & 0x1u));
-        dst->system_state = (uint8_t)((src[4] & 0x3u));
-        dst->system_reliability = (uint8_t)(((src[4] >> 2) & 0x3u));
-        dst->system_fault_level = (uint8_t)(((src[4] >> 4) & 0x3u));
-        dst->lock_cmd = (uint8_t)((src[4] >> 6));
-        dst->ac_cmd = (uint8_t)((src[5] & 0x7u));
-        dst->ac_set_temp = (uint8_t)((src[5] >> 3));
-        dst->protocol_version_a = (uint8_t)((src[6] & 0xFu));
-        dst->protocol_version_b = (uint8_t)((src[6] >> 4));
-        dst->protocol_version_c = (uint8_t)((src[7] & 0xFu));
-        dst->counter = (uint8_t)((src[7] >> 4));
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+        uint64_t r1;
+        uint64_t r2;
+        uint64_t r3;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = v & UINT64_C(0xFFFF);
+        r1 = (v >> 16) & UINT64_C(0x1FFF);
+        r2 = (v >> 34) & UINT64_C(0x3C01FF);
+        r3 = (v >> 60);
+        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
+        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
+        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
+        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
+        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
+        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
+        r1 |= ((v & UINT64_C(0x300000000)) << 24);
+        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
+        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
+        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
+        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
+              (v & UINT64_C(0xF00000000000000));
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
+#else
+        dst->drive_mode_cmd = (uint8_t)r0;
+        dst->door_cmd = (uint8_t)(r0 >> 8);
+        dst->horn_cmd = (uint8_t)(r0 >> 16);
+        dst->drl_cmd = (uint8_t)(r0 >> 24);
+        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
+        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
+        dst->hazard_cmd = (uint8_t)(r0 >> 48);
+        dst->position_light_cmd = (uint8_t)(r0 >> 56);
+        dst->headlight_cmd = (uint8_t)r1;
+        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
+        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
+        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
+        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
+        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
+        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
+        dst->system_state = (uint8_t)(r1 >> 56);
+        dst->system_reliability = (uint8_t)r2;
+        dst->system_fault_level = (uint8_t)(r2 >> 8);
+        dst->lock_cmd = (uint8_t)(r2 >> 16);
+        dst->ac_cmd = (uint8_t)(r2 >> 24);
+        dst->ac_set_temp = (uint8_t)(r2 >> 32);
+        dst->protocol_version_a = (uint8_t)(r2 >> 40);
+        dst->protocol_version_b = (uint8_t)(r2 >> 48);
+        dst->protocol_version_c = (uint8_t)(r2 >> 56);
+        dst->counter = (uint8_t)r3;
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -14784,6 +15918,19 @@ typedef struct {
     uint8_t downhill_regen_speed; /**< 下坡制动回收速度 [km/h]; bits 8..15 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_tele_control_command_2_t;
+#if KAIWO_GATEWAY_LE_WORDS
+/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
+typedef char kaiwo_gateway_tele_control_command_2_layout_check
+    [(offsetof(kaiwo_gateway_tele_control_command_2_t, downhill_regen_enable) == 0u &&
+      offsetof(kaiwo_gateway_tele_control_command_2_t, cargo_lift) == 1u &&
+      offsetof(kaiwo_gateway_tele_control_command_2_t, cargo_lift_speed) == 2u &&
+      offsetof(kaiwo_gateway_tele_control_command_2_t, pto_enable) == 3u &&
+      offsetof(kaiwo_gateway_tele_control_command_2_t, downhill_regen_speed) == 4u &&
+      offsetof(kaiwo_gateway_tele_control_command_2_t, counter) == 5u &&
+      sizeof(kaiwo_gateway_tele_control_command_2_t) == 6u)
+         ? 1
+         : -1];
+#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
@@ -14793,24 +15940,34 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((uint32_t)(src->downhill_regen_enable | src->pto_enable) > 1u) ||
-        ((uint32_t)(src->cargo_lift) > 3u) || ((uint32_t)(src->cargo_lift_speed) > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     {
-        const uint8_t b0 =
-            (uint8_t)((uint32_t)src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1) |
-                      ((uint32_t)src->cargo_lift_speed << 3) | ((uint32_t)src->pto_enable << 7));
-        const uint8_t b1 = (uint8_t)((uint32_t)src->downhill_regen_speed);
-        const uint8_t b7 = (uint8_t)((uint32_t)src->counter);
-        dst[0] = b0;
-        dst[1] = b1;
-        dst[2] = 0u;
-        dst[3] = 0u;
-        dst[4] = 0u;
-        dst[5] = 0u;
-        dst[6] = 0u;
-        dst[7] = b7;
+        uint64_t p0;
+        uint64_t w;
+#if KAIWO_GATEWAY_LE_WORDS
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+#else
+        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
+             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+#endif
+        if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
+            return KAIWO_GATEWAY_ERR_RANGE;
+        }
+        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
+            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
+#else
+        dst[0] = (uint8_t)w;
+        dst[1] = (uint8_t)(w >> 8);
+        dst[2] = (uint8_t)(w >> 16);
+        dst[3] = (uint8_t)(w >> 24);
+        dst[4] = (uint8_t)(w >> 32);
+        dst[5] = (uint8_t)(w >> 40);
+        dst[6] = (uint8_t)(w >> 48);
+        dst[7] = (uint8_t)(w >> 56);
+#endif
     }
     return KAIWO_GATEWAY_OK;
 }
@@ -14823,12 +15980,29 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        dst->downhill_regen_enable = (uint8_t)((src[0] & 0x1u));
-        dst->cargo_lift = (uint8_t)(((src[0] >> 1) & 0x3u));
-        dst->cargo_lift_speed = (uint8_t)(((src[0] >> 3) & 0xFu));
-        dst->pto_enable = (uint8_t)((src[0] >> 7));
-        dst->downhill_regen_speed = (uint8_t)(src[1]);
-        dst->counter = (uint8_t)(src[7]);
+        /* One read of the frame into a local (stores to *dst may alias src). */
+        uint64_t v;
+        uint64_t r0;
+#if KAIWO_GATEWAY_LE_WORDS
+        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
+#else
+        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+#endif
+        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
+             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
+             ((v & UINT64_C(0xFF00)) << 24);
+#if KAIWO_GATEWAY_LE_WORDS
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+#else
+        dst->downhill_regen_enable = (uint8_t)r0;
+        dst->cargo_lift = (uint8_t)(r0 >> 8);
+        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
+        dst->pto_enable = (uint8_t)(r0 >> 24);
+        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
+        dst->counter = (uint8_t)(r0 >> 40);
+#endif
         return KAIWO_GATEWAY_OK;
     }
 }

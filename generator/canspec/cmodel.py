@@ -5,9 +5,11 @@ scales, literal syntax — so the `templates/c/` family only loops and places te
 
 Pack plan: every frame is at most 8 bytes and every signal is Intel (little-endian), so a
 signal is a contiguous bit field [start, start+length) of the frame read as one
-little-endian 64-bit word. Pack ORs shifted fields into that word and stores it; unpack
-loads it once and shifts/masks each field out. Compilers turn the byte-wise load/store
-into single word accesses.
+little-endian 64-bit word `v`. Unpack assembles `v` from the bytes once (one load on a
+little-endian host), moves the fields of each run of adjacent struct fields into their
+slots together and stores them (merged into word stores); pack does the reverse, checks a
+run's field widths with one mask and writes the frame word with one store. The run plans
+(which fields, which shifts and masks) are in cwords.py.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from canspec import ir
+from canspec import cwords, ir
 from canspec.encoding import decimal_text
 from canspec.format import c_double
 from canspec.naming import c_ident, snake, upper_snake
@@ -101,8 +103,6 @@ class CSignal:
     start: int
     range_check: str  # C condition true when a signed src->field does not fit its bits
     needs_check: bool  # unsigned field whose type is wider than its bits
-    pack_terms: tuple[tuple[int, str], ...]  # (byte, term OR'ed into that byte)
-    unpack_expr: str  # value from the frame bytes src[]
     raw_type_min: str
     raw_type_max: str
     raw_min: str  # int64 literals for the physical encode's raw range
@@ -135,6 +135,25 @@ class CSignal:
 
 
 @dataclass(frozen=True)
+class CRun:
+    """C text of one run (see cwords.Run): the local `var` holds its slot word."""
+
+    run: cwords.Run
+    var: str
+    unpack_init: str  # value of `var` from the frame word `v`
+    unpack_steps: tuple[str, ...]  # statements moving the fields into their slots
+    stores: tuple[tuple[str, str], ...]  # (field, value from `var`)
+    pack_init: str  # value of `var` from the struct fields (one merged load)
+    pack_steps: tuple[str, ...]  # statements moving the fields back to their frame bits
+    placed: str  # `var` shifted to its frame bits
+    offset: int  # little-endian word path: the run's bytes in the struct
+    nbytes: int  # (up to the next run: includes padding, never another run's field)
+    pad_mask: str  # pack: mask clearing padding bytes read with the fields ("" if none)
+    extra: str  # pack: a second local for the fields moved by groups beside SWAR steps ("" if none)
+    le_value: str  # unpack, word path: the slot word as stored (a signed field sign-extended)
+
+
+@dataclass(frozen=True)
 class CMessage:
     msg: ir.Message
     name: str  # snake name
@@ -143,11 +162,16 @@ class CMessage:
     type: str
     index_const: str  # enumerator in the message index enum
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
-    range_checks: tuple[str, ...]  # any true: a field does not fit its bits
-    pack_bytes: tuple[str, ...]  # per frame byte: its value from src (checksum byte: "")
+    unpack_runs: tuple[CRun, ...]  # every struct field, in struct order
+    layout_check: str  # condition true when the struct layout is the one the word path assumes
+    pack_runs: tuple[CRun, ...]  # the fields pack reads (not the checksum)
+    frame_load: str  # the frame word `v` from src[0..dlc-1] (unpack)
+    frame_word: str  # the frame word `w` from the packed runs (pack, without checksum)
+    frame_stores: tuple[str, ...]  # dst[i] from `w`, per frame byte
+    range_terms: tuple[str, ...]  # uint64_t terms, OR != 0: a field does not fit its bits
     checksum_byte: int
-    checksum_xor: str  # XOR of the covered bytes b<i> (pack)
-    checksum_check: str  # XOR of the covered bytes src[i] (unpack)
+    checksum_pack: str  # uint64_t term OR'ed into `w`: the checksum byte in place
+    checksum_ok: str  # condition on `v`: the checksum byte is right
     checksum_fold: bool  # covers all other 7 bytes: valid iff the XOR of all 8 bytes is 0
     counter: CSignal | None
     counter_mask: str
@@ -206,38 +230,12 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     if sig.length > 63 and not sig.signed:
         raise CModelError(f"{msg.name}.{sig.name}: {sig.length}-bit unsigned fields are not supported by the C target")
     fits_type = sig.length == bits
-    wide = 64 if sig.length > 32 else 32
-    acc = f"uint{wide}_t"
     if sig.signed:
         lit = lambda v: int_lit(v, bits)  # noqa: E731
         range_check = "" if fits_type else f"(src->{field} < {lit(sig.raw_type_min)}) | (src->{field} > {lit(sig.raw_type_max)})"
-        bits_of = f"((uint64_t)(int64_t)src->{field} & {hex_lit(sig.mask, 64)})"
     else:
         lit = lambda v: uint_lit(v, bits)  # noqa: E731
         range_check = ""
-        bits_of = f"src->{field}"
-    pack_terms = []
-    for seg in sig.segments:
-        value = f"({acc}){bits_of}" if not sig.signed and bits <= 32 else f"(uint32_t)(uint8_t)({bits_of} >> {seg.value_shift})"
-        if not sig.signed and bits <= 32 and seg.value_shift:
-            value = f"({value} >> {seg.value_shift})"
-        pack_terms.append((seg.byte, f"({value} << {seg.byte_shift})" if seg.byte_shift else value))
-    unpack_terms = []
-    for seg in sig.segments:
-        term = f"src[{seg.byte}]"
-        if seg.byte_shift:
-            term = f"({term} >> {seg.byte_shift})"
-        if seg.byte_shift + seg.width < 8:
-            term = f"({term} & {hex_lit((1 << seg.width) - 1)})"
-        if seg.value_shift:
-            term = f"(({acc}){term} << {seg.value_shift})"
-        unpack_terms.append(term)
-    combined = " | ".join(unpack_terms)
-    if sig.signed:
-        sign = 1 << (sig.length - 1)
-        unpack = f"({t})((int64_t)((uint64_t)({combined}) ^ {hex_lit(sign, 64)}) - (int64_t){hex_lit(sign, 64)})"
-    else:
-        unpack = f"({t})({combined})"
     # physical (double)
     factor, offset = sig.factor, sig.offset
     # Two statements: C compilers may contract `raw * f + o` within one expression into an FMA
@@ -276,7 +274,7 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     return CSignal(
         sig=sig, field=field, macro=f"{pmacro}_{upper_snake(msg.name)}_{upper_snake(sig.name)}",
         fn=f"{prefix}_{mname}_{sname}", type=t, length=sig.length, start=sig.start,
-        range_check=range_check, needs_check=not fits_type and not sig.signed, pack_terms=tuple(pack_terms), unpack_expr=unpack,
+        range_check=range_check, needs_check=not fits_type and not sig.signed,
         raw_type_min=lit(sig.raw_type_min), raw_type_max=lit(sig.raw_type_max),
         raw_min=int_lit(sig.raw_min, 64), raw_max=int_lit(sig.raw_max, 64),
         q_low=c_double(sig.raw_type_min - 1), q_high=c_double(sig.raw_type_max + 1),
@@ -296,46 +294,162 @@ def _enum(prefix: str, pmacro: str, table: ir.ValueTable) -> CEnum:
     return CEnum(table.name, f"{prefix}_{tname}_t", f"{prefix}_{tname}_name", entries)
 
 
+def _byte_of(word: str, b: int) -> str:
+    return f"(uint8_t){word}" if b == 0 else f"(uint8_t)({word} >> {8 * b})"
+
+
+def _shifted(expr: str, shift: int) -> str:
+    """expr << shift (negative: >>), as C text."""
+    if shift == 0:
+        return expr
+    return f"({expr} << {shift})" if shift > 0 else f"({expr} >> {-shift})"
+
+
+IMM32 = 0x7FFFFFFF  # x86-64 and/or/test take sign-extended 32-bit immediates: wider masks cost a load
+
+
+def _move(word: str, mask: int, shift: int) -> str:
+    """C text of (word & mask) moved by `shift` bits (negative: right). A contiguous mask that
+    starts or ends at a word edge, before or after the move, and is too wide for an immediate
+    either side, is cut out by two shifts instead (no mask constant)."""
+    top = (1 << 64) - 1
+    moved = ((mask << shift) if shift >= 0 else (mask >> -shift)) & top
+    lo = (mask & -mask).bit_length() - 1
+    n = mask.bit_length() - lo
+    dest = lo + shift
+    if mask == ((1 << n) - 1) << lo and mask > IMM32 and moved > IMM32:
+        if lo + n == 64 or dest + n == 64:  # nothing above it before, or nothing left above after
+            return _shifted(f"({word} >> {lo})" if lo else word, dest)
+        if lo == 0 or dest == 0:  # nothing below it before, or nothing left below after
+            return _shifted(f"({word} << {64 - n - lo})" if 64 - n - lo else word, dest - (64 - n))
+    return _shifted(f"({word} & {hex_lit(mask, 64)})", shift)
+
+
+def _runs(sigs: list[CSignal] | tuple[CSignal, ...], offsets: dict[str, int], size: int, letter: str, drop: int) -> tuple[CRun, ...]:
+    fields = [cwords.Field(s.field, s.start, s.length, s.sig.storage_bits, s.sig.signed, s.needs_check) for s in sigs]
+    by_field = {s.field: s for s in sigs}
+    runs = cwords.plan_runs(fields, [offsets[f.name] for f in fields])
+    starts = [offsets[r.fields[0].name] for r in runs] + [size]
+    return tuple(_crun(run, f"{letter}{i}", by_field, starts[i], min(8, starts[i + 1] - starts[i]), drop) for i, run in enumerate(runs))
+
+
+def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, nbytes: int, drop: int) -> CRun:
+    """`drop`: frame bits pack leaves out (the checksum byte, filled afterwards)."""
+    storage = sum(((1 << f.storage) - 1) << s for f, s in zip(run.fields, run.slots))
+    # group moves mask their fields; SWAR steps need zeros around them
+    pad = "" if run.groups or storage == (1 << (8 * nbytes)) - 1 else f"{var} &= {hex_lit(storage, 64)};"
+    le_value = var
+    signed = next((f for f in run.fields if f.signed), None)
+    if signed is not None:  # alone in its run: the struct holds it sign-extended to its type
+        sign = hex_lit(1 << (signed.length - 1), 64)
+        pad = f"{var} &= {hex_lit((1 << signed.length) - 1, 64)};"
+        le_value = f"(uint64_t)((int64_t)({var} ^ {sign}) - (int64_t){sign})"
+    m = lambda mask: hex_lit(mask, 64)
+    stores, loads = [], []
+    for f, slot in zip(run.fields, run.slots):
+        s = by_field[f.name]
+        if f.signed:  # alone in its run, at slot 0: sign-extend its bits
+            sign = hex_lit(1 << (f.length - 1), 64)
+            stores.append((f.name, f"({s.type})((int64_t)({var} ^ {sign}) - (int64_t){sign})"))
+            loads.append(f"((uint64_t)(int64_t)src->{f.name} & {m((1 << f.length) - 1)})")
+        else:
+            stores.append((f.name, f"({s.type}){var}" if slot == 0 else f"({s.type})({var} >> {slot})"))
+            loads.append(_shifted(f"(uint64_t)src->{f.name}", slot))
+    top = (1 << cwords.WORD) - 1
+    moves = [_move("v", g.frame, g.shift) for g in run.groups]
+    kept = [g for g in (cwords.Group(g.shift, g.frame & ~drop) for g in run.groups) if g.frame]
+    backs = [_move(var, ((g.frame << g.shift) if g.shift >= 0 else (g.frame >> -g.shift)) & top, -g.shift) for g in kept]
+    if run.swar == 0:
+        return CRun(
+            run=run, var=var, unpack_init=" | ".join(moves), unpack_steps=(), stores=tuple(stores),
+            pack_init=" | ".join(loads), pack_steps=(), placed=" | ".join(backs) or "0u", extra="", le_value=le_value,
+            offset=offset, nbytes=nbytes, pad_mask=pad,
+        )
+    # SWAR part: from the frame word to the slots and back
+    init = _shifted("v", run.base)
+    remaining = cwords.WORD - max(0, -run.base)
+    needed = run.first != (((1 << remaining) - 1) << max(0, run.base)) & top
+    init = f"{init} & {m(run.first)}" if needed else init
+    ups, downs = [], []
+    for st in run.steps:
+        if st.simple:
+            ups.append(f"{var} = ({var} | ({var} << {st.shift})) & {m(st.after)};")
+        else:
+            ups.append(f"{var} = ({var} & {m(st.stay)}) | (({var} << {st.shift}) & {m(st.after & ~st.stay)});")
+    extra = ""
+    placed = _shifted(var, -run.base)
+    if run.groups:  # the other fields move by groups, from the frame word / before the steps
+        ups.append(f"{var} |= {' | '.join(moves)};")
+        if backs:
+            extra = f"{var}g"
+            downs.append(f"{extra} = {' | '.join(backs)};")
+            placed = f"{placed} | {extra}"
+        downs.append(f"{var} &= {m(run.swar_mask)};")
+    elif pad:
+        downs.append(pad)
+    for st in reversed(run.steps):
+        if st.simple_back:
+            downs.append(f"{var} = ({var} | ({var} >> {st.shift})) & {m(st.before)};")
+        else:
+            downs.append(f"{var} = ({var} & {m(st.stay)}) | (({var} >> {st.shift}) & {m(st.before & ~st.stay)});")
+    return CRun(
+        run=run, var=var, unpack_init=init, unpack_steps=tuple(ups), stores=tuple(stores),
+        pack_init=" | ".join(loads), pack_steps=tuple(downs), placed=placed, extra=extra, le_value=le_value,
+        offset=offset, nbytes=nbytes, pad_mask="",  # the padding mask is in the steps
+    )
+
 def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum], faults: list[tuple[ir.ValueTable, CEnum]]) -> CMessage:
     if msg.dlc > MAX_DLC:
         raise CModelError(f"{msg.name}: DLC {msg.dlc} > 8 (CAN FD) is not supported by the C target")
     mname = snake(msg.name)
     sigs = tuple(_signal(prefix, pmacro, msg, s, enums) for s in msg.data_signals)
     counter = next((c for c in sigs if msg.counter and c.sig.name == msg.counter.signal), None)
-    ck_byte, ck_xor, ck_check, ck_fold = -1, "", "", False
+    ck_byte, ck_pack, ck_ok, ck_fold = -1, "", "", False
     xor_codes: list[tuple[str, str]] = []
     data = [s for s in sigs if not (msg.checksum and s.sig.name == msg.checksum.signal)]
-    byte_terms: dict[int, list[str]] = {}
-    for s in data:
-        for b, term in s.pack_terms:
-            byte_terms.setdefault(b, []).append(term)
+    offsets = dict(zip((s.field for s in sigs), cwords.natural_offsets([s.sig.storage_bits for s in sigs])))
     if msg.checksum is not None:
         ck = msg.checksum
         csig = msg.signal(ck.signal)
         if ck.algorithm != "xor" or csig.start != 8 * ck.byte or csig.length != 8:
             raise CModelError(f"{msg.name}: only an XOR checksum filling a whole byte is supported")
         ck_byte = ck.byte
-        ck_xor = " ^ ".join(f"b{b}" for b in ck.covers if b in byte_terms) or "0u"
-        ck_check = " ^ ".join(f"src[{b}]" for b in ck.covers)
+        ck_field = c_ident(snake(ck.signal))
         ck_fold = msg.dlc == 8 and set(ck.covers) == set(range(8)) - {ck.byte}
+        if ck_fold:  # the checksum byte is 0 in `w`: the XOR of all of its bytes is the checksum
+            used = {b for s in data for seg in s.sig.segments for b in (seg.byte,)}
+            fold = f"{prefix}_xor_fold32((uint32_t)w)" if max(used, default=0) < 4 else f"{prefix}_xor_fold(w)"
+            ck_pack = f"((uint64_t){fold} << {8 * ck.byte})"
+            ck_ok = f"{prefix}_xor_is_zero(v)"
+        else:
+            covered = " ^ ".join(_byte_of("w", b) for b in ck.covers) or "0u"
+            ck_pack = f"((uint64_t)(uint8_t)({covered}) << {8 * ck.byte})"
+            ck_ok = f"(uint8_t)({' ^ '.join(_byte_of('v', b) for b in ck.covers) or '0u'}) == {_byte_of('v', ck.byte)}"
         for table, cenum in faults:
             entry = next((e for e in table.entries if msg.layout and e.name == f"{msg.layout}{XOR_ERROR_SUFFIX}"), None)
             if entry:
                 xor_codes.append((cenum.table, next(c.const for c in cenum.entries if c.value == entry.raw)))
-    pack_bytes = tuple("" if b == ck_byte else (f"(uint8_t)({' | '.join(byte_terms[b])})" if b in byte_terms else "0u") for b in range(msg.dlc))
-    # Range checks: unsigned fields of one width share one compare (a | b | c > 2^n - 1).
-    groups: dict[tuple[int, int], list[str]] = {}
-    for s in data:
-        if s.needs_check:
-            groups.setdefault((s.length, 64 if s.sig.storage_bits == 64 else 32), []).append(f"src->{s.field}")
-    checks = [f"((uint{w}_t)({' | '.join(fields)}) > {uint_lit((1 << n) - 1, w)})" for (n, w), fields in groups.items()]
-    checks += [s.range_check for s in data if s.range_check]
+    size = cwords.struct_size([s.sig.storage_bits for s in sigs])
+    ck_bits = 0xFF << (8 * ck_byte) if msg.checksum is not None else 0
+    unpack_runs = _runs(sigs, offsets, size, "r", 0)
+    # pack reads the same words unpack writes (the checksum slot too, then drops its bits)
+    pack_runs = _runs(sigs, offsets, size, "p", ck_bits)
+    typ = f"{prefix}_{mname}_t"
+    layout = " && ".join([f"offsetof({typ}, {s.field}) == {offsets[s.field]}u" for s in sigs] + [f"sizeof({typ}) == {size}u"])
+    range_terms = [f"({r.var} & {hex_lit(r.run.check, 64)})" for r in pack_runs if r.run.check]
+    range_terms += [f"(uint64_t)({s.range_check})" for s in data if s.range_check]
+    frame_load = " | ".join(f"(uint64_t)src[{b}]" if b == 0 else f"((uint64_t)src[{b}] << {8 * b})" for b in range(msg.dlc))
+    frame_word = " | ".join(r.placed for r in pack_runs) or "0u"
+    if msg.checksum is not None and any(f.name == ck_field and r.run.swar != 0 for r in pack_runs for f in r.run.fields):
+        frame_word = f"({frame_word}) & {hex_lit(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
+    frame_stores = tuple("(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})" for b in range(msg.dlc))
     j = msg.j1939
     return CMessage(
         msg=msg, name=mname, macro=f"{pmacro}_{upper_snake(msg.name)}", fn=f"{prefix}_{mname}", type=f"{prefix}_{mname}_t",
         index_const=f"{pmacro}_MSG_{upper_snake(msg.name)}", signals=sigs,
-        range_checks=tuple(checks), pack_bytes=pack_bytes,
-        checksum_byte=ck_byte, checksum_xor=ck_xor, checksum_check=ck_check, checksum_fold=ck_fold,
+        unpack_runs=unpack_runs, pack_runs=pack_runs, layout_check=layout, frame_load=frame_load, frame_word=frame_word,
+        frame_stores=frame_stores, range_terms=tuple(range_terms),
+        checksum_byte=ck_byte, checksum_pack=ck_pack, checksum_ok=ck_ok, checksum_fold=ck_fold,
         counter=counter, counter_mask=hex_lit(msg.counter.modulo - 1) if msg.counter else "",
         da=hex_lit(j.da) if j.da is not None else None, fault_xor_codes=tuple(xor_codes),
         comment=f"{msg.title} / {msg.zh}" if msg.title else msg.zh,

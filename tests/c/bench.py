@@ -1,14 +1,26 @@
 """`make bench-c`: pack + unpack of every message, canspec's generated C vs the C that
 `cantools generate_c_source` makes from the generated DBC. Same compiler (gcc -O2), same
-harness (one translation unit per library: its code plus the identical loop), same frames
-(the shared vectors). Prints ns/frame of both and the ratio per message and overall, plus
-the code size of both libraries' pack+unpack functions."""
+harness loop, same 16 frames per message (the shared vectors, cycled so branches see varied
+data identically for both), every output consumed (status codes, packed bytes; the struct
+passes through a compiler barrier between unpack and pack).
+
+Two modes, both reported:
+- call: how firmware uses a codec from its own translation units. cantools' .c is compiled
+  alone as it ships; canspec's static inline functions are compiled alone behind extern
+  wrapper functions; the harness calls both through the same non-inlined call boundary.
+- inline: each library's code in the harness's translation unit, the compiler free to
+  inline what it chooses (it inlines canspec's static inline functions; cantools' extern
+  functions are its choice).
+Wall time is thread CPU time, best of interleaved A/B runs (the machine is shared); beside
+it the load-independent instruction count per pack+unpack pair from valgrind's callgrind
+(when valgrind is installed). Also prints the code size of both libraries."""
 
 from __future__ import annotations
 
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -33,7 +45,7 @@ def c_bytes(hexdata: str) -> str:
     return "{" + ", ".join(f"0x{hexdata[i:i + 2]}" for i in range(0, 16, 2)) + "}"
 
 
-def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str) -> str:
+def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str, fn: str = "kaiwo_gateway_") -> str:
     out = [include, "#include <stdint.h>", "#include <stddef.h>", ""]
     for n in names:
         rows = ",\n    ".join(c_bytes(h) for h in frames[n])
@@ -44,11 +56,11 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
         out.append("    uint64_t acc = 0;")
         out.append("    long i;")
         out.append("    for (i = 0; i < iters; i++) {")
-        out.append(f"        acc += (uint64_t)kaiwo_gateway_{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
+        out.append(f"        acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
         # The decoded struct is consumed and the struct to send is produced elsewhere in a real
         # ECU: the barriers keep the compiler from fusing unpack into pack.
         out.append("        __asm__ volatile(\"\" : : \"r\"(&s) : \"memory\");")
-        out.append(f"        acc += (uint64_t)kaiwo_gateway_{n}_pack({pack_args});")
+        out.append(f"        acc += (uint64_t){fn}{n}_pack({pack_args});")
         out.append("        __asm__ volatile(\"\" : : \"r\"(buf) : \"memory\");")
         out.append("        acc += buf[0] ^ buf[3] ^ buf[7];")
         out.append("    }")
@@ -59,18 +71,25 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
     return "\n".join(out) + "\n"
 
 
-def sizes_wrapper(names: list[str]) -> str:
-    """Out-of-line copies of canspec's pack/unpack so their code size can be measured."""
+def wrappers(names: list[str], define: bool) -> str:
+    """Extern copies of canspec's pack/unpack (their own translation unit: the call mode, and
+    the code size), or just their declarations (the call-mode harness)."""
     out = ['#include "kaiwo_gateway.h"']
     for n in names:
-        out.append(f"kaiwo_gateway_status_t x_{n}_pack(uint8_t *d, size_t z, const kaiwo_gateway_{n}_t *s) {{ return kaiwo_gateway_{n}_pack(d, z, s); }}")
-        out.append(f"kaiwo_gateway_status_t x_{n}_unpack(kaiwo_gateway_{n}_t *s, const uint8_t *d, size_t z) {{ return kaiwo_gateway_{n}_unpack(s, d, z); }}")
+        pack = f"kaiwo_gateway_status_t x_{n}_pack(uint8_t *d, size_t z, const kaiwo_gateway_{n}_t *s)"
+        unpack = f"kaiwo_gateway_status_t x_{n}_unpack(kaiwo_gateway_{n}_t *s, const uint8_t *d, size_t z)"
+        if define:
+            out.append(f"{pack} {{ return kaiwo_gateway_{n}_pack(d, z, s); }}")
+            out.append(f"{unpack} {{ return kaiwo_gateway_{n}_unpack(s, d, z); }}")
+        else:
+            out += [f"{pack};", f"{unpack};"]
     return "\n".join(out) + "\n"
 
 
 MAIN = r"""
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <time.h>
 typedef uint64_t (*run_fn)(long);
 extern const run_fn canspec_runs[];
@@ -92,18 +111,28 @@ static void best_pair(run_fn a, run_fn b, long iters, double *ba, double *bb) {
         if (tb < *bb) *bb = tb;
     }
 }
-int main(void) {
-    const long iters = %ITERS%;
+static void table(const char *mode, const run_fn *a_runs, const run_fn *b_runs, long iters) {
     double tot_a = 0, tot_b = 0; int i, slower = 0;
-    printf("%-28s %12s %12s %8s\n", "message", "canspec ns", "cantools ns", "ratio");
+    printf("\n[%s] %-21s %12s %12s %8s\n", mode, "message", "canspec ns", "cantools ns", "ratio");
     for (i = 0; i < N_MSG; i++) {
         double a, b;
-        best_pair(canspec_runs[i], cantools_runs[i], iters, &a, &b);
+        best_pair(a_runs[i], b_runs[i], iters, &a, &b);
         tot_a += a; tot_b += b; slower += a > b;
         printf("%-28s %12.2f %12.2f %7.2fx\n", NAMES[i], a, b, b / a);
     }
     printf("%-28s %12.2f %12.2f %7.2fx\n", "overall (sum)", tot_a, tot_b, tot_b / tot_a);
-    printf("messages where canspec is slower: %d of %d\n", slower, N_MSG);
+    printf("[%s] messages where canspec is slower: %d of %d\n", mode, slower, N_MSG);
+}
+int main(int argc, char **argv) {
+    const long iters = %ITERS%;
+    int i;
+    if (argc > 1) { /* one pass of every loop (for callgrind's instruction counts) */
+        long n = atol(argv[1]);
+        for (i = 0; i < N_MSG; i++)
+            sink += canspec_runs[i](n) + cantools_runs[i](n);
+        return 0;
+    }
+    table(MODE, canspec_runs, cantools_runs, iters);
     return 0;
 }
 """
@@ -122,6 +151,36 @@ def symbol_bytes(obj: Path, pattern: str) -> int:
 def text_size(obj: Path) -> int:
     out = subprocess.run(["size", "-A", str(obj)], capture_output=True, text=True, check=True).stdout
     return sum(int(l.split()[1]) for l in out.splitlines() if l.startswith(".text"))
+
+
+CALLGRIND_ITERS = 4096
+
+
+def instruction_counts(exe: Path, mode: str, names: list[str]) -> None:
+    """Instructions per pack+unpack pair (loop included), from callgrind: independent of load."""
+    if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
+        print(f"\n[{mode}] instruction counts: valgrind not installed, skipped")
+        return
+    out = exe.with_suffix(".callgrind")
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe), str(CALLGRIND_ITERS)],
+                   check=True, capture_output=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", str(out)],
+                          check=True, capture_output=True, text=True).stdout
+    ir: dict[str, int] = {}
+    for line in text.splitlines():
+        m = re.match(r"\s*([\d,]+)\s.*\b(canspec|cantools)_run_(\w+)\b", line)
+        if m:
+            ir[f"{m.group(2)}:{m.group(3)}"] = int(m.group(1).replace(",", ""))
+    print(f"\n[{mode}] {'message':<21} {'canspec Ir':>12} {'cantools Ir':>12} {'ratio':>8}   (instructions per pack+unpack pair, callgrind)")
+    ta = tb = 0.0
+    fewer = 0
+    for n in names:
+        a, b = ir.get(f"canspec:{n}", 0) / CALLGRIND_ITERS, ir.get(f"cantools:{n}", 0) / CALLGRIND_ITERS
+        ta, tb = ta + a, tb + b
+        fewer += a <= b
+        print(f"{n:<28} {a:12.1f} {b:12.1f} {b / a if a else 0:7.2f}x")
+    print(f"{'overall (sum)':<28} {ta:12.1f} {tb:12.1f} {tb / ta if ta else 0:7.2f}x")
+    print(f"[{mode}] messages where canspec executes at most as many instructions: {fewer} of {len(names)}")
 
 
 def main(argv: list[str]) -> int:
@@ -143,27 +202,42 @@ def main(argv: list[str]) -> int:
         print(f"bench-c: cantools output lacks {missing}", file=sys.stderr)
         return 1
     frames = {n: frames_for(vectors["cases"], n) for n in names}
-    (build / "bench_canspec.c").write_text(harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s"))
-    (build / "bench_cantools.c").write_text(harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8"))
-    (build / "bench_main.c").write_text(MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names))).replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS)))
-    (build / "size_canspec.c").write_text(sizes_wrapper(names))
+    main_c = MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names))).replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS))
+    sources = {
+        "bench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s"),
+        "bench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8"),
+        "call_canspec.c": harness("canspec", wrappers(names, define=False), names, frames, "", "buf, 8, &s", fn="x_"),
+        "call_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8"),
+        "size_canspec.c": wrappers(names, define=True),
+        "bench_main.c": main_c,
+    }
+    for name, text in sources.items():
+        (build / name).write_text(text)
     inc = [f"-I{cbuild.HEADERS}", f"-I{build}", f"-I{ct}"]
-    objs = []
-    for src in ("bench_canspec.c", "bench_cantools.c", "bench_main.c"):
-        obj = build / src.replace(".c", ".o")
-        subprocess.run([CC, *CFLAGS, *inc, "-c", str(build / src), "-o", str(obj)], check=True)
-        objs.append(str(obj))
-    exe = build / "bench"
-    subprocess.run([CC, *objs, "-o", str(exe)], check=True)
-    size_a, size_b = build / "size_canspec.o", build / "size_cantools.o"
-    subprocess.run([CC, *CFLAGS, *inc, "-c", str(build / "size_canspec.c"), "-o", str(size_a)], check=True)
-    subprocess.run([CC, *CFLAGS, *inc, "-c", str(ct / "kaiwo_gateway.c"), "-o", str(size_b)], check=True)
+
+    def compile_(src: Path, obj: str, *extra: str) -> str:
+        subprocess.run([CC, *CFLAGS, *extra, *inc, "-c", str(src), "-o", str(build / obj)], check=True)
+        return str(build / obj)
+
+    size_a = compile_(build / "size_canspec.c", "size_canspec.o")
+    size_b = compile_(ct / "kaiwo_gateway.c", "size_cantools.o")
+    exes = {
+        "call": [compile_(build / "call_canspec.c", "call_canspec.o"), compile_(build / "call_cantools.c", "call_cantools.o"),
+                 size_a, size_b, compile_(build / "bench_main.c", "main_call.o", '-DMODE="call"')],
+        "inline": [compile_(build / "bench_canspec.c", "bench_canspec.o"), compile_(build / "bench_cantools.c", "bench_cantools.o"),
+                   compile_(build / "bench_main.c", "main_inline.o", '-DMODE="inline"')],
+    }
     print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
-    sys.stdout.flush()
-    subprocess.run([str(exe)], check=True)
-    pa, pb = symbol_bytes(size_a, r"_(pack|unpack)$"), symbol_bytes(size_b, r"_(pack|unpack)$")
-    print(f"code size of pack+unpack of all messages: canspec {pa} bytes, cantools {pb} bytes")
-    print(f".text of the object: canspec (pack+unpack wrappers) {text_size(size_a)} bytes, cantools (whole kaiwo_gateway.c) {text_size(size_b)} bytes")
+    for mode, objs in exes.items():
+        exe = build / f"bench_{mode}"
+        subprocess.run([CC, *objs, "-o", str(exe)], check=True)
+        sys.stdout.flush()
+        subprocess.run([str(exe)], check=True)
+    for mode in exes:
+        instruction_counts(build / f"bench_{mode}", mode, names)
+    pa, pb = symbol_bytes(Path(size_a), r"_(pack|unpack)$"), symbol_bytes(Path(size_b), r"_(pack|unpack)$")
+    print(f"\ncode size of pack+unpack of all messages: canspec {pa} bytes, cantools {pb} bytes")
+    print(f".text of the object: canspec (pack+unpack wrappers) {text_size(Path(size_a))} bytes, cantools (whole kaiwo_gateway.c) {text_size(Path(size_b))} bytes")
     return 0
 
 

@@ -29,9 +29,12 @@ def test_signal_plans(spec):
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
     assert angle.scale_int == 100 and angle.fixed_factor == "10" and angle.fixed_offset == "(-108000)"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
-    assert [b for b, _ in angle.pack_terms] == [3, 4]
     assert eps.checksum_byte == 7 and eps.checksum_fold
-    assert eps.pack_bytes[5] == "0u" and eps.pack_bytes[6] == "0u"  # reserved bytes 5..6
+    # the struct is one 8-byte word: fields at byte offsets 0, 1, 2, (pad), 4..5, 6
+    assert [r.offset for r in eps.unpack_runs] == [0] and eps.unpack_runs[0].nbytes == 8
+    assert "offsetof(kaiwo_gateway_autocar_eps_command_t, steering_angle_cmd) == 4u" in eps.layout_check
+    # reserved bytes 5..6 stay 0: only the checksum byte is added to the packed data bits
+    assert "0xFFFFFF" in eps.frame_word and eps.checksum_pack.endswith("<< 56)")
     cmd1 = next(m for m in model.messages if m.msg.name == "autocar_control_command_1")
     assert cmd1.counter is not None and cmd1.counter_mask == "0xFu"
     dev = next(m for m in model.messages if m.msg.name == "device_id")

@@ -83,6 +83,14 @@ def test_vector_runner_all_cases(build, vectors):
     assert f", {len(vectors['multiframe'])} multi-frame texts" in out
 
 
+def test_vector_runner_byte_wise_path(build, vectors):
+    """The portable byte-wise pack/unpack (big-endian hosts, or CANSPEC users who turn the
+    little-endian word path off) agrees with the vectors too."""
+    exe = cbuild.build_runner(build, "gcc", [*cbuild.STRICT[:-1], "-DKAIWO_GATEWAY_LE_WORDS=0"], name="runner-bytes")
+    lines = cbuild.vectors_lines(cbuild.DEFAULT_VECTORS, build)
+    _check_runner(exe, lines, len(vectors["cases"]))
+
+
 def test_vector_runner_reports_mismatches(build, vectors):
     """The runner is not a rubber stamp: a wrong byte, raw value or physical value fails it."""
     exe = cbuild.build_runner(build, "gcc", name="runner-neg")
@@ -134,3 +142,56 @@ def test_mock_firmware_project_generates_and_builds(tmp_path):
     assert "firmware ok" in proc.stdout
     proc = cbuild.run(["make", "-C", str(fw), "check-gen"], env={**__import__("os").environ, **env})
     assert proc.returncode == 0, proc.stderr
+
+
+def _signed(sig, lo: int, hi: int):
+    import dataclasses
+
+    return dataclasses.replace(sig, signed=True, raw_type_min=lo, raw_type_max=hi, raw_min=lo, raw_max=hi,
+                               phys_min=lo, phys_max=hi, check_min=lo, check_max=hi, doc_min=None, doc_max=None,
+                               value_table=None, specials=())
+
+
+SIGNED_MAIN = r"""
+#include <stdio.h>
+#include "kaiwo_gateway.h"
+int main(void) {
+    uint8_t f[8] = {0};
+    kaiwo_gateway_eps_state_t s = kaiwo_gateway_eps_state_init(), t;
+    s.controller_temp = -5;   /* 6 bits at 40: 0x3B */
+    s.steering_angle = 0xBEEFu;
+    s.eps_ctrl_state = 0x81u;
+    if (kaiwo_gateway_eps_state_pack(f, 8, &s) != KAIWO_GATEWAY_OK || f[5] != 0x3Bu || f[0] != 0x81u || f[3] != 0xEFu) return 1;
+    f[5] |= 0xC0u; /* reserved bits set on the wire: not part of the field */
+    if (kaiwo_gateway_eps_state_unpack(&t, f, 8) != KAIWO_GATEWAY_OK || t.controller_temp != -5 || t.steering_angle != 0xBEEFu) return 2;
+    s.controller_temp = -33; /* does not fit 6 signed bits */
+    if (kaiwo_gateway_eps_state_pack(f, 8, &s) != KAIWO_GATEWAY_ERR_RANGE) return 3;
+    s.controller_temp = 31;
+    if (kaiwo_gateway_eps_state_pack(f, 8, &s) != KAIWO_GATEWAY_OK || f[5] != 0x1Fu) return 4;
+    if (kaiwo_gateway_eps_state_unpack(&t, f, 8) != KAIWO_GATEWAY_OK || t.controller_temp != 31) return 5;
+    puts("signed ok");
+    return 0;
+}
+"""
+
+
+@pytest.mark.parametrize("words", ["1", "0"])
+def test_signed_fields_pack_and_unpack(spec, tmp_path, words):
+    """No signal of this document is signed: a spec variant with a 6-bit signed field checks the
+    sign extension and the signed range check, on both code paths."""
+    import dataclasses
+
+    can = spec.can
+    i, msg = next((i, m) for i, m in enumerate(can.messages) if m.name == "eps_state")
+    sigs = tuple(_signed(s, -32, 31) if s.name == "controller_temp" else s for s in msg.signals)
+    variant = dataclasses.replace(spec, can=dataclasses.replace(can, messages=(*can.messages[:i], dataclasses.replace(msg, signals=sigs), *can.messages[i + 1:])))
+    out = tmp_path / "c"
+    out.mkdir()
+    for rel, data in c_target.render_c(variant).items():
+        (tmp_path / rel).write_bytes(data)
+    src = tmp_path / "main.c"
+    src.write_text(SIGNED_MAIN)
+    exe = tmp_path / "signed"
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_LE_WORDS={words}"], [out])
+    proc = cbuild.run([str(exe)])
+    assert proc.returncode == 0 and "signed ok" in proc.stdout, (proc.returncode, proc.stdout, proc.stderr)
