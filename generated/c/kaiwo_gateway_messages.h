@@ -169,9 +169,7 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -216,9 +214,7 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode(double value, uint8_t
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(255)) {
+        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -267,9 +263,8 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(21600)) {
+    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -474,9 +469,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_ctrl_state_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -521,9 +514,8 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -12.8000000001 && value <= 12.7000000001) || r < INT64_C(0) ||
+        r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -568,9 +560,8 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -38.4000000003 && value <= 38.1000000003) || r < INT64_C(0) ||
+        r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -615,9 +606,8 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(21600)) {
+    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -661,9 +651,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(63)) {
+    if (!(value >= 0.0 && value <= 126.0) || r < INT64_C(0) || r > INT64_C(63)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -707,9 +695,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_fault_level_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -901,9 +887,8 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(630)) {
+    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
+        r > INT64_C(630)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -947,9 +932,7 @@ kaiwo_gateway_autocar_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -993,9 +976,7 @@ kaiwo_gateway_autocar_speed_command_gear_cmd_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1039,9 +1020,7 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1268,9 +1247,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_epb_state_encod
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1314,9 +1291,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_gear_state_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1360,9 +1335,7 @@ kaiwo_gateway_driving_state_emergency_brake_state_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1406,9 +1379,7 @@ kaiwo_gateway_driving_state_uss_brake_state_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1452,9 +1423,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(30000)) {
+    if (!(value >= -15000.0 && value <= 15000.0) || r < INT64_C(0) || r > INT64_C(30000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1498,9 +1467,7 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(10000)) {
+    if (!(value >= -5000.0 && value <= 5000.0) || r < INT64_C(0) || r > INT64_C(10000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1545,9 +1512,7 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 255)) {
-        if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_MIN &&
-              value <= KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_MAX) ||
-            r < INT64_C(0) || r > INT64_C(253)) {
+        if (!(value >= 1.0 && value <= 254.0) || r < INT64_C(0) || r > INT64_C(253)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1595,9 +1560,8 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_MIN &&
-          value <= KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(252)) {
+    if (!(value >= -9.00000000005 && value <= 3.60000000005) || r < INT64_C(0) ||
+        r > INT64_C(252)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1999,9 +1963,7 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2046,9 +2008,7 @@ kaiwo_gateway_autocar_control_command_1_door_cmd_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2092,9 +2052,7 @@ kaiwo_gateway_autocar_control_command_1_horn_cmd_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2138,9 +2096,7 @@ kaiwo_gateway_autocar_control_command_1_drl_cmd_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2184,9 +2140,7 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2231,9 +2185,7 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2278,9 +2230,7 @@ kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2325,9 +2275,7 @@ kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2373,9 +2321,7 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2420,9 +2366,7 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2467,9 +2411,7 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2514,9 +2456,7 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2561,9 +2501,7 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2608,9 +2546,7 @@ kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode(double value, u
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2656,9 +2592,7 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2703,9 +2637,7 @@ kaiwo_gateway_autocar_control_command_1_system_state_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2751,9 +2683,7 @@ kaiwo_gateway_autocar_control_command_1_system_reliability_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2800,9 +2730,7 @@ kaiwo_gateway_autocar_control_command_1_system_fault_level_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2848,9 +2776,7 @@ kaiwo_gateway_autocar_control_command_1_lock_cmd_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2894,9 +2820,7 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2941,9 +2865,7 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(28)) {
+    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2989,9 +2911,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3038,9 +2958,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3087,9 +3005,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3455,9 +3371,7 @@ kaiwo_gateway_vehicle_state_1_drive_mode_state_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3501,9 +3415,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_door_state_en
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3547,9 +3459,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_drl_state_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3593,9 +3503,7 @@ kaiwo_gateway_vehicle_state_1_left_turn_state_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3639,9 +3547,7 @@ kaiwo_gateway_vehicle_state_1_right_turn_state_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3685,9 +3591,7 @@ kaiwo_gateway_vehicle_state_1_hazard_state_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3731,9 +3635,7 @@ kaiwo_gateway_vehicle_state_1_position_light_state_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3777,9 +3679,7 @@ kaiwo_gateway_vehicle_state_1_headlight_state_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3823,9 +3723,7 @@ kaiwo_gateway_vehicle_state_1_rear_fog_state_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3869,9 +3767,7 @@ kaiwo_gateway_vehicle_state_1_left_fog_state_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3915,9 +3811,7 @@ kaiwo_gateway_vehicle_state_1_right_fog_state_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3961,9 +3855,7 @@ kaiwo_gateway_vehicle_state_1_dome_light_state_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4007,9 +3899,7 @@ kaiwo_gateway_vehicle_state_1_ambient_light_state_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4053,9 +3943,7 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4099,9 +3987,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(250)) {
+    if (!(value >= -50.0 && value <= 200.0) || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4145,9 +4031,8 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(do
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_MAX) ||
-        r < INT64_C(0) || r > INT64_C(250)) {
+    if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
+        r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4191,9 +4076,7 @@ kaiwo_gateway_vehicle_state_1_system_power_cmd_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4237,9 +4120,7 @@ kaiwo_gateway_vehicle_state_1_charge_state_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4283,9 +4164,7 @@ kaiwo_gateway_vehicle_state_1_charge_connection_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4329,9 +4208,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4375,9 +4252,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_MAX) ||
-        r < INT64_C(0) || r > INT64_C(60000)) {
+    if (!(value >= 0.0 && value <= 120000.0) || r < INT64_C(0) || r > INT64_C(60000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4622,9 +4497,7 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode(double valu
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4670,9 +4543,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4716,9 +4587,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(10)) {
+    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4763,9 +4632,7 @@ kaiwo_gateway_autocar_control_command_2_pto_enable_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4811,9 +4678,8 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode(double value
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(250)) {
+        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
+            r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4863,9 +4729,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1000)) {
+    if (!(value >= -25.00000000005 && value <= 25.00000000005) || r < INT64_C(0) ||
+        r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4911,9 +4776,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(800)) {
+    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4959,9 +4823,8 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_MAX) ||
-        r < INT64_C(0) || r > INT64_C(650)) {
+    if (!(value >= -30.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
+        r > INT64_C(650)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5007,9 +4870,8 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_MIN &&
-          value <= KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(800)) {
+    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5180,9 +5042,8 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(4000)) {
+    if (!(value >= -0.0000000002 && value <= 800.0000000002) || r < INT64_C(0) ||
+        r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5227,9 +5088,8 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(65000)) {
+    if (!(value >= -500.00000000002 && value <= 800.00000000002) || r < INT64_C(0) ||
+        r > INT64_C(65000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5273,9 +5133,7 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode(double value, uint16_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_MAX) ||
-        r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5320,9 +5178,7 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_MAX) ||
-        r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5512,9 +5368,7 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5558,9 +5412,7 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5604,9 +5456,8 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(4000)) {
+    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
+        r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5650,9 +5501,8 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(4000)) {
+    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
+        r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5696,9 +5546,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5742,9 +5590,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6009,9 +5855,8 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(250)) {
+    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
+        r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6056,9 +5901,8 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(250)) {
+    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
+        r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6102,9 +5946,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_ac_state_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6148,9 +5990,7 @@ kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6194,9 +6034,7 @@ kaiwo_gateway_vehicle_state_4_hill_hold_state_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6240,9 +6078,7 @@ kaiwo_gateway_vehicle_state_4_regen_brake_state_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6286,9 +6122,7 @@ kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1000)) {
+    if (!(value >= 0.0 && value <= 1000.0) || r < INT64_C(0) || r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6332,9 +6166,7 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6379,9 +6211,7 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6427,9 +6257,7 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(28)) {
+    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6473,9 +6301,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_pto_state_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6520,9 +6346,8 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_MAX) ||
-        r < INT64_C(0) || r > INT64_C(65000)) {
+    if (!(value >= -325.00000000001 && value <= 325.00000000001) || r < INT64_C(0) ||
+        r > INT64_C(65000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6974,9 +6799,7 @@ kaiwo_gateway_vehicle_fault_insulation_fault_level_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7020,9 +6843,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_dc_fault_encode
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7066,9 +6887,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_soc_low_encode(
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7112,9 +6931,7 @@ kaiwo_gateway_vehicle_fault_cell_undervoltage_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7158,9 +6975,7 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7205,9 +7020,7 @@ kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7251,9 +7064,7 @@ kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7297,9 +7108,7 @@ kaiwo_gateway_vehicle_fault_battery_overheat_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7343,9 +7152,7 @@ kaiwo_gateway_vehicle_fault_motor_overheat_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7389,9 +7196,7 @@ kaiwo_gateway_vehicle_fault_traction_battery_fault_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7435,9 +7240,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_motor_fault_enc
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7481,9 +7284,7 @@ kaiwo_gateway_vehicle_fault_battery_comm_fault_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7527,9 +7328,7 @@ kaiwo_gateway_vehicle_fault_motor_comm_fault_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7573,9 +7372,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_eps_fault_encod
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7619,9 +7416,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_ac_fault_encode
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7665,9 +7460,7 @@ kaiwo_gateway_vehicle_fault_aux_battery_fault_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7711,9 +7504,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_epb_fault_encod
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7757,9 +7548,7 @@ kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7803,9 +7592,7 @@ kaiwo_gateway_vehicle_fault_key_not_detected_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7849,9 +7636,7 @@ kaiwo_gateway_vehicle_fault_tire_pressure_low_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7895,9 +7680,7 @@ kaiwo_gateway_vehicle_fault_body_motor_fault_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7941,9 +7724,7 @@ kaiwo_gateway_vehicle_fault_body_motor_overheat_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7987,9 +7768,7 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8034,9 +7813,7 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8081,9 +7858,7 @@ kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8127,9 +7902,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_a_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8173,9 +7946,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_b_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8219,9 +7990,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_c_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8265,9 +8034,7 @@ kaiwo_gateway_vehicle_fault_remote_entry_fault_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8497,9 +8264,7 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8544,9 +8309,7 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode(double value, uint8_t *
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(255)) {
+        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -8594,9 +8357,8 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(21600)) {
+    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8789,9 +8551,8 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(630)) {
+    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
+        r > INT64_C(630)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8835,9 +8596,7 @@ kaiwo_gateway_rgate_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8881,9 +8640,7 @@ kaiwo_gateway_rgate_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8927,9 +8684,7 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9331,9 +9086,7 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9378,9 +9131,7 @@ kaiwo_gateway_rgate_control_command_1_door_cmd_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9424,9 +9175,7 @@ kaiwo_gateway_rgate_control_command_1_horn_cmd_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9470,9 +9219,7 @@ kaiwo_gateway_rgate_control_command_1_drl_cmd_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9516,9 +9263,7 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9563,9 +9308,7 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9610,9 +9353,7 @@ kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9656,9 +9397,7 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9703,9 +9442,7 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9750,9 +9487,7 @@ kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9796,9 +9531,7 @@ kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9842,9 +9575,7 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9889,9 +9620,7 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9936,9 +9665,7 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9983,9 +9710,7 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10030,9 +9755,7 @@ kaiwo_gateway_rgate_control_command_1_system_state_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10076,9 +9799,7 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10123,9 +9844,7 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10170,9 +9889,7 @@ kaiwo_gateway_rgate_control_command_1_lock_cmd_encode(double value, uint8_t *raw
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10216,9 +9933,7 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10263,9 +9978,7 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(28)) {
+    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10309,9 +10022,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10356,9 +10067,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10403,9 +10112,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode(double value, ui
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10605,9 +10312,7 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode(double value,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10653,9 +10358,7 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10699,9 +10402,7 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(10)) {
+    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10746,9 +10447,7 @@ kaiwo_gateway_rgate_control_command_2_pto_enable_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10794,9 +10493,8 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode(double value, 
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(250)) {
+        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
+            r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10968,9 +10666,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_MIN &&
-          value <= KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(63)) {
+    if (!(value >= 0.0 && value <= 63.0) || r < INT64_C(0) || r > INT64_C(63)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11014,9 +10710,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_frame_index_enco
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_MIN &&
-          value <= KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11264,9 +10958,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11315,9 +11007,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11366,9 +11056,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11417,9 +11105,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11468,9 +11154,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11519,9 +11203,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11823,9 +11505,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11874,9 +11554,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11925,9 +11603,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode(double value, uin
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11975,9 +11651,7 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12022,9 +11696,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12069,9 +11741,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12116,9 +11786,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12163,9 +11831,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12210,9 +11876,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12257,9 +11921,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12304,9 +11966,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12351,9 +12011,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12398,9 +12056,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12620,9 +12276,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12671,9 +12325,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12722,9 +12374,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12773,9 +12423,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12824,9 +12472,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12875,9 +12521,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13176,9 +12820,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13227,9 +12869,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13278,9 +12918,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode(double value, uint
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_MIN &&
-              value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_MAX) ||
-            r < INT64_C(0) || r > INT64_C(500)) {
+        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13328,9 +12966,7 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13375,9 +13011,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13422,9 +13056,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13469,9 +13101,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13516,9 +13146,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13563,9 +13191,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13610,9 +13236,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13657,9 +13281,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13704,9 +13326,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13751,9 +13371,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_MIN &&
-          value <= KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13932,9 +13550,7 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_MIN &&
-          value <= KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(255)) {
+    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13979,9 +13595,7 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode(double value, uint8_t *r
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(255)) {
+        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -14029,9 +13643,8 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(21600)) {
+    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
+        r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -14223,9 +13836,8 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1000)) {
+    if (!(value >= -100.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
+        r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -14270,9 +13882,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_tele_speed_command_epb_cmd_en
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14316,9 +13926,7 @@ kaiwo_gateway_tele_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14362,9 +13970,7 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode(double value, uint8_
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14766,9 +14372,7 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14813,9 +14417,7 @@ kaiwo_gateway_tele_control_command_1_door_cmd_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14859,9 +14461,7 @@ kaiwo_gateway_tele_control_command_1_horn_cmd_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14905,9 +14505,7 @@ kaiwo_gateway_tele_control_command_1_drl_cmd_encode(double value, uint8_t *raw) 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14951,9 +14549,7 @@ kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14997,9 +14593,7 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15044,9 +14638,7 @@ kaiwo_gateway_tele_control_command_1_hazard_cmd_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15090,9 +14682,7 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15137,9 +14727,7 @@ kaiwo_gateway_tele_control_command_1_headlight_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15183,9 +14771,7 @@ kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15229,9 +14815,7 @@ kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15275,9 +14859,7 @@ kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode(double value, uint8_t 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15321,9 +14903,7 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode(double value, uint8_t
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15368,9 +14948,7 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode(double value, uint
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(2)) {
+    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15415,9 +14993,7 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15462,9 +15038,7 @@ kaiwo_gateway_tele_control_command_1_system_state_encode(double value, uint8_t *
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15508,9 +15082,7 @@ kaiwo_gateway_tele_control_command_1_system_reliability_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15555,9 +15127,7 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15602,9 +15172,7 @@ kaiwo_gateway_tele_control_command_1_lock_cmd_encode(double value, uint8_t *raw)
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15648,9 +15216,7 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode(double value, uint8_t *raw) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15695,9 +15261,7 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_MAX) ||
-        r < INT64_C(0) || r > INT64_C(28)) {
+    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15741,9 +15305,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15788,9 +15350,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15835,9 +15395,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode(double value, uin
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_MAX) ||
-        r < INT64_C(0) || r > INT64_C(15)) {
+    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -16037,9 +15595,7 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode(double value, 
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -16085,9 +15641,7 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_MAX) ||
-        r < INT64_C(0) || r > INT64_C(3)) {
+    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -16131,9 +15685,7 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode(double value, uint8
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_MAX) ||
-        r < INT64_C(0) || r > INT64_C(10)) {
+    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -16178,9 +15730,7 @@ kaiwo_gateway_tele_control_command_2_pto_enable_encode(double value, uint8_t *ra
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_MIN &&
-          value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_MAX) ||
-        r < INT64_C(0) || r > INT64_C(1)) {
+    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -16225,9 +15775,8 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode(double value, u
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MIN &&
-              value <= KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_MAX) ||
-            r < INT64_C(0) || r > INT64_C(250)) {
+        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
+            r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }

@@ -113,6 +113,8 @@ class CSignal:
     offset: str
     check_min: str  # double literals of the documented / encodable range
     check_max: str
+    accept_min: str  # what encode compares against: the range widened by |factor| × 1e-9 (ir.Signal)
+    accept_max: str
     decode_expr: str  # double from `raw` (and `scaled` when decode_pre is set)
     decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
     specials: tuple[CSpecial, ...]
@@ -279,7 +281,7 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         raw_min=int_lit(sig.raw_min, 64), raw_max=int_lit(sig.raw_max, 64),
         q_low=c_double(sig.raw_type_min - 1), q_high=c_double(sig.raw_type_max + 1),
         factor=c_double(factor), offset=c_double(offset),
-        check_min=c_double(sig.check_min), check_max=c_double(sig.check_max), decode_expr=expr, decode_pre=decode_pre,
+        check_min=c_double(sig.check_min), check_max=c_double(sig.check_max), accept_min=c_double(sig.accept_min), accept_max=c_double(sig.accept_max), decode_expr=expr, decode_pre=decode_pre,
         specials=specials, enum=enums.get(sig.value_table.name) if sig.value_table else None,
         scale=int_lit(scale), scale_int=scale, fixed_type=ft, fixed_factor=int_lit(ff, fbits), fixed_offset=int_lit(fo, fbits),
         fixed_min=int_lit(fmin, fbits), fixed_max=int_lit(fmax, fbits), fixed_decode_expr=fexpr,

@@ -82,6 +82,15 @@ static void test_pack_unpack(void) {
 }
 
 static void test_counters_and_physical(void) {
+    {
+        /* 252 x 0.05 - 9 is 3.6000000000000014 in doubles, a hair above the documented 3.6: the
+         * shared rule's tolerance (|factor| x 1e-9) lets every decoded value re-encode. */
+        uint8_t raw = 0u;
+        const double top = kaiwo_gateway_driving_state_current_accel_decode(252u);
+        CHECK(top > 3.6);
+        CHECK(kaiwo_gateway_driving_state_current_accel_encode(top, &raw) == KAIWO_GATEWAY_OK && raw == 252u);
+        CHECK(kaiwo_gateway_driving_state_current_accel_encode(3.605, &raw) == KAIWO_GATEWAY_ERR_RANGE);
+    }
     uint16_t raw16 = 0;
     uint8_t raw8 = 0;
     CHECK(kaiwo_gateway_front_sensor_distance_1_counter_next(14u) == 15u);
