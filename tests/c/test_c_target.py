@@ -11,6 +11,8 @@ from pathlib import Path
 
 import pytest
 
+from canspec import formatters
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import cbuild  # noqa: E402
 
@@ -36,7 +38,7 @@ def test_generated_headers_are_current_and_deterministic(spec):
 
 
 def test_missing_clang_format_fails_generation(spec, monkeypatch):
-    monkeypatch.setattr(c_target.shutil, "which", lambda name: None)
+    monkeypatch.setattr(formatters.shutil, "which", lambda name: None)
     with pytest.raises(gen_mod.GenerationError, match="clang-format not found.*install"):
         gen_mod.generate(spec, ["c"])
 

@@ -4,9 +4,12 @@ worked out by hand from the document's layouts; the generator's failure modes.""
 from __future__ import annotations
 
 import dataclasses
+import shutil
 from fractions import Fraction
 
 import pytest
+
+from canspec import formatters
 
 from canspec import rust_model as rm
 from canspec.generate import GenerationError, generate
@@ -92,12 +95,12 @@ def test_type_name_clash_is_reported(can):
 
 
 def test_missing_rustfmt_is_a_clear_error(spec, monkeypatch):
-    monkeypatch.setattr(rust_target.shutil, "which", lambda name: None)
+    monkeypatch.setattr(formatters.shutil, "which", lambda name: None)
     with pytest.raises(GenerationError, match="rustfmt not found"):
         generate(spec, ["rust"])
 
 
-@pytest.mark.skipif(rust_target.shutil.which("rustfmt") is None, reason="rustfmt is not installed")
+@pytest.mark.skipif(shutil.which("rustfmt") is None, reason="rustfmt is not installed")
 def test_committed_crate_is_what_the_generator_writes(spec):
     produced = rust_target.render_rust(spec)
     for rel, data in produced.items():

@@ -4,10 +4,7 @@ run on the text in memory so that generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-
-from canspec import ir, resources
+from canspec import formatters, ir, resources
 from canspec.cmodel import build_model
 from canspec.render import render
 from canspec.targets import Target
@@ -27,17 +24,8 @@ HEADERS = (
 
 
 def clang_format(text: str, name: str) -> str:
-    exe = shutil.which(CLANG_FORMAT)
-    if exe is None:
-        raise RuntimeError("clang-format not found: the C target formats its headers with it; install it (Debian: apt-get install clang-format) and run again")
     style = resources.templates_dir() / "c" / STYLE_FILE
-    proc = subprocess.run(
-        [exe, f"--style=file:{style}", f"--assume-filename={name}"],
-        input=text.encode("utf-8"), capture_output=True, check=False,
-    )
-    if proc.returncode != 0:
-        raise RuntimeError(f"clang-format failed on {name}: {proc.stderr.decode(errors='replace').strip()}")
-    return proc.stdout.decode("utf-8")
+    return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")
 
 
 def render_c(spec: ir.Spec) -> dict[str, bytes]:

@@ -7,18 +7,16 @@ from __future__ import annotations
 
 import json
 import keyword
-import shutil
-import subprocess
 import textwrap
 from typing import Any
 
 from canspec import ir, jsonmodel
+from canspec.formatters import rustfmt
 from canspec.jsonmodel import FieldRule, MessageModel, ProtocolModel
 from canspec.render import render
 from canspec.targets import Target
 
 RUST_INTS = {"U8": "u8", "S8": "i8", "U16": "u16", "S16": "i16", "U32": "u32", "S32": "i32", "U64": "u64", "S64": "i64"}
-RUSTFMT_TIMEOUT_S = 60
 PY_LINE = 100  # generated Python stays within this width
 
 
@@ -143,17 +141,6 @@ def rs_type(r: FieldRule) -> str:
 def length_rule(r: FieldRule) -> str:
     f = r.field
     return r.value_rule if r.enum is None and r.value_rule else f"must be {f.min_length}..{f.max_length} characters ({f.type})"
-
-
-def rustfmt(source: str, what: str) -> str:
-    """Format generated Rust in memory (rustfmt reads stdin, writes stdout)."""
-    exe = shutil.which("rustfmt")
-    if exe is None:
-        raise RuntimeError(f"{what}: rustfmt not found on PATH (install it: `rustup component add rustfmt`)")
-    proc = subprocess.run([exe, "--edition", "2021"], input=source, capture_output=True, text=True, timeout=RUSTFMT_TIMEOUT_S, check=False)
-    if proc.returncode != 0:
-        raise RuntimeError(f"{what}: rustfmt failed: {proc.stderr.strip()[:2000]}")
-    return proc.stdout
 
 
 def rust_crate_name(protocol: ir.JsonProtocol) -> str:

@@ -6,10 +6,8 @@ Every `.rs` file is formatted by rustfmt in memory, so the committed files are e
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-
 from canspec import ir, j1939
+from canspec.formatters import rustfmt
 from canspec.render import render
 from canspec.rust_model import build_crate
 from canspec.targets import Target
@@ -24,20 +22,6 @@ SOURCES = {
     "tests/vectors.rs": "rust/tests/vectors.rs.j2",
     "tests/properties.rs": "rust/tests/properties.rs.j2",
 }
-RUSTFMT_ARGS = ("--edition", "2021", "--emit", "stdout")
-
-
-def rustfmt(text: str, name: str) -> str:
-    """Format Rust source with rustfmt (stdin → stdout)."""
-    exe = shutil.which("rustfmt")
-    if exe is None:
-        raise RuntimeError("rustfmt not found on PATH; the rust target formats its output with it (rustup component add rustfmt)")
-    proc = subprocess.run([exe, *RUSTFMT_ARGS], input=text.encode("utf-8"), capture_output=True, check=False)
-    if proc.returncode != 0:
-        raise RuntimeError(f"rustfmt rejected the generated {name}: {proc.stderr.decode('utf-8', 'replace').strip()}")
-    return proc.stdout.decode("utf-8")
-
-
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
