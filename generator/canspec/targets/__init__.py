@@ -19,6 +19,7 @@ class Target:
     directory: str  # the output subdirectory this target owns, e.g. "dbc/"
     render: Callable[[ir.Spec], dict[str, bytes]]  # relative path (under the output dir) → bytes
     order: int = 50  # generation order; lower first
+    cost: int = 1  # relative render time, to schedule slow targets first
 
 
 @lru_cache(maxsize=1)

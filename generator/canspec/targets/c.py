@@ -4,6 +4,8 @@ run on the text in memory so that generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
+
 from canspec import formatters, ir, resources
 from canspec.cmodel import build_model
 from canspec.render import render
@@ -32,12 +34,12 @@ def render_c(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
     model = build_model(spec)
-    out: dict[str, bytes] = {}
-    for template, suffix in HEADERS:
-        name = f"{model.prefix}{suffix}"
-        out[f"c/{name}"] = clang_format(render(template, spec, "c", c=model), name).encode("utf-8")
+    rendered = {f"{model.prefix}{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
+    with ThreadPoolExecutor(max_workers=len(rendered)) as pool:  # clang-format runs in parallel processes
+        formatted = dict(zip(rendered, pool.map(clang_format, rendered.values(), rendered)))
+    out = {f"c/{name}": text.encode("utf-8") for name, text in formatted.items()}
     out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
     return out
 
 
-TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30)
+TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10)

@@ -367,4 +367,4 @@ def render_docs(spec: ir.Spec) -> dict[str, bytes]:
     return {OUT + rel: data for rel, data in files.items()}
 
 
-TARGET = Target("docs", "protocol handbook: bilingual Markdown + SVG bit diagrams for MkDocs", OUT, render_docs, order=80)
+TARGET = Target("docs", "protocol handbook: bilingual Markdown + SVG bit diagrams for MkDocs", OUT, render_docs, order=80, cost=2)

@@ -68,4 +68,4 @@ def render_python(spec: ir.Spec) -> dict[str, bytes]:
     return files
 
 
-TARGET = Target(TARGET_NAME, "Python package (typed dataclasses, stdlib only; python-can optional)", "python/", render_python, order=30)
+TARGET = Target(TARGET_NAME, "Python package (typed dataclasses, stdlib only; python-can optional)", "python/", render_python, order=30, cost=8)

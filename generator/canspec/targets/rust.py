@@ -35,4 +35,4 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     return out
 
 
-TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40)
+TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8)

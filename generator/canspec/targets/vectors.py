@@ -157,4 +157,4 @@ def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     return {"vectors/can.json": text.encode("utf-8")}
 
 
-TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20)
+TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2)
