@@ -87,8 +87,7 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -117,9 +116,10 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
 #else
@@ -127,7 +127,8 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -135,8 +136,8 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -373,24 +374,21 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
     }
     {
         uint64_t p0;
-        uint64_t p1;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 2u);
 #else
         p0 = (uint64_t)src->eps_ctrl_state | ((uint64_t)src->steering_torque << 8) |
              ((uint64_t)src->eps_output_torque << 16) | ((uint64_t)src->steering_angle << 32) |
              ((uint64_t)src->controller_temp << 48) | ((uint64_t)src->eps_fault_level << 56);
-        p1 = (uint64_t)src->counter;
 #endif
         if (((p0 & UINT64_C(0xFCC0000000000000))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        p1 &= UINT64_C(0xFF);
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8) | (p1 << 56);
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_EPS_STATE_DLC);
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
         dst[1] = (uint8_t)(w >> 8);
@@ -399,7 +397,7 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -412,10 +410,10 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint64_t r1;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_EPS_STATE_DLC);
 #else
@@ -423,11 +421,10 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
+        k0 = src[7];
         r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0x33FFFFF000000)) << 8);
-        r1 = (v >> 56);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 2u);
 #else
         dst->eps_ctrl_state = (uint8_t)r0;
         dst->steering_torque = (uint8_t)(r0 >> 8);
@@ -435,8 +432,8 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         dst->steering_angle = (uint16_t)(r0 >> 32);
         dst->controller_temp = (uint8_t)(r0 >> 48);
         dst->eps_fault_level = (uint8_t)(r0 >> 56);
-        dst->counter = (uint8_t)r1;
 #endif
+        dst->counter = k0;
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -799,7 +796,7 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->emergency_brake_cmd << 40);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -832,9 +829,10 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
 #else
@@ -842,8 +840,9 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
+             ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -852,8 +851,8 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -1192,7 +1191,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -1869,7 +1868,7 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -3286,7 +3285,7 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -4430,7 +4429,7 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -4996,7 +4995,7 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -5320,7 +5319,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -5792,7 +5791,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -6705,7 +6704,7 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -8182,8 +8181,7 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -8212,9 +8210,10 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
 #else
@@ -8222,7 +8221,8 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -8230,8 +8230,8 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -8463,7 +8463,7 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->emergency_brake_cmd << 40);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -8496,9 +8496,10 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
 #else
@@ -8506,8 +8507,9 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
+             ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -8516,8 +8518,8 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -8992,7 +8994,7 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -10219,29 +10221,29 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
         uint64_t p0;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
 #else
         p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
-             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
 #endif
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
+        dst[1] = src->downhill_regen_speed;
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
+        dst[1] = src->downhill_regen_speed;
         dst[2] = (uint8_t)(w >> 16);
         dst[3] = (uint8_t)(w >> 24);
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -10255,9 +10257,11 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
+        uint8_t k1;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
 #else
@@ -10265,19 +10269,20 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
-             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
-             ((v & UINT64_C(0xFF00)) << 24);
+        k0 = src[1];
+        k1 = src[7];
+        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
+             ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
 #else
         dst->downhill_regen_enable = (uint8_t)r0;
         dst->cargo_lift = (uint8_t)(r0 >> 8);
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
-        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
-        dst->counter = (uint8_t)(r0 >> 40);
 #endif
+        dst->downhill_regen_speed = k0;
+        dst->counter = k1;
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -10618,7 +10623,7 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -10896,7 +10901,7 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -11431,7 +11436,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -12214,7 +12219,7 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -12746,7 +12751,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -13468,8 +13473,7 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -13498,9 +13502,10 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
 #else
@@ -13508,7 +13513,8 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -13516,8 +13522,8 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -13748,7 +13754,7 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->throttle_brake_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
+             ((uint64_t)src->emergency_brake_cmd << 40);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -13781,9 +13787,10 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
 #else
@@ -13791,8 +13798,9 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
+        k0 = src[7];
+        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
+             ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -13801,8 +13809,8 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
+        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -14278,7 +14286,7 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -15502,29 +15510,29 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
         uint64_t p0;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
 #else
         p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
-             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
 #endif
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
+        dst[1] = src->downhill_regen_speed;
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
+        dst[1] = src->downhill_regen_speed;
         dst[2] = (uint8_t)(w >> 16);
         dst[3] = (uint8_t)(w >> 24);
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -15538,9 +15546,11 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* One read of the frame into a local (stores to *dst may alias src). */
+        /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
+        uint8_t k0;
+        uint8_t k1;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
 #else
@@ -15548,19 +15558,20 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
-             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
-             ((v & UINT64_C(0xFF00)) << 24);
+        k0 = src[1];
+        k1 = src[7];
+        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
+             ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
 #else
         dst->downhill_regen_enable = (uint8_t)r0;
         dst->cargo_lift = (uint8_t)(r0 >> 8);
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
-        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
-        dst->counter = (uint8_t)(r0 >> 40);
 #endif
+        dst->downhill_regen_speed = k0;
+        dst->counter = k1;
         return KAIWO_GATEWAY_OK;
     }
 }
