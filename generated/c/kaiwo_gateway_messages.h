@@ -8101,8 +8101,8 @@ kaiwo_gateway_vehicle_state_5_unpack(kaiwo_gateway_vehicle_state_5_t *dst, const
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_5_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    (void)src;
-    dst->unused_ = 0u;
+    (void)src; /* no fields: nothing to decode or write */
+    (void)dst;
     return KAIWO_GATEWAY_OK;
 }
 
