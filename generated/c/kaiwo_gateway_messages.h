@@ -87,7 +87,8 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -119,7 +120,6 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
 #else
@@ -127,8 +127,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -136,8 +135,8 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -796,7 +795,7 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40);
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -832,7 +831,6 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
 #else
@@ -840,9 +838,8 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -851,8 +848,8 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -8181,7 +8178,8 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -8213,7 +8211,6 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
 #else
@@ -8221,8 +8218,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -8230,8 +8226,8 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -8463,7 +8459,7 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40);
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -8499,7 +8495,6 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
 #else
@@ -8507,9 +8502,8 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -8518,8 +8512,8 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -13473,7 +13467,8 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
 #else
         p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32);
+             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
+             ((uint64_t)src->checksum << 48);
 #endif
         w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
         w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
@@ -13505,7 +13500,6 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
 #else
@@ -13513,8 +13507,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -13522,8 +13515,8 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         dst->counter = (uint8_t)(r0 >> 8);
         dst->max_angular_speed = (uint8_t)(r0 >> 16);
         dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }
@@ -13754,7 +13747,7 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 #else
         p0 = (uint64_t)src->throttle_brake_cmd | ((uint64_t)src->epb_cmd << 16) |
              ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40);
+             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
 #endif
         if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -13790,7 +13783,6 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         /* The frame is read into locals before any store (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
 #else
@@ -13798,9 +13790,8 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) | ((v & UINT64_C(0xF000)) << 12) |
-             ((v & UINT64_C(0x1FF0000)) << 16);
+        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
+             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
 #else
@@ -13809,8 +13800,8 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         dst->gear_cmd = (uint8_t)(r0 >> 24);
         dst->counter = (uint8_t)(r0 >> 32);
         dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
+        dst->checksum = (uint8_t)(r0 >> 48);
 #endif
-        dst->checksum = k0;
         return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
     }
 }

@@ -412,7 +412,7 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
         offset=offset, nbytes=nbytes, pad_mask="",  # the padding mask is in the steps
     )
 
-def _peeled(sigs: tuple[CSignal, ...], offsets: dict[str, int], checksum: str | None) -> tuple[CSignal, ...]:
+def _peeled(sigs: tuple[CSignal, ...], offsets: dict[str, int], size: int, checksum: str | None) -> tuple[CSignal, ...]:
     """The struct's trailing whole-byte fields (8 unsigned bits on a byte boundary in a uint8_t)
     whose frame byte is not their struct offset: copying such a byte costs less than moving it
     within the word. With a checksum only the checksum byte itself (pack needs the whole word
@@ -426,6 +426,10 @@ def _peeled(sigs: tuple[CSignal, ...], offsets: dict[str, int], checksum: str | 
         if _words_cost(kept[:-1], offsets) + BYTE_COPY_COST >= _words_cost(kept, offsets):
             break  # it moves (almost) for free with the others
         out.append(kept.pop())
+    # The runs' word access must not cover a peeled byte: pack's load would then span unpack's
+    # word store and its byte store, which a CPU cannot forward (a stall of ~10 cycles).
+    while out and _run_end(sigs[: len(sigs) - len(out)], offsets, size) > offsets[out[-1].field]:
+        out.pop()
     return tuple(reversed(out))
 
 
@@ -484,7 +488,7 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
                 xor_codes.append((cenum.table, next(c.const for c in cenum.entries if c.value == entry.raw)))
     size = cwords.struct_size([s.sig.storage_bits for s in sigs])
     ck_bits = 0xFF << (8 * ck_byte) if msg.checksum is not None else 0
-    peeled = _peeled(sigs, offsets, msg.checksum.signal if msg.checksum is not None else None)
+    peeled = _peeled(sigs, offsets, size, msg.checksum.signal if msg.checksum is not None else None)
     worded = sigs[: len(sigs) - len(peeled)]
     end = _run_end(worded, offsets, size) if peeled else size
     unpack_runs = _runs(worded, offsets, end, "r", 0)
