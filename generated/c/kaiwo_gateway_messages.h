@@ -117,7 +117,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -409,10 +409,9 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_EPS_STATE_DLC);
 #else
@@ -420,7 +419,6 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[7];
         r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0x33FFFFF000000)) << 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
@@ -432,7 +430,7 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         dst->controller_temp = (uint8_t)(r0 >> 48);
         dst->eps_fault_level = (uint8_t)(r0 >> 56);
 #endif
-        dst->counter = k0;
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -828,7 +826,7 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -1188,7 +1186,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -1865,7 +1863,7 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -3282,7 +3280,7 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -4426,7 +4424,7 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -4992,7 +4990,7 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -5316,7 +5314,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -5788,7 +5786,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -6701,7 +6699,7 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -8208,7 +8206,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -8492,7 +8490,7 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -8988,7 +8986,7 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -10251,11 +10249,9 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
-        uint8_t k1;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
 #else
@@ -10263,8 +10259,6 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[1];
-        k1 = src[7];
         r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
              ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
@@ -10275,8 +10269,8 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
 #endif
-        dst->downhill_regen_speed = k0;
-        dst->counter = k1;
+        dst->downhill_regen_speed = (uint8_t)(v >> 8);
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -10617,7 +10611,7 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -10895,7 +10889,7 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -11430,7 +11424,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -12213,7 +12207,7 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -12745,7 +12739,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -13497,7 +13491,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -13780,7 +13774,7 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
 #if KAIWO_GATEWAY_LE_WORDS
@@ -14277,7 +14271,7 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
         uint64_t r1;
@@ -15537,11 +15531,9 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     {
-        /* The frame is read into locals before any store (stores to *dst may alias src). */
+        /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint8_t k0;
-        uint8_t k1;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
 #else
@@ -15549,8 +15541,6 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        k0 = src[1];
-        k1 = src[7];
         r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
              ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
@@ -15561,8 +15551,8 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
 #endif
-        dst->downhill_regen_speed = k0;
-        dst->counter = k1;
+        dst->downhill_regen_speed = (uint8_t)(v >> 8);
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }

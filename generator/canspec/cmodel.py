@@ -162,7 +162,7 @@ class CByteField:
 
     field: str
     byte: int  # frame byte
-    local: str  # unpack: the byte, read before any store to *dst
+    value: str  # unpack: the byte from the frame word `v`
 
 
 @dataclass(frozen=True)
@@ -494,7 +494,7 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     unpack_runs = _runs(worded, offsets, end, "r", 0)
     # pack reads the same words unpack writes (the checksum slot too, then drops its bits)
     pack_runs = _runs(worded, offsets, end, "p", ck_bits)
-    byte_fields = tuple(CByteField(s.field, s.start // 8, f"k{i}") for i, s in enumerate(peeled))
+    byte_fields = tuple(CByteField(s.field, s.start // 8, _byte_of("v", s.start // 8)) for s in peeled)
     typ = f"{prefix}_{mname}_t"
     layout = " && ".join([f"offsetof({typ}, {s.field}) == {offsets[s.field]}u" for s in sigs] + [f"sizeof({typ}) == {size}u"])
     range_terms = [f"({r.var} & {hex_lit(r.run.check, 64)})" for r in pack_runs if r.run.check]
