@@ -373,24 +373,21 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
     }
     {
         uint64_t p0;
-        uint64_t p1;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
         p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 2u);
 #else
         p0 = (uint64_t)src->eps_ctrl_state | ((uint64_t)src->steering_torque << 8) |
              ((uint64_t)src->eps_output_torque << 16) | ((uint64_t)src->steering_angle << 32) |
              ((uint64_t)src->controller_temp << 48) | ((uint64_t)src->eps_fault_level << 56);
-        p1 = (uint64_t)src->counter;
 #endif
         if (((p0 & UINT64_C(0xFCC0000000000000))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        p1 &= UINT64_C(0xFF);
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8) | (p1 << 56);
+        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_EPS_STATE_DLC);
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
         dst[1] = (uint8_t)(w >> 8);
@@ -399,7 +396,7 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -415,7 +412,6 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         /* One read of the frame into a local (stores to *dst may alias src). */
         uint64_t v;
         uint64_t r0;
-        uint64_t r1;
 #if KAIWO_GATEWAY_LE_WORDS
         v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_EPS_STATE_DLC);
 #else
@@ -424,10 +420,8 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0x33FFFFF000000)) << 8);
-        r1 = (v >> 56);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 2u);
 #else
         dst->eps_ctrl_state = (uint8_t)r0;
         dst->steering_torque = (uint8_t)(r0 >> 8);
@@ -435,8 +429,8 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
         dst->steering_angle = (uint16_t)(r0 >> 32);
         dst->controller_temp = (uint8_t)(r0 >> 48);
         dst->eps_fault_level = (uint8_t)(r0 >> 56);
-        dst->counter = (uint8_t)r1;
 #endif
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -8102,8 +8096,8 @@ kaiwo_gateway_vehicle_state_5_unpack(kaiwo_gateway_vehicle_state_5_t *dst, const
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_5_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    (void)src;
-    dst->unused_ = 0u;
+    (void)src; /* no fields: nothing to decode or write */
+    (void)dst;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10219,29 +10213,29 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
         uint64_t p0;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
 #else
         p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
-             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
 #endif
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
+        dst[1] = src->downhill_regen_speed;
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
+        dst[1] = src->downhill_regen_speed;
         dst[2] = (uint8_t)(w >> 16);
         dst[3] = (uint8_t)(w >> 24);
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -10265,19 +10259,18 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
-             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
-             ((v & UINT64_C(0xFF00)) << 24);
+        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
+             ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
 #else
         dst->downhill_regen_enable = (uint8_t)r0;
         dst->cargo_lift = (uint8_t)(r0 >> 8);
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
-        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
-        dst->counter = (uint8_t)(r0 >> 40);
 #endif
+        dst->downhill_regen_speed = (uint8_t)(v >> 8);
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }
@@ -15502,29 +15495,29 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
         uint64_t p0;
         uint64_t w;
 #if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 6u);
+        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
 #else
         p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
-             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->counter << 40);
+             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
 #endif
         if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        w = ((p0 >> 40) << 56) | (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-            ((p0 & UINT64_C(0xFF00000000)) >> 24);
+        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
+            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
+        dst[1] = src->downhill_regen_speed;
+        dst[7] = src->counter;
 #else
         dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
+        dst[1] = src->downhill_regen_speed;
         dst[2] = (uint8_t)(w >> 16);
         dst[3] = (uint8_t)(w >> 24);
         dst[4] = (uint8_t)(w >> 32);
         dst[5] = (uint8_t)(w >> 40);
         dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
+        dst[7] = src->counter;
 #endif
     }
     return KAIWO_GATEWAY_OK;
@@ -15548,19 +15541,18 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = ((v >> 56) << 40) | (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) |
-             ((v & UINT64_C(0x78)) << 13) | ((v & UINT64_C(0x80)) << 17) |
-             ((v & UINT64_C(0xFF00)) << 24);
+        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
+             ((v & UINT64_C(0x80)) << 17);
 #if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 6u);
+        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
 #else
         dst->downhill_regen_enable = (uint8_t)r0;
         dst->cargo_lift = (uint8_t)(r0 >> 8);
         dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
         dst->pto_enable = (uint8_t)(r0 >> 24);
-        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
-        dst->counter = (uint8_t)(r0 >> 40);
 #endif
+        dst->downhill_regen_speed = (uint8_t)(v >> 8);
+        dst->counter = (uint8_t)(v >> 56);
         return KAIWO_GATEWAY_OK;
     }
 }

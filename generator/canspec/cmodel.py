@@ -156,6 +156,16 @@ class CRun:
 
 
 @dataclass(frozen=True)
+class CByteField:
+    """A whole-byte field at the struct's end copied as a byte (a load and a store) instead of
+    being moved within a word (a shift or two, a mask and an OR each way)."""
+
+    field: str
+    byte: int  # frame byte
+    value: str  # unpack: the byte from the frame word `v`
+
+
+@dataclass(frozen=True)
 class CMessage:
     msg: ir.Message
     name: str  # snake name
@@ -171,6 +181,8 @@ class CMessage:
     frame_word: str  # the frame word `w` from the packed runs (pack, without checksum)
     frame_stores: tuple[str, ...]  # dst[i] from `w`, per frame byte
     range_terms: tuple[str, ...]  # uint64_t terms, OR != 0: a field does not fit its bits
+    byte_fields: tuple[CByteField, ...]  # whole-byte fields unpack copies byte by byte (not in the runs)
+    pack_byte_stores: tuple[CByteField, ...]  # those pack stores byte by byte after the frame word
     checksum_byte: int
     checksum_pack: str  # uint64_t term OR'ed into `w`: the checksum byte in place
     checksum_ok: str  # condition on `v`: the checksum byte is right
@@ -400,6 +412,49 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
         offset=offset, nbytes=nbytes, pad_mask="",  # the padding mask is in the steps
     )
 
+def _peeled(sigs: tuple[CSignal, ...], offsets: dict[str, int], size: int, checksum: str | None) -> tuple[CSignal, ...]:
+    """The struct's trailing whole-byte fields (8 unsigned bits on a byte boundary in a uint8_t)
+    whose frame byte is not their struct offset: copying such a byte costs less than moving it
+    within the word. With a checksum only the checksum byte itself (pack needs the whole word
+    for the XOR). At least one field stays in the word runs."""
+    out: list[CSignal] = []
+    kept = list(sigs)
+    for s in reversed(sigs[1:]):
+        whole = s.length == 8 and s.start % 8 == 0 and s.sig.storage_bits == 8 and not s.sig.signed
+        if not whole or s.start // 8 == offsets[s.field] or (checksum is not None and s.sig.name != checksum):
+            break
+        if _words_cost(kept[:-1], offsets) + BYTE_COPY_COST >= _words_cost(kept, offsets):
+            break  # it moves (almost) for free with the others
+        out.append(kept.pop())
+    # The runs' word access must not cover a peeled byte: pack's load would then span unpack's
+    # word store and its byte store, which a CPU cannot forward (a stall of ~10 cycles).
+    while out and _run_end(sigs[: len(sigs) - len(out)], offsets, size) > offsets[out[-1].field]:
+        out.pop()
+    return tuple(reversed(out))
+
+
+BYTE_COPY_COST = 4  # a byte load and store, both ways
+
+
+def _words_cost(sigs: list[CSignal], offsets: dict[str, int]) -> int:
+    """The word planner's cost estimate of these struct fields' runs."""
+    fields = [cwords.Field(s.field, s.start, s.length, s.sig.storage_bits, s.sig.signed, s.needs_check) for s in sigs]
+    return sum(r.cost for r in cwords.plan_runs(fields, [offsets[f.name] for f in fields]))
+
+
+def _run_end(sigs: tuple[CSignal, ...], offsets: dict[str, int], size: int) -> int:
+    """Where the word runs of these (leading) struct fields end: their last byte, rounded up to
+    a whole 2-, 4- or 8-byte access when that stays inside the struct (the bytes past the fields
+    are padding or peeled fields, written afterwards)."""
+    last = sigs[-1]
+    start = offsets[last.field] // 8 * 8  # the runs stay inside 8-byte blocks
+    ext = offsets[last.field] + last.sig.storage_bits // 8 - start
+    n = 1
+    while n < ext:
+        n *= 2
+    return start + n if start + n <= size else start + ext
+
+
 def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum], faults: list[tuple[ir.ValueTable, CEnum]]) -> CMessage:
     if msg.dlc > MAX_DLC:
         raise CModelError(f"{msg.name}: DLC {msg.dlc} > 8 (CAN FD) is not supported by the C target")
@@ -433,9 +488,13 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
                 xor_codes.append((cenum.table, next(c.const for c in cenum.entries if c.value == entry.raw)))
     size = cwords.struct_size([s.sig.storage_bits for s in sigs])
     ck_bits = 0xFF << (8 * ck_byte) if msg.checksum is not None else 0
-    unpack_runs = _runs(sigs, offsets, size, "r", 0)
+    peeled = _peeled(sigs, offsets, size, msg.checksum.signal if msg.checksum is not None else None)
+    worded = sigs[: len(sigs) - len(peeled)]
+    end = _run_end(worded, offsets, size) if peeled else size
+    unpack_runs = _runs(worded, offsets, end, "r", 0)
     # pack reads the same words unpack writes (the checksum slot too, then drops its bits)
-    pack_runs = _runs(sigs, offsets, size, "p", ck_bits)
+    pack_runs = _runs(worded, offsets, end, "p", ck_bits)
+    byte_fields = tuple(CByteField(s.field, s.start // 8, _byte_of("v", s.start // 8)) for s in peeled)
     typ = f"{prefix}_{mname}_t"
     layout = " && ".join([f"offsetof({typ}, {s.field}) == {offsets[s.field]}u" for s in sigs] + [f"sizeof({typ}) == {size}u"])
     range_terms = [f"({r.var} & {hex_lit(r.run.check, 64)})" for r in pack_runs if r.run.check]
@@ -444,13 +503,17 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     frame_word = " | ".join(r.placed for r in pack_runs) or "0u"
     if msg.checksum is not None and any(f.name == ck_field and r.run.swar != 0 for r in pack_runs for f in r.run.fields):
         frame_word = f"({frame_word}) & {hex_lit(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
-    frame_stores = tuple("(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})" for b in range(msg.dlc))
+    by_byte = {b.byte: b for b in byte_fields}
+    frame_stores = tuple(
+        f"src->{by_byte[b].field}" if b in by_byte and msg.checksum is None else "(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})"
+        for b in range(msg.dlc))
     j = msg.j1939
     return CMessage(
         msg=msg, name=mname, macro=f"{pmacro}_{upper_snake(msg.name)}", fn=f"{prefix}_{mname}", type=f"{prefix}_{mname}_t",
         index_const=f"{pmacro}_MSG_{upper_snake(msg.name)}", signals=sigs,
         unpack_runs=unpack_runs, pack_runs=pack_runs, layout_check=layout, frame_load=frame_load, frame_word=frame_word,
-        frame_stores=frame_stores, range_terms=tuple(range_terms),
+        frame_stores=frame_stores, range_terms=tuple(range_terms), byte_fields=byte_fields,
+        pack_byte_stores=() if msg.checksum is not None else byte_fields,
         checksum_byte=ck_byte, checksum_pack=ck_pack, checksum_ok=ck_ok, checksum_fold=ck_fold,
         counter=counter, counter_mask=hex_lit(msg.counter.modulo - 1) if msg.counter else "",
         da=hex_lit(j.da) if j.da is not None else None, fault_xor_codes=tuple(xor_codes),

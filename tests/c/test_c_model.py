@@ -62,3 +62,20 @@ def test_unsupported_layout_is_a_clear_generation_error(spec):
     bad = dataclasses.replace(spec, can=dataclasses.replace(can, messages=(big, *can.messages[1:])))
     with pytest.raises(GenerationError, match=r"target c: autocar_eps_command: DLC 64 > 8"):
         generate(bad, ["c"])
+
+
+def test_trailing_byte_fields_are_copied_as_bytes(spec):
+    """Whole-byte fields at the struct's end whose frame byte differs from their struct offset
+    are copied byte by byte, when the planner's word cost says moving them costs more."""
+    model = cmodel.build_model(spec)
+    by = {m.msg.name: m for m in model.messages}
+    cc2 = by["rgate_control_command_2"]  # ..., downhill_regen_speed (frame byte 1), counter (byte 7)
+    assert [(b.field, b.byte) for b in cc2.byte_fields] == [("downhill_regen_speed", 1), ("counter", 7)]
+    assert cc2.pack_byte_stores == cc2.byte_fields
+    assert all(f.name not in ("downhill_regen_speed", "counter") for r in cc2.unpack_runs for f in r.run.fields)
+    assert cc2.unpack_runs[-1].nbytes == 4  # the four sub-byte fields: one 4-byte store / load
+    eps = by["autocar_eps_command"]  # the checksum (struct byte 6) lies inside the 8-byte word
+    assert eps.byte_fields == ()  # access: a byte store there would stall pack's word load
+    assert eps.unpack_runs[-1].nbytes == 8
+    ds = by["driving_state"]  # its checksum moves with the two bytes before it: stays in the word
+    assert ds.byte_fields == ()
