@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import struct
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -232,28 +233,72 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
     return None
 
 
-def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool]:
-    """Whether, for this signal, a value inside the documented range can never fail the other
-    checks of the shared rule (q inside the field's raw range, raw inside [raw_min, raw_max]);
-    and whether q is then never negative. Proof by monotonicity: q = (x - offset) / factor and
-    the rounding are non-decreasing in x in IEEE arithmetic, and Python floats are the same
-    doubles the generated code uses, so checking both ends of the documented range suffices.
-    (Special values are checked by the full rule, which callers fall back to outside the
-    documented range.)"""
+def _double_key(x: float) -> int:
+    """Doubles in order as integers (-0.0 and 0.0 share a key)."""
+    bits = struct.unpack("<q", struct.pack("<d", x))[0]
+    return bits if bits >= 0 else -(bits & 0x7FFF_FFFF_FFFF_FFFF)
+
+
+def _double_of_key(key: int) -> float:
+    bits = key if key >= 0 else (-key) | -0x8000_0000_0000_0000
+    return struct.unpack("<d", struct.pack("<q", bits))[0]
+
+
+def _first_true(pred, lo: float, hi: float) -> float | None:  # type: ignore[no-untyped-def]
+    """The smallest double in [lo, hi] where the monotone (false…true) `pred` holds."""
+    if pred(lo):
+        return lo
+    if not pred(hi):
+        return None
+    a, b = _double_key(lo), _double_key(hi)  # pred(a) false, pred(b) true
+    while b - a > 1:
+        mid = (a + b) // 2
+        if pred(_double_of_key(mid)):
+            b = mid
+        else:
+            a = mid
+    return _double_of_key(b)
+
+
+def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool, float | None, float | None]:
+    """Whether, for this signal, one range check [lo, hi] on the physical value can replace
+    the other checks of the shared rule (q inside the field's raw range, raw inside [raw_min,
+    raw_max]); whether q is then never negative; and for non-integer signals that range: the
+    doubles of [accept_min, accept_max] every check passes. Proof by monotonicity: q =
+    (x - offset) / factor and the rounding are non-decreasing in x in IEEE arithmetic, and
+    Python floats are the same doubles the generated code uses, so the doubles that pass form
+    an interval, found exactly by bisection over the doubles. (Special values are checked by
+    the full rule, which callers fall back to outside that range.)"""
     if sig.factor <= 0:
-        return False, False
+        return False, False, None, None
     from canspec.encoding import to_raw_runtime
 
     f, o = float(sig.factor), float(sig.offset)
     lo, hi = float(sig.accept_min), float(sig.accept_max)
     if sig.is_integer:  # the integer path compares whole values: its ends are the whole ones inside
         lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
-    q_lo, q_hi = (lo - o) / f, (hi - o) / f
-    if not (sig.raw_type_min <= q_lo and q_hi <= sig.raw_type_max):
-        return False, False
-    if not (sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
-        return False, False
-    return True, q_lo >= 0
+        q_lo, q_hi = (lo - o) / f, (hi - o) / f
+        if not (sig.raw_type_min <= q_lo and q_hi <= sig.raw_type_max):
+            return False, False, None, None
+        if not (sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
+            return False, False, None, None
+        return True, q_lo >= 0, None, None
+
+    def high_enough(x: float) -> bool:
+        return (x - o) / f >= sig.raw_type_min and to_raw_runtime(x, f, o) >= sig.raw_min
+
+    def low_enough(x: float) -> bool:
+        return (x - o) / f <= sig.raw_type_max and to_raw_runtime(x, f, o) <= sig.raw_max
+
+    first = _first_true(high_enough, lo, hi)
+    last = _first_true(lambda x: not low_enough(x), lo, hi)
+    if last is not None:
+        last = _double_of_key(_double_key(last) - 1) if last > lo else None
+    else:
+        last = hi
+    if first is None or last is None or first > last:
+        return False, False, None, None
+    return True, (first - o) / f >= 0, first, last
 
 
 def _int_phys_expr(sig: ir.Signal, field: str, ty: str) -> str:
@@ -312,7 +357,14 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),
         "type_min": int_lit(sig.raw_type_min), "type_max": int_lit(sig.raw_type_max),
     }
-    suffices, nonnegative = documented_range_suffices(sig)
+    suffices, nonnegative, pass_min, pass_max = documented_range_suffices(sig)
+    if pass_min is not None and pass_max is not None:
+        # The doubles the full rule accepts (without specials): the shortcut's one range check,
+        # and for the full rule the same answers (outside it another check fails anyway).
+        if pass_min != float(sig.accept_min):
+            scale["accept_min"] = f64_lit(Fraction(repr(pass_min)))  # shortest decimal of that double
+        if pass_max != float(sig.accept_max):
+            scale["accept_max"] = f64_lit(Fraction(repr(pass_max)))
     if kind == "scaled_int":
         to_raw = ("to_raw_int_documented_or_special" if sig.specials else "to_raw_int_documented") if suffices else "to_raw_int"
     elif suffices and sig.specials:

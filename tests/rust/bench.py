@@ -94,13 +94,23 @@ def theirs_value(ty: str, others: dict[str, str], value) -> str:  # type: ignore
     return str(int(value))
 
 
-def read_back(ty: str, others: dict[str, str], expr: str) -> str:
-    """A dbc-codegen getter's value as f64."""
+def read_back(ty: str, others: dict[str, str], expr: str) -> tuple[str, str]:
+    """A dbc-codegen getter's value: ("int", expression as u64) or ("float", expression as f64)."""
     if ty in others:
         return read_back(others[ty], others, f"{others[ty]}::from({expr})")
-    if ty == "bool":
-        return f"(({expr}) as u8 as f64)"
-    return f"(({expr}) as f64)"
+    if ty in ("f32", "f64"):
+        return "float", f"(({expr}) as f64)"
+    return "int", f"(({expr}) as u64)"
+
+
+def consume(parts: list[tuple[str, str]]) -> str:
+    """Statements adding every value to the accumulators: integer values (enums, flags,
+    counters) as integers and fractional ones as doubles, the same on both sides, so that the
+    time measured is the codec's and not that of integer→double conversions (a 0/1 flag
+    converted to a double compiles to a data-dependent branch)."""
+    out = [f"acc_i = acc_i.wrapping_add({e});" for k, e in parts if k == "int"]
+    out += [f"acc += {e};" for k, e in parts if k == "float"]
+    return " ".join(out)
 
 
 def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # type: ignore[type-arg]
@@ -119,10 +129,11 @@ def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # ty
     )
     theirs_types = "(" + "".join(f"dbc::{ty}, " if ty in others else f"{ty}, " for _, ty in params) + ")"
     theirs_args = ", ".join(f"t.{i}" for i in range(len(params)))
-    ours_sum = " + ".join(
-        {"float": f"m.{f.getter}()", "enum": f"m.{f.getter}().raw() as f64", "int": f"m.{f.getter}() as f64", "scaled_int": f"m.{f.getter}() as f64"}[f.kind] for f in rm.fields
-    ) or "0.0"
-    theirs_sum = " + ".join(read_back(getters[(name, p)], others, f"m.{p}()") for p, _ in params if p in by_name or p == "checksum") or "0.0"
+    ours_sum = consume([
+        ("float", f"m.{f.getter}()") if f.kind == "float" else ("int", f"(m.{f.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.getter}() as u64)")
+        for f in rm.fields
+    ])
+    theirs_sum = consume([read_back(getters[(name, p)], others, f"m.{p}()") for p, _ in params if p in by_name or p == "checksum"])
     return f"""
 #[allow(clippy::all, unused_imports, unused_variables)]
 mod {rm.msg.name} {{
@@ -160,26 +171,26 @@ mod {rm.msg.name} {{
 
     #[inline(never)]
     pub fn ours_decode() -> f64 {{
-        let mut acc = 0.0;
+        let (mut acc, mut acc_i) = (0.0, 0u64);
         for f in FRAMES.iter() {{
             match {name}::decode(black_box(&f[..])) {{
-                Ok(m) => acc += {ours_sum},
+                Ok(m) => {{ {ours_sum} }}
                 Err(_) => acc += 1.0,
             }}
         }}
-        acc
+        acc + acc_i as f64
     }}
 
     #[inline(never)]
     pub fn theirs_decode() -> f64 {{
-        let mut acc = 0.0;
+        let (mut acc, mut acc_i) = (0.0, 0u64);
         for f in FRAMES.iter() {{
             match dbc::{name}::try_from(black_box(&f[..])) {{
-                Ok(m) => acc += {theirs_sum},
+                Ok(m) => {{ {theirs_sum} }}
                 Err(_) => acc += 1.0,
             }}
         }}
-        acc
+        acc + acc_i as f64
     }}
 
     /// (ours refused, ours wrong bytes, theirs refused, theirs wrong bytes)

@@ -122,7 +122,7 @@ def _full_rule(sig, x: float):
     raw = to_raw_runtime(x, f, o)
     if any(s.raw == raw for s in sig.specials):
         return raw
-    if float(sig.check_min) <= x <= float(sig.check_max) and sig.raw_min <= raw <= sig.raw_max:
+    if float(sig.accept_min) <= x <= float(sig.accept_max) and sig.raw_min <= raw <= sig.raw_max:
         return raw
     return None
 
@@ -144,10 +144,14 @@ def test_documented_range_shortcut_agrees_with_the_full_rule(can):
                 continue
             sig = f.sig
             fa, o = float(sig.factor), float(sig.offset)
-            lo, hi = float(sig.check_min), float(sig.check_max)
+            # The range the generated shortcut checks: the literals it compares against.
             if f.kind == "scaled_int":
                 lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
+            else:
+                lo, hi = float(f.scale["accept_min"]), float(f.scale["accept_max"])
             xs = [lo, hi, math.nextafter(lo, -math.inf), math.nextafter(hi, math.inf), math.nextafter(lo, math.inf), math.nextafter(hi, -math.inf)]
+            for end in (float(sig.accept_min), float(sig.accept_max), float(sig.check_min), float(sig.check_max)):
+                xs += [end, math.nextafter(end, -math.inf), math.nextafter(end, math.inf)]
             xs += [r * fa + o for r in range(sig.raw_type_min, sig.raw_type_max + 1)]
             xs += [(r + 0.5) * fa + o for r in range(sig.raw_type_min - 1, sig.raw_type_max + 1)]
             xs += [rng.uniform(lo - fa, hi + fa) for _ in range(500)]

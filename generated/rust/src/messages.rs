@@ -95,7 +95,7 @@ impl AutocarEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000001,
+        check_min: -1080.0,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -341,7 +341,7 @@ impl AutocarEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -466,8 +466,8 @@ impl EpsState {
     const STEERING_TORQUE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -12.8,
-        check_min: -12.8000000001,
-        check_max: 12.7000000001,
+        check_min: -12.8,
+        check_max: 12.700000000000001,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -480,8 +480,8 @@ impl EpsState {
     const EPS_OUTPUT_TORQUE_SCALE: Scale = Scale {
         factor: 0.3,
         offset: -38.4,
-        check_min: -38.4000000003,
-        check_max: 38.1000000003,
+        check_min: -38.4,
+        check_max: 38.10000000000001,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -494,7 +494,7 @@ impl EpsState {
     const STEERING_ANGLE_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000001,
+        check_min: -1080.0,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -693,7 +693,7 @@ impl EpsState {
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_TORQUE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_TORQUE_SCALE) {
             Some(raw) => {
                 self.steering_torque = raw as u8;
                 Ok(())
@@ -732,7 +732,7 @@ impl EpsState {
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_output_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::EPS_OUTPUT_TORQUE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::EPS_OUTPUT_TORQUE_SCALE) {
             Some(raw) => {
                 self.eps_output_torque = raw as u8;
                 Ok(())
@@ -771,7 +771,7 @@ impl EpsState {
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_SCALE) {
             Some(raw) => {
                 self.steering_angle = raw as u16;
                 Ok(())
@@ -1003,7 +1003,7 @@ impl AutocarSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.00000000002,
+        check_min: -9.0,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -1154,7 +1154,7 @@ impl AutocarSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
                 self.accel_cmd = raw as u16;
                 Ok(())
@@ -1489,7 +1489,7 @@ impl DrivingState {
     const CURRENT_ACCEL_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -9.0,
-        check_min: -9.00000000005,
+        check_min: -9.0,
         check_max: 3.60000000005,
         raw_min: 0,
         raw_max: 252,
@@ -1952,7 +1952,7 @@ impl DrivingState {
     /// Set `current_accel` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_current_accel(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CURRENT_ACCEL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CURRENT_ACCEL_SCALE) {
             Some(raw) => {
                 self.current_accel = raw as u8;
                 Ok(())
@@ -2147,7 +2147,7 @@ impl AutocarControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.9999999995,
+        check_min: 16.0,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -3293,7 +3293,7 @@ impl AutocarControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -3665,7 +3665,7 @@ impl VehicleState1 {
     const SOC_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: -0.0000000005,
+        check_min: 0.0,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -4583,7 +4583,7 @@ impl VehicleState1 {
     /// Set `soc` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_soc(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::SOC_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::SOC_SCALE) {
             Some(raw) => {
                 self.soc = raw as u8;
                 Ok(())
@@ -4953,7 +4953,7 @@ impl AutocarControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: -0.0000000005,
+        check_min: 0.0,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -4967,7 +4967,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_PITCH_SCALE: Scale = Scale {
         factor: 0.05,
         offset: -25.0,
-        check_min: -25.00000000005,
+        check_min: -25.0,
         check_max: 25.00000000005,
         raw_min: 0,
         raw_max: 1000,
@@ -4981,7 +4981,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.0000000001,
+        check_min: -40.0,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -4995,7 +4995,7 @@ impl AutocarControlCommand2 {
     const CARGO_PITCH_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -30.0,
-        check_min: -30.0000000002,
+        check_min: -30.0,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 650,
@@ -5009,7 +5009,7 @@ impl AutocarControlCommand2 {
     const CARGO_ROLL_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.0000000001,
+        check_min: -40.0,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -5359,7 +5359,7 @@ impl AutocarControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
@@ -5398,7 +5398,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CHASSIS_PITCH_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_PITCH_SCALE) {
             Some(raw) => {
                 self.chassis_pitch = raw as u16;
                 Ok(())
@@ -5442,7 +5442,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CHASSIS_ROLL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_ROLL_SCALE) {
             Some(raw) => {
                 self.chassis_roll = raw as u16;
                 Ok(())
@@ -5486,7 +5486,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CARGO_PITCH_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CARGO_PITCH_SCALE) {
             Some(raw) => {
                 self.cargo_pitch = raw as u16;
                 Ok(())
@@ -5530,7 +5530,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::CARGO_ROLL_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::CARGO_ROLL_SCALE) {
             Some(raw) => {
                 self.cargo_roll = raw as u16;
                 Ok(())
@@ -5676,7 +5676,7 @@ impl VehicleState2 {
     const BATTERY_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.2,
         offset: 0.0,
-        check_min: -0.0000000002,
+        check_min: 0.0,
         check_max: 800.0000000002,
         raw_min: 0,
         raw_max: 4000,
@@ -5690,7 +5690,7 @@ impl VehicleState2 {
     const BATTERY_CURRENT_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -500.0,
-        check_min: -500.00000000002,
+        check_min: -500.0,
         check_max: 800.00000000002,
         raw_min: 0,
         raw_max: 65000,
@@ -5807,7 +5807,7 @@ impl VehicleState2 {
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.battery_voltage = raw as u16;
                 Ok(())
@@ -5846,7 +5846,7 @@ impl VehicleState2 {
     /// Set `battery_current` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_current(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_CURRENT_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_CURRENT_SCALE) {
             Some(raw) => {
                 self.battery_current = raw as u16;
                 Ok(())
@@ -6053,7 +6053,7 @@ impl VehicleState3 {
     const MAX_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
-        check_min: -0.0000000000015,
+        check_min: 0.0,
         check_max: 6.0000000000015,
         raw_min: 0,
         raw_max: 4000,
@@ -6067,7 +6067,7 @@ impl VehicleState3 {
     const MIN_CELL_VOLTAGE_SCALE: Scale = Scale {
         factor: 0.0015,
         offset: 0.0,
-        check_min: -0.0000000000015,
+        check_min: 0.0,
         check_max: 6.0000000000015,
         raw_min: 0,
         raw_max: 4000,
@@ -6306,7 +6306,7 @@ impl VehicleState3 {
     /// Set `max_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_max_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MAX_CELL_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::MAX_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.max_cell_voltage = raw as u16;
                 Ok(())
@@ -6348,7 +6348,7 @@ impl VehicleState3 {
     /// Set `min_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_min_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::MIN_CELL_VOLTAGE_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::MIN_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
                 self.min_cell_voltage = raw as u16;
                 Ok(())
@@ -6568,7 +6568,7 @@ impl VehicleState4 {
     const OUTSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
-        check_min: -30.0000000005,
+        check_min: -30.0,
         check_max: 95.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -6582,7 +6582,7 @@ impl VehicleState4 {
     const INSIDE_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: -30.0,
-        check_min: -30.0000000005,
+        check_min: -30.0,
         check_max: 95.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -6596,7 +6596,7 @@ impl VehicleState4 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.9999999995,
+        check_min: 16.0,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -6610,7 +6610,7 @@ impl VehicleState4 {
     const BATTERY_POWER_SCALE: Scale = Scale {
         factor: 0.01,
         offset: -325.0,
-        check_min: -325.00000000001,
+        check_min: -325.0,
         check_max: 325.00000000001,
         raw_min: 0,
         raw_max: 65000,
@@ -6801,7 +6801,7 @@ impl VehicleState4 {
     /// Set `outside_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_outside_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::OUTSIDE_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::OUTSIDE_TEMP_SCALE) {
             Some(raw) => {
                 self.outside_temp = raw as u8;
                 Ok(())
@@ -6838,7 +6838,7 @@ impl VehicleState4 {
     /// Set `inside_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_inside_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::INSIDE_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::INSIDE_TEMP_SCALE) {
             Some(raw) => {
                 self.inside_temp = raw as u8;
                 Ok(())
@@ -7170,7 +7170,7 @@ impl VehicleState4 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -7257,7 +7257,7 @@ impl VehicleState4 {
     /// Set `battery_power` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_power(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::BATTERY_POWER_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_POWER_SCALE) {
             Some(raw) => {
                 self.battery_power = raw as u16;
                 Ok(())
@@ -9210,7 +9210,7 @@ impl RgateEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000001,
+        check_min: -1080.0,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -9456,7 +9456,7 @@ impl RgateEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -9573,7 +9573,7 @@ impl RgateSpeedCommand {
     const ACCEL_CMD_SCALE: Scale = Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.00000000002,
+        check_min: -9.0,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -9724,7 +9724,7 @@ impl RgateSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::ACCEL_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
                 self.accel_cmd = raw as u16;
                 Ok(())
@@ -10085,7 +10085,7 @@ impl RgateControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.9999999995,
+        check_min: 16.0,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -11231,7 +11231,7 @@ impl RgateControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -11527,7 +11527,7 @@ impl RgateControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: -0.0000000005,
+        check_min: 0.0,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -11839,7 +11839,7 @@ impl RgateControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
@@ -15245,7 +15245,7 @@ impl TeleEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000001,
+        check_min: -1080.0,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -15491,7 +15491,7 @@ impl TeleEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::STEERING_ANGLE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
                 self.steering_angle_cmd = raw as u16;
                 Ok(())
@@ -15608,7 +15608,7 @@ impl TeleSpeedCommand {
     const THROTTLE_BRAKE_CMD_SCALE: Scale = Scale {
         factor: 0.2,
         offset: -100.0,
-        check_min: -100.0000000002,
+        check_min: -100.0,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 1000,
@@ -15759,7 +15759,7 @@ impl TeleSpeedCommand {
     /// Set `throttle_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_throttle_brake_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::THROTTLE_BRAKE_CMD_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::THROTTLE_BRAKE_CMD_SCALE) {
             Some(raw) => {
                 self.throttle_brake_cmd = raw as u16;
                 Ok(())
@@ -16120,7 +16120,7 @@ impl TeleControlCommand1 {
     const AC_SET_TEMP_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.9999999995,
+        check_min: 16.0,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -17270,7 +17270,7 @@ impl TeleControlCommand1 {
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::AC_SET_TEMP_SCALE, &[]) {
+        match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
                 self.ac_set_temp = raw as u8;
                 Ok(())
@@ -17566,7 +17566,7 @@ impl TeleControlCommand2 {
     const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: -0.0000000005,
+        check_min: 0.0,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -17878,7 +17878,7 @@ impl TeleControlCommand2 {
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
+        match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
                 self.downhill_regen_speed = raw as u8;
                 Ok(())
