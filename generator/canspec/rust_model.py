@@ -75,13 +75,14 @@ def unpack_expr(sig: ir.Signal) -> str:
 
 
 def pack_expr(sig: ir.Signal, field: str) -> str:
-    """The field's bits in place in the frame word (the stored raw always fits the field)."""
+    """The field's bits in place in the frame word, from the variable `field` (a raw value
+    that fits the field)."""
     if sig.signed:
-        value = f"(self.{field} as u64 & {int_lit(sig.mask)})"
+        value = f"({field} as u64 & {int_lit(sig.mask)})"
     elif sig.storage_bits == 64:
-        value = f"self.{field}"
+        value = field
     else:
-        value = f"u64::from(self.{field})"
+        value = f"u64::from({field})"
     return f"{value} << {sig.start}" if sig.start else value
 
 
@@ -163,7 +164,8 @@ class RustField:
     phys_type: str
     enum: str | None
     unpack: str
-    pack: str
+    pack: str  # the raw value `value` in place in the frame word
+    clear: str  # frame-word mask without the field's bits
     misfit: str | None  # `value` (raw type) does not fit the field; None: never
     refused: str | None  # `value` (raw type) may not come from a physical encode; None: never
     scale: dict[str, str]  # float signals: literals of the codec::Scale
@@ -200,6 +202,7 @@ class RustMessage:
     da: str
     doc: tuple[str, ...]
     defined_mask: str  # frame-word bits the message defines (not reserved, not undefined)
+    fields_mask: str  # frame-word bits of the fields the type stores (no checksum, no reserved)
 
 
 def _phys_expr(sig: ir.Signal, field: str) -> str:
@@ -379,10 +382,10 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         sig=sig, name=name, qualified=f"{msg.name}.{sig.name}", field=rust_ident(name),
         getter=rust_ident(name), raw_getter=rust_ident(f"{name}_raw"), setter=f"set_{name}", raw_setter=f"set_{name}_raw",
         raw_type=raw_type, kind=kind, phys_type=phys_type, enum=enum,
-        unpack=unpack_expr(sig), pack=pack_expr(sig, rust_ident(name)),
+        unpack=unpack_expr(sig), pack=pack_expr(sig, "value"), clear=int_lit(((1 << 64) - 1) ^ (sig.mask << sig.start)),
         misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor), to_raw=to_raw,
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
-        phys_expr=_int_phys_expr(sig, rust_ident(name), phys_type) if kind == "scaled_int" else _phys_expr(sig, rust_ident(name)),
+        phys_expr=_int_phys_expr(sig, f"{rust_ident(name + '_raw')}()", phys_type) if kind == "scaled_int" else _phys_expr(sig, f"{rust_ident(name + '_raw')}()"),
         specials=specials, doc=_field_doc(sig),
         short_doc=doc_text(f"{sig.zh}: {_range_text(sig.check_min, sig.check_max)} {sig.unit}".rstrip()),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
@@ -457,16 +460,19 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
         payload = mf["payload"]
         assert isinstance(payload, RustField)
         if payload.raw_type == "u64":
-            mf["chunk_to_raw"], mf["raw_to_chunk"] = "u64::from_le_bytes(word)", f"frame.{payload.field}.to_le_bytes()"
+            mf["chunk_to_raw"], mf["raw_to_chunk"] = "u64::from_le_bytes(word)", f"frame.{payload.raw_getter}().to_le_bytes()"
         else:
             mf["chunk_to_raw"] = f"u64::from_le_bytes(word) as {payload.raw_type}"
-            mf["raw_to_chunk"] = f"u64::from(frame.{payload.field}).to_le_bytes()"
+            mf["raw_to_chunk"] = f"u64::from(frame.{payload.raw_getter}()).to_le_bytes()"
     defined = 0
     for s in msg.data_signals:
         defined |= s.mask << s.start
+    stored = 0
+    for f in fields:
+        stored |= f.sig.mask << f.sig.start
     da = "None" if msg.j1939.da is None else f"Some(0x{msg.j1939.da:02X})"
     return RustMessage(msg, name, f"{name}Values", name, fields, msg.checksum, checksum_expr, fold, shift, clear, counter, mf, da,
-                       _message_doc(msg), int_lit(defined))
+                       _message_doc(msg), int_lit(defined), int_lit(stored))
 
 
 @dataclass(frozen=True)

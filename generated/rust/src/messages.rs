@@ -26,12 +26,22 @@ use crate::{Error, Frame};
 /// | `counter` | 心跳值 | 8 | 8 | 1 | 0 | — |
 /// | `max_angular_speed` | 最大角速度 | 16 | 8 | 2 | 0 | deg/s |
 /// | `steering_angle_cmd` | 方向盘角度指令 | 24 | 16 | 0.1 | -1080 | deg |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct AutocarEpsCommand {
-    eps_ctrl_mode: u8,
-    counter: u8,
-    max_angular_speed: u8,
-    steering_angle_cmd: u16,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for AutocarEpsCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("AutocarEpsCommand")
+            .field("eps_ctrl_mode", &self.eps_ctrl_mode_raw())
+            .field("counter", &self.counter_raw())
+            .field("max_angular_speed", &self.max_angular_speed_raw())
+            .field("steering_angle_cmd", &self.steering_angle_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`AutocarEpsCommand`] (what [`AutocarEpsCommand::new`] takes and
@@ -103,12 +113,9 @@ impl AutocarEpsCommand {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        eps_ctrl_mode: 0,
-        counter: 0,
-        max_angular_speed: 0,
-        steering_angle_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -167,10 +174,7 @@ impl AutocarEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.eps_ctrl_mode)
-            | u64::from(self.counter) << 8
-            | u64::from(self.max_angular_speed) << 16
-            | u64::from(self.steering_angle_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -195,10 +199,7 @@ impl AutocarEpsCommand {
             });
         }
         Ok(Self {
-            eps_ctrl_mode: bits as u8,
-            counter: (bits >> 8) as u8,
-            max_angular_speed: (bits >> 16) as u8,
-            steering_angle_cmd: (bits >> 24) as u16,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -212,7 +213,7 @@ impl AutocarEpsCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -223,27 +224,34 @@ impl AutocarEpsCommand {
     /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn eps_ctrl_mode(&self) -> EpsModeCmd {
-        EpsModeCmd::from_raw(self.eps_ctrl_mode)
+        EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
     /// Raw value of `eps_ctrl_mode` (bits 0..8).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        self.eps_ctrl_mode
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_ctrl_mode(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
     /// Set the raw value of `eps_ctrl_mode`; any value that fits its 8 bits.
     #[inline]
     pub fn set_eps_ctrl_mode_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
@@ -256,26 +264,33 @@ impl AutocarEpsCommand {
     /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 8..16).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -290,13 +305,20 @@ impl AutocarEpsCommand {
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
     pub fn max_angular_speed(&self) -> u16 {
-        self.max_angular_speed as u16 * 2
+        self.max_angular_speed_raw() as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        self.max_angular_speed
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_max_angular_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
@@ -304,7 +326,7 @@ impl AutocarEpsCommand {
     pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
         match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.max_angular_speed = raw as u8;
+                self.store_max_angular_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -316,7 +338,7 @@ impl AutocarEpsCommand {
     /// Set the raw value of `max_angular_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_max_angular_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.max_angular_speed = value;
+        self.store_max_angular_speed(value);
         Ok(())
     }
 
@@ -329,13 +351,20 @@ impl AutocarEpsCommand {
     /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
     #[inline]
     pub fn steering_angle_cmd(&self) -> f64 {
-        self.steering_angle_cmd as f64 * 0.1 - 1080.0
+        self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
     /// Raw value of `steering_angle_cmd` (bits 24..40).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        self.steering_angle_cmd
+        let bits = self.bits;
+        (bits >> 24) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_steering_angle_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
@@ -343,7 +372,7 @@ impl AutocarEpsCommand {
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
-                self.steering_angle_cmd = raw as u16;
+                self.store_steering_angle_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -355,7 +384,7 @@ impl AutocarEpsCommand {
     /// Set the raw value of `steering_angle_cmd`; any value that fits its 16 bits.
     #[inline]
     pub fn set_steering_angle_cmd_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.steering_angle_cmd = value;
+        self.store_steering_angle_cmd(value);
         Ok(())
     }
 }
@@ -404,15 +433,25 @@ impl Frame for AutocarEpsCommand {
 /// | `controller_temp` | 控制器温度 | 40 | 6 | 2 | 0 | °C |
 /// | `eps_fault_level` | EPS 故障级别 | 48 | 2 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 56 | 8 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct EpsState {
-    eps_ctrl_state: u8,
-    steering_torque: u8,
-    eps_output_torque: u8,
-    steering_angle: u16,
-    controller_temp: u8,
-    eps_fault_level: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for EpsState {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("EpsState")
+            .field("eps_ctrl_state", &self.eps_ctrl_state_raw())
+            .field("steering_torque", &self.steering_torque_raw())
+            .field("eps_output_torque", &self.eps_output_torque_raw())
+            .field("steering_angle", &self.steering_angle_raw())
+            .field("controller_temp", &self.controller_temp_raw())
+            .field("eps_fault_level", &self.eps_fault_level_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`EpsState`] (what [`EpsState::new`] takes and
@@ -516,15 +555,9 @@ impl EpsState {
         type_max: 63,
     };
 
-    const ZERO: Self = Self {
-        eps_ctrl_state: 0,
-        steering_torque: 0,
-        eps_output_torque: 0,
-        steering_angle: 0,
-        controller_temp: 0,
-        eps_fault_level: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF03_3FFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -601,13 +634,7 @@ impl EpsState {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.eps_ctrl_state)
-            | u64::from(self.steering_torque) << 8
-            | u64::from(self.eps_output_torque) << 16
-            | u64::from(self.steering_angle) << 24
-            | u64::from(self.controller_temp) << 40
-            | u64::from(self.eps_fault_level) << 48
-            | u64::from(self.counter) << 56;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -623,13 +650,7 @@ impl EpsState {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            eps_ctrl_state: bits as u8,
-            steering_torque: (bits >> 8) as u8,
-            eps_output_torque: (bits >> 16) as u8,
-            steering_angle: (bits >> 24) as u16,
-            controller_temp: ((bits >> 40) & 63) as u8,
-            eps_fault_level: ((bits >> 48) & 3) as u8,
-            counter: (bits >> 56) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -637,7 +658,7 @@ impl EpsState {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -648,27 +669,34 @@ impl EpsState {
     /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn eps_ctrl_state(&self) -> EpsModeState {
-        EpsModeState::from_raw(self.eps_ctrl_state)
+        EpsModeState::from_raw(self.eps_ctrl_state_raw())
     }
 
     /// Raw value of `eps_ctrl_state` (bits 0..8).
     #[inline]
     pub fn eps_ctrl_state_raw(&self) -> u8 {
-        self.eps_ctrl_state
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_ctrl_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `eps_ctrl_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_state(&mut self, value: EpsModeState) -> Result<(), Error> {
         let value = value.raw();
-        self.eps_ctrl_state = value;
+        self.store_eps_ctrl_state(value);
         Ok(())
     }
 
     /// Set the raw value of `eps_ctrl_state`; any value that fits its 8 bits.
     #[inline]
     pub fn set_eps_ctrl_state_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.eps_ctrl_state = value;
+        self.store_eps_ctrl_state(value);
         Ok(())
     }
 
@@ -681,13 +709,20 @@ impl EpsState {
     /// | 8 | 8 | 0.1 | -12.8 | Nm | -12.8 … 12.7 | 0 … 255 |
     #[inline]
     pub fn steering_torque(&self) -> f64 {
-        self.steering_torque as f64 * 0.1 - 12.8
+        self.steering_torque_raw() as f64 * 0.1 - 12.8
     }
 
     /// Raw value of `steering_torque` (bits 8..16).
     #[inline]
     pub fn steering_torque_raw(&self) -> u8 {
-        self.steering_torque
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_steering_torque(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
@@ -695,7 +730,7 @@ impl EpsState {
     pub fn set_steering_torque(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::STEERING_TORQUE_SCALE) {
             Some(raw) => {
-                self.steering_torque = raw as u8;
+                self.store_steering_torque(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -707,7 +742,7 @@ impl EpsState {
     /// Set the raw value of `steering_torque`; any value that fits its 8 bits.
     #[inline]
     pub fn set_steering_torque_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.steering_torque = value;
+        self.store_steering_torque(value);
         Ok(())
     }
 
@@ -720,13 +755,20 @@ impl EpsState {
     /// | 16 | 8 | 0.3 | -38.4 | Nm | -38.4 … 38.1 | 0 … 255 |
     #[inline]
     pub fn eps_output_torque(&self) -> f64 {
-        self.eps_output_torque as f64 * 0.3 - 38.4
+        self.eps_output_torque_raw() as f64 * 0.3 - 38.4
     }
 
     /// Raw value of `eps_output_torque` (bits 16..24).
     #[inline]
     pub fn eps_output_torque_raw(&self) -> u8 {
-        self.eps_output_torque
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_output_torque(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
@@ -734,7 +776,7 @@ impl EpsState {
     pub fn set_eps_output_torque(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::EPS_OUTPUT_TORQUE_SCALE) {
             Some(raw) => {
-                self.eps_output_torque = raw as u8;
+                self.store_eps_output_torque(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -746,7 +788,7 @@ impl EpsState {
     /// Set the raw value of `eps_output_torque`; any value that fits its 8 bits.
     #[inline]
     pub fn set_eps_output_torque_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.eps_output_torque = value;
+        self.store_eps_output_torque(value);
         Ok(())
     }
 
@@ -759,13 +801,20 @@ impl EpsState {
     /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
     #[inline]
     pub fn steering_angle(&self) -> f64 {
-        self.steering_angle as f64 * 0.1 - 1080.0
+        self.steering_angle_raw() as f64 * 0.1 - 1080.0
     }
 
     /// Raw value of `steering_angle` (bits 24..40).
     #[inline]
     pub fn steering_angle_raw(&self) -> u16 {
-        self.steering_angle
+        let bits = self.bits;
+        (bits >> 24) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_steering_angle(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
@@ -773,7 +822,7 @@ impl EpsState {
     pub fn set_steering_angle(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_SCALE) {
             Some(raw) => {
-                self.steering_angle = raw as u16;
+                self.store_steering_angle(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -785,7 +834,7 @@ impl EpsState {
     /// Set the raw value of `steering_angle`; any value that fits its 16 bits.
     #[inline]
     pub fn set_steering_angle_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.steering_angle = value;
+        self.store_steering_angle(value);
         Ok(())
     }
 
@@ -796,13 +845,20 @@ impl EpsState {
     /// | 40 | 6 | 2 | 0 | °C | 0 … 126 | 0 … 63 |
     #[inline]
     pub fn controller_temp(&self) -> u8 {
-        self.controller_temp * 2
+        self.controller_temp_raw() * 2
     }
 
     /// Raw value of `controller_temp` (bits 40..46).
     #[inline]
     pub fn controller_temp_raw(&self) -> u8 {
-        self.controller_temp
+        let bits = self.bits;
+        ((bits >> 40) & 63) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_controller_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_C0FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `controller_temp` from its physical value; outside the documented range is an error.
@@ -810,7 +866,7 @@ impl EpsState {
     pub fn set_controller_temp(&mut self, value: u8) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::CONTROLLER_TEMP_SCALE) {
             Some(raw) => {
-                self.controller_temp = raw as u8;
+                self.store_controller_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -827,7 +883,7 @@ impl EpsState {
                 signal: "eps_state.controller_temp",
             });
         }
-        self.controller_temp = value;
+        self.store_controller_temp(value);
         Ok(())
     }
 
@@ -838,13 +894,20 @@ impl EpsState {
     /// | 48 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn eps_fault_level(&self) -> EpsFaultLevel {
-        EpsFaultLevel::from_raw(self.eps_fault_level)
+        EpsFaultLevel::from_raw(self.eps_fault_level_raw())
     }
 
     /// Raw value of `eps_fault_level` (bits 48..50).
     #[inline]
     pub fn eps_fault_level_raw(&self) -> u8 {
-        self.eps_fault_level
+        let bits = self.bits;
+        ((bits >> 48) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFC_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `eps_fault_level` from its physical value; outside the documented range is an error.
@@ -856,7 +919,7 @@ impl EpsState {
                 signal: "eps_state.eps_fault_level",
             });
         }
-        self.eps_fault_level = value;
+        self.store_eps_fault_level(value);
         Ok(())
     }
 
@@ -868,7 +931,7 @@ impl EpsState {
                 signal: "eps_state.eps_fault_level",
             });
         }
-        self.eps_fault_level = value;
+        self.store_eps_fault_level(value);
         Ok(())
     }
 
@@ -881,26 +944,33 @@ impl EpsState {
     /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 56..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 56) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -947,13 +1017,23 @@ impl Frame for EpsState {
 /// | `gear_cmd` | 档位指令 | 12 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 16 | 8 | 1 | 0 | — |
 /// | `emergency_brake_cmd` | 紧急制动指令 | 24 | 1 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct AutocarSpeedCommand {
-    accel_cmd: u16,
-    epb_cmd: u8,
-    gear_cmd: u8,
-    counter: u8,
-    emergency_brake_cmd: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for AutocarSpeedCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("AutocarSpeedCommand")
+            .field("accel_cmd", &self.accel_cmd_raw())
+            .field("epb_cmd", &self.epb_cmd_raw())
+            .field("gear_cmd", &self.gear_cmd_raw())
+            .field("counter", &self.counter_raw())
+            .field("emergency_brake_cmd", &self.emergency_brake_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`AutocarSpeedCommand`] (what [`AutocarSpeedCommand::new`] takes and
@@ -1011,13 +1091,9 @@ impl AutocarSpeedCommand {
         type_max: 1023,
     };
 
-    const ZERO: Self = Self {
-        accel_cmd: 0,
-        epb_cmd: 0,
-        gear_cmd: 0,
-        counter: 0,
-        emergency_brake_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0x1FF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -1082,11 +1158,7 @@ impl AutocarSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.accel_cmd)
-            | u64::from(self.epb_cmd) << 10
-            | u64::from(self.gear_cmd) << 12
-            | u64::from(self.counter) << 16
-            | u64::from(self.emergency_brake_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -1111,11 +1183,7 @@ impl AutocarSpeedCommand {
             });
         }
         Ok(Self {
-            accel_cmd: (bits & 1023) as u16,
-            epb_cmd: ((bits >> 10) & 3) as u8,
-            gear_cmd: ((bits >> 12) & 15) as u8,
-            counter: (bits >> 16) as u8,
-            emergency_brake_cmd: ((bits >> 24) & 1) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -1129,7 +1197,7 @@ impl AutocarSpeedCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -1142,13 +1210,20 @@ impl AutocarSpeedCommand {
     /// | 0 | 10 | 0.02 | -9 | m/s² | -9 … 3.6 | 0 … 630 |
     #[inline]
     pub fn accel_cmd(&self) -> f64 {
-        self.accel_cmd as f64 * 0.02 - 9.0
+        self.accel_cmd_raw() as f64 * 0.02 - 9.0
     }
 
     /// Raw value of `accel_cmd` (bits 0..10).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
-        self.accel_cmd
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_accel_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
@@ -1156,7 +1231,7 @@ impl AutocarSpeedCommand {
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
-                self.accel_cmd = raw as u16;
+                self.store_accel_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -1173,7 +1248,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.accel_cmd",
             });
         }
-        self.accel_cmd = value;
+        self.store_accel_cmd(value);
         Ok(())
     }
 
@@ -1184,13 +1259,20 @@ impl AutocarSpeedCommand {
     /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn epb_cmd(&self) -> Epb {
-        Epb::from_raw(self.epb_cmd)
+        Epb::from_raw(self.epb_cmd_raw())
     }
 
     /// Raw value of `epb_cmd` (bits 10..12).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        self.epb_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_epb_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
@@ -1202,7 +1284,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -1214,7 +1296,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -1227,13 +1309,20 @@ impl AutocarSpeedCommand {
     /// Errata: E11 (see spec/ERRATA.md)
     #[inline]
     pub fn gear_cmd(&self) -> Gear {
-        Gear::from_raw(self.gear_cmd)
+        Gear::from_raw(self.gear_cmd_raw())
     }
 
     /// Raw value of `gear_cmd` (bits 12..16).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        self.gear_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_gear_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_0FFF) | u64::from(value) << 12;
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
@@ -1245,7 +1334,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -1257,7 +1346,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -1270,26 +1359,33 @@ impl AutocarSpeedCommand {
     /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 16..24).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -1302,13 +1398,20 @@ impl AutocarSpeedCommand {
     /// Errata: E12 (see spec/ERRATA.md)
     #[inline]
     pub fn emergency_brake_cmd(&self) -> EmergencyBrakeCmd {
-        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd)
+        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
     /// Raw value of `emergency_brake_cmd` (bits 24..25).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        self.emergency_brake_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_emergency_brake_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FEFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
@@ -1320,7 +1423,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 
@@ -1332,7 +1435,7 @@ impl AutocarSpeedCommand {
                 signal: "autocar_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 }
@@ -1382,16 +1485,26 @@ impl Frame for AutocarSpeedCommand {
 /// | `motor_torque` | 电机扭矩 | 24 | 16 | 1 | -5000 | Nm |
 /// | `motor_speed_ratio` | 电机转速与车速比值 | 40 | 8 | 1 | 1 | rpm/(km/h) |
 /// | `current_accel` | 当前加速度 | 48 | 8 | 0.05 | -9 | m/s² |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct DrivingState {
-    epb_state: u8,
-    gear_state: u8,
-    emergency_brake_state: u8,
-    uss_brake_state: u8,
-    motor_speed: u16,
-    motor_torque: u16,
-    motor_speed_ratio: u8,
-    current_accel: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for DrivingState {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("DrivingState")
+            .field("epb_state", &self.epb_state_raw())
+            .field("gear_state", &self.gear_state_raw())
+            .field("emergency_brake_state", &self.emergency_brake_state_raw())
+            .field("uss_brake_state", &self.uss_brake_state_raw())
+            .field("motor_speed", &self.motor_speed_raw())
+            .field("motor_torque", &self.motor_torque_raw())
+            .field("motor_speed_ratio", &self.motor_speed_ratio_raw())
+            .field("current_accel", &self.current_accel_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`DrivingState`] (what [`DrivingState::new`] takes and
@@ -1497,16 +1610,9 @@ impl DrivingState {
         type_max: 255,
     };
 
-    const ZERO: Self = Self {
-        epb_state: 0,
-        gear_state: 0,
-        emergency_brake_state: 0,
-        uss_brake_state: 0,
-        motor_speed: 0,
-        motor_torque: 0,
-        motor_speed_ratio: 0,
-        current_accel: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -1591,14 +1697,7 @@ impl DrivingState {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.epb_state)
-            | u64::from(self.gear_state) << 2
-            | u64::from(self.emergency_brake_state) << 6
-            | u64::from(self.uss_brake_state) << 7
-            | u64::from(self.motor_speed) << 8
-            | u64::from(self.motor_torque) << 24
-            | u64::from(self.motor_speed_ratio) << 40
-            | u64::from(self.current_accel) << 48;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -1623,14 +1722,7 @@ impl DrivingState {
             });
         }
         Ok(Self {
-            epb_state: (bits & 3) as u8,
-            gear_state: ((bits >> 2) & 15) as u8,
-            emergency_brake_state: ((bits >> 6) & 1) as u8,
-            uss_brake_state: ((bits >> 7) & 1) as u8,
-            motor_speed: (bits >> 8) as u16,
-            motor_torque: (bits >> 24) as u16,
-            motor_speed_ratio: (bits >> 40) as u8,
-            current_accel: (bits >> 48) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -1647,13 +1739,20 @@ impl DrivingState {
     /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn epb_state(&self) -> Epb {
-        Epb::from_raw(self.epb_state)
+        Epb::from_raw(self.epb_state_raw())
     }
 
     /// Raw value of `epb_state` (bits 0..2).
     #[inline]
     pub fn epb_state_raw(&self) -> u8 {
-        self.epb_state
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_epb_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `epb_state` from its physical value; outside the documented range is an error.
@@ -1665,7 +1764,7 @@ impl DrivingState {
                 signal: "driving_state.epb_state",
             });
         }
-        self.epb_state = value;
+        self.store_epb_state(value);
         Ok(())
     }
 
@@ -1677,7 +1776,7 @@ impl DrivingState {
                 signal: "driving_state.epb_state",
             });
         }
-        self.epb_state = value;
+        self.store_epb_state(value);
         Ok(())
     }
 
@@ -1688,13 +1787,20 @@ impl DrivingState {
     /// | 2 | 4 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn gear_state(&self) -> Gear {
-        Gear::from_raw(self.gear_state)
+        Gear::from_raw(self.gear_state_raw())
     }
 
     /// Raw value of `gear_state` (bits 2..6).
     #[inline]
     pub fn gear_state_raw(&self) -> u8 {
-        self.gear_state
+        let bits = self.bits;
+        ((bits >> 2) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_gear_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFC3) | u64::from(value) << 2;
     }
 
     /// Set `gear_state` from its physical value; outside the documented range is an error.
@@ -1706,7 +1812,7 @@ impl DrivingState {
                 signal: "driving_state.gear_state",
             });
         }
-        self.gear_state = value;
+        self.store_gear_state(value);
         Ok(())
     }
 
@@ -1718,7 +1824,7 @@ impl DrivingState {
                 signal: "driving_state.gear_state",
             });
         }
-        self.gear_state = value;
+        self.store_gear_state(value);
         Ok(())
     }
 
@@ -1729,13 +1835,20 @@ impl DrivingState {
     /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn emergency_brake_state(&self) -> BrakeState {
-        BrakeState::from_raw(self.emergency_brake_state)
+        BrakeState::from_raw(self.emergency_brake_state_raw())
     }
 
     /// Raw value of `emergency_brake_state` (bits 6..7).
     #[inline]
     pub fn emergency_brake_state_raw(&self) -> u8 {
-        self.emergency_brake_state
+        let bits = self.bits;
+        ((bits >> 6) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_emergency_brake_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
     }
 
     /// Set `emergency_brake_state` from its physical value; outside the documented range is an error.
@@ -1747,7 +1860,7 @@ impl DrivingState {
                 signal: "driving_state.emergency_brake_state",
             });
         }
-        self.emergency_brake_state = value;
+        self.store_emergency_brake_state(value);
         Ok(())
     }
 
@@ -1759,7 +1872,7 @@ impl DrivingState {
                 signal: "driving_state.emergency_brake_state",
             });
         }
-        self.emergency_brake_state = value;
+        self.store_emergency_brake_state(value);
         Ok(())
     }
 
@@ -1772,13 +1885,20 @@ impl DrivingState {
     /// Errata: E18 (see spec/ERRATA.md)
     #[inline]
     pub fn uss_brake_state(&self) -> BrakeState {
-        BrakeState::from_raw(self.uss_brake_state)
+        BrakeState::from_raw(self.uss_brake_state_raw())
     }
 
     /// Raw value of `uss_brake_state` (bits 7..8).
     #[inline]
     pub fn uss_brake_state_raw(&self) -> u8 {
-        self.uss_brake_state
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_uss_brake_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `uss_brake_state` from its physical value; outside the documented range is an error.
@@ -1790,7 +1910,7 @@ impl DrivingState {
                 signal: "driving_state.uss_brake_state",
             });
         }
-        self.uss_brake_state = value;
+        self.store_uss_brake_state(value);
         Ok(())
     }
 
@@ -1802,7 +1922,7 @@ impl DrivingState {
                 signal: "driving_state.uss_brake_state",
             });
         }
-        self.uss_brake_state = value;
+        self.store_uss_brake_state(value);
         Ok(())
     }
 
@@ -1815,13 +1935,20 @@ impl DrivingState {
     /// | 8 | 16 | 1 | -15000 | rpm | -15000 … 15000 | 0 … 30000 |
     #[inline]
     pub fn motor_speed(&self) -> i32 {
-        self.motor_speed as i32 - 15000
+        self.motor_speed_raw() as i32 - 15000
     }
 
     /// Raw value of `motor_speed` (bits 8..24).
     #[inline]
     pub fn motor_speed_raw(&self) -> u16 {
-        self.motor_speed
+        let bits = self.bits;
+        (bits >> 8) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_speed(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_00FF) | u64::from(value) << 8;
     }
 
     /// Set `motor_speed` from its physical value; outside the documented range is an error.
@@ -1829,7 +1956,7 @@ impl DrivingState {
     pub fn set_motor_speed(&mut self, value: i32) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_SPEED_SCALE) {
             Some(raw) => {
-                self.motor_speed = raw as u16;
+                self.store_motor_speed(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -1841,7 +1968,7 @@ impl DrivingState {
     /// Set the raw value of `motor_speed`; any value that fits its 16 bits.
     #[inline]
     pub fn set_motor_speed_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.motor_speed = value;
+        self.store_motor_speed(value);
         Ok(())
     }
 
@@ -1854,13 +1981,20 @@ impl DrivingState {
     /// | 24 | 16 | 1 | -5000 | Nm | -5000 … 5000 | 0 … 10000 |
     #[inline]
     pub fn motor_torque(&self) -> i32 {
-        self.motor_torque as i32 - 5000
+        self.motor_torque_raw() as i32 - 5000
     }
 
     /// Raw value of `motor_torque` (bits 24..40).
     #[inline]
     pub fn motor_torque_raw(&self) -> u16 {
-        self.motor_torque
+        let bits = self.bits;
+        (bits >> 24) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_torque(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `motor_torque` from its physical value; outside the documented range is an error.
@@ -1868,7 +2002,7 @@ impl DrivingState {
     pub fn set_motor_torque(&mut self, value: i32) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_TORQUE_SCALE) {
             Some(raw) => {
-                self.motor_torque = raw as u16;
+                self.store_motor_torque(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -1880,7 +2014,7 @@ impl DrivingState {
     /// Set the raw value of `motor_torque`; any value that fits its 16 bits.
     #[inline]
     pub fn set_motor_torque_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.motor_torque = value;
+        self.store_motor_torque(value);
         Ok(())
     }
 
@@ -1897,13 +2031,20 @@ impl DrivingState {
     /// Errata: E19 (see spec/ERRATA.md)
     #[inline]
     pub fn motor_speed_ratio(&self) -> u16 {
-        self.motor_speed_ratio as u16 + 1
+        self.motor_speed_ratio_raw() as u16 + 1
     }
 
     /// Raw value of `motor_speed_ratio` (bits 40..48).
     #[inline]
     pub fn motor_speed_ratio_raw(&self) -> u8 {
-        self.motor_speed_ratio
+        let bits = self.bits;
+        (bits >> 40) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_speed_ratio(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_00FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `motor_speed_ratio` from its physical value; outside the documented range is an error.
@@ -1915,7 +2056,7 @@ impl DrivingState {
             &[255],
         ) {
             Some(raw) => {
-                self.motor_speed_ratio = raw as u8;
+                self.store_motor_speed_ratio(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -1927,7 +2068,7 @@ impl DrivingState {
     /// Set the raw value of `motor_speed_ratio`; any value that fits its 8 bits.
     #[inline]
     pub fn set_motor_speed_ratio_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.motor_speed_ratio = value;
+        self.store_motor_speed_ratio(value);
         Ok(())
     }
 
@@ -1940,13 +2081,20 @@ impl DrivingState {
     /// | 48 | 8 | 0.05 | -9 | m/s² | -9 … 3.6 | 0 … 252 |
     #[inline]
     pub fn current_accel(&self) -> f64 {
-        self.current_accel as f64 * 0.05 - 9.0
+        self.current_accel_raw() as f64 * 0.05 - 9.0
     }
 
     /// Raw value of `current_accel` (bits 48..56).
     #[inline]
     pub fn current_accel_raw(&self) -> u8 {
-        self.current_accel
+        let bits = self.bits;
+        (bits >> 48) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_current_accel(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF00_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `current_accel` from its physical value; outside the documented range is an error.
@@ -1954,7 +2102,7 @@ impl DrivingState {
     pub fn set_current_accel(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::CURRENT_ACCEL_SCALE) {
             Some(raw) => {
-                self.current_accel = raw as u8;
+                self.store_current_accel(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -1966,7 +2114,7 @@ impl DrivingState {
     /// Set the raw value of `current_accel`; any value that fits its 8 bits.
     #[inline]
     pub fn set_current_accel_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.current_accel = value;
+        self.store_current_accel(value);
         Ok(())
     }
 }
@@ -2031,33 +2179,43 @@ impl Frame for DrivingState {
 /// | `protocol_version_b` | 协议版本号 B | 52 | 4 | 1 | 0 | — |
 /// | `protocol_version_c` | 协议版本号 C | 56 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct AutocarControlCommand1 {
-    drive_mode_cmd: u8,
-    door_cmd: u8,
-    horn_cmd: u8,
-    drl_cmd: u8,
-    left_turn_cmd: u8,
-    right_turn_cmd: u8,
-    hazard_cmd: u8,
-    position_light_cmd: u8,
-    headlight_cmd: u8,
-    rear_fog_cmd: u8,
-    left_fog_cmd: u8,
-    right_fog_cmd: u8,
-    dome_light_cmd: u8,
-    ambient_light_cmd: u8,
-    drive_mode_reset: u8,
-    system_state: u8,
-    system_reliability: u8,
-    system_fault_level: u8,
-    lock_cmd: u8,
-    ac_cmd: u8,
-    ac_set_temp: u8,
-    protocol_version_a: u8,
-    protocol_version_b: u8,
-    protocol_version_c: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for AutocarControlCommand1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("AutocarControlCommand1")
+            .field("drive_mode_cmd", &self.drive_mode_cmd_raw())
+            .field("door_cmd", &self.door_cmd_raw())
+            .field("horn_cmd", &self.horn_cmd_raw())
+            .field("drl_cmd", &self.drl_cmd_raw())
+            .field("left_turn_cmd", &self.left_turn_cmd_raw())
+            .field("right_turn_cmd", &self.right_turn_cmd_raw())
+            .field("hazard_cmd", &self.hazard_cmd_raw())
+            .field("position_light_cmd", &self.position_light_cmd_raw())
+            .field("headlight_cmd", &self.headlight_cmd_raw())
+            .field("rear_fog_cmd", &self.rear_fog_cmd_raw())
+            .field("left_fog_cmd", &self.left_fog_cmd_raw())
+            .field("right_fog_cmd", &self.right_fog_cmd_raw())
+            .field("dome_light_cmd", &self.dome_light_cmd_raw())
+            .field("ambient_light_cmd", &self.ambient_light_cmd_raw())
+            .field("drive_mode_reset", &self.drive_mode_reset_raw())
+            .field("system_state", &self.system_state_raw())
+            .field("system_reliability", &self.system_reliability_raw())
+            .field("system_fault_level", &self.system_fault_level_raw())
+            .field("lock_cmd", &self.lock_cmd_raw())
+            .field("ac_cmd", &self.ac_cmd_raw())
+            .field("ac_set_temp", &self.ac_set_temp_raw())
+            .field("protocol_version_a", &self.protocol_version_a_raw())
+            .field("protocol_version_b", &self.protocol_version_b_raw())
+            .field("protocol_version_c", &self.protocol_version_c_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`AutocarControlCommand1`] (what [`AutocarControlCommand1::new`] takes and
@@ -2155,33 +2313,9 @@ impl AutocarControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self {
-        drive_mode_cmd: 0,
-        door_cmd: 0,
-        horn_cmd: 0,
-        drl_cmd: 0,
-        left_turn_cmd: 0,
-        right_turn_cmd: 0,
-        hazard_cmd: 0,
-        position_light_cmd: 0,
-        headlight_cmd: 0,
-        rear_fog_cmd: 0,
-        left_fog_cmd: 0,
-        right_fog_cmd: 0,
-        dome_light_cmd: 0,
-        ambient_light_cmd: 0,
-        drive_mode_reset: 0,
-        system_state: 0,
-        system_reliability: 0,
-        system_fault_level: 0,
-        lock_cmd: 0,
-        ac_cmd: 0,
-        ac_set_temp: 0,
-        protocol_version_a: 0,
-        protocol_version_b: 0,
-        protocol_version_c: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -2368,31 +2502,7 @@ impl AutocarControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.drive_mode_cmd)
-            | u64::from(self.door_cmd) << 2
-            | u64::from(self.horn_cmd) << 4
-            | u64::from(self.drl_cmd) << 6
-            | u64::from(self.left_turn_cmd) << 8
-            | u64::from(self.right_turn_cmd) << 10
-            | u64::from(self.hazard_cmd) << 12
-            | u64::from(self.position_light_cmd) << 14
-            | u64::from(self.headlight_cmd) << 16
-            | u64::from(self.rear_fog_cmd) << 18
-            | u64::from(self.left_fog_cmd) << 20
-            | u64::from(self.right_fog_cmd) << 22
-            | u64::from(self.dome_light_cmd) << 24
-            | u64::from(self.ambient_light_cmd) << 26
-            | u64::from(self.drive_mode_reset) << 28
-            | u64::from(self.system_state) << 32
-            | u64::from(self.system_reliability) << 34
-            | u64::from(self.system_fault_level) << 36
-            | u64::from(self.lock_cmd) << 38
-            | u64::from(self.ac_cmd) << 40
-            | u64::from(self.ac_set_temp) << 43
-            | u64::from(self.protocol_version_a) << 48
-            | u64::from(self.protocol_version_b) << 52
-            | u64::from(self.protocol_version_c) << 56
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -2408,31 +2518,7 @@ impl AutocarControlCommand1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            drive_mode_cmd: (bits & 3) as u8,
-            door_cmd: ((bits >> 2) & 3) as u8,
-            horn_cmd: ((bits >> 4) & 3) as u8,
-            drl_cmd: ((bits >> 6) & 3) as u8,
-            left_turn_cmd: ((bits >> 8) & 3) as u8,
-            right_turn_cmd: ((bits >> 10) & 3) as u8,
-            hazard_cmd: ((bits >> 12) & 3) as u8,
-            position_light_cmd: ((bits >> 14) & 3) as u8,
-            headlight_cmd: ((bits >> 16) & 3) as u8,
-            rear_fog_cmd: ((bits >> 18) & 3) as u8,
-            left_fog_cmd: ((bits >> 20) & 3) as u8,
-            right_fog_cmd: ((bits >> 22) & 3) as u8,
-            dome_light_cmd: ((bits >> 24) & 3) as u8,
-            ambient_light_cmd: ((bits >> 26) & 3) as u8,
-            drive_mode_reset: ((bits >> 28) & 1) as u8,
-            system_state: ((bits >> 32) & 3) as u8,
-            system_reliability: ((bits >> 34) & 3) as u8,
-            system_fault_level: ((bits >> 36) & 3) as u8,
-            lock_cmd: ((bits >> 38) & 3) as u8,
-            ac_cmd: ((bits >> 40) & 7) as u8,
-            ac_set_temp: ((bits >> 43) & 31) as u8,
-            protocol_version_a: ((bits >> 48) & 15) as u8,
-            protocol_version_b: ((bits >> 52) & 15) as u8,
-            protocol_version_c: ((bits >> 56) & 15) as u8,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -2440,7 +2526,7 @@ impl AutocarControlCommand1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -2451,13 +2537,20 @@ impl AutocarControlCommand1 {
     /// | 0 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn drive_mode_cmd(&self) -> DriveModeCmdAutocar {
-        DriveModeCmdAutocar::from_raw(self.drive_mode_cmd)
+        DriveModeCmdAutocar::from_raw(self.drive_mode_cmd_raw())
     }
 
     /// Raw value of `drive_mode_cmd` (bits 0..2).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        self.drive_mode_cmd
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -2469,7 +2562,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -2481,7 +2574,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -2494,13 +2587,20 @@ impl AutocarControlCommand1 {
     /// Errata: E36 (see spec/ERRATA.md)
     #[inline]
     pub fn door_cmd(&self) -> DoorCmd {
-        DoorCmd::from_raw(self.door_cmd)
+        DoorCmd::from_raw(self.door_cmd_raw())
     }
 
     /// Raw value of `door_cmd` (bits 2..4).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        self.door_cmd
+        let bits = self.bits;
+        ((bits >> 2) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_door_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -2512,7 +2612,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -2524,7 +2624,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -2535,13 +2635,20 @@ impl AutocarControlCommand1 {
     /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn horn_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.horn_cmd)
+        SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
     /// Raw value of `horn_cmd` (bits 4..6).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        self.horn_cmd
+        let bits = self.bits;
+        ((bits >> 4) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_horn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -2553,7 +2660,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -2565,7 +2672,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -2576,13 +2683,20 @@ impl AutocarControlCommand1 {
     /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn drl_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.drl_cmd)
+        SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
     /// Raw value of `drl_cmd` (bits 6..8).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        self.drl_cmd
+        let bits = self.bits;
+        ((bits >> 6) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drl_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -2594,7 +2708,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -2606,7 +2720,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -2617,13 +2731,20 @@ impl AutocarControlCommand1 {
     /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.left_turn_cmd)
+        FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
     /// Raw value of `left_turn_cmd` (bits 8..10).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        self.left_turn_cmd
+        let bits = self.bits;
+        ((bits >> 8) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -2635,7 +2756,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -2647,7 +2768,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -2658,13 +2779,20 @@ impl AutocarControlCommand1 {
     /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.right_turn_cmd)
+        FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
     /// Raw value of `right_turn_cmd` (bits 10..12).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        self.right_turn_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -2676,7 +2804,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -2688,7 +2816,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -2699,13 +2827,20 @@ impl AutocarControlCommand1 {
     /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn hazard_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.hazard_cmd)
+        FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
     /// Raw value of `hazard_cmd` (bits 12..14).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        self.hazard_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_hazard_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -2717,7 +2852,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -2729,7 +2864,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -2740,13 +2875,20 @@ impl AutocarControlCommand1 {
     /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn position_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.position_light_cmd)
+        SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
     /// Raw value of `position_light_cmd` (bits 14..16).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        self.position_light_cmd
+        let bits = self.bits;
+        ((bits >> 14) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_position_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -2758,7 +2900,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -2770,7 +2912,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -2781,13 +2923,20 @@ impl AutocarControlCommand1 {
     /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn headlight_cmd(&self) -> Headlight {
-        Headlight::from_raw(self.headlight_cmd)
+        Headlight::from_raw(self.headlight_cmd_raw())
     }
 
     /// Raw value of `headlight_cmd` (bits 16..18).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        self.headlight_cmd
+        let bits = self.bits;
+        ((bits >> 16) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_headlight_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -2799,7 +2948,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -2811,7 +2960,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -2822,13 +2971,20 @@ impl AutocarControlCommand1 {
     /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn rear_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.rear_fog_cmd)
+        SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
     /// Raw value of `rear_fog_cmd` (bits 18..20).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        self.rear_fog_cmd
+        let bits = self.bits;
+        ((bits >> 18) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_rear_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -2840,7 +2996,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -2852,7 +3008,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -2863,13 +3019,20 @@ impl AutocarControlCommand1 {
     /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.left_fog_cmd)
+        SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
     /// Raw value of `left_fog_cmd` (bits 20..22).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        self.left_fog_cmd
+        let bits = self.bits;
+        ((bits >> 20) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -2881,7 +3044,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -2893,7 +3056,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -2904,13 +3067,20 @@ impl AutocarControlCommand1 {
     /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.right_fog_cmd)
+        SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
     /// Raw value of `right_fog_cmd` (bits 22..24).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        self.right_fog_cmd
+        let bits = self.bits;
+        ((bits >> 22) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -2922,7 +3092,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -2934,7 +3104,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -2945,13 +3115,20 @@ impl AutocarControlCommand1 {
     /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn dome_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.dome_light_cmd)
+        SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
     /// Raw value of `dome_light_cmd` (bits 24..26).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        self.dome_light_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_dome_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -2963,7 +3140,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -2975,7 +3152,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -2986,13 +3163,20 @@ impl AutocarControlCommand1 {
     /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn ambient_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.ambient_light_cmd)
+        SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
     /// Raw value of `ambient_light_cmd` (bits 26..28).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        self.ambient_light_cmd
+        let bits = self.bits;
+        ((bits >> 26) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ambient_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -3004,7 +3188,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -3016,7 +3200,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -3027,13 +3211,20 @@ impl AutocarControlCommand1 {
     /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn drive_mode_reset(&self) -> ModeReset {
-        ModeReset::from_raw(self.drive_mode_reset)
+        ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
     /// Raw value of `drive_mode_reset` (bits 28..29).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        self.drive_mode_reset
+        let bits = self.bits;
+        ((bits >> 28) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_reset(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -3045,7 +3236,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -3057,7 +3248,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -3068,13 +3259,20 @@ impl AutocarControlCommand1 {
     /// | 32 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_state(&self) -> SystemStateAutocar {
-        SystemStateAutocar::from_raw(self.system_state)
+        SystemStateAutocar::from_raw(self.system_state_raw())
     }
 
     /// Raw value of `system_state` (bits 32..34).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        self.system_state
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -3086,7 +3284,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -3098,7 +3296,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -3109,13 +3307,20 @@ impl AutocarControlCommand1 {
     /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_reliability(&self) -> ReliabilityAutocar {
-        ReliabilityAutocar::from_raw(self.system_reliability)
+        ReliabilityAutocar::from_raw(self.system_reliability_raw())
     }
 
     /// Raw value of `system_reliability` (bits 34..36).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        self.system_reliability
+        let bits = self.bits;
+        ((bits >> 34) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_reliability(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -3127,7 +3332,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -3139,7 +3344,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -3150,13 +3355,20 @@ impl AutocarControlCommand1 {
     /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_fault_level(&self) -> FaultLevelAutocar {
-        FaultLevelAutocar::from_raw(self.system_fault_level)
+        FaultLevelAutocar::from_raw(self.system_fault_level_raw())
     }
 
     /// Raw value of `system_fault_level` (bits 36..38).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        self.system_fault_level
+        let bits = self.bits;
+        ((bits >> 36) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -3168,7 +3380,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -3180,7 +3392,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -3193,13 +3405,20 @@ impl AutocarControlCommand1 {
     /// Errata: E15 (see spec/ERRATA.md)
     #[inline]
     pub fn lock_cmd(&self) -> LockCmd {
-        LockCmd::from_raw(self.lock_cmd)
+        LockCmd::from_raw(self.lock_cmd_raw())
     }
 
     /// Raw value of `lock_cmd` (bits 38..40).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        self.lock_cmd
+        let bits = self.bits;
+        ((bits >> 38) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_lock_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -3211,7 +3430,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -3223,7 +3442,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -3238,13 +3457,20 @@ impl AutocarControlCommand1 {
     /// Errata: E30 (see spec/ERRATA.md)
     #[inline]
     pub fn ac_cmd(&self) -> AcCmd {
-        AcCmd::from_raw(self.ac_cmd)
+        AcCmd::from_raw(self.ac_cmd_raw())
     }
 
     /// Raw value of `ac_cmd` (bits 40..43).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        self.ac_cmd
+        let bits = self.bits;
+        ((bits >> 40) & 7) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -3256,7 +3482,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -3268,7 +3494,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -3281,13 +3507,20 @@ impl AutocarControlCommand1 {
     /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
     #[inline]
     pub fn ac_set_temp(&self) -> f64 {
-        self.ac_set_temp as f64 * 0.5 + 16.0
+        self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
     /// Raw value of `ac_set_temp` (bits 43..48).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        self.ac_set_temp
+        let bits = self.bits;
+        ((bits >> 43) & 31) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_set_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -3295,7 +3528,7 @@ impl AutocarControlCommand1 {
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
-                self.ac_set_temp = raw as u8;
+                self.store_ac_set_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -3312,7 +3545,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.ac_set_temp",
             });
         }
-        self.ac_set_temp = value;
+        self.store_ac_set_temp(value);
         Ok(())
     }
 
@@ -3325,13 +3558,20 @@ impl AutocarControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_a(&self) -> u8 {
-        self.protocol_version_a
+        self.protocol_version_a_raw()
     }
 
     /// Raw value of `protocol_version_a` (bits 48..52).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        self.protocol_version_a
+        let bits = self.bits;
+        ((bits >> 48) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_a(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -3342,7 +3582,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -3354,7 +3594,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -3367,13 +3607,20 @@ impl AutocarControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_b(&self) -> u8 {
-        self.protocol_version_b
+        self.protocol_version_b_raw()
     }
 
     /// Raw value of `protocol_version_b` (bits 52..56).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        self.protocol_version_b
+        let bits = self.bits;
+        ((bits >> 52) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_b(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -3384,7 +3631,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -3396,7 +3643,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -3409,13 +3656,20 @@ impl AutocarControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_c(&self) -> u8 {
-        self.protocol_version_c
+        self.protocol_version_c_raw()
     }
 
     /// Raw value of `protocol_version_c` (bits 56..60).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        self.protocol_version_c
+        let bits = self.bits;
+        ((bits >> 56) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_c(&mut self, value: u8) {
+        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -3426,7 +3680,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -3438,7 +3692,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -3451,13 +3705,20 @@ impl AutocarControlCommand1 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -3468,7 +3729,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -3480,7 +3741,7 @@ impl AutocarControlCommand1 {
                 signal: "autocar_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -3544,30 +3805,40 @@ impl Frame for AutocarControlCommand1 {
 /// | `vehicle_fault_level` | 整车故障级别 | 38 | 2 | 1 | 0 | — |
 /// | `odometer` | 总里程 | 40 | 16 | 2 | 0 | km |
 /// | `counter` | 心跳值 | 56 | 8 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState1 {
-    drive_mode_state: u8,
-    door_state: u8,
-    drl_state: u8,
-    left_turn_state: u8,
-    right_turn_state: u8,
-    hazard_state: u8,
-    position_light_state: u8,
-    headlight_state: u8,
-    rear_fog_state: u8,
-    left_fog_state: u8,
-    right_fog_state: u8,
-    dome_light_state: u8,
-    ambient_light_state: u8,
-    door_button_state: u8,
-    vehicle_speed: u8,
-    soc: u8,
-    system_power_cmd: u8,
-    charge_state: u8,
-    charge_connection: u8,
-    vehicle_fault_level: u8,
-    odometer: u16,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleState1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleState1")
+            .field("drive_mode_state", &self.drive_mode_state_raw())
+            .field("door_state", &self.door_state_raw())
+            .field("drl_state", &self.drl_state_raw())
+            .field("left_turn_state", &self.left_turn_state_raw())
+            .field("right_turn_state", &self.right_turn_state_raw())
+            .field("hazard_state", &self.hazard_state_raw())
+            .field("position_light_state", &self.position_light_state_raw())
+            .field("headlight_state", &self.headlight_state_raw())
+            .field("rear_fog_state", &self.rear_fog_state_raw())
+            .field("left_fog_state", &self.left_fog_state_raw())
+            .field("right_fog_state", &self.right_fog_state_raw())
+            .field("dome_light_state", &self.dome_light_state_raw())
+            .field("ambient_light_state", &self.ambient_light_state_raw())
+            .field("door_button_state", &self.door_button_state_raw())
+            .field("vehicle_speed", &self.vehicle_speed_raw())
+            .field("soc", &self.soc_raw())
+            .field("system_power_cmd", &self.system_power_cmd_raw())
+            .field("charge_state", &self.charge_state_raw())
+            .field("charge_connection", &self.charge_connection_raw())
+            .field("vehicle_fault_level", &self.vehicle_fault_level_raw())
+            .field("odometer", &self.odometer_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`VehicleState1`] (what [`VehicleState1::new`] takes and
@@ -3687,30 +3958,9 @@ impl VehicleState1 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        drive_mode_state: 0,
-        door_state: 0,
-        drl_state: 0,
-        left_turn_state: 0,
-        right_turn_state: 0,
-        hazard_state: 0,
-        position_light_state: 0,
-        headlight_state: 0,
-        rear_fog_state: 0,
-        left_fog_state: 0,
-        right_fog_state: 0,
-        dome_light_state: 0,
-        ambient_light_state: 0,
-        door_button_state: 0,
-        vehicle_speed: 0,
-        soc: 0,
-        system_power_cmd: 0,
-        charge_state: 0,
-        charge_connection: 0,
-        vehicle_fault_level: 0,
-        odometer: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -3879,28 +4129,7 @@ impl VehicleState1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.drive_mode_state)
-            | u64::from(self.door_state) << 2
-            | u64::from(self.drl_state) << 3
-            | u64::from(self.left_turn_state) << 4
-            | u64::from(self.right_turn_state) << 5
-            | u64::from(self.hazard_state) << 6
-            | u64::from(self.position_light_state) << 7
-            | u64::from(self.headlight_state) << 8
-            | u64::from(self.rear_fog_state) << 10
-            | u64::from(self.left_fog_state) << 11
-            | u64::from(self.right_fog_state) << 12
-            | u64::from(self.dome_light_state) << 13
-            | u64::from(self.ambient_light_state) << 14
-            | u64::from(self.door_button_state) << 15
-            | u64::from(self.vehicle_speed) << 16
-            | u64::from(self.soc) << 24
-            | u64::from(self.system_power_cmd) << 32
-            | u64::from(self.charge_state) << 34
-            | u64::from(self.charge_connection) << 36
-            | u64::from(self.vehicle_fault_level) << 38
-            | u64::from(self.odometer) << 40
-            | u64::from(self.counter) << 56;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -3916,28 +4145,7 @@ impl VehicleState1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            drive_mode_state: (bits & 3) as u8,
-            door_state: ((bits >> 2) & 1) as u8,
-            drl_state: ((bits >> 3) & 1) as u8,
-            left_turn_state: ((bits >> 4) & 1) as u8,
-            right_turn_state: ((bits >> 5) & 1) as u8,
-            hazard_state: ((bits >> 6) & 1) as u8,
-            position_light_state: ((bits >> 7) & 1) as u8,
-            headlight_state: ((bits >> 8) & 3) as u8,
-            rear_fog_state: ((bits >> 10) & 1) as u8,
-            left_fog_state: ((bits >> 11) & 1) as u8,
-            right_fog_state: ((bits >> 12) & 1) as u8,
-            dome_light_state: ((bits >> 13) & 1) as u8,
-            ambient_light_state: ((bits >> 14) & 1) as u8,
-            door_button_state: ((bits >> 15) & 1) as u8,
-            vehicle_speed: (bits >> 16) as u8,
-            soc: (bits >> 24) as u8,
-            system_power_cmd: ((bits >> 32) & 3) as u8,
-            charge_state: ((bits >> 34) & 3) as u8,
-            charge_connection: ((bits >> 36) & 3) as u8,
-            vehicle_fault_level: ((bits >> 38) & 3) as u8,
-            odometer: (bits >> 40) as u16,
-            counter: (bits >> 56) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -3945,7 +4153,7 @@ impl VehicleState1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -3956,13 +4164,20 @@ impl VehicleState1 {
     /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn drive_mode_state(&self) -> DriveModeState {
-        DriveModeState::from_raw(self.drive_mode_state)
+        DriveModeState::from_raw(self.drive_mode_state_raw())
     }
 
     /// Raw value of `drive_mode_state` (bits 0..2).
     #[inline]
     pub fn drive_mode_state_raw(&self) -> u8 {
-        self.drive_mode_state
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `drive_mode_state` from its physical value; outside the documented range is an error.
@@ -3974,7 +4189,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.drive_mode_state",
             });
         }
-        self.drive_mode_state = value;
+        self.store_drive_mode_state(value);
         Ok(())
     }
 
@@ -3986,7 +4201,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.drive_mode_state",
             });
         }
-        self.drive_mode_state = value;
+        self.store_drive_mode_state(value);
         Ok(())
     }
 
@@ -3997,13 +4212,20 @@ impl VehicleState1 {
     /// | 2 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn door_state(&self) -> OffOn {
-        OffOn::from_raw(self.door_state)
+        OffOn::from_raw(self.door_state_raw())
     }
 
     /// Raw value of `door_state` (bits 2..3).
     #[inline]
     pub fn door_state_raw(&self) -> u8 {
-        self.door_state
+        let bits = self.bits;
+        ((bits >> 2) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_door_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
     }
 
     /// Set `door_state` from its physical value; outside the documented range is an error.
@@ -4015,7 +4237,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.door_state",
             });
         }
-        self.door_state = value;
+        self.store_door_state(value);
         Ok(())
     }
 
@@ -4027,7 +4249,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.door_state",
             });
         }
-        self.door_state = value;
+        self.store_door_state(value);
         Ok(())
     }
 
@@ -4038,13 +4260,20 @@ impl VehicleState1 {
     /// | 3 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn drl_state(&self) -> OffOn {
-        OffOn::from_raw(self.drl_state)
+        OffOn::from_raw(self.drl_state_raw())
     }
 
     /// Raw value of `drl_state` (bits 3..4).
     #[inline]
     pub fn drl_state_raw(&self) -> u8 {
-        self.drl_state
+        let bits = self.bits;
+        ((bits >> 3) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drl_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
     }
 
     /// Set `drl_state` from its physical value; outside the documented range is an error.
@@ -4056,7 +4285,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.drl_state",
             });
         }
-        self.drl_state = value;
+        self.store_drl_state(value);
         Ok(())
     }
 
@@ -4068,7 +4297,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.drl_state",
             });
         }
-        self.drl_state = value;
+        self.store_drl_state(value);
         Ok(())
     }
 
@@ -4079,13 +4308,20 @@ impl VehicleState1 {
     /// | 4 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn left_turn_state(&self) -> OffFlashing {
-        OffFlashing::from_raw(self.left_turn_state)
+        OffFlashing::from_raw(self.left_turn_state_raw())
     }
 
     /// Raw value of `left_turn_state` (bits 4..5).
     #[inline]
     pub fn left_turn_state_raw(&self) -> u8 {
-        self.left_turn_state
+        let bits = self.bits;
+        ((bits >> 4) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_turn_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
     }
 
     /// Set `left_turn_state` from its physical value; outside the documented range is an error.
@@ -4097,7 +4333,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.left_turn_state",
             });
         }
-        self.left_turn_state = value;
+        self.store_left_turn_state(value);
         Ok(())
     }
 
@@ -4109,7 +4345,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.left_turn_state",
             });
         }
-        self.left_turn_state = value;
+        self.store_left_turn_state(value);
         Ok(())
     }
 
@@ -4120,13 +4356,20 @@ impl VehicleState1 {
     /// | 5 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn right_turn_state(&self) -> OffFlashing {
-        OffFlashing::from_raw(self.right_turn_state)
+        OffFlashing::from_raw(self.right_turn_state_raw())
     }
 
     /// Raw value of `right_turn_state` (bits 5..6).
     #[inline]
     pub fn right_turn_state_raw(&self) -> u8 {
-        self.right_turn_state
+        let bits = self.bits;
+        ((bits >> 5) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_turn_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
     }
 
     /// Set `right_turn_state` from its physical value; outside the documented range is an error.
@@ -4138,7 +4381,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.right_turn_state",
             });
         }
-        self.right_turn_state = value;
+        self.store_right_turn_state(value);
         Ok(())
     }
 
@@ -4150,7 +4393,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.right_turn_state",
             });
         }
-        self.right_turn_state = value;
+        self.store_right_turn_state(value);
         Ok(())
     }
 
@@ -4161,13 +4404,20 @@ impl VehicleState1 {
     /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn hazard_state(&self) -> OffFlashing {
-        OffFlashing::from_raw(self.hazard_state)
+        OffFlashing::from_raw(self.hazard_state_raw())
     }
 
     /// Raw value of `hazard_state` (bits 6..7).
     #[inline]
     pub fn hazard_state_raw(&self) -> u8 {
-        self.hazard_state
+        let bits = self.bits;
+        ((bits >> 6) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_hazard_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
     }
 
     /// Set `hazard_state` from its physical value; outside the documented range is an error.
@@ -4179,7 +4429,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.hazard_state",
             });
         }
-        self.hazard_state = value;
+        self.store_hazard_state(value);
         Ok(())
     }
 
@@ -4191,7 +4441,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.hazard_state",
             });
         }
-        self.hazard_state = value;
+        self.store_hazard_state(value);
         Ok(())
     }
 
@@ -4202,13 +4452,20 @@ impl VehicleState1 {
     /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn position_light_state(&self) -> OffOn {
-        OffOn::from_raw(self.position_light_state)
+        OffOn::from_raw(self.position_light_state_raw())
     }
 
     /// Raw value of `position_light_state` (bits 7..8).
     #[inline]
     pub fn position_light_state_raw(&self) -> u8 {
-        self.position_light_state
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_position_light_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `position_light_state` from its physical value; outside the documented range is an error.
@@ -4220,7 +4477,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.position_light_state",
             });
         }
-        self.position_light_state = value;
+        self.store_position_light_state(value);
         Ok(())
     }
 
@@ -4232,7 +4489,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.position_light_state",
             });
         }
-        self.position_light_state = value;
+        self.store_position_light_state(value);
         Ok(())
     }
 
@@ -4245,13 +4502,20 @@ impl VehicleState1 {
     /// Errata: E34 (see spec/ERRATA.md)
     #[inline]
     pub fn headlight_state(&self) -> Headlight {
-        Headlight::from_raw(self.headlight_state)
+        Headlight::from_raw(self.headlight_state_raw())
     }
 
     /// Raw value of `headlight_state` (bits 8..10).
     #[inline]
     pub fn headlight_state_raw(&self) -> u8 {
-        self.headlight_state
+        let bits = self.bits;
+        ((bits >> 8) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_headlight_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
     }
 
     /// Set `headlight_state` from its physical value; outside the documented range is an error.
@@ -4263,7 +4527,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.headlight_state",
             });
         }
-        self.headlight_state = value;
+        self.store_headlight_state(value);
         Ok(())
     }
 
@@ -4275,7 +4539,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.headlight_state",
             });
         }
-        self.headlight_state = value;
+        self.store_headlight_state(value);
         Ok(())
     }
 
@@ -4286,13 +4550,20 @@ impl VehicleState1 {
     /// | 10 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn rear_fog_state(&self) -> OffOn {
-        OffOn::from_raw(self.rear_fog_state)
+        OffOn::from_raw(self.rear_fog_state_raw())
     }
 
     /// Raw value of `rear_fog_state` (bits 10..11).
     #[inline]
     pub fn rear_fog_state_raw(&self) -> u8 {
-        self.rear_fog_state
+        let bits = self.bits;
+        ((bits >> 10) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_rear_fog_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
     }
 
     /// Set `rear_fog_state` from its physical value; outside the documented range is an error.
@@ -4304,7 +4575,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.rear_fog_state",
             });
         }
-        self.rear_fog_state = value;
+        self.store_rear_fog_state(value);
         Ok(())
     }
 
@@ -4316,7 +4587,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.rear_fog_state",
             });
         }
-        self.rear_fog_state = value;
+        self.store_rear_fog_state(value);
         Ok(())
     }
 
@@ -4327,13 +4598,20 @@ impl VehicleState1 {
     /// | 11 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn left_fog_state(&self) -> OffOn {
-        OffOn::from_raw(self.left_fog_state)
+        OffOn::from_raw(self.left_fog_state_raw())
     }
 
     /// Raw value of `left_fog_state` (bits 11..12).
     #[inline]
     pub fn left_fog_state_raw(&self) -> u8 {
-        self.left_fog_state
+        let bits = self.bits;
+        ((bits >> 11) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_fog_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
     }
 
     /// Set `left_fog_state` from its physical value; outside the documented range is an error.
@@ -4345,7 +4623,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.left_fog_state",
             });
         }
-        self.left_fog_state = value;
+        self.store_left_fog_state(value);
         Ok(())
     }
 
@@ -4357,7 +4635,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.left_fog_state",
             });
         }
-        self.left_fog_state = value;
+        self.store_left_fog_state(value);
         Ok(())
     }
 
@@ -4368,13 +4646,20 @@ impl VehicleState1 {
     /// | 12 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn right_fog_state(&self) -> OffOn {
-        OffOn::from_raw(self.right_fog_state)
+        OffOn::from_raw(self.right_fog_state_raw())
     }
 
     /// Raw value of `right_fog_state` (bits 12..13).
     #[inline]
     pub fn right_fog_state_raw(&self) -> u8 {
-        self.right_fog_state
+        let bits = self.bits;
+        ((bits >> 12) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_fog_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
     }
 
     /// Set `right_fog_state` from its physical value; outside the documented range is an error.
@@ -4386,7 +4671,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.right_fog_state",
             });
         }
-        self.right_fog_state = value;
+        self.store_right_fog_state(value);
         Ok(())
     }
 
@@ -4398,7 +4683,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.right_fog_state",
             });
         }
-        self.right_fog_state = value;
+        self.store_right_fog_state(value);
         Ok(())
     }
 
@@ -4409,13 +4694,20 @@ impl VehicleState1 {
     /// | 13 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn dome_light_state(&self) -> OffOn {
-        OffOn::from_raw(self.dome_light_state)
+        OffOn::from_raw(self.dome_light_state_raw())
     }
 
     /// Raw value of `dome_light_state` (bits 13..14).
     #[inline]
     pub fn dome_light_state_raw(&self) -> u8 {
-        self.dome_light_state
+        let bits = self.bits;
+        ((bits >> 13) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_dome_light_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
     }
 
     /// Set `dome_light_state` from its physical value; outside the documented range is an error.
@@ -4427,7 +4719,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.dome_light_state",
             });
         }
-        self.dome_light_state = value;
+        self.store_dome_light_state(value);
         Ok(())
     }
 
@@ -4439,7 +4731,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.dome_light_state",
             });
         }
-        self.dome_light_state = value;
+        self.store_dome_light_state(value);
         Ok(())
     }
 
@@ -4450,13 +4742,20 @@ impl VehicleState1 {
     /// | 14 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn ambient_light_state(&self) -> OffOn {
-        OffOn::from_raw(self.ambient_light_state)
+        OffOn::from_raw(self.ambient_light_state_raw())
     }
 
     /// Raw value of `ambient_light_state` (bits 14..15).
     #[inline]
     pub fn ambient_light_state_raw(&self) -> u8 {
-        self.ambient_light_state
+        let bits = self.bits;
+        ((bits >> 14) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ambient_light_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
     }
 
     /// Set `ambient_light_state` from its physical value; outside the documented range is an error.
@@ -4468,7 +4767,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.ambient_light_state",
             });
         }
-        self.ambient_light_state = value;
+        self.store_ambient_light_state(value);
         Ok(())
     }
 
@@ -4480,7 +4779,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.ambient_light_state",
             });
         }
-        self.ambient_light_state = value;
+        self.store_ambient_light_state(value);
         Ok(())
     }
 
@@ -4491,13 +4790,20 @@ impl VehicleState1 {
     /// | 15 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn door_button_state(&self) -> Button {
-        Button::from_raw(self.door_button_state)
+        Button::from_raw(self.door_button_state_raw())
     }
 
     /// Raw value of `door_button_state` (bits 15..16).
     #[inline]
     pub fn door_button_state_raw(&self) -> u8 {
-        self.door_button_state
+        let bits = self.bits;
+        ((bits >> 15) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_door_button_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
     }
 
     /// Set `door_button_state` from its physical value; outside the documented range is an error.
@@ -4509,7 +4815,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.door_button_state",
             });
         }
-        self.door_button_state = value;
+        self.store_door_button_state(value);
         Ok(())
     }
 
@@ -4521,7 +4827,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.door_button_state",
             });
         }
-        self.door_button_state = value;
+        self.store_door_button_state(value);
         Ok(())
     }
 
@@ -4532,13 +4838,20 @@ impl VehicleState1 {
     /// | 16 | 8 | 1 | -50 | km/h | -50 … 200 | 0 … 250 |
     #[inline]
     pub fn vehicle_speed(&self) -> i16 {
-        self.vehicle_speed as i16 - 50
+        self.vehicle_speed_raw() as i16 - 50
     }
 
     /// Raw value of `vehicle_speed` (bits 16..24).
     #[inline]
     pub fn vehicle_speed_raw(&self) -> u8 {
-        self.vehicle_speed
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_vehicle_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `vehicle_speed` from its physical value; outside the documented range is an error.
@@ -4546,7 +4859,7 @@ impl VehicleState1 {
     pub fn set_vehicle_speed(&mut self, value: i16) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::VEHICLE_SPEED_SCALE) {
             Some(raw) => {
-                self.vehicle_speed = raw as u8;
+                self.store_vehicle_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -4558,7 +4871,7 @@ impl VehicleState1 {
     /// Set the raw value of `vehicle_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_vehicle_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.vehicle_speed = value;
+        self.store_vehicle_speed(value);
         Ok(())
     }
 
@@ -4571,13 +4884,20 @@ impl VehicleState1 {
     /// Errata: E34 (see spec/ERRATA.md)
     #[inline]
     pub fn soc(&self) -> f64 {
-        self.soc as f64 * 0.5
+        self.soc_raw() as f64 * 0.5
     }
 
     /// Raw value of `soc` (bits 24..32).
     #[inline]
     pub fn soc_raw(&self) -> u8 {
-        self.soc
+        let bits = self.bits;
+        (bits >> 24) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_soc(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `soc` from its physical value; outside the documented range is an error.
@@ -4585,7 +4905,7 @@ impl VehicleState1 {
     pub fn set_soc(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::SOC_SCALE) {
             Some(raw) => {
-                self.soc = raw as u8;
+                self.store_soc(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -4597,7 +4917,7 @@ impl VehicleState1 {
     /// Set the raw value of `soc`; any value that fits its 8 bits.
     #[inline]
     pub fn set_soc_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.soc = value;
+        self.store_soc(value);
         Ok(())
     }
 
@@ -4608,13 +4928,20 @@ impl VehicleState1 {
     /// | 32 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn system_power_cmd(&self) -> PowerCmd {
-        PowerCmd::from_raw(self.system_power_cmd)
+        PowerCmd::from_raw(self.system_power_cmd_raw())
     }
 
     /// Raw value of `system_power_cmd` (bits 32..34).
     #[inline]
     pub fn system_power_cmd_raw(&self) -> u8 {
-        self.system_power_cmd
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_power_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `system_power_cmd` from its physical value; outside the documented range is an error.
@@ -4626,7 +4953,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.system_power_cmd",
             });
         }
-        self.system_power_cmd = value;
+        self.store_system_power_cmd(value);
         Ok(())
     }
 
@@ -4638,7 +4965,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.system_power_cmd",
             });
         }
-        self.system_power_cmd = value;
+        self.store_system_power_cmd(value);
         Ok(())
     }
 
@@ -4649,13 +4976,20 @@ impl VehicleState1 {
     /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn charge_state(&self) -> ChargeState {
-        ChargeState::from_raw(self.charge_state)
+        ChargeState::from_raw(self.charge_state_raw())
     }
 
     /// Raw value of `charge_state` (bits 34..36).
     #[inline]
     pub fn charge_state_raw(&self) -> u8 {
-        self.charge_state
+        let bits = self.bits;
+        ((bits >> 34) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_charge_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `charge_state` from its physical value; outside the documented range is an error.
@@ -4667,7 +5001,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.charge_state",
             });
         }
-        self.charge_state = value;
+        self.store_charge_state(value);
         Ok(())
     }
 
@@ -4679,7 +5013,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.charge_state",
             });
         }
-        self.charge_state = value;
+        self.store_charge_state(value);
         Ok(())
     }
 
@@ -4690,13 +5024,20 @@ impl VehicleState1 {
     /// | 36 | 2 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn charge_connection(&self) -> ChargeConnection {
-        ChargeConnection::from_raw(self.charge_connection)
+        ChargeConnection::from_raw(self.charge_connection_raw())
     }
 
     /// Raw value of `charge_connection` (bits 36..38).
     #[inline]
     pub fn charge_connection_raw(&self) -> u8 {
-        self.charge_connection
+        let bits = self.bits;
+        ((bits >> 36) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_charge_connection(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `charge_connection` from its physical value; outside the documented range is an error.
@@ -4708,7 +5049,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.charge_connection",
             });
         }
-        self.charge_connection = value;
+        self.store_charge_connection(value);
         Ok(())
     }
 
@@ -4720,7 +5061,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.charge_connection",
             });
         }
-        self.charge_connection = value;
+        self.store_charge_connection(value);
         Ok(())
     }
 
@@ -4731,13 +5072,20 @@ impl VehicleState1 {
     /// | 38 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn vehicle_fault_level(&self) -> VehicleFaultLevel {
-        VehicleFaultLevel::from_raw(self.vehicle_fault_level)
+        VehicleFaultLevel::from_raw(self.vehicle_fault_level_raw())
     }
 
     /// Raw value of `vehicle_fault_level` (bits 38..40).
     #[inline]
     pub fn vehicle_fault_level_raw(&self) -> u8 {
-        self.vehicle_fault_level
+        let bits = self.bits;
+        ((bits >> 38) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_vehicle_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `vehicle_fault_level` from its physical value; outside the documented range is an error.
@@ -4749,7 +5097,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.vehicle_fault_level",
             });
         }
-        self.vehicle_fault_level = value;
+        self.store_vehicle_fault_level(value);
         Ok(())
     }
 
@@ -4761,7 +5109,7 @@ impl VehicleState1 {
                 signal: "vehicle_state_1.vehicle_fault_level",
             });
         }
-        self.vehicle_fault_level = value;
+        self.store_vehicle_fault_level(value);
         Ok(())
     }
 
@@ -4772,13 +5120,20 @@ impl VehicleState1 {
     /// | 40 | 16 | 2 | 0 | km | 0 … 120000 | 0 … 60000 |
     #[inline]
     pub fn odometer(&self) -> u32 {
-        self.odometer as u32 * 2
+        self.odometer_raw() as u32 * 2
     }
 
     /// Raw value of `odometer` (bits 40..56).
     #[inline]
     pub fn odometer_raw(&self) -> u16 {
-        self.odometer
+        let bits = self.bits;
+        (bits >> 40) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_odometer(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFF00_00FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `odometer` from its physical value; outside the documented range is an error.
@@ -4786,7 +5141,7 @@ impl VehicleState1 {
     pub fn set_odometer(&mut self, value: u32) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::ODOMETER_SCALE) {
             Some(raw) => {
-                self.odometer = raw as u16;
+                self.store_odometer(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -4798,7 +5153,7 @@ impl VehicleState1 {
     /// Set the raw value of `odometer`; any value that fits its 16 bits.
     #[inline]
     pub fn set_odometer_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.odometer = value;
+        self.store_odometer(value);
         Ok(())
     }
 
@@ -4811,26 +5166,33 @@ impl VehicleState1 {
     /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 56..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 56) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -4880,18 +5242,28 @@ impl Frame for VehicleState1 {
 /// | `cargo_pitch` | 货箱俯仰角 | 36 | 10 | 0.2 | -30 | deg |
 /// | `cargo_roll` | 货箱侧倾角 | 46 | 10 | 0.1 | -40 | deg |
 /// | `counter` | 心跳 | 56 | 8 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct AutocarControlCommand2 {
-    downhill_regen_enable: u8,
-    cargo_lift: u8,
-    cargo_lift_speed: u8,
-    pto_enable: u8,
-    downhill_regen_speed: u8,
-    chassis_pitch: u16,
-    chassis_roll: u16,
-    cargo_pitch: u16,
-    cargo_roll: u16,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for AutocarControlCommand2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("AutocarControlCommand2")
+            .field("downhill_regen_enable", &self.downhill_regen_enable_raw())
+            .field("cargo_lift", &self.cargo_lift_raw())
+            .field("cargo_lift_speed", &self.cargo_lift_speed_raw())
+            .field("pto_enable", &self.pto_enable_raw())
+            .field("downhill_regen_speed", &self.downhill_regen_speed_raw())
+            .field("chassis_pitch", &self.chassis_pitch_raw())
+            .field("chassis_roll", &self.chassis_roll_raw())
+            .field("cargo_pitch", &self.cargo_pitch_raw())
+            .field("cargo_roll", &self.cargo_roll_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`AutocarControlCommand2`] (what [`AutocarControlCommand2::new`] takes and
@@ -5017,18 +5389,9 @@ impl AutocarControlCommand2 {
         type_max: 1023,
     };
 
-    const ZERO: Self = Self {
-        downhill_regen_enable: 0,
-        cargo_lift: 0,
-        cargo_lift_speed: 0,
-        pto_enable: 0,
-        downhill_regen_speed: 0,
-        chassis_pitch: 0,
-        chassis_roll: 0,
-        cargo_pitch: 0,
-        cargo_roll: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -5125,16 +5488,7 @@ impl AutocarControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.downhill_regen_enable)
-            | u64::from(self.cargo_lift) << 1
-            | u64::from(self.cargo_lift_speed) << 3
-            | u64::from(self.pto_enable) << 7
-            | u64::from(self.downhill_regen_speed) << 8
-            | u64::from(self.chassis_pitch) << 16
-            | u64::from(self.chassis_roll) << 26
-            | u64::from(self.cargo_pitch) << 36
-            | u64::from(self.cargo_roll) << 46
-            | u64::from(self.counter) << 56;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -5150,16 +5504,7 @@ impl AutocarControlCommand2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            downhill_regen_enable: (bits & 1) as u8,
-            cargo_lift: ((bits >> 1) & 3) as u8,
-            cargo_lift_speed: ((bits >> 3) & 15) as u8,
-            pto_enable: ((bits >> 7) & 1) as u8,
-            downhill_regen_speed: (bits >> 8) as u8,
-            chassis_pitch: ((bits >> 16) & 1023) as u16,
-            chassis_roll: ((bits >> 26) & 1023) as u16,
-            cargo_pitch: ((bits >> 36) & 1023) as u16,
-            cargo_roll: ((bits >> 46) & 1023) as u16,
-            counter: (bits >> 56) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -5167,7 +5512,7 @@ impl AutocarControlCommand2 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -5178,13 +5523,20 @@ impl AutocarControlCommand2 {
     /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn downhill_regen_enable(&self) -> DownhillRegenEnable {
-        DownhillRegenEnable::from_raw(self.downhill_regen_enable)
+        DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
     /// Raw value of `downhill_regen_enable` (bits 0..1).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        self.downhill_regen_enable
+        let bits = self.bits;
+        (bits & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFE) | u64::from(value);
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
@@ -5196,7 +5548,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -5208,7 +5560,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -5219,13 +5571,20 @@ impl AutocarControlCommand2 {
     /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn cargo_lift(&self) -> CargoLift {
-        CargoLift::from_raw(self.cargo_lift)
+        CargoLift::from_raw(self.cargo_lift_raw())
     }
 
     /// Raw value of `cargo_lift` (bits 1..3).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        self.cargo_lift
+        let bits = self.bits;
+        ((bits >> 1) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF9) | u64::from(value) << 1;
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
@@ -5237,7 +5596,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -5249,7 +5608,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -5262,13 +5621,20 @@ impl AutocarControlCommand2 {
     /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
     #[inline]
     pub fn cargo_lift_speed(&self) -> u8 {
-        self.cargo_lift_speed
+        self.cargo_lift_speed_raw()
     }
 
     /// Raw value of `cargo_lift_speed` (bits 3..7).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        self.cargo_lift_speed
+        let bits = self.bits;
+        ((bits >> 3) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF87) | u64::from(value) << 3;
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
@@ -5279,7 +5645,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -5291,7 +5657,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -5302,13 +5668,20 @@ impl AutocarControlCommand2 {
     /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn pto_enable(&self) -> PtoEnable {
-        PtoEnable::from_raw(self.pto_enable)
+        PtoEnable::from_raw(self.pto_enable_raw())
     }
 
     /// Raw value of `pto_enable` (bits 7..8).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        self.pto_enable
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_pto_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
@@ -5320,7 +5693,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -5332,7 +5705,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -5347,13 +5720,20 @@ impl AutocarControlCommand2 {
     /// Special raw value 0: 默认车速 (Default speed)
     #[inline]
     pub fn downhill_regen_speed(&self) -> f64 {
-        self.downhill_regen_speed as f64 * 0.5
+        self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
     /// Raw value of `downhill_regen_speed` (bits 8..16).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        self.downhill_regen_speed
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
@@ -5361,7 +5741,7 @@ impl AutocarControlCommand2 {
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.downhill_regen_speed = raw as u8;
+                self.store_downhill_regen_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5373,7 +5753,7 @@ impl AutocarControlCommand2 {
     /// Set the raw value of `downhill_regen_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_downhill_regen_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.downhill_regen_speed = value;
+        self.store_downhill_regen_speed(value);
         Ok(())
     }
 
@@ -5386,13 +5766,20 @@ impl AutocarControlCommand2 {
     /// | 16 | 10 | 0.05 | -25 | deg | -25 … 25 | 0 … 1000 |
     #[inline]
     pub fn chassis_pitch(&self) -> f64 {
-        self.chassis_pitch as f64 * 0.05 - 25.0
+        self.chassis_pitch_raw() as f64 * 0.05 - 25.0
     }
 
     /// Raw value of `chassis_pitch` (bits 16..26).
     #[inline]
     pub fn chassis_pitch_raw(&self) -> u16 {
-        self.chassis_pitch
+        let bits = self.bits;
+        ((bits >> 16) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_chassis_pitch(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FC00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `chassis_pitch` from its physical value; outside the documented range is an error.
@@ -5400,7 +5787,7 @@ impl AutocarControlCommand2 {
     pub fn set_chassis_pitch(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_PITCH_SCALE) {
             Some(raw) => {
-                self.chassis_pitch = raw as u16;
+                self.store_chassis_pitch(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5417,7 +5804,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.chassis_pitch",
             });
         }
-        self.chassis_pitch = value;
+        self.store_chassis_pitch(value);
         Ok(())
     }
 
@@ -5430,13 +5817,20 @@ impl AutocarControlCommand2 {
     /// | 26 | 10 | 0.1 | -40 | deg | -40 … 40 | 0 … 800 |
     #[inline]
     pub fn chassis_roll(&self) -> f64 {
-        self.chassis_roll as f64 * 0.1 - 40.0
+        self.chassis_roll_raw() as f64 * 0.1 - 40.0
     }
 
     /// Raw value of `chassis_roll` (bits 26..36).
     #[inline]
     pub fn chassis_roll_raw(&self) -> u16 {
-        self.chassis_roll
+        let bits = self.bits;
+        ((bits >> 26) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_chassis_roll(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFF0_03FF_FFFF) | u64::from(value) << 26;
     }
 
     /// Set `chassis_roll` from its physical value; outside the documented range is an error.
@@ -5444,7 +5838,7 @@ impl AutocarControlCommand2 {
     pub fn set_chassis_roll(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_ROLL_SCALE) {
             Some(raw) => {
-                self.chassis_roll = raw as u16;
+                self.store_chassis_roll(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5461,7 +5855,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.chassis_roll",
             });
         }
-        self.chassis_roll = value;
+        self.store_chassis_roll(value);
         Ok(())
     }
 
@@ -5474,13 +5868,20 @@ impl AutocarControlCommand2 {
     /// | 36 | 10 | 0.2 | -30 | deg | -30 … 100 | 0 … 650 |
     #[inline]
     pub fn cargo_pitch(&self) -> f64 {
-        self.cargo_pitch as f64 * 0.2 - 30.0
+        self.cargo_pitch_raw() as f64 * 0.2 - 30.0
     }
 
     /// Raw value of `cargo_pitch` (bits 36..46).
     #[inline]
     pub fn cargo_pitch_raw(&self) -> u16 {
-        self.cargo_pitch
+        let bits = self.bits;
+        ((bits >> 36) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_pitch(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_C00F_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `cargo_pitch` from its physical value; outside the documented range is an error.
@@ -5488,7 +5889,7 @@ impl AutocarControlCommand2 {
     pub fn set_cargo_pitch(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::CARGO_PITCH_SCALE) {
             Some(raw) => {
-                self.cargo_pitch = raw as u16;
+                self.store_cargo_pitch(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5505,7 +5906,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_pitch",
             });
         }
-        self.cargo_pitch = value;
+        self.store_cargo_pitch(value);
         Ok(())
     }
 
@@ -5518,13 +5919,20 @@ impl AutocarControlCommand2 {
     /// | 46 | 10 | 0.1 | -40 | deg | -40 … 40 | 0 … 800 |
     #[inline]
     pub fn cargo_roll(&self) -> f64 {
-        self.cargo_roll as f64 * 0.1 - 40.0
+        self.cargo_roll_raw() as f64 * 0.1 - 40.0
     }
 
     /// Raw value of `cargo_roll` (bits 46..56).
     #[inline]
     pub fn cargo_roll_raw(&self) -> u16 {
-        self.cargo_roll
+        let bits = self.bits;
+        ((bits >> 46) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_roll(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFF00_3FFF_FFFF_FFFF) | u64::from(value) << 46;
     }
 
     /// Set `cargo_roll` from its physical value; outside the documented range is an error.
@@ -5532,7 +5940,7 @@ impl AutocarControlCommand2 {
     pub fn set_cargo_roll(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::CARGO_ROLL_SCALE) {
             Some(raw) => {
-                self.cargo_roll = raw as u16;
+                self.store_cargo_roll(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5549,7 +5957,7 @@ impl AutocarControlCommand2 {
                 signal: "autocar_control_command_2.cargo_roll",
             });
         }
-        self.cargo_roll = value;
+        self.store_cargo_roll(value);
         Ok(())
     }
 
@@ -5562,26 +5970,33 @@ impl AutocarControlCommand2 {
     /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 56..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 56) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -5625,12 +6040,25 @@ impl Frame for AutocarControlCommand2 {
 /// | `battery_current` | 动力电池电流 | 16 | 16 | 0.02 | -500 | A |
 /// | `battery_charge_energy` | 电池组累计充电电量 | 32 | 16 | 1 | 0 | kWh |
 /// | `battery_discharge_energy` | 电池组累计放电电量 | 48 | 16 | 1 | 0 | kWh |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState2 {
-    battery_voltage: u16,
-    battery_current: u16,
-    battery_charge_energy: u16,
-    battery_discharge_energy: u16,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleState2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleState2")
+            .field("battery_voltage", &self.battery_voltage_raw())
+            .field("battery_current", &self.battery_current_raw())
+            .field("battery_charge_energy", &self.battery_charge_energy_raw())
+            .field(
+                "battery_discharge_energy",
+                &self.battery_discharge_energy_raw(),
+            )
+            .finish()
+    }
 }
 
 /// Physical values of [`VehicleState2`] (what [`VehicleState2::new`] takes and
@@ -5698,12 +6126,9 @@ impl VehicleState2 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        battery_voltage: 0,
-        battery_current: 0,
-        battery_charge_energy: 0,
-        battery_discharge_energy: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -5762,10 +6187,7 @@ impl VehicleState2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.battery_voltage)
-            | u64::from(self.battery_current) << 16
-            | u64::from(self.battery_charge_energy) << 32
-            | u64::from(self.battery_discharge_energy) << 48;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -5781,10 +6203,7 @@ impl VehicleState2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            battery_voltage: bits as u16,
-            battery_current: (bits >> 16) as u16,
-            battery_charge_energy: (bits >> 32) as u16,
-            battery_discharge_energy: (bits >> 48) as u16,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -5795,13 +6214,20 @@ impl VehicleState2 {
     /// | 0 | 16 | 0.2 | 0 | V | 0 … 800 | 0 … 4000 |
     #[inline]
     pub fn battery_voltage(&self) -> f64 {
-        self.battery_voltage as f64 * 0.2
+        self.battery_voltage_raw() as f64 * 0.2
     }
 
     /// Raw value of `battery_voltage` (bits 0..16).
     #[inline]
     pub fn battery_voltage_raw(&self) -> u16 {
-        self.battery_voltage
+        let bits = self.bits;
+        bits as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_voltage(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_0000) | u64::from(value);
     }
 
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
@@ -5809,7 +6235,7 @@ impl VehicleState2 {
     pub fn set_battery_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::BATTERY_VOLTAGE_SCALE) {
             Some(raw) => {
-                self.battery_voltage = raw as u16;
+                self.store_battery_voltage(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5821,7 +6247,7 @@ impl VehicleState2 {
     /// Set the raw value of `battery_voltage`; any value that fits its 16 bits.
     #[inline]
     pub fn set_battery_voltage_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_voltage = value;
+        self.store_battery_voltage(value);
         Ok(())
     }
 
@@ -5834,13 +6260,20 @@ impl VehicleState2 {
     /// | 16 | 16 | 0.02 | -500 | A | -500 … 800 | 0 … 65000 |
     #[inline]
     pub fn battery_current(&self) -> f64 {
-        self.battery_current as f64 * 0.02 - 500.0
+        self.battery_current_raw() as f64 * 0.02 - 500.0
     }
 
     /// Raw value of `battery_current` (bits 16..32).
     #[inline]
     pub fn battery_current_raw(&self) -> u16 {
-        self.battery_current
+        let bits = self.bits;
+        (bits >> 16) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_current(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_0000_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `battery_current` from its physical value; outside the documented range is an error.
@@ -5848,7 +6281,7 @@ impl VehicleState2 {
     pub fn set_battery_current(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::BATTERY_CURRENT_SCALE) {
             Some(raw) => {
-                self.battery_current = raw as u16;
+                self.store_battery_current(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -5860,7 +6293,7 @@ impl VehicleState2 {
     /// Set the raw value of `battery_current`; any value that fits its 16 bits.
     #[inline]
     pub fn set_battery_current_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_current = value;
+        self.store_battery_current(value);
         Ok(())
     }
 
@@ -5871,26 +6304,33 @@ impl VehicleState2 {
     /// | 32 | 16 | 1 | 0 | kWh | 0 … 65535 | 0 … 65535 |
     #[inline]
     pub fn battery_charge_energy(&self) -> u16 {
-        self.battery_charge_energy
+        self.battery_charge_energy_raw()
     }
 
     /// Raw value of `battery_charge_energy` (bits 32..48).
     #[inline]
     pub fn battery_charge_energy_raw(&self) -> u16 {
-        self.battery_charge_energy
+        let bits = self.bits;
+        (bits >> 32) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_charge_energy(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_0000_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `battery_charge_energy` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_charge_energy(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_charge_energy = value;
+        self.store_battery_charge_energy(value);
         Ok(())
     }
 
     /// Set the raw value of `battery_charge_energy`; any value that fits its 16 bits.
     #[inline]
     pub fn set_battery_charge_energy_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_charge_energy = value;
+        self.store_battery_charge_energy(value);
         Ok(())
     }
 
@@ -5903,26 +6343,33 @@ impl VehicleState2 {
     /// Errata: E21 (see spec/ERRATA.md)
     #[inline]
     pub fn battery_discharge_energy(&self) -> u16 {
-        self.battery_discharge_energy
+        self.battery_discharge_energy_raw()
     }
 
     /// Raw value of `battery_discharge_energy` (bits 48..64).
     #[inline]
     pub fn battery_discharge_energy_raw(&self) -> u16 {
-        self.battery_discharge_energy
+        let bits = self.bits;
+        (bits >> 48) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_discharge_energy(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `battery_discharge_energy` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_discharge_energy(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_discharge_energy = value;
+        self.store_battery_discharge_energy(value);
         Ok(())
     }
 
     /// Set the raw value of `battery_discharge_energy`; any value that fits its 16 bits.
     #[inline]
     pub fn set_battery_discharge_energy_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_discharge_energy = value;
+        self.store_battery_discharge_energy(value);
         Ok(())
     }
 }
@@ -5968,14 +6415,24 @@ impl Frame for VehicleState2 {
 /// | `min_cell_voltage` | 最低单体电压 | 28 | 12 | 0.0015 | 0 | V |
 /// | `motor_temp` | 电机温度 | 40 | 8 | 1 | -40 | °C |
 /// | `motor_controller_temp` | 电控温度 | 48 | 8 | 1 | -40 | °C |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState3 {
-    battery_max_temp: u8,
-    battery_min_temp: u8,
-    max_cell_voltage: u16,
-    min_cell_voltage: u16,
-    motor_temp: u8,
-    motor_controller_temp: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleState3 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleState3")
+            .field("battery_max_temp", &self.battery_max_temp_raw())
+            .field("battery_min_temp", &self.battery_min_temp_raw())
+            .field("max_cell_voltage", &self.max_cell_voltage_raw())
+            .field("min_cell_voltage", &self.min_cell_voltage_raw())
+            .field("motor_temp", &self.motor_temp_raw())
+            .field("motor_controller_temp", &self.motor_controller_temp_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`VehicleState3`] (what [`VehicleState3::new`] takes and
@@ -6103,14 +6560,9 @@ impl VehicleState3 {
         type_max: 255,
     };
 
-    const ZERO: Self = Self {
-        battery_max_temp: 0,
-        battery_min_temp: 0,
-        max_cell_voltage: 0,
-        min_cell_voltage: 0,
-        motor_temp: 0,
-        motor_controller_temp: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -6181,12 +6633,7 @@ impl VehicleState3 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.battery_max_temp)
-            | u64::from(self.battery_min_temp) << 8
-            | u64::from(self.max_cell_voltage) << 16
-            | u64::from(self.min_cell_voltage) << 28
-            | u64::from(self.motor_temp) << 40
-            | u64::from(self.motor_controller_temp) << 48;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -6202,12 +6649,7 @@ impl VehicleState3 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            battery_max_temp: bits as u8,
-            battery_min_temp: (bits >> 8) as u8,
-            max_cell_voltage: ((bits >> 16) & 4095) as u16,
-            min_cell_voltage: ((bits >> 28) & 4095) as u16,
-            motor_temp: (bits >> 40) as u8,
-            motor_controller_temp: (bits >> 48) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -6220,13 +6662,20 @@ impl VehicleState3 {
     /// Errata: E22 (see spec/ERRATA.md)
     #[inline]
     pub fn battery_max_temp(&self) -> i16 {
-        self.battery_max_temp as i16 - 40
+        self.battery_max_temp_raw() as i16 - 40
     }
 
     /// Raw value of `battery_max_temp` (bits 0..8).
     #[inline]
     pub fn battery_max_temp_raw(&self) -> u8 {
-        self.battery_max_temp
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_max_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `battery_max_temp` from its physical value; outside the documented range is an error.
@@ -6234,7 +6683,7 @@ impl VehicleState3 {
     pub fn set_battery_max_temp(&mut self, value: i16) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::BATTERY_MAX_TEMP_SCALE) {
             Some(raw) => {
-                self.battery_max_temp = raw as u8;
+                self.store_battery_max_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6246,7 +6695,7 @@ impl VehicleState3 {
     /// Set the raw value of `battery_max_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_battery_max_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.battery_max_temp = value;
+        self.store_battery_max_temp(value);
         Ok(())
     }
 
@@ -6257,13 +6706,20 @@ impl VehicleState3 {
     /// | 8 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
     pub fn battery_min_temp(&self) -> i16 {
-        self.battery_min_temp as i16 - 40
+        self.battery_min_temp_raw() as i16 - 40
     }
 
     /// Raw value of `battery_min_temp` (bits 8..16).
     #[inline]
     pub fn battery_min_temp_raw(&self) -> u8 {
-        self.battery_min_temp
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_min_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `battery_min_temp` from its physical value; outside the documented range is an error.
@@ -6271,7 +6727,7 @@ impl VehicleState3 {
     pub fn set_battery_min_temp(&mut self, value: i16) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::BATTERY_MIN_TEMP_SCALE) {
             Some(raw) => {
-                self.battery_min_temp = raw as u8;
+                self.store_battery_min_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6283,7 +6739,7 @@ impl VehicleState3 {
     /// Set the raw value of `battery_min_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_battery_min_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.battery_min_temp = value;
+        self.store_battery_min_temp(value);
         Ok(())
     }
 
@@ -6294,13 +6750,20 @@ impl VehicleState3 {
     /// | 16 | 12 | 0.0015 | 0 | V | 0 … 6 | 0 … 4000 |
     #[inline]
     pub fn max_cell_voltage(&self) -> f64 {
-        self.max_cell_voltage as f64 * 0.0015
+        self.max_cell_voltage_raw() as f64 * 0.0015
     }
 
     /// Raw value of `max_cell_voltage` (bits 16..28).
     #[inline]
     pub fn max_cell_voltage_raw(&self) -> u16 {
-        self.max_cell_voltage
+        let bits = self.bits;
+        ((bits >> 16) & 4095) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_max_cell_voltage(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_F000_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `max_cell_voltage` from its physical value; outside the documented range is an error.
@@ -6308,7 +6771,7 @@ impl VehicleState3 {
     pub fn set_max_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::MAX_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
-                self.max_cell_voltage = raw as u16;
+                self.store_max_cell_voltage(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6325,7 +6788,7 @@ impl VehicleState3 {
                 signal: "vehicle_state_3.max_cell_voltage",
             });
         }
-        self.max_cell_voltage = value;
+        self.store_max_cell_voltage(value);
         Ok(())
     }
 
@@ -6336,13 +6799,20 @@ impl VehicleState3 {
     /// | 28 | 12 | 0.0015 | 0 | V | 0 … 6 | 0 … 4000 |
     #[inline]
     pub fn min_cell_voltage(&self) -> f64 {
-        self.min_cell_voltage as f64 * 0.0015
+        self.min_cell_voltage_raw() as f64 * 0.0015
     }
 
     /// Raw value of `min_cell_voltage` (bits 28..40).
     #[inline]
     pub fn min_cell_voltage_raw(&self) -> u16 {
-        self.min_cell_voltage
+        let bits = self.bits;
+        ((bits >> 28) & 4095) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_min_cell_voltage(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_0FFF_FFFF) | u64::from(value) << 28;
     }
 
     /// Set `min_cell_voltage` from its physical value; outside the documented range is an error.
@@ -6350,7 +6820,7 @@ impl VehicleState3 {
     pub fn set_min_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::MIN_CELL_VOLTAGE_SCALE) {
             Some(raw) => {
-                self.min_cell_voltage = raw as u16;
+                self.store_min_cell_voltage(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6367,7 +6837,7 @@ impl VehicleState3 {
                 signal: "vehicle_state_3.min_cell_voltage",
             });
         }
-        self.min_cell_voltage = value;
+        self.store_min_cell_voltage(value);
         Ok(())
     }
 
@@ -6378,13 +6848,20 @@ impl VehicleState3 {
     /// | 40 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
     pub fn motor_temp(&self) -> i16 {
-        self.motor_temp as i16 - 40
+        self.motor_temp_raw() as i16 - 40
     }
 
     /// Raw value of `motor_temp` (bits 40..48).
     #[inline]
     pub fn motor_temp_raw(&self) -> u8 {
-        self.motor_temp
+        let bits = self.bits;
+        (bits >> 40) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_00FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `motor_temp` from its physical value; outside the documented range is an error.
@@ -6392,7 +6869,7 @@ impl VehicleState3 {
     pub fn set_motor_temp(&mut self, value: i16) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_TEMP_SCALE) {
             Some(raw) => {
-                self.motor_temp = raw as u8;
+                self.store_motor_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6404,7 +6881,7 @@ impl VehicleState3 {
     /// Set the raw value of `motor_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_motor_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.motor_temp = value;
+        self.store_motor_temp(value);
         Ok(())
     }
 
@@ -6415,13 +6892,20 @@ impl VehicleState3 {
     /// | 48 | 8 | 1 | -40 | °C | -40 … 215 | 0 … 255 |
     #[inline]
     pub fn motor_controller_temp(&self) -> i16 {
-        self.motor_controller_temp as i16 - 40
+        self.motor_controller_temp_raw() as i16 - 40
     }
 
     /// Raw value of `motor_controller_temp` (bits 48..56).
     #[inline]
     pub fn motor_controller_temp_raw(&self) -> u8 {
-        self.motor_controller_temp
+        let bits = self.bits;
+        (bits >> 48) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_controller_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF00_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `motor_controller_temp` from its physical value; outside the documented range is an error.
@@ -6429,7 +6913,7 @@ impl VehicleState3 {
     pub fn set_motor_controller_temp(&mut self, value: i16) -> Result<(), Error> {
         match codec::to_raw_int_documented(i64::from(value), &Self::MOTOR_CONTROLLER_TEMP_SCALE) {
             Some(raw) => {
-                self.motor_controller_temp = raw as u8;
+                self.store_motor_controller_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6441,7 +6925,7 @@ impl VehicleState3 {
     /// Set the raw value of `motor_controller_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_motor_controller_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.motor_controller_temp = value;
+        self.store_motor_controller_temp(value);
         Ok(())
     }
 }
@@ -6493,20 +6977,30 @@ impl Frame for VehicleState3 {
 /// | `ac_set_temp` | 空调设置温度 | 40 | 5 | 0.5 | 16 | °C |
 /// | `pto_state` | 取力状态 | 45 | 1 | 1 | 0 | — |
 /// | `battery_power` | 电池功率 | 48 | 16 | 0.01 | -325 | kW |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState4 {
-    outside_temp: u8,
-    inside_temp: u8,
-    ac_state: u8,
-    vehicle_power_state: u8,
-    hill_hold_state: u8,
-    regen_brake_state: u8,
-    remaining_range: u16,
-    manual_takeover_state: u8,
-    remote_driving_allowed: u8,
-    ac_set_temp: u8,
-    pto_state: u8,
-    battery_power: u16,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleState4 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleState4")
+            .field("outside_temp", &self.outside_temp_raw())
+            .field("inside_temp", &self.inside_temp_raw())
+            .field("ac_state", &self.ac_state_raw())
+            .field("vehicle_power_state", &self.vehicle_power_state_raw())
+            .field("hill_hold_state", &self.hill_hold_state_raw())
+            .field("regen_brake_state", &self.regen_brake_state_raw())
+            .field("remaining_range", &self.remaining_range_raw())
+            .field("manual_takeover_state", &self.manual_takeover_state_raw())
+            .field("remote_driving_allowed", &self.remote_driving_allowed_raw())
+            .field("ac_set_temp", &self.ac_set_temp_raw())
+            .field("pto_state", &self.pto_state_raw())
+            .field("battery_power", &self.battery_power_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`VehicleState4`] (what [`VehicleState4::new`] takes and
@@ -6618,20 +7112,9 @@ impl VehicleState4 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        outside_temp: 0,
-        inside_temp: 0,
-        ac_state: 0,
-        vehicle_power_state: 0,
-        hill_hold_state: 0,
-        regen_brake_state: 0,
-        remaining_range: 0,
-        manual_takeover_state: 0,
-        remote_driving_allowed: 0,
-        ac_set_temp: 0,
-        pto_state: 0,
-        battery_power: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_3F9F_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -6740,18 +7223,7 @@ impl VehicleState4 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.outside_temp)
-            | u64::from(self.inside_temp) << 8
-            | u64::from(self.ac_state) << 16
-            | u64::from(self.vehicle_power_state) << 20
-            | u64::from(self.hill_hold_state) << 22
-            | u64::from(self.regen_brake_state) << 23
-            | u64::from(self.remaining_range) << 24
-            | u64::from(self.manual_takeover_state) << 36
-            | u64::from(self.remote_driving_allowed) << 39
-            | u64::from(self.ac_set_temp) << 40
-            | u64::from(self.pto_state) << 45
-            | u64::from(self.battery_power) << 48;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -6767,18 +7239,7 @@ impl VehicleState4 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            outside_temp: bits as u8,
-            inside_temp: (bits >> 8) as u8,
-            ac_state: ((bits >> 16) & 15) as u8,
-            vehicle_power_state: ((bits >> 20) & 3) as u8,
-            hill_hold_state: ((bits >> 22) & 1) as u8,
-            regen_brake_state: ((bits >> 23) & 1) as u8,
-            remaining_range: ((bits >> 24) & 4095) as u16,
-            manual_takeover_state: ((bits >> 36) & 1) as u8,
-            remote_driving_allowed: ((bits >> 39) & 1) as u8,
-            ac_set_temp: ((bits >> 40) & 31) as u8,
-            pto_state: ((bits >> 45) & 1) as u8,
-            battery_power: (bits >> 48) as u16,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -6789,13 +7250,20 @@ impl VehicleState4 {
     /// | 0 | 8 | 0.5 | -30 | °C | -30 … 95 | 0 … 250 |
     #[inline]
     pub fn outside_temp(&self) -> f64 {
-        self.outside_temp as f64 * 0.5 - 30.0
+        self.outside_temp_raw() as f64 * 0.5 - 30.0
     }
 
     /// Raw value of `outside_temp` (bits 0..8).
     #[inline]
     pub fn outside_temp_raw(&self) -> u8 {
-        self.outside_temp
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_outside_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `outside_temp` from its physical value; outside the documented range is an error.
@@ -6803,7 +7271,7 @@ impl VehicleState4 {
     pub fn set_outside_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::OUTSIDE_TEMP_SCALE) {
             Some(raw) => {
-                self.outside_temp = raw as u8;
+                self.store_outside_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6815,7 +7283,7 @@ impl VehicleState4 {
     /// Set the raw value of `outside_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_outside_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.outside_temp = value;
+        self.store_outside_temp(value);
         Ok(())
     }
 
@@ -6826,13 +7294,20 @@ impl VehicleState4 {
     /// | 8 | 8 | 0.5 | -30 | °C | -30 … 95 | 0 … 250 |
     #[inline]
     pub fn inside_temp(&self) -> f64 {
-        self.inside_temp as f64 * 0.5 - 30.0
+        self.inside_temp_raw() as f64 * 0.5 - 30.0
     }
 
     /// Raw value of `inside_temp` (bits 8..16).
     #[inline]
     pub fn inside_temp_raw(&self) -> u8 {
-        self.inside_temp
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_inside_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `inside_temp` from its physical value; outside the documented range is an error.
@@ -6840,7 +7315,7 @@ impl VehicleState4 {
     pub fn set_inside_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::INSIDE_TEMP_SCALE) {
             Some(raw) => {
-                self.inside_temp = raw as u8;
+                self.store_inside_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -6852,7 +7327,7 @@ impl VehicleState4 {
     /// Set the raw value of `inside_temp`; any value that fits its 8 bits.
     #[inline]
     pub fn set_inside_temp_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.inside_temp = value;
+        self.store_inside_temp(value);
         Ok(())
     }
 
@@ -6863,13 +7338,20 @@ impl VehicleState4 {
     /// | 16 | 4 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn ac_state(&self) -> AcState {
-        AcState::from_raw(self.ac_state)
+        AcState::from_raw(self.ac_state_raw())
     }
 
     /// Raw value of `ac_state` (bits 16..20).
     #[inline]
     pub fn ac_state_raw(&self) -> u8 {
-        self.ac_state
+        let bits = self.bits;
+        ((bits >> 16) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF0_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `ac_state` from its physical value; outside the documented range is an error.
@@ -6881,7 +7363,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.ac_state",
             });
         }
-        self.ac_state = value;
+        self.store_ac_state(value);
         Ok(())
     }
 
@@ -6893,7 +7375,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.ac_state",
             });
         }
-        self.ac_state = value;
+        self.store_ac_state(value);
         Ok(())
     }
 
@@ -6904,13 +7386,20 @@ impl VehicleState4 {
     /// | 20 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn vehicle_power_state(&self) -> PowerState {
-        PowerState::from_raw(self.vehicle_power_state)
+        PowerState::from_raw(self.vehicle_power_state_raw())
     }
 
     /// Raw value of `vehicle_power_state` (bits 20..22).
     #[inline]
     pub fn vehicle_power_state_raw(&self) -> u8 {
-        self.vehicle_power_state
+        let bits = self.bits;
+        ((bits >> 20) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_vehicle_power_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `vehicle_power_state` from its physical value; outside the documented range is an error.
@@ -6922,7 +7411,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.vehicle_power_state",
             });
         }
-        self.vehicle_power_state = value;
+        self.store_vehicle_power_state(value);
         Ok(())
     }
 
@@ -6934,7 +7423,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.vehicle_power_state",
             });
         }
-        self.vehicle_power_state = value;
+        self.store_vehicle_power_state(value);
         Ok(())
     }
 
@@ -6947,13 +7436,20 @@ impl VehicleState4 {
     /// Errata: E35 (see spec/ERRATA.md)
     #[inline]
     pub fn hill_hold_state(&self) -> InactiveActive {
-        InactiveActive::from_raw(self.hill_hold_state)
+        InactiveActive::from_raw(self.hill_hold_state_raw())
     }
 
     /// Raw value of `hill_hold_state` (bits 22..23).
     #[inline]
     pub fn hill_hold_state_raw(&self) -> u8 {
-        self.hill_hold_state
+        let bits = self.bits;
+        ((bits >> 22) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_hill_hold_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFBF_FFFF) | u64::from(value) << 22;
     }
 
     /// Set `hill_hold_state` from its physical value; outside the documented range is an error.
@@ -6965,7 +7461,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.hill_hold_state",
             });
         }
-        self.hill_hold_state = value;
+        self.store_hill_hold_state(value);
         Ok(())
     }
 
@@ -6977,7 +7473,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.hill_hold_state",
             });
         }
-        self.hill_hold_state = value;
+        self.store_hill_hold_state(value);
         Ok(())
     }
 
@@ -6990,13 +7486,20 @@ impl VehicleState4 {
     /// Errata: E35 (see spec/ERRATA.md)
     #[inline]
     pub fn regen_brake_state(&self) -> InactiveActive {
-        InactiveActive::from_raw(self.regen_brake_state)
+        InactiveActive::from_raw(self.regen_brake_state_raw())
     }
 
     /// Raw value of `regen_brake_state` (bits 23..24).
     #[inline]
     pub fn regen_brake_state_raw(&self) -> u8 {
-        self.regen_brake_state
+        let bits = self.bits;
+        ((bits >> 23) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_regen_brake_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF7F_FFFF) | u64::from(value) << 23;
     }
 
     /// Set `regen_brake_state` from its physical value; outside the documented range is an error.
@@ -7008,7 +7511,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.regen_brake_state",
             });
         }
-        self.regen_brake_state = value;
+        self.store_regen_brake_state(value);
         Ok(())
     }
 
@@ -7020,7 +7523,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.regen_brake_state",
             });
         }
-        self.regen_brake_state = value;
+        self.store_regen_brake_state(value);
         Ok(())
     }
 
@@ -7031,13 +7534,20 @@ impl VehicleState4 {
     /// | 24 | 12 | 1 | 0 | km | 0 … 1000 | 0 … 1000 |
     #[inline]
     pub fn remaining_range(&self) -> u16 {
-        self.remaining_range
+        self.remaining_range_raw()
     }
 
     /// Raw value of `remaining_range` (bits 24..36).
     #[inline]
     pub fn remaining_range_raw(&self) -> u16 {
-        self.remaining_range
+        let bits = self.bits;
+        ((bits >> 24) & 4095) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_remaining_range(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFF0_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `remaining_range` from its physical value; outside the documented range is an error.
@@ -7048,7 +7558,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.remaining_range",
             });
         }
-        self.remaining_range = value;
+        self.store_remaining_range(value);
         Ok(())
     }
 
@@ -7060,7 +7570,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.remaining_range",
             });
         }
-        self.remaining_range = value;
+        self.store_remaining_range(value);
         Ok(())
     }
 
@@ -7071,13 +7581,20 @@ impl VehicleState4 {
     /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn manual_takeover_state(&self) -> TakeoverState {
-        TakeoverState::from_raw(self.manual_takeover_state)
+        TakeoverState::from_raw(self.manual_takeover_state_raw())
     }
 
     /// Raw value of `manual_takeover_state` (bits 36..37).
     #[inline]
     pub fn manual_takeover_state_raw(&self) -> u8 {
-        self.manual_takeover_state
+        let bits = self.bits;
+        ((bits >> 36) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_manual_takeover_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFEF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `manual_takeover_state` from its physical value; outside the documented range is an error.
@@ -7089,7 +7606,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.manual_takeover_state",
             });
         }
-        self.manual_takeover_state = value;
+        self.store_manual_takeover_state(value);
         Ok(())
     }
 
@@ -7101,7 +7618,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.manual_takeover_state",
             });
         }
-        self.manual_takeover_state = value;
+        self.store_manual_takeover_state(value);
         Ok(())
     }
 
@@ -7114,13 +7631,20 @@ impl VehicleState4 {
     /// Errata: E35 (see spec/ERRATA.md)
     #[inline]
     pub fn remote_driving_allowed(&self) -> RemoteTakeoverPermission {
-        RemoteTakeoverPermission::from_raw(self.remote_driving_allowed)
+        RemoteTakeoverPermission::from_raw(self.remote_driving_allowed_raw())
     }
 
     /// Raw value of `remote_driving_allowed` (bits 39..40).
     #[inline]
     pub fn remote_driving_allowed_raw(&self) -> u8 {
-        self.remote_driving_allowed
+        let bits = self.bits;
+        ((bits >> 39) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_remote_driving_allowed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF7F_FFFF_FFFF) | u64::from(value) << 39;
     }
 
     /// Set `remote_driving_allowed` from its physical value; outside the documented range is an error.
@@ -7135,7 +7659,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.remote_driving_allowed",
             });
         }
-        self.remote_driving_allowed = value;
+        self.store_remote_driving_allowed(value);
         Ok(())
     }
 
@@ -7147,7 +7671,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.remote_driving_allowed",
             });
         }
-        self.remote_driving_allowed = value;
+        self.store_remote_driving_allowed(value);
         Ok(())
     }
 
@@ -7158,13 +7682,20 @@ impl VehicleState4 {
     /// | 40 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
     #[inline]
     pub fn ac_set_temp(&self) -> f64 {
-        self.ac_set_temp as f64 * 0.5 + 16.0
+        self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
     /// Raw value of `ac_set_temp` (bits 40..45).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        self.ac_set_temp
+        let bits = self.bits;
+        ((bits >> 40) & 31) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_set_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_E0FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -7172,7 +7703,7 @@ impl VehicleState4 {
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
-                self.ac_set_temp = raw as u8;
+                self.store_ac_set_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -7189,7 +7720,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.ac_set_temp",
             });
         }
-        self.ac_set_temp = value;
+        self.store_ac_set_temp(value);
         Ok(())
     }
 
@@ -7202,13 +7733,20 @@ impl VehicleState4 {
     /// Errata: E35 (see spec/ERRATA.md)
     #[inline]
     pub fn pto_state(&self) -> PtoState {
-        PtoState::from_raw(self.pto_state)
+        PtoState::from_raw(self.pto_state_raw())
     }
 
     /// Raw value of `pto_state` (bits 45..46).
     #[inline]
     pub fn pto_state_raw(&self) -> u8 {
-        self.pto_state
+        let bits = self.bits;
+        ((bits >> 45) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_pto_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_DFFF_FFFF_FFFF) | u64::from(value) << 45;
     }
 
     /// Set `pto_state` from its physical value; outside the documented range is an error.
@@ -7220,7 +7758,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.pto_state",
             });
         }
-        self.pto_state = value;
+        self.store_pto_state(value);
         Ok(())
     }
 
@@ -7232,7 +7770,7 @@ impl VehicleState4 {
                 signal: "vehicle_state_4.pto_state",
             });
         }
-        self.pto_state = value;
+        self.store_pto_state(value);
         Ok(())
     }
 
@@ -7245,13 +7783,20 @@ impl VehicleState4 {
     /// Errata: E23 (see spec/ERRATA.md)
     #[inline]
     pub fn battery_power(&self) -> f64 {
-        self.battery_power as f64 * 0.01 - 325.0
+        self.battery_power_raw() as f64 * 0.01 - 325.0
     }
 
     /// Raw value of `battery_power` (bits 48..64).
     #[inline]
     pub fn battery_power_raw(&self) -> u16 {
-        self.battery_power
+        let bits = self.bits;
+        (bits >> 48) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_power(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `battery_power` from its physical value; outside the documented range is an error.
@@ -7259,7 +7804,7 @@ impl VehicleState4 {
     pub fn set_battery_power(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::BATTERY_POWER_SCALE) {
             Some(raw) => {
-                self.battery_power = raw as u16;
+                self.store_battery_power(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -7271,7 +7816,7 @@ impl VehicleState4 {
     /// Set the raw value of `battery_power`; any value that fits its 16 bits.
     #[inline]
     pub fn set_battery_power_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.battery_power = value;
+        self.store_battery_power(value);
         Ok(())
     }
 }
@@ -7340,37 +7885,56 @@ impl Frame for VehicleState4 {
 /// | `protocol_version_b` | 协议版本号 B | 36 | 4 | 1 | 0 | — |
 /// | `protocol_version_c` | 协议版本号 C | 40 | 4 | 1 | 0 | — |
 /// | `remote_entry_fault` | 无法进入远程驾驶系统故障状态 | 44 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleFault {
-    insulation_fault_level: u8,
-    dc_fault: u8,
-    soc_low: u8,
-    cell_undervoltage: u8,
-    brake_boost_pressure_fault: u8,
-    vacuum_pump_fault: u8,
-    vehicle_system_fault: u8,
-    battery_overheat: u8,
-    motor_overheat: u8,
-    traction_battery_fault: u8,
-    motor_fault: u8,
-    battery_comm_fault: u8,
-    motor_comm_fault: u8,
-    eps_fault: u8,
-    ac_fault: u8,
-    aux_battery_fault: u8,
-    epb_fault: u8,
-    brake_by_wire_fault: u8,
-    key_not_detected: u8,
-    tire_pressure_low: u8,
-    body_motor_fault: u8,
-    body_motor_overheat: u8,
-    battery_system_fault_level: u8,
-    motor_system_fault_level: u8,
-    unmanned_entry_fault: u8,
-    protocol_version_a: u8,
-    protocol_version_b: u8,
-    protocol_version_c: u8,
-    remote_entry_fault: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleFault {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleFault")
+            .field("insulation_fault_level", &self.insulation_fault_level_raw())
+            .field("dc_fault", &self.dc_fault_raw())
+            .field("soc_low", &self.soc_low_raw())
+            .field("cell_undervoltage", &self.cell_undervoltage_raw())
+            .field(
+                "brake_boost_pressure_fault",
+                &self.brake_boost_pressure_fault_raw(),
+            )
+            .field("vacuum_pump_fault", &self.vacuum_pump_fault_raw())
+            .field("vehicle_system_fault", &self.vehicle_system_fault_raw())
+            .field("battery_overheat", &self.battery_overheat_raw())
+            .field("motor_overheat", &self.motor_overheat_raw())
+            .field("traction_battery_fault", &self.traction_battery_fault_raw())
+            .field("motor_fault", &self.motor_fault_raw())
+            .field("battery_comm_fault", &self.battery_comm_fault_raw())
+            .field("motor_comm_fault", &self.motor_comm_fault_raw())
+            .field("eps_fault", &self.eps_fault_raw())
+            .field("ac_fault", &self.ac_fault_raw())
+            .field("aux_battery_fault", &self.aux_battery_fault_raw())
+            .field("epb_fault", &self.epb_fault_raw())
+            .field("brake_by_wire_fault", &self.brake_by_wire_fault_raw())
+            .field("key_not_detected", &self.key_not_detected_raw())
+            .field("tire_pressure_low", &self.tire_pressure_low_raw())
+            .field("body_motor_fault", &self.body_motor_fault_raw())
+            .field("body_motor_overheat", &self.body_motor_overheat_raw())
+            .field(
+                "battery_system_fault_level",
+                &self.battery_system_fault_level_raw(),
+            )
+            .field(
+                "motor_system_fault_level",
+                &self.motor_system_fault_level_raw(),
+            )
+            .field("unmanned_entry_fault", &self.unmanned_entry_fault_raw())
+            .field("protocol_version_a", &self.protocol_version_a_raw())
+            .field("protocol_version_b", &self.protocol_version_b_raw())
+            .field("protocol_version_c", &self.protocol_version_c_raw())
+            .field("remote_entry_fault", &self.remote_entry_fault_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`VehicleFault`] (what [`VehicleFault::new`] takes and
@@ -7460,37 +8024,9 @@ impl VehicleFault {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0x8C6BDE86;
 
-    const ZERO: Self = Self {
-        insulation_fault_level: 0,
-        dc_fault: 0,
-        soc_low: 0,
-        cell_undervoltage: 0,
-        brake_boost_pressure_fault: 0,
-        vacuum_pump_fault: 0,
-        vehicle_system_fault: 0,
-        battery_overheat: 0,
-        motor_overheat: 0,
-        traction_battery_fault: 0,
-        motor_fault: 0,
-        battery_comm_fault: 0,
-        motor_comm_fault: 0,
-        eps_fault: 0,
-        ac_fault: 0,
-        aux_battery_fault: 0,
-        epb_fault: 0,
-        brake_by_wire_fault: 0,
-        key_not_detected: 0,
-        tire_pressure_low: 0,
-        body_motor_fault: 0,
-        body_motor_overheat: 0,
-        battery_system_fault_level: 0,
-        motor_system_fault_level: 0,
-        unmanned_entry_fault: 0,
-        protocol_version_a: 0,
-        protocol_version_b: 0,
-        protocol_version_c: 0,
-        remote_entry_fault: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FF7F_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -7701,35 +8237,7 @@ impl VehicleFault {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.insulation_fault_level)
-            | u64::from(self.dc_fault) << 2
-            | u64::from(self.soc_low) << 3
-            | u64::from(self.cell_undervoltage) << 4
-            | u64::from(self.brake_boost_pressure_fault) << 5
-            | u64::from(self.vacuum_pump_fault) << 6
-            | u64::from(self.vehicle_system_fault) << 7
-            | u64::from(self.battery_overheat) << 8
-            | u64::from(self.motor_overheat) << 9
-            | u64::from(self.traction_battery_fault) << 10
-            | u64::from(self.motor_fault) << 11
-            | u64::from(self.battery_comm_fault) << 12
-            | u64::from(self.motor_comm_fault) << 13
-            | u64::from(self.eps_fault) << 14
-            | u64::from(self.ac_fault) << 15
-            | u64::from(self.aux_battery_fault) << 16
-            | u64::from(self.epb_fault) << 17
-            | u64::from(self.brake_by_wire_fault) << 18
-            | u64::from(self.key_not_detected) << 19
-            | u64::from(self.tire_pressure_low) << 20
-            | u64::from(self.body_motor_fault) << 21
-            | u64::from(self.body_motor_overheat) << 22
-            | u64::from(self.battery_system_fault_level) << 24
-            | u64::from(self.motor_system_fault_level) << 26
-            | u64::from(self.unmanned_entry_fault) << 28
-            | u64::from(self.protocol_version_a) << 32
-            | u64::from(self.protocol_version_b) << 36
-            | u64::from(self.protocol_version_c) << 40
-            | u64::from(self.remote_entry_fault) << 44;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -7745,35 +8253,7 @@ impl VehicleFault {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            insulation_fault_level: (bits & 3) as u8,
-            dc_fault: ((bits >> 2) & 1) as u8,
-            soc_low: ((bits >> 3) & 1) as u8,
-            cell_undervoltage: ((bits >> 4) & 1) as u8,
-            brake_boost_pressure_fault: ((bits >> 5) & 1) as u8,
-            vacuum_pump_fault: ((bits >> 6) & 1) as u8,
-            vehicle_system_fault: ((bits >> 7) & 1) as u8,
-            battery_overheat: ((bits >> 8) & 1) as u8,
-            motor_overheat: ((bits >> 9) & 1) as u8,
-            traction_battery_fault: ((bits >> 10) & 1) as u8,
-            motor_fault: ((bits >> 11) & 1) as u8,
-            battery_comm_fault: ((bits >> 12) & 1) as u8,
-            motor_comm_fault: ((bits >> 13) & 1) as u8,
-            eps_fault: ((bits >> 14) & 1) as u8,
-            ac_fault: ((bits >> 15) & 1) as u8,
-            aux_battery_fault: ((bits >> 16) & 1) as u8,
-            epb_fault: ((bits >> 17) & 1) as u8,
-            brake_by_wire_fault: ((bits >> 18) & 1) as u8,
-            key_not_detected: ((bits >> 19) & 1) as u8,
-            tire_pressure_low: ((bits >> 20) & 1) as u8,
-            body_motor_fault: ((bits >> 21) & 1) as u8,
-            body_motor_overheat: ((bits >> 22) & 1) as u8,
-            battery_system_fault_level: ((bits >> 24) & 3) as u8,
-            motor_system_fault_level: ((bits >> 26) & 3) as u8,
-            unmanned_entry_fault: ((bits >> 28) & 15) as u8,
-            protocol_version_a: ((bits >> 32) & 15) as u8,
-            protocol_version_b: ((bits >> 36) & 15) as u8,
-            protocol_version_c: ((bits >> 40) & 15) as u8,
-            remote_entry_fault: ((bits >> 44) & 15) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -7784,13 +8264,20 @@ impl VehicleFault {
     /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn insulation_fault_level(&self) -> InsulationFaultLevel {
-        InsulationFaultLevel::from_raw(self.insulation_fault_level)
+        InsulationFaultLevel::from_raw(self.insulation_fault_level_raw())
     }
 
     /// Raw value of `insulation_fault_level` (bits 0..2).
     #[inline]
     pub fn insulation_fault_level_raw(&self) -> u8 {
-        self.insulation_fault_level
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_insulation_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `insulation_fault_level` from its physical value; outside the documented range is an error.
@@ -7802,7 +8289,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.insulation_fault_level",
             });
         }
-        self.insulation_fault_level = value;
+        self.store_insulation_fault_level(value);
         Ok(())
     }
 
@@ -7814,7 +8301,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.insulation_fault_level",
             });
         }
-        self.insulation_fault_level = value;
+        self.store_insulation_fault_level(value);
         Ok(())
     }
 
@@ -7827,13 +8314,20 @@ impl VehicleFault {
     /// | 2 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn dc_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.dc_fault)
+        NormalFault::from_raw(self.dc_fault_raw())
     }
 
     /// Raw value of `dc_fault` (bits 2..3).
     #[inline]
     pub fn dc_fault_raw(&self) -> u8 {
-        self.dc_fault
+        let bits = self.bits;
+        ((bits >> 2) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_dc_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
     }
 
     /// Set `dc_fault` from its physical value; outside the documented range is an error.
@@ -7845,7 +8339,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.dc_fault",
             });
         }
-        self.dc_fault = value;
+        self.store_dc_fault(value);
         Ok(())
     }
 
@@ -7857,7 +8351,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.dc_fault",
             });
         }
-        self.dc_fault = value;
+        self.store_dc_fault(value);
         Ok(())
     }
 
@@ -7868,13 +8362,20 @@ impl VehicleFault {
     /// | 3 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn soc_low(&self) -> NormalFault {
-        NormalFault::from_raw(self.soc_low)
+        NormalFault::from_raw(self.soc_low_raw())
     }
 
     /// Raw value of `soc_low` (bits 3..4).
     #[inline]
     pub fn soc_low_raw(&self) -> u8 {
-        self.soc_low
+        let bits = self.bits;
+        ((bits >> 3) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_soc_low(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
     }
 
     /// Set `soc_low` from its physical value; outside the documented range is an error.
@@ -7886,7 +8387,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.soc_low",
             });
         }
-        self.soc_low = value;
+        self.store_soc_low(value);
         Ok(())
     }
 
@@ -7898,7 +8399,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.soc_low",
             });
         }
-        self.soc_low = value;
+        self.store_soc_low(value);
         Ok(())
     }
 
@@ -7909,13 +8410,20 @@ impl VehicleFault {
     /// | 4 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn cell_undervoltage(&self) -> NormalFault {
-        NormalFault::from_raw(self.cell_undervoltage)
+        NormalFault::from_raw(self.cell_undervoltage_raw())
     }
 
     /// Raw value of `cell_undervoltage` (bits 4..5).
     #[inline]
     pub fn cell_undervoltage_raw(&self) -> u8 {
-        self.cell_undervoltage
+        let bits = self.bits;
+        ((bits >> 4) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cell_undervoltage(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
     }
 
     /// Set `cell_undervoltage` from its physical value; outside the documented range is an error.
@@ -7927,7 +8435,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.cell_undervoltage",
             });
         }
-        self.cell_undervoltage = value;
+        self.store_cell_undervoltage(value);
         Ok(())
     }
 
@@ -7939,7 +8447,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.cell_undervoltage",
             });
         }
-        self.cell_undervoltage = value;
+        self.store_cell_undervoltage(value);
         Ok(())
     }
 
@@ -7950,13 +8458,20 @@ impl VehicleFault {
     /// | 5 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn brake_boost_pressure_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.brake_boost_pressure_fault)
+        NormalFault::from_raw(self.brake_boost_pressure_fault_raw())
     }
 
     /// Raw value of `brake_boost_pressure_fault` (bits 5..6).
     #[inline]
     pub fn brake_boost_pressure_fault_raw(&self) -> u8 {
-        self.brake_boost_pressure_fault
+        let bits = self.bits;
+        ((bits >> 5) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_brake_boost_pressure_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
     }
 
     /// Set `brake_boost_pressure_fault` from its physical value; outside the documented range is an error.
@@ -7968,7 +8483,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.brake_boost_pressure_fault",
             });
         }
-        self.brake_boost_pressure_fault = value;
+        self.store_brake_boost_pressure_fault(value);
         Ok(())
     }
 
@@ -7980,7 +8495,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.brake_boost_pressure_fault",
             });
         }
-        self.brake_boost_pressure_fault = value;
+        self.store_brake_boost_pressure_fault(value);
         Ok(())
     }
 
@@ -7991,13 +8506,20 @@ impl VehicleFault {
     /// | 6 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn vacuum_pump_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.vacuum_pump_fault)
+        NormalFault::from_raw(self.vacuum_pump_fault_raw())
     }
 
     /// Raw value of `vacuum_pump_fault` (bits 6..7).
     #[inline]
     pub fn vacuum_pump_fault_raw(&self) -> u8 {
-        self.vacuum_pump_fault
+        let bits = self.bits;
+        ((bits >> 6) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_vacuum_pump_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
     }
 
     /// Set `vacuum_pump_fault` from its physical value; outside the documented range is an error.
@@ -8009,7 +8531,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.vacuum_pump_fault",
             });
         }
-        self.vacuum_pump_fault = value;
+        self.store_vacuum_pump_fault(value);
         Ok(())
     }
 
@@ -8021,7 +8543,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.vacuum_pump_fault",
             });
         }
-        self.vacuum_pump_fault = value;
+        self.store_vacuum_pump_fault(value);
         Ok(())
     }
 
@@ -8032,13 +8554,20 @@ impl VehicleFault {
     /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn vehicle_system_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.vehicle_system_fault)
+        NormalFault::from_raw(self.vehicle_system_fault_raw())
     }
 
     /// Raw value of `vehicle_system_fault` (bits 7..8).
     #[inline]
     pub fn vehicle_system_fault_raw(&self) -> u8 {
-        self.vehicle_system_fault
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_vehicle_system_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `vehicle_system_fault` from its physical value; outside the documented range is an error.
@@ -8050,7 +8579,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.vehicle_system_fault",
             });
         }
-        self.vehicle_system_fault = value;
+        self.store_vehicle_system_fault(value);
         Ok(())
     }
 
@@ -8062,7 +8591,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.vehicle_system_fault",
             });
         }
-        self.vehicle_system_fault = value;
+        self.store_vehicle_system_fault(value);
         Ok(())
     }
 
@@ -8073,13 +8602,20 @@ impl VehicleFault {
     /// | 8 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn battery_overheat(&self) -> NormalFault {
-        NormalFault::from_raw(self.battery_overheat)
+        NormalFault::from_raw(self.battery_overheat_raw())
     }
 
     /// Raw value of `battery_overheat` (bits 8..9).
     #[inline]
     pub fn battery_overheat_raw(&self) -> u8 {
-        self.battery_overheat
+        let bits = self.bits;
+        ((bits >> 8) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_overheat(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FEFF) | u64::from(value) << 8;
     }
 
     /// Set `battery_overheat` from its physical value; outside the documented range is an error.
@@ -8091,7 +8627,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_overheat",
             });
         }
-        self.battery_overheat = value;
+        self.store_battery_overheat(value);
         Ok(())
     }
 
@@ -8103,7 +8639,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_overheat",
             });
         }
-        self.battery_overheat = value;
+        self.store_battery_overheat(value);
         Ok(())
     }
 
@@ -8114,13 +8650,20 @@ impl VehicleFault {
     /// | 9 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn motor_overheat(&self) -> NormalFault {
-        NormalFault::from_raw(self.motor_overheat)
+        NormalFault::from_raw(self.motor_overheat_raw())
     }
 
     /// Raw value of `motor_overheat` (bits 9..10).
     #[inline]
     pub fn motor_overheat_raw(&self) -> u8 {
-        self.motor_overheat
+        let bits = self.bits;
+        ((bits >> 9) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_overheat(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FDFF) | u64::from(value) << 9;
     }
 
     /// Set `motor_overheat` from its physical value; outside the documented range is an error.
@@ -8132,7 +8675,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_overheat",
             });
         }
-        self.motor_overheat = value;
+        self.store_motor_overheat(value);
         Ok(())
     }
 
@@ -8144,7 +8687,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_overheat",
             });
         }
-        self.motor_overheat = value;
+        self.store_motor_overheat(value);
         Ok(())
     }
 
@@ -8155,13 +8698,20 @@ impl VehicleFault {
     /// | 10 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn traction_battery_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.traction_battery_fault)
+        NormalFault::from_raw(self.traction_battery_fault_raw())
     }
 
     /// Raw value of `traction_battery_fault` (bits 10..11).
     #[inline]
     pub fn traction_battery_fault_raw(&self) -> u8 {
-        self.traction_battery_fault
+        let bits = self.bits;
+        ((bits >> 10) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_traction_battery_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
     }
 
     /// Set `traction_battery_fault` from its physical value; outside the documented range is an error.
@@ -8173,7 +8723,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.traction_battery_fault",
             });
         }
-        self.traction_battery_fault = value;
+        self.store_traction_battery_fault(value);
         Ok(())
     }
 
@@ -8185,7 +8735,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.traction_battery_fault",
             });
         }
-        self.traction_battery_fault = value;
+        self.store_traction_battery_fault(value);
         Ok(())
     }
 
@@ -8196,13 +8746,20 @@ impl VehicleFault {
     /// | 11 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn motor_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.motor_fault)
+        NormalFault::from_raw(self.motor_fault_raw())
     }
 
     /// Raw value of `motor_fault` (bits 11..12).
     #[inline]
     pub fn motor_fault_raw(&self) -> u8 {
-        self.motor_fault
+        let bits = self.bits;
+        ((bits >> 11) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
     }
 
     /// Set `motor_fault` from its physical value; outside the documented range is an error.
@@ -8214,7 +8771,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_fault",
             });
         }
-        self.motor_fault = value;
+        self.store_motor_fault(value);
         Ok(())
     }
 
@@ -8226,7 +8783,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_fault",
             });
         }
-        self.motor_fault = value;
+        self.store_motor_fault(value);
         Ok(())
     }
 
@@ -8237,13 +8794,20 @@ impl VehicleFault {
     /// | 12 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn battery_comm_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.battery_comm_fault)
+        NormalFault::from_raw(self.battery_comm_fault_raw())
     }
 
     /// Raw value of `battery_comm_fault` (bits 12..13).
     #[inline]
     pub fn battery_comm_fault_raw(&self) -> u8 {
-        self.battery_comm_fault
+        let bits = self.bits;
+        ((bits >> 12) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_comm_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
     }
 
     /// Set `battery_comm_fault` from its physical value; outside the documented range is an error.
@@ -8255,7 +8819,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_comm_fault",
             });
         }
-        self.battery_comm_fault = value;
+        self.store_battery_comm_fault(value);
         Ok(())
     }
 
@@ -8267,7 +8831,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_comm_fault",
             });
         }
-        self.battery_comm_fault = value;
+        self.store_battery_comm_fault(value);
         Ok(())
     }
 
@@ -8278,13 +8842,20 @@ impl VehicleFault {
     /// | 13 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn motor_comm_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.motor_comm_fault)
+        NormalFault::from_raw(self.motor_comm_fault_raw())
     }
 
     /// Raw value of `motor_comm_fault` (bits 13..14).
     #[inline]
     pub fn motor_comm_fault_raw(&self) -> u8 {
-        self.motor_comm_fault
+        let bits = self.bits;
+        ((bits >> 13) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_comm_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
     }
 
     /// Set `motor_comm_fault` from its physical value; outside the documented range is an error.
@@ -8296,7 +8867,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_comm_fault",
             });
         }
-        self.motor_comm_fault = value;
+        self.store_motor_comm_fault(value);
         Ok(())
     }
 
@@ -8308,7 +8879,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_comm_fault",
             });
         }
-        self.motor_comm_fault = value;
+        self.store_motor_comm_fault(value);
         Ok(())
     }
 
@@ -8319,13 +8890,20 @@ impl VehicleFault {
     /// | 14 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn eps_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.eps_fault)
+        NormalFault::from_raw(self.eps_fault_raw())
     }
 
     /// Raw value of `eps_fault` (bits 14..15).
     #[inline]
     pub fn eps_fault_raw(&self) -> u8 {
-        self.eps_fault
+        let bits = self.bits;
+        ((bits >> 14) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
     }
 
     /// Set `eps_fault` from its physical value; outside the documented range is an error.
@@ -8337,7 +8915,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.eps_fault",
             });
         }
-        self.eps_fault = value;
+        self.store_eps_fault(value);
         Ok(())
     }
 
@@ -8349,7 +8927,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.eps_fault",
             });
         }
-        self.eps_fault = value;
+        self.store_eps_fault(value);
         Ok(())
     }
 
@@ -8360,13 +8938,20 @@ impl VehicleFault {
     /// | 15 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn ac_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.ac_fault)
+        NormalFault::from_raw(self.ac_fault_raw())
     }
 
     /// Raw value of `ac_fault` (bits 15..16).
     #[inline]
     pub fn ac_fault_raw(&self) -> u8 {
-        self.ac_fault
+        let bits = self.bits;
+        ((bits >> 15) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
     }
 
     /// Set `ac_fault` from its physical value; outside the documented range is an error.
@@ -8378,7 +8963,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.ac_fault",
             });
         }
-        self.ac_fault = value;
+        self.store_ac_fault(value);
         Ok(())
     }
 
@@ -8390,7 +8975,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.ac_fault",
             });
         }
-        self.ac_fault = value;
+        self.store_ac_fault(value);
         Ok(())
     }
 
@@ -8403,13 +8988,20 @@ impl VehicleFault {
     /// | 16 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn aux_battery_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.aux_battery_fault)
+        NormalFault::from_raw(self.aux_battery_fault_raw())
     }
 
     /// Raw value of `aux_battery_fault` (bits 16..17).
     #[inline]
     pub fn aux_battery_fault_raw(&self) -> u8 {
-        self.aux_battery_fault
+        let bits = self.bits;
+        ((bits >> 16) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_aux_battery_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFE_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `aux_battery_fault` from its physical value; outside the documented range is an error.
@@ -8421,7 +9013,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.aux_battery_fault",
             });
         }
-        self.aux_battery_fault = value;
+        self.store_aux_battery_fault(value);
         Ok(())
     }
 
@@ -8433,7 +9025,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.aux_battery_fault",
             });
         }
-        self.aux_battery_fault = value;
+        self.store_aux_battery_fault(value);
         Ok(())
     }
 
@@ -8444,13 +9036,20 @@ impl VehicleFault {
     /// | 17 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn epb_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.epb_fault)
+        NormalFault::from_raw(self.epb_fault_raw())
     }
 
     /// Raw value of `epb_fault` (bits 17..18).
     #[inline]
     pub fn epb_fault_raw(&self) -> u8 {
-        self.epb_fault
+        let bits = self.bits;
+        ((bits >> 17) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_epb_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFD_FFFF) | u64::from(value) << 17;
     }
 
     /// Set `epb_fault` from its physical value; outside the documented range is an error.
@@ -8462,7 +9061,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.epb_fault",
             });
         }
-        self.epb_fault = value;
+        self.store_epb_fault(value);
         Ok(())
     }
 
@@ -8474,7 +9073,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.epb_fault",
             });
         }
-        self.epb_fault = value;
+        self.store_epb_fault(value);
         Ok(())
     }
 
@@ -8485,13 +9084,20 @@ impl VehicleFault {
     /// | 18 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn brake_by_wire_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.brake_by_wire_fault)
+        NormalFault::from_raw(self.brake_by_wire_fault_raw())
     }
 
     /// Raw value of `brake_by_wire_fault` (bits 18..19).
     #[inline]
     pub fn brake_by_wire_fault_raw(&self) -> u8 {
-        self.brake_by_wire_fault
+        let bits = self.bits;
+        ((bits >> 18) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_brake_by_wire_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFB_FFFF) | u64::from(value) << 18;
     }
 
     /// Set `brake_by_wire_fault` from its physical value; outside the documented range is an error.
@@ -8503,7 +9109,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.brake_by_wire_fault",
             });
         }
-        self.brake_by_wire_fault = value;
+        self.store_brake_by_wire_fault(value);
         Ok(())
     }
 
@@ -8515,7 +9121,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.brake_by_wire_fault",
             });
         }
-        self.brake_by_wire_fault = value;
+        self.store_brake_by_wire_fault(value);
         Ok(())
     }
 
@@ -8526,13 +9132,20 @@ impl VehicleFault {
     /// | 19 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn key_not_detected(&self) -> NormalFault {
-        NormalFault::from_raw(self.key_not_detected)
+        NormalFault::from_raw(self.key_not_detected_raw())
     }
 
     /// Raw value of `key_not_detected` (bits 19..20).
     #[inline]
     pub fn key_not_detected_raw(&self) -> u8 {
-        self.key_not_detected
+        let bits = self.bits;
+        ((bits >> 19) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_key_not_detected(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF7_FFFF) | u64::from(value) << 19;
     }
 
     /// Set `key_not_detected` from its physical value; outside the documented range is an error.
@@ -8544,7 +9157,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.key_not_detected",
             });
         }
-        self.key_not_detected = value;
+        self.store_key_not_detected(value);
         Ok(())
     }
 
@@ -8556,7 +9169,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.key_not_detected",
             });
         }
-        self.key_not_detected = value;
+        self.store_key_not_detected(value);
         Ok(())
     }
 
@@ -8567,13 +9180,20 @@ impl VehicleFault {
     /// | 20 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn tire_pressure_low(&self) -> NormalFault {
-        NormalFault::from_raw(self.tire_pressure_low)
+        NormalFault::from_raw(self.tire_pressure_low_raw())
     }
 
     /// Raw value of `tire_pressure_low` (bits 20..21).
     #[inline]
     pub fn tire_pressure_low_raw(&self) -> u8 {
-        self.tire_pressure_low
+        let bits = self.bits;
+        ((bits >> 20) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_tire_pressure_low(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFEF_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `tire_pressure_low` from its physical value; outside the documented range is an error.
@@ -8585,7 +9205,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.tire_pressure_low",
             });
         }
-        self.tire_pressure_low = value;
+        self.store_tire_pressure_low(value);
         Ok(())
     }
 
@@ -8597,7 +9217,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.tire_pressure_low",
             });
         }
-        self.tire_pressure_low = value;
+        self.store_tire_pressure_low(value);
         Ok(())
     }
 
@@ -8608,13 +9228,20 @@ impl VehicleFault {
     /// | 21 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn body_motor_fault(&self) -> NormalFault {
-        NormalFault::from_raw(self.body_motor_fault)
+        NormalFault::from_raw(self.body_motor_fault_raw())
     }
 
     /// Raw value of `body_motor_fault` (bits 21..22).
     #[inline]
     pub fn body_motor_fault_raw(&self) -> u8 {
-        self.body_motor_fault
+        let bits = self.bits;
+        ((bits >> 21) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_body_motor_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFDF_FFFF) | u64::from(value) << 21;
     }
 
     /// Set `body_motor_fault` from its physical value; outside the documented range is an error.
@@ -8626,7 +9253,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.body_motor_fault",
             });
         }
-        self.body_motor_fault = value;
+        self.store_body_motor_fault(value);
         Ok(())
     }
 
@@ -8638,7 +9265,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.body_motor_fault",
             });
         }
-        self.body_motor_fault = value;
+        self.store_body_motor_fault(value);
         Ok(())
     }
 
@@ -8649,13 +9276,20 @@ impl VehicleFault {
     /// | 22 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn body_motor_overheat(&self) -> NormalFault {
-        NormalFault::from_raw(self.body_motor_overheat)
+        NormalFault::from_raw(self.body_motor_overheat_raw())
     }
 
     /// Raw value of `body_motor_overheat` (bits 22..23).
     #[inline]
     pub fn body_motor_overheat_raw(&self) -> u8 {
-        self.body_motor_overheat
+        let bits = self.bits;
+        ((bits >> 22) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_body_motor_overheat(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFBF_FFFF) | u64::from(value) << 22;
     }
 
     /// Set `body_motor_overheat` from its physical value; outside the documented range is an error.
@@ -8667,7 +9301,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.body_motor_overheat",
             });
         }
-        self.body_motor_overheat = value;
+        self.store_body_motor_overheat(value);
         Ok(())
     }
 
@@ -8679,7 +9313,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.body_motor_overheat",
             });
         }
-        self.body_motor_overheat = value;
+        self.store_body_motor_overheat(value);
         Ok(())
     }
 
@@ -8690,13 +9324,20 @@ impl VehicleFault {
     /// | 24 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn battery_system_fault_level(&self) -> BatterySystemFaultLevel {
-        BatterySystemFaultLevel::from_raw(self.battery_system_fault_level)
+        BatterySystemFaultLevel::from_raw(self.battery_system_fault_level_raw())
     }
 
     /// Raw value of `battery_system_fault_level` (bits 24..26).
     #[inline]
     pub fn battery_system_fault_level_raw(&self) -> u8 {
-        self.battery_system_fault_level
+        let bits = self.bits;
+        ((bits >> 24) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_battery_system_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `battery_system_fault_level` from its physical value; outside the documented range is an error.
@@ -8711,7 +9352,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_system_fault_level",
             });
         }
-        self.battery_system_fault_level = value;
+        self.store_battery_system_fault_level(value);
         Ok(())
     }
 
@@ -8723,7 +9364,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.battery_system_fault_level",
             });
         }
-        self.battery_system_fault_level = value;
+        self.store_battery_system_fault_level(value);
         Ok(())
     }
 
@@ -8734,13 +9375,20 @@ impl VehicleFault {
     /// | 26 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn motor_system_fault_level(&self) -> MotorSystemFaultLevel {
-        MotorSystemFaultLevel::from_raw(self.motor_system_fault_level)
+        MotorSystemFaultLevel::from_raw(self.motor_system_fault_level_raw())
     }
 
     /// Raw value of `motor_system_fault_level` (bits 26..28).
     #[inline]
     pub fn motor_system_fault_level_raw(&self) -> u8 {
-        self.motor_system_fault_level
+        let bits = self.bits;
+        ((bits >> 26) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_motor_system_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
     }
 
     /// Set `motor_system_fault_level` from its physical value; outside the documented range is an error.
@@ -8755,7 +9403,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_system_fault_level",
             });
         }
-        self.motor_system_fault_level = value;
+        self.store_motor_system_fault_level(value);
         Ok(())
     }
 
@@ -8767,7 +9415,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.motor_system_fault_level",
             });
         }
-        self.motor_system_fault_level = value;
+        self.store_motor_system_fault_level(value);
         Ok(())
     }
 
@@ -8780,13 +9428,20 @@ impl VehicleFault {
     /// | 28 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn unmanned_entry_fault(&self) -> UnmannedEntryFault {
-        UnmannedEntryFault::from_raw(self.unmanned_entry_fault)
+        UnmannedEntryFault::from_raw(self.unmanned_entry_fault_raw())
     }
 
     /// Raw value of `unmanned_entry_fault` (bits 28..32).
     #[inline]
     pub fn unmanned_entry_fault_raw(&self) -> u8 {
-        self.unmanned_entry_fault
+        let bits = self.bits;
+        ((bits >> 28) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_unmanned_entry_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_0FFF_FFFF) | u64::from(value) << 28;
     }
 
     /// Set `unmanned_entry_fault` from its physical value; outside the documented range is an error.
@@ -8798,7 +9453,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.unmanned_entry_fault",
             });
         }
-        self.unmanned_entry_fault = value;
+        self.store_unmanned_entry_fault(value);
         Ok(())
     }
 
@@ -8810,7 +9465,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.unmanned_entry_fault",
             });
         }
-        self.unmanned_entry_fault = value;
+        self.store_unmanned_entry_fault(value);
         Ok(())
     }
 
@@ -8823,13 +9478,20 @@ impl VehicleFault {
     /// Errata: E16 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_a(&self) -> u8 {
-        self.protocol_version_a
+        self.protocol_version_a_raw()
     }
 
     /// Raw value of `protocol_version_a` (bits 32..36).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        self.protocol_version_a
+        let bits = self.bits;
+        ((bits >> 32) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_a(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF0_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -8840,7 +9502,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -8852,7 +9514,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -8865,13 +9527,20 @@ impl VehicleFault {
     /// Errata: E16 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_b(&self) -> u8 {
-        self.protocol_version_b
+        self.protocol_version_b_raw()
     }
 
     /// Raw value of `protocol_version_b` (bits 36..40).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        self.protocol_version_b
+        let bits = self.bits;
+        ((bits >> 36) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_b(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF0F_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -8882,7 +9551,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -8894,7 +9563,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -8907,13 +9576,20 @@ impl VehicleFault {
     /// Errata: E16 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_c(&self) -> u8 {
-        self.protocol_version_c
+        self.protocol_version_c_raw()
     }
 
     /// Raw value of `protocol_version_c` (bits 40..44).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        self.protocol_version_c
+        let bits = self.bits;
+        ((bits >> 40) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_c(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_F0FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -8924,7 +9600,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -8936,7 +9612,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -8951,13 +9627,20 @@ impl VehicleFault {
     /// Errata: E25 (see spec/ERRATA.md)
     #[inline]
     pub fn remote_entry_fault(&self) -> RemoteEntryFault {
-        RemoteEntryFault::from_raw(self.remote_entry_fault)
+        RemoteEntryFault::from_raw(self.remote_entry_fault_raw())
     }
 
     /// Raw value of `remote_entry_fault` (bits 44..48).
     #[inline]
     pub fn remote_entry_fault_raw(&self) -> u8 {
-        self.remote_entry_fault
+        let bits = self.bits;
+        ((bits >> 44) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_remote_entry_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_0FFF_FFFF_FFFF) | u64::from(value) << 44;
     }
 
     /// Set `remote_entry_fault` from its physical value; outside the documented range is an error.
@@ -8969,7 +9652,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.remote_entry_fault",
             });
         }
-        self.remote_entry_fault = value;
+        self.store_remote_entry_fault(value);
         Ok(())
     }
 
@@ -8981,7 +9664,7 @@ impl VehicleFault {
                 signal: "vehicle_fault.remote_entry_fault",
             });
         }
-        self.remote_entry_fault = value;
+        self.store_remote_entry_fault(value);
         Ok(())
     }
 }
@@ -9021,8 +9704,18 @@ impl Frame for VehicleFault {
 ///
 /// Errata: E04 (see spec/ERRATA.md)
 ///
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct VehicleState5 {}
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct VehicleState5 {
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for VehicleState5 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VehicleState5").finish()
+    }
+}
 
 /// Physical values of [`VehicleState5`] (what [`VehicleState5::new`] takes and
 /// [`VehicleState5::values`] returns).
@@ -9052,7 +9745,7 @@ impl VehicleState5 {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0xDEF501A2;
 
-    const ZERO: Self = Self {};
+    const ZERO: Self = Self { bits: 0 };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -9141,12 +9834,22 @@ impl Frame for VehicleState5 {
 /// | `counter` | 心跳值 | 8 | 8 | 1 | 0 | — |
 /// | `max_angular_speed` | 最大角速度 | 16 | 8 | 2 | 0 | deg/s |
 /// | `steering_angle_cmd` | 方向盘角度指令 | 24 | 16 | 0.1 | -1080 | deg |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RgateEpsCommand {
-    eps_ctrl_mode: u8,
-    counter: u8,
-    max_angular_speed: u8,
-    steering_angle_cmd: u16,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RgateEpsCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RgateEpsCommand")
+            .field("eps_ctrl_mode", &self.eps_ctrl_mode_raw())
+            .field("counter", &self.counter_raw())
+            .field("max_angular_speed", &self.max_angular_speed_raw())
+            .field("steering_angle_cmd", &self.steering_angle_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RgateEpsCommand`] (what [`RgateEpsCommand::new`] takes and
@@ -9218,12 +9921,9 @@ impl RgateEpsCommand {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        eps_ctrl_mode: 0,
-        counter: 0,
-        max_angular_speed: 0,
-        steering_angle_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -9282,10 +9982,7 @@ impl RgateEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.eps_ctrl_mode)
-            | u64::from(self.counter) << 8
-            | u64::from(self.max_angular_speed) << 16
-            | u64::from(self.steering_angle_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -9310,10 +10007,7 @@ impl RgateEpsCommand {
             });
         }
         Ok(Self {
-            eps_ctrl_mode: bits as u8,
-            counter: (bits >> 8) as u8,
-            max_angular_speed: (bits >> 16) as u8,
-            steering_angle_cmd: (bits >> 24) as u16,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -9327,7 +10021,7 @@ impl RgateEpsCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -9338,27 +10032,34 @@ impl RgateEpsCommand {
     /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn eps_ctrl_mode(&self) -> EpsModeCmd {
-        EpsModeCmd::from_raw(self.eps_ctrl_mode)
+        EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
     /// Raw value of `eps_ctrl_mode` (bits 0..8).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        self.eps_ctrl_mode
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_ctrl_mode(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
     /// Set the raw value of `eps_ctrl_mode`; any value that fits its 8 bits.
     #[inline]
     pub fn set_eps_ctrl_mode_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
@@ -9371,26 +10072,33 @@ impl RgateEpsCommand {
     /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 8..16).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -9405,13 +10113,20 @@ impl RgateEpsCommand {
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
     pub fn max_angular_speed(&self) -> u16 {
-        self.max_angular_speed as u16 * 2
+        self.max_angular_speed_raw() as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        self.max_angular_speed
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_max_angular_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
@@ -9419,7 +10134,7 @@ impl RgateEpsCommand {
     pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
         match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.max_angular_speed = raw as u8;
+                self.store_max_angular_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -9431,7 +10146,7 @@ impl RgateEpsCommand {
     /// Set the raw value of `max_angular_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_max_angular_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.max_angular_speed = value;
+        self.store_max_angular_speed(value);
         Ok(())
     }
 
@@ -9444,13 +10159,20 @@ impl RgateEpsCommand {
     /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
     #[inline]
     pub fn steering_angle_cmd(&self) -> f64 {
-        self.steering_angle_cmd as f64 * 0.1 - 1080.0
+        self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
     /// Raw value of `steering_angle_cmd` (bits 24..40).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        self.steering_angle_cmd
+        let bits = self.bits;
+        (bits >> 24) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_steering_angle_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
@@ -9458,7 +10180,7 @@ impl RgateEpsCommand {
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
-                self.steering_angle_cmd = raw as u16;
+                self.store_steering_angle_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -9470,7 +10192,7 @@ impl RgateEpsCommand {
     /// Set the raw value of `steering_angle_cmd`; any value that fits its 16 bits.
     #[inline]
     pub fn set_steering_angle_cmd_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.steering_angle_cmd = value;
+        self.store_steering_angle_cmd(value);
         Ok(())
     }
 }
@@ -9517,13 +10239,23 @@ impl Frame for RgateEpsCommand {
 /// | `gear_cmd` | 档位指令 | 12 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 16 | 8 | 1 | 0 | — |
 /// | `emergency_brake_cmd` | 紧急制动指令 | 24 | 1 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RgateSpeedCommand {
-    accel_cmd: u16,
-    epb_cmd: u8,
-    gear_cmd: u8,
-    counter: u8,
-    emergency_brake_cmd: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RgateSpeedCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RgateSpeedCommand")
+            .field("accel_cmd", &self.accel_cmd_raw())
+            .field("epb_cmd", &self.epb_cmd_raw())
+            .field("gear_cmd", &self.gear_cmd_raw())
+            .field("counter", &self.counter_raw())
+            .field("emergency_brake_cmd", &self.emergency_brake_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RgateSpeedCommand`] (what [`RgateSpeedCommand::new`] takes and
@@ -9581,13 +10313,9 @@ impl RgateSpeedCommand {
         type_max: 1023,
     };
 
-    const ZERO: Self = Self {
-        accel_cmd: 0,
-        epb_cmd: 0,
-        gear_cmd: 0,
-        counter: 0,
-        emergency_brake_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0x1FF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -9652,11 +10380,7 @@ impl RgateSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.accel_cmd)
-            | u64::from(self.epb_cmd) << 10
-            | u64::from(self.gear_cmd) << 12
-            | u64::from(self.counter) << 16
-            | u64::from(self.emergency_brake_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -9681,11 +10405,7 @@ impl RgateSpeedCommand {
             });
         }
         Ok(Self {
-            accel_cmd: (bits & 1023) as u16,
-            epb_cmd: ((bits >> 10) & 3) as u8,
-            gear_cmd: ((bits >> 12) & 15) as u8,
-            counter: (bits >> 16) as u8,
-            emergency_brake_cmd: ((bits >> 24) & 1) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -9699,7 +10419,7 @@ impl RgateSpeedCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -9712,13 +10432,20 @@ impl RgateSpeedCommand {
     /// | 0 | 10 | 0.02 | -9 | m/s² | -9 … 3.6 | 0 … 630 |
     #[inline]
     pub fn accel_cmd(&self) -> f64 {
-        self.accel_cmd as f64 * 0.02 - 9.0
+        self.accel_cmd_raw() as f64 * 0.02 - 9.0
     }
 
     /// Raw value of `accel_cmd` (bits 0..10).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
-        self.accel_cmd
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_accel_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
@@ -9726,7 +10453,7 @@ impl RgateSpeedCommand {
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
             Some(raw) => {
-                self.accel_cmd = raw as u16;
+                self.store_accel_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -9743,7 +10470,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.accel_cmd",
             });
         }
-        self.accel_cmd = value;
+        self.store_accel_cmd(value);
         Ok(())
     }
 
@@ -9754,13 +10481,20 @@ impl RgateSpeedCommand {
     /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn epb_cmd(&self) -> Epb {
-        Epb::from_raw(self.epb_cmd)
+        Epb::from_raw(self.epb_cmd_raw())
     }
 
     /// Raw value of `epb_cmd` (bits 10..12).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        self.epb_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_epb_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
@@ -9772,7 +10506,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -9784,7 +10518,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -9797,13 +10531,20 @@ impl RgateSpeedCommand {
     /// Errata: E11 (see spec/ERRATA.md)
     #[inline]
     pub fn gear_cmd(&self) -> Gear {
-        Gear::from_raw(self.gear_cmd)
+        Gear::from_raw(self.gear_cmd_raw())
     }
 
     /// Raw value of `gear_cmd` (bits 12..16).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        self.gear_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_gear_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_0FFF) | u64::from(value) << 12;
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
@@ -9815,7 +10556,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -9827,7 +10568,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -9840,26 +10581,33 @@ impl RgateSpeedCommand {
     /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 16..24).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -9872,13 +10620,20 @@ impl RgateSpeedCommand {
     /// Errata: E12 (see spec/ERRATA.md)
     #[inline]
     pub fn emergency_brake_cmd(&self) -> EmergencyBrakeCmd {
-        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd)
+        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
     /// Raw value of `emergency_brake_cmd` (bits 24..25).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        self.emergency_brake_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_emergency_brake_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FEFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
@@ -9890,7 +10645,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 
@@ -9902,7 +10657,7 @@ impl RgateSpeedCommand {
                 signal: "rgate_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 }
@@ -9969,33 +10724,43 @@ impl Frame for RgateSpeedCommand {
 /// | `protocol_version_b` | 协议版本号 B | 52 | 4 | 1 | 0 | — |
 /// | `protocol_version_c` | 协议版本号 C | 56 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RgateControlCommand1 {
-    drive_mode_cmd: u8,
-    door_cmd: u8,
-    horn_cmd: u8,
-    drl_cmd: u8,
-    left_turn_cmd: u8,
-    right_turn_cmd: u8,
-    hazard_cmd: u8,
-    position_light_cmd: u8,
-    headlight_cmd: u8,
-    rear_fog_cmd: u8,
-    left_fog_cmd: u8,
-    right_fog_cmd: u8,
-    dome_light_cmd: u8,
-    ambient_light_cmd: u8,
-    drive_mode_reset: u8,
-    system_state: u8,
-    system_reliability: u8,
-    system_fault_level: u8,
-    lock_cmd: u8,
-    ac_cmd: u8,
-    ac_set_temp: u8,
-    protocol_version_a: u8,
-    protocol_version_b: u8,
-    protocol_version_c: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RgateControlCommand1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RgateControlCommand1")
+            .field("drive_mode_cmd", &self.drive_mode_cmd_raw())
+            .field("door_cmd", &self.door_cmd_raw())
+            .field("horn_cmd", &self.horn_cmd_raw())
+            .field("drl_cmd", &self.drl_cmd_raw())
+            .field("left_turn_cmd", &self.left_turn_cmd_raw())
+            .field("right_turn_cmd", &self.right_turn_cmd_raw())
+            .field("hazard_cmd", &self.hazard_cmd_raw())
+            .field("position_light_cmd", &self.position_light_cmd_raw())
+            .field("headlight_cmd", &self.headlight_cmd_raw())
+            .field("rear_fog_cmd", &self.rear_fog_cmd_raw())
+            .field("left_fog_cmd", &self.left_fog_cmd_raw())
+            .field("right_fog_cmd", &self.right_fog_cmd_raw())
+            .field("dome_light_cmd", &self.dome_light_cmd_raw())
+            .field("ambient_light_cmd", &self.ambient_light_cmd_raw())
+            .field("drive_mode_reset", &self.drive_mode_reset_raw())
+            .field("system_state", &self.system_state_raw())
+            .field("system_reliability", &self.system_reliability_raw())
+            .field("system_fault_level", &self.system_fault_level_raw())
+            .field("lock_cmd", &self.lock_cmd_raw())
+            .field("ac_cmd", &self.ac_cmd_raw())
+            .field("ac_set_temp", &self.ac_set_temp_raw())
+            .field("protocol_version_a", &self.protocol_version_a_raw())
+            .field("protocol_version_b", &self.protocol_version_b_raw())
+            .field("protocol_version_c", &self.protocol_version_c_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RgateControlCommand1`] (what [`RgateControlCommand1::new`] takes and
@@ -10093,33 +10858,9 @@ impl RgateControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self {
-        drive_mode_cmd: 0,
-        door_cmd: 0,
-        horn_cmd: 0,
-        drl_cmd: 0,
-        left_turn_cmd: 0,
-        right_turn_cmd: 0,
-        hazard_cmd: 0,
-        position_light_cmd: 0,
-        headlight_cmd: 0,
-        rear_fog_cmd: 0,
-        left_fog_cmd: 0,
-        right_fog_cmd: 0,
-        dome_light_cmd: 0,
-        ambient_light_cmd: 0,
-        drive_mode_reset: 0,
-        system_state: 0,
-        system_reliability: 0,
-        system_fault_level: 0,
-        lock_cmd: 0,
-        ac_cmd: 0,
-        ac_set_temp: 0,
-        protocol_version_a: 0,
-        protocol_version_b: 0,
-        protocol_version_c: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -10306,31 +11047,7 @@ impl RgateControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.drive_mode_cmd)
-            | u64::from(self.door_cmd) << 2
-            | u64::from(self.horn_cmd) << 4
-            | u64::from(self.drl_cmd) << 6
-            | u64::from(self.left_turn_cmd) << 8
-            | u64::from(self.right_turn_cmd) << 10
-            | u64::from(self.hazard_cmd) << 12
-            | u64::from(self.position_light_cmd) << 14
-            | u64::from(self.headlight_cmd) << 16
-            | u64::from(self.rear_fog_cmd) << 18
-            | u64::from(self.left_fog_cmd) << 20
-            | u64::from(self.right_fog_cmd) << 22
-            | u64::from(self.dome_light_cmd) << 24
-            | u64::from(self.ambient_light_cmd) << 26
-            | u64::from(self.drive_mode_reset) << 28
-            | u64::from(self.system_state) << 32
-            | u64::from(self.system_reliability) << 34
-            | u64::from(self.system_fault_level) << 36
-            | u64::from(self.lock_cmd) << 38
-            | u64::from(self.ac_cmd) << 40
-            | u64::from(self.ac_set_temp) << 43
-            | u64::from(self.protocol_version_a) << 48
-            | u64::from(self.protocol_version_b) << 52
-            | u64::from(self.protocol_version_c) << 56
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -10346,31 +11063,7 @@ impl RgateControlCommand1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            drive_mode_cmd: (bits & 3) as u8,
-            door_cmd: ((bits >> 2) & 3) as u8,
-            horn_cmd: ((bits >> 4) & 3) as u8,
-            drl_cmd: ((bits >> 6) & 3) as u8,
-            left_turn_cmd: ((bits >> 8) & 3) as u8,
-            right_turn_cmd: ((bits >> 10) & 3) as u8,
-            hazard_cmd: ((bits >> 12) & 3) as u8,
-            position_light_cmd: ((bits >> 14) & 3) as u8,
-            headlight_cmd: ((bits >> 16) & 3) as u8,
-            rear_fog_cmd: ((bits >> 18) & 3) as u8,
-            left_fog_cmd: ((bits >> 20) & 3) as u8,
-            right_fog_cmd: ((bits >> 22) & 3) as u8,
-            dome_light_cmd: ((bits >> 24) & 3) as u8,
-            ambient_light_cmd: ((bits >> 26) & 3) as u8,
-            drive_mode_reset: ((bits >> 28) & 1) as u8,
-            system_state: ((bits >> 32) & 3) as u8,
-            system_reliability: ((bits >> 34) & 3) as u8,
-            system_fault_level: ((bits >> 36) & 3) as u8,
-            lock_cmd: ((bits >> 38) & 3) as u8,
-            ac_cmd: ((bits >> 40) & 7) as u8,
-            ac_set_temp: ((bits >> 43) & 31) as u8,
-            protocol_version_a: ((bits >> 48) & 15) as u8,
-            protocol_version_b: ((bits >> 52) & 15) as u8,
-            protocol_version_c: ((bits >> 56) & 15) as u8,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -10378,7 +11071,7 @@ impl RgateControlCommand1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -10389,13 +11082,20 @@ impl RgateControlCommand1 {
     /// | 0 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn drive_mode_cmd(&self) -> DriveModeCmdRgate {
-        DriveModeCmdRgate::from_raw(self.drive_mode_cmd)
+        DriveModeCmdRgate::from_raw(self.drive_mode_cmd_raw())
     }
 
     /// Raw value of `drive_mode_cmd` (bits 0..2).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        self.drive_mode_cmd
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -10407,7 +11107,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -10419,7 +11119,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -10432,13 +11132,20 @@ impl RgateControlCommand1 {
     /// Errata: E36 (see spec/ERRATA.md)
     #[inline]
     pub fn door_cmd(&self) -> DoorCmd {
-        DoorCmd::from_raw(self.door_cmd)
+        DoorCmd::from_raw(self.door_cmd_raw())
     }
 
     /// Raw value of `door_cmd` (bits 2..4).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        self.door_cmd
+        let bits = self.bits;
+        ((bits >> 2) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_door_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -10450,7 +11157,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -10462,7 +11169,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -10473,13 +11180,20 @@ impl RgateControlCommand1 {
     /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn horn_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.horn_cmd)
+        SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
     /// Raw value of `horn_cmd` (bits 4..6).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        self.horn_cmd
+        let bits = self.bits;
+        ((bits >> 4) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_horn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -10491,7 +11205,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -10503,7 +11217,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -10514,13 +11228,20 @@ impl RgateControlCommand1 {
     /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn drl_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.drl_cmd)
+        SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
     /// Raw value of `drl_cmd` (bits 6..8).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        self.drl_cmd
+        let bits = self.bits;
+        ((bits >> 6) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drl_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -10532,7 +11253,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -10544,7 +11265,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -10555,13 +11276,20 @@ impl RgateControlCommand1 {
     /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.left_turn_cmd)
+        FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
     /// Raw value of `left_turn_cmd` (bits 8..10).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        self.left_turn_cmd
+        let bits = self.bits;
+        ((bits >> 8) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -10573,7 +11301,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -10585,7 +11313,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -10596,13 +11324,20 @@ impl RgateControlCommand1 {
     /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.right_turn_cmd)
+        FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
     /// Raw value of `right_turn_cmd` (bits 10..12).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        self.right_turn_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -10614,7 +11349,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -10626,7 +11361,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -10637,13 +11372,20 @@ impl RgateControlCommand1 {
     /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn hazard_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.hazard_cmd)
+        FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
     /// Raw value of `hazard_cmd` (bits 12..14).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        self.hazard_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_hazard_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -10655,7 +11397,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -10667,7 +11409,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -10678,13 +11420,20 @@ impl RgateControlCommand1 {
     /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn position_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.position_light_cmd)
+        SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
     /// Raw value of `position_light_cmd` (bits 14..16).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        self.position_light_cmd
+        let bits = self.bits;
+        ((bits >> 14) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_position_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -10696,7 +11445,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -10708,7 +11457,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -10719,13 +11468,20 @@ impl RgateControlCommand1 {
     /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn headlight_cmd(&self) -> Headlight {
-        Headlight::from_raw(self.headlight_cmd)
+        Headlight::from_raw(self.headlight_cmd_raw())
     }
 
     /// Raw value of `headlight_cmd` (bits 16..18).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        self.headlight_cmd
+        let bits = self.bits;
+        ((bits >> 16) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_headlight_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -10737,7 +11493,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -10749,7 +11505,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -10760,13 +11516,20 @@ impl RgateControlCommand1 {
     /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn rear_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.rear_fog_cmd)
+        SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
     /// Raw value of `rear_fog_cmd` (bits 18..20).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        self.rear_fog_cmd
+        let bits = self.bits;
+        ((bits >> 18) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_rear_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -10778,7 +11541,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -10790,7 +11553,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -10801,13 +11564,20 @@ impl RgateControlCommand1 {
     /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.left_fog_cmd)
+        SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
     /// Raw value of `left_fog_cmd` (bits 20..22).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        self.left_fog_cmd
+        let bits = self.bits;
+        ((bits >> 20) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -10819,7 +11589,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -10831,7 +11601,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -10842,13 +11612,20 @@ impl RgateControlCommand1 {
     /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.right_fog_cmd)
+        SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
     /// Raw value of `right_fog_cmd` (bits 22..24).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        self.right_fog_cmd
+        let bits = self.bits;
+        ((bits >> 22) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -10860,7 +11637,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -10872,7 +11649,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -10883,13 +11660,20 @@ impl RgateControlCommand1 {
     /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn dome_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.dome_light_cmd)
+        SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
     /// Raw value of `dome_light_cmd` (bits 24..26).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        self.dome_light_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_dome_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -10901,7 +11685,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -10913,7 +11697,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -10924,13 +11708,20 @@ impl RgateControlCommand1 {
     /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn ambient_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.ambient_light_cmd)
+        SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
     /// Raw value of `ambient_light_cmd` (bits 26..28).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        self.ambient_light_cmd
+        let bits = self.bits;
+        ((bits >> 26) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ambient_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -10942,7 +11733,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -10954,7 +11745,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -10965,13 +11756,20 @@ impl RgateControlCommand1 {
     /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn drive_mode_reset(&self) -> ModeReset {
-        ModeReset::from_raw(self.drive_mode_reset)
+        ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
     /// Raw value of `drive_mode_reset` (bits 28..29).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        self.drive_mode_reset
+        let bits = self.bits;
+        ((bits >> 28) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_reset(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -10983,7 +11781,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -10995,7 +11793,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -11006,13 +11804,20 @@ impl RgateControlCommand1 {
     /// | 32 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_state(&self) -> LinkState {
-        LinkState::from_raw(self.system_state)
+        LinkState::from_raw(self.system_state_raw())
     }
 
     /// Raw value of `system_state` (bits 32..34).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        self.system_state
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -11024,7 +11829,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -11036,7 +11841,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -11047,13 +11852,20 @@ impl RgateControlCommand1 {
     /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_reliability(&self) -> ReliabilityRgate {
-        ReliabilityRgate::from_raw(self.system_reliability)
+        ReliabilityRgate::from_raw(self.system_reliability_raw())
     }
 
     /// Raw value of `system_reliability` (bits 34..36).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        self.system_reliability
+        let bits = self.bits;
+        ((bits >> 34) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_reliability(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -11065,7 +11877,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -11077,7 +11889,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -11088,13 +11900,20 @@ impl RgateControlCommand1 {
     /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_fault_level(&self) -> FaultLevelRgate {
-        FaultLevelRgate::from_raw(self.system_fault_level)
+        FaultLevelRgate::from_raw(self.system_fault_level_raw())
     }
 
     /// Raw value of `system_fault_level` (bits 36..38).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        self.system_fault_level
+        let bits = self.bits;
+        ((bits >> 36) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -11106,7 +11925,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -11118,7 +11937,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -11131,13 +11950,20 @@ impl RgateControlCommand1 {
     /// Errata: E15 (see spec/ERRATA.md)
     #[inline]
     pub fn lock_cmd(&self) -> LockCmd {
-        LockCmd::from_raw(self.lock_cmd)
+        LockCmd::from_raw(self.lock_cmd_raw())
     }
 
     /// Raw value of `lock_cmd` (bits 38..40).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        self.lock_cmd
+        let bits = self.bits;
+        ((bits >> 38) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_lock_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -11149,7 +11975,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -11161,7 +11987,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -11176,13 +12002,20 @@ impl RgateControlCommand1 {
     /// Errata: E30 (see spec/ERRATA.md)
     #[inline]
     pub fn ac_cmd(&self) -> AcCmd {
-        AcCmd::from_raw(self.ac_cmd)
+        AcCmd::from_raw(self.ac_cmd_raw())
     }
 
     /// Raw value of `ac_cmd` (bits 40..43).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        self.ac_cmd
+        let bits = self.bits;
+        ((bits >> 40) & 7) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -11194,7 +12027,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -11206,7 +12039,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -11219,13 +12052,20 @@ impl RgateControlCommand1 {
     /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
     #[inline]
     pub fn ac_set_temp(&self) -> f64 {
-        self.ac_set_temp as f64 * 0.5 + 16.0
+        self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
     /// Raw value of `ac_set_temp` (bits 43..48).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        self.ac_set_temp
+        let bits = self.bits;
+        ((bits >> 43) & 31) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_set_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -11233,7 +12073,7 @@ impl RgateControlCommand1 {
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
-                self.ac_set_temp = raw as u8;
+                self.store_ac_set_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -11250,7 +12090,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.ac_set_temp",
             });
         }
-        self.ac_set_temp = value;
+        self.store_ac_set_temp(value);
         Ok(())
     }
 
@@ -11263,13 +12103,20 @@ impl RgateControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_a(&self) -> u8 {
-        self.protocol_version_a
+        self.protocol_version_a_raw()
     }
 
     /// Raw value of `protocol_version_a` (bits 48..52).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        self.protocol_version_a
+        let bits = self.bits;
+        ((bits >> 48) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_a(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -11280,7 +12127,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -11292,7 +12139,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -11305,13 +12152,20 @@ impl RgateControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_b(&self) -> u8 {
-        self.protocol_version_b
+        self.protocol_version_b_raw()
     }
 
     /// Raw value of `protocol_version_b` (bits 52..56).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        self.protocol_version_b
+        let bits = self.bits;
+        ((bits >> 52) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_b(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -11322,7 +12176,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -11334,7 +12188,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -11347,13 +12201,20 @@ impl RgateControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_c(&self) -> u8 {
-        self.protocol_version_c
+        self.protocol_version_c_raw()
     }
 
     /// Raw value of `protocol_version_c` (bits 56..60).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        self.protocol_version_c
+        let bits = self.bits;
+        ((bits >> 56) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_c(&mut self, value: u8) {
+        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -11364,7 +12225,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -11376,7 +12237,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -11389,13 +12250,20 @@ impl RgateControlCommand1 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -11406,7 +12274,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -11418,7 +12286,7 @@ impl RgateControlCommand1 {
                 signal: "rgate_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -11466,14 +12334,24 @@ impl Frame for RgateControlCommand1 {
 /// | `pto_enable` | 取力使能 | 7 | 1 | 1 | 0 | — |
 /// | `downhill_regen_speed` | 下坡制动回收速度 | 8 | 8 | 0.5 | 0 | km/h |
 /// | `counter` | 心跳 | 56 | 8 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RgateControlCommand2 {
-    downhill_regen_enable: u8,
-    cargo_lift: u8,
-    cargo_lift_speed: u8,
-    pto_enable: u8,
-    downhill_regen_speed: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RgateControlCommand2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RgateControlCommand2")
+            .field("downhill_regen_enable", &self.downhill_regen_enable_raw())
+            .field("cargo_lift", &self.cargo_lift_raw())
+            .field("cargo_lift_speed", &self.cargo_lift_speed_raw())
+            .field("pto_enable", &self.pto_enable_raw())
+            .field("downhill_regen_speed", &self.downhill_regen_speed_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RgateControlCommand2`] (what [`RgateControlCommand2::new`] takes and
@@ -11535,14 +12413,9 @@ impl RgateControlCommand2 {
         type_max: 255,
     };
 
-    const ZERO: Self = Self {
-        downhill_regen_enable: 0,
-        cargo_lift: 0,
-        cargo_lift_speed: 0,
-        pto_enable: 0,
-        downhill_regen_speed: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF00_0000_0000_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -11613,12 +12486,7 @@ impl RgateControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.downhill_regen_enable)
-            | u64::from(self.cargo_lift) << 1
-            | u64::from(self.cargo_lift_speed) << 3
-            | u64::from(self.pto_enable) << 7
-            | u64::from(self.downhill_regen_speed) << 8
-            | u64::from(self.counter) << 56;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -11634,12 +12502,7 @@ impl RgateControlCommand2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            downhill_regen_enable: (bits & 1) as u8,
-            cargo_lift: ((bits >> 1) & 3) as u8,
-            cargo_lift_speed: ((bits >> 3) & 15) as u8,
-            pto_enable: ((bits >> 7) & 1) as u8,
-            downhill_regen_speed: (bits >> 8) as u8,
-            counter: (bits >> 56) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -11647,7 +12510,7 @@ impl RgateControlCommand2 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -11658,13 +12521,20 @@ impl RgateControlCommand2 {
     /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn downhill_regen_enable(&self) -> DownhillRegenEnable {
-        DownhillRegenEnable::from_raw(self.downhill_regen_enable)
+        DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
     /// Raw value of `downhill_regen_enable` (bits 0..1).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        self.downhill_regen_enable
+        let bits = self.bits;
+        (bits & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFE) | u64::from(value);
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
@@ -11676,7 +12546,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -11688,7 +12558,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -11699,13 +12569,20 @@ impl RgateControlCommand2 {
     /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn cargo_lift(&self) -> CargoLift {
-        CargoLift::from_raw(self.cargo_lift)
+        CargoLift::from_raw(self.cargo_lift_raw())
     }
 
     /// Raw value of `cargo_lift` (bits 1..3).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        self.cargo_lift
+        let bits = self.bits;
+        ((bits >> 1) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF9) | u64::from(value) << 1;
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
@@ -11717,7 +12594,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -11729,7 +12606,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -11742,13 +12619,20 @@ impl RgateControlCommand2 {
     /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
     #[inline]
     pub fn cargo_lift_speed(&self) -> u8 {
-        self.cargo_lift_speed
+        self.cargo_lift_speed_raw()
     }
 
     /// Raw value of `cargo_lift_speed` (bits 3..7).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        self.cargo_lift_speed
+        let bits = self.bits;
+        ((bits >> 3) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF87) | u64::from(value) << 3;
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
@@ -11759,7 +12643,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -11771,7 +12655,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -11782,13 +12666,20 @@ impl RgateControlCommand2 {
     /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn pto_enable(&self) -> PtoEnable {
-        PtoEnable::from_raw(self.pto_enable)
+        PtoEnable::from_raw(self.pto_enable_raw())
     }
 
     /// Raw value of `pto_enable` (bits 7..8).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        self.pto_enable
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_pto_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
@@ -11800,7 +12691,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -11812,7 +12703,7 @@ impl RgateControlCommand2 {
                 signal: "rgate_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -11827,13 +12718,20 @@ impl RgateControlCommand2 {
     /// Special raw value 0: 默认车速 (Default speed)
     #[inline]
     pub fn downhill_regen_speed(&self) -> f64 {
-        self.downhill_regen_speed as f64 * 0.5
+        self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
     /// Raw value of `downhill_regen_speed` (bits 8..16).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        self.downhill_regen_speed
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
@@ -11841,7 +12739,7 @@ impl RgateControlCommand2 {
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.downhill_regen_speed = raw as u8;
+                self.store_downhill_regen_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -11853,7 +12751,7 @@ impl RgateControlCommand2 {
     /// Set the raw value of `downhill_regen_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_downhill_regen_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.downhill_regen_speed = value;
+        self.store_downhill_regen_speed(value);
         Ok(())
     }
 
@@ -11866,26 +12764,33 @@ impl RgateControlCommand2 {
     /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 56..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 56) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -11928,11 +12833,21 @@ impl Frame for RgateControlCommand2 {
 /// | `device_type` | 设备类型 | 0 | 6 | 1 | 0 | — |
 /// | `id_frame_index` | ID 序号 | 6 | 2 | 1 | 0 | — |
 /// | `id_chars` | ID | 8 | 56 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct DeviceId {
-    device_type: u8,
-    id_frame_index: u8,
-    id_chars: u64,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for DeviceId {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("DeviceId")
+            .field("device_type", &self.device_type_raw())
+            .field("id_frame_index", &self.id_frame_index_raw())
+            .field("id_chars", &self.id_chars_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`DeviceId`] (what [`DeviceId::new`] takes and
@@ -11970,11 +12885,9 @@ impl DeviceId {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0x63477C16;
 
-    const ZERO: Self = Self {
-        device_type: 0,
-        id_frame_index: 0,
-        id_chars: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -12019,8 +12932,7 @@ impl DeviceId {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 =
-            u64::from(self.device_type) | u64::from(self.id_frame_index) << 6 | self.id_chars << 8;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -12036,9 +12948,7 @@ impl DeviceId {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            device_type: (bits & 63) as u8,
-            id_frame_index: ((bits >> 6) & 3) as u8,
-            id_chars: bits >> 8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -12051,13 +12961,20 @@ impl DeviceId {
     /// | 0 | 6 | 1 | 0 | — | 0 … 63 | 0 … 63 |
     #[inline]
     pub fn device_type(&self) -> DeviceType {
-        DeviceType::from_raw(self.device_type)
+        DeviceType::from_raw(self.device_type_raw())
     }
 
     /// Raw value of `device_type` (bits 0..6).
     #[inline]
     pub fn device_type_raw(&self) -> u8 {
-        self.device_type
+        let bits = self.bits;
+        (bits & 63) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_device_type(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFC0) | u64::from(value);
     }
 
     /// Set `device_type` from its physical value; outside the documented range is an error.
@@ -12069,7 +12986,7 @@ impl DeviceId {
                 signal: "device_id.device_type",
             });
         }
-        self.device_type = value;
+        self.store_device_type(value);
         Ok(())
     }
 
@@ -12081,7 +12998,7 @@ impl DeviceId {
                 signal: "device_id.device_type",
             });
         }
-        self.device_type = value;
+        self.store_device_type(value);
         Ok(())
     }
 
@@ -12094,13 +13011,20 @@ impl DeviceId {
     /// Errata: E26 (see spec/ERRATA.md)
     #[inline]
     pub fn id_frame_index(&self) -> IdFrameIndex {
-        IdFrameIndex::from_raw(self.id_frame_index)
+        IdFrameIndex::from_raw(self.id_frame_index_raw())
     }
 
     /// Raw value of `id_frame_index` (bits 6..8).
     #[inline]
     pub fn id_frame_index_raw(&self) -> u8 {
-        self.id_frame_index
+        let bits = self.bits;
+        ((bits >> 6) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_id_frame_index(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
     }
 
     /// Set `id_frame_index` from its physical value; outside the documented range is an error.
@@ -12112,7 +13036,7 @@ impl DeviceId {
                 signal: "device_id.id_frame_index",
             });
         }
-        self.id_frame_index = value;
+        self.store_id_frame_index(value);
         Ok(())
     }
 
@@ -12124,7 +13048,7 @@ impl DeviceId {
                 signal: "device_id.id_frame_index",
             });
         }
-        self.id_frame_index = value;
+        self.store_id_frame_index(value);
         Ok(())
     }
 
@@ -12137,13 +13061,20 @@ impl DeviceId {
     /// | 8 | 56 | 1 | 0 | — | 0 … 72057594037927935 | 0 … 0xFF_FFFF_FFFF_FFFF |
     #[inline]
     pub fn id_chars(&self) -> u64 {
-        self.id_chars
+        self.id_chars_raw()
     }
 
     /// Raw value of `id_chars` (bits 8..64).
     #[inline]
     pub fn id_chars_raw(&self) -> u64 {
-        self.id_chars
+        let bits = self.bits;
+        bits >> 8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_id_chars(&mut self, value: u64) {
+        self.bits = (self.bits & 255) | value << 8;
     }
 
     /// Set `id_chars` from its physical value; outside the documented range is an error.
@@ -12154,7 +13085,7 @@ impl DeviceId {
                 signal: "device_id.id_chars",
             });
         }
-        self.id_chars = value;
+        self.store_id_chars(value);
         Ok(())
     }
 
@@ -12166,7 +13097,7 @@ impl DeviceId {
                 signal: "device_id.id_chars",
             });
         }
-        self.id_chars = value;
+        self.store_id_chars(value);
         Ok(())
     }
 
@@ -12198,8 +13129,8 @@ impl DeviceId {
         {
             let mut word = [0u8; 8];
             word[..Self::TEXT_BYTES_PER_FRAME].copy_from_slice(chunk);
-            frame.id_frame_index = index as u8;
-            frame.id_chars = u64::from_le_bytes(word);
+            frame.store_id_frame_index(index as u8);
+            frame.store_id_chars(u64::from_le_bytes(word));
         }
         Ok(frames)
     }
@@ -12251,15 +13182,15 @@ impl DeviceIdText {
     /// Take one frame; once every frame has been seen, the text. A frame index outside
     /// the text's frames is an error; a later frame with the same index replaces the earlier.
     pub fn push(&mut self, frame: &DeviceId) -> Result<Option<crate::Text<17>>, Error> {
-        let index = usize::from(frame.id_frame_index);
+        let index = usize::from(frame.id_frame_index_raw());
         if index >= DeviceId::TEXT_FRAMES {
             return Err(Error::FrameIndex {
                 frame_id: DeviceId::FRAME_ID,
-                index: frame.id_frame_index,
+                index: frame.id_frame_index_raw(),
             });
         }
         let start = index * DeviceId::TEXT_BYTES_PER_FRAME;
-        let word = frame.id_chars.to_le_bytes();
+        let word = frame.id_chars_raw().to_le_bytes();
         self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME]
             .copy_from_slice(&word[..DeviceId::TEXT_BYTES_PER_FRAME]);
         self.seen |= 1 << index;
@@ -12309,15 +13240,25 @@ impl DeviceIdText {
 /// | `sensor_5_distance` | 传感器 5 距离 | 40 | 10 | 1 | 0 | cm |
 /// | `sensor_6_distance` | 传感器 6 距离 | 50 | 10 | 1 | 0 | cm |
 /// | `counter` | 心跳 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FrontSensorDistance1 {
-    sensor_1_distance: u16,
-    sensor_2_distance: u16,
-    sensor_3_distance: u16,
-    sensor_4_distance: u16,
-    sensor_5_distance: u16,
-    sensor_6_distance: u16,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for FrontSensorDistance1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FrontSensorDistance1")
+            .field("sensor_1_distance", &self.sensor_1_distance_raw())
+            .field("sensor_2_distance", &self.sensor_2_distance_raw())
+            .field("sensor_3_distance", &self.sensor_3_distance_raw())
+            .field("sensor_4_distance", &self.sensor_4_distance_raw())
+            .field("sensor_5_distance", &self.sensor_5_distance_raw())
+            .field("sensor_6_distance", &self.sensor_6_distance_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`FrontSensorDistance1`] (what [`FrontSensorDistance1::new`] takes and
@@ -12377,15 +13318,9 @@ impl FrontSensorDistance1 {
     /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of `sensor_6_distance`
     pub const SENSOR_6_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
-    const ZERO: Self = Self {
-        sensor_1_distance: 0,
-        sensor_2_distance: 0,
-        sensor_3_distance: 0,
-        sensor_4_distance: 0,
-        sensor_5_distance: 0,
-        sensor_6_distance: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -12462,13 +13397,7 @@ impl FrontSensorDistance1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.sensor_1_distance)
-            | u64::from(self.sensor_2_distance) << 10
-            | u64::from(self.sensor_3_distance) << 20
-            | u64::from(self.sensor_4_distance) << 30
-            | u64::from(self.sensor_5_distance) << 40
-            | u64::from(self.sensor_6_distance) << 50
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -12484,13 +13413,7 @@ impl FrontSensorDistance1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            sensor_1_distance: (bits & 1023) as u16,
-            sensor_2_distance: ((bits >> 10) & 1023) as u16,
-            sensor_3_distance: ((bits >> 20) & 1023) as u16,
-            sensor_4_distance: ((bits >> 30) & 1023) as u16,
-            sensor_5_distance: ((bits >> 40) & 1023) as u16,
-            sensor_6_distance: ((bits >> 50) & 1023) as u16,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -12498,7 +13421,7 @@ impl FrontSensorDistance1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -12511,13 +13434,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_1_distance(&self) -> u16 {
-        self.sensor_1_distance
+        self.sensor_1_distance_raw()
     }
 
     /// Raw value of `sensor_1_distance` (bits 0..10).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
-        self.sensor_1_distance
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_1_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `sensor_1_distance` from its physical value; outside the documented range is an error.
@@ -12528,7 +13458,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_1_distance",
             });
         }
-        self.sensor_1_distance = value;
+        self.store_sensor_1_distance(value);
         Ok(())
     }
 
@@ -12540,7 +13470,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_1_distance",
             });
         }
-        self.sensor_1_distance = value;
+        self.store_sensor_1_distance(value);
         Ok(())
     }
 
@@ -12553,13 +13483,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_2_distance(&self) -> u16 {
-        self.sensor_2_distance
+        self.sensor_2_distance_raw()
     }
 
     /// Raw value of `sensor_2_distance` (bits 10..20).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
-        self.sensor_2_distance
+        let bits = self.bits;
+        ((bits >> 10) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_2_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF0_03FF) | u64::from(value) << 10;
     }
 
     /// Set `sensor_2_distance` from its physical value; outside the documented range is an error.
@@ -12570,7 +13507,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_2_distance",
             });
         }
-        self.sensor_2_distance = value;
+        self.store_sensor_2_distance(value);
         Ok(())
     }
 
@@ -12582,7 +13519,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_2_distance",
             });
         }
-        self.sensor_2_distance = value;
+        self.store_sensor_2_distance(value);
         Ok(())
     }
 
@@ -12595,13 +13532,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_3_distance(&self) -> u16 {
-        self.sensor_3_distance
+        self.sensor_3_distance_raw()
     }
 
     /// Raw value of `sensor_3_distance` (bits 20..30).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
-        self.sensor_3_distance
+        let bits = self.bits;
+        ((bits >> 20) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_3_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_C00F_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `sensor_3_distance` from its physical value; outside the documented range is an error.
@@ -12612,7 +13556,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_3_distance",
             });
         }
-        self.sensor_3_distance = value;
+        self.store_sensor_3_distance(value);
         Ok(())
     }
 
@@ -12624,7 +13568,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_3_distance",
             });
         }
-        self.sensor_3_distance = value;
+        self.store_sensor_3_distance(value);
         Ok(())
     }
 
@@ -12637,13 +13581,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_4_distance(&self) -> u16 {
-        self.sensor_4_distance
+        self.sensor_4_distance_raw()
     }
 
     /// Raw value of `sensor_4_distance` (bits 30..40).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
-        self.sensor_4_distance
+        let bits = self.bits;
+        ((bits >> 30) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_4_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_3FFF_FFFF) | u64::from(value) << 30;
     }
 
     /// Set `sensor_4_distance` from its physical value; outside the documented range is an error.
@@ -12654,7 +13605,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_4_distance",
             });
         }
-        self.sensor_4_distance = value;
+        self.store_sensor_4_distance(value);
         Ok(())
     }
 
@@ -12666,7 +13617,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_4_distance",
             });
         }
-        self.sensor_4_distance = value;
+        self.store_sensor_4_distance(value);
         Ok(())
     }
 
@@ -12679,13 +13630,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_5_distance(&self) -> u16 {
-        self.sensor_5_distance
+        self.sensor_5_distance_raw()
     }
 
     /// Raw value of `sensor_5_distance` (bits 40..50).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
-        self.sensor_5_distance
+        let bits = self.bits;
+        ((bits >> 40) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_5_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFC_00FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `sensor_5_distance` from its physical value; outside the documented range is an error.
@@ -12696,7 +13654,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_5_distance",
             });
         }
-        self.sensor_5_distance = value;
+        self.store_sensor_5_distance(value);
         Ok(())
     }
 
@@ -12708,7 +13666,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_5_distance",
             });
         }
-        self.sensor_5_distance = value;
+        self.store_sensor_5_distance(value);
         Ok(())
     }
 
@@ -12721,13 +13679,20 @@ impl FrontSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_6_distance(&self) -> u16 {
-        self.sensor_6_distance
+        self.sensor_6_distance_raw()
     }
 
     /// Raw value of `sensor_6_distance` (bits 50..60).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
-        self.sensor_6_distance
+        let bits = self.bits;
+        ((bits >> 50) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_6_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xF003_FFFF_FFFF_FFFF) | u64::from(value) << 50;
     }
 
     /// Set `sensor_6_distance` from its physical value; outside the documented range is an error.
@@ -12738,7 +13703,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_6_distance",
             });
         }
-        self.sensor_6_distance = value;
+        self.store_sensor_6_distance(value);
         Ok(())
     }
 
@@ -12750,7 +13715,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.sensor_6_distance",
             });
         }
-        self.sensor_6_distance = value;
+        self.store_sensor_6_distance(value);
         Ok(())
     }
 
@@ -12763,13 +13728,20 @@ impl FrontSensorDistance1 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -12780,7 +13752,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -12792,7 +13764,7 @@ impl FrontSensorDistance1 {
                 signal: "front_sensor_distance_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -12848,22 +13820,32 @@ impl Frame for FrontSensorDistance1 {
 /// | `sensor_8_fault` | 传感器 8 故障状态 | 41 | 1 | 1 | 0 | — |
 /// | `sensor_9_fault` | 传感器 9 故障状态 | 42 | 1 | 1 | 0 | — |
 /// | `counter` | 心跳 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FrontSensorDistance2 {
-    sensor_7_distance: u16,
-    sensor_8_distance: u16,
-    sensor_9_distance: u16,
-    uss_system_state: u8,
-    sensor_1_fault: u8,
-    sensor_2_fault: u8,
-    sensor_3_fault: u8,
-    sensor_4_fault: u8,
-    sensor_5_fault: u8,
-    sensor_6_fault: u8,
-    sensor_7_fault: u8,
-    sensor_8_fault: u8,
-    sensor_9_fault: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for FrontSensorDistance2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FrontSensorDistance2")
+            .field("sensor_7_distance", &self.sensor_7_distance_raw())
+            .field("sensor_8_distance", &self.sensor_8_distance_raw())
+            .field("sensor_9_distance", &self.sensor_9_distance_raw())
+            .field("uss_system_state", &self.uss_system_state_raw())
+            .field("sensor_1_fault", &self.sensor_1_fault_raw())
+            .field("sensor_2_fault", &self.sensor_2_fault_raw())
+            .field("sensor_3_fault", &self.sensor_3_fault_raw())
+            .field("sensor_4_fault", &self.sensor_4_fault_raw())
+            .field("sensor_5_fault", &self.sensor_5_fault_raw())
+            .field("sensor_6_fault", &self.sensor_6_fault_raw())
+            .field("sensor_7_fault", &self.sensor_7_fault_raw())
+            .field("sensor_8_fault", &self.sensor_8_fault_raw())
+            .field("sensor_9_fault", &self.sensor_9_fault_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`FrontSensorDistance2`] (what [`FrontSensorDistance2::new`] takes and
@@ -12931,22 +13913,9 @@ impl FrontSensorDistance2 {
     /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of `sensor_9_distance`
     pub const SENSOR_9_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
-    const ZERO: Self = Self {
-        sensor_7_distance: 0,
-        sensor_8_distance: 0,
-        sensor_9_distance: 0,
-        uss_system_state: 0,
-        sensor_1_fault: 0,
-        sensor_2_fault: 0,
-        sensor_3_fault: 0,
-        sensor_4_fault: 0,
-        sensor_5_fault: 0,
-        sensor_6_fault: 0,
-        sensor_7_fault: 0,
-        sensor_8_fault: 0,
-        sensor_9_fault: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xF000_07FF_3FFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -13067,20 +14036,7 @@ impl FrontSensorDistance2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.sensor_7_distance)
-            | u64::from(self.sensor_8_distance) << 10
-            | u64::from(self.sensor_9_distance) << 20
-            | u64::from(self.uss_system_state) << 32
-            | u64::from(self.sensor_1_fault) << 34
-            | u64::from(self.sensor_2_fault) << 35
-            | u64::from(self.sensor_3_fault) << 36
-            | u64::from(self.sensor_4_fault) << 37
-            | u64::from(self.sensor_5_fault) << 38
-            | u64::from(self.sensor_6_fault) << 39
-            | u64::from(self.sensor_7_fault) << 40
-            | u64::from(self.sensor_8_fault) << 41
-            | u64::from(self.sensor_9_fault) << 42
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -13096,20 +14052,7 @@ impl FrontSensorDistance2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            sensor_7_distance: (bits & 1023) as u16,
-            sensor_8_distance: ((bits >> 10) & 1023) as u16,
-            sensor_9_distance: ((bits >> 20) & 1023) as u16,
-            uss_system_state: ((bits >> 32) & 3) as u8,
-            sensor_1_fault: ((bits >> 34) & 1) as u8,
-            sensor_2_fault: ((bits >> 35) & 1) as u8,
-            sensor_3_fault: ((bits >> 36) & 1) as u8,
-            sensor_4_fault: ((bits >> 37) & 1) as u8,
-            sensor_5_fault: ((bits >> 38) & 1) as u8,
-            sensor_6_fault: ((bits >> 39) & 1) as u8,
-            sensor_7_fault: ((bits >> 40) & 1) as u8,
-            sensor_8_fault: ((bits >> 41) & 1) as u8,
-            sensor_9_fault: ((bits >> 42) & 1) as u8,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -13117,7 +14060,7 @@ impl FrontSensorDistance2 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -13130,13 +14073,20 @@ impl FrontSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_7_distance(&self) -> u16 {
-        self.sensor_7_distance
+        self.sensor_7_distance_raw()
     }
 
     /// Raw value of `sensor_7_distance` (bits 0..10).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
-        self.sensor_7_distance
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_7_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `sensor_7_distance` from its physical value; outside the documented range is an error.
@@ -13147,7 +14097,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_7_distance",
             });
         }
-        self.sensor_7_distance = value;
+        self.store_sensor_7_distance(value);
         Ok(())
     }
 
@@ -13159,7 +14109,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_7_distance",
             });
         }
-        self.sensor_7_distance = value;
+        self.store_sensor_7_distance(value);
         Ok(())
     }
 
@@ -13172,13 +14122,20 @@ impl FrontSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_8_distance(&self) -> u16 {
-        self.sensor_8_distance
+        self.sensor_8_distance_raw()
     }
 
     /// Raw value of `sensor_8_distance` (bits 10..20).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
-        self.sensor_8_distance
+        let bits = self.bits;
+        ((bits >> 10) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_8_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF0_03FF) | u64::from(value) << 10;
     }
 
     /// Set `sensor_8_distance` from its physical value; outside the documented range is an error.
@@ -13189,7 +14146,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_8_distance",
             });
         }
-        self.sensor_8_distance = value;
+        self.store_sensor_8_distance(value);
         Ok(())
     }
 
@@ -13201,7 +14158,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_8_distance",
             });
         }
-        self.sensor_8_distance = value;
+        self.store_sensor_8_distance(value);
         Ok(())
     }
 
@@ -13214,13 +14171,20 @@ impl FrontSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_9_distance(&self) -> u16 {
-        self.sensor_9_distance
+        self.sensor_9_distance_raw()
     }
 
     /// Raw value of `sensor_9_distance` (bits 20..30).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
-        self.sensor_9_distance
+        let bits = self.bits;
+        ((bits >> 20) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_9_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_C00F_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `sensor_9_distance` from its physical value; outside the documented range is an error.
@@ -13231,7 +14195,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_9_distance",
             });
         }
-        self.sensor_9_distance = value;
+        self.store_sensor_9_distance(value);
         Ok(())
     }
 
@@ -13243,7 +14207,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_9_distance",
             });
         }
-        self.sensor_9_distance = value;
+        self.store_sensor_9_distance(value);
         Ok(())
     }
 
@@ -13254,13 +14218,20 @@ impl FrontSensorDistance2 {
     /// | 32 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn uss_system_state(&self) -> UssSystemState {
-        UssSystemState::from_raw(self.uss_system_state)
+        UssSystemState::from_raw(self.uss_system_state_raw())
     }
 
     /// Raw value of `uss_system_state` (bits 32..34).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
-        self.uss_system_state
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_uss_system_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
@@ -13272,7 +14243,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.uss_system_state",
             });
         }
-        self.uss_system_state = value;
+        self.store_uss_system_state(value);
         Ok(())
     }
 
@@ -13284,7 +14255,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.uss_system_state",
             });
         }
-        self.uss_system_state = value;
+        self.store_uss_system_state(value);
         Ok(())
     }
 
@@ -13295,13 +14266,20 @@ impl FrontSensorDistance2 {
     /// | 34 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_1_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_1_fault)
+        SensorFault::from_raw(self.sensor_1_fault_raw())
     }
 
     /// Raw value of `sensor_1_fault` (bits 34..35).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
-        self.sensor_1_fault
+        let bits = self.bits;
+        ((bits >> 34) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_1_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFB_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
@@ -13313,7 +14291,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_1_fault",
             });
         }
-        self.sensor_1_fault = value;
+        self.store_sensor_1_fault(value);
         Ok(())
     }
 
@@ -13325,7 +14303,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_1_fault",
             });
         }
-        self.sensor_1_fault = value;
+        self.store_sensor_1_fault(value);
         Ok(())
     }
 
@@ -13336,13 +14314,20 @@ impl FrontSensorDistance2 {
     /// | 35 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_2_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_2_fault)
+        SensorFault::from_raw(self.sensor_2_fault_raw())
     }
 
     /// Raw value of `sensor_2_fault` (bits 35..36).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
-        self.sensor_2_fault
+        let bits = self.bits;
+        ((bits >> 35) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_2_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF7_FFFF_FFFF) | u64::from(value) << 35;
     }
 
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
@@ -13354,7 +14339,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_2_fault",
             });
         }
-        self.sensor_2_fault = value;
+        self.store_sensor_2_fault(value);
         Ok(())
     }
 
@@ -13366,7 +14351,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_2_fault",
             });
         }
-        self.sensor_2_fault = value;
+        self.store_sensor_2_fault(value);
         Ok(())
     }
 
@@ -13377,13 +14362,20 @@ impl FrontSensorDistance2 {
     /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_3_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_3_fault)
+        SensorFault::from_raw(self.sensor_3_fault_raw())
     }
 
     /// Raw value of `sensor_3_fault` (bits 36..37).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
-        self.sensor_3_fault
+        let bits = self.bits;
+        ((bits >> 36) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_3_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFEF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
@@ -13395,7 +14387,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_3_fault",
             });
         }
-        self.sensor_3_fault = value;
+        self.store_sensor_3_fault(value);
         Ok(())
     }
 
@@ -13407,7 +14399,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_3_fault",
             });
         }
-        self.sensor_3_fault = value;
+        self.store_sensor_3_fault(value);
         Ok(())
     }
 
@@ -13418,13 +14410,20 @@ impl FrontSensorDistance2 {
     /// | 37 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_4_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_4_fault)
+        SensorFault::from_raw(self.sensor_4_fault_raw())
     }
 
     /// Raw value of `sensor_4_fault` (bits 37..38).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
-        self.sensor_4_fault
+        let bits = self.bits;
+        ((bits >> 37) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_4_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFDF_FFFF_FFFF) | u64::from(value) << 37;
     }
 
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
@@ -13436,7 +14435,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_4_fault",
             });
         }
-        self.sensor_4_fault = value;
+        self.store_sensor_4_fault(value);
         Ok(())
     }
 
@@ -13448,7 +14447,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_4_fault",
             });
         }
-        self.sensor_4_fault = value;
+        self.store_sensor_4_fault(value);
         Ok(())
     }
 
@@ -13459,13 +14458,20 @@ impl FrontSensorDistance2 {
     /// | 38 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_5_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_5_fault)
+        SensorFault::from_raw(self.sensor_5_fault_raw())
     }
 
     /// Raw value of `sensor_5_fault` (bits 38..39).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
-        self.sensor_5_fault
+        let bits = self.bits;
+        ((bits >> 38) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_5_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFBF_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
@@ -13477,7 +14483,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_5_fault",
             });
         }
-        self.sensor_5_fault = value;
+        self.store_sensor_5_fault(value);
         Ok(())
     }
 
@@ -13489,7 +14495,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_5_fault",
             });
         }
-        self.sensor_5_fault = value;
+        self.store_sensor_5_fault(value);
         Ok(())
     }
 
@@ -13500,13 +14506,20 @@ impl FrontSensorDistance2 {
     /// | 39 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_6_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_6_fault)
+        SensorFault::from_raw(self.sensor_6_fault_raw())
     }
 
     /// Raw value of `sensor_6_fault` (bits 39..40).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
-        self.sensor_6_fault
+        let bits = self.bits;
+        ((bits >> 39) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_6_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF7F_FFFF_FFFF) | u64::from(value) << 39;
     }
 
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
@@ -13518,7 +14531,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_6_fault",
             });
         }
-        self.sensor_6_fault = value;
+        self.store_sensor_6_fault(value);
         Ok(())
     }
 
@@ -13530,7 +14543,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_6_fault",
             });
         }
-        self.sensor_6_fault = value;
+        self.store_sensor_6_fault(value);
         Ok(())
     }
 
@@ -13541,13 +14554,20 @@ impl FrontSensorDistance2 {
     /// | 40 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_7_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_7_fault)
+        SensorFault::from_raw(self.sensor_7_fault_raw())
     }
 
     /// Raw value of `sensor_7_fault` (bits 40..41).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
-        self.sensor_7_fault
+        let bits = self.bits;
+        ((bits >> 40) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_7_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FEFF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
@@ -13559,7 +14579,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_7_fault",
             });
         }
-        self.sensor_7_fault = value;
+        self.store_sensor_7_fault(value);
         Ok(())
     }
 
@@ -13571,7 +14591,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_7_fault",
             });
         }
-        self.sensor_7_fault = value;
+        self.store_sensor_7_fault(value);
         Ok(())
     }
 
@@ -13582,13 +14602,20 @@ impl FrontSensorDistance2 {
     /// | 41 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_8_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_8_fault)
+        SensorFault::from_raw(self.sensor_8_fault_raw())
     }
 
     /// Raw value of `sensor_8_fault` (bits 41..42).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
-        self.sensor_8_fault
+        let bits = self.bits;
+        ((bits >> 41) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_8_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FDFF_FFFF_FFFF) | u64::from(value) << 41;
     }
 
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
@@ -13600,7 +14627,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_8_fault",
             });
         }
-        self.sensor_8_fault = value;
+        self.store_sensor_8_fault(value);
         Ok(())
     }
 
@@ -13612,7 +14639,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_8_fault",
             });
         }
-        self.sensor_8_fault = value;
+        self.store_sensor_8_fault(value);
         Ok(())
     }
 
@@ -13623,13 +14650,20 @@ impl FrontSensorDistance2 {
     /// | 42 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_9_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_9_fault)
+        SensorFault::from_raw(self.sensor_9_fault_raw())
     }
 
     /// Raw value of `sensor_9_fault` (bits 42..43).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
-        self.sensor_9_fault
+        let bits = self.bits;
+        ((bits >> 42) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_9_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FBFF_FFFF_FFFF) | u64::from(value) << 42;
     }
 
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
@@ -13641,7 +14675,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_9_fault",
             });
         }
-        self.sensor_9_fault = value;
+        self.store_sensor_9_fault(value);
         Ok(())
     }
 
@@ -13653,7 +14687,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.sensor_9_fault",
             });
         }
-        self.sensor_9_fault = value;
+        self.store_sensor_9_fault(value);
         Ok(())
     }
 
@@ -13666,13 +14700,20 @@ impl FrontSensorDistance2 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -13683,7 +14724,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -13695,7 +14736,7 @@ impl FrontSensorDistance2 {
                 signal: "front_sensor_distance_2.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -13744,15 +14785,25 @@ impl Frame for FrontSensorDistance2 {
 /// | `sensor_5_distance` | 传感器 5 距离 | 40 | 10 | 1 | 0 | cm |
 /// | `sensor_6_distance` | 传感器 6 距离 | 50 | 10 | 1 | 0 | cm |
 /// | `counter` | 心跳 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RearSensorDistance1 {
-    sensor_1_distance: u16,
-    sensor_2_distance: u16,
-    sensor_3_distance: u16,
-    sensor_4_distance: u16,
-    sensor_5_distance: u16,
-    sensor_6_distance: u16,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RearSensorDistance1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RearSensorDistance1")
+            .field("sensor_1_distance", &self.sensor_1_distance_raw())
+            .field("sensor_2_distance", &self.sensor_2_distance_raw())
+            .field("sensor_3_distance", &self.sensor_3_distance_raw())
+            .field("sensor_4_distance", &self.sensor_4_distance_raw())
+            .field("sensor_5_distance", &self.sensor_5_distance_raw())
+            .field("sensor_6_distance", &self.sensor_6_distance_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RearSensorDistance1`] (what [`RearSensorDistance1::new`] takes and
@@ -13812,15 +14863,9 @@ impl RearSensorDistance1 {
     /// 传感器 6 距离: 无障碍物 (No obstacle), raw value of `sensor_6_distance`
     pub const SENSOR_6_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
-    const ZERO: Self = Self {
-        sensor_1_distance: 0,
-        sensor_2_distance: 0,
-        sensor_3_distance: 0,
-        sensor_4_distance: 0,
-        sensor_5_distance: 0,
-        sensor_6_distance: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -13897,13 +14942,7 @@ impl RearSensorDistance1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.sensor_1_distance)
-            | u64::from(self.sensor_2_distance) << 10
-            | u64::from(self.sensor_3_distance) << 20
-            | u64::from(self.sensor_4_distance) << 30
-            | u64::from(self.sensor_5_distance) << 40
-            | u64::from(self.sensor_6_distance) << 50
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -13919,13 +14958,7 @@ impl RearSensorDistance1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            sensor_1_distance: (bits & 1023) as u16,
-            sensor_2_distance: ((bits >> 10) & 1023) as u16,
-            sensor_3_distance: ((bits >> 20) & 1023) as u16,
-            sensor_4_distance: ((bits >> 30) & 1023) as u16,
-            sensor_5_distance: ((bits >> 40) & 1023) as u16,
-            sensor_6_distance: ((bits >> 50) & 1023) as u16,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -13933,7 +14966,7 @@ impl RearSensorDistance1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -13946,13 +14979,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_1_distance(&self) -> u16 {
-        self.sensor_1_distance
+        self.sensor_1_distance_raw()
     }
 
     /// Raw value of `sensor_1_distance` (bits 0..10).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
-        self.sensor_1_distance
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_1_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `sensor_1_distance` from its physical value; outside the documented range is an error.
@@ -13963,7 +15003,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_1_distance",
             });
         }
-        self.sensor_1_distance = value;
+        self.store_sensor_1_distance(value);
         Ok(())
     }
 
@@ -13975,7 +15015,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_1_distance",
             });
         }
-        self.sensor_1_distance = value;
+        self.store_sensor_1_distance(value);
         Ok(())
     }
 
@@ -13988,13 +15028,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_2_distance(&self) -> u16 {
-        self.sensor_2_distance
+        self.sensor_2_distance_raw()
     }
 
     /// Raw value of `sensor_2_distance` (bits 10..20).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
-        self.sensor_2_distance
+        let bits = self.bits;
+        ((bits >> 10) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_2_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF0_03FF) | u64::from(value) << 10;
     }
 
     /// Set `sensor_2_distance` from its physical value; outside the documented range is an error.
@@ -14005,7 +15052,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_2_distance",
             });
         }
-        self.sensor_2_distance = value;
+        self.store_sensor_2_distance(value);
         Ok(())
     }
 
@@ -14017,7 +15064,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_2_distance",
             });
         }
-        self.sensor_2_distance = value;
+        self.store_sensor_2_distance(value);
         Ok(())
     }
 
@@ -14030,13 +15077,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_3_distance(&self) -> u16 {
-        self.sensor_3_distance
+        self.sensor_3_distance_raw()
     }
 
     /// Raw value of `sensor_3_distance` (bits 20..30).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
-        self.sensor_3_distance
+        let bits = self.bits;
+        ((bits >> 20) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_3_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_C00F_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `sensor_3_distance` from its physical value; outside the documented range is an error.
@@ -14047,7 +15101,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_3_distance",
             });
         }
-        self.sensor_3_distance = value;
+        self.store_sensor_3_distance(value);
         Ok(())
     }
 
@@ -14059,7 +15113,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_3_distance",
             });
         }
-        self.sensor_3_distance = value;
+        self.store_sensor_3_distance(value);
         Ok(())
     }
 
@@ -14072,13 +15126,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_4_distance(&self) -> u16 {
-        self.sensor_4_distance
+        self.sensor_4_distance_raw()
     }
 
     /// Raw value of `sensor_4_distance` (bits 30..40).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
-        self.sensor_4_distance
+        let bits = self.bits;
+        ((bits >> 30) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_4_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_3FFF_FFFF) | u64::from(value) << 30;
     }
 
     /// Set `sensor_4_distance` from its physical value; outside the documented range is an error.
@@ -14089,7 +15150,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_4_distance",
             });
         }
-        self.sensor_4_distance = value;
+        self.store_sensor_4_distance(value);
         Ok(())
     }
 
@@ -14101,7 +15162,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_4_distance",
             });
         }
-        self.sensor_4_distance = value;
+        self.store_sensor_4_distance(value);
         Ok(())
     }
 
@@ -14114,13 +15175,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_5_distance(&self) -> u16 {
-        self.sensor_5_distance
+        self.sensor_5_distance_raw()
     }
 
     /// Raw value of `sensor_5_distance` (bits 40..50).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
-        self.sensor_5_distance
+        let bits = self.bits;
+        ((bits >> 40) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_5_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFC_00FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `sensor_5_distance` from its physical value; outside the documented range is an error.
@@ -14131,7 +15199,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_5_distance",
             });
         }
-        self.sensor_5_distance = value;
+        self.store_sensor_5_distance(value);
         Ok(())
     }
 
@@ -14143,7 +15211,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_5_distance",
             });
         }
-        self.sensor_5_distance = value;
+        self.store_sensor_5_distance(value);
         Ok(())
     }
 
@@ -14156,13 +15224,20 @@ impl RearSensorDistance1 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_6_distance(&self) -> u16 {
-        self.sensor_6_distance
+        self.sensor_6_distance_raw()
     }
 
     /// Raw value of `sensor_6_distance` (bits 50..60).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
-        self.sensor_6_distance
+        let bits = self.bits;
+        ((bits >> 50) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_6_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xF003_FFFF_FFFF_FFFF) | u64::from(value) << 50;
     }
 
     /// Set `sensor_6_distance` from its physical value; outside the documented range is an error.
@@ -14173,7 +15248,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_6_distance",
             });
         }
-        self.sensor_6_distance = value;
+        self.store_sensor_6_distance(value);
         Ok(())
     }
 
@@ -14185,7 +15260,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.sensor_6_distance",
             });
         }
-        self.sensor_6_distance = value;
+        self.store_sensor_6_distance(value);
         Ok(())
     }
 
@@ -14198,13 +15273,20 @@ impl RearSensorDistance1 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -14215,7 +15297,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -14227,7 +15309,7 @@ impl RearSensorDistance1 {
                 signal: "rear_sensor_distance_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -14283,22 +15365,32 @@ impl Frame for RearSensorDistance1 {
 /// | `sensor_8_fault` | 传感器 8 故障状态 | 41 | 1 | 1 | 0 | — |
 /// | `sensor_9_fault` | 传感器 9 故障状态 | 42 | 1 | 1 | 0 | — |
 /// | `counter` | 心跳 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RearSensorDistance2 {
-    sensor_7_distance: u16,
-    sensor_8_distance: u16,
-    sensor_9_distance: u16,
-    uss_system_state: u8,
-    sensor_1_fault: u8,
-    sensor_2_fault: u8,
-    sensor_3_fault: u8,
-    sensor_4_fault: u8,
-    sensor_5_fault: u8,
-    sensor_6_fault: u8,
-    sensor_7_fault: u8,
-    sensor_8_fault: u8,
-    sensor_9_fault: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for RearSensorDistance2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RearSensorDistance2")
+            .field("sensor_7_distance", &self.sensor_7_distance_raw())
+            .field("sensor_8_distance", &self.sensor_8_distance_raw())
+            .field("sensor_9_distance", &self.sensor_9_distance_raw())
+            .field("uss_system_state", &self.uss_system_state_raw())
+            .field("sensor_1_fault", &self.sensor_1_fault_raw())
+            .field("sensor_2_fault", &self.sensor_2_fault_raw())
+            .field("sensor_3_fault", &self.sensor_3_fault_raw())
+            .field("sensor_4_fault", &self.sensor_4_fault_raw())
+            .field("sensor_5_fault", &self.sensor_5_fault_raw())
+            .field("sensor_6_fault", &self.sensor_6_fault_raw())
+            .field("sensor_7_fault", &self.sensor_7_fault_raw())
+            .field("sensor_8_fault", &self.sensor_8_fault_raw())
+            .field("sensor_9_fault", &self.sensor_9_fault_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`RearSensorDistance2`] (what [`RearSensorDistance2::new`] takes and
@@ -14366,22 +15458,9 @@ impl RearSensorDistance2 {
     /// 传感器 9 距离: 无障碍物 (No obstacle), raw value of `sensor_9_distance`
     pub const SENSOR_9_DISTANCE_NO_OBSTACLE: u16 = 1023;
 
-    const ZERO: Self = Self {
-        sensor_7_distance: 0,
-        sensor_8_distance: 0,
-        sensor_9_distance: 0,
-        uss_system_state: 0,
-        sensor_1_fault: 0,
-        sensor_2_fault: 0,
-        sensor_3_fault: 0,
-        sensor_4_fault: 0,
-        sensor_5_fault: 0,
-        sensor_6_fault: 0,
-        sensor_7_fault: 0,
-        sensor_8_fault: 0,
-        sensor_9_fault: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xF000_07FF_3FFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -14502,20 +15581,7 @@ impl RearSensorDistance2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.sensor_7_distance)
-            | u64::from(self.sensor_8_distance) << 10
-            | u64::from(self.sensor_9_distance) << 20
-            | u64::from(self.uss_system_state) << 32
-            | u64::from(self.sensor_1_fault) << 34
-            | u64::from(self.sensor_2_fault) << 35
-            | u64::from(self.sensor_3_fault) << 36
-            | u64::from(self.sensor_4_fault) << 37
-            | u64::from(self.sensor_5_fault) << 38
-            | u64::from(self.sensor_6_fault) << 39
-            | u64::from(self.sensor_7_fault) << 40
-            | u64::from(self.sensor_8_fault) << 41
-            | u64::from(self.sensor_9_fault) << 42
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -14531,20 +15597,7 @@ impl RearSensorDistance2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            sensor_7_distance: (bits & 1023) as u16,
-            sensor_8_distance: ((bits >> 10) & 1023) as u16,
-            sensor_9_distance: ((bits >> 20) & 1023) as u16,
-            uss_system_state: ((bits >> 32) & 3) as u8,
-            sensor_1_fault: ((bits >> 34) & 1) as u8,
-            sensor_2_fault: ((bits >> 35) & 1) as u8,
-            sensor_3_fault: ((bits >> 36) & 1) as u8,
-            sensor_4_fault: ((bits >> 37) & 1) as u8,
-            sensor_5_fault: ((bits >> 38) & 1) as u8,
-            sensor_6_fault: ((bits >> 39) & 1) as u8,
-            sensor_7_fault: ((bits >> 40) & 1) as u8,
-            sensor_8_fault: ((bits >> 41) & 1) as u8,
-            sensor_9_fault: ((bits >> 42) & 1) as u8,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -14552,7 +15605,7 @@ impl RearSensorDistance2 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -14565,13 +15618,20 @@ impl RearSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_7_distance(&self) -> u16 {
-        self.sensor_7_distance
+        self.sensor_7_distance_raw()
     }
 
     /// Raw value of `sensor_7_distance` (bits 0..10).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
-        self.sensor_7_distance
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_7_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `sensor_7_distance` from its physical value; outside the documented range is an error.
@@ -14582,7 +15642,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_7_distance",
             });
         }
-        self.sensor_7_distance = value;
+        self.store_sensor_7_distance(value);
         Ok(())
     }
 
@@ -14594,7 +15654,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_7_distance",
             });
         }
-        self.sensor_7_distance = value;
+        self.store_sensor_7_distance(value);
         Ok(())
     }
 
@@ -14607,13 +15667,20 @@ impl RearSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_8_distance(&self) -> u16 {
-        self.sensor_8_distance
+        self.sensor_8_distance_raw()
     }
 
     /// Raw value of `sensor_8_distance` (bits 10..20).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
-        self.sensor_8_distance
+        let bits = self.bits;
+        ((bits >> 10) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_8_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF0_03FF) | u64::from(value) << 10;
     }
 
     /// Set `sensor_8_distance` from its physical value; outside the documented range is an error.
@@ -14624,7 +15691,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_8_distance",
             });
         }
-        self.sensor_8_distance = value;
+        self.store_sensor_8_distance(value);
         Ok(())
     }
 
@@ -14636,7 +15703,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_8_distance",
             });
         }
-        self.sensor_8_distance = value;
+        self.store_sensor_8_distance(value);
         Ok(())
     }
 
@@ -14649,13 +15716,20 @@ impl RearSensorDistance2 {
     /// Special raw value 1023: 无障碍物 (No obstacle)
     #[inline]
     pub fn sensor_9_distance(&self) -> u16 {
-        self.sensor_9_distance
+        self.sensor_9_distance_raw()
     }
 
     /// Raw value of `sensor_9_distance` (bits 20..30).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
-        self.sensor_9_distance
+        let bits = self.bits;
+        ((bits >> 20) & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_9_distance(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_C00F_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `sensor_9_distance` from its physical value; outside the documented range is an error.
@@ -14666,7 +15740,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_9_distance",
             });
         }
-        self.sensor_9_distance = value;
+        self.store_sensor_9_distance(value);
         Ok(())
     }
 
@@ -14678,7 +15752,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_9_distance",
             });
         }
-        self.sensor_9_distance = value;
+        self.store_sensor_9_distance(value);
         Ok(())
     }
 
@@ -14689,13 +15763,20 @@ impl RearSensorDistance2 {
     /// | 32 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn uss_system_state(&self) -> UssSystemState {
-        UssSystemState::from_raw(self.uss_system_state)
+        UssSystemState::from_raw(self.uss_system_state_raw())
     }
 
     /// Raw value of `uss_system_state` (bits 32..34).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
-        self.uss_system_state
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_uss_system_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
@@ -14707,7 +15788,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.uss_system_state",
             });
         }
-        self.uss_system_state = value;
+        self.store_uss_system_state(value);
         Ok(())
     }
 
@@ -14719,7 +15800,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.uss_system_state",
             });
         }
-        self.uss_system_state = value;
+        self.store_uss_system_state(value);
         Ok(())
     }
 
@@ -14730,13 +15811,20 @@ impl RearSensorDistance2 {
     /// | 34 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_1_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_1_fault)
+        SensorFault::from_raw(self.sensor_1_fault_raw())
     }
 
     /// Raw value of `sensor_1_fault` (bits 34..35).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
-        self.sensor_1_fault
+        let bits = self.bits;
+        ((bits >> 34) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_1_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFB_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
@@ -14748,7 +15836,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_1_fault",
             });
         }
-        self.sensor_1_fault = value;
+        self.store_sensor_1_fault(value);
         Ok(())
     }
 
@@ -14760,7 +15848,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_1_fault",
             });
         }
-        self.sensor_1_fault = value;
+        self.store_sensor_1_fault(value);
         Ok(())
     }
 
@@ -14771,13 +15859,20 @@ impl RearSensorDistance2 {
     /// | 35 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_2_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_2_fault)
+        SensorFault::from_raw(self.sensor_2_fault_raw())
     }
 
     /// Raw value of `sensor_2_fault` (bits 35..36).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
-        self.sensor_2_fault
+        let bits = self.bits;
+        ((bits >> 35) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_2_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF7_FFFF_FFFF) | u64::from(value) << 35;
     }
 
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
@@ -14789,7 +15884,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_2_fault",
             });
         }
-        self.sensor_2_fault = value;
+        self.store_sensor_2_fault(value);
         Ok(())
     }
 
@@ -14801,7 +15896,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_2_fault",
             });
         }
-        self.sensor_2_fault = value;
+        self.store_sensor_2_fault(value);
         Ok(())
     }
 
@@ -14812,13 +15907,20 @@ impl RearSensorDistance2 {
     /// | 36 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_3_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_3_fault)
+        SensorFault::from_raw(self.sensor_3_fault_raw())
     }
 
     /// Raw value of `sensor_3_fault` (bits 36..37).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
-        self.sensor_3_fault
+        let bits = self.bits;
+        ((bits >> 36) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_3_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFEF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
@@ -14830,7 +15932,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_3_fault",
             });
         }
-        self.sensor_3_fault = value;
+        self.store_sensor_3_fault(value);
         Ok(())
     }
 
@@ -14842,7 +15944,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_3_fault",
             });
         }
-        self.sensor_3_fault = value;
+        self.store_sensor_3_fault(value);
         Ok(())
     }
 
@@ -14853,13 +15955,20 @@ impl RearSensorDistance2 {
     /// | 37 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_4_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_4_fault)
+        SensorFault::from_raw(self.sensor_4_fault_raw())
     }
 
     /// Raw value of `sensor_4_fault` (bits 37..38).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
-        self.sensor_4_fault
+        let bits = self.bits;
+        ((bits >> 37) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_4_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFDF_FFFF_FFFF) | u64::from(value) << 37;
     }
 
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
@@ -14871,7 +15980,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_4_fault",
             });
         }
-        self.sensor_4_fault = value;
+        self.store_sensor_4_fault(value);
         Ok(())
     }
 
@@ -14883,7 +15992,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_4_fault",
             });
         }
-        self.sensor_4_fault = value;
+        self.store_sensor_4_fault(value);
         Ok(())
     }
 
@@ -14894,13 +16003,20 @@ impl RearSensorDistance2 {
     /// | 38 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_5_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_5_fault)
+        SensorFault::from_raw(self.sensor_5_fault_raw())
     }
 
     /// Raw value of `sensor_5_fault` (bits 38..39).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
-        self.sensor_5_fault
+        let bits = self.bits;
+        ((bits >> 38) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_5_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFBF_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
@@ -14912,7 +16028,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_5_fault",
             });
         }
-        self.sensor_5_fault = value;
+        self.store_sensor_5_fault(value);
         Ok(())
     }
 
@@ -14924,7 +16040,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_5_fault",
             });
         }
-        self.sensor_5_fault = value;
+        self.store_sensor_5_fault(value);
         Ok(())
     }
 
@@ -14935,13 +16051,20 @@ impl RearSensorDistance2 {
     /// | 39 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_6_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_6_fault)
+        SensorFault::from_raw(self.sensor_6_fault_raw())
     }
 
     /// Raw value of `sensor_6_fault` (bits 39..40).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
-        self.sensor_6_fault
+        let bits = self.bits;
+        ((bits >> 39) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_6_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF7F_FFFF_FFFF) | u64::from(value) << 39;
     }
 
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
@@ -14953,7 +16076,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_6_fault",
             });
         }
-        self.sensor_6_fault = value;
+        self.store_sensor_6_fault(value);
         Ok(())
     }
 
@@ -14965,7 +16088,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_6_fault",
             });
         }
-        self.sensor_6_fault = value;
+        self.store_sensor_6_fault(value);
         Ok(())
     }
 
@@ -14976,13 +16099,20 @@ impl RearSensorDistance2 {
     /// | 40 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_7_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_7_fault)
+        SensorFault::from_raw(self.sensor_7_fault_raw())
     }
 
     /// Raw value of `sensor_7_fault` (bits 40..41).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
-        self.sensor_7_fault
+        let bits = self.bits;
+        ((bits >> 40) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_7_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FEFF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
@@ -14994,7 +16124,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_7_fault",
             });
         }
-        self.sensor_7_fault = value;
+        self.store_sensor_7_fault(value);
         Ok(())
     }
 
@@ -15006,7 +16136,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_7_fault",
             });
         }
-        self.sensor_7_fault = value;
+        self.store_sensor_7_fault(value);
         Ok(())
     }
 
@@ -15017,13 +16147,20 @@ impl RearSensorDistance2 {
     /// | 41 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_8_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_8_fault)
+        SensorFault::from_raw(self.sensor_8_fault_raw())
     }
 
     /// Raw value of `sensor_8_fault` (bits 41..42).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
-        self.sensor_8_fault
+        let bits = self.bits;
+        ((bits >> 41) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_8_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FDFF_FFFF_FFFF) | u64::from(value) << 41;
     }
 
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
@@ -15035,7 +16172,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_8_fault",
             });
         }
-        self.sensor_8_fault = value;
+        self.store_sensor_8_fault(value);
         Ok(())
     }
 
@@ -15047,7 +16184,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_8_fault",
             });
         }
-        self.sensor_8_fault = value;
+        self.store_sensor_8_fault(value);
         Ok(())
     }
 
@@ -15058,13 +16195,20 @@ impl RearSensorDistance2 {
     /// | 42 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn sensor_9_fault(&self) -> SensorFault {
-        SensorFault::from_raw(self.sensor_9_fault)
+        SensorFault::from_raw(self.sensor_9_fault_raw())
     }
 
     /// Raw value of `sensor_9_fault` (bits 42..43).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
-        self.sensor_9_fault
+        let bits = self.bits;
+        ((bits >> 42) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_sensor_9_fault(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FBFF_FFFF_FFFF) | u64::from(value) << 42;
     }
 
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
@@ -15076,7 +16220,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_9_fault",
             });
         }
-        self.sensor_9_fault = value;
+        self.store_sensor_9_fault(value);
         Ok(())
     }
 
@@ -15088,7 +16232,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.sensor_9_fault",
             });
         }
-        self.sensor_9_fault = value;
+        self.store_sensor_9_fault(value);
         Ok(())
     }
 
@@ -15101,13 +16245,20 @@ impl RearSensorDistance2 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -15118,7 +16269,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -15130,7 +16281,7 @@ impl RearSensorDistance2 {
                 signal: "rear_sensor_distance_2.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -15176,12 +16327,22 @@ impl Frame for RearSensorDistance2 {
 /// | `counter` | 心跳值 | 8 | 8 | 1 | 0 | — |
 /// | `max_angular_speed` | 最大角速度 | 16 | 8 | 2 | 0 | deg/s |
 /// | `steering_angle_cmd` | 方向盘角度指令 | 24 | 16 | 0.1 | -1080 | deg |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct TeleEpsCommand {
-    eps_ctrl_mode: u8,
-    counter: u8,
-    max_angular_speed: u8,
-    steering_angle_cmd: u16,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for TeleEpsCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("TeleEpsCommand")
+            .field("eps_ctrl_mode", &self.eps_ctrl_mode_raw())
+            .field("counter", &self.counter_raw())
+            .field("max_angular_speed", &self.max_angular_speed_raw())
+            .field("steering_angle_cmd", &self.steering_angle_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`TeleEpsCommand`] (what [`TeleEpsCommand::new`] takes and
@@ -15253,12 +16414,9 @@ impl TeleEpsCommand {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self {
-        eps_ctrl_mode: 0,
-        counter: 0,
-        max_angular_speed: 0,
-        steering_angle_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF_FFFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -15317,10 +16475,7 @@ impl TeleEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.eps_ctrl_mode)
-            | u64::from(self.counter) << 8
-            | u64::from(self.max_angular_speed) << 16
-            | u64::from(self.steering_angle_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -15345,10 +16500,7 @@ impl TeleEpsCommand {
             });
         }
         Ok(Self {
-            eps_ctrl_mode: bits as u8,
-            counter: (bits >> 8) as u8,
-            max_angular_speed: (bits >> 16) as u8,
-            steering_angle_cmd: (bits >> 24) as u16,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -15362,7 +16514,7 @@ impl TeleEpsCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -15373,27 +16525,34 @@ impl TeleEpsCommand {
     /// | 0 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn eps_ctrl_mode(&self) -> EpsModeCmd {
-        EpsModeCmd::from_raw(self.eps_ctrl_mode)
+        EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
     /// Raw value of `eps_ctrl_mode` (bits 0..8).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        self.eps_ctrl_mode
+        let bits = self.bits;
+        bits as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_eps_ctrl_mode(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
     }
 
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
         let value = value.raw();
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
     /// Set the raw value of `eps_ctrl_mode`; any value that fits its 8 bits.
     #[inline]
     pub fn set_eps_ctrl_mode_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.eps_ctrl_mode = value;
+        self.store_eps_ctrl_mode(value);
         Ok(())
     }
 
@@ -15406,26 +16565,33 @@ impl TeleEpsCommand {
     /// | 8 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 8..16).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -15440,13 +16606,20 @@ impl TeleEpsCommand {
     /// Errata: E10 (see spec/ERRATA.md)
     #[inline]
     pub fn max_angular_speed(&self) -> u16 {
-        self.max_angular_speed as u16 * 2
+        self.max_angular_speed_raw() as u16 * 2
     }
 
     /// Raw value of `max_angular_speed` (bits 16..24).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        self.max_angular_speed
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_max_angular_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `max_angular_speed` from its physical value; outside the documented range is an error.
@@ -15454,7 +16627,7 @@ impl TeleEpsCommand {
     pub fn set_max_angular_speed(&mut self, value: u16) -> Result<(), Error> {
         match codec::to_raw_int(i64::from(value), &Self::MAX_ANGULAR_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.max_angular_speed = raw as u8;
+                self.store_max_angular_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -15466,7 +16639,7 @@ impl TeleEpsCommand {
     /// Set the raw value of `max_angular_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_max_angular_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.max_angular_speed = value;
+        self.store_max_angular_speed(value);
         Ok(())
     }
 
@@ -15479,13 +16652,20 @@ impl TeleEpsCommand {
     /// | 24 | 16 | 0.1 | -1080 | deg | -1080 … 1080 | 0 … 21600 |
     #[inline]
     pub fn steering_angle_cmd(&self) -> f64 {
-        self.steering_angle_cmd as f64 * 0.1 - 1080.0
+        self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
     /// Raw value of `steering_angle_cmd` (bits 24..40).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        self.steering_angle_cmd
+        let bits = self.bits;
+        (bits >> 24) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_steering_angle_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
@@ -15493,7 +16673,7 @@ impl TeleEpsCommand {
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
             Some(raw) => {
-                self.steering_angle_cmd = raw as u16;
+                self.store_steering_angle_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -15505,7 +16685,7 @@ impl TeleEpsCommand {
     /// Set the raw value of `steering_angle_cmd`; any value that fits its 16 bits.
     #[inline]
     pub fn set_steering_angle_cmd_raw(&mut self, value: u16) -> Result<(), Error> {
-        self.steering_angle_cmd = value;
+        self.store_steering_angle_cmd(value);
         Ok(())
     }
 }
@@ -15552,13 +16732,23 @@ impl Frame for TeleEpsCommand {
 /// | `gear_cmd` | 档位指令 | 12 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 16 | 8 | 1 | 0 | — |
 /// | `emergency_brake_cmd` | 紧急制动指令 | 24 | 1 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct TeleSpeedCommand {
-    throttle_brake_cmd: u16,
-    epb_cmd: u8,
-    gear_cmd: u8,
-    counter: u8,
-    emergency_brake_cmd: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for TeleSpeedCommand {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("TeleSpeedCommand")
+            .field("throttle_brake_cmd", &self.throttle_brake_cmd_raw())
+            .field("epb_cmd", &self.epb_cmd_raw())
+            .field("gear_cmd", &self.gear_cmd_raw())
+            .field("counter", &self.counter_raw())
+            .field("emergency_brake_cmd", &self.emergency_brake_cmd_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`TeleSpeedCommand`] (what [`TeleSpeedCommand::new`] takes and
@@ -15616,13 +16806,9 @@ impl TeleSpeedCommand {
         type_max: 1023,
     };
 
-    const ZERO: Self = Self {
-        throttle_brake_cmd: 0,
-        epb_cmd: 0,
-        gear_cmd: 0,
-        counter: 0,
-        emergency_brake_cmd: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0x1FF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -15687,11 +16873,7 @@ impl TeleSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.throttle_brake_cmd)
-            | u64::from(self.epb_cmd) << 10
-            | u64::from(self.gear_cmd) << 12
-            | u64::from(self.counter) << 16
-            | u64::from(self.emergency_brake_cmd) << 24;
+        let bits: u64 = self.bits;
         // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
         (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
     }
@@ -15716,11 +16898,7 @@ impl TeleSpeedCommand {
             });
         }
         Ok(Self {
-            throttle_brake_cmd: (bits & 1023) as u16,
-            epb_cmd: ((bits >> 10) & 3) as u8,
-            gear_cmd: ((bits >> 12) & 15) as u8,
-            counter: (bits >> 16) as u8,
-            emergency_brake_cmd: ((bits >> 24) & 1) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -15734,7 +16912,7 @@ impl TeleSpeedCommand {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -15747,13 +16925,20 @@ impl TeleSpeedCommand {
     /// | 0 | 10 | 0.2 | -100 | % | -100 … 100 | 0 … 1000 |
     #[inline]
     pub fn throttle_brake_cmd(&self) -> f64 {
-        self.throttle_brake_cmd as f64 * 0.2 - 100.0
+        self.throttle_brake_cmd_raw() as f64 * 0.2 - 100.0
     }
 
     /// Raw value of `throttle_brake_cmd` (bits 0..10).
     #[inline]
     pub fn throttle_brake_cmd_raw(&self) -> u16 {
-        self.throttle_brake_cmd
+        let bits = self.bits;
+        (bits & 1023) as u16
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_throttle_brake_cmd(&mut self, value: u16) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FC00) | u64::from(value);
     }
 
     /// Set `throttle_brake_cmd` from its physical value; outside the documented range is an error.
@@ -15761,7 +16946,7 @@ impl TeleSpeedCommand {
     pub fn set_throttle_brake_cmd(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::THROTTLE_BRAKE_CMD_SCALE) {
             Some(raw) => {
-                self.throttle_brake_cmd = raw as u16;
+                self.store_throttle_brake_cmd(raw as u16);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -15778,7 +16963,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.throttle_brake_cmd",
             });
         }
-        self.throttle_brake_cmd = value;
+        self.store_throttle_brake_cmd(value);
         Ok(())
     }
 
@@ -15789,13 +16974,20 @@ impl TeleSpeedCommand {
     /// | 10 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn epb_cmd(&self) -> Epb {
-        Epb::from_raw(self.epb_cmd)
+        Epb::from_raw(self.epb_cmd_raw())
     }
 
     /// Raw value of `epb_cmd` (bits 10..12).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        self.epb_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_epb_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
@@ -15807,7 +16999,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -15819,7 +17011,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.epb_cmd",
             });
         }
-        self.epb_cmd = value;
+        self.store_epb_cmd(value);
         Ok(())
     }
 
@@ -15832,13 +17024,20 @@ impl TeleSpeedCommand {
     /// Errata: E11 (see spec/ERRATA.md)
     #[inline]
     pub fn gear_cmd(&self) -> Gear {
-        Gear::from_raw(self.gear_cmd)
+        Gear::from_raw(self.gear_cmd_raw())
     }
 
     /// Raw value of `gear_cmd` (bits 12..16).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        self.gear_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_gear_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_0FFF) | u64::from(value) << 12;
     }
 
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
@@ -15850,7 +17049,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -15862,7 +17061,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.gear_cmd",
             });
         }
-        self.gear_cmd = value;
+        self.store_gear_cmd(value);
         Ok(())
     }
 
@@ -15875,26 +17074,33 @@ impl TeleSpeedCommand {
     /// | 16 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 16..24).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 16) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -15907,13 +17113,20 @@ impl TeleSpeedCommand {
     /// Errata: E12 (see spec/ERRATA.md)
     #[inline]
     pub fn emergency_brake_cmd(&self) -> EmergencyBrakeCmd {
-        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd)
+        EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
     /// Raw value of `emergency_brake_cmd` (bits 24..25).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        self.emergency_brake_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_emergency_brake_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FEFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
@@ -15925,7 +17138,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 
@@ -15937,7 +17150,7 @@ impl TeleSpeedCommand {
                 signal: "tele_speed_command.emergency_brake_cmd",
             });
         }
-        self.emergency_brake_cmd = value;
+        self.store_emergency_brake_cmd(value);
         Ok(())
     }
 }
@@ -16004,33 +17217,43 @@ impl Frame for TeleSpeedCommand {
 /// | `protocol_version_b` | 协议版本号 B | 52 | 4 | 1 | 0 | — |
 /// | `protocol_version_c` | 协议版本号 C | 56 | 4 | 1 | 0 | — |
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct TeleControlCommand1 {
-    drive_mode_cmd: u8,
-    door_cmd: u8,
-    horn_cmd: u8,
-    drl_cmd: u8,
-    left_turn_cmd: u8,
-    right_turn_cmd: u8,
-    hazard_cmd: u8,
-    position_light_cmd: u8,
-    headlight_cmd: u8,
-    rear_fog_cmd: u8,
-    left_fog_cmd: u8,
-    right_fog_cmd: u8,
-    dome_light_cmd: u8,
-    ambient_light_cmd: u8,
-    drive_mode_reset: u8,
-    system_state: u8,
-    system_reliability: u8,
-    system_fault_level: u8,
-    lock_cmd: u8,
-    ac_cmd: u8,
-    ac_set_temp: u8,
-    protocol_version_a: u8,
-    protocol_version_b: u8,
-    protocol_version_c: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for TeleControlCommand1 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("TeleControlCommand1")
+            .field("drive_mode_cmd", &self.drive_mode_cmd_raw())
+            .field("door_cmd", &self.door_cmd_raw())
+            .field("horn_cmd", &self.horn_cmd_raw())
+            .field("drl_cmd", &self.drl_cmd_raw())
+            .field("left_turn_cmd", &self.left_turn_cmd_raw())
+            .field("right_turn_cmd", &self.right_turn_cmd_raw())
+            .field("hazard_cmd", &self.hazard_cmd_raw())
+            .field("position_light_cmd", &self.position_light_cmd_raw())
+            .field("headlight_cmd", &self.headlight_cmd_raw())
+            .field("rear_fog_cmd", &self.rear_fog_cmd_raw())
+            .field("left_fog_cmd", &self.left_fog_cmd_raw())
+            .field("right_fog_cmd", &self.right_fog_cmd_raw())
+            .field("dome_light_cmd", &self.dome_light_cmd_raw())
+            .field("ambient_light_cmd", &self.ambient_light_cmd_raw())
+            .field("drive_mode_reset", &self.drive_mode_reset_raw())
+            .field("system_state", &self.system_state_raw())
+            .field("system_reliability", &self.system_reliability_raw())
+            .field("system_fault_level", &self.system_fault_level_raw())
+            .field("lock_cmd", &self.lock_cmd_raw())
+            .field("ac_cmd", &self.ac_cmd_raw())
+            .field("ac_set_temp", &self.ac_set_temp_raw())
+            .field("protocol_version_a", &self.protocol_version_a_raw())
+            .field("protocol_version_b", &self.protocol_version_b_raw())
+            .field("protocol_version_c", &self.protocol_version_c_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`TeleControlCommand1`] (what [`TeleControlCommand1::new`] takes and
@@ -16128,33 +17351,9 @@ impl TeleControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self {
-        drive_mode_cmd: 0,
-        door_cmd: 0,
-        horn_cmd: 0,
-        drl_cmd: 0,
-        left_turn_cmd: 0,
-        right_turn_cmd: 0,
-        hazard_cmd: 0,
-        position_light_cmd: 0,
-        headlight_cmd: 0,
-        rear_fog_cmd: 0,
-        left_fog_cmd: 0,
-        right_fog_cmd: 0,
-        dome_light_cmd: 0,
-        ambient_light_cmd: 0,
-        drive_mode_reset: 0,
-        system_state: 0,
-        system_reliability: 0,
-        system_fault_level: 0,
-        lock_cmd: 0,
-        ac_cmd: 0,
-        ac_set_temp: 0,
-        protocol_version_a: 0,
-        protocol_version_b: 0,
-        protocol_version_c: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -16341,31 +17540,7 @@ impl TeleControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.drive_mode_cmd)
-            | u64::from(self.door_cmd) << 2
-            | u64::from(self.horn_cmd) << 4
-            | u64::from(self.drl_cmd) << 6
-            | u64::from(self.left_turn_cmd) << 8
-            | u64::from(self.right_turn_cmd) << 10
-            | u64::from(self.hazard_cmd) << 12
-            | u64::from(self.position_light_cmd) << 14
-            | u64::from(self.headlight_cmd) << 16
-            | u64::from(self.rear_fog_cmd) << 18
-            | u64::from(self.left_fog_cmd) << 20
-            | u64::from(self.right_fog_cmd) << 22
-            | u64::from(self.dome_light_cmd) << 24
-            | u64::from(self.ambient_light_cmd) << 26
-            | u64::from(self.drive_mode_reset) << 28
-            | u64::from(self.system_state) << 32
-            | u64::from(self.system_reliability) << 34
-            | u64::from(self.system_fault_level) << 36
-            | u64::from(self.lock_cmd) << 38
-            | u64::from(self.ac_cmd) << 40
-            | u64::from(self.ac_set_temp) << 43
-            | u64::from(self.protocol_version_a) << 48
-            | u64::from(self.protocol_version_b) << 52
-            | u64::from(self.protocol_version_c) << 56
-            | u64::from(self.counter) << 60;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -16381,31 +17556,7 @@ impl TeleControlCommand1 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            drive_mode_cmd: (bits & 3) as u8,
-            door_cmd: ((bits >> 2) & 3) as u8,
-            horn_cmd: ((bits >> 4) & 3) as u8,
-            drl_cmd: ((bits >> 6) & 3) as u8,
-            left_turn_cmd: ((bits >> 8) & 3) as u8,
-            right_turn_cmd: ((bits >> 10) & 3) as u8,
-            hazard_cmd: ((bits >> 12) & 3) as u8,
-            position_light_cmd: ((bits >> 14) & 3) as u8,
-            headlight_cmd: ((bits >> 16) & 3) as u8,
-            rear_fog_cmd: ((bits >> 18) & 3) as u8,
-            left_fog_cmd: ((bits >> 20) & 3) as u8,
-            right_fog_cmd: ((bits >> 22) & 3) as u8,
-            dome_light_cmd: ((bits >> 24) & 3) as u8,
-            ambient_light_cmd: ((bits >> 26) & 3) as u8,
-            drive_mode_reset: ((bits >> 28) & 1) as u8,
-            system_state: ((bits >> 32) & 3) as u8,
-            system_reliability: ((bits >> 34) & 3) as u8,
-            system_fault_level: ((bits >> 36) & 3) as u8,
-            lock_cmd: ((bits >> 38) & 3) as u8,
-            ac_cmd: ((bits >> 40) & 7) as u8,
-            ac_set_temp: ((bits >> 43) & 31) as u8,
-            protocol_version_a: ((bits >> 48) & 15) as u8,
-            protocol_version_b: ((bits >> 52) & 15) as u8,
-            protocol_version_c: ((bits >> 56) & 15) as u8,
-            counter: (bits >> 60) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -16413,7 +17564,7 @@ impl TeleControlCommand1 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -16426,13 +17577,20 @@ impl TeleControlCommand1 {
     /// Errata: E33 (see spec/ERRATA.md)
     #[inline]
     pub fn drive_mode_cmd(&self) -> DriveModeCmdTele {
-        DriveModeCmdTele::from_raw(self.drive_mode_cmd)
+        DriveModeCmdTele::from_raw(self.drive_mode_cmd_raw())
     }
 
     /// Raw value of `drive_mode_cmd` (bits 0..2).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        self.drive_mode_cmd
+        let bits = self.bits;
+        (bits & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -16444,7 +17602,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -16456,7 +17614,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drive_mode_cmd",
             });
         }
-        self.drive_mode_cmd = value;
+        self.store_drive_mode_cmd(value);
         Ok(())
     }
 
@@ -16469,13 +17627,20 @@ impl TeleControlCommand1 {
     /// Errata: E36 (see spec/ERRATA.md)
     #[inline]
     pub fn door_cmd(&self) -> DoorCmd {
-        DoorCmd::from_raw(self.door_cmd)
+        DoorCmd::from_raw(self.door_cmd_raw())
     }
 
     /// Raw value of `door_cmd` (bits 2..4).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        self.door_cmd
+        let bits = self.bits;
+        ((bits >> 2) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_door_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -16487,7 +17652,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -16499,7 +17664,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.door_cmd",
             });
         }
-        self.door_cmd = value;
+        self.store_door_cmd(value);
         Ok(())
     }
 
@@ -16510,13 +17675,20 @@ impl TeleControlCommand1 {
     /// | 4 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn horn_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.horn_cmd)
+        SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
     /// Raw value of `horn_cmd` (bits 4..6).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        self.horn_cmd
+        let bits = self.bits;
+        ((bits >> 4) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_horn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -16528,7 +17700,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -16540,7 +17712,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.horn_cmd",
             });
         }
-        self.horn_cmd = value;
+        self.store_horn_cmd(value);
         Ok(())
     }
 
@@ -16551,13 +17723,20 @@ impl TeleControlCommand1 {
     /// | 6 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn drl_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.drl_cmd)
+        SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
     /// Raw value of `drl_cmd` (bits 6..8).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        self.drl_cmd
+        let bits = self.bits;
+        ((bits >> 6) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drl_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -16569,7 +17748,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -16581,7 +17760,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drl_cmd",
             });
         }
-        self.drl_cmd = value;
+        self.store_drl_cmd(value);
         Ok(())
     }
 
@@ -16592,13 +17771,20 @@ impl TeleControlCommand1 {
     /// | 8 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.left_turn_cmd)
+        FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
     /// Raw value of `left_turn_cmd` (bits 8..10).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        self.left_turn_cmd
+        let bits = self.bits;
+        ((bits >> 8) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -16610,7 +17796,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -16622,7 +17808,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.left_turn_cmd",
             });
         }
-        self.left_turn_cmd = value;
+        self.store_left_turn_cmd(value);
         Ok(())
     }
 
@@ -16633,13 +17819,20 @@ impl TeleControlCommand1 {
     /// | 10 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_turn_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.right_turn_cmd)
+        FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
     /// Raw value of `right_turn_cmd` (bits 10..12).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        self.right_turn_cmd
+        let bits = self.bits;
+        ((bits >> 10) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_turn_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -16651,7 +17844,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -16663,7 +17856,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.right_turn_cmd",
             });
         }
-        self.right_turn_cmd = value;
+        self.store_right_turn_cmd(value);
         Ok(())
     }
 
@@ -16674,13 +17867,20 @@ impl TeleControlCommand1 {
     /// | 12 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn hazard_cmd(&self) -> FlashCmd {
-        FlashCmd::from_raw(self.hazard_cmd)
+        FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
     /// Raw value of `hazard_cmd` (bits 12..14).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        self.hazard_cmd
+        let bits = self.bits;
+        ((bits >> 12) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_hazard_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -16692,7 +17892,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -16704,7 +17904,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.hazard_cmd",
             });
         }
-        self.hazard_cmd = value;
+        self.store_hazard_cmd(value);
         Ok(())
     }
 
@@ -16715,13 +17915,20 @@ impl TeleControlCommand1 {
     /// | 14 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn position_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.position_light_cmd)
+        SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
     /// Raw value of `position_light_cmd` (bits 14..16).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        self.position_light_cmd
+        let bits = self.bits;
+        ((bits >> 14) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_position_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -16733,7 +17940,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -16745,7 +17952,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.position_light_cmd",
             });
         }
-        self.position_light_cmd = value;
+        self.store_position_light_cmd(value);
         Ok(())
     }
 
@@ -16756,13 +17963,20 @@ impl TeleControlCommand1 {
     /// | 16 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn headlight_cmd(&self) -> Headlight {
-        Headlight::from_raw(self.headlight_cmd)
+        Headlight::from_raw(self.headlight_cmd_raw())
     }
 
     /// Raw value of `headlight_cmd` (bits 16..18).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        self.headlight_cmd
+        let bits = self.bits;
+        ((bits >> 16) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_headlight_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -16774,7 +17988,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -16786,7 +18000,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.headlight_cmd",
             });
         }
-        self.headlight_cmd = value;
+        self.store_headlight_cmd(value);
         Ok(())
     }
 
@@ -16797,13 +18011,20 @@ impl TeleControlCommand1 {
     /// | 18 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn rear_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.rear_fog_cmd)
+        SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
     /// Raw value of `rear_fog_cmd` (bits 18..20).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        self.rear_fog_cmd
+        let bits = self.bits;
+        ((bits >> 18) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_rear_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -16815,7 +18036,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -16827,7 +18048,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.rear_fog_cmd",
             });
         }
-        self.rear_fog_cmd = value;
+        self.store_rear_fog_cmd(value);
         Ok(())
     }
 
@@ -16838,13 +18059,20 @@ impl TeleControlCommand1 {
     /// | 20 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn left_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.left_fog_cmd)
+        SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
     /// Raw value of `left_fog_cmd` (bits 20..22).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        self.left_fog_cmd
+        let bits = self.bits;
+        ((bits >> 20) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_left_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -16856,7 +18084,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -16868,7 +18096,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.left_fog_cmd",
             });
         }
-        self.left_fog_cmd = value;
+        self.store_left_fog_cmd(value);
         Ok(())
     }
 
@@ -16879,13 +18107,20 @@ impl TeleControlCommand1 {
     /// | 22 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn right_fog_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.right_fog_cmd)
+        SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
     /// Raw value of `right_fog_cmd` (bits 22..24).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        self.right_fog_cmd
+        let bits = self.bits;
+        ((bits >> 22) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_right_fog_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -16897,7 +18132,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -16909,7 +18144,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.right_fog_cmd",
             });
         }
-        self.right_fog_cmd = value;
+        self.store_right_fog_cmd(value);
         Ok(())
     }
 
@@ -16920,13 +18155,20 @@ impl TeleControlCommand1 {
     /// | 24 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn dome_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.dome_light_cmd)
+        SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
     /// Raw value of `dome_light_cmd` (bits 24..26).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        self.dome_light_cmd
+        let bits = self.bits;
+        ((bits >> 24) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_dome_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -16938,7 +18180,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -16950,7 +18192,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.dome_light_cmd",
             });
         }
-        self.dome_light_cmd = value;
+        self.store_dome_light_cmd(value);
         Ok(())
     }
 
@@ -16961,13 +18203,20 @@ impl TeleControlCommand1 {
     /// | 26 | 2 | 1 | 0 | — | 0 … 2 | 0 … 2 |
     #[inline]
     pub fn ambient_light_cmd(&self) -> SwitchCmd {
-        SwitchCmd::from_raw(self.ambient_light_cmd)
+        SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
     /// Raw value of `ambient_light_cmd` (bits 26..28).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        self.ambient_light_cmd
+        let bits = self.bits;
+        ((bits >> 26) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ambient_light_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -16979,7 +18228,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -16991,7 +18240,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.ambient_light_cmd",
             });
         }
-        self.ambient_light_cmd = value;
+        self.store_ambient_light_cmd(value);
         Ok(())
     }
 
@@ -17002,13 +18251,20 @@ impl TeleControlCommand1 {
     /// | 28 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn drive_mode_reset(&self) -> ModeReset {
-        ModeReset::from_raw(self.drive_mode_reset)
+        ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
     /// Raw value of `drive_mode_reset` (bits 28..29).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        self.drive_mode_reset
+        let bits = self.bits;
+        ((bits >> 28) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_drive_mode_reset(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -17020,7 +18276,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -17032,7 +18288,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.drive_mode_reset",
             });
         }
-        self.drive_mode_reset = value;
+        self.store_drive_mode_reset(value);
         Ok(())
     }
 
@@ -17045,13 +18301,20 @@ impl TeleControlCommand1 {
     /// Errata: E28 (see spec/ERRATA.md)
     #[inline]
     pub fn system_state(&self) -> LinkState {
-        LinkState::from_raw(self.system_state)
+        LinkState::from_raw(self.system_state_raw())
     }
 
     /// Raw value of `system_state` (bits 32..34).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        self.system_state
+        let bits = self.bits;
+        ((bits >> 32) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_state(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -17063,7 +18326,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -17075,7 +18338,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_state",
             });
         }
-        self.system_state = value;
+        self.store_system_state(value);
         Ok(())
     }
 
@@ -17086,13 +18349,20 @@ impl TeleControlCommand1 {
     /// | 34 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_reliability(&self) -> ReliabilityTele {
-        ReliabilityTele::from_raw(self.system_reliability)
+        ReliabilityTele::from_raw(self.system_reliability_raw())
     }
 
     /// Raw value of `system_reliability` (bits 34..36).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        self.system_reliability
+        let bits = self.bits;
+        ((bits >> 34) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_reliability(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -17104,7 +18374,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -17116,7 +18386,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_reliability",
             });
         }
-        self.system_reliability = value;
+        self.store_system_reliability(value);
         Ok(())
     }
 
@@ -17127,13 +18397,20 @@ impl TeleControlCommand1 {
     /// | 36 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn system_fault_level(&self) -> FaultLevelTele {
-        FaultLevelTele::from_raw(self.system_fault_level)
+        FaultLevelTele::from_raw(self.system_fault_level_raw())
     }
 
     /// Raw value of `system_fault_level` (bits 36..38).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        self.system_fault_level
+        let bits = self.bits;
+        ((bits >> 36) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_system_fault_level(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -17145,7 +18422,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -17157,7 +18434,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.system_fault_level",
             });
         }
-        self.system_fault_level = value;
+        self.store_system_fault_level(value);
         Ok(())
     }
 
@@ -17170,13 +18447,20 @@ impl TeleControlCommand1 {
     /// Errata: E15 (see spec/ERRATA.md)
     #[inline]
     pub fn lock_cmd(&self) -> LockCmd {
-        LockCmd::from_raw(self.lock_cmd)
+        LockCmd::from_raw(self.lock_cmd_raw())
     }
 
     /// Raw value of `lock_cmd` (bits 38..40).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        self.lock_cmd
+        let bits = self.bits;
+        ((bits >> 38) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_lock_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -17188,7 +18472,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -17200,7 +18484,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.lock_cmd",
             });
         }
-        self.lock_cmd = value;
+        self.store_lock_cmd(value);
         Ok(())
     }
 
@@ -17215,13 +18499,20 @@ impl TeleControlCommand1 {
     /// Errata: E30 (see spec/ERRATA.md)
     #[inline]
     pub fn ac_cmd(&self) -> AcCmd {
-        AcCmd::from_raw(self.ac_cmd)
+        AcCmd::from_raw(self.ac_cmd_raw())
     }
 
     /// Raw value of `ac_cmd` (bits 40..43).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        self.ac_cmd
+        let bits = self.bits;
+        ((bits >> 40) & 7) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_cmd(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -17233,7 +18524,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -17245,7 +18536,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.ac_cmd",
             });
         }
-        self.ac_cmd = value;
+        self.store_ac_cmd(value);
         Ok(())
     }
 
@@ -17258,13 +18549,20 @@ impl TeleControlCommand1 {
     /// | 43 | 5 | 0.5 | 16 | °C | 16 … 30 | 0 … 28 |
     #[inline]
     pub fn ac_set_temp(&self) -> f64 {
-        self.ac_set_temp as f64 * 0.5 + 16.0
+        self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
     /// Raw value of `ac_set_temp` (bits 43..48).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        self.ac_set_temp
+        let bits = self.bits;
+        ((bits >> 43) & 31) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_ac_set_temp(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -17272,7 +18570,7 @@ impl TeleControlCommand1 {
     pub fn set_ac_set_temp(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_unsigned(value, &Self::AC_SET_TEMP_SCALE) {
             Some(raw) => {
-                self.ac_set_temp = raw as u8;
+                self.store_ac_set_temp(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -17289,7 +18587,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.ac_set_temp",
             });
         }
-        self.ac_set_temp = value;
+        self.store_ac_set_temp(value);
         Ok(())
     }
 
@@ -17302,13 +18600,20 @@ impl TeleControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_a(&self) -> u8 {
-        self.protocol_version_a
+        self.protocol_version_a_raw()
     }
 
     /// Raw value of `protocol_version_a` (bits 48..52).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        self.protocol_version_a
+        let bits = self.bits;
+        ((bits >> 48) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_a(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -17319,7 +18624,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -17331,7 +18636,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_a",
             });
         }
-        self.protocol_version_a = value;
+        self.store_protocol_version_a(value);
         Ok(())
     }
 
@@ -17344,13 +18649,20 @@ impl TeleControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_b(&self) -> u8 {
-        self.protocol_version_b
+        self.protocol_version_b_raw()
     }
 
     /// Raw value of `protocol_version_b` (bits 52..56).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        self.protocol_version_b
+        let bits = self.bits;
+        ((bits >> 52) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_b(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -17361,7 +18673,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -17373,7 +18685,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_b",
             });
         }
-        self.protocol_version_b = value;
+        self.store_protocol_version_b(value);
         Ok(())
     }
 
@@ -17386,13 +18698,20 @@ impl TeleControlCommand1 {
     /// Errata: E16, E17 (see spec/ERRATA.md)
     #[inline]
     pub fn protocol_version_c(&self) -> u8 {
-        self.protocol_version_c
+        self.protocol_version_c_raw()
     }
 
     /// Raw value of `protocol_version_c` (bits 56..60).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        self.protocol_version_c
+        let bits = self.bits;
+        ((bits >> 56) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_protocol_version_c(&mut self, value: u8) {
+        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -17403,7 +18722,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -17415,7 +18734,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.protocol_version_c",
             });
         }
-        self.protocol_version_c = value;
+        self.store_protocol_version_c(value);
         Ok(())
     }
 
@@ -17428,13 +18747,20 @@ impl TeleControlCommand1 {
     /// | 60 | 4 | 1 | 0 | — | 0 … 15 | 0 … 15 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 60..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 60) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -17445,7 +18771,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
@@ -17457,7 +18783,7 @@ impl TeleControlCommand1 {
                 signal: "tele_control_command_1.counter",
             });
         }
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
@@ -17505,14 +18831,24 @@ impl Frame for TeleControlCommand1 {
 /// | `pto_enable` | 取力使能 | 7 | 1 | 1 | 0 | — |
 /// | `downhill_regen_speed` | 下坡制动回收速度 | 8 | 8 | 0.5 | 0 | km/h |
 /// | `counter` | 心跳 | 56 | 8 | 1 | 0 | — |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct TeleControlCommand2 {
-    downhill_regen_enable: u8,
-    cargo_lift: u8,
-    cargo_lift_speed: u8,
-    pto_enable: u8,
-    downhill_regen_speed: u8,
-    counter: u8,
+    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
+    /// that decoding is a check and a copy and each getter extracts only its own field.
+    bits: u64,
+}
+
+impl core::fmt::Debug for TeleControlCommand2 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("TeleControlCommand2")
+            .field("downhill_regen_enable", &self.downhill_regen_enable_raw())
+            .field("cargo_lift", &self.cargo_lift_raw())
+            .field("cargo_lift_speed", &self.cargo_lift_speed_raw())
+            .field("pto_enable", &self.pto_enable_raw())
+            .field("downhill_regen_speed", &self.downhill_regen_speed_raw())
+            .field("counter", &self.counter_raw())
+            .finish()
+    }
 }
 
 /// Physical values of [`TeleControlCommand2`] (what [`TeleControlCommand2::new`] takes and
@@ -17574,14 +18910,9 @@ impl TeleControlCommand2 {
         type_max: 255,
     };
 
-    const ZERO: Self = Self {
-        downhill_regen_enable: 0,
-        cargo_lift: 0,
-        cargo_lift_speed: 0,
-        pto_enable: 0,
-        downhill_regen_speed: 0,
-        counter: 0,
-    };
+    const ZERO: Self = Self { bits: 0 };
+    /// Frame-word bits of the fields.
+    const FIELDS_MASK: u64 = 0xFF00_0000_0000_FFFF;
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -17652,12 +18983,7 @@ impl TeleControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = u64::from(self.downhill_regen_enable)
-            | u64::from(self.cargo_lift) << 1
-            | u64::from(self.cargo_lift_speed) << 3
-            | u64::from(self.pto_enable) << 7
-            | u64::from(self.downhill_regen_speed) << 8
-            | u64::from(self.counter) << 56;
+        let bits: u64 = self.bits;
         bits.to_le_bytes()
     }
 
@@ -17673,12 +18999,7 @@ impl TeleControlCommand2 {
         };
         let bits = u64::from_le_bytes(*bytes);
         Ok(Self {
-            downhill_regen_enable: (bits & 1) as u8,
-            cargo_lift: ((bits >> 1) & 3) as u8,
-            cargo_lift_speed: ((bits >> 3) & 15) as u8,
-            pto_enable: ((bits >> 7) & 1) as u8,
-            downhill_regen_speed: (bits >> 8) as u8,
-            counter: (bits >> 56) as u8,
+            bits: bits & Self::FIELDS_MASK,
         })
     }
 
@@ -17686,7 +19007,7 @@ impl TeleControlCommand2 {
     #[inline]
     #[must_use]
     pub fn with_next_counter(mut self) -> Self {
-        self.counter = codec::next_counter(self.counter, Self::COUNTER_BITS);
+        self.store_counter(codec::next_counter(self.counter_raw(), Self::COUNTER_BITS));
         self
     }
 
@@ -17697,13 +19018,20 @@ impl TeleControlCommand2 {
     /// | 0 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn downhill_regen_enable(&self) -> DownhillRegenEnable {
-        DownhillRegenEnable::from_raw(self.downhill_regen_enable)
+        DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
     /// Raw value of `downhill_regen_enable` (bits 0..1).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        self.downhill_regen_enable
+        let bits = self.bits;
+        (bits & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFE) | u64::from(value);
     }
 
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
@@ -17715,7 +19043,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -17727,7 +19055,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.downhill_regen_enable",
             });
         }
-        self.downhill_regen_enable = value;
+        self.store_downhill_regen_enable(value);
         Ok(())
     }
 
@@ -17738,13 +19066,20 @@ impl TeleControlCommand2 {
     /// | 1 | 2 | 1 | 0 | — | 0 … 3 | 0 … 3 |
     #[inline]
     pub fn cargo_lift(&self) -> CargoLift {
-        CargoLift::from_raw(self.cargo_lift)
+        CargoLift::from_raw(self.cargo_lift_raw())
     }
 
     /// Raw value of `cargo_lift` (bits 1..3).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        self.cargo_lift
+        let bits = self.bits;
+        ((bits >> 1) & 3) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF9) | u64::from(value) << 1;
     }
 
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
@@ -17756,7 +19091,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -17768,7 +19103,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.cargo_lift",
             });
         }
-        self.cargo_lift = value;
+        self.store_cargo_lift(value);
         Ok(())
     }
 
@@ -17781,13 +19116,20 @@ impl TeleControlCommand2 {
     /// | 3 | 4 | 1 | 0 | — | 0 … 10 | 0 … 10 |
     #[inline]
     pub fn cargo_lift_speed(&self) -> u8 {
-        self.cargo_lift_speed
+        self.cargo_lift_speed_raw()
     }
 
     /// Raw value of `cargo_lift_speed` (bits 3..7).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        self.cargo_lift_speed
+        let bits = self.bits;
+        ((bits >> 3) & 15) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_cargo_lift_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF87) | u64::from(value) << 3;
     }
 
     /// Set `cargo_lift_speed` from its physical value; outside the documented range is an error.
@@ -17798,7 +19140,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -17810,7 +19152,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.cargo_lift_speed",
             });
         }
-        self.cargo_lift_speed = value;
+        self.store_cargo_lift_speed(value);
         Ok(())
     }
 
@@ -17821,13 +19163,20 @@ impl TeleControlCommand2 {
     /// | 7 | 1 | 1 | 0 | — | 0 … 1 | 0 … 1 |
     #[inline]
     pub fn pto_enable(&self) -> PtoEnable {
-        PtoEnable::from_raw(self.pto_enable)
+        PtoEnable::from_raw(self.pto_enable_raw())
     }
 
     /// Raw value of `pto_enable` (bits 7..8).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        self.pto_enable
+        let bits = self.bits;
+        ((bits >> 7) & 1) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_pto_enable(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
     }
 
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
@@ -17839,7 +19188,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -17851,7 +19200,7 @@ impl TeleControlCommand2 {
                 signal: "tele_control_command_2.pto_enable",
             });
         }
-        self.pto_enable = value;
+        self.store_pto_enable(value);
         Ok(())
     }
 
@@ -17866,13 +19215,20 @@ impl TeleControlCommand2 {
     /// Special raw value 0: 默认车速 (Default speed)
     #[inline]
     pub fn downhill_regen_speed(&self) -> f64 {
-        self.downhill_regen_speed as f64 * 0.5
+        self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
     /// Raw value of `downhill_regen_speed` (bits 8..16).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        self.downhill_regen_speed
+        let bits = self.bits;
+        (bits >> 8) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_downhill_regen_speed(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
     }
 
     /// Set `downhill_regen_speed` from its physical value; outside the documented range is an error.
@@ -17880,7 +19236,7 @@ impl TeleControlCommand2 {
     pub fn set_downhill_regen_speed(&mut self, value: f64) -> Result<(), Error> {
         match codec::to_raw_documented_or_special(value, &Self::DOWNHILL_REGEN_SPEED_SCALE, &[0]) {
             Some(raw) => {
-                self.downhill_regen_speed = raw as u8;
+                self.store_downhill_regen_speed(raw as u8);
                 Ok(())
             }
             None => Err(Error::OutOfRange {
@@ -17892,7 +19248,7 @@ impl TeleControlCommand2 {
     /// Set the raw value of `downhill_regen_speed`; any value that fits its 8 bits.
     #[inline]
     pub fn set_downhill_regen_speed_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.downhill_regen_speed = value;
+        self.store_downhill_regen_speed(value);
         Ok(())
     }
 
@@ -17905,26 +19261,33 @@ impl TeleControlCommand2 {
     /// | 56 | 8 | 1 | 0 | — | 0 … 255 | 0 … 255 |
     #[inline]
     pub fn counter(&self) -> u8 {
-        self.counter
+        self.counter_raw()
     }
 
     /// Raw value of `counter` (bits 56..64).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        self.counter
+        let bits = self.bits;
+        (bits >> 56) as u8
+    }
+
+    /// Put a raw value that fits the field into the frame word.
+    #[inline(always)]
+    fn store_counter(&mut self, value: u8) {
+        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_counter(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 
     /// Set the raw value of `counter`; any value that fits its 8 bits.
     #[inline]
     pub fn set_counter_raw(&mut self, value: u8) -> Result<(), Error> {
-        self.counter = value;
+        self.store_counter(value);
         Ok(())
     }
 }
