@@ -183,6 +183,7 @@ class RustField:
     strategy_hi: str
     type_lo: str
     type_hi: str
+    reciprocal: str = ""  # the double nearest 1/factor, for `to_raw_documented_unsigned_recip`
 
 
 @dataclass(frozen=True)
@@ -234,6 +235,11 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
         if -(1 << (bits - 1)) <= lo and hi < 1 << (bits - 1):
             return f"i{bits}"
     return None
+
+
+def _power_of_two(value: Fraction) -> bool:
+    n, d = value.numerator, value.denominator
+    return n > 0 and n & (n - 1) == 0 and d & (d - 1) == 0
 
 
 def _double_key(x: float) -> int:
@@ -374,6 +380,11 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         to_raw = "to_raw_documented_or_special"
     else:
         to_raw = ("to_raw_documented_unsigned" if nonnegative else "to_raw_documented") if suffices else "to_raw"
+        # Quotients below 2^17 and a factor that is not a power of two (whose division the
+        # compiler makes a multiplication already): the reciprocal path gives the same result (codec.rs).
+        if to_raw == "to_raw_documented_unsigned" and pass_max is not None and (pass_max - float(sig.offset)) / float(sig.factor) < 2.0**17 \
+                and not _power_of_two(Fraction(sig.factor)):
+            to_raw = "to_raw_documented_unsigned_recip"
     specials = tuple(
         RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label})") + f", raw value of `{name}`")
         for s in sig.specials
@@ -387,6 +398,7 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
         phys_expr=_int_phys_expr(sig, f"{rust_ident(name + '_raw')}()", phys_type) if kind == "scaled_int" else _phys_expr(sig, f"{rust_ident(name + '_raw')}()"),
         specials=specials, doc=_field_doc(sig),
+        reciprocal=f64_lit(Fraction(repr(1.0 / float(sig.factor)))) if to_raw == "to_raw_documented_unsigned_recip" else "",
         short_doc=doc_text(f"{sig.zh}: {_range_text(sig.check_min, sig.check_max)} {sig.unit}".rstrip()),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
         is_counter=sig.role == "counter",

@@ -370,7 +370,8 @@ impl AutocarEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::STEERING_ANGLE_CMD_SCALE, 10.0)
+        {
             Some(raw) => {
                 self.store_steering_angle_cmd(raw as u16);
                 Ok(())
@@ -728,7 +729,7 @@ impl EpsState {
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::STEERING_TORQUE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::STEERING_TORQUE_SCALE, 10.0) {
             Some(raw) => {
                 self.store_steering_torque(raw as u8);
                 Ok(())
@@ -774,7 +775,11 @@ impl EpsState {
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_output_torque(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::EPS_OUTPUT_TORQUE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(
+            value,
+            &Self::EPS_OUTPUT_TORQUE_SCALE,
+            3.3333333333333335,
+        ) {
             Some(raw) => {
                 self.store_eps_output_torque(raw as u8);
                 Ok(())
@@ -820,7 +825,7 @@ impl EpsState {
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::STEERING_ANGLE_SCALE, 10.0) {
             Some(raw) => {
                 self.store_steering_angle(raw as u16);
                 Ok(())
@@ -1229,7 +1234,7 @@ impl AutocarSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::ACCEL_CMD_SCALE, 50.0) {
             Some(raw) => {
                 self.store_accel_cmd(raw as u16);
                 Ok(())
@@ -2100,7 +2105,7 @@ impl DrivingState {
     /// Set `current_accel` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_current_accel(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::CURRENT_ACCEL_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::CURRENT_ACCEL_SCALE, 20.0) {
             Some(raw) => {
                 self.store_current_accel(raw as u8);
                 Ok(())
@@ -5785,7 +5790,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_PITCH_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::CHASSIS_PITCH_SCALE, 20.0) {
             Some(raw) => {
                 self.store_chassis_pitch(raw as u16);
                 Ok(())
@@ -5836,7 +5841,7 @@ impl AutocarControlCommand2 {
     /// Set `chassis_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_chassis_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::CHASSIS_ROLL_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::CHASSIS_ROLL_SCALE, 10.0) {
             Some(raw) => {
                 self.store_chassis_roll(raw as u16);
                 Ok(())
@@ -5887,7 +5892,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_pitch` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_pitch(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::CARGO_PITCH_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::CARGO_PITCH_SCALE, 5.0) {
             Some(raw) => {
                 self.store_cargo_pitch(raw as u16);
                 Ok(())
@@ -5938,7 +5943,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_roll` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_roll(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::CARGO_ROLL_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::CARGO_ROLL_SCALE, 10.0) {
             Some(raw) => {
                 self.store_cargo_roll(raw as u16);
                 Ok(())
@@ -6233,7 +6238,7 @@ impl VehicleState2 {
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_VOLTAGE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::BATTERY_VOLTAGE_SCALE, 5.0) {
             Some(raw) => {
                 self.store_battery_voltage(raw as u16);
                 Ok(())
@@ -6279,7 +6284,7 @@ impl VehicleState2 {
     /// Set `battery_current` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_current(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_CURRENT_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::BATTERY_CURRENT_SCALE, 50.0) {
             Some(raw) => {
                 self.store_battery_current(raw as u16);
                 Ok(())
@@ -6769,7 +6774,11 @@ impl VehicleState3 {
     /// Set `max_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_max_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::MAX_CELL_VOLTAGE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(
+            value,
+            &Self::MAX_CELL_VOLTAGE_SCALE,
+            666.6666666666666,
+        ) {
             Some(raw) => {
                 self.store_max_cell_voltage(raw as u16);
                 Ok(())
@@ -6818,7 +6827,11 @@ impl VehicleState3 {
     /// Set `min_cell_voltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_min_cell_voltage(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::MIN_CELL_VOLTAGE_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(
+            value,
+            &Self::MIN_CELL_VOLTAGE_SCALE,
+            666.6666666666666,
+        ) {
             Some(raw) => {
                 self.store_min_cell_voltage(raw as u16);
                 Ok(())
@@ -7802,7 +7815,7 @@ impl VehicleState4 {
     /// Set `battery_power` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_power(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::BATTERY_POWER_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::BATTERY_POWER_SCALE, 100.0) {
             Some(raw) => {
                 self.store_battery_power(raw as u16);
                 Ok(())
@@ -10178,7 +10191,8 @@ impl RgateEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::STEERING_ANGLE_CMD_SCALE, 10.0)
+        {
             Some(raw) => {
                 self.store_steering_angle_cmd(raw as u16);
                 Ok(())
@@ -10451,7 +10465,7 @@ impl RgateSpeedCommand {
     /// Set `accel_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_accel_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::ACCEL_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::ACCEL_CMD_SCALE, 50.0) {
             Some(raw) => {
                 self.store_accel_cmd(raw as u16);
                 Ok(())
@@ -16671,7 +16685,8 @@ impl TeleEpsCommand {
     /// Set `steering_angle_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_steering_angle_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::STEERING_ANGLE_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::STEERING_ANGLE_CMD_SCALE, 10.0)
+        {
             Some(raw) => {
                 self.store_steering_angle_cmd(raw as u16);
                 Ok(())
@@ -16944,7 +16959,7 @@ impl TeleSpeedCommand {
     /// Set `throttle_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_throttle_brake_cmd(&mut self, value: f64) -> Result<(), Error> {
-        match codec::to_raw_documented_unsigned(value, &Self::THROTTLE_BRAKE_CMD_SCALE) {
+        match codec::to_raw_documented_unsigned_recip(value, &Self::THROTTLE_BRAKE_CMD_SCALE, 5.0) {
             Some(raw) => {
                 self.store_throttle_brake_cmd(raw as u16);
                 Ok(())
