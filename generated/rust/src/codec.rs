@@ -153,20 +153,19 @@ pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
 const FIXED_POINT_MAGIC: f64 = 1_572_864.0;
 
 /// [`to_raw_documented_unsigned`] with a multiplication by `reciprocal` (the double nearest
-/// 1/factor) instead of the division, for signals whose quotients stay below 2^17. The
-/// product, plus 0.5 and the epsilon in one addition, lies within 0.38 · 2^-32 of the rule's
-/// value (3 units in the last place of a quotient below 2^17 plus 1.5 of a sum below 2^18);
-/// read in 32.32 fixed point (another 0.5 · 2^-32), a fraction at least 2 · 2^-32 from a whole
-/// number floors to the rule's integer. Closer (never for decimal ties, whose epsilon keeps
-/// them 4.3 · 2^-32 above one), the division decides. The same result as the division rule.
+/// 1/factor) instead of the division, for signals whose quotients stay below 2^17. One
+/// addition puts the product, 0.5 and the epsilon into 32.32 fixed point (the constant and
+/// the sum each rounded to 2^-32: 1 · 2^-32 together); the product lies within 3 units in the
+/// last place (0.19 · 2^-32) of the rule's quotient, whose two roundings move it by at most
+/// another 0.13 · 2^-32. A fraction at least 2 · 2^-32 from a whole number therefore floors
+/// to the rule's integer; closer (never for decimal ties, whose epsilon keeps them 4.3 · 2^-32
+/// above one), the division decides. The same result as the division rule.
 #[inline(always)]
 pub fn to_raw_documented_unsigned_recip(value: f64, scale: &Scale, reciprocal: f64) -> Option<i64> {
     if (value >= scale.check_min) & (value <= scale.check_max) {
         let v = value - scale.offset;
-        let t = v * reciprocal + (0.5 + TIE_EPSILON);
-        let fixed = (t + FIXED_POINT_MAGIC)
-            .to_bits()
-            .wrapping_sub(FIXED_POINT_MAGIC.to_bits());
+        let sum = v * reciprocal + (FIXED_POINT_MAGIC + (0.5 + TIE_EPSILON));
+        let fixed = sum.to_bits().wrapping_sub(FIXED_POINT_MAGIC.to_bits());
         if (fixed as u32).wrapping_sub(2) <= u32::MAX - 4 {
             Some((fixed >> 32) as i64)
         } else {
