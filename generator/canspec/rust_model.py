@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import struct
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -74,13 +75,14 @@ def unpack_expr(sig: ir.Signal) -> str:
 
 
 def pack_expr(sig: ir.Signal, field: str) -> str:
-    """The field's bits in place in the frame word (the stored raw always fits the field)."""
+    """The field's bits in place in the frame word, from the variable `field` (a raw value
+    that fits the field)."""
     if sig.signed:
-        value = f"(self.{field} as u64 & {int_lit(sig.mask)})"
+        value = f"({field} as u64 & {int_lit(sig.mask)})"
     elif sig.storage_bits == 64:
-        value = f"self.{field}"
+        value = field
     else:
-        value = f"u64::from(self.{field})"
+        value = f"u64::from({field})"
     return f"{value} << {sig.start}" if sig.start else value
 
 
@@ -162,7 +164,8 @@ class RustField:
     phys_type: str
     enum: str | None
     unpack: str
-    pack: str
+    pack: str  # the raw value `value` in place in the frame word
+    clear: str  # frame-word mask without the field's bits
     misfit: str | None  # `value` (raw type) does not fit the field; None: never
     refused: str | None  # `value` (raw type) may not come from a physical encode; None: never
     scale: dict[str, str]  # float signals: literals of the codec::Scale
@@ -180,6 +183,7 @@ class RustField:
     strategy_hi: str
     type_lo: str
     type_hi: str
+    reciprocal: str = ""  # the double nearest 1/factor, for `to_raw_documented_unsigned_recip`
 
 
 @dataclass(frozen=True)
@@ -199,6 +203,7 @@ class RustMessage:
     da: str
     doc: tuple[str, ...]
     defined_mask: str  # frame-word bits the message defines (not reserved, not undefined)
+    fields_mask: str  # frame-word bits of the fields the type stores (no checksum, no reserved)
 
 
 def _phys_expr(sig: ir.Signal, field: str) -> str:
@@ -232,28 +237,77 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
     return None
 
 
-def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool]:
-    """Whether, for this signal, a value inside the documented range can never fail the other
-    checks of the shared rule (q inside the field's raw range, raw inside [raw_min, raw_max]);
-    and whether q is then never negative. Proof by monotonicity: q = (x - offset) / factor and
-    the rounding are non-decreasing in x in IEEE arithmetic, and Python floats are the same
-    doubles the generated code uses, so checking both ends of the documented range suffices.
-    (Special values are checked by the full rule, which callers fall back to outside the
-    documented range.)"""
+def _power_of_two(value: Fraction) -> bool:
+    n, d = value.numerator, value.denominator
+    return n > 0 and n & (n - 1) == 0 and d & (d - 1) == 0
+
+
+def _double_key(x: float) -> int:
+    """Doubles in order as integers (-0.0 and 0.0 share a key)."""
+    bits = struct.unpack("<q", struct.pack("<d", x))[0]
+    return bits if bits >= 0 else -(bits & 0x7FFF_FFFF_FFFF_FFFF)
+
+
+def _double_of_key(key: int) -> float:
+    bits = key if key >= 0 else (-key) | -0x8000_0000_0000_0000
+    return struct.unpack("<d", struct.pack("<q", bits))[0]
+
+
+def _first_true(pred, lo: float, hi: float) -> float | None:  # type: ignore[no-untyped-def]
+    """The smallest double in [lo, hi] where the monotone (false…true) `pred` holds."""
+    if pred(lo):
+        return lo
+    if not pred(hi):
+        return None
+    a, b = _double_key(lo), _double_key(hi)  # pred(a) false, pred(b) true
+    while b - a > 1:
+        mid = (a + b) // 2
+        if pred(_double_of_key(mid)):
+            b = mid
+        else:
+            a = mid
+    return _double_of_key(b)
+
+
+def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool, float | None, float | None]:
+    """Whether, for this signal, one range check [lo, hi] on the physical value can replace
+    the other checks of the shared rule (q inside the field's raw range, raw inside [raw_min,
+    raw_max]); whether q is then never negative; and for non-integer signals that range: the
+    doubles of [accept_min, accept_max] every check passes. Proof by monotonicity: q =
+    (x - offset) / factor and the rounding are non-decreasing in x in IEEE arithmetic, and
+    Python floats are the same doubles the generated code uses, so the doubles that pass form
+    an interval, found exactly by bisection over the doubles. (Special values are checked by
+    the full rule, which callers fall back to outside that range.)"""
     if sig.factor <= 0:
-        return False, False
+        return False, False, None, None
     from canspec.encoding import to_raw_runtime
 
     f, o = float(sig.factor), float(sig.offset)
     lo, hi = float(sig.accept_min), float(sig.accept_max)
     if sig.is_integer:  # the integer path compares whole values: its ends are the whole ones inside
         lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
-    q_lo, q_hi = (lo - o) / f, (hi - o) / f
-    if not (sig.raw_type_min <= q_lo and q_hi <= sig.raw_type_max):
-        return False, False
-    if not (sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
-        return False, False
-    return True, q_lo >= 0
+        q_lo, q_hi = (lo - o) / f, (hi - o) / f
+        if not (sig.raw_type_min <= q_lo and q_hi <= sig.raw_type_max):
+            return False, False, None, None
+        if not (sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
+            return False, False, None, None
+        return True, q_lo >= 0, None, None
+
+    def high_enough(x: float) -> bool:
+        return (x - o) / f >= sig.raw_type_min and to_raw_runtime(x, f, o) >= sig.raw_min
+
+    def low_enough(x: float) -> bool:
+        return (x - o) / f <= sig.raw_type_max and to_raw_runtime(x, f, o) <= sig.raw_max
+
+    first = _first_true(high_enough, lo, hi)
+    last = _first_true(lambda x: not low_enough(x), lo, hi)
+    if last is not None:
+        last = _double_of_key(_double_key(last) - 1) if last > lo else None
+    else:
+        last = hi
+    if first is None or last is None or first > last:
+        return False, False, None, None
+    return True, (first - o) / f >= 0, first, last
 
 
 def _int_phys_expr(sig: ir.Signal, field: str, ty: str) -> str:
@@ -312,13 +366,25 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),
         "type_min": int_lit(sig.raw_type_min), "type_max": int_lit(sig.raw_type_max),
     }
-    suffices, nonnegative = documented_range_suffices(sig)
+    suffices, nonnegative, pass_min, pass_max = documented_range_suffices(sig)
+    if pass_min is not None and pass_max is not None:
+        # The doubles the full rule accepts (without specials): the shortcut's one range check,
+        # and for the full rule the same answers (outside it another check fails anyway).
+        if pass_min != float(sig.accept_min):
+            scale["accept_min"] = f64_lit(Fraction(repr(pass_min)))  # shortest decimal of that double
+        if pass_max != float(sig.accept_max):
+            scale["accept_max"] = f64_lit(Fraction(repr(pass_max)))
     if kind == "scaled_int":
         to_raw = ("to_raw_int_documented_or_special" if sig.specials else "to_raw_int_documented") if suffices else "to_raw_int"
     elif suffices and sig.specials:
         to_raw = "to_raw_documented_or_special"
     else:
         to_raw = ("to_raw_documented_unsigned" if nonnegative else "to_raw_documented") if suffices else "to_raw"
+        # Quotients below 2^17 and a factor that is not a power of two (whose division the
+        # compiler makes a multiplication already): the reciprocal path gives the same result (codec.rs).
+        if to_raw == "to_raw_documented_unsigned" and pass_max is not None and (pass_max - float(sig.offset)) / float(sig.factor) < 2.0**17 \
+                and not _power_of_two(Fraction(sig.factor)):
+            to_raw = "to_raw_documented_unsigned_recip"
     specials = tuple(
         RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label})") + f", raw value of `{name}`")
         for s in sig.specials
@@ -327,11 +393,12 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         sig=sig, name=name, qualified=f"{msg.name}.{sig.name}", field=rust_ident(name),
         getter=rust_ident(name), raw_getter=rust_ident(f"{name}_raw"), setter=f"set_{name}", raw_setter=f"set_{name}_raw",
         raw_type=raw_type, kind=kind, phys_type=phys_type, enum=enum,
-        unpack=unpack_expr(sig), pack=pack_expr(sig, rust_ident(name)),
+        unpack=unpack_expr(sig), pack=pack_expr(sig, "value"), clear=int_lit(((1 << 64) - 1) ^ (sig.mask << sig.start)),
         misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor), to_raw=to_raw,
         specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
-        phys_expr=_int_phys_expr(sig, rust_ident(name), phys_type) if kind == "scaled_int" else _phys_expr(sig, rust_ident(name)),
+        phys_expr=_int_phys_expr(sig, f"{rust_ident(name + '_raw')}()", phys_type) if kind == "scaled_int" else _phys_expr(sig, f"{rust_ident(name + '_raw')}()"),
         specials=specials, doc=_field_doc(sig),
+        reciprocal=f64_lit(Fraction(repr(1.0 / float(sig.factor)))) if to_raw == "to_raw_documented_unsigned_recip" else "",
         short_doc=doc_text(f"{sig.zh}: {_range_text(sig.check_min, sig.check_max)} {sig.unit}".rstrip()),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
         is_counter=sig.role == "counter",
@@ -405,16 +472,19 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
         payload = mf["payload"]
         assert isinstance(payload, RustField)
         if payload.raw_type == "u64":
-            mf["chunk_to_raw"], mf["raw_to_chunk"] = "u64::from_le_bytes(word)", f"frame.{payload.field}.to_le_bytes()"
+            mf["chunk_to_raw"], mf["raw_to_chunk"] = "u64::from_le_bytes(word)", f"frame.{payload.raw_getter}().to_le_bytes()"
         else:
             mf["chunk_to_raw"] = f"u64::from_le_bytes(word) as {payload.raw_type}"
-            mf["raw_to_chunk"] = f"u64::from(frame.{payload.field}).to_le_bytes()"
+            mf["raw_to_chunk"] = f"u64::from(frame.{payload.raw_getter}()).to_le_bytes()"
     defined = 0
     for s in msg.data_signals:
         defined |= s.mask << s.start
+    stored = 0
+    for f in fields:
+        stored |= f.sig.mask << f.sig.start
     da = "None" if msg.j1939.da is None else f"Some(0x{msg.j1939.da:02X})"
     return RustMessage(msg, name, f"{name}Values", name, fields, msg.checksum, checksum_expr, fold, shift, clear, counter, mf, da,
-                       _message_doc(msg), int_lit(defined))
+                       _message_doc(msg), int_lit(defined), int_lit(stored))
 
 
 @dataclass(frozen=True)

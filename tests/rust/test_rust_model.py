@@ -42,13 +42,13 @@ def test_unpack_expressions(can):
     # A signed field is moved to the top and shifted back arithmetically.
     signed = dataclasses.replace(sig(can, "front_sensor_distance_1", "sensor_3_distance"), signed=True, raw_type_min=-512, raw_type_max=511)
     assert rm.unpack_expr(signed) == "(((bits << 34) as i64) >> 54) as i16"
-    assert rm.pack_expr(signed, "x") == "(self.x as u64 & 1023) << 20"
+    assert rm.pack_expr(signed, "x") == "(x as u64 & 1023) << 20"
 
 
 def test_pack_expressions(can):
-    assert rm.pack_expr(sig(can, "front_sensor_distance_1", "sensor_3_distance"), "d") == "u64::from(self.d) << 20"
-    assert rm.pack_expr(sig(can, "autocar_eps_command", "eps_ctrl_mode"), "m") == "u64::from(self.m)"
-    assert rm.pack_expr(sig(can, "device_id", "id_chars"), "c") == "self.c << 8"
+    assert rm.pack_expr(sig(can, "front_sensor_distance_1", "sensor_3_distance"), "d") == "u64::from(d) << 20"
+    assert rm.pack_expr(sig(can, "autocar_eps_command", "eps_ctrl_mode"), "m") == "u64::from(m)"
+    assert rm.pack_expr(sig(can, "device_id", "id_chars"), "c") == "c << 8"
 
 
 def test_range_conditions(can):
@@ -78,12 +78,14 @@ def test_crate_model(can):
     # max_angular_speed: factor 2, whole deg/s 0..510 in a u16; steering angle: factor 0.1.
     assert [f.kind for f in eps.fields] == ["enum", "int", "scaled_int", "float"]
     assert [f.phys_type for f in eps.fields] == ["EpsModeCmd", "u8", "u16", "f64"]
-    assert eps.fields[2].phys_expr == "self.max_angular_speed as u16 * 2"
+    assert eps.fields[2].phys_expr == "self.max_angular_speed_raw() as u16 * 2"
     temp = next(f for m in crate.messages if m.msg.name == "vehicle_state_3" for f in m.fields if f.name == "battery_max_temp")
-    assert (temp.kind, temp.phys_type, temp.phys_expr) == ("scaled_int", "i16", "self.battery_max_temp as i16 - 40")
+    assert (temp.kind, temp.phys_type, temp.phys_expr) == ("scaled_int", "i16", "self.battery_max_temp_raw() as i16 - 40")
     assert eps.da == "Some(0xB0)"
     # Bits 40..55 are reserved: the defined bits are everything else.
     assert eps.defined_mask == "0xFF00_00FF_FFFF_FFFF"
+    # The type stores the fields' bits only: no reserved bits, no checksum byte (byte 7).
+    assert eps.fields_mask == "0xFF_FFFF_FFFF"
     gear = next(e for e in crate.enums if e.table == "gear")
     assert [(v.name, v.raw) for v in gear.variants] == [("Neutral", 0), ("Drive", 1), ("Reverse", 2), ("Reserved", 3)]
 
@@ -122,7 +124,7 @@ def _full_rule(sig, x: float):
     raw = to_raw_runtime(x, f, o)
     if any(s.raw == raw for s in sig.specials):
         return raw
-    if float(sig.check_min) <= x <= float(sig.check_max) and sig.raw_min <= raw <= sig.raw_max:
+    if float(sig.accept_min) <= x <= float(sig.accept_max) and sig.raw_min <= raw <= sig.raw_max:
         return raw
     return None
 
@@ -144,10 +146,14 @@ def test_documented_range_shortcut_agrees_with_the_full_rule(can):
                 continue
             sig = f.sig
             fa, o = float(sig.factor), float(sig.offset)
-            lo, hi = float(sig.check_min), float(sig.check_max)
+            # The range the generated shortcut checks: the literals it compares against.
             if f.kind == "scaled_int":
                 lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
+            else:
+                lo, hi = float(f.scale["accept_min"]), float(f.scale["accept_max"])
             xs = [lo, hi, math.nextafter(lo, -math.inf), math.nextafter(hi, math.inf), math.nextafter(lo, math.inf), math.nextafter(hi, -math.inf)]
+            for end in (float(sig.accept_min), float(sig.accept_max), float(sig.check_min), float(sig.check_max)):
+                xs += [end, math.nextafter(end, -math.inf), math.nextafter(end, math.inf)]
             xs += [r * fa + o for r in range(sig.raw_type_min, sig.raw_type_max + 1)]
             xs += [(r + 0.5) * fa + o for r in range(sig.raw_type_min - 1, sig.raw_type_max + 1)]
             xs += [rng.uniform(lo - fa, hi + fa) for _ in range(500)]

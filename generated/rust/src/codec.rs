@@ -148,6 +148,34 @@ pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
     }
 }
 
+/// 1.5 × 2^20: adding it to `0 <= t < 2^19` leaves `t` rounded to a multiple of 2^-32 in
+/// the low mantissa bits, so the bits hold `t` in 32.32 fixed point.
+const FIXED_POINT_MAGIC: f64 = 1_572_864.0;
+
+/// [`to_raw_documented_unsigned`] with a multiplication by `reciprocal` (the double nearest
+/// 1/factor) instead of the division, for signals whose quotients stay below 2^17. One
+/// addition puts the product, 0.5 and the epsilon into 32.32 fixed point (the constant and
+/// the sum each rounded to 2^-32: 1 · 2^-32 together); the product lies within 3 units in the
+/// last place (0.19 · 2^-32) of the rule's quotient, whose two roundings move it by at most
+/// another 0.13 · 2^-32. A fraction at least 2 · 2^-32 from a whole number therefore floors
+/// to the rule's integer; closer (never for decimal ties, whose epsilon keeps them 4.3 · 2^-32
+/// above one), the division decides. The same result as the division rule.
+#[inline(always)]
+pub fn to_raw_documented_unsigned_recip(value: f64, scale: &Scale, reciprocal: f64) -> Option<i64> {
+    if (value >= scale.check_min) & (value <= scale.check_max) {
+        let v = value - scale.offset;
+        let sum = v * reciprocal + (FIXED_POINT_MAGIC + (0.5 + TIE_EPSILON));
+        let fixed = sum.to_bits().wrapping_sub(FIXED_POINT_MAGIC.to_bits());
+        if (fixed as u32).wrapping_sub(2) <= u32::MAX - 4 {
+            Some((fixed >> 32) as i64)
+        } else {
+            Some(floor_i64((v / scale.factor + 0.5) + TIE_EPSILON))
+        }
+    } else {
+        None
+    }
+}
+
 /// [`to_raw_documented`] for a signal with special values: inside the documented range the
 /// shortcut, outside it the full rule (which lets the special values through).
 #[inline(always)]
@@ -346,6 +374,61 @@ mod tests {
             let t = f64::from_bits((exponent << 52) | (state & 0x000F_FFFF_FFFF_FFFF));
             let t = if i % 2 == 0 { t } else { -t };
             assert_eq!(floor_i64(t), t.floor() as i64, "floor({t})");
+        }
+    }
+
+    #[test]
+    fn reciprocal_path_matches_the_division() {
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        for (factor, offset, max) in [
+            (0.2, 0.0, 800.0),
+            (0.02, -500.0, 800.0),
+            (0.1, -1080.0, 1080.0),
+            (0.05, 0.0, 100.0),
+            (0.001, 0.0, 65.535),
+            (0.5, 0.0, 125.0),
+            (0.4, 0.0, 100.0),
+            (0.003, 0.0, 12.0),
+            (0.01, -40.0, 600.0),
+        ] {
+            let scale = Scale {
+                factor,
+                offset,
+                check_min: offset,
+                check_max: max,
+                raw_min: 0,
+                raw_max: i64::MAX,
+                type_min: 0,
+                type_max: i64::MAX,
+            };
+            let reciprocal = 1.0 / factor;
+            let steps = ((max - offset) / factor) as i64;
+            for raw in 0..=steps {
+                // Every raw step, its decimal tie, and values around both.
+                for x in [
+                    raw as f64 * factor + offset,
+                    (raw as f64 + 0.5) * factor + offset,
+                    raw as f64 * factor + offset + factor * 0.4999,
+                    raw as f64 * factor + offset + factor * 0.5001,
+                ] {
+                    assert_eq!(
+                        to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                        to_raw_documented_unsigned(x, &scale),
+                        "{factor} {x}"
+                    );
+                }
+            }
+            for _ in 0..200_000 {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                let x = offset + (state >> 11) as f64 / (1u64 << 53) as f64 * (max - offset);
+                assert_eq!(
+                    to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                    to_raw_documented_unsigned(x, &scale),
+                    "{factor} {x}"
+                );
+            }
         }
     }
 
