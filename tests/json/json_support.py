@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from py_runner import same  # noqa: F401  (re-exported: one JSON equality for runner and tests)
 
 ROOT = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).resolve().parent
@@ -32,19 +33,6 @@ SEED_NAME = "003_6f748d1dddd09f25.txt"
 SEED_CANDIDATES = [d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent)]
 SEED = next((p for p in SEED_CANDIDATES if p.is_file()), SEED_CANDIDATES[0])
 TOOL_TIMEOUT_S = 900
-
-
-def same(a: Any, b: Any) -> bool:
-    """JSON equality: numbers by value (0 == 0.0), booleans never equal to numbers."""
-    if isinstance(a, bool) or isinstance(b, bool):
-        return type(a) is type(b) and a == b
-    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
-        return a == b
-    if isinstance(a, dict) and isinstance(b, dict):
-        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
-    if isinstance(a, list) and isinstance(b, list):
-        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b, strict=True))
-    return type(a) is type(b) and a == b
 
 
 def run(cmd: list[str], what: str, **kw: Any) -> subprocess.CompletedProcess[str]:
