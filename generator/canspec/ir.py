@@ -119,6 +119,10 @@ class Signal(Named):
     def mask(self) -> int:
         return (1 << self.length) - 1
 
+    @property
+    def last_bit(self) -> int:
+        return self.start + self.length - 1
+
     def raw_allowed(self, raw: int) -> bool:
         """Whether a physical encode may produce this raw value."""
         return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)
@@ -194,6 +198,10 @@ class Message(Named):
     loc: Loc | None = field(default=None, compare=False, hash=False)
 
     @property
+    def last_byte(self) -> int:
+        return self.dlc - 1
+
+    @property
     def data_signals(self) -> tuple[Signal, ...]:
         """Signals that carry values (everything but reserved bits)."""
         return tuple(s for s in self.signals if not s.is_reserved)
@@ -222,6 +230,10 @@ class Bus:
     id_format: str
     addressing: str
     byte_order: str
+
+    @property
+    def kbit(self) -> int | float:
+        return self.bitrate // 1000 if self.bitrate % 1000 == 0 else self.bitrate / 1000
 
 
 @dataclass(frozen=True)

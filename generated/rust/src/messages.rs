@@ -227,7 +227,7 @@ impl AutocarEpsCommand {
         EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
-    /// Raw value of `eps_ctrl_mode` (bits 0..8).
+    /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
         let bits = self.bits;
@@ -267,7 +267,7 @@ impl AutocarEpsCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 8..16).
+    /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -308,7 +308,7 @@ impl AutocarEpsCommand {
         self.max_angular_speed_raw() as u16 * 2
     }
 
-    /// Raw value of `max_angular_speed` (bits 16..24).
+    /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -354,7 +354,7 @@ impl AutocarEpsCommand {
         self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
-    /// Raw value of `steering_angle_cmd` (bits 24..40).
+    /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -673,7 +673,7 @@ impl EpsState {
         EpsModeState::from_raw(self.eps_ctrl_state_raw())
     }
 
-    /// Raw value of `eps_ctrl_state` (bits 0..8).
+    /// Raw value of `eps_ctrl_state` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -713,7 +713,7 @@ impl EpsState {
         self.steering_torque_raw() as f64 * 0.1 - 12.8
     }
 
-    /// Raw value of `steering_torque` (bits 8..16).
+    /// Raw value of `steering_torque` (bits 8..=15).
     #[inline]
     pub fn steering_torque_raw(&self) -> u8 {
         let bits = self.bits;
@@ -759,7 +759,7 @@ impl EpsState {
         self.eps_output_torque_raw() as f64 * 0.3 - 38.4
     }
 
-    /// Raw value of `eps_output_torque` (bits 16..24).
+    /// Raw value of `eps_output_torque` (bits 16..=23).
     #[inline]
     pub fn eps_output_torque_raw(&self) -> u8 {
         let bits = self.bits;
@@ -809,7 +809,7 @@ impl EpsState {
         self.steering_angle_raw() as f64 * 0.1 - 1080.0
     }
 
-    /// Raw value of `steering_angle` (bits 24..40).
+    /// Raw value of `steering_angle` (bits 24..=39).
     #[inline]
     pub fn steering_angle_raw(&self) -> u16 {
         let bits = self.bits;
@@ -853,7 +853,7 @@ impl EpsState {
         self.controller_temp_raw() * 2
     }
 
-    /// Raw value of `controller_temp` (bits 40..46).
+    /// Raw value of `controller_temp` (bits 40..=45).
     #[inline]
     pub fn controller_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -902,7 +902,7 @@ impl EpsState {
         EpsFaultLevel::from_raw(self.eps_fault_level_raw())
     }
 
-    /// Raw value of `eps_fault_level` (bits 48..50).
+    /// Raw value of `eps_fault_level` (bits 48..=49).
     #[inline]
     pub fn eps_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -952,7 +952,7 @@ impl EpsState {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 56..64).
+    /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1218,7 +1218,7 @@ impl AutocarSpeedCommand {
         self.accel_cmd_raw() as f64 * 0.02 - 9.0
     }
 
-    /// Raw value of `accel_cmd` (bits 0..10).
+    /// Raw value of `accel_cmd` (bits 0..=9).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -1267,7 +1267,7 @@ impl AutocarSpeedCommand {
         Epb::from_raw(self.epb_cmd_raw())
     }
 
-    /// Raw value of `epb_cmd` (bits 10..12).
+    /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1317,7 +1317,7 @@ impl AutocarSpeedCommand {
         Gear::from_raw(self.gear_cmd_raw())
     }
 
-    /// Raw value of `gear_cmd` (bits 12..16).
+    /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1367,7 +1367,7 @@ impl AutocarSpeedCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 16..24).
+    /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1406,7 +1406,7 @@ impl AutocarSpeedCommand {
         EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
-    /// Raw value of `emergency_brake_cmd` (bits 24..25).
+    /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1747,7 +1747,7 @@ impl DrivingState {
         Epb::from_raw(self.epb_state_raw())
     }
 
-    /// Raw value of `epb_state` (bits 0..2).
+    /// Raw value of `epb_state` (bits 0..=1).
     #[inline]
     pub fn epb_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1795,7 +1795,7 @@ impl DrivingState {
         Gear::from_raw(self.gear_state_raw())
     }
 
-    /// Raw value of `gear_state` (bits 2..6).
+    /// Raw value of `gear_state` (bits 2..=5).
     #[inline]
     pub fn gear_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1843,7 +1843,7 @@ impl DrivingState {
         BrakeState::from_raw(self.emergency_brake_state_raw())
     }
 
-    /// Raw value of `emergency_brake_state` (bits 6..7).
+    /// Raw value of `emergency_brake_state` (bits 6..=6).
     #[inline]
     pub fn emergency_brake_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1893,7 +1893,7 @@ impl DrivingState {
         BrakeState::from_raw(self.uss_brake_state_raw())
     }
 
-    /// Raw value of `uss_brake_state` (bits 7..8).
+    /// Raw value of `uss_brake_state` (bits 7..=7).
     #[inline]
     pub fn uss_brake_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -1943,7 +1943,7 @@ impl DrivingState {
         self.motor_speed_raw() as i32 - 15000
     }
 
-    /// Raw value of `motor_speed` (bits 8..24).
+    /// Raw value of `motor_speed` (bits 8..=23).
     #[inline]
     pub fn motor_speed_raw(&self) -> u16 {
         let bits = self.bits;
@@ -1989,7 +1989,7 @@ impl DrivingState {
         self.motor_torque_raw() as i32 - 5000
     }
 
-    /// Raw value of `motor_torque` (bits 24..40).
+    /// Raw value of `motor_torque` (bits 24..=39).
     #[inline]
     pub fn motor_torque_raw(&self) -> u16 {
         let bits = self.bits;
@@ -2039,7 +2039,7 @@ impl DrivingState {
         self.motor_speed_ratio_raw() as u16 + 1
     }
 
-    /// Raw value of `motor_speed_ratio` (bits 40..48).
+    /// Raw value of `motor_speed_ratio` (bits 40..=47).
     #[inline]
     pub fn motor_speed_ratio_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2089,7 +2089,7 @@ impl DrivingState {
         self.current_accel_raw() as f64 * 0.05 - 9.0
     }
 
-    /// Raw value of `current_accel` (bits 48..56).
+    /// Raw value of `current_accel` (bits 48..=55).
     #[inline]
     pub fn current_accel_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2545,7 +2545,7 @@ impl AutocarControlCommand1 {
         DriveModeCmdAutocar::from_raw(self.drive_mode_cmd_raw())
     }
 
-    /// Raw value of `drive_mode_cmd` (bits 0..2).
+    /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2595,7 +2595,7 @@ impl AutocarControlCommand1 {
         DoorCmd::from_raw(self.door_cmd_raw())
     }
 
-    /// Raw value of `door_cmd` (bits 2..4).
+    /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2643,7 +2643,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
-    /// Raw value of `horn_cmd` (bits 4..6).
+    /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2691,7 +2691,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
-    /// Raw value of `drl_cmd` (bits 6..8).
+    /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2739,7 +2739,7 @@ impl AutocarControlCommand1 {
         FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
-    /// Raw value of `left_turn_cmd` (bits 8..10).
+    /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2787,7 +2787,7 @@ impl AutocarControlCommand1 {
         FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
-    /// Raw value of `right_turn_cmd` (bits 10..12).
+    /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2835,7 +2835,7 @@ impl AutocarControlCommand1 {
         FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
-    /// Raw value of `hazard_cmd` (bits 12..14).
+    /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2883,7 +2883,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
-    /// Raw value of `position_light_cmd` (bits 14..16).
+    /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2931,7 +2931,7 @@ impl AutocarControlCommand1 {
         Headlight::from_raw(self.headlight_cmd_raw())
     }
 
-    /// Raw value of `headlight_cmd` (bits 16..18).
+    /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -2979,7 +2979,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
-    /// Raw value of `rear_fog_cmd` (bits 18..20).
+    /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3027,7 +3027,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
-    /// Raw value of `left_fog_cmd` (bits 20..22).
+    /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3075,7 +3075,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
-    /// Raw value of `right_fog_cmd` (bits 22..24).
+    /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3123,7 +3123,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
-    /// Raw value of `dome_light_cmd` (bits 24..26).
+    /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3171,7 +3171,7 @@ impl AutocarControlCommand1 {
         SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
-    /// Raw value of `ambient_light_cmd` (bits 26..28).
+    /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3219,7 +3219,7 @@ impl AutocarControlCommand1 {
         ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
-    /// Raw value of `drive_mode_reset` (bits 28..29).
+    /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3267,7 +3267,7 @@ impl AutocarControlCommand1 {
         SystemStateAutocar::from_raw(self.system_state_raw())
     }
 
-    /// Raw value of `system_state` (bits 32..34).
+    /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3315,7 +3315,7 @@ impl AutocarControlCommand1 {
         ReliabilityAutocar::from_raw(self.system_reliability_raw())
     }
 
-    /// Raw value of `system_reliability` (bits 34..36).
+    /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3363,7 +3363,7 @@ impl AutocarControlCommand1 {
         FaultLevelAutocar::from_raw(self.system_fault_level_raw())
     }
 
-    /// Raw value of `system_fault_level` (bits 36..38).
+    /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3413,7 +3413,7 @@ impl AutocarControlCommand1 {
         LockCmd::from_raw(self.lock_cmd_raw())
     }
 
-    /// Raw value of `lock_cmd` (bits 38..40).
+    /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3465,7 +3465,7 @@ impl AutocarControlCommand1 {
         AcCmd::from_raw(self.ac_cmd_raw())
     }
 
-    /// Raw value of `ac_cmd` (bits 40..43).
+    /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3515,7 +3515,7 @@ impl AutocarControlCommand1 {
         self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
-    /// Raw value of `ac_set_temp` (bits 43..48).
+    /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3566,7 +3566,7 @@ impl AutocarControlCommand1 {
         self.protocol_version_a_raw()
     }
 
-    /// Raw value of `protocol_version_a` (bits 48..52).
+    /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3615,7 +3615,7 @@ impl AutocarControlCommand1 {
         self.protocol_version_b_raw()
     }
 
-    /// Raw value of `protocol_version_b` (bits 52..56).
+    /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3664,7 +3664,7 @@ impl AutocarControlCommand1 {
         self.protocol_version_c_raw()
     }
 
-    /// Raw value of `protocol_version_c` (bits 56..60).
+    /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
         let bits = self.bits;
@@ -3713,7 +3713,7 @@ impl AutocarControlCommand1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4172,7 +4172,7 @@ impl VehicleState1 {
         DriveModeState::from_raw(self.drive_mode_state_raw())
     }
 
-    /// Raw value of `drive_mode_state` (bits 0..2).
+    /// Raw value of `drive_mode_state` (bits 0..=1).
     #[inline]
     pub fn drive_mode_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4220,7 +4220,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.door_state_raw())
     }
 
-    /// Raw value of `door_state` (bits 2..3).
+    /// Raw value of `door_state` (bits 2..=2).
     #[inline]
     pub fn door_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4268,7 +4268,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.drl_state_raw())
     }
 
-    /// Raw value of `drl_state` (bits 3..4).
+    /// Raw value of `drl_state` (bits 3..=3).
     #[inline]
     pub fn drl_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4316,7 +4316,7 @@ impl VehicleState1 {
         OffFlashing::from_raw(self.left_turn_state_raw())
     }
 
-    /// Raw value of `left_turn_state` (bits 4..5).
+    /// Raw value of `left_turn_state` (bits 4..=4).
     #[inline]
     pub fn left_turn_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4364,7 +4364,7 @@ impl VehicleState1 {
         OffFlashing::from_raw(self.right_turn_state_raw())
     }
 
-    /// Raw value of `right_turn_state` (bits 5..6).
+    /// Raw value of `right_turn_state` (bits 5..=5).
     #[inline]
     pub fn right_turn_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4412,7 +4412,7 @@ impl VehicleState1 {
         OffFlashing::from_raw(self.hazard_state_raw())
     }
 
-    /// Raw value of `hazard_state` (bits 6..7).
+    /// Raw value of `hazard_state` (bits 6..=6).
     #[inline]
     pub fn hazard_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4460,7 +4460,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.position_light_state_raw())
     }
 
-    /// Raw value of `position_light_state` (bits 7..8).
+    /// Raw value of `position_light_state` (bits 7..=7).
     #[inline]
     pub fn position_light_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4510,7 +4510,7 @@ impl VehicleState1 {
         Headlight::from_raw(self.headlight_state_raw())
     }
 
-    /// Raw value of `headlight_state` (bits 8..10).
+    /// Raw value of `headlight_state` (bits 8..=9).
     #[inline]
     pub fn headlight_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4558,7 +4558,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.rear_fog_state_raw())
     }
 
-    /// Raw value of `rear_fog_state` (bits 10..11).
+    /// Raw value of `rear_fog_state` (bits 10..=10).
     #[inline]
     pub fn rear_fog_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4606,7 +4606,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.left_fog_state_raw())
     }
 
-    /// Raw value of `left_fog_state` (bits 11..12).
+    /// Raw value of `left_fog_state` (bits 11..=11).
     #[inline]
     pub fn left_fog_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4654,7 +4654,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.right_fog_state_raw())
     }
 
-    /// Raw value of `right_fog_state` (bits 12..13).
+    /// Raw value of `right_fog_state` (bits 12..=12).
     #[inline]
     pub fn right_fog_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4702,7 +4702,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.dome_light_state_raw())
     }
 
-    /// Raw value of `dome_light_state` (bits 13..14).
+    /// Raw value of `dome_light_state` (bits 13..=13).
     #[inline]
     pub fn dome_light_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4750,7 +4750,7 @@ impl VehicleState1 {
         OffOn::from_raw(self.ambient_light_state_raw())
     }
 
-    /// Raw value of `ambient_light_state` (bits 14..15).
+    /// Raw value of `ambient_light_state` (bits 14..=14).
     #[inline]
     pub fn ambient_light_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4798,7 +4798,7 @@ impl VehicleState1 {
         Button::from_raw(self.door_button_state_raw())
     }
 
-    /// Raw value of `door_button_state` (bits 15..16).
+    /// Raw value of `door_button_state` (bits 15..=15).
     #[inline]
     pub fn door_button_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4846,7 +4846,7 @@ impl VehicleState1 {
         self.vehicle_speed_raw() as i16 - 50
     }
 
-    /// Raw value of `vehicle_speed` (bits 16..24).
+    /// Raw value of `vehicle_speed` (bits 16..=23).
     #[inline]
     pub fn vehicle_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4892,7 +4892,7 @@ impl VehicleState1 {
         self.soc_raw() as f64 * 0.5
     }
 
-    /// Raw value of `soc` (bits 24..32).
+    /// Raw value of `soc` (bits 24..=31).
     #[inline]
     pub fn soc_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4936,7 +4936,7 @@ impl VehicleState1 {
         PowerCmd::from_raw(self.system_power_cmd_raw())
     }
 
-    /// Raw value of `system_power_cmd` (bits 32..34).
+    /// Raw value of `system_power_cmd` (bits 32..=33).
     #[inline]
     pub fn system_power_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -4984,7 +4984,7 @@ impl VehicleState1 {
         ChargeState::from_raw(self.charge_state_raw())
     }
 
-    /// Raw value of `charge_state` (bits 34..36).
+    /// Raw value of `charge_state` (bits 34..=35).
     #[inline]
     pub fn charge_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5032,7 +5032,7 @@ impl VehicleState1 {
         ChargeConnection::from_raw(self.charge_connection_raw())
     }
 
-    /// Raw value of `charge_connection` (bits 36..38).
+    /// Raw value of `charge_connection` (bits 36..=37).
     #[inline]
     pub fn charge_connection_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5080,7 +5080,7 @@ impl VehicleState1 {
         VehicleFaultLevel::from_raw(self.vehicle_fault_level_raw())
     }
 
-    /// Raw value of `vehicle_fault_level` (bits 38..40).
+    /// Raw value of `vehicle_fault_level` (bits 38..=39).
     #[inline]
     pub fn vehicle_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5128,7 +5128,7 @@ impl VehicleState1 {
         self.odometer_raw() as u32 * 2
     }
 
-    /// Raw value of `odometer` (bits 40..56).
+    /// Raw value of `odometer` (bits 40..=55).
     #[inline]
     pub fn odometer_raw(&self) -> u16 {
         let bits = self.bits;
@@ -5174,7 +5174,7 @@ impl VehicleState1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 56..64).
+    /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5531,7 +5531,7 @@ impl AutocarControlCommand2 {
         DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
-    /// Raw value of `downhill_regen_enable` (bits 0..1).
+    /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5579,7 +5579,7 @@ impl AutocarControlCommand2 {
         CargoLift::from_raw(self.cargo_lift_raw())
     }
 
-    /// Raw value of `cargo_lift` (bits 1..3).
+    /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5629,7 +5629,7 @@ impl AutocarControlCommand2 {
         self.cargo_lift_speed_raw()
     }
 
-    /// Raw value of `cargo_lift_speed` (bits 3..7).
+    /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5676,7 +5676,7 @@ impl AutocarControlCommand2 {
         PtoEnable::from_raw(self.pto_enable_raw())
     }
 
-    /// Raw value of `pto_enable` (bits 7..8).
+    /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5728,7 +5728,7 @@ impl AutocarControlCommand2 {
         self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
-    /// Raw value of `downhill_regen_speed` (bits 8..16).
+    /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -5774,7 +5774,7 @@ impl AutocarControlCommand2 {
         self.chassis_pitch_raw() as f64 * 0.05 - 25.0
     }
 
-    /// Raw value of `chassis_pitch` (bits 16..26).
+    /// Raw value of `chassis_pitch` (bits 16..=25).
     #[inline]
     pub fn chassis_pitch_raw(&self) -> u16 {
         let bits = self.bits;
@@ -5825,7 +5825,7 @@ impl AutocarControlCommand2 {
         self.chassis_roll_raw() as f64 * 0.1 - 40.0
     }
 
-    /// Raw value of `chassis_roll` (bits 26..36).
+    /// Raw value of `chassis_roll` (bits 26..=35).
     #[inline]
     pub fn chassis_roll_raw(&self) -> u16 {
         let bits = self.bits;
@@ -5876,7 +5876,7 @@ impl AutocarControlCommand2 {
         self.cargo_pitch_raw() as f64 * 0.2 - 30.0
     }
 
-    /// Raw value of `cargo_pitch` (bits 36..46).
+    /// Raw value of `cargo_pitch` (bits 36..=45).
     #[inline]
     pub fn cargo_pitch_raw(&self) -> u16 {
         let bits = self.bits;
@@ -5927,7 +5927,7 @@ impl AutocarControlCommand2 {
         self.cargo_roll_raw() as f64 * 0.1 - 40.0
     }
 
-    /// Raw value of `cargo_roll` (bits 46..56).
+    /// Raw value of `cargo_roll` (bits 46..=55).
     #[inline]
     pub fn cargo_roll_raw(&self) -> u16 {
         let bits = self.bits;
@@ -5978,7 +5978,7 @@ impl AutocarControlCommand2 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 56..64).
+    /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -6222,7 +6222,7 @@ impl VehicleState2 {
         self.battery_voltage_raw() as f64 * 0.2
     }
 
-    /// Raw value of `battery_voltage` (bits 0..16).
+    /// Raw value of `battery_voltage` (bits 0..=15).
     #[inline]
     pub fn battery_voltage_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6268,7 +6268,7 @@ impl VehicleState2 {
         self.battery_current_raw() as f64 * 0.02 - 500.0
     }
 
-    /// Raw value of `battery_current` (bits 16..32).
+    /// Raw value of `battery_current` (bits 16..=31).
     #[inline]
     pub fn battery_current_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6312,7 +6312,7 @@ impl VehicleState2 {
         self.battery_charge_energy_raw()
     }
 
-    /// Raw value of `battery_charge_energy` (bits 32..48).
+    /// Raw value of `battery_charge_energy` (bits 32..=47).
     #[inline]
     pub fn battery_charge_energy_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6351,7 +6351,7 @@ impl VehicleState2 {
         self.battery_discharge_energy_raw()
     }
 
-    /// Raw value of `battery_discharge_energy` (bits 48..64).
+    /// Raw value of `battery_discharge_energy` (bits 48..=63).
     #[inline]
     pub fn battery_discharge_energy_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6670,7 +6670,7 @@ impl VehicleState3 {
         self.battery_max_temp_raw() as i16 - 40
     }
 
-    /// Raw value of `battery_max_temp` (bits 0..8).
+    /// Raw value of `battery_max_temp` (bits 0..=7).
     #[inline]
     pub fn battery_max_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -6714,7 +6714,7 @@ impl VehicleState3 {
         self.battery_min_temp_raw() as i16 - 40
     }
 
-    /// Raw value of `battery_min_temp` (bits 8..16).
+    /// Raw value of `battery_min_temp` (bits 8..=15).
     #[inline]
     pub fn battery_min_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -6758,7 +6758,7 @@ impl VehicleState3 {
         self.max_cell_voltage_raw() as f64 * 0.0015
     }
 
-    /// Raw value of `max_cell_voltage` (bits 16..28).
+    /// Raw value of `max_cell_voltage` (bits 16..=27).
     #[inline]
     pub fn max_cell_voltage_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6811,7 +6811,7 @@ impl VehicleState3 {
         self.min_cell_voltage_raw() as f64 * 0.0015
     }
 
-    /// Raw value of `min_cell_voltage` (bits 28..40).
+    /// Raw value of `min_cell_voltage` (bits 28..=39).
     #[inline]
     pub fn min_cell_voltage_raw(&self) -> u16 {
         let bits = self.bits;
@@ -6864,7 +6864,7 @@ impl VehicleState3 {
         self.motor_temp_raw() as i16 - 40
     }
 
-    /// Raw value of `motor_temp` (bits 40..48).
+    /// Raw value of `motor_temp` (bits 40..=47).
     #[inline]
     pub fn motor_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -6908,7 +6908,7 @@ impl VehicleState3 {
         self.motor_controller_temp_raw() as i16 - 40
     }
 
-    /// Raw value of `motor_controller_temp` (bits 48..56).
+    /// Raw value of `motor_controller_temp` (bits 48..=55).
     #[inline]
     pub fn motor_controller_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7266,7 +7266,7 @@ impl VehicleState4 {
         self.outside_temp_raw() as f64 * 0.5 - 30.0
     }
 
-    /// Raw value of `outside_temp` (bits 0..8).
+    /// Raw value of `outside_temp` (bits 0..=7).
     #[inline]
     pub fn outside_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7310,7 +7310,7 @@ impl VehicleState4 {
         self.inside_temp_raw() as f64 * 0.5 - 30.0
     }
 
-    /// Raw value of `inside_temp` (bits 8..16).
+    /// Raw value of `inside_temp` (bits 8..=15).
     #[inline]
     pub fn inside_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7354,7 +7354,7 @@ impl VehicleState4 {
         AcState::from_raw(self.ac_state_raw())
     }
 
-    /// Raw value of `ac_state` (bits 16..20).
+    /// Raw value of `ac_state` (bits 16..=19).
     #[inline]
     pub fn ac_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7402,7 +7402,7 @@ impl VehicleState4 {
         PowerState::from_raw(self.vehicle_power_state_raw())
     }
 
-    /// Raw value of `vehicle_power_state` (bits 20..22).
+    /// Raw value of `vehicle_power_state` (bits 20..=21).
     #[inline]
     pub fn vehicle_power_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7452,7 +7452,7 @@ impl VehicleState4 {
         InactiveActive::from_raw(self.hill_hold_state_raw())
     }
 
-    /// Raw value of `hill_hold_state` (bits 22..23).
+    /// Raw value of `hill_hold_state` (bits 22..=22).
     #[inline]
     pub fn hill_hold_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7502,7 +7502,7 @@ impl VehicleState4 {
         InactiveActive::from_raw(self.regen_brake_state_raw())
     }
 
-    /// Raw value of `regen_brake_state` (bits 23..24).
+    /// Raw value of `regen_brake_state` (bits 23..=23).
     #[inline]
     pub fn regen_brake_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7550,7 +7550,7 @@ impl VehicleState4 {
         self.remaining_range_raw()
     }
 
-    /// Raw value of `remaining_range` (bits 24..36).
+    /// Raw value of `remaining_range` (bits 24..=35).
     #[inline]
     pub fn remaining_range_raw(&self) -> u16 {
         let bits = self.bits;
@@ -7597,7 +7597,7 @@ impl VehicleState4 {
         TakeoverState::from_raw(self.manual_takeover_state_raw())
     }
 
-    /// Raw value of `manual_takeover_state` (bits 36..37).
+    /// Raw value of `manual_takeover_state` (bits 36..=36).
     #[inline]
     pub fn manual_takeover_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7647,7 +7647,7 @@ impl VehicleState4 {
         RemoteTakeoverPermission::from_raw(self.remote_driving_allowed_raw())
     }
 
-    /// Raw value of `remote_driving_allowed` (bits 39..40).
+    /// Raw value of `remote_driving_allowed` (bits 39..=39).
     #[inline]
     pub fn remote_driving_allowed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7698,7 +7698,7 @@ impl VehicleState4 {
         self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
-    /// Raw value of `ac_set_temp` (bits 40..45).
+    /// Raw value of `ac_set_temp` (bits 40..=44).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7749,7 +7749,7 @@ impl VehicleState4 {
         PtoState::from_raw(self.pto_state_raw())
     }
 
-    /// Raw value of `pto_state` (bits 45..46).
+    /// Raw value of `pto_state` (bits 45..=45).
     #[inline]
     pub fn pto_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -7799,7 +7799,7 @@ impl VehicleState4 {
         self.battery_power_raw() as f64 * 0.01 - 325.0
     }
 
-    /// Raw value of `battery_power` (bits 48..64).
+    /// Raw value of `battery_power` (bits 48..=63).
     #[inline]
     pub fn battery_power_raw(&self) -> u16 {
         let bits = self.bits;
@@ -8280,7 +8280,7 @@ impl VehicleFault {
         InsulationFaultLevel::from_raw(self.insulation_fault_level_raw())
     }
 
-    /// Raw value of `insulation_fault_level` (bits 0..2).
+    /// Raw value of `insulation_fault_level` (bits 0..=1).
     #[inline]
     pub fn insulation_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8330,7 +8330,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.dc_fault_raw())
     }
 
-    /// Raw value of `dc_fault` (bits 2..3).
+    /// Raw value of `dc_fault` (bits 2..=2).
     #[inline]
     pub fn dc_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8378,7 +8378,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.soc_low_raw())
     }
 
-    /// Raw value of `soc_low` (bits 3..4).
+    /// Raw value of `soc_low` (bits 3..=3).
     #[inline]
     pub fn soc_low_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8426,7 +8426,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.cell_undervoltage_raw())
     }
 
-    /// Raw value of `cell_undervoltage` (bits 4..5).
+    /// Raw value of `cell_undervoltage` (bits 4..=4).
     #[inline]
     pub fn cell_undervoltage_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8474,7 +8474,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.brake_boost_pressure_fault_raw())
     }
 
-    /// Raw value of `brake_boost_pressure_fault` (bits 5..6).
+    /// Raw value of `brake_boost_pressure_fault` (bits 5..=5).
     #[inline]
     pub fn brake_boost_pressure_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8522,7 +8522,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.vacuum_pump_fault_raw())
     }
 
-    /// Raw value of `vacuum_pump_fault` (bits 6..7).
+    /// Raw value of `vacuum_pump_fault` (bits 6..=6).
     #[inline]
     pub fn vacuum_pump_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8570,7 +8570,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.vehicle_system_fault_raw())
     }
 
-    /// Raw value of `vehicle_system_fault` (bits 7..8).
+    /// Raw value of `vehicle_system_fault` (bits 7..=7).
     #[inline]
     pub fn vehicle_system_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8618,7 +8618,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.battery_overheat_raw())
     }
 
-    /// Raw value of `battery_overheat` (bits 8..9).
+    /// Raw value of `battery_overheat` (bits 8..=8).
     #[inline]
     pub fn battery_overheat_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8666,7 +8666,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.motor_overheat_raw())
     }
 
-    /// Raw value of `motor_overheat` (bits 9..10).
+    /// Raw value of `motor_overheat` (bits 9..=9).
     #[inline]
     pub fn motor_overheat_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8714,7 +8714,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.traction_battery_fault_raw())
     }
 
-    /// Raw value of `traction_battery_fault` (bits 10..11).
+    /// Raw value of `traction_battery_fault` (bits 10..=10).
     #[inline]
     pub fn traction_battery_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8762,7 +8762,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.motor_fault_raw())
     }
 
-    /// Raw value of `motor_fault` (bits 11..12).
+    /// Raw value of `motor_fault` (bits 11..=11).
     #[inline]
     pub fn motor_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8810,7 +8810,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.battery_comm_fault_raw())
     }
 
-    /// Raw value of `battery_comm_fault` (bits 12..13).
+    /// Raw value of `battery_comm_fault` (bits 12..=12).
     #[inline]
     pub fn battery_comm_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8858,7 +8858,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.motor_comm_fault_raw())
     }
 
-    /// Raw value of `motor_comm_fault` (bits 13..14).
+    /// Raw value of `motor_comm_fault` (bits 13..=13).
     #[inline]
     pub fn motor_comm_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8906,7 +8906,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.eps_fault_raw())
     }
 
-    /// Raw value of `eps_fault` (bits 14..15).
+    /// Raw value of `eps_fault` (bits 14..=14).
     #[inline]
     pub fn eps_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -8954,7 +8954,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.ac_fault_raw())
     }
 
-    /// Raw value of `ac_fault` (bits 15..16).
+    /// Raw value of `ac_fault` (bits 15..=15).
     #[inline]
     pub fn ac_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9004,7 +9004,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.aux_battery_fault_raw())
     }
 
-    /// Raw value of `aux_battery_fault` (bits 16..17).
+    /// Raw value of `aux_battery_fault` (bits 16..=16).
     #[inline]
     pub fn aux_battery_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9052,7 +9052,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.epb_fault_raw())
     }
 
-    /// Raw value of `epb_fault` (bits 17..18).
+    /// Raw value of `epb_fault` (bits 17..=17).
     #[inline]
     pub fn epb_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9100,7 +9100,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.brake_by_wire_fault_raw())
     }
 
-    /// Raw value of `brake_by_wire_fault` (bits 18..19).
+    /// Raw value of `brake_by_wire_fault` (bits 18..=18).
     #[inline]
     pub fn brake_by_wire_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9148,7 +9148,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.key_not_detected_raw())
     }
 
-    /// Raw value of `key_not_detected` (bits 19..20).
+    /// Raw value of `key_not_detected` (bits 19..=19).
     #[inline]
     pub fn key_not_detected_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9196,7 +9196,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.tire_pressure_low_raw())
     }
 
-    /// Raw value of `tire_pressure_low` (bits 20..21).
+    /// Raw value of `tire_pressure_low` (bits 20..=20).
     #[inline]
     pub fn tire_pressure_low_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9244,7 +9244,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.body_motor_fault_raw())
     }
 
-    /// Raw value of `body_motor_fault` (bits 21..22).
+    /// Raw value of `body_motor_fault` (bits 21..=21).
     #[inline]
     pub fn body_motor_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9292,7 +9292,7 @@ impl VehicleFault {
         NormalFault::from_raw(self.body_motor_overheat_raw())
     }
 
-    /// Raw value of `body_motor_overheat` (bits 22..23).
+    /// Raw value of `body_motor_overheat` (bits 22..=22).
     #[inline]
     pub fn body_motor_overheat_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9340,7 +9340,7 @@ impl VehicleFault {
         BatterySystemFaultLevel::from_raw(self.battery_system_fault_level_raw())
     }
 
-    /// Raw value of `battery_system_fault_level` (bits 24..26).
+    /// Raw value of `battery_system_fault_level` (bits 24..=25).
     #[inline]
     pub fn battery_system_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9391,7 +9391,7 @@ impl VehicleFault {
         MotorSystemFaultLevel::from_raw(self.motor_system_fault_level_raw())
     }
 
-    /// Raw value of `motor_system_fault_level` (bits 26..28).
+    /// Raw value of `motor_system_fault_level` (bits 26..=27).
     #[inline]
     pub fn motor_system_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9444,7 +9444,7 @@ impl VehicleFault {
         UnmannedEntryFault::from_raw(self.unmanned_entry_fault_raw())
     }
 
-    /// Raw value of `unmanned_entry_fault` (bits 28..32).
+    /// Raw value of `unmanned_entry_fault` (bits 28..=31).
     #[inline]
     pub fn unmanned_entry_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9494,7 +9494,7 @@ impl VehicleFault {
         self.protocol_version_a_raw()
     }
 
-    /// Raw value of `protocol_version_a` (bits 32..36).
+    /// Raw value of `protocol_version_a` (bits 32..=35).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9543,7 +9543,7 @@ impl VehicleFault {
         self.protocol_version_b_raw()
     }
 
-    /// Raw value of `protocol_version_b` (bits 36..40).
+    /// Raw value of `protocol_version_b` (bits 36..=39).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9592,7 +9592,7 @@ impl VehicleFault {
         self.protocol_version_c_raw()
     }
 
-    /// Raw value of `protocol_version_c` (bits 40..44).
+    /// Raw value of `protocol_version_c` (bits 40..=43).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
         let bits = self.bits;
@@ -9643,7 +9643,7 @@ impl VehicleFault {
         RemoteEntryFault::from_raw(self.remote_entry_fault_raw())
     }
 
-    /// Raw value of `remote_entry_fault` (bits 44..48).
+    /// Raw value of `remote_entry_fault` (bits 44..=47).
     #[inline]
     pub fn remote_entry_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10048,7 +10048,7 @@ impl RgateEpsCommand {
         EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
-    /// Raw value of `eps_ctrl_mode` (bits 0..8).
+    /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10088,7 +10088,7 @@ impl RgateEpsCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 8..16).
+    /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10129,7 +10129,7 @@ impl RgateEpsCommand {
         self.max_angular_speed_raw() as u16 * 2
     }
 
-    /// Raw value of `max_angular_speed` (bits 16..24).
+    /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10175,7 +10175,7 @@ impl RgateEpsCommand {
         self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
-    /// Raw value of `steering_angle_cmd` (bits 24..40).
+    /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -10449,7 +10449,7 @@ impl RgateSpeedCommand {
         self.accel_cmd_raw() as f64 * 0.02 - 9.0
     }
 
-    /// Raw value of `accel_cmd` (bits 0..10).
+    /// Raw value of `accel_cmd` (bits 0..=9).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -10498,7 +10498,7 @@ impl RgateSpeedCommand {
         Epb::from_raw(self.epb_cmd_raw())
     }
 
-    /// Raw value of `epb_cmd` (bits 10..12).
+    /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10548,7 +10548,7 @@ impl RgateSpeedCommand {
         Gear::from_raw(self.gear_cmd_raw())
     }
 
-    /// Raw value of `gear_cmd` (bits 12..16).
+    /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10598,7 +10598,7 @@ impl RgateSpeedCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 16..24).
+    /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -10637,7 +10637,7 @@ impl RgateSpeedCommand {
         EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
-    /// Raw value of `emergency_brake_cmd` (bits 24..25).
+    /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11099,7 +11099,7 @@ impl RgateControlCommand1 {
         DriveModeCmdRgate::from_raw(self.drive_mode_cmd_raw())
     }
 
-    /// Raw value of `drive_mode_cmd` (bits 0..2).
+    /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11149,7 +11149,7 @@ impl RgateControlCommand1 {
         DoorCmd::from_raw(self.door_cmd_raw())
     }
 
-    /// Raw value of `door_cmd` (bits 2..4).
+    /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11197,7 +11197,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
-    /// Raw value of `horn_cmd` (bits 4..6).
+    /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11245,7 +11245,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
-    /// Raw value of `drl_cmd` (bits 6..8).
+    /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11293,7 +11293,7 @@ impl RgateControlCommand1 {
         FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
-    /// Raw value of `left_turn_cmd` (bits 8..10).
+    /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11341,7 +11341,7 @@ impl RgateControlCommand1 {
         FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
-    /// Raw value of `right_turn_cmd` (bits 10..12).
+    /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11389,7 +11389,7 @@ impl RgateControlCommand1 {
         FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
-    /// Raw value of `hazard_cmd` (bits 12..14).
+    /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11437,7 +11437,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
-    /// Raw value of `position_light_cmd` (bits 14..16).
+    /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11485,7 +11485,7 @@ impl RgateControlCommand1 {
         Headlight::from_raw(self.headlight_cmd_raw())
     }
 
-    /// Raw value of `headlight_cmd` (bits 16..18).
+    /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11533,7 +11533,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
-    /// Raw value of `rear_fog_cmd` (bits 18..20).
+    /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11581,7 +11581,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
-    /// Raw value of `left_fog_cmd` (bits 20..22).
+    /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11629,7 +11629,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
-    /// Raw value of `right_fog_cmd` (bits 22..24).
+    /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11677,7 +11677,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
-    /// Raw value of `dome_light_cmd` (bits 24..26).
+    /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11725,7 +11725,7 @@ impl RgateControlCommand1 {
         SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
-    /// Raw value of `ambient_light_cmd` (bits 26..28).
+    /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11773,7 +11773,7 @@ impl RgateControlCommand1 {
         ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
-    /// Raw value of `drive_mode_reset` (bits 28..29).
+    /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11821,7 +11821,7 @@ impl RgateControlCommand1 {
         LinkState::from_raw(self.system_state_raw())
     }
 
-    /// Raw value of `system_state` (bits 32..34).
+    /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11869,7 +11869,7 @@ impl RgateControlCommand1 {
         ReliabilityRgate::from_raw(self.system_reliability_raw())
     }
 
-    /// Raw value of `system_reliability` (bits 34..36).
+    /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11917,7 +11917,7 @@ impl RgateControlCommand1 {
         FaultLevelRgate::from_raw(self.system_fault_level_raw())
     }
 
-    /// Raw value of `system_fault_level` (bits 36..38).
+    /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -11967,7 +11967,7 @@ impl RgateControlCommand1 {
         LockCmd::from_raw(self.lock_cmd_raw())
     }
 
-    /// Raw value of `lock_cmd` (bits 38..40).
+    /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12019,7 +12019,7 @@ impl RgateControlCommand1 {
         AcCmd::from_raw(self.ac_cmd_raw())
     }
 
-    /// Raw value of `ac_cmd` (bits 40..43).
+    /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12069,7 +12069,7 @@ impl RgateControlCommand1 {
         self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
-    /// Raw value of `ac_set_temp` (bits 43..48).
+    /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12120,7 +12120,7 @@ impl RgateControlCommand1 {
         self.protocol_version_a_raw()
     }
 
-    /// Raw value of `protocol_version_a` (bits 48..52).
+    /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12169,7 +12169,7 @@ impl RgateControlCommand1 {
         self.protocol_version_b_raw()
     }
 
-    /// Raw value of `protocol_version_b` (bits 52..56).
+    /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12218,7 +12218,7 @@ impl RgateControlCommand1 {
         self.protocol_version_c_raw()
     }
 
-    /// Raw value of `protocol_version_c` (bits 56..60).
+    /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12267,7 +12267,7 @@ impl RgateControlCommand1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12538,7 +12538,7 @@ impl RgateControlCommand2 {
         DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
-    /// Raw value of `downhill_regen_enable` (bits 0..1).
+    /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12586,7 +12586,7 @@ impl RgateControlCommand2 {
         CargoLift::from_raw(self.cargo_lift_raw())
     }
 
-    /// Raw value of `cargo_lift` (bits 1..3).
+    /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12636,7 +12636,7 @@ impl RgateControlCommand2 {
         self.cargo_lift_speed_raw()
     }
 
-    /// Raw value of `cargo_lift_speed` (bits 3..7).
+    /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12683,7 +12683,7 @@ impl RgateControlCommand2 {
         PtoEnable::from_raw(self.pto_enable_raw())
     }
 
-    /// Raw value of `pto_enable` (bits 7..8).
+    /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12735,7 +12735,7 @@ impl RgateControlCommand2 {
         self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
-    /// Raw value of `downhill_regen_speed` (bits 8..16).
+    /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12781,7 +12781,7 @@ impl RgateControlCommand2 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 56..64).
+    /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -12978,7 +12978,7 @@ impl DeviceId {
         DeviceType::from_raw(self.device_type_raw())
     }
 
-    /// Raw value of `device_type` (bits 0..6).
+    /// Raw value of `device_type` (bits 0..=5).
     #[inline]
     pub fn device_type_raw(&self) -> u8 {
         let bits = self.bits;
@@ -13028,7 +13028,7 @@ impl DeviceId {
         IdFrameIndex::from_raw(self.id_frame_index_raw())
     }
 
-    /// Raw value of `id_frame_index` (bits 6..8).
+    /// Raw value of `id_frame_index` (bits 6..=7).
     #[inline]
     pub fn id_frame_index_raw(&self) -> u8 {
         let bits = self.bits;
@@ -13078,7 +13078,7 @@ impl DeviceId {
         self.id_chars_raw()
     }
 
-    /// Raw value of `id_chars` (bits 8..64).
+    /// Raw value of `id_chars` (bits 8..=63).
     #[inline]
     pub fn id_chars_raw(&self) -> u64 {
         let bits = self.bits;
@@ -13451,7 +13451,7 @@ impl FrontSensorDistance1 {
         self.sensor_1_distance_raw()
     }
 
-    /// Raw value of `sensor_1_distance` (bits 0..10).
+    /// Raw value of `sensor_1_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13500,7 +13500,7 @@ impl FrontSensorDistance1 {
         self.sensor_2_distance_raw()
     }
 
-    /// Raw value of `sensor_2_distance` (bits 10..20).
+    /// Raw value of `sensor_2_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13549,7 +13549,7 @@ impl FrontSensorDistance1 {
         self.sensor_3_distance_raw()
     }
 
-    /// Raw value of `sensor_3_distance` (bits 20..30).
+    /// Raw value of `sensor_3_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13598,7 +13598,7 @@ impl FrontSensorDistance1 {
         self.sensor_4_distance_raw()
     }
 
-    /// Raw value of `sensor_4_distance` (bits 30..40).
+    /// Raw value of `sensor_4_distance` (bits 30..=39).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13647,7 +13647,7 @@ impl FrontSensorDistance1 {
         self.sensor_5_distance_raw()
     }
 
-    /// Raw value of `sensor_5_distance` (bits 40..50).
+    /// Raw value of `sensor_5_distance` (bits 40..=49).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13696,7 +13696,7 @@ impl FrontSensorDistance1 {
         self.sensor_6_distance_raw()
     }
 
-    /// Raw value of `sensor_6_distance` (bits 50..60).
+    /// Raw value of `sensor_6_distance` (bits 50..=59).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -13745,7 +13745,7 @@ impl FrontSensorDistance1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14090,7 +14090,7 @@ impl FrontSensorDistance2 {
         self.sensor_7_distance_raw()
     }
 
-    /// Raw value of `sensor_7_distance` (bits 0..10).
+    /// Raw value of `sensor_7_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -14139,7 +14139,7 @@ impl FrontSensorDistance2 {
         self.sensor_8_distance_raw()
     }
 
-    /// Raw value of `sensor_8_distance` (bits 10..20).
+    /// Raw value of `sensor_8_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -14188,7 +14188,7 @@ impl FrontSensorDistance2 {
         self.sensor_9_distance_raw()
     }
 
-    /// Raw value of `sensor_9_distance` (bits 20..30).
+    /// Raw value of `sensor_9_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -14235,7 +14235,7 @@ impl FrontSensorDistance2 {
         UssSystemState::from_raw(self.uss_system_state_raw())
     }
 
-    /// Raw value of `uss_system_state` (bits 32..34).
+    /// Raw value of `uss_system_state` (bits 32..=33).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14283,7 +14283,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_1_fault_raw())
     }
 
-    /// Raw value of `sensor_1_fault` (bits 34..35).
+    /// Raw value of `sensor_1_fault` (bits 34..=34).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14331,7 +14331,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_2_fault_raw())
     }
 
-    /// Raw value of `sensor_2_fault` (bits 35..36).
+    /// Raw value of `sensor_2_fault` (bits 35..=35).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14379,7 +14379,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_3_fault_raw())
     }
 
-    /// Raw value of `sensor_3_fault` (bits 36..37).
+    /// Raw value of `sensor_3_fault` (bits 36..=36).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14427,7 +14427,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_4_fault_raw())
     }
 
-    /// Raw value of `sensor_4_fault` (bits 37..38).
+    /// Raw value of `sensor_4_fault` (bits 37..=37).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14475,7 +14475,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_5_fault_raw())
     }
 
-    /// Raw value of `sensor_5_fault` (bits 38..39).
+    /// Raw value of `sensor_5_fault` (bits 38..=38).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14523,7 +14523,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_6_fault_raw())
     }
 
-    /// Raw value of `sensor_6_fault` (bits 39..40).
+    /// Raw value of `sensor_6_fault` (bits 39..=39).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14571,7 +14571,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_7_fault_raw())
     }
 
-    /// Raw value of `sensor_7_fault` (bits 40..41).
+    /// Raw value of `sensor_7_fault` (bits 40..=40).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14619,7 +14619,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_8_fault_raw())
     }
 
-    /// Raw value of `sensor_8_fault` (bits 41..42).
+    /// Raw value of `sensor_8_fault` (bits 41..=41).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14667,7 +14667,7 @@ impl FrontSensorDistance2 {
         SensorFault::from_raw(self.sensor_9_fault_raw())
     }
 
-    /// Raw value of `sensor_9_fault` (bits 42..43).
+    /// Raw value of `sensor_9_fault` (bits 42..=42).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14717,7 +14717,7 @@ impl FrontSensorDistance2 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -14996,7 +14996,7 @@ impl RearSensorDistance1 {
         self.sensor_1_distance_raw()
     }
 
-    /// Raw value of `sensor_1_distance` (bits 0..10).
+    /// Raw value of `sensor_1_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15045,7 +15045,7 @@ impl RearSensorDistance1 {
         self.sensor_2_distance_raw()
     }
 
-    /// Raw value of `sensor_2_distance` (bits 10..20).
+    /// Raw value of `sensor_2_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15094,7 +15094,7 @@ impl RearSensorDistance1 {
         self.sensor_3_distance_raw()
     }
 
-    /// Raw value of `sensor_3_distance` (bits 20..30).
+    /// Raw value of `sensor_3_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15143,7 +15143,7 @@ impl RearSensorDistance1 {
         self.sensor_4_distance_raw()
     }
 
-    /// Raw value of `sensor_4_distance` (bits 30..40).
+    /// Raw value of `sensor_4_distance` (bits 30..=39).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15192,7 +15192,7 @@ impl RearSensorDistance1 {
         self.sensor_5_distance_raw()
     }
 
-    /// Raw value of `sensor_5_distance` (bits 40..50).
+    /// Raw value of `sensor_5_distance` (bits 40..=49).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15241,7 +15241,7 @@ impl RearSensorDistance1 {
         self.sensor_6_distance_raw()
     }
 
-    /// Raw value of `sensor_6_distance` (bits 50..60).
+    /// Raw value of `sensor_6_distance` (bits 50..=59).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15290,7 +15290,7 @@ impl RearSensorDistance1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -15635,7 +15635,7 @@ impl RearSensorDistance2 {
         self.sensor_7_distance_raw()
     }
 
-    /// Raw value of `sensor_7_distance` (bits 0..10).
+    /// Raw value of `sensor_7_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15684,7 +15684,7 @@ impl RearSensorDistance2 {
         self.sensor_8_distance_raw()
     }
 
-    /// Raw value of `sensor_8_distance` (bits 10..20).
+    /// Raw value of `sensor_8_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15733,7 +15733,7 @@ impl RearSensorDistance2 {
         self.sensor_9_distance_raw()
     }
 
-    /// Raw value of `sensor_9_distance` (bits 20..30).
+    /// Raw value of `sensor_9_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
         let bits = self.bits;
@@ -15780,7 +15780,7 @@ impl RearSensorDistance2 {
         UssSystemState::from_raw(self.uss_system_state_raw())
     }
 
-    /// Raw value of `uss_system_state` (bits 32..34).
+    /// Raw value of `uss_system_state` (bits 32..=33).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -15828,7 +15828,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_1_fault_raw())
     }
 
-    /// Raw value of `sensor_1_fault` (bits 34..35).
+    /// Raw value of `sensor_1_fault` (bits 34..=34).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -15876,7 +15876,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_2_fault_raw())
     }
 
-    /// Raw value of `sensor_2_fault` (bits 35..36).
+    /// Raw value of `sensor_2_fault` (bits 35..=35).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -15924,7 +15924,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_3_fault_raw())
     }
 
-    /// Raw value of `sensor_3_fault` (bits 36..37).
+    /// Raw value of `sensor_3_fault` (bits 36..=36).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -15972,7 +15972,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_4_fault_raw())
     }
 
-    /// Raw value of `sensor_4_fault` (bits 37..38).
+    /// Raw value of `sensor_4_fault` (bits 37..=37).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16020,7 +16020,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_5_fault_raw())
     }
 
-    /// Raw value of `sensor_5_fault` (bits 38..39).
+    /// Raw value of `sensor_5_fault` (bits 38..=38).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16068,7 +16068,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_6_fault_raw())
     }
 
-    /// Raw value of `sensor_6_fault` (bits 39..40).
+    /// Raw value of `sensor_6_fault` (bits 39..=39).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16116,7 +16116,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_7_fault_raw())
     }
 
-    /// Raw value of `sensor_7_fault` (bits 40..41).
+    /// Raw value of `sensor_7_fault` (bits 40..=40).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16164,7 +16164,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_8_fault_raw())
     }
 
-    /// Raw value of `sensor_8_fault` (bits 41..42).
+    /// Raw value of `sensor_8_fault` (bits 41..=41).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16212,7 +16212,7 @@ impl RearSensorDistance2 {
         SensorFault::from_raw(self.sensor_9_fault_raw())
     }
 
-    /// Raw value of `sensor_9_fault` (bits 42..43).
+    /// Raw value of `sensor_9_fault` (bits 42..=42).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16262,7 +16262,7 @@ impl RearSensorDistance2 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16542,7 +16542,7 @@ impl TeleEpsCommand {
         EpsModeCmd::from_raw(self.eps_ctrl_mode_raw())
     }
 
-    /// Raw value of `eps_ctrl_mode` (bits 0..8).
+    /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16582,7 +16582,7 @@ impl TeleEpsCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 8..16).
+    /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16623,7 +16623,7 @@ impl TeleEpsCommand {
         self.max_angular_speed_raw() as u16 * 2
     }
 
-    /// Raw value of `max_angular_speed` (bits 16..24).
+    /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -16669,7 +16669,7 @@ impl TeleEpsCommand {
         self.steering_angle_cmd_raw() as f64 * 0.1 - 1080.0
     }
 
-    /// Raw value of `steering_angle_cmd` (bits 24..40).
+    /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -16943,7 +16943,7 @@ impl TeleSpeedCommand {
         self.throttle_brake_cmd_raw() as f64 * 0.2 - 100.0
     }
 
-    /// Raw value of `throttle_brake_cmd` (bits 0..10).
+    /// Raw value of `throttle_brake_cmd` (bits 0..=9).
     #[inline]
     pub fn throttle_brake_cmd_raw(&self) -> u16 {
         let bits = self.bits;
@@ -16992,7 +16992,7 @@ impl TeleSpeedCommand {
         Epb::from_raw(self.epb_cmd_raw())
     }
 
-    /// Raw value of `epb_cmd` (bits 10..12).
+    /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17042,7 +17042,7 @@ impl TeleSpeedCommand {
         Gear::from_raw(self.gear_cmd_raw())
     }
 
-    /// Raw value of `gear_cmd` (bits 12..16).
+    /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17092,7 +17092,7 @@ impl TeleSpeedCommand {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 16..24).
+    /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17131,7 +17131,7 @@ impl TeleSpeedCommand {
         EmergencyBrakeCmd::from_raw(self.emergency_brake_cmd_raw())
     }
 
-    /// Raw value of `emergency_brake_cmd` (bits 24..25).
+    /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17595,7 +17595,7 @@ impl TeleControlCommand1 {
         DriveModeCmdTele::from_raw(self.drive_mode_cmd_raw())
     }
 
-    /// Raw value of `drive_mode_cmd` (bits 0..2).
+    /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17645,7 +17645,7 @@ impl TeleControlCommand1 {
         DoorCmd::from_raw(self.door_cmd_raw())
     }
 
-    /// Raw value of `door_cmd` (bits 2..4).
+    /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17693,7 +17693,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.horn_cmd_raw())
     }
 
-    /// Raw value of `horn_cmd` (bits 4..6).
+    /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17741,7 +17741,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.drl_cmd_raw())
     }
 
-    /// Raw value of `drl_cmd` (bits 6..8).
+    /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17789,7 +17789,7 @@ impl TeleControlCommand1 {
         FlashCmd::from_raw(self.left_turn_cmd_raw())
     }
 
-    /// Raw value of `left_turn_cmd` (bits 8..10).
+    /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17837,7 +17837,7 @@ impl TeleControlCommand1 {
         FlashCmd::from_raw(self.right_turn_cmd_raw())
     }
 
-    /// Raw value of `right_turn_cmd` (bits 10..12).
+    /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17885,7 +17885,7 @@ impl TeleControlCommand1 {
         FlashCmd::from_raw(self.hazard_cmd_raw())
     }
 
-    /// Raw value of `hazard_cmd` (bits 12..14).
+    /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17933,7 +17933,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.position_light_cmd_raw())
     }
 
-    /// Raw value of `position_light_cmd` (bits 14..16).
+    /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -17981,7 +17981,7 @@ impl TeleControlCommand1 {
         Headlight::from_raw(self.headlight_cmd_raw())
     }
 
-    /// Raw value of `headlight_cmd` (bits 16..18).
+    /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18029,7 +18029,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.rear_fog_cmd_raw())
     }
 
-    /// Raw value of `rear_fog_cmd` (bits 18..20).
+    /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18077,7 +18077,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.left_fog_cmd_raw())
     }
 
-    /// Raw value of `left_fog_cmd` (bits 20..22).
+    /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18125,7 +18125,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.right_fog_cmd_raw())
     }
 
-    /// Raw value of `right_fog_cmd` (bits 22..24).
+    /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18173,7 +18173,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.dome_light_cmd_raw())
     }
 
-    /// Raw value of `dome_light_cmd` (bits 24..26).
+    /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18221,7 +18221,7 @@ impl TeleControlCommand1 {
         SwitchCmd::from_raw(self.ambient_light_cmd_raw())
     }
 
-    /// Raw value of `ambient_light_cmd` (bits 26..28).
+    /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18269,7 +18269,7 @@ impl TeleControlCommand1 {
         ModeReset::from_raw(self.drive_mode_reset_raw())
     }
 
-    /// Raw value of `drive_mode_reset` (bits 28..29).
+    /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18319,7 +18319,7 @@ impl TeleControlCommand1 {
         LinkState::from_raw(self.system_state_raw())
     }
 
-    /// Raw value of `system_state` (bits 32..34).
+    /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18367,7 +18367,7 @@ impl TeleControlCommand1 {
         ReliabilityTele::from_raw(self.system_reliability_raw())
     }
 
-    /// Raw value of `system_reliability` (bits 34..36).
+    /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18415,7 +18415,7 @@ impl TeleControlCommand1 {
         FaultLevelTele::from_raw(self.system_fault_level_raw())
     }
 
-    /// Raw value of `system_fault_level` (bits 36..38).
+    /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18465,7 +18465,7 @@ impl TeleControlCommand1 {
         LockCmd::from_raw(self.lock_cmd_raw())
     }
 
-    /// Raw value of `lock_cmd` (bits 38..40).
+    /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18517,7 +18517,7 @@ impl TeleControlCommand1 {
         AcCmd::from_raw(self.ac_cmd_raw())
     }
 
-    /// Raw value of `ac_cmd` (bits 40..43).
+    /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18567,7 +18567,7 @@ impl TeleControlCommand1 {
         self.ac_set_temp_raw() as f64 * 0.5 + 16.0
     }
 
-    /// Raw value of `ac_set_temp` (bits 43..48).
+    /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18618,7 +18618,7 @@ impl TeleControlCommand1 {
         self.protocol_version_a_raw()
     }
 
-    /// Raw value of `protocol_version_a` (bits 48..52).
+    /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18667,7 +18667,7 @@ impl TeleControlCommand1 {
         self.protocol_version_b_raw()
     }
 
-    /// Raw value of `protocol_version_b` (bits 52..56).
+    /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18716,7 +18716,7 @@ impl TeleControlCommand1 {
         self.protocol_version_c_raw()
     }
 
-    /// Raw value of `protocol_version_c` (bits 56..60).
+    /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
         let bits = self.bits;
@@ -18765,7 +18765,7 @@ impl TeleControlCommand1 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 60..64).
+    /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19036,7 +19036,7 @@ impl TeleControlCommand2 {
         DownhillRegenEnable::from_raw(self.downhill_regen_enable_raw())
     }
 
-    /// Raw value of `downhill_regen_enable` (bits 0..1).
+    /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19084,7 +19084,7 @@ impl TeleControlCommand2 {
         CargoLift::from_raw(self.cargo_lift_raw())
     }
 
-    /// Raw value of `cargo_lift` (bits 1..3).
+    /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19134,7 +19134,7 @@ impl TeleControlCommand2 {
         self.cargo_lift_speed_raw()
     }
 
-    /// Raw value of `cargo_lift_speed` (bits 3..7).
+    /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19181,7 +19181,7 @@ impl TeleControlCommand2 {
         PtoEnable::from_raw(self.pto_enable_raw())
     }
 
-    /// Raw value of `pto_enable` (bits 7..8).
+    /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19233,7 +19233,7 @@ impl TeleControlCommand2 {
         self.downhill_regen_speed_raw() as f64 * 0.5
     }
 
-    /// Raw value of `downhill_regen_speed` (bits 8..16).
+    /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
         let bits = self.bits;
@@ -19279,7 +19279,7 @@ impl TeleControlCommand2 {
         self.counter_raw()
     }
 
-    /// Raw value of `counter` (bits 56..64).
+    /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
         let bits = self.bits;
