@@ -3243,11 +3243,9 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
              (p2 & UINT64_C(0xFCFCFCFC))) != 0u) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
-        p0g = (p0 & UINT64_C(0x3));
-        p0 &= UINT64_C(0x301010101010100);
-        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x300030003000300);
-        p0 = (p0 | (p0 >> 14)) & UINT64_C(0xF0000000F00);
-        p0 = (p0 | (p0 >> 28)) & UINT64_C(0xFF00);
+        p0g = (p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0x100)) >> 6);
+        p0 &= UINT64_C(0x301010101010000);
+        p0 = ((p0 * UINT64_C(0x810204081)) >> 35) & UINT64_C(0x7F0000);
         p1 = (p1 & UINT64_C(0xFFFF000100010001)) | ((p1 >> 7) & UINT64_C(0x200020002));
         p1 = (p1 & UINT64_C(0x300000003)) | ((p1 >> 14) & UINT64_C(0x3FFFC0000000C));
         p1 = (p1 | (p1 >> 28)) & UINT64_C(0x3FFFFF);
@@ -3255,7 +3253,7 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
         p2 = (p2 & UINT64_C(0xFFFFFF00030003)) | ((p2 >> 6) & UINT64_C(0xC000C));
         p2 = (p2 & UINT64_C(0xFFFFFF0000000F)) | ((p2 >> 12) & UINT64_C(0xF0));
         p2 = (p2 | (p2 >> 24)) & UINT64_C(0xFFFFFFFF);
-        w = (p0 >> 6) | p0g | (p1 << 10) | (p2 << 32);
+        w = (p0 >> 13) | p0g | (p1 << 10) | (p2 << 32);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
 #else
@@ -3292,13 +3290,11 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
             ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
-        r0 = (v << 6) & UINT64_C(0xFF00);
+        r0 = (v << 13) & UINT64_C(0x7F0000);
         r1 = (v >> 10) & UINT64_C(0x3FFFFF);
         r2 = (v >> 32);
-        r0 = (r0 | (r0 << 28)) & UINT64_C(0xF0000000F00);
-        r0 = (r0 | (r0 << 14)) & UINT64_C(0x300030003000300);
-        r0 = (r0 | (r0 << 7)) & UINT64_C(0x301010101010100);
-        r0 |= (v & UINT64_C(0x3));
+        r0 = (r0 * UINT64_C(0x810204081)) & UINT64_C(0x301010101010000);
+        r0 |= (v & UINT64_C(0x3)) | ((v & UINT64_C(0x4)) << 6);
         r1 = (r1 | (r1 << 28)) & UINT64_C(0x3FFFF0000000F);
         r1 = (r1 & UINT64_C(0x300000003)) | ((r1 << 14) & UINT64_C(0xFFFF000000030000));
         r1 = (r1 & UINT64_C(0xFFFF000100010001)) | ((r1 << 7) & UINT64_C(0x10001000100));
@@ -5758,7 +5754,7 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
         p1g = ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1000000)) << 21) |
               ((p1 >> 32) << 48);
         p1 &= UINT64_C(0x1F0001);
-        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F1);
+        p1 = ((p1 * UINT64_C(0x1001)) >> 12) & UINT64_C(0x1F1);
         w = (p0 & UINT64_C(0xFFFFF)) | ((p0 & UINT64_C(0x3000000)) >> 4) |
             ((p0 & UINT64_C(0x100000000)) >> 10) | ((p0 & UINT64_C(0x10000000000)) >> 17) |
             ((p0 & UINT64_C(0xFFF000000000000)) >> 24) | (p1 << 36) | p1g;
@@ -5801,7 +5797,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
              ((v & UINT64_C(0x400000)) << 10) | ((v & UINT64_C(0x800000)) << 17) |
              ((v & UINT64_C(0xFFF000000)) << 24);
         r1 = (v >> 36) & UINT64_C(0x1F1);
-        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1F0001);
+        r1 = (r1 * UINT64_C(0x1001)) & UINT64_C(0x1F0001);
         r1 |= ((v & UINT64_C(0x8000000000)) >> 31) | ((v & UINT64_C(0x200000000000)) >> 21) |
               ((v >> 48) << 32);
 #if KAIWO_GATEWAY_LE_WORDS
@@ -6626,6 +6622,7 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
         uint64_t p0;
         uint64_t p0g;
         uint64_t p1;
+        uint64_t p1g;
         uint64_t p2;
         uint64_t p2g;
         uint64_t p3;
@@ -6660,21 +6657,17 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
         }
         p0g = (p0 & UINT64_C(0x3));
         p0 &= UINT64_C(0x101010101010100);
-        p0 = (p0 | (p0 >> 28)) & UINT64_C(0x111111100);
-        p0 = (p0 | (p0 >> 14)) & UINT64_C(0x155500);
-        p0 = (p0 | (p0 >> 7)) & UINT64_C(0x7F00);
-        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
-        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
-        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
+        p0 = ((p0 * UINT64_C(0x40810204081)) >> 42) & UINT64_C(0x7F00);
+        p1g = ((p1 & UINT64_C(0x1)) << 9);
+        p1 &= UINT64_C(0x101010101010100);
+        p1 = ((p1 * UINT64_C(0x40810204081)) >> 42) & UINT64_C(0x7F00);
         p2g = ((p2 & UINT64_C(0x3000000000000)) >> 24) | ((p2 & UINT64_C(0x300000000000000)) >> 30);
         p2 &= UINT64_C(0x10101010101);
-        p2 = (p2 | (p2 >> 28)) & UINT64_C(0x1011111);
-        p2 = (p2 | (p2 >> 14)) & UINT64_C(0x1515);
-        p2 = (p2 | (p2 >> 7)) & UINT64_C(0x3F);
+        p2 = ((p2 * UINT64_C(0x810204081)) >> 35) & UINT64_C(0x3F);
         p3 = (p3 | (p3 >> 4)) & UINT64_C(0xF00FF00FF);
         p3 = (p3 | (p3 >> 8)) & UINT64_C(0xF0000FFFF);
         p3 = (p3 | (p3 >> 16)) & UINT64_C(0xFFFFF);
-        w = (p0 >> 6) | p0g | (p1 << 9) | (p2 << 17) | p2g | (p3 << 28);
+        w = (p0 >> 6) | p0g | (p1 << 2) | p1g | (p2 << 17) | p2g | (p3 << 28);
 #if KAIWO_GATEWAY_LE_WORDS
         kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
 #else
@@ -6713,19 +6706,14 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
             ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
 #endif
         r0 = (v << 6) & UINT64_C(0x7F00);
-        r1 = (v >> 9) & UINT64_C(0xFF);
+        r1 = (v >> 2) & UINT64_C(0x7F00);
         r2 = (v >> 17) & UINT64_C(0x3F);
         r3 = (v >> 28) & UINT64_C(0xFFFFF);
-        r0 = (r0 | (r0 << 7)) & UINT64_C(0x155500);
-        r0 = (r0 | (r0 << 14)) & UINT64_C(0x111111100);
-        r0 = (r0 | (r0 << 28)) & UINT64_C(0x101010101010100);
+        r0 = (r0 * UINT64_C(0x40810204081)) & UINT64_C(0x101010101010100);
         r0 |= (v & UINT64_C(0x3));
-        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
-        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
-        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
-        r2 = (r2 | (r2 << 7)) & UINT64_C(0x1515);
-        r2 = (r2 | (r2 << 14)) & UINT64_C(0x1011111);
-        r2 = (r2 | (r2 << 28)) & UINT64_C(0x10101010101);
+        r1 = (r1 * UINT64_C(0x40810204081)) & UINT64_C(0x101010101010100);
+        r1 |= ((v & UINT64_C(0x200)) >> 9);
+        r2 = (r2 * UINT64_C(0x810204081)) & UINT64_C(0x10101010101);
         r2 |= ((v & UINT64_C(0x3000000)) << 24) | ((v & UINT64_C(0xC000000)) << 30);
         r3 = (r3 | (r3 << 16)) & UINT64_C(0xF0000FFFF);
         r3 = (r3 | (r3 << 8)) & UINT64_C(0xF00FF00FF);

@@ -385,6 +385,8 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     needed = run.first != (((1 << remaining) - 1) << max(0, run.base)) & top
     init = f"{init} & {m(run.first)}" if needed else init
     ups, downs = [], []
+    if run.mul is not None:
+        ups.append(f"{var} = ({var} * {m(run.mul.up)}) & {m(run.swar_mask)};")
     for st in run.steps:
         if st.simple:
             ups.append(f"{var} = ({var} | ({var} << {st.shift})) & {m(st.after)};")
@@ -401,6 +403,11 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
         downs.append(f"{var} &= {m(run.swar_mask)};")
     elif pad:
         downs.append(pad)
+    elif run.mul is not None and not all(f.check or f.length == f.storage for f in run.fields):
+        downs.append(f"{var} &= {m(run.swar_mask)};")  # the product must see only the fields' bits
+    if run.mul is not None:
+        back = f" & {m(run.mul.back)}" if run.mul.back else ""
+        downs.append(f"{var} = (({var} * {m(run.mul.down)}) >> {run.mul.shift}){back};")
     for st in reversed(run.steps):
         if st.simple_back:
             downs.append(f"{var} = ({var} | ({var} >> {st.shift})) & {m(st.before)};")

@@ -14,6 +14,12 @@ whose d/g has bit k by g * 2^k, all at once: `x = (x | (x << s)) & mask` when no
 copy can land on another field, else `x = (x & stay) | ((x << s) & moved)`. Runs are chosen
 by dynamic programming over a small instruction-count model, so a field only joins a run
 when moving it with others is cheaper than moving it alone.
+
+A multiplication can replace all the steps: `x * (2^d1 + 2^d2 + ...)` adds a copy of `x`
+moved by each distance at once, and is exact when no two of the copies' bits below bit 64
+meet (a sum of distinct powers of two has no carries) and no field's copy lands in another
+field's slot. Eight flags spread over eight bytes, or gathered back, take one multiply
+instead of three SWAR steps.
 """
 
 from __future__ import annotations
@@ -62,6 +68,17 @@ class Group:
 
 
 @dataclass(frozen=True)
+class Mul:
+    """The SWAR part's moves as multiplications. Unpack: x = (x * up) & final. Pack:
+    x = ((x * down) >> shift) & back (back 0: no copy survives that needs masking)."""
+
+    up: int
+    down: int
+    shift: int
+    back: int
+
+
+@dataclass(frozen=True)
 class Run:
     fields: tuple[Field, ...]
     slots: tuple[int, ...]  # bit offset of each field's slot in the run word
@@ -72,6 +89,7 @@ class Run:
     check: int  # pack: slot bits that must be 0 (fields wider than their bits)
     groups: tuple[Group, ...] = ()  # the other fields: one move per distinct distance
     swar: int = -1  # mask of the slots the SWAR steps fill (-1: all of `final`; 0: no steps)
+    mul: Mul | None = None  # the SWAR part moves by multiplications (steps is then empty)
 
     @property
     def swar_mask(self) -> int:
@@ -155,6 +173,57 @@ def _plan(fields: tuple[Field, ...], slots: tuple[int, ...], descending: bool) -
     return Run(fields, slots, base, tuple(steps), first, final, check)
 
 
+def _exact_product(fields: tuple[Field, ...], src: list[int], own: list[int], shifts: list[int], window: int) -> bool | None:
+    """Whether multiplying the word holding these fields (at bit positions `src`) by the sum
+    of 2^shift over `shifts` is exact: no two copies' bits below bit 64 meet (so no carries)
+    and no field's copy by another field's shift lands on a field's own destination. Returns
+    None if not exact, else whether any such stray copy lands at or above `window` (the result
+    must then be masked)."""
+    seen: set[int] = set()
+    dest: set[int] = set()
+    for f, p, d in zip(fields, src, own):
+        dest.update(range(p + d, p + d + f.length))
+    stray = False
+    for f, p, d in zip(fields, src, own):
+        for b in range(p, p + f.length):
+            for s in shifts:
+                t = b + s
+                if t >= WORD:
+                    continue
+                if t in seen:
+                    return None
+                seen.add(t)
+                if s != d and t >= window:
+                    if t in dest:
+                        return None
+                    stray = True
+    return stray
+
+
+def _mul_plan(fields: tuple[Field, ...], slots: tuple[int, ...]) -> Run | None:
+    """All fields moved by one multiplication each way, if that is exact."""
+    base = min(s - f.start for f, s in zip(fields, slots))
+    pos = [f.start + base for f in fields]
+    first = _occupied(fields, pos)
+    final = _occupied(fields, list(slots))
+    if first is None or final is None:
+        return None
+    deltas = [s - p for s, p in zip(slots, pos)]
+    shifts = sorted(set(deltas))
+    top = shifts[-1]
+    if len(shifts) < 2 or max(p + f.length for f, p in zip(fields, pos)) + top > WORD:
+        return None
+    if _exact_product(fields, pos, deltas, shifts, 0) is None:
+        return None
+    # Pack: every field goes up by top - d (to its frame position + top), then down by top.
+    back = _exact_product(fields, list(slots), [top - d for d in deltas], [top - d for d in shifts], top)
+    if back is None:
+        return None
+    mul = Mul(sum(1 << d for d in shifts), sum(1 << (top - d) for d in shifts), top, first if back else 0)
+    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    return Run(fields, slots, base, (), first, final, check, mul=mul)
+
+
 def _groups(fields: list[Field], slots: list[int]) -> tuple[Group, ...]:
     by_shift: dict[int, int] = {}
     for f, s in zip(fields, slots):
@@ -188,18 +257,24 @@ def _hybrids(fields: tuple[Field, ...], slots: tuple[int, ...]) -> list[Run]:
     out = []
     for subset in sorted(subsets):
         rest = [i for i in range(len(fields)) if i not in subset]
-        for descending in (True, False):
-            part = _plan(tuple(fields[i] for i in subset), tuple(slots[i] for i in subset), descending)
+        sub_fields, sub_slots = tuple(fields[i] for i in subset), tuple(slots[i] for i in subset)
+        parts = [_plan(sub_fields, sub_slots, descending) for descending in (True, False)] + [_mul_plan(sub_fields, sub_slots)]
+        for part in parts:
             if part is None:
                 continue
             groups = _groups([fields[i] for i in rest], [slots[i] for i in rest])
-            out.append(Run(fields, slots, part.base, part.steps, part.first, final, check, groups, part.final))
+            out.append(Run(fields, slots, part.base, part.steps, part.first, final, check, groups, part.final, part.mul))
     return out
 
 
 def _imm_cost(mask: int) -> int:
     """x86-64/ARM: a mask that is not a small immediate costs one more instruction."""
     return 0 if mask <= 0xFFFFFFFF else 1
+
+
+def _mul_imm_cost(factor: int) -> int:
+    """x86-64 imul takes a sign-extended 32-bit immediate; a wider factor is loaded first."""
+    return 0 if factor <= 0x7FFFFFFF else 1
 
 
 def run_cost(run: Run) -> int:
@@ -211,6 +286,9 @@ def run_cost(run: Run) -> int:
     if run.groups:
         n += 4 + _imm_cost(run.swar_mask)  # combine both parts, both ways; isolate the SWAR part
     n += 2 + _imm_cost(run.first)  # base shift + mask
+    if run.mul is not None:
+        n += 2 + _mul_imm_cost(run.mul.up) + _imm_cost(run.swar_mask)  # multiply, mask
+        n += 2 + _mul_imm_cost(run.mul.down) + (1 + _imm_cost(run.mul.back) if run.mul.back else 0)  # multiply, shift
     for st in run.steps:
         n += (3 if st.simple else 4) + _imm_cost(st.after)
         n += (3 if st.simple_back else 4) + _imm_cost(st.before)
@@ -230,9 +308,12 @@ def plan_run(fields: tuple[Field, ...], offsets: tuple[int, ...]) -> Run | None:
         return None
     plans = [p for p in (_plan(fields, slots, True), _plan(fields, slots, False)) if p is not None]
     if not any(f.signed for f in fields):
+        plans += [p for p in (_mul_plan(fields, slots),) if p is not None]
+    if not any(f.signed for f in fields):
         plans += [p for p in (_grouped(fields, slots),) if p is not None]
         plans += _hybrids(fields, slots)
-    return min(plans, key=run_cost) if plans else None
+    # a tie goes to the multiplication: one instruction of latency chain instead of several
+    return min(plans, key=lambda p: (run_cost(p), p.mul is None)) if plans else None
 
 
 def plan_runs(fields: list[Field], offsets: list[int]) -> tuple[Run, ...]:
@@ -287,6 +368,8 @@ def unpack_run(run: Run, v: int) -> list[int]:
     if run.swar == 0:
         return [(extra >> s) & ((1 << f.length) - 1) for f, s in zip(run.fields, run.slots)]
     x = ((v << run.base) if run.base >= 0 else (v >> -run.base)) & _ALL & run.first
+    if run.mul is not None:
+        x = (x * run.mul.up) & _ALL & run.swar_mask
     for st in run.steps:
         if st.simple:
             x = (x | (x << st.shift)) & _ALL & st.after
@@ -305,6 +388,10 @@ def pack_run(run: Run, values: list[int]) -> int:
     if run.swar == 0:
         return extra
     x &= run.swar_mask
+    if run.mul is not None:
+        x = ((x * run.mul.down) & _ALL) >> run.mul.shift
+        if run.mul.back:
+            x &= run.mul.back
     for st in reversed(run.steps):
         if st.simple_back:
             x = (x | (x >> st.shift)) & st.before

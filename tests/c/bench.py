@@ -13,7 +13,12 @@ Two modes, both reported:
   functions are its choice).
 Wall time is thread CPU time, best of interleaved A/B runs (the machine is shared); beside
 it the load-independent instruction count per pack+unpack pair from valgrind's callgrind
-(when valgrind is installed). Also prints the code size of both libraries."""
+(when valgrind is installed). Also prints the code size of both libraries.
+
+Like for like: canspec's pack fills the XOR checksum byte and its unpack verifies it; the
+cantools code does neither. For the messages that carry a checksum, a third run gives the
+cantools loop the check a user would add around it (verify before unpack with the word fold
+canspec uses, fill after pack byte by byte), so the codecs are compared doing the same work."""
 
 from __future__ import annotations
 
@@ -26,6 +31,9 @@ import sys
 from pathlib import Path
 
 import cbuild
+
+sys.path.insert(0, str(cbuild.ROOT / "generator"))
+from canspec.pipeline import compile_spec  # noqa: E402
 
 FRAMES_PER_MESSAGE = 16
 REPS = 61
@@ -45,8 +53,28 @@ def c_bytes(hexdata: str) -> str:
     return "{" + ", ".join(f"0x{hexdata[i:i + 2]}" for i in range(0, 16, 2)) + "}"
 
 
-def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str, fn: str = "kaiwo_gateway_") -> str:
-    out = [include, "#include <stdint.h>", "#include <stddef.h>", ""]
+XOR_HELPERS = """#include <string.h>
+/* The XOR of the frame bytes in `mask` (0xFF per byte): one word load and a fold. */
+static inline uint8_t bench_xor(const uint8_t *p, uint64_t mask) {
+    uint64_t w;
+    memcpy(&w, p, 8);
+    w &= mask;
+    w ^= w >> 32;
+    w ^= w >> 16;
+    return (uint8_t)(w ^ (w >> 8));
+}
+"""
+
+
+def byte_mask(indices: tuple[int, ...]) -> str:
+    return f"UINT64_C(0x{sum(0xFF << (8 * b) for b in indices):016X})"
+
+
+def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str,
+            fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None) -> str:
+    """`xor`: for each message, (checksum byte, covered bytes): the loop verifies the checksum
+    before unpack and fills it after pack (for a library that does neither itself)."""
+    out = [include, "#include <stdint.h>", "#include <stddef.h>", XOR_HELPERS if xor else ""]
     for n in names:
         rows = ",\n    ".join(c_bytes(h) for h in frames[n])
         out.append(f"static const uint8_t F_{n}[{FRAMES_PER_MESSAGE}][8] = {{\n    {rows}\n}};")
@@ -56,11 +84,24 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
         out.append("    uint64_t acc = 0;")
         out.append("    long i;")
         out.append("    for (i = 0; i < iters; i++) {")
-        out.append(f"        acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
+        if xor:
+            byte, covers = xor[n]
+            out.append(f"        if (bench_xor(F_{n}[i & {FRAMES_PER_MESSAGE - 1}], {byte_mask((*covers, byte))}) != 0u) {{")
+            out.append("            acc += 1000u;")
+            out.append("        } else {")
+            out.append(f"            acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
+            out.append("        }")
+        else:
+            out.append(f"        acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
         # The decoded struct is consumed and the struct to send is produced elsewhere in a real
         # ECU: the barriers keep the compiler from fusing unpack into pack.
         out.append("        __asm__ volatile(\"\" : : \"r\"(&s) : \"memory\");")
         out.append(f"        acc += (uint64_t){fn}{n}_pack({pack_args});")
+        if xor:
+            byte, covers = xor[n]
+            # Byte-wise: a word load right after cantools' byte stores would stall on store
+            # forwarding and charge cantools for the harness's choice.
+            out.append(f"        buf[{byte}] = (uint8_t)({' ^ '.join(f'buf[{b}]' for b in covers)});")
         out.append("        __asm__ volatile(\"\" : : \"r\"(buf) : \"memory\");")
         out.append("        acc += buf[0] ^ buf[3] ^ buf[7];")
         out.append("    }")
@@ -202,14 +243,30 @@ def main(argv: list[str]) -> int:
         print(f"bench-c: cantools output lacks {missing}", file=sys.stderr)
         return 1
     frames = {n: frames_for(vectors["cases"], n) for n in names}
-    main_c = MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names))).replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS))
+    compiled = compile_spec(cbuild.ROOT / "spec")
+    if compiled.spec is None or compiled.spec.can is None:
+        print("bench-c: the spec does not compile", file=sys.stderr)
+        return 1
+    xor = {m.name: (m.checksum.byte, m.checksum.covers) for m in compiled.spec.can.messages if m.checksum is not None}
+    checked = [n for n in names if n in xor]
+
+    def main_c(subset: list[str]) -> str:
+        return (MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in subset)).replace("%N%", str(len(subset)))
+                .replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS)))
+
     sources = {
         "bench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s"),
         "bench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8"),
         "call_canspec.c": harness("canspec", wrappers(names, define=False), names, frames, "", "buf, 8, &s", fn="x_"),
         "call_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8"),
         "size_canspec.c": wrappers(names, define=True),
-        "bench_main.c": main_c,
+        "bench_main.c": main_c(names),
+        # Like for like: the checksum messages, cantools with the check a user adds.
+        "xbench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', checked, frames, "", "buf, 8, &s"),
+        "xbench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', checked, frames, "struct ", "buf, &s, 8", xor=xor),
+        "xcall_canspec.c": harness("canspec", wrappers(checked, define=False), checked, frames, "", "buf, 8, &s", fn="x_"),
+        "xcall_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', checked, frames, "struct ", "buf, &s, 8", xor=xor),
+        "xbench_main.c": main_c(checked),
     }
     for name, text in sources.items():
         (build / name).write_text(text)
@@ -221,20 +278,25 @@ def main(argv: list[str]) -> int:
 
     size_a = compile_(build / "size_canspec.c", "size_canspec.o")
     size_b = compile_(ct / "kaiwo_gateway.c", "size_cantools.o")
+    xmode = "+XOR check on cantools' side"
     exes = {
-        "call": [compile_(build / "call_canspec.c", "call_canspec.o"), compile_(build / "call_cantools.c", "call_cantools.o"),
-                 size_a, size_b, compile_(build / "bench_main.c", "main_call.o", '-DMODE="call"')],
-        "inline": [compile_(build / "bench_canspec.c", "bench_canspec.o"), compile_(build / "bench_cantools.c", "bench_cantools.o"),
-                   compile_(build / "bench_main.c", "main_inline.o", '-DMODE="inline"')],
+        "call": ([compile_(build / "call_canspec.c", "call_canspec.o"), compile_(build / "call_cantools.c", "call_cantools.o"),
+                  size_a, size_b, compile_(build / "bench_main.c", "main_call.o", '-DMODE="call"')], names),
+        "inline": ([compile_(build / "bench_canspec.c", "bench_canspec.o"), compile_(build / "bench_cantools.c", "bench_cantools.o"),
+                    compile_(build / "bench_main.c", "main_inline.o", '-DMODE="inline"')], names),
+        f"call {xmode}": ([compile_(build / "xcall_canspec.c", "xcall_canspec.o"), compile_(build / "xcall_cantools.c", "xcall_cantools.o"),
+                           size_a, size_b, compile_(build / "xbench_main.c", "xmain_call.o", f'-DMODE="call {xmode}"')], checked),
+        f"inline {xmode}": ([compile_(build / "xbench_canspec.c", "xbench_canspec.o"), compile_(build / "xbench_cantools.c", "xbench_cantools.o"),
+                             compile_(build / "xbench_main.c", "xmain_inline.o", f'-DMODE="inline {xmode}"')], checked),
     }
     print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
-    for mode, objs in exes.items():
-        exe = build / f"bench_{mode}"
+    for i, (mode, (objs, _)) in enumerate(exes.items()):
+        exe = build / f"bench_{i}"
         subprocess.run([CC, *objs, "-o", str(exe)], check=True)
         sys.stdout.flush()
         subprocess.run([str(exe)], check=True)
-    for mode in exes:
-        instruction_counts(build / f"bench_{mode}", mode, names)
+    for i, (mode, (_, subset)) in enumerate(exes.items()):
+        instruction_counts(build / f"bench_{i}", mode, subset)
     pa, pb = symbol_bytes(Path(size_a), r"_(pack|unpack)$"), symbol_bytes(Path(size_b), r"_(pack|unpack)$")
     print(f"\ncode size of pack+unpack of all messages: canspec {pa} bytes, cantools {pb} bytes")
     print(f".text of the object: canspec (pack+unpack wrappers) {text_size(Path(size_a))} bytes, cantools (whole kaiwo_gateway.c) {text_size(Path(size_b))} bytes")

@@ -54,3 +54,34 @@ def test_range_check_masks_cover_the_excess_bits(spec):
     cm = next(m for m in model.messages if m.msg.name == "front_sensor_distance_1")
     run = cm.pack_runs[0]  # sensors 1..4: 10 bits in uint16_t slots at bits 0, 16, 32, 48
     assert run.run.check == sum(0xFC00 << (16 * i) for i in range(4))
+
+
+def test_flags_move_by_one_multiplication(spec):
+    """vehicle_fault's flags (one bit each, spread over a byte each) move by a multiplication
+    each way instead of three SWAR steps; its exactness does not depend on the data, so the
+    words that make the most copies meet (all ones, alternating bits) are checked too."""
+    model = cmodel.build_model(spec)
+    cm = next(m for m in model.messages if m.msg.name == "vehicle_fault")
+    muls = [r.run for r in cm.unpack_runs if r.run.mul is not None]
+    assert len(muls) >= 2 and all(not r.steps for r in muls)
+    fields = _fields(cm)
+    runs = cwords.plan_runs(fields, cwords.natural_offsets([f.storage for f in fields]))
+    for v in ((1 << 64) - 1, 0x5555555555555555, 0xAAAAAAAAAAAAAAAA, 0x8000000000000001):
+        for run in runs:
+            got = cwords.unpack_run(run, v)
+            assert got == [(v >> f.start) & ((1 << f.length) - 1) for f in run.fields], hex(v)
+            assert cwords.pack_run(run, got) == v & sum(((1 << f.length) - 1) << f.start for f in run.fields), hex(v)
+
+
+def test_a_multiplication_whose_copies_meet_is_refused():
+    """Eight flags in bits 0..7 to bytes 0..7: flag 7 moved by flag 0's distance meets flag 0
+    moved by flag 1's, so the sum would carry; seven flags are fine."""
+    eight = tuple(cwords.Field(f"f{i}", i, 1, 8, False, True) for i in range(8))
+    slots = tuple(8 * i for i in range(8))
+    assert cwords._mul_plan(eight, slots) is None
+    seven = cwords._mul_plan(eight[:7], slots[:7])
+    assert seven is not None and seven.mul is not None
+    for v in range(128):
+        got = cwords.unpack_run(seven, v)
+        assert got == [(v >> i) & 1 for i in range(7)]
+        assert cwords.pack_run(seven, got) == v

@@ -313,6 +313,7 @@ def main() -> int:
         print(f"bench-rust: dbc-codegen produced no constructor for {', '.join(missing)}", file=sys.stderr)
         return 1
     modules, rows = [], []
+    counts: dict[str, int] = {}
     for rm in crate.messages:
         # Physical-encodable cases; ties of integer-valued signals have no whole-number input.
         cases = [c for c in vectors["cases"] if c["message"] == rm.msg.name and c["kind"] != "raw_only"
@@ -321,8 +322,15 @@ def main() -> int:
             continue
         modules.append(message_module(rm, cases, api))
         rows.append((rm.msg.name, rm.msg.checksum is not None))
+        counts[rm.msg.name] = len(cases)
     body = MAIN_HEAD.format(package=crate.package) + "".join(modules)
-    body += "\nfn main() {\n    let mut rows = Vec::new();\n"
+    body += "\nfn main() {\n"
+    # `count`: one pass of every loop COUNT_REPS times, for callgrind's instruction counts.
+    body += f"    if std::env::args().nth(1).as_deref() == Some(\"count\") {{\n        for _ in 0..{COUNT_REPS} {{\n"
+    for name, has_checksum in rows:
+        fns = ["ours_encode", "theirs_encode", "ours_decode", "theirs_decode"] + (["theirs_decode_checked"] if has_checksum else [])
+        body += "".join(f"            black_box({name}::{f}());\n" for f in fns)
+    body += "        }\n        return;\n    }\n    let mut rows = Vec::new();\n"
     for name, has_checksum in rows:
         body += (
             f"    let (oe, de) = time_pair({name}::FRAMES.len(), {name}::ours_encode, {name}::theirs_encode);\n"
@@ -381,8 +389,52 @@ lto = true
     )
     env = {**os.environ, "CARGO_TARGET_DIR": str(BUILD / "target")}
     run(["cargo", "build", "--release", "--quiet"], cwd=BUILD / "crate", env=env)
-    run([str(BUILD / "target" / "release" / "canspec-rust-bench")], cwd=BUILD / "crate")
+    exe = BUILD / "target" / "release" / "canspec-rust-bench"
+    sys.stdout.flush()
+    run([str(exe)], cwd=BUILD / "crate")
+    sys.stdout.flush()
+    instruction_counts(exe, [(name, counts[name], ck) for name, ck in rows])
     return 0
+
+
+COUNT_REPS = 64
+
+
+def instruction_counts(exe: Path, rows: list[tuple[str, int, bool]]) -> None:
+    """Instructions per frame of each loop, from callgrind: independent of machine load and
+    of code alignment, so two loops LLVM compiled to the same instructions count the same."""
+    if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
+        print("\ninstruction counts: valgrind not installed, skipped")
+        return
+    out = BUILD / "bench.callgrind"
+    run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe), "count"], capture_output=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", str(out)],
+                          check=True, capture_output=True, text=True).stdout
+    ir: dict[tuple[str, str], int] = {}
+    for line in text.splitlines():
+        m = re.match(r"\s*([\d,]+)\s.*canspec_rust_bench::(\w+)::(\w+)\b", line)
+        if m:
+            ir[(m.group(2), m.group(3))] = int(m.group(1).replace(",", ""))
+    print("\n| message | encode canspec Ir | encode dbc-codegen Ir | ratio | decode canspec Ir | decode dbc-codegen Ir | ratio | decode dbc-codegen + XOR check Ir | ratio |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    tot = [0.0] * 4
+    more = []
+    for name, k, has_checksum in rows:
+        per = {f: ir.get((name, f), 0) / (COUNT_REPS * k) for f in ("ours_encode", "theirs_encode", "ours_decode", "theirs_decode", "theirs_decode_checked")}
+        oe, te, od, td, tc = (per[f] for f in ("ours_encode", "theirs_encode", "ours_decode", "theirs_decode", "theirs_decode_checked"))
+        for i, v in enumerate((oe, te, od, td)):
+            tot[i] += v * k
+        ck = f"{tc:.1f} | {tc / od:.2f}" if has_checksum else "— | —"
+        print(f"| {name} | {oe:.1f} | {te:.1f} | {te / oe:.2f} | {od:.1f} | {td:.1f} | {td / od:.2f} | {ck} |")
+        if oe > te:
+            more.append(f"{name} encode")
+        if od > (tc if has_checksum else td):
+            more.append(f"{name} decode")
+    print(f"| **all** | {tot[0] / sum(c for _, c, _ in rows):.1f} | {tot[1] / sum(c for _, c, _ in rows):.1f} | {tot[1] / tot[0]:.2f} | "
+          f"{tot[2] / sum(c for _, c, _ in rows):.1f} | {tot[3] / sum(c for _, c, _ in rows):.1f} | {tot[3] / tot[2]:.2f} | | |")
+    print("Ir = instructions per frame (callgrind, loop included); ratio = dbc-codegen / canspec")
+    print("like for like (checksum messages against dbc-codegen + XOR check): canspec executes more instructions on: "
+          + (", ".join(more) if more else "none"))
 
 
 if __name__ == "__main__":
