@@ -403,8 +403,8 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
         downs.append(f"{var} &= {m(run.swar_mask)};")
     elif pad:
         downs.append(pad)
-    elif run.mul is not None and not all(f.check or f.length == f.storage for f in run.fields):
-        downs.append(f"{var} &= {m(run.swar_mask)};")  # the product must see only the fields' bits
+    # Like the steps, the multiplication needs only the fields' bits in the word: the padding
+    # mask clears the bytes between fields and the range check the bits above each one.
     if run.mul is not None:
         back = f" & {m(run.mul.back)}" if run.mul.back else ""
         downs.append(f"{var} = (({var} * {m(run.mul.down)}) >> {run.mul.shift}){back};")

@@ -139,6 +139,11 @@ def _occupied(fields: tuple[Field, ...], pos: list[int]) -> int | None:
     return mask
 
 
+def _check_mask(fields: tuple[Field, ...], slots: tuple[int, ...]) -> int:
+    """Pack: the slot bits above each checked field's width, which must be 0."""
+    return sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+
+
 def _plan(fields: tuple[Field, ...], slots: tuple[int, ...], descending: bool) -> Run | None:
     base = min(s - f.start for f, s in zip(fields, slots))
     pos = [f.start + base for f in fields]
@@ -169,7 +174,7 @@ def _plan(fields: tuple[Field, ...], slots: tuple[int, ...], descending: bool) -
     final = _occupied(fields, pos)
     if final is None or pos != list(slots):
         return None
-    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    check = _check_mask(fields, slots)
     return Run(fields, slots, base, tuple(steps), first, final, check)
 
 
@@ -220,7 +225,7 @@ def _mul_plan(fields: tuple[Field, ...], slots: tuple[int, ...]) -> Run | None:
     if back is None:
         return None
     mul = Mul(sum(1 << d for d in shifts), sum(1 << (top - d) for d in shifts), top, first if back else 0)
-    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    check = _check_mask(fields, slots)
     return Run(fields, slots, base, (), first, final, check, mul=mul)
 
 
@@ -236,7 +241,7 @@ def _grouped(fields: tuple[Field, ...], slots: tuple[int, ...]) -> Run | None:
     final = _occupied(fields, list(slots))
     if final is None:
         return None
-    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    check = _check_mask(fields, slots)
     return Run(fields, slots, 0, (), 0, final, check, _groups(list(fields), list(slots)), 0)
 
 
@@ -246,7 +251,7 @@ def _hybrids(fields: tuple[Field, ...], slots: tuple[int, ...]) -> list[Run]:
     final = _occupied(fields, list(slots))
     if final is None:
         return []
-    check = sum(_bits(s + f.length, f.storage - f.length) for f, s in zip(fields, slots) if f.check)
+    check = _check_mask(fields, slots)
     deltas = [s - f.start for f, s in zip(fields, slots)]
     subsets = set()
     for b in deltas:
