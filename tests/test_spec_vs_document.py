@@ -81,47 +81,47 @@ SCALE = re.compile(r"(?:比例尺|比例|精度)\s*[:：]?\s*(-?\s*[\d.]+)")
 OFFSET = re.compile(r"偏移\s*[:：]?\s*(-\s*[\d.]+|[\d.]+)")
 
 
-def test_printed_factors_and_offsets(can):
+def document_rows(can):
+    """(message, spec signal at the row's start bit or None, start bit, the row's text after the
+    length column) for every §3 table row of the document."""
     sections = document_sections()
-    checked = 0
     for msg in can.messages:
         if msg.section == "2":
             continue
         by_start = {s.start: s for s in msg.signals}
         for _, start, _, rest in ROW.findall(sections[msg.section]):
-            sig = by_start.get(int(start))
-            scale, offset = SCALE.search(rest), OFFSET.search(rest)
-            if sig is None or (msg.section, int(start)) in SCALING_EXCEPTIONS:
-                continue
-            if scale:
-                assert sig.factor == Fraction(scale.group(1).replace(" ", "")), (msg.name, sig.name)
-                checked += 1
-            if offset:
-                assert sig.offset == Fraction(offset.group(1).replace(" ", "")), (msg.name, sig.name)
-                checked += 1
+            yield msg, by_start.get(int(start)), int(start), rest
+
+
+def test_printed_factors_and_offsets(can):
+    checked = 0
+    for msg, sig, start, rest in document_rows(can):
+        scale, offset = SCALE.search(rest), OFFSET.search(rest)
+        if sig is None or (msg.section, start) in SCALING_EXCEPTIONS:
+            continue
+        if scale:
+            assert sig.factor == Fraction(scale.group(1).replace(" ", "")), (msg.name, sig.name)
+            checked += 1
+        if offset:
+            assert sig.offset == Fraction(offset.group(1).replace(" ", "")), (msg.name, sig.name)
+            checked += 1
     assert checked >= 60
 
 
 def test_documented_ranges_where_printed(can):
     """Ranges like '-1080~1080' in the 物理范围 column equal the spec's documented range."""
-    sections = document_sections()
     rng = re.compile(r"^(-?[\d.]+)\s*(?:\[~\]|~|-)\s*(-?[\d,.]+)")
     compared = 0
     fixed = {("vehicle_state_3", "battery_max_temp"), ("autocar_speed_command", "gear_cmd")}  # E22, E11
-    for msg in can.messages:
-        if msg.section == "2":
+    for msg, sig, _, rest in document_rows(can):
+        cols = rest.split("\t")
+        if sig is None or len(cols) < 2 or sig.doc_min is None or (msg.name, sig.name) in fixed:
             continue
-        by_start = {s.start: s for s in msg.signals}
-        for _, start, _, rest in ROW.findall(sections[msg.section]):
-            sig = by_start.get(int(start))
-            cols = rest.split("\t")
-            if sig is None or len(cols) < 2 or sig.doc_min is None or (msg.name, sig.name) in fixed:
-                continue
-            m = rng.match(cols[1].replace("<mark>", "").replace(" ", ""))
-            if m:
-                lo, hi = Fraction(m.group(1)), Fraction(m.group(2).replace(",", ""))
-                assert (sig.doc_min, sig.doc_max) == (lo, hi), (msg.name, sig.name, cols[1])
-                compared += 1
+        m = rng.match(cols[1].replace("<mark>", "").replace(" ", ""))
+        if m:
+            lo, hi = Fraction(m.group(1)), Fraction(m.group(2).replace(",", ""))
+            assert (sig.doc_min, sig.doc_max) == (lo, hi), (msg.name, sig.name, cols[1])
+            compared += 1
     assert compared >= 150
 
 

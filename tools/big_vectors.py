@@ -36,7 +36,7 @@ sys.path.insert(0, str(ROOT / "generator"))
 from canspec import codec, ir
 from canspec.encoding import to_raw_exact, to_raw_runtime
 from canspec.pipeline import compile_spec
-from canspec.targets.vectors import base_raw, build_vectors
+from canspec.targets.vectors import base_raw, build_vectors, case_record
 
 
 class Encoder(Protocol):
@@ -99,10 +99,7 @@ class CaseMaker:
         phys = {s.name: self.encoder.physical(s, raw[s.name]) for s in msg.data_signals}
         if physical:
             phys.update(physical)
-        out = {"message": msg.name, "frame_id": msg.frame_id, "data": data.hex().upper(), "raw": raw, "physical": phys, "kind": kind}
-        if note:
-            out["note"] = note
-        return out
+        return case_record(msg, data, raw, phys, kind, note)
 
     def seeded(self, msg: ir.Message, rng: random.Random) -> dict[str, Any]:
         sigs = [s for s in msg.data_signals if s.role != "checksum"]

@@ -54,7 +54,12 @@ def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, A
         phys[name] = n // d if n % d == 0 else n / d
     if physical:
         phys.update(physical)
-    case = {"message": msg.name, "frame_id": msg.frame_id, "data": data.hex().upper(), "raw": raw, "physical": phys, "kind": kind}
+    return case_record(msg, data, raw, phys, kind, note)
+
+
+def case_record(msg: ir.Message, data: bytes, raw: dict[str, int], physical: dict[str, Any], kind: str, note: str = "") -> dict[str, Any]:
+    """One case as the vectors file holds it (also written by tools/big_vectors.py)."""
+    case = {"message": msg.name, "frame_id": msg.frame_id, "data": data.hex().upper(), "raw": raw, "physical": physical, "kind": kind}
     if note:
         case["note"] = note
     return case
