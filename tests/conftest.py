@@ -9,9 +9,8 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from repo_paths import GENERATED, ROOT, SEEDS, SPEC  # noqa: E402,F401
-
-from canspec.pipeline import compile_spec  # noqa: E402
+from canspec.pipeline import compile_spec
+from repo_paths import GENERATED, ROOT, SPEC  # noqa: F401
 
 
 @pytest.fixture(scope="session")
@@ -24,6 +23,14 @@ def spec():
 @pytest.fixture(scope="session")
 def can(spec):
     return spec.can
+
+
+@pytest.fixture(scope="session")
+def db():
+    """cantools reading the generated DBC: the independent oracle of many tests."""
+    import cantools
+
+    return cantools.database.load_file(str(GENERATED / "dbc" / "kaiwo_gateway.dbc"), encoding="utf-8", strict=True)
 
 
 @pytest.fixture(scope="session")

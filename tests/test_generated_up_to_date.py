@@ -6,8 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 
-from test_cli_foundation import ENV
-
+from repo_paths import CANSPEC_ENV as ENV
 from repo_paths import ROOT
 
 

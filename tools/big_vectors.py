@@ -33,9 +33,10 @@ from typing import Any, Protocol
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "generator"))
 
-from canspec import codec, ir
-from canspec.encoding import to_raw_exact, to_raw_runtime
+from canspec import ir
+from canspec.ir.encoding import to_raw_exact, to_raw_runtime
 from canspec.pipeline import compile_spec
+from canspec.reference import codec
 from canspec.targets.vectors import base_raw, build_vectors, case_record
 
 

@@ -3,18 +3,18 @@
 from __future__ import annotations
 
 import gc
+from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator
 
 from canspec import ir
-from canspec.build import build
-from canspec.jsonvalue import message_problems
-from canspec.loader import load
-from canspec.problems import Problem, SpecError, error
-from canspec.resolve import resolve
-from canspec.validate import validate
+from canspec.ir.build import build
+from canspec.reference.jsonvalue import message_problems
+from canspec.spec.loader import load
+from canspec.spec.problems import Problem, SpecError, error
+from canspec.spec.resolve import resolve
+from canspec.spec.validate import validate
 
 
 @dataclass

@@ -34,7 +34,7 @@ from pathlib import Path
 import cbuild
 
 sys.path.insert(0, str(cbuild.ROOT / "generator"))
-from canspec.pipeline import compile_spec  # noqa: E402
+from canspec.pipeline import compile_spec
 
 FRAMES_PER_MESSAGE = 16
 REPS = 61
@@ -108,7 +108,7 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
         out.append("    }")
         out.append("    return acc;")
         out.append("}")
-    out.append(f"typedef uint64_t (*run_fn)(long);")
+    out.append("typedef uint64_t (*run_fn)(long);")
     out.append(f"const run_fn {lib}_runs[] = {{ {', '.join(f'{lib}_run_{n}' for n in names)} }};")
     return "\n".join(out) + "\n"
 

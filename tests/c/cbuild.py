@@ -20,8 +20,8 @@ SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-o
 CASES_RE = re.compile(r"c runner: (\d+) cases, (\d+) multi-frame texts checked, (\d+) mismatches")
 
 sys.path.insert(0, str(HERE))
-from gen_runner_tables import tables  # noqa: E402
-from vectors_to_lines import convert  # noqa: E402
+from gen_runner_tables import tables
+from vectors_to_lines import convert
 
 
 def have(tool: str) -> bool:

@@ -10,8 +10,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1] / "generator"))
 
-from canspec.cmodel import build_model  # noqa: E402
-from canspec.pipeline import compile_spec  # noqa: E402
+from canspec.pipeline import compile_spec
+from canspec.targets.c.model import build_model
 
 
 def tables(spec_path: str) -> str:
@@ -26,7 +26,7 @@ def tables(spec_path: str) -> str:
         out.append("    int bad = 0;")
         out.append("    memset(&s, 0, sizeof s);")
         out.append(f"    int st = (int){cm.fn}_unpack(&s, vc->data, vc->len);")
-        out.append(f"    if (st != 0) bad += fail(vc, \"unpack returned %d\", st);")
+        out.append("    if (st != 0) bad += fail(vc, \"unpack returned %d\", st);")
         for s in cm.signals:
             out.append(f"    bad += check_raw(vc, \"{s.sig.name}\", (int64_t)s.{s.field});")
         out.append("    memset(&p, 0, sizeof p);")
@@ -51,10 +51,10 @@ def tables(spec_path: str) -> str:
             out.append("            if (encodable(vc)) {")
             if s.has_double:
                 out.append(f"                st = (int){s.fn}_encode(ph->value, &r);")
-                out.append(f"                bad += check_encode(vc, ph, \"double\", st, (int64_t)r);")
+                out.append("                bad += check_encode(vc, ph, \"double\", st, (int64_t)r);")
             out.append(f"                if (scaled(ph, {s.scale_int}, &fx)) {{")
             out.append(f"                    st = (int){s.fn}_encode_fixed(fx, &r);")
-            out.append(f"                    bad += check_encode(vc, ph, \"fixed\", st, (int64_t)r);")
+            out.append("                    bad += check_encode(vc, ph, \"fixed\", st, (int64_t)r);")
             out.append("                } else {")
             out.append("                    bad += fail(vc, \"%s: physical %s is not a multiple of 1/%d\", ph->name, ph->text, " + str(s.scale_int) + ");")
             out.append("                }")

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "fuzz"))
-import run_fuzz  # noqa: E402
+import run_fuzz
 
 SECONDS = int(os.environ.get("CANSPEC_FUZZ_SECONDS", "20"))
 

@@ -7,9 +7,8 @@ import dataclasses
 from fractions import Fraction
 
 import pytest
-
-from canspec import cmodel
 from canspec.generate import GenerationError, generate
+from canspec.targets.c import model as cmodel
 
 
 def test_literals():

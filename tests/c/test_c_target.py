@@ -10,14 +10,12 @@ import sys
 from pathlib import Path
 
 import pytest
-
-from canspec import formatters
+from canspec.render import formatters
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import cbuild  # noqa: E402
-
-from canspec import generate as gen_mod  # noqa: E402
-from canspec.targets import c as c_target  # noqa: E402
+import cbuild
+from canspec import generate as gen_mod
+from canspec.targets import c as c_target
 
 HEADER_NAMES = sorted(p.name for p in cbuild.HEADERS.glob("*.h"))
 COMPILERS = [cc for cc in ("gcc", "clang") if cbuild.have(cc)]

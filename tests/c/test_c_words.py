@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import random
 
-from canspec import cmodel, cwords
+from canspec.targets.c import model as cmodel
+from canspec.targets.c import words as cwords
 
 
 def _fields(cm):

@@ -1,5 +1,5 @@
 """`canspec changelog`: the change record as Markdown in the document's style. Expected rows
-come from the document's 变更记录表 (000_67d7e5b461b28960.txt)."""
+come from the document's 变更记录表 (spec/source/gateway_v2.0.5beta1.ocr.txt)."""
 
 from __future__ import annotations
 

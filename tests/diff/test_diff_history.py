@@ -1,5 +1,5 @@
 """The reconstructed revisions reproduce the document's change record (expected changes
-written from the record's items, 000_67d7e5b461b28960.txt 变更记录表), and `canspec check`
+written from the record's items, spec/source/gateway_v2.0.5beta1.ocr.txt 变更记录表), and `canspec check`
 holds each revision's declared changelog to the computed diff."""
 
 from __future__ import annotations

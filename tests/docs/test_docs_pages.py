@@ -9,8 +9,9 @@ import shutil
 import xml.etree.ElementTree as ET
 
 import pytest
-from canspec import pipeline, svg
+from canspec import pipeline
 from canspec.targets import docs
+from canspec.targets.docs import svg
 from docs_support import GENERATED_DOCS, ROOT
 
 SVG = "{http://www.w3.org/2000/svg}"

@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from json_support import CARGO_TARGET, HERE, NODE_MODULES, PROTOCOL, PY_BINDINGS, RUNNER, SCHEMAS, VECTORS, require_tool, run  # noqa: E402
+from json_support import CARGO_TARGET, HERE, NODE_MODULES, PROTOCOL, PY_BINDINGS, RUNNER, SCHEMAS, VECTORS, require_tool, run
 
 
 @pytest.fixture(scope="session")
@@ -35,7 +35,7 @@ def rd():
     """The generated Python bindings package."""
     sys.path.insert(0, str(PY_BINDINGS))
     try:
-        import remote_driving  # noqa: PLC0415
+        import remote_driving
     finally:
         sys.path.remove(str(PY_BINDINGS))
     assert Path(remote_driving.__file__).resolve().is_relative_to(PY_BINDINGS)

@@ -9,10 +9,10 @@ import re
 from pathlib import Path
 from typing import Any
 
-FENCE = re.compile(r"```\s*\n(.*?)```", re.S)
-COMMENT = re.compile(r"/\*.*?\*/", re.S)
+FENCE = re.compile(r"```\s*\n(.*?)```", re.DOTALL)
+COMMENT = re.compile(r"/\*.*?\*/", re.DOTALL)
 LINE_NUMBER = re.compile(r"(?m)^\s*\d+(?=\s)")
-INLINE = re.compile(r"^`(\{.*\})`\s*$", re.M)
+INLINE = re.compile(r"^`(\{.*\})`\s*$", re.MULTILINE)
 
 
 def block_examples(text: str) -> list[dict[str, Any]]:
@@ -28,9 +28,9 @@ def inline_examples(text: str) -> list[dict[str, Any]]:
 
 
 def load(path: Path) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
-    import pytest  # noqa: PLC0415
+    import pytest
 
     if not path.is_file():
-        pytest.fail(f"the protocol document is missing: {path} (shared/seeds/ must sit beside the clone)")
+        pytest.fail(f"the protocol document is missing: {path} (the repository carries it under spec/source/)")
     text = path.read_text(encoding="utf-8")
     return block_examples(text), inline_examples(text)

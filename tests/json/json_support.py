@@ -4,11 +4,8 @@ bindings via cargo). Tools come from `.ci/setup.d/60-json.sh` (`make setup`)."""
 
 from __future__ import annotations
 
-import json
-import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -28,10 +25,7 @@ BUILD = ROOT / "build"
 NODE_MODULES = BUILD / "json-node" / "node_modules"
 CARGO_TARGET = BUILD / "json-rust"
 RUNNER = HERE / "rust_runner"
-SEED_NAME = "003_6f748d1dddd09f25.txt"
-# shared/ sits beside the clone (CI), or beside the worktrees' parent (a developer's worktree).
-SEED_CANDIDATES = [d / "shared" / "seeds" / SEED_NAME for d in (ROOT.parent, ROOT.parent.parent)]
-SEED = next((p for p in SEED_CANDIDATES if p.is_file()), SEED_CANDIDATES[0])
+SEED = ROOT / "spec" / "source" / "remote_driving_json.ocr.txt"  # the source document (spec/source/README.md)
 TOOL_TIMEOUT_S = 900
 
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 import json
 
 import jsonschema
-import pytest
 import py_runner
+import pytest
 from json_support import same
 
 

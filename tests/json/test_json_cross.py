@@ -9,7 +9,6 @@ import os
 import subprocess
 
 import pytest
-
 from json_support import CARGO_TARGET, NODE_MODULES, RUST_CRATE, TS_DECL, VECTORS, require_tool, run
 
 # Rules TypeScript's types can see (literal unions, required/excess keys, JSON types); ranges

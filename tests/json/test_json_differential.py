@@ -13,7 +13,7 @@ import random
 from typing import Any
 
 import jsonschema
-from json_support import NODE_MODULES, SCHEMAS, HERE, require_tool, run
+from json_support import HERE, NODE_MODULES, SCHEMAS, require_tool, run
 
 SEED = 20240526
 COUNT = 1500

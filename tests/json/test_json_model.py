@@ -7,9 +7,8 @@ import ast
 import dataclasses
 
 import pytest
+from canspec.ir import json_fields as jsonmodel
 from json_support import PY_BINDINGS
-
-from canspec import jsonmodel
 
 
 @pytest.fixture(scope="module")

@@ -9,8 +9,8 @@ from typing import Any
 
 import jsonschema
 import pytest
-from json_support import SEED
 from document_examples import load
+from json_support import SEED
 
 # Message order of the document's code blocks (the spec lists them in the same order).
 DOCUMENT_ORDER = ["control", "status", "shutdown_request", "shutdown_reply", "restart_request", "restart_reply",

@@ -22,9 +22,9 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import cantools  # noqa: E402
-import pkgpath  # noqa: E402  (puts the generated package on sys.path)
-from vector_runner import PHYSICAL_KINDS, attr_names, gw  # noqa: E402
+import cantools
+import pkgpath
+from vector_runner import PHYSICAL_KINDS, attr_names, gw
 
 
 def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],

@@ -1,11 +1,11 @@
-"""Fixtures of the Python-target tests: the generated package (from generated/python) and
-cantools reading the generated DBC as the independent oracle."""
+"""Fixtures of the Python-target tests: the generated package (from generated/python) (cantools
+reading the generated DBC, the `db` fixture, is in tests/conftest.py)."""
 
 from __future__ import annotations
 
 import pytest
 
-from python import pkgpath  # noqa: F401  (puts generated/python on sys.path)
+from python import pkgpath  # noqa: F401  (puts the generated package on sys.path)
 
 
 @pytest.fixture(scope="session")
@@ -13,10 +13,3 @@ def gw():
     import kaiwo_gateway
 
     return kaiwo_gateway
-
-
-@pytest.fixture(scope="session")
-def db():
-    import cantools
-
-    return cantools.database.load_file(str(pkgpath.DBC), encoding="utf-8", strict=True)

@@ -7,7 +7,7 @@ import dataclasses
 import math
 
 import pytest
-from canspec import j1939 as ref_j1939
+from canspec.ir import j1939 as ref_j1939
 
 
 def classes(gw):

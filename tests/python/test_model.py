@@ -6,7 +6,7 @@ import dataclasses
 from fractions import Fraction
 
 import pytest
-from canspec.targets import python_model as pm
+from canspec.targets.python import model as pm
 
 
 def sig_of(can, message, signal):

@@ -10,9 +10,9 @@ from fractions import Fraction
 
 import pytest
 from canspec.pipeline import compile_spec
-from repo_paths import SPEC as SPEC_DIR
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from repo_paths import SPEC as SPEC_DIR
 
 CAN = compile_spec(SPEC_DIR).spec.can  # type: ignore[union-attr]
 MESSAGES = [m for m in CAN.messages if any(s.role != "checksum" for s in m.data_signals)]
@@ -103,7 +103,7 @@ def test_checksum_check_never_raises_and_matches_decode(gw, data):
 
 def test_exact_rule_at_every_tie(gw):
     """The generated double-precision rounding equals the exact (Fraction) rule on every decimal tie of every signal."""
-    from canspec.encoding import to_raw_exact
+    from canspec.ir.encoding import to_raw_exact
 
     checked = 0
     for msg in MESSAGES:

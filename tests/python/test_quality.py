@@ -128,7 +128,7 @@ def test_missing_formatter_is_a_clear_generation_error(monkeypatch, spec):
 def test_wide_enum_fields_use_dict_lookups(tmp_path, spec, monkeypatch):
     """Enum fields wider than the tuple-lookup limit decode through a dict: render with the limit
     at 1 bit so every enum takes that path, and run the vectors through that package."""
-    from canspec.targets import python_model
+    from canspec.targets.python import model as python_model
 
     monkeypatch.setattr(python_model, "MAX_TUPLE_LOOKUP_BITS", 1)
     for rel, data in target.render_python(spec).items():

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import pkgpath  # noqa: E402  (puts the generated package on sys.path)
+import pkgpath
 
 gw = importlib.import_module("kaiwo_gateway")
 

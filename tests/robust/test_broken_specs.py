@@ -220,7 +220,7 @@ def test_gen_into_unwritable_places(tmp_path: Path) -> None:
 def test_merge_keys_and_anchors_are_not_duplicates(tmp_path: Path) -> None:
     """`<<: *base` then an explicit key overrides the merged one (YAML merge semantics); the
     first of several merged mappings wins; only keys written twice are duplicates."""
-    from canspec.yamlsource import load_yaml
+    from canspec.spec.yamlsource import load_yaml
 
     text = VALID_CAN.replace("  - {name: CTRL, sa: 0xA0}\n", "  - &ctrl {name: CTRL, sa: 0xA0}\n  - {<<: *ctrl, name: TELE, sa: 0xD0}\n")
     (tmp_path / "merge.yaml").write_text(text, encoding="utf-8")

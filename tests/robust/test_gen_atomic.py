@@ -86,7 +86,8 @@ def test_edited_spec_rewrites_the_outputs(previous: Path, expected: dict[str, by
 def test_template_error_leaves_output_untouched(
     breakage: str, previous: Path, edited_spec: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from canspec import render, resources
+    from canspec import resources
+    from canspec.render import environment as render
 
     templates = tmp_path / "templates"
     shutil.copytree(resources.templates_dir(), templates)

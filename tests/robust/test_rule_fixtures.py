@@ -14,7 +14,7 @@ from robust_util import FIXTURES, ROOT, assert_no_traceback, run_canspec
 
 INVALID = FIXTURES / "invalid"
 VALID = FIXTURES / "valid"
-RULE_MODULES = ["yamlsource.py", "loader.py", "resolve.py", "validate.py", "pipeline.py", "jsonvalue.py"]
+RULE_MODULES = ["spec/yamlsource.py", "spec/loader.py", "spec/resolve.py", "spec/validate.py", "pipeline.py", "reference/jsonvalue.py"]
 EXPECT = re.compile(r"^# expect: (?P<sev>error|warning) \[(?P<rule>[a-z0-9-]+)\] at (?:(?P<file>[^\s:]+):)?(?P<line>\d+):(?P<col>\d+)", re.MULTILINE)
 PROBLEM = re.compile(r"^(?P<where>.+?): (?P<sev>error|warning): .* \[(?P<rule>[a-z0-9-]+)\]$", re.MULTILINE)
 

@@ -23,7 +23,7 @@ def test_fallback_is_really_pure_python() -> None:
         [
             sys.executable,
             "-c",
-            PURE.replace("from canspec.cli import main; sys.exit(main(sys.argv[1:]))", "from canspec import yamlsource; print(yamlsource._CParser)"),
+            PURE.replace("from canspec.cli import main; sys.exit(main(sys.argv[1:]))", "from canspec.spec import yamlsource; print(yamlsource._CParser)"),
         ],
         env=canspec_env(),
         capture_output=True,

@@ -21,9 +21,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "generator"))
 
-from canspec import ir  # noqa: E402
-from canspec.pipeline import compile_spec  # noqa: E402
-from canspec.rust_model import RustMessage, build_crate  # noqa: E402
+from canspec import ir
+from canspec.pipeline import compile_spec
+from canspec.targets.rust.model import RustMessage, build_crate
 
 BUILD = ROOT / "build" / "rust-bench"
 DBC_CODEGEN_VERSION = "0.4.0"
@@ -46,19 +46,19 @@ def parse_dbc_code(text: str) -> tuple[dict[str, list[tuple[str, str]]], dict[st
     of each enum, and each getter's return type."""
     news: dict[str, list[tuple[str, str]]] = {}
     getters: dict[tuple[str, str], str] = {}
-    for m in re.finditer(r"^impl (\w+) \{\n(.*?)^\}", text, re.S | re.M):
+    for m in re.finditer(r"^impl (\w+) \{\n(.*?)^\}", text, re.DOTALL | re.MULTILINE):
         body = m.group(2)
-        new = re.search(r"    pub fn new\(\n?(.*?)\) -> Result<Self, CanError>", body, re.S)
+        new = re.search(r"    pub fn new\(\n?(.*?)\) -> Result<Self, CanError>", body, re.DOTALL)
         if new is None:
             continue
         params = re.findall(r"(\w+): ([\w:]+),", new.group(1))
         news[m.group(1)] = params
         for g in re.finditer(r"    pub fn (\w+)\(&self\) -> ([\w:]+) \{", body):
             getters[(m.group(1), g.group(1))] = g.group(2)
-    others = dict(re.findall(r"pub enum (\w+) \{[^}]*?_Other\((\w+)\),", text, re.S))
+    others = dict(re.findall(r"pub enum (\w+) \{[^}]*?_Other\((\w+)\),", text, re.DOTALL))
     # Named variants by value, so both sides are given the same kind of enum values.
     variants: dict[str, dict[str, str]] = {}
-    for m in re.finditer(r"impl From<(\w+)> for \w+ \{(.*?)\n\}", text, re.S):
+    for m in re.finditer(r"impl From<(\w+)> for \w+ \{(.*?)\n\}", text, re.DOTALL):
         variants[m.group(1)] = {value.strip(): name for name, value in re.findall(r"\w+::(\w+) => ([^,]+),", m.group(2)) if name != "_Other"}
     VARIANTS.update(variants)
     return news, others, getters

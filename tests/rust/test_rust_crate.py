@@ -9,11 +9,9 @@ import os
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import pytest
-
-from canspec.rust_model import build_crate
+from canspec.targets.rust.model import build_crate
 from repo_paths import GENERATED, ROOT
 
 CRATE = GENERATED / "rust"

@@ -8,12 +8,10 @@ import shutil
 from fractions import Fraction
 
 import pytest
-
-from canspec import formatters
-
-from canspec import rust_model as rm
 from canspec.generate import GenerationError, generate
+from canspec.render import formatters
 from canspec.targets import rust as rust_target
+from canspec.targets.rust import model as rm
 from repo_paths import GENERATED
 
 
@@ -113,7 +111,7 @@ def _full_rule(sig, x: float):
     """The shared runtime rule, step for step as the generated `codec::to_raw` computes it."""
     import math
 
-    from canspec.encoding import to_raw_runtime
+    from canspec.ir.encoding import to_raw_runtime
 
     f, o = float(sig.factor), float(sig.offset)
     if math.isnan(x):
@@ -135,7 +133,7 @@ def test_documented_range_shortcut_agrees_with_the_full_rule(can):
     import math
     import random
 
-    from canspec.encoding import to_raw_runtime
+    from canspec.ir.encoding import to_raw_runtime
 
     rng = random.Random(5)
     checked = 0

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from canspec.commands.common import compile_or_report
 from canspec.diff.changelog import LANGUAGES, rows
-from canspec.render import environment, render
+from canspec.render.environment import environment, render
 
 
 def _md_cell(text: str) -> str:

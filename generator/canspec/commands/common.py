@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from canspec.pipeline import Compiled, compile_spec
-from canspec.problems import Problem
+from canspec.spec.problems import Problem
 
 
 def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignore[no-untyped-def]

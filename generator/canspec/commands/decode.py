@@ -16,9 +16,9 @@ from collections import Counter
 from collections.abc import Callable
 from typing import IO, Any
 
-from canspec import framedecode
-from canspec.candump import LineError, parse_line
 from canspec.commands.common import compile_or_report
+from canspec.reference import framedecode
+from canspec.reference.candump import LineError, parse_line
 
 PROGRESS_EVERY = 65536  # lines between progress-bar updates
 PROBLEM_KINDS = ("malformed", "unknown_id", "wrong_length", "checksum")
@@ -114,7 +114,7 @@ class Reporter:
 def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
     frames = decoded = lineno = 0
-    for lineno, line in enumerate(lines, 1):  # noqa: B007 - lineno is the line count after the loop
+    for lineno, line in enumerate(lines, 1):
         progress.advance(len(line), lineno)
         try:
             frame = parse_line(line)

@@ -6,9 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from canspec import writer
 from canspec.commands.common import compile_or_report
 from canspec.generate import GenerationError, generate
+from canspec.render import writer
 from canspec.targets import registry
 
 

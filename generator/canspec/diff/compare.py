@@ -13,7 +13,7 @@ from fractions import Fraction
 
 from canspec.diff.classes import KINDS, LADDER
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, meaningful_entries
-from canspec.problems import Loc
+from canspec.spec.problems import Loc
 
 
 @dataclass(frozen=True)

@@ -11,9 +11,9 @@ from pathlib import Path
 from canspec import ir
 from canspec.diff.compare import Change, compare
 from canspec.diff.model import from_spec
-from canspec.loader import display_name, load
 from canspec.pipeline import compile_spec
-from canspec.problems import Problem, SpecError, error, warning
+from canspec.spec.loader import display_name, load
+from canspec.spec.problems import Problem, SpecError, error, warning
 
 UNRECONSTRUCTED = "unreconstructed"
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.problems import Loc
+from canspec.spec.problems import Loc
 
 # Value-table entries that only mark a raw value as unused ("保留") are not a meaning.
 _RESERVED_LABELS = ("保留", "预留")

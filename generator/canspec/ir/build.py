@@ -1,0 +1,252 @@
+"""Build the frozen IR from a resolved, validated spec. All meaning is computed here."""
+
+from __future__ import annotations
+
+import math
+from decimal import Decimal
+from fractions import Fraction
+from typing import Any
+
+from canspec import __version__, ir
+from canspec.ir import j1939
+from canspec.ir.bits import raw_type_range, segments, storage_bits
+from canspec.ir.encoding import decimal_text
+from canspec.ir.fingerprint import layout_fingerprint
+from canspec.ir.names import humanize
+from canspec.spec.loader import LoadedSpec
+from canspec.spec.resolve import Resolved, ResolvedCan
+from canspec.spec.yamlsource import LocDict
+
+
+def _frac(value: Any) -> Fraction:
+    return Fraction(value) if not isinstance(value, Decimal) else Fraction(value)
+
+
+def _value_table(name: str, table: LocDict) -> ir.ValueTable:
+    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident)) for raw, (ident, zh) in sorted(table.items())))
+
+
+def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
+    length, signed = sig["len"], bool(sig["signed"])
+    factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
+    tmin, tmax = raw_type_range(length, signed)
+    rng = sig.get("range")
+    doc_min, doc_max = (_frac(rng[0]), _frac(rng[1])) if rng is not None else (None, None)
+    # Raw values whose physical value lies in the documented range (exactly), within the type.
+    lo_q, hi_q = ((doc_min - offset) / factor, (doc_max - offset) / factor) if rng is not None else (Fraction(tmin), Fraction(tmax))
+    if lo_q > hi_q:
+        lo_q, hi_q = hi_q, lo_q
+    raw_min, raw_max = max(tmin, math.ceil(lo_q)), min(tmax, math.floor(hi_q))
+    phys_a, phys_b = raw_min * factor + offset, raw_max * factor + offset
+    phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
+    check_min = doc_min if doc_min is not None else phys_min
+    check_max = doc_max if doc_max is not None else phys_max
+    is_integer = factor.denominator == 1 and offset.denominator == 1
+    tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
+    specials = tuple(
+        ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset) for raw, (ident, zh) in sorted(sig.get("special", {}).items())
+    )
+    return ir.Signal(
+        name=sig["name"],
+        zh=sig.get("zh", ""),
+        desc=sig["desc"],
+        desc_zh=sig["desc_zh"],
+        start=sig["start"],
+        length=length,
+        signed=signed,
+        factor=factor,
+        offset=offset,
+        unit=sig["unit"],
+        role=sig["role"],
+        doc_min=doc_min,
+        doc_max=doc_max,
+        raw_type_min=tmin,
+        raw_type_max=tmax,
+        raw_min=raw_min,
+        raw_max=raw_max,
+        phys_min=phys_min,
+        phys_max=phys_max,
+        check_min=check_min,
+        check_max=check_max,
+        accept_min=check_min - tolerance,
+        accept_max=check_max + tolerance,
+        storage_bits=storage_bits(length),
+        value_table=tables.get(sig["values"]) if sig.get("values") else None,
+        specials=specials,
+        segments=segments(sig["start"], length),
+        is_integer=is_integer,
+        is_identity=factor == 1 and offset == 0,
+        since=str(sig["since"]) if sig.get("since") else None,
+        errata=tuple(sig.get("errata", ())),
+        loc=sig.loc,
+    )
+
+
+def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], node_names: tuple[str, ...]) -> ir.Message:
+    dlc = msg.get("dlc", 8)
+    signals = tuple(_signal(s, tables) for s in msg["signals"])
+    checksum = next(
+        (ir.Checksum("xor", s.name, s.start // 8, tuple(b for b in range(dlc) if b != s.start // 8)) for s in signals if s.role == "checksum"), None
+    )
+    counter = next((ir.Counter(s.name, s.length, 1 << s.length) for s in signals if s.role == "counter"), None)
+    mf = msg.get("multiframe")
+    multiframe = None
+    if mf is not None:
+        payload = next(s for s in signals if s.name == mf["payload"])
+        multiframe = ir.MultiFrame(mf["index"], mf["payload"], mf["encoding"], mf["text_length"], mf["frames"], payload.length // 8, payload.start // 8, mf["padding"])
+    receivers = msg["receivers"]
+    if receivers == "ALL":
+        receivers = tuple(n for n in node_names if n != msg["sender"])
+    fingerprint = layout_fingerprint(
+        msg["id"], dlc, [(s.role, s.start, s.length, s.signed, decimal_text(s.factor), decimal_text(s.offset)) for s in signals if not s.is_reserved]
+    )
+    return ir.Message(
+        name=msg["name"],
+        title=msg.get("title", msg["name"]),
+        zh=msg.get("zh", ""),
+        desc=msg.get("desc", ""),
+        section=str(msg.get("section", "")),
+        frame_id=msg["id"],
+        is_extended=msg.get("extended", can.doc.data["bus"]["id_format"] == "extended"),
+        dlc=dlc,
+        cycle_ms=msg["cycle_ms"],
+        sender=msg["sender"],
+        receivers=tuple(receivers),
+        j1939=j1939.decompose(msg["id"]),
+        signals=signals,
+        layout=msg.get("layout"),
+        layout_undefined=bool(msg.get("layout_undefined", False)),
+        checksum=checksum,
+        counter=counter,
+        multiframe=multiframe,
+        fingerprint=fingerprint,
+        errata=tuple(msg.get("errata", ())),
+        loc=msg.loc,
+    )
+
+
+def build_can(can: ResolvedCan) -> ir.CanProtocol:
+    data = can.doc.data
+    tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
+    nodes = tuple(
+        ir.Node(n["name"], n.get("label", n["name"]), n["sa"], n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", []))) for n in data["nodes"]
+    )
+    names = tuple(n.name for n in nodes)
+    p, b = data["protocol"], data["bus"]
+    return ir.CanProtocol(
+        name=p["name"],
+        title=p.get("title", p["name"]),
+        title_zh=p.get("title_zh", ""),
+        version=str(p["version"]),
+        document=p.get("document", ""),
+        bus=ir.Bus(b["bitrate"], b["id_format"], b["addressing"], b["byte_order"]),
+        nodes=nodes,
+        messages=tuple(_message(m, can, tables, names) for m in can.messages),
+        value_tables=tuple(tables.values()),
+    )
+
+
+def _enum(table: LocDict | None) -> tuple[ir.JsonEnumValue, ...]:
+    if not table:
+        return ()
+    return tuple(ir.JsonEnumValue(value, ident, zh, humanize(ident)) for value, (ident, zh) in table.items())
+
+
+def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
+    t = types[fdef["type"]]
+    rng = fdef.get("range")
+
+    def bound(v: Any) -> int | float | None:
+        if v is None:
+            return None
+        return int(v) if t["json"] == "integer" else float(v)
+
+    return ir.JsonField(
+        name=fdef.get("name", key),  # a shared field may give its binding identifier
+        json_name=fdef.get("json_name", key),
+        type=fdef["type"],
+        json_type=t["json"],
+        type_min=bound(t.get("min")),
+        type_max=bound(t.get("max")),
+        min=_frac(rng[0]) if rng else None,
+        max=_frac(rng[1]) if rng else None,
+        decimals=fdef.get("decimals"),
+        unit=fdef.get("unit", ""),
+        enum=_enum(fdef.get("enum")),
+        sentinels=_enum(fdef.get("sentinel")),
+        min_length=t.get("min_length"),
+        max_length=t.get("max_length"),
+        zh=fdef.get("zh", ""),
+        desc=fdef.get("desc", ""),
+        desc_zh=fdef.get("desc_zh", ""),
+        errata=tuple(fdef.get("errata", ())),
+    )
+
+
+def _plain(value: Any) -> Any:
+    """LocDict/Decimal → plain JSON-able Python values (examples)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    if isinstance(value, Decimal):
+        return float(value)
+    return value
+
+
+def build_json(doc: Any) -> ir.JsonProtocol:
+    data = doc.data
+    shared, types = data.get("fields", {}), data["types"]
+    messages = []
+    for m in data["messages"]:
+        fields = []
+        for ref in m["fields"]:
+            if isinstance(ref, str):
+                fields.append(_json_field(ref, shared[ref], types))
+            else:
+                fields.append(_json_field(ref["name"], ref, types))
+        messages.append(
+            ir.JsonMessage(
+                name=m["name"], zh=m["zh"], desc=m.get("desc", ""), cmd=m.get("cmd"), role=m.get("role"), reply_to=m.get("reply_to"),
+                sender=m["from"], receiver=m["to"], fields=tuple(fields), examples=tuple(_plain(e) for e in m.get("examples", [])),
+            )
+        )
+    p = data["protocol"]
+    return ir.JsonProtocol(
+        name=p["name"], title=p.get("title", p["name"]), title_zh=p.get("title_zh", ""), version=str(p["version"]),
+        parties=tuple(ir.JsonParty(x["name"], x.get("zh", ""), x.get("desc", "")) for x in data["parties"]),
+        messages=tuple(messages), errata=tuple(p.get("errata", ())),
+    )
+
+
+def build_changelog(doc: Any) -> ir.Changelog:
+    data = doc.data
+    versions = tuple(
+        ir.ChangeVersion(
+            version=str(v["version"]), date=v.get("date"), authors=tuple(v.get("authors", [])), label=v.get("label", ""), label_zh=v.get("label_zh", ""),
+            items=tuple(
+                ir.ChangeItem(i + 1, it["zh"], it.get("en", ""), tuple(it.get("ids", [])), tuple(it.get("errata", [])), tuple(_plain(c) for c in it.get("changes", [])))
+                for i, it in enumerate(v["items"])
+            ),
+            errata=tuple(v.get("errata", [])),
+        )
+        for v in data["versions"]
+    )
+    return ir.Changelog(data["protocol"], versions)
+
+
+def build(loaded: LoadedSpec, res: Resolved) -> ir.Spec:
+    can = build_can(res.can) if res.can is not None else None
+    jsons = tuple(build_json(d) for d in res.json)
+    name = loaded.bundle_name or (can.name if can else (jsons[0].name if jsons else "spec"))
+    version = can.version if can else (jsons[0].version if jsons else "0.0.0")
+    return ir.Spec(
+        name=name, version=version, sha256=loaded.sha256, can=can, json=jsons,
+        changelog=build_changelog(res.changelog) if res.changelog is not None else None, generator_version=__version__,
+        errata_md=_errata_text(loaded),
+    )
+
+
+def _errata_text(loaded: LoadedSpec) -> str | None:
+    path = loaded.root / "ERRATA.md"
+    return path.read_text(encoding="utf-8").replace("\r\n", "\n") if path.is_file() else None

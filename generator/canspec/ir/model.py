@@ -1,0 +1,362 @@
+"""The intermediate representation: frozen, computed once by `build.py`, read by every target.
+
+Everything a target needs is here already computed — raw ranges, storage widths, per-byte
+segments and masks, J1939 fields, fingerprints — so templates only shape text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from canspec.spec.problems import Loc
+
+# Runtime rounding rule shared by every generated language (see encoding.py):
+#   q = (physical - offset) / factor            (IEEE-754 double, in this order)
+#   raw = q >= 0 ? floor((q + 0.5) + TIE_EPSILON) : -floor((-q + 0.5) + TIE_EPSILON)
+# TIE_EPSILON absorbs the representation error of decimal inputs such as -8.99 so that a
+# decimal tie rounds away from zero exactly as the exact (Fraction) rule does.
+TIE_EPSILON = 1e-9
+TIE_EPSILON_TEXT = "1e-9"
+
+
+
+@dataclass(frozen=True)
+class ValueEntry:
+    raw: int
+    name: str  # lower_snake identifier
+    label_zh: str
+    label: str  # English label derived from the identifier
+
+
+@dataclass(frozen=True)
+class ValueTable:
+    name: str
+    entries: tuple[ValueEntry, ...]
+
+    def by_raw(self, raw: int) -> ValueEntry | None:
+        return next((e for e in self.entries if e.raw == raw), None)
+
+
+@dataclass(frozen=True)
+class SpecialValue:
+    raw: int
+    name: str
+    label_zh: str
+    label: str
+    physical: Fraction
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One byte's share of a signal (Intel order): value bits [value_shift, value_shift+width)
+    live in frame byte `byte` at bits [byte_shift, byte_shift+width)."""
+
+    byte: int
+    byte_shift: int
+    width: int
+    value_shift: int
+    mask: int  # mask within the byte: ((1 << width) - 1) << byte_shift
+
+
+@dataclass(frozen=True)
+class Signal:
+    name: str
+    zh: str
+    desc: str
+    desc_zh: str
+    start: int
+    length: int
+    signed: bool
+    factor: Fraction
+    offset: Fraction
+    unit: str
+    role: str  # "data" | "counter" | "checksum" | "reserved"
+    doc_min: Fraction | None  # documented physical range, as printed (after errata)
+    doc_max: Fraction | None
+    raw_type_min: int  # what the bits can carry
+    raw_type_max: int
+    raw_min: int  # what a physical encode may produce: documented range ∩ type range
+    raw_max: int
+    phys_min: Fraction  # physical values of raw_min / raw_max
+    phys_max: Fraction
+    check_min: Fraction  # the physical range: documented range, else the encodable one
+    check_max: Fraction
+    # What the runtime range check compares against: check_min/max widened by |factor| × TIE_EPSILON
+    # for non-integer scaling, so a value decoded in doubles (252 × 0.05 − 9 = 3.6000000000000014)
+    # re-encodes, while 3.605 is still out of [-9, 3.6].
+    accept_min: Fraction
+    accept_max: Fraction
+    storage_bits: int  # 8 / 16 / 32 / 64: narrowest unsigned/signed container
+    value_table: ValueTable | None
+    specials: tuple[SpecialValue, ...]
+    segments: tuple[Segment, ...]
+    is_integer: bool  # factor and offset are integers: physical values are integers
+    is_identity: bool  # factor 1, offset 0
+    since: str | None
+    errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
+
+    @property
+    def is_reserved(self) -> bool:
+        return self.role == "reserved"
+
+    @property
+    def is_scaled(self) -> bool:
+        return not self.is_identity
+
+    @property
+    def mask(self) -> int:
+        return (1 << self.length) - 1
+
+    @property
+    def last_bit(self) -> int:
+        return self.start + self.length - 1
+
+    def raw_allowed(self, raw: int) -> bool:
+        """Whether a physical encode may produce this raw value."""
+        return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)
+
+    def physical(self, raw: int) -> Fraction:
+        return raw * self.factor + self.offset
+
+
+@dataclass(frozen=True)
+class Checksum:
+    algorithm: str  # "xor"
+    signal: str
+    byte: int  # the byte holding the checksum
+    covers: tuple[int, ...]  # bytes XORed together
+
+
+@dataclass(frozen=True)
+class Counter:
+    signal: str
+    length: int
+    modulo: int
+
+
+@dataclass(frozen=True)
+class MultiFrame:
+    """Text (a VIN) spread over several frames, chunk i in the frame whose index signal is i."""
+
+    index_signal: str
+    payload_signal: str
+    encoding: str
+    text_length: int
+    frames: int
+    bytes_per_frame: int
+    payload_byte: int  # first frame byte of the chunk
+    padding: int
+
+
+@dataclass(frozen=True)
+class J1939Id:
+    priority: int
+    edp: int
+    dp: int
+    pf: int
+    ps: int
+    sa: int
+    pgn: int
+    da: int | None  # destination address for PDU1 (pf < 240); None for broadcast PDU2
+    is_pdu2: bool
+
+
+@dataclass(frozen=True)
+class Message:
+    name: str
+    title: str
+    zh: str
+    desc: str
+    section: str
+    frame_id: int
+    is_extended: bool
+    dlc: int
+    cycle_ms: int
+    sender: str  # a node name, or "ALL"
+    receivers: tuple[str, ...]
+    j1939: J1939Id
+    signals: tuple[Signal, ...]  # every field including reserved ones, by start bit
+    layout: str | None
+    layout_undefined: bool
+    checksum: Checksum | None
+    counter: Counter | None
+    multiframe: MultiFrame | None
+    fingerprint: int  # 32-bit hash of the wire layout
+    errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
+
+    @property
+    def last_byte(self) -> int:
+        return self.dlc - 1
+
+    @property
+    def data_signals(self) -> tuple[Signal, ...]:
+        """Signals that carry values (everything but reserved bits)."""
+        return tuple(s for s in self.signals if not s.is_reserved)
+
+    @property
+    def reserved_signals(self) -> tuple[Signal, ...]:
+        return tuple(s for s in self.signals if s.is_reserved)
+
+    def signal(self, name: str) -> Signal:
+        return next(s for s in self.signals if s.name == name)
+
+
+@dataclass(frozen=True)
+class Node:
+    name: str
+    label: str
+    sa: int
+    zh: str
+    desc: str
+    aliases: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Bus:
+    bitrate: int
+    id_format: str
+    addressing: str
+    byte_order: str
+
+    @property
+    def kbit(self) -> int | float:
+        return self.bitrate // 1000 if self.bitrate % 1000 == 0 else self.bitrate / 1000
+
+
+@dataclass(frozen=True)
+class CanProtocol:
+    name: str
+    title: str
+    title_zh: str
+    version: str
+    document: str
+    bus: Bus
+    nodes: tuple[Node, ...]
+    messages: tuple[Message, ...]  # in document order
+    value_tables: tuple[ValueTable, ...]
+
+    def message(self, name: str) -> Message:
+        return next(m for m in self.messages if m.name == name)
+
+    def by_id(self, frame_id: int) -> Message | None:
+        return next((m for m in self.messages if m.frame_id == frame_id), None)
+
+
+# --- JSON protocol ---------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class JsonEnumValue:
+    value: int | str
+    name: str
+    label_zh: str
+    label: str
+
+
+@dataclass(frozen=True)
+class JsonField:
+    name: str  # identifier in bindings
+    json_name: str  # key on the wire
+    type: str  # the document's type name: U8, S16, U64, Float32, BOOL, ASCII ...
+    json_type: str  # integer | number | boolean | string
+    type_min: int | float | None
+    type_max: int | float | None
+    min: Fraction | None  # documented value range (None: the type's range)
+    max: Fraction | None
+    decimals: int | None
+    unit: str
+    enum: tuple[JsonEnumValue, ...]
+    sentinels: tuple[JsonEnumValue, ...]
+    min_length: int | None
+    max_length: int | None
+    zh: str
+    desc: str
+    desc_zh: str
+    errata: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class JsonMessage:
+    name: str
+    zh: str
+    desc: str
+    cmd: int | None
+    role: str | None  # "request" | "reply" | None
+    reply_to: str | None
+    sender: str
+    receiver: str
+    fields: tuple[JsonField, ...]
+    examples: tuple[dict, ...]  # type: ignore[type-arg]
+
+
+@dataclass(frozen=True)
+class JsonParty:
+    name: str
+    zh: str
+    desc: str
+
+
+@dataclass(frozen=True)
+class JsonProtocol:
+    name: str
+    title: str
+    title_zh: str
+    version: str
+    parties: tuple[JsonParty, ...]
+    messages: tuple[JsonMessage, ...]
+    errata: tuple[str, ...]
+
+    def message(self, name: str) -> JsonMessage:
+        return next(m for m in self.messages if m.name == name)
+
+
+# --- change record -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ChangeItem:
+    number: int
+    zh: str
+    en: str
+    ids: tuple[int, ...]
+    errata: tuple[str, ...]
+    changes: tuple[dict, ...]  # type: ignore[type-arg]
+
+
+@dataclass(frozen=True)
+class ChangeVersion:
+    version: str
+    date: str | None
+    authors: tuple[str, ...]
+    label: str
+    label_zh: str
+    items: tuple[ChangeItem, ...]
+    errata: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Changelog:
+    protocol: str
+    versions: tuple[ChangeVersion, ...]  # oldest first
+
+
+# --- the whole spec ----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Spec:
+    name: str  # bundle name (or the CAN protocol's)
+    version: str  # the CAN protocol version (or the JSON one when there is no CAN protocol)
+    sha256: str  # hash of the spec files' bytes
+    can: CanProtocol | None
+    json: tuple[JsonProtocol, ...]
+    changelog: Changelog | None
+    generator_version: str
+    errata_md: str | None = None  # text of ERRATA.md beside the bundle, if any (rendered by the docs)
+
+    @property
+    def short_hash(self) -> str:
+        return self.sha256[:16]

@@ -1,0 +1,75 @@
+"""Identifier shapes per target language. Filters for the templates live here too: a name
+is computed in Python, never built by concatenation in a template."""
+
+from __future__ import annotations
+
+import keyword
+import re
+
+C_KEYWORDS = frozenset(
+    ["auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum", "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while", "_Bool", "_Complex", "_Imaginary", "bool", "true", "false", "class", "delete", "new", "this", "template", "typename", "namespace"]
+)
+RUST_KEYWORDS = frozenset(
+    ["as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type", "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract", "become", "box", "do", "final", "macro", "override", "priv", "typeof", "unsized", "virtual", "yield", "try"]
+)
+TS_KEYWORDS = frozenset(["break", "case", "catch", "class", "const", "continue", "debugger", "default", "delete", "do", "else", "enum", "export", "extends", "false", "finally", "for", "function", "if", "import", "in", "instanceof", "new", "null", "return", "super", "switch", "this", "throw", "true", "try", "typeof", "var", "void", "while", "with"])
+
+
+def words(name: str) -> list[str]:
+    """Split snake_case, camelCase or Title Case text into lower-case words."""
+    spaced = re.sub(r"([a-z0-9])([A-Z])", r"\1 \2", name)
+    return [w.lower() for w in re.split(r"[^A-Za-z0-9]+", spaced) if w]
+
+
+def snake(name: str) -> str:
+    return "_".join(words(name))
+
+
+def upper_snake(name: str) -> str:
+    return snake(name).upper()
+
+
+def pascal(name: str) -> str:
+    out = "".join(w[:1].upper() + w[1:] for w in words(name))
+    return f"_{out}" if out[:1].isdigit() else out
+
+
+def camel(name: str) -> str:
+    p = pascal(name)
+    return p[:1].lower() + p[1:]
+
+
+def humanize(name: str) -> str:
+    """English label from an identifier: `manual_assist` → `Manual assist`."""
+    text = " ".join(words(name))
+    return text[:1].upper() + text[1:]
+
+
+def c_ident(name: str) -> str:
+    return f"{name}_" if name in C_KEYWORDS else name
+
+
+def rust_ident(name: str) -> str:
+    return f"r#{name}" if name in RUST_KEYWORDS and name not in ("self", "Self", "crate", "super") else (f"{name}_" if name in RUST_KEYWORDS else name)
+
+
+def py_ident(name: str) -> str:
+    return f"{name}_" if keyword.iskeyword(name) or keyword.issoftkeyword(name) else name
+
+
+def ts_ident(name: str) -> str:
+    return f"{name}_" if name in TS_KEYWORDS else name
+
+
+
+FILTERS = {
+    "snake": snake,
+    "upper_snake": upper_snake,
+    "pascal": pascal,
+    "camel": camel,
+    "humanize": humanize,
+    "c_ident": c_ident,
+    "rust_ident": rust_ident,
+    "py_ident": py_ident,
+    "ts_ident": ts_ident,
+}

@@ -1,0 +1,3 @@
+"""Stage 3 — text: the one Jinja environment (environment), literal syntax per language
+(literals), identifier shapes (names), the external formatters (formatters) and the atomic
+writer (writer)."""

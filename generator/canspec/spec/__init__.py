@@ -1,0 +1,3 @@
+"""Stage 1 — the spec as written: YAML with line numbers (yamlsource), schema-checked documents
+(loader), shared layouts expanded (resolve), semantic rules (validate), and the problems they
+report (problems)."""

@@ -1,0 +1,129 @@
+"""Resolve references in the loaded documents: gather value tables, expand each message's
+shared layout with its `override` / `remove` / `add`, and fill defaults. The result is
+still plain data with locations, ready for the semantic rules in validate.py."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from canspec.spec.loader import Document, LoadedSpec
+from canspec.spec.problems import Loc, Problem, error
+from canspec.spec.yamlsource import LocDict, LocList
+
+SIGNAL_DEFAULTS: dict[str, Any] = {"factor": 1, "offset": 0, "unit": "", "role": "data", "signed": False, "desc": "", "desc_zh": ""}
+
+
+@dataclass
+class ResolvedCan:
+    doc: Document
+    value_tables: dict[str, LocDict] = field(default_factory=dict)
+    messages: list[LocDict] = field(default_factory=list)  # each with a resolved `signals` list
+
+
+@dataclass
+class Resolved:
+    can: ResolvedCan | None
+    json: list[Document]
+    changelog: Document | None
+    problems: list[Problem]
+
+
+def _copy(d: LocDict, **updates: Any) -> LocDict:
+    out = LocDict(d)
+    out.loc, out.key_locs, out.value_locs = d.loc, dict(d.key_locs), dict(d.value_locs)
+    out.update(updates)
+    return out
+
+
+def _patched(base: LocDict, patch: LocDict) -> LocDict:
+    """Signal `base` with the fields of `patch`; patched fields point at the patch."""
+    out = _copy(base)
+    for key, value in patch.items():
+        out[key] = value
+        out.key_locs[key] = patch.key_locs[key]
+        out.value_locs[key] = patch.value_locs[key]
+    return out
+
+
+def _finish_signal(sig: LocDict) -> LocDict:
+    out = _copy(sig)
+    for key, value in SIGNAL_DEFAULTS.items():
+        out.setdefault(key, value)
+    if out["role"] == "reserved":
+        out.setdefault("name", f"reserved_{out['start']}")
+        out.setdefault("zh", "保留")
+    return out
+
+
+def _expand_layout(msg: LocDict, layouts: LocDict, problems: list[Problem]) -> list[LocDict]:
+    name = msg["layout"]
+    if name not in layouts:
+        known = ", ".join(sorted(layouts)) or "none defined"
+        problems.append(error(f"message {msg['name']!r} uses unknown layout {name!r}", msg.loc_of("layout"), f"known layouts: {known}", "unknown-layout"))
+        return []
+    signals = [s for s in layouts[name]["signals"]]
+    by_name = {s.get("name", f"reserved_{s['start']}"): i for i, s in enumerate(signals)}
+    removed = set()
+    removes: LocList = msg.get("remove", LocList())
+    for i, victim in enumerate(removes):
+        if victim not in by_name:
+            problems.append(error(f"`remove` names {victim!r}, which layout {name!r} does not have", removes.loc_of(i), f"signals of {name!r}: {', '.join(by_name)}", "unknown-override"))
+        removed.add(victim)
+    overrides: LocDict = msg.get("override", LocDict())
+    for target, patch in overrides.items():
+        if target not in by_name:
+            problems.append(error(f"`override` names {target!r}, which layout {name!r} does not have", overrides.key_locs[target], f"signals of {name!r}: {', '.join(by_name)}", "unknown-override"))
+            continue
+        signals[by_name[target]] = _patched(signals[by_name[target]], patch)
+    kept = [s for s in signals if s.get("name", f"reserved_{s['start']}") not in removed]
+    return kept + list(msg.get("add", []))
+
+
+def resolve(spec: LoadedSpec) -> Resolved:
+    problems: list[Problem] = []
+    cans = spec.of_kind("can_protocol")
+    for extra in cans[1:]:
+        problems.append(error("a spec holds at most one CAN protocol", extra.data.loc, "split it into two specs", "one-can-protocol"))
+    logs = spec.of_kind("changelog")
+    for extra in logs[1:]:
+        problems.append(error("a spec holds at most one changelog", extra.data.loc, None, "one-changelog"))
+    can = None
+    if cans:
+        doc = cans[0]
+        can = ResolvedCan(doc)
+        table_sources = [d.data["value_tables"] for d in spec.of_kind("value_tables")]
+        if "value_tables" in doc.data:
+            table_sources.insert(0, doc.data["value_tables"])
+        for source in table_sources:
+            for tname, table in source.items():
+                if tname in can.value_tables:
+                    first = can.value_tables[tname].loc
+                    problems.append(error(f"value table {tname!r} is defined twice (first at {first})", source.key_locs[tname], "rename one of them", "duplicate-value-table"))
+                    continue
+                can.value_tables[tname] = table
+        layouts: LocDict = doc.data.get("layouts", LocDict())
+        for msg in doc.data["messages"]:
+            has_layout, has_signals = "layout" in msg, "signals" in msg
+            if has_layout == has_signals:
+                problems.append(error(f"message {msg['name']!r} needs exactly one of `signals` or `layout`", msg.loc, "list its signals, or name a shared layout and its differences", "signals-or-layout"))
+                continue
+            if not has_layout and any(k in msg for k in ("override", "remove", "add")):
+                problems.append(error(f"message {msg['name']!r} uses override/remove/add without a `layout`", msg.loc, None, "signals-or-layout"))
+            raw_signals = _expand_layout(msg, layouts, problems) if has_layout else list(msg["signals"])
+            signals = LocList(sorted((_finish_signal(s) for s in raw_signals), key=lambda s: (s["start"], s["len"])))
+            signals.loc = msg.loc_of("signals") if has_signals else msg.loc_of("layout")
+            signals.item_locs = [s.loc for s in signals]
+            can.messages.append(_copy(msg, signals=signals))
+    return Resolved(can, spec.of_kind("json_protocol"), logs[0] if logs else None, problems)
+
+
+def value_table(resolved: ResolvedCan, sig: LocDict) -> LocDict | None:
+    name = sig.get("values")
+    return resolved.value_tables.get(name) if name else None
+
+
+def loc(d: Any, key: str | None = None) -> Loc | None:
+    if isinstance(d, LocDict):
+        return d.loc_of(key) if key else d.loc
+    return None

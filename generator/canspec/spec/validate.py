@@ -1,0 +1,352 @@
+"""Semantic rules over a resolved spec. Each rule has an ID (shown as `[rule]` after the
+message) and an invalid fixture under tests/fixtures/invalid/ that triggers it."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from decimal import Decimal
+from fractions import Fraction
+from typing import Any
+
+from canspec.ir import j1939
+from canspec.ir.bits import raw_type_range
+from canspec.spec.problems import Problem, error, warning
+from canspec.spec.resolve import Resolved, ResolvedCan
+from canspec.spec.yamlsource import LocDict, LocList
+
+MAX_CYCLE_MS = 600_000
+Rule = Callable[[ResolvedCan], Iterator[Problem]]
+CAN_RULES: list[Rule] = []
+
+
+def rule(fn: Rule) -> Rule:
+    CAN_RULES.append(fn)
+    return fn
+
+
+def version_key(text: str) -> tuple[int, ...]:
+    return tuple(int(p) for p in str(text).split("."))
+
+
+def _finite(value: Any) -> bool:
+    """A finite number that a double can hold (generated code computes in doubles): not
+    infinite or NaN, not beyond the double range, and not so small it becomes 0."""
+    try:
+        as_double = float(value)
+    except OverflowError:  # an int beyond the double range
+        return False
+    return math.isfinite(as_double) and (as_double != 0 or value == 0)
+
+
+def _frac(value: Any) -> Fraction:
+    return Fraction(value) if not isinstance(value, Decimal) else Fraction(value)
+
+
+def _signals(msg: LocDict) -> LocList:
+    return msg["signals"]
+
+
+@rule
+def unique_names_and_ids(can: ResolvedCan) -> Iterator[Problem]:
+    names: dict[str, Any] = {}
+    ids: dict[int, Any] = {}
+    for msg in can.messages:
+        if msg["name"] in names:
+            yield error(f"message name {msg['name']!r} is used twice (first at {names[msg['name']]})", msg.loc_of("name"), "give each message its own name", "duplicate-message-name")
+        names.setdefault(msg["name"], msg.loc_of("name"))
+        if msg["id"] in ids:
+            yield error(f"frame ID 0x{msg['id']:08X} is used twice (first at {ids[msg['id']]})", msg.loc_of("id"), "each message needs its own frame ID", "duplicate-frame-id")
+        ids.setdefault(msg["id"], msg.loc_of("id"))
+        seen: dict[str, Any] = {}
+        for sig in _signals(msg):
+            if sig["name"] in seen:
+                yield error(f"signal name {sig['name']!r} is used twice in message {msg['name']!r} (first at {seen[sig['name']]})", sig.loc_of("name"), "rename one of the signals", "duplicate-signal-name")
+            seen.setdefault(sig["name"], sig.loc_of("name"))
+
+
+@rule
+def nodes(can: ResolvedCan) -> Iterator[Problem]:
+    nodes = can.doc.data["nodes"]
+    names: dict[str, Any] = {}
+    sas: dict[int, str] = {}
+    for node in nodes:
+        if node["name"] in names:
+            yield error(f"node {node['name']!r} is defined twice", node.loc_of("name"), None, "duplicate-node")
+        if node["sa"] in sas:
+            yield error(f"source address 0x{node['sa']:02X} of {node['name']!r} is already {sas[node['sa']]!r}'s", node.loc_of("sa"), "each node needs its own source address", "duplicate-node")
+        names[node["name"]] = node
+        sas.setdefault(node["sa"], node["name"])
+    aliases = {a: n["name"] for n in nodes for a in n.get("aliases", [])}
+    for msg in can.messages:
+        refs = [("sender", msg["sender"], msg.loc_of("sender"))]
+        receivers = msg["receivers"]
+        if isinstance(receivers, list):
+            refs += [("receiver", r, receivers.loc_of(i)) for i, r in enumerate(receivers)]
+        for what, ref, where in refs:
+            if ref == "ALL" or ref in names:
+                continue
+            hint = f"{ref!r} is an alias of {aliases[ref]!r}; use the node name" if ref in aliases else f"known nodes: {', '.join(names)} (or ALL)"
+            yield error(f"{what} {ref!r} of message {msg['name']!r} is not a node", where, hint, "unknown-node")
+        sender = names.get(msg["sender"])
+        if sender is not None and can.doc.data["bus"]["addressing"] == "j1939" and (msg["id"] & 0xFF) != sender["sa"]:
+            yield error(
+                f"message {msg['name']!r} is sent by {sender['name']!r} (SA 0x{sender['sa']:02X}) but its ID 0x{msg['id']:08X} carries SA 0x{msg['id'] & 0xFF:02X}",
+                msg.loc_of("id"), "fix the ID's last byte or the sender", "sender-sa")
+
+
+@rule
+def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
+    extended = can.doc.data["bus"]["id_format"] == "extended"
+    for msg in can.messages:
+        limit = 0x1FFFFFFF if msg.get("extended", extended) else 0x7FF
+        if not 0 <= msg["id"] <= limit:
+            yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if limit > 0x7FF else 11} bits", msg.loc_of("id"), None, "id-range")
+            continue
+        declared = msg.get("j1939")
+        if declared is None:
+            if can.doc.data["bus"]["addressing"] == "j1939":
+                yield error(f"message {msg['name']!r} does not declare its J1939 fields", msg.loc, "add `j1939: {priority: .., pf: .., ps: .., sa: ..}` as printed in the document", "j1939-missing")
+            continue
+        actual = j1939.decompose(msg["id"])
+        for key in ("priority", "edp", "dp", "pf", "ps", "sa"):
+            if key in declared and declared[key] != getattr(actual, key):
+                yield error(
+                    f"message {msg['name']!r}: declared J1939 {key} 0x{declared[key]:02X} but ID 0x{msg['id']:08X} has 0x{getattr(actual, key):02X}",
+                    declared.loc_of(key), "the ID is authoritative on the wire: correct the declared field (and record the erratum)", "j1939-mismatch")
+
+
+@rule
+def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        if not 0 < msg["cycle_ms"] <= MAX_CYCLE_MS:
+            yield error(f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 1..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"), "give the period in milliseconds", "cycle-time")
+        if not 0 <= msg.get("dlc", 8) <= 8:
+            yield error(f"DLC {msg['dlc']} of {msg['name']!r} is not in 0..8", msg.loc_of("dlc"), "classic CAN frames carry 0 to 8 bytes", "dlc-range")
+        if msg.get("layout_undefined") and len(_signals(msg)):
+            yield error(f"message {msg['name']!r} says `layout_undefined` but lists signals", msg.loc_of("layout_undefined"), None, "empty-message")
+        if not msg.get("layout_undefined") and not len(_signals(msg)):
+            yield error(f"message {msg['name']!r} has no signals", msg.loc, "list its signals, or set `layout_undefined: true` if the document defines none", "empty-message")
+
+
+@rule
+def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        dlc = msg.get("dlc", 8)
+        frame_bits = 8 * dlc if 0 <= dlc <= 8 else 64  # a bad DLC is reported by dlc-range
+        owners: list[str | None] = [None] * 64
+        for sig in _signals(msg):
+            start, length = sig["start"], sig["len"]
+            if not 1 <= length <= 64 or start < 0:
+                yield error(f"signal {sig['name']!r}: start {start} / length {length} is not a valid bit field", sig.loc_of("len"), "length is 1..64 bits, start is >= 0", "signal-length")
+                continue
+            if start + length > frame_bits:
+                yield error(f"signal {sig['name']!r} (bits {start}..{start + length - 1}) extends beyond the {frame_bits // 8}-byte frame of {msg['name']!r}", sig.loc_of("start"), "check start and length against the DLC", "signal-beyond-dlc")
+                continue
+            clash = {owners[b] for b in range(start, start + length) if owners[b] is not None}
+            if clash:
+                yield error(f"signal {sig['name']!r} (bits {start}..{start + length - 1}) overlaps {', '.join(sorted(map(str, clash)))} in {msg['name']!r}", sig.loc_of("start"), "check the start bits and lengths in the document's table", "signal-overlap")
+            for b in range(start, start + length):
+                owners[b] = owners[b] or sig["name"]
+            for key in ("factor", "offset"):
+                if not _finite(sig[key]):
+                    yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
+            if _finite(sig["factor"]) and sig["factor"] == 0:
+                yield error(f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
+
+
+@rule
+def ranges(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        for sig in _signals(msg):
+            rng = sig.get("range")
+            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
+                continue
+            if not all(_finite(v) for v in rng):
+                yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
+                continue
+            lo, hi = _frac(rng[0]), _frac(rng[1])
+            if lo > hi:
+                yield error(f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] has min > max", sig.loc_of("range"), "write the range as [min, max]", "range-order")
+                continue
+            tmin, tmax = raw_type_range(sig["len"], sig["signed"])
+            factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
+            ends = sorted([tmin * factor + offset, tmax * factor + offset])
+            if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, tmin, tmax):
+                yield error(
+                    f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
+                    sig.loc_of("range"), "check offset, factor, length and range against the document", "range-empty")
+            elif lo < ends[0] or hi > ends[1]:
+                yield warning(
+                    f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} can encode [{_num(ends[0])}, {_num(ends[1])}]",
+                    sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
+
+
+def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, tmin: int, tmax: int) -> bool:
+    """True when no raw value of the field maps into [lo, hi] (build.py would get raw_min > raw_max)."""
+    qa, qb = sorted([(lo - offset) / factor, (hi - offset) / factor])
+    return max(tmin, math.ceil(qa)) > min(tmax, math.floor(qb))
+
+
+def _num(f: Fraction) -> str:
+    return str(f.numerator) if f.denominator == 1 else str(float(f))
+
+
+@rule
+def value_fit(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        for sig in _signals(msg):
+            if not 1 <= sig["len"] <= 64:
+                continue
+            tmin, tmax = raw_type_range(sig["len"], sig["signed"])
+            tname = sig.get("values")
+            if tname is not None and tname not in can.value_tables:
+                yield error(f"signal {sig['name']!r} uses unknown value table {tname!r}", sig.loc_of("values"), "define it under value_tables", "unknown-value-table")
+            tables = [("value", tname, can.value_tables.get(tname))] if tname else []
+            if "special" in sig:
+                tables.append(("special value", None, sig["special"]))
+            for what, _, table in tables:
+                if table is None:
+                    continue
+                for raw in table:
+                    if not tmin <= raw <= tmax:
+                        yield error(f"{what} {raw} (0x{raw:X}) does not fit the {sig['len']}-bit field {sig['name']!r} of {msg['name']!r} ({tmin}..{tmax})", sig.loc_of("values" if what == "value" else "special"), "widen the field or drop the value", "value-out-of-field")
+            if sig["role"] == "reserved" and any(k in sig for k in ("values", "special", "range")):
+                yield warning(f"reserved field {sig['name']!r} has values or a range", sig.loc, "reserved bits carry no meaning", "reserved-with-meaning")
+
+
+@rule
+def value_table_identifiers(can: ResolvedCan) -> Iterator[Problem]:
+    for tname, table in can.value_tables.items():
+        seen: dict[str, int] = {}
+        for raw, (ident, _label) in table.items():
+            if ident in seen:
+                yield error(f"value table {tname!r}: identifier {ident!r} names both {seen[ident]} and {raw}", table.loc_of(raw), "identifiers become enum members and must be unique", "duplicate-value-name")
+            seen.setdefault(ident, raw)
+
+
+@rule
+def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        dlc = msg.get("dlc", 8)
+        for role in ("counter", "checksum"):
+            found = [s for s in _signals(msg) if s["role"] == role]
+            for extra in found[1:]:
+                yield error(f"message {msg['name']!r} has more than one {role}", extra.loc_of("role"), None, f"{role}-shape")
+        for sig in _signals(msg):
+            if sig["role"] not in ("counter", "checksum"):
+                continue
+            role = sig["role"]
+            if sig["signed"] or sig["factor"] != 1 or sig["offset"] != 0:
+                yield error(f"{role} {sig['name']!r} must be unsigned with factor 1 and offset 0", sig.loc_of("role"), None, f"{role}-shape")
+            full = [0, (1 << sig["len"]) - 1] if 1 <= sig["len"] <= 64 else None
+            rng = sig.get("range")
+            if rng is not None and full is not None and all(_finite(v) for v in rng) and [_frac(rng[0]), _frac(rng[1])] != full:
+                yield error(
+                    f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}",
+                    sig.loc_of("range"), f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
+            if role == "checksum":
+                if sig["len"] != 8 or sig["start"] % 8:
+                    yield error(f"checksum {sig['name']!r} must be one whole byte (8 bits at a multiple of 8), not {sig['len']} bits at bit {sig['start']}", sig.loc_of("start"), "the XOR checksum is byte 7 = XOR of bytes 0..6", "checksum-shape")
+                elif sig["start"] // 8 != dlc - 1:
+                    yield error(f"checksum {sig['name']!r} in byte {sig['start'] // 8} would not cover the bytes after it; the XOR checksum is the last byte of the frame", sig.loc_of("start"), f"put it at start bit {8 * (dlc - 1)}", "checksum-shape")
+            if role == "counter" and sig["len"] > 8:
+                yield error(f"counter {sig['name']!r} is {sig['len']} bits; rolling counters are 1..8 bits", sig.loc_of("len"), None, "counter-shape")
+
+
+@rule
+def multiframes(can: ResolvedCan) -> Iterator[Problem]:
+    for msg in can.messages:
+        mf = msg.get("multiframe")
+        if mf is None:
+            continue
+        sigs = {s["name"]: s for s in _signals(msg)}
+        index, payload = sigs.get(mf["index"]), sigs.get(mf["payload"])
+        for key, sig in (("index", index), ("payload", payload)):
+            if sig is None:
+                yield error(f"multiframe {key} {mf[key]!r} is not a signal of {msg['name']!r}", mf.loc_of(key), None, "multiframe")
+        if index is None or payload is None or not (1 <= index["len"] <= 64 and 1 <= payload["len"] <= 64):
+            continue  # a bad length is reported by signal-length
+        if payload["start"] % 8 or payload["len"] % 8 or payload["factor"] != 1 or payload["offset"] != 0:
+            yield error(f"multiframe payload {payload['name']!r} must be whole bytes with factor 1, offset 0", mf.loc_of("payload"), None, "multiframe")
+            continue
+        per_frame = payload["len"] // 8
+        if mf["frames"] * per_frame < mf["text_length"]:
+            yield error(f"{mf['frames']} frames × {per_frame} bytes cannot carry {mf['text_length']} characters", mf.loc_of("frames"), "raise `frames` or shorten the text", "multiframe")
+        if mf["frames"] > (1 << index["len"]):
+            yield error(f"{mf['frames']} frames need more than the {index['len']}-bit index {index['name']!r} can count", mf.loc_of("frames"), None, "multiframe")
+
+
+def _json_rules(doc: Any) -> Iterator[Problem]:
+    data = doc.data
+    types = data["types"]
+    shared = data.get("fields", LocDict())
+    parties = {p["name"] for p in data["parties"]}
+    for tname, tdef in types.items():
+        for key in ("min", "max"):
+            if key in tdef and not _finite(tdef[key]):
+                yield error(f"type {tname!r}: {key} must be a finite number within the range of a double", tdef.loc_of(key), None, "nonfinite")
+    for fname, fdef in shared.items():
+        if fdef["type"] not in types:
+            yield error(f"field {fname!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")
+    by_name: dict[str, Any] = {}
+    for msg in data["messages"]:
+        if msg["name"] in by_name:
+            yield error(f"JSON message {msg['name']!r} is defined twice", msg.loc_of("name"), None, "json-duplicate-message")
+        by_name[msg["name"]] = msg
+        for key in ("from", "to"):
+            if msg[key] not in parties:
+                yield error(f"message {msg['name']!r}: `{key}` {msg[key]!r} is not a party", msg.loc_of(key), f"parties: {', '.join(sorted(parties))}", "json-unknown-party")
+        keys: dict[str, Any] = {}
+        fields = msg["fields"]
+        for i, ref in enumerate(fields):
+            if isinstance(ref, str):
+                if ref not in shared:
+                    yield error(f"message {msg['name']!r} refers to unknown field {ref!r}", fields.loc_of(i), f"shared fields: {', '.join(shared)}", "json-unknown-field")
+                    continue
+                fdef, default_key = shared[ref], ref
+            else:
+                fdef, default_key = ref, ref["name"]
+                if fdef["type"] not in types:
+                    yield error(f"field {default_key!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")
+            key = fdef.get("json_name", default_key)
+            if key in keys:
+                yield error(f"message {msg['name']!r} has JSON key {key!r} twice", fields.loc_of(i), None, "json-duplicate-field")
+            keys[key] = fdef
+        if ("cmd" in msg) != ("role" in msg):
+            yield error(f"message {msg['name']!r}: a command message needs both `cmd` and `role`", msg.loc, None, "json-command")
+    for msg in data["messages"]:
+        if msg.get("role") == "reply":
+            req = by_name.get(msg.get("reply_to", ""))
+            if req is None or req.get("role") != "request":
+                yield error(f"reply {msg['name']!r} must name its request in `reply_to`", msg.loc_of("reply_to") if "reply_to" in msg else msg.loc, "reply_to: <a message with role: request>", "json-reply-to")
+            elif req.get("cmd") != msg.get("cmd"):
+                yield error(f"reply {msg['name']!r} (cmd {msg.get('cmd')}) answers {req['name']!r} (cmd {req.get('cmd')})", msg.loc_of("cmd"), "a reply carries its request's cmd", "json-reply-to")
+
+
+def check_changelog(res: Resolved) -> Iterator[Problem]:
+    if res.changelog is None:
+        return
+    versions = res.changelog.data["versions"]
+    for prev, cur in zip(versions, versions[1:]):
+        if version_key(cur["version"]) <= version_key(prev["version"]):
+            yield error(f"changelog version {cur['version']} does not come after {prev['version']}", cur.loc_of("version"), "list versions oldest first", "changelog-order")
+    if res.can is not None:
+        protocol_version = str(res.can.doc.data["protocol"]["version"])
+        newest = str(versions[-1]["version"])
+        if newest != protocol_version:
+            yield error(f"the changelog ends at {newest} but the protocol is version {protocol_version}", versions.loc_of(len(versions) - 1), "add the protocol's current version to the changelog", "changelog-current")
+
+
+def validate(res: Resolved) -> list[Problem]:
+    problems = list(res.problems)
+    if res.can is not None and not any(p.severity == "error" for p in problems):
+        for fn in CAN_RULES:
+            problems.extend(fn(res.can))
+    for doc in res.json:
+        problems.extend(_json_rules(doc))
+    problems.extend(check_changelog(res))
+    unique: dict[tuple[object, str], Problem] = {}
+    for p in problems:  # a shared layout reports once, not once per variant
+        unique.setdefault((p.loc, p.message), p)
+    return list(unique.values())

@@ -1,0 +1,46 @@
+"""Header-only C99 for ECUs (`c/<protocol>*.h`): see cmodel.py for the meaning, templates/c/
+for the text. Output is formatted by clang-format with the committed templates/c/.clang-format,
+run on the text in memory so that generation stays deterministic and atomic."""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+from canspec import ir, resources
+from canspec.render import formatters
+from canspec.render.environment import render
+from canspec.targets import Target
+from canspec.targets.c.model import build_model
+
+CLANG_FORMAT = "clang-format"
+STYLE_FILE = ".clang-format"
+# (template, file suffix): one header per concern, each compiles alone.
+HEADERS = (
+    ("c/common.h.j2", "_common.h"),
+    ("c/enums.h.j2", "_enums.h"),
+    ("c/messages.h.j2", "_messages.h"),
+    ("c/dispatch.h.j2", "_dispatch.h"),
+    ("c/text.h.j2", "_text.h"),
+    ("c/monitor.h.j2", "_monitor.h"),
+    ("c/umbrella.h.j2", ".h"),
+)
+
+
+def clang_format(text: str, name: str) -> str:
+    style = resources.templates_dir() / "c" / STYLE_FILE
+    return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")
+
+
+def render_c(spec: ir.Spec) -> dict[str, bytes]:
+    if spec.can is None:
+        return {}
+    model = build_model(spec)
+    rendered = {f"{model.prefix}{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
+    with ThreadPoolExecutor(max_workers=len(rendered)) as pool:  # clang-format runs in parallel processes
+        formatted = dict(zip(rendered, pool.map(clang_format, rendered.values(), rendered)))
+    out = {f"c/{name}": text.encode("utf-8") for name, text in formatted.items()}
+    out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
+    return out
+
+
+TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10)

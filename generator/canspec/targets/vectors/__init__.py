@@ -1,0 +1,166 @@
+"""Shared test vectors (`vectors/can.json`): the one file every language's round-trip tests read.
+
+Per message: the all-zero frame, the minimum and maximum of every signal, every allowed
+value-table entry and special value, rounding ties, and 50 seeded pseudo-random cases.
+Every case's physical values are encodable under the shared rules (values the documented
+range excludes — e.g. reserved enum codes — are not physical-encodable and appear only as
+raw bytes in the `raw_only` cases), and counters and checksums are filled in.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import random
+import zlib
+from fractions import Fraction
+from typing import Any
+
+from canspec import ir
+from canspec.ir.encoding import to_raw_exact, to_raw_runtime
+from canspec.reference import codec
+from canspec.targets import Target
+
+RANDOM_CASES = 50
+VECTOR_FORMAT = 1
+SAMPLE_VIN = "LKLA6G1H8LA000205"
+
+
+def base_raw(sig: ir.Signal) -> int:
+    """A valid raw value to hold a signal at while another one varies: 0 when allowed."""
+    return min(max(0, sig.raw_min), sig.raw_max)
+
+
+Scales = tuple[tuple[str, int, int, int], ...]
+
+
+def _scales(msg: ir.Message) -> Scales:
+    """Per data signal (name, a, b, d) with raw * factor + offset == (raw * a + b) / d in integers:
+    the same numbers as json_number(codec.to_physical(...)) (int when exact, else the correctly
+    rounded double of the quotient), without Fraction arithmetic for each of many cases."""
+    return tuple(
+        (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
+        for s in msg.data_signals
+    )
+
+
+def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, Any] | None = None, note: str = "", *, scales: Scales | None = None) -> dict[str, Any]:
+    raw = dict(raw)
+    data = codec.pack(msg, raw)
+    if msg.checksum is not None:
+        raw[msg.checksum.signal] = data[msg.checksum.byte]
+    phys: dict[str, Any] = {}
+    for name, a, b, d in scales if scales is not None else _scales(msg):
+        n = raw[name] * a + b
+        phys[name] = n // d if n % d == 0 else n / d
+    if physical:
+        phys.update(physical)
+    return case_record(msg, data, raw, phys, kind, note)
+
+
+def case_record(msg: ir.Message, data: bytes, raw: dict[str, int], physical: dict[str, Any], kind: str, note: str = "") -> dict[str, Any]:
+    """One case as the vectors file holds it (also written by tools/big_vectors.py)."""
+    case = {"message": msg.name, "frame_id": msg.frame_id, "data": data.hex().upper(), "raw": raw, "physical": physical, "kind": kind}
+    if note:
+        case["note"] = note
+    return case
+
+
+def _ties(sig: ir.Signal) -> list[tuple[Fraction, int]]:
+    """Physical inputs exactly halfway between two raw steps, with the raw they must round to."""
+    if sig.is_identity or sig.raw_max - sig.raw_min < 2:
+        return []
+    out = []
+    for lower in sorted({sig.raw_min, (sig.raw_min + sig.raw_max) // 2, sig.raw_max - 1}):
+        tie = (Fraction(2 * lower + 1, 2)) * sig.factor + sig.offset
+        expected = to_raw_exact(tie, sig.factor, sig.offset)
+        # The runtime (double) rule must reproduce the exact rule on the decimal tie.
+        if to_raw_runtime(float(tie), float(sig.factor), float(sig.offset)) != expected:
+            raise AssertionError(f"{sig.name}: runtime rounding disagrees at tie {tie}")
+        if sig.check_min <= tie <= sig.check_max and sig.raw_min <= expected <= sig.raw_max:
+            out.append((tie, expected))
+    return out
+
+
+def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
+    sigs = [s for s in msg.data_signals if s.role != "checksum"]
+    case = functools.partial(_case, msg, scales=_scales(msg))
+    base = {s.name: base_raw(s) for s in sigs}
+    cases = []
+    zero = {s.name: 0 for s in sigs}
+    if all(s.raw_allowed(0) for s in sigs):
+        cases.append(case(zero, "zero"))
+    else:
+        cases.append(case(zero, "raw_only", note="all-zero frame; some zero raw values lie outside the documented range"))
+    cases.append(case(base, "base"))
+    for sig in sigs:
+        cases.append(case({**base, sig.name: sig.raw_min}, "min", note=sig.name))
+        cases.append(case({**base, sig.name: sig.raw_max}, "max", note=sig.name))
+        if sig.value_table is not None:
+            for entry in sig.value_table.entries:
+                kind = "enum" if sig.raw_allowed(entry.raw) else "raw_only"
+                cases.append(case({**base, sig.name: entry.raw}, kind, note=f"{sig.name}={entry.name}"))
+        for special in sig.specials:
+            cases.append(case({**base, sig.name: special.raw}, "special", note=f"{sig.name}={special.name}"))
+        for tie, expected in _ties(sig):
+            cases.append(case({**base, sig.name: expected}, "tie", {sig.name: float(tie)}, note=f"{sig.name} tie {float(tie)!r} -> raw {expected}"))
+    rng = random.Random(zlib.crc32(msg.name.encode()))
+    for _ in range(RANDOM_CASES if sigs else 0):
+        raw = {}
+        for s in sigs:
+            if s.specials and rng.random() < 0.1:
+                raw[s.name] = rng.choice(s.specials).raw
+            else:
+                raw[s.name] = rng.randint(s.raw_min, s.raw_max)
+        cases.append(case(raw, "random"))
+    return cases
+
+
+def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
+    out = []
+    for msg in can.messages:
+        mf = msg.multiframe
+        if mf is None:
+            continue
+        for vin in (SAMPLE_VIN, "0" * mf.text_length):
+            text = vin.encode("ascii")
+            frames = []
+            for i in range(mf.frames):
+                chunk = text[i * mf.bytes_per_frame:(i + 1) * mf.bytes_per_frame].ljust(mf.bytes_per_frame, bytes([mf.padding]))
+                raw = {mf.index_signal: i, mf.payload_signal: int.from_bytes(chunk, "little")}
+                for s in msg.data_signals:
+                    raw.setdefault(s.name, base_raw(s))
+                frames.append(codec.pack(msg, raw).hex().upper())
+            out.append({"message": msg.name, "frame_id": msg.frame_id, "text": vin, "frames": frames})
+    return out
+
+
+def build_vectors(spec: ir.Spec) -> dict[str, Any]:
+    assert spec.can is not None
+    cases = [c for m in spec.can.messages for c in message_cases(m)]
+    return {
+        "format": VECTOR_FORMAT,
+        "spec": spec.name,
+        "version": spec.version,
+        "sha256": spec.sha256,
+        "generated_by": f"canspec {spec.generator_version}",
+        "rules": {
+            "physical_to_raw": "raw = round_half_away_from_zero((physical - offset) / factor); tie epsilon " + ir.TIE_EPSILON_TEXT,
+            "range": "physical outside the documented range, or a raw value that does not fit, is an error unless the raw value is a special value",
+            "reserved_bits": 0,
+            "checksum": "XOR of every other byte of the frame, in its checksum byte",
+            "kinds": "zero/base/min/max/enum/special/tie/random cases are physical-encodable; raw_only cases only decode/pack at raw level",
+        },
+        "cases": cases,
+        "multiframe": vin_cases(spec.can),
+    }
+
+
+def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
+    if spec.can is None:
+        return {}
+    text = json.dumps(build_vectors(spec), indent=1, sort_keys=True, ensure_ascii=False) + "\n"
+    return {"vectors/can.json": text.encode("utf-8")}
+
+
+TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2)

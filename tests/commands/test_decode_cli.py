@@ -1,0 +1,197 @@
+"""`canspec decode`: candump logs decoded from the spec; garbage lines, truncated frames, unknown
+IDs and bad checksums are reported, counted and never stop the run (issues 4 and 9). Values are
+checked against cantools reading the generated DBC."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+from canspec.commands import decode as decode_cmd
+from canspec.reference.candump import LineError, parse_line
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from repo_paths import CANSPEC_ENV
+
+ENV = CANSPEC_ENV
+
+
+def canspec_decode(*args, stdin=None):
+    return subprocess.run([sys.executable, "-m", "canspec", "decode", *args], input=stdin, capture_output=True, text=True, env=ENV, check=False, timeout=120)
+
+
+def sample_lines(vectors, n=200):
+    cases = [c for c in vectors["cases"] if c["kind"] != "raw_only"][:n]
+    return [f"({1700000000 + i / 100:.6f}) can0 {c['frame_id']:08X}#{c['data']}" for i, c in enumerate(cases)], cases
+
+
+def test_json_output_agrees_with_cantools(tmp_path, vectors, db):
+    lines, cases = sample_lines(vectors)
+    log = tmp_path / "bus.log"
+    log.write_text("\n".join(lines) + "\n")
+    proc = canspec_decode("--format", "json", str(log))
+    assert proc.returncode == 0, proc.stderr
+    records = [json.loads(line) for line in proc.stdout.splitlines()]
+    assert len(records) == len(cases)
+    for record, case in zip(records, cases):
+        theirs = db.decode_message(case["frame_id"], bytes.fromhex(case["data"]))
+        assert record["message"] == case["message"] and record["checksum_ok"] is True and record["channel"] == "can0"
+        for name, value in theirs.items():
+            mine = record["signals"][name]
+            if isinstance(mine, str):  # an enum or special-value name
+                assert mine == str(value), (case, name)
+            else:
+                assert mine == pytest.approx(value, abs=1e-9), (case, name)
+    assert f"{len(cases):,} lines, {len(cases):,} frames, {len(cases):,} decoded" in proc.stderr
+
+
+def test_text_output_has_enum_names_units_and_the_three_line_forms(vectors):
+    m = "1803B0A0#" + next(c["data"] for c in vectors["cases"] if c["message"] == "autocar_speed_command" and c["kind"] == "enum" and c["note"] == "gear_cmd=drive")
+    log = f"(1.500000) can1 {m}\n{m}\n  can0  {m[:8]}   [8]  {' '.join(m[9:][i:i + 2] for i in range(0, 16, 2))}\n"
+    proc = canspec_decode("-", stdin=log)
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout.splitlines()
+    assert len(out) == 3
+    assert out[0].startswith("(1.500000) can1 1803B0A0 autocar_speed_command: ")
+    assert out[1].startswith("1803B0A0 autocar_speed_command: ") and out[2].startswith("can0 1803B0A0 autocar_speed_command: ")
+    assert "gear_cmd=drive" in out[0] and "accel_cmd=" in out[0] and " m/s²" in out[0]
+    assert len({line.split(" autocar_speed_command: ")[1] for line in out}) == 1
+
+
+def test_problems_are_reported_counted_and_never_stop_the_run(vectors):
+    good = next(c for c in vectors["cases"] if c["message"] == "autocar_eps_command" and c["kind"] == "random")
+    bad_checksum = good["data"][:-2] + f"{int(good['data'][-2:], 16) ^ 0xFF:02X}"
+    log = "\n".join([
+        f"(0.1) can0 1801B0A0#{good['data']}",
+        "this is garbage",
+        "(0.2) can0 1801B0A0#0011",  # truncated
+        "(0.3) can0 18FEEE00#0011223344556677",  # unknown ID
+        f"(0.4) can0 1801B0A0#{bad_checksum}",
+        "(0.5) can0 1801B0A0#ZZ",
+        "(0.6 can0 1801B0A0#00",
+        "1801B0A0#R",
+        "7FF#00",
+        "",
+        "# a comment",
+        "(0.7) can0 1801B0A0#001122334455667788",  # too long
+        f"(0.8) can0 1801B0A0#{good['data']}",
+    ]) + "\n"
+    proc = canspec_decode("-", stdin=log)
+    assert proc.returncode == 0
+    err = proc.stderr
+    assert "<stdin>:2: error: malformed line" in err
+    assert "<stdin>:3: error: autocar_eps_command (1801B0A0): 2 data bytes, expected 8" in err
+    assert "<stdin>:4: error: unknown frame ID 18FEEE00" in err
+    assert "<stdin>:5: warning: autocar_eps_command (1801B0A0): checksum mismatch" in err
+    assert "<stdin>:6: error: malformed line: data 'ZZ'" in err
+    assert "<stdin>:8: error: malformed line: remote frame" in err
+    assert "<stdin>:9: error: unknown frame ID 7FF" in err
+    assert "<stdin>:12: error: autocar_eps_command (1801B0A0): 9 data bytes" in err
+    assert "Traceback" not in err
+    summary = err.strip().splitlines()[-1]
+    assert summary.startswith("canspec decode: 13 lines, 7 frames, 3 decoded; problems: 4 malformed, 2 unknown id, 2 wrong length, 1 checksum")
+    out = proc.stdout.splitlines()
+    assert len(out) == 3 and out[1].endswith("[checksum mismatch]") and not out[0].endswith("]")
+    assert canspec_decode("--strict", "-", stdin=log).returncode == 1
+    assert canspec_decode("--strict", "-", stdin=f"1801B0A0#{good['data']}\n").returncode == 0
+
+
+def test_binary_garbage_and_limits(tmp_path):
+    log = tmp_path / "junk.log"
+    log.write_bytes(os.urandom(20000) + b"\n\xff\xfe(1) can0 1801B0A0#00\n" + b"1801B0A0#0000000000000000\n")
+    proc = canspec_decode("--max-problems", "3", str(log))
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr
+    assert proc.stderr.count(f"{log}:") == 4  # three problems and the note that more are not shown
+    assert "more problems not shown (--max-problems 3)" in proc.stderr
+    assert proc.stdout.count("autocar_eps_command") == 1
+
+
+def test_csv_output(vectors, tmp_path):
+    lines, cases = sample_lines(vectors, 30)
+    proc = canspec_decode("--format", "csv", "-", stdin="\n".join(lines) + "\n")
+    rows = list(csv.DictReader(io.StringIO(proc.stdout)))
+    assert len(rows) == sum(len(c["raw"]) for c in cases)
+    first = cases[0]
+    mine = {r["signal"]: int(r["raw"]) for r in rows if r["timestamp"] == "1700000000.000000"}
+    assert mine == first["raw"]
+
+
+def test_unreadable_input_and_bad_spec_are_clear(tmp_path):
+    proc = canspec_decode(str(tmp_path / "missing.log"))
+    assert proc.returncode == 2 and "canspec decode: cannot read" in proc.stderr and "Traceback" not in proc.stderr
+    proc = canspec_decode(str(tmp_path))
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema_version: 1\nkind: can_protocol\nprotocol: [\n")
+    proc = canspec_decode("--spec", str(bad), "-", stdin="")
+    assert proc.returncode == 2 and "bad.yaml" in proc.stderr and "Traceback" not in proc.stderr
+
+
+class FakeTty(io.StringIO):
+    def __init__(self, tty):
+        super().__init__()
+        self.tty = tty
+
+    def isatty(self):
+        return self.tty
+
+
+@pytest.mark.parametrize("tty", [True, False])
+def test_progress_bar_only_on_a_terminal(tty, monkeypatch):
+    monkeypatch.setattr(decode_cmd, "PROGRESS_EVERY", 2)
+    stream = FakeTty(tty)
+    bar = decode_cmd.Progress(100, stream)
+    for i in range(1, 5):
+        bar.advance(25, i)
+    bar.close()
+    assert ("100.0% 4 lines" in stream.getvalue()) is tty and ("[####" in stream.getvalue()) is tty
+    assert decode_cmd.Progress(None, FakeTty(True)).total is None  # stdin: size unknown, no bar
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet=st.sampled_from("0123456789ABCDEFabcdef#.()[] Rrcan\t-x"), max_size=60) | st.text(max_size=60))
+def test_line_parser_raises_only_line_errors(line):
+    try:
+        frame = parse_line(line)
+    except LineError:
+        return
+    if frame is not None:
+        assert 0 <= frame.frame_id <= 0x1FFFFFFF and len(frame.data) <= 64
+
+
+def test_compiled_text_formatter_equals_the_generic_decoder(can, vectors):
+    from canspec.reference import framedecode
+
+    plans = framedecode.plans(can)
+    formatters = {fid: framedecode.text_formatter(plan) for fid, plan in plans.items()}
+    for case in vectors["cases"]:
+        plan = plans[case["frame_id"]]
+        v = int.from_bytes(bytes.fromhex(case["data"]), "little")
+        generic = ", ".join(framedecode.signal_text(s, raw) for s, raw, _, _ in framedecode.decode_values(plan, v))
+        assert formatters[case["frame_id"]](v) == generic
+        assert [raw for _, raw, _, _ in framedecode.decode_values(plan, v)] == [case["raw"][s.name] for s in plan.signals]
+    # signed and wide fields take the inline paths
+    s16 = framedecode.SignalPlan("t", 8, 0xFFFF, 0x8000, 0.5, -1.0, 1, "%", {})
+    s4 = framedecode.SignalPlan("n", 0, 0xF, 0x8, 1, 0, 0, "", {-8: "lowest"})
+    plan = framedecode.MessagePlan("m", 1, 8, (s16, s4), -1, 0)
+    assert framedecode.text_formatter(plan)((0xFFFF << 8) | 0x8) == "t=-1.5 %, n=lowest"
+    assert framedecode.text_formatter(plan)((0x0003 << 8) | 0x7) == "t=0.5 %, n=7"
+
+
+@pytest.mark.parametrize("line", ["-1#00", "0x1F#00", "1_0#00", "+7F#00", "123#0", "123#R", "(1.0) can0", "(1.0 can0 123#00", "can0 123 [2] 00", "can0 123 [x] 00"])
+def test_malformed_lines(line):
+    with pytest.raises(LineError):
+        parse_line(line)
+
+
+def test_line_forms():
+    assert parse_line("(1.5) vcan0 18FF0123#01.02") == ("1.5", "vcan0", 0x18FF0123, True, b"\x01\x02")
+    assert parse_line("123#") == (None, None, 0x123, False, b"")
+    assert parse_line("1806A0B0##1" + "00" * 12) == (None, None, 0x1806A0B0, True, bytes(12))
+    assert parse_line("  can0  1806A0B0   [2]  0A 0B") == (None, "can0", 0x1806A0B0, True, b"\x0a\x0b")
+    assert parse_line("   ") is None and parse_line("# comment") is None
