@@ -35,3 +35,6 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except Exception as exc:  # a bug in canspec: one clear line, never a traceback
+        print(f"canspec: internal error: {type(exc).__name__}: {exc} (please report, with the command and the spec)", file=sys.stderr)
+        return 3

@@ -15,6 +15,7 @@ from canspec.spec.loader import load
 from canspec.spec.problems import Problem, SpecError, error
 from canspec.spec.resolve import resolve
 from canspec.spec.validate import validate
+from canspec.targets import target_problems
 
 
 @dataclass
@@ -73,6 +74,7 @@ def _compile(path: Path | str | None) -> Compiled:
         return Compiled(None, problems)
     spec = build(loaded, res)
     problems += _example_problems(spec, res)
+    problems += target_problems(spec)
     if any(p.severity == "error" for p in problems):
         return Compiled(None, problems)
     return Compiled(spec, problems)

@@ -11,14 +11,8 @@ from canspec.generate import GenerationError, generate
 from canspec.targets.c import model as cmodel
 
 
-def test_literals():
-    assert cmodel.uint_lit(255) == "255u"
-    assert cmodel.uint_lit(2**40, 64) == "UINT64_C(1099511627776)"
-    assert cmodel.int_lit(-1080) == "(-1080)"
-    assert cmodel.hex_lit(0x3FF) == "0x3FFu"
+def test_decimals():
     assert cmodel.decimals(Fraction(3, 2000)) == 4  # 0.0015
-    with pytest.raises(cmodel.CModelError):
-        cmodel.uint_lit(-1)
 
 
 def test_signal_plans(spec):

@@ -85,13 +85,13 @@ def test_problems_are_reported_counted_and_never_stop_the_run(vectors):
     assert proc.returncode == 0
     err = proc.stderr
     assert "<stdin>:2: error: malformed line" in err
-    assert "<stdin>:3: error: autocar_eps_command (1801B0A0): 2 data bytes, expected 8" in err
+    assert "<stdin>:3: error: autocar_eps_command (0x1801B0A0): 2 data bytes, expected 8" in err
     assert "<stdin>:4: error: unknown frame ID 18FEEE00" in err
-    assert "<stdin>:5: warning: autocar_eps_command (1801B0A0): checksum mismatch" in err
+    assert "<stdin>:5: warning: autocar_eps_command (0x1801B0A0): checksum mismatch" in err
     assert "<stdin>:6: error: malformed line: data 'ZZ'" in err
     assert "<stdin>:8: error: malformed line: remote frame" in err
     assert "<stdin>:9: error: unknown frame ID 7FF" in err
-    assert "<stdin>:12: error: autocar_eps_command (1801B0A0): 9 data bytes" in err
+    assert "<stdin>:12: error: autocar_eps_command (0x1801B0A0): 9 data bytes" in err
     assert "Traceback" not in err
     summary = err.strip().splitlines()[-1]
     assert summary.startswith("canspec decode: 13 lines, 7 frames, 3 decoded; problems: 4 malformed, 2 unknown id, 2 wrong length, 1 checksum")
@@ -164,23 +164,33 @@ def test_line_parser_raises_only_line_errors(line):
         assert 0 <= frame.frame_id <= 0x1FFFFFFF and len(frame.data) <= 64
 
 
-def test_compiled_text_formatter_equals_the_generic_decoder(can, vectors):
-    from canspec.reference import framedecode
+def test_compiled_text_decoder_equals_the_generic_codec(can, vectors, tmp_path):
+    from canspec.pipeline import compile_spec
+    from canspec.reference import codec
 
-    plans = framedecode.plans(can)
-    formatters = {fid: framedecode.text_formatter(plan) for fid, plan in plans.items()}
+    decoders = {m.frame_id: (m, codec.text_decoder(m)) for m in can.messages}
     for case in vectors["cases"]:
-        plan = plans[case["frame_id"]]
-        v = int.from_bytes(bytes.fromhex(case["data"]), "little")
-        generic = ", ".join(framedecode.signal_text(s, raw) for s, raw, _, _ in framedecode.decode_values(plan, v))
-        assert formatters[case["frame_id"]](v) == generic
-        assert [raw for _, raw, _, _ in framedecode.decode_values(plan, v)] == [case["raw"][s.name] for s in plan.signals]
-    # signed and wide fields take the inline paths
-    s16 = framedecode.SignalPlan("t", 8, 0xFFFF, 0x8000, 0.5, -1.0, 1, "%", {})
-    s4 = framedecode.SignalPlan("n", 0, 0xF, 0x8, 1, 0, 0, "", {-8: "lowest"})
-    plan = framedecode.MessagePlan("m", 1, 8, (s16, s4), -1, 0)
-    assert framedecode.text_formatter(plan)((0xFFFF << 8) | 0x8) == "t=-1.5 %, n=lowest"
-    assert framedecode.text_formatter(plan)((0x0003 << 8) | 0x7) == "t=0.5 %, n=7"
+        msg, decoder = decoders[case["frame_id"]]
+        data = bytes.fromhex(case["data"])
+        raw = codec.unpack(msg, data)
+        assert raw == {s.name: case["raw"][s.name] for s in msg.data_signals}
+        assert decoder(codec.frame_word(data)) == ", ".join(codec.signal_text(s, raw[s.name]) for s in msg.data_signals)
+    # signed and wide fields take the inline paths; a label on a signed field
+    spec = tmp_path / "s.yaml"
+    spec.write_text(
+        "schema_version: 1\nkind: can_protocol\nprotocol: {name: t, version: 1.0.0}\n"
+        "bus: {bitrate: 500000, id_format: standard, addressing: none, byte_order: little_endian}\nnodes: [{name: A}]\n"
+        "value_tables: {low: {-8: lowest}}\n"
+        "messages:\n  - {name: m, id: 1, sender: A, receivers: ALL, dlc: 3, signals: [\n"
+        "      {name: n, start: 0, len: 4, signed: true, values: low},\n"
+        "      {name: t, start: 8, len: 16, signed: true, factor: 0.5, offset: -1, unit: '%'}]}\n",
+        encoding="utf-8",
+    )
+    compiled = compile_spec(spec)
+    assert compiled.spec is not None, [p.format() for p in compiled.problems]
+    decoder = codec.text_decoder(compiled.spec.can.messages[0])
+    assert decoder((0xFFFF << 8) | 0x8) == "n=lowest, t=-1.5 %"
+    assert decoder((0x0003 << 8) | 0x7) == "n=7, t=0.5 %"
 
 
 @pytest.mark.parametrize("line", ["-1#00", "0x1F#00", "1_0#00", "+7F#00", "123#0", "123#R", "(1.0) can0", "(1.0 can0 123#00", "can0 123 [2] 00", "can0 123 [x] 00"])

@@ -95,3 +95,57 @@ def test_every_decoded_value_re_encodes(can):
                 assert codec.to_raw(sig, raw * f + o) == raw, (msg.name, sig.name, raw)
                 checked += 1
     assert checked > 20_000
+
+
+# --- what the runtime rule guarantees, for any signal (ir/encoding.py) --------------------------
+
+from decimal import Decimal  # noqa: E402
+
+from canspec.ir.encoding import TIE_GUARANTEE  # noqa: E402
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+FACTORS = st.builds(lambda m, e: Fraction(m) * Fraction(10) ** e, st.integers(-999, 999).filter(bool), st.integers(-6, 3))
+OFFSETS = st.builds(lambda m, e: Fraction(m) * Fraction(10) ** e, st.integers(-(10**6), 10**6), st.integers(-3, 3))
+
+
+def _decimal_float(value: Fraction) -> tuple[str, float]:
+    text = decimal_text(value)
+    return text, float(Decimal(text))
+
+
+@settings(max_examples=3000, deadline=None)
+@given(FACTORS, OFFSETS, st.integers(-(2**40), 2**40), st.sampled_from([Fraction(1, 2), Fraction(0), Fraction(333, 1000), Fraction(-1, 4), Fraction(499, 1000)]))
+def test_runtime_equals_exact_within_the_guarantee(factor, offset, k, frac):
+    q = k + frac  # the exact quotient: a tie, a step, or well away from a tie
+    physical = q * factor + offset
+    if (abs(physical) + abs(offset)) / abs(factor) >= TIE_GUARANTEE:
+        return
+    text, x = _decimal_float(physical)
+    assert to_raw_runtime(x, float(factor), float(offset)) == to_raw_exact(text, factor, offset), (text, factor, offset)
+
+
+@settings(max_examples=3000, deadline=None)
+@given(FACTORS, OFFSETS, st.integers(-(2**62), 2**62), st.sampled_from([Fraction(1, 2), Fraction(0), Fraction(-1, 2), Fraction(142857, 10**6)]))
+def test_runtime_is_within_one_of_exact_everywhere(factor, offset, k, frac):
+    q = k + frac
+    physical = q * factor + offset
+    text, x = _decimal_float(physical)
+    f, o = float(factor), float(offset)
+    got = to_raw_runtime(x, f, o)
+    assert abs(got - to_raw_exact(text, factor, offset)) <= 1 + abs(q) * Fraction(2) ** -50 + abs(Fraction(o) / Fraction(f)) * Fraction(2) ** -50
+    qd = (x - o) / f
+    if abs(qd) >= 2**52:  # every double is an integer there: taken as is, never rounded to even
+        assert got == int(qd)
+
+
+def test_half_is_not_rounded_to_even_near_the_exact_limit():
+    # 2^52 - 0.5 is a double; adding 0.5 and flooring gives 2^52 (away from zero), and 2^52 + 1
+    # is taken as it is (q + 0.5 would round to even: 2^52 + 2).
+    assert to_raw_runtime(2**52 - 0.5, 1.0, 0.0) == 2**52
+    assert to_raw_runtime(2**52 + 1.0, 1.0, 0.0) == 2**52 + 1
+    assert to_raw_runtime(-(2**52) - 1.0, 1.0, 0.0) == -(2**52) - 1
+    # a 32-bit field scaled by 0.1: this tie lies beyond the guarantee, and the rule is the
+    # rounding of the double quotient (4294966294.4999995 → ...94), within one of the exact 95
+    assert to_raw_exact("429496629.45", Fraction(1, 10), Fraction(0)) == 4294966295
+    assert to_raw_runtime(429496629.45, 0.1, 0.0) in (4294966294, 4294966295)

@@ -14,7 +14,12 @@ from robust_util import FIXTURES, ROOT, assert_no_traceback, run_canspec
 
 INVALID = FIXTURES / "invalid"
 VALID = FIXTURES / "valid"
-RULE_MODULES = ["spec/yamlsource.py", "spec/loader.py", "spec/resolve.py", "spec/validate.py", "pipeline.py", "reference/jsonvalue.py"]
+PACKAGE = ROOT / "generator" / "canspec"
+# Every module that reports spec problems: the spec stage, the pipeline, and each target's refusals
+# of what it cannot express (targets/<name>/*.py); diff/ reports on revisions, not on one spec.
+RULE_MODULES = sorted(
+    str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py") if not p.is_relative_to(PACKAGE / "diff") and "error(" in p.read_text(encoding="utf-8")
+)
 EXPECT = re.compile(r"^# expect: (?P<sev>error|warning) \[(?P<rule>[a-z0-9-]+)\] at (?:(?P<file>[^\s:]+):)?(?P<line>\d+):(?P<col>\d+)", re.MULTILINE)
 PROBLEM = re.compile(r"^(?P<where>.+?): (?P<sev>error|warning): .* \[(?P<rule>[a-z0-9-]+)\]$", re.MULTILINE)
 
@@ -60,7 +65,7 @@ def _rule_ids() -> tuple[set[str], list[str], list[str]]:
     patterns: list[str] = []
     unnamed: list[str] = []
     for name in RULE_MODULES:
-        path = ROOT / "generator" / "canspec" / name
+        path = PACKAGE / name
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("error", "warning")):
                 continue
@@ -69,7 +74,7 @@ def _rule_ids() -> tuple[set[str], list[str], list[str]]:
                 ids.add(arg.value)
             elif isinstance(arg, ast.JoinedStr):
                 patterns.append("".join(re.escape(v.value) if isinstance(v, ast.Constant) else "[a-z0-9]+" for v in arg.values))
-            elif name in ("resolve.py", "validate.py"):
+            elif name in ("spec/resolve.py", "spec/validate.py") or name.startswith("targets/"):
                 unnamed.append(f"{name}:{node.lineno}")
     return ids, patterns, unnamed
 

@@ -19,13 +19,7 @@ def sig(can, message, name):
     return can.message(message).signal(name)
 
 
-def test_literals():
-    assert rm.f64_lit(Fraction(-1080)) == "-1080.0"
-    assert rm.f64_lit(Fraction(1, 10)) == "0.1"
-    assert rm.f64_lit(Fraction(3, 2000)) == "0.0015"
-    assert rm.int_lit(1023) == "1023"
-    assert rm.int_lit((1 << 64) - 1) == "0xFFFF_FFFF_FFFF_FFFF"
-    assert rm.int_lit(0x1_0000) == "0x1_0000"
+def test_doc_text():
     assert rm.doc_text("[0, 3] <x> `y`") == "\\[0, 3\\] &lt;x&gt; 'y'"
 
 

@@ -16,8 +16,9 @@ from collections import Counter
 from collections.abc import Callable
 from typing import IO, Any
 
+from canspec import ir
 from canspec.commands.common import compile_or_report
-from canspec.reference import framedecode
+from canspec.reference import codec
 from canspec.reference.candump import LineError, parse_line
 
 PROGRESS_EVERY = 65536  # lines between progress-bar updates
@@ -55,36 +56,43 @@ class Output:
         if self.csv is not None:
             self.csv.writerow(["timestamp", "channel", "frame_id", "message", "signal", "raw", "value", "unit", "checksum_ok"])
 
-    def formatter(self, plan: framedecode.MessagePlan) -> Callable[[int], str]:
-        fmt = self._formatters.get(plan.frame_id)
+    def formatter(self, msg: ir.Message) -> Callable[[int], str]:
+        fmt = self._formatters.get(msg.frame_id)
         if fmt is None:
-            fmt = self._formatters[plan.frame_id] = framedecode.text_formatter(plan)
+            fmt = self._formatters[msg.frame_id] = codec.text_decoder(msg)
         return fmt
 
-    def frame(self, frame: Any, plan: framedecode.MessagePlan, v: int, checksum_ok: bool) -> None:
-        fid = f"{frame.frame_id:08X}"
+    def frame(self, frame: Any, msg: ir.Message, v: int, checksum_ok: bool) -> None:
+        fid = f"{frame.frame_id:08X}" if msg.is_extended else f"{frame.frame_id:03X}"
         if self.fmt == "text":
-            fields = self.formatter(plan)(v)
+            fields = self.formatter(msg)(v)
             head = f"({frame.timestamp}) {frame.channel} " if frame.timestamp is not None else (f"{frame.channel} " if frame.channel else "")
             flag = "" if checksum_ok else "  [checksum mismatch]"
-            self.out.write(f"{head}{fid} {plan.name}: {fields}{flag}\n")
+            self.out.write(f"{head}{fid} {msg.name}: {fields}{flag}\n")
             return
-        values = framedecode.decode_values(plan, v)
+        values = [(s, codec.raw_value(s, v)) for s in msg.data_signals]
         if self.fmt == "json":
             record = {
                 "timestamp": float(frame.timestamp) if _is_number(frame.timestamp) else frame.timestamp,
                 "channel": frame.channel,
                 "frame_id": fid,
-                "message": plan.name,
-                "signals": {s.name: label if label is not None else (round(phys, s.decimals) if s.decimals else phys) for s, _, phys, label in values},
+                "message": msg.name,
+                "signals": {s.name: _json_value(s, raw) for s, raw in values},
                 "checksum_ok": checksum_ok,
             }
             self.out.write(json.dumps(record, ensure_ascii=False) + "\n")
         else:
             assert self.csv is not None
-            for s, raw, phys, label in values:
-                self.csv.writerow([frame.timestamp or "", frame.channel or "", fid, plan.name, s.name, raw,
-                                   label if label is not None else framedecode.value_text(s, phys, None), s.unit, int(checksum_ok)])
+            for s, raw in values:
+                self.csv.writerow([frame.timestamp or "", frame.channel or "", fid, msg.name, s.name, raw, codec.value_text(s, raw), s.unit, int(checksum_ok)])
+
+
+def _json_value(sig: ir.Signal, raw: int) -> str | float | int:
+    label = sig.label_of(raw)
+    if label is not None:
+        return label.name
+    phys = codec.physical_number(sig, raw)
+    return round(phys, sig.decimals) if sig.decimals else phys
 
 
 def _is_number(text: str | None) -> bool:
@@ -111,7 +119,7 @@ class Reporter:
             self.stream.write(f"{self.source}: more problems not shown (--max-problems {self.limit}); they are counted in the summary\n")
 
 
-def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.MessagePlan], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
+def decode_stream(lines: IO[str], source: str, by_id: dict[tuple[int, bool], ir.Message], output: Output, report: Reporter, progress: Progress) -> Counter[str]:
     stats: Counter[str] = Counter()
     frames = decoded = lineno = 0
     for lineno, line in enumerate(lines, 1):
@@ -124,18 +132,18 @@ def decode_stream(lines: IO[str], source: str, plans: dict[int, framedecode.Mess
         if frame is None:
             continue
         frames += 1
-        plan = plans.get(frame.frame_id) if frame.extended else None
-        if plan is None:
+        msg = by_id.get((frame.frame_id, frame.extended))
+        if msg is None:
             report("unknown_id", lineno, f"unknown frame ID {frame.frame_id:0{8 if frame.extended else 3}X}")
             continue
-        if len(frame.data) != plan.dlc:
-            report("wrong_length", lineno, f"{plan.name} ({plan.frame_id:08X}): {len(frame.data)} data bytes, expected {plan.dlc} (truncated or padded frame)")
+        if len(frame.data) != msg.dlc:
+            report("wrong_length", lineno, f"{msg.name} ({msg.id_text}): {len(frame.data)} data bytes, expected {msg.dlc} (truncated or padded frame)")
             continue
-        v = int.from_bytes(frame.data, "little")
-        ok = framedecode.checksum_ok(plan, v)
+        ok = codec.checksum_ok(msg, frame.data)
         if not ok:
-            report("checksum", lineno, f"{plan.name} ({plan.frame_id:08X}): checksum mismatch (byte {plan.checksum_shift // 8} is 0x{(v >> plan.checksum_shift) & 0xFF:02X})")
-        output.frame(frame, plan, v, ok)
+            assert msg.checksum is not None
+            report("checksum", lineno, f"{msg.name} ({msg.id_text}): checksum mismatch (byte {msg.checksum.byte} is 0x{frame.data[msg.checksum.byte]:02X})")
+        output.frame(frame, msg, codec.frame_word(frame.data), ok)
         decoded += 1
     stats.update(lines=lineno, frames=frames, decoded=decoded)
     return stats
@@ -149,7 +157,7 @@ def run(args: argparse.Namespace) -> int:
     if compiled.spec.can is None:
         print("canspec decode: the spec has no CAN protocol", file=sys.stderr)
         return 2
-    plans = framedecode.plans(compiled.spec.can)
+    by_id = {(m.frame_id, m.is_extended): m for m in compiled.spec.can.messages}
     if args.logfile == "-":
         stream: IO[str] = sys.stdin
         source, size = "<stdin>", None
@@ -165,7 +173,7 @@ def run(args: argparse.Namespace) -> int:
     progress = Progress(size, sys.stderr)
     started = time.perf_counter()
     try:
-        stats = decode_stream(stream, source, plans, Output(args.format, sys.stdout), report, progress)
+        stats = decode_stream(stream, source, by_id, Output(args.format, sys.stdout), report, progress)
     except OSError as exc:
         print(f"canspec decode: cannot read {source}: {exc.strerror}", file=sys.stderr)
         return 2

@@ -24,19 +24,3 @@ def storage_bits(length: int) -> int:
         if length <= bits:
             return bits
     raise ValueError(f"signal of {length} bits does not fit 64 bits")
-
-
-def raw_type_range(length: int, signed: bool) -> tuple[int, int]:
-    if signed:
-        return -(1 << (length - 1)), (1 << (length - 1)) - 1
-    return 0, (1 << length) - 1
-
-
-def bit_owner_map(fields: list[tuple[str, int, int]], frame_bits: int) -> list[str | None]:
-    """For overlap checks: which field owns each bit (first claimant wins)."""
-    owners: list[str | None] = [None] * frame_bits
-    for name, start, length in fields:
-        for bit in range(start, min(start + length, frame_bits)):
-            if owners[bit] is None:
-                owners[bit] = name
-    return owners

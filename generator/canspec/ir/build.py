@@ -2,41 +2,39 @@
 
 from __future__ import annotations
 
-import math
 from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
 from canspec import __version__, ir
 from canspec.ir import j1939
-from canspec.ir.bits import raw_type_range, segments, storage_bits
-from canspec.ir.encoding import decimal_text
+from canspec.ir.bits import segments, storage_bits
+from canspec.ir.encoding import decimal_text, decimals, raw_range, raw_type_range
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
-from canspec.spec.resolve import Resolved, ResolvedCan
+from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict
 
 
-def _frac(value: Any) -> Fraction:
-    return Fraction(value) if not isinstance(value, Decimal) else Fraction(value)
-
-
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
-    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident)) for raw, (ident, zh) in sorted(table.items())))
+    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident)) for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in table.items())))
+
+
+def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) -> tuple[ir.Label, ...]:
+    named = {e.raw: ir.Label(e.raw, e.name, e.label_zh, e.label, False) for e in (table.entries if table else ())}
+    for s in specials:
+        named.setdefault(s.raw, ir.Label(s.raw, s.name, s.label_zh, s.label, True))
+    return tuple(named[raw] for raw in sorted(named))
 
 
 def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     length, signed = sig["len"], bool(sig["signed"])
-    factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
+    factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
     tmin, tmax = raw_type_range(length, signed)
     rng = sig.get("range")
-    doc_min, doc_max = (_frac(rng[0]), _frac(rng[1])) if rng is not None else (None, None)
-    # Raw values whose physical value lies in the documented range (exactly), within the type.
-    lo_q, hi_q = ((doc_min - offset) / factor, (doc_max - offset) / factor) if rng is not None else (Fraction(tmin), Fraction(tmax))
-    if lo_q > hi_q:
-        lo_q, hi_q = hi_q, lo_q
-    raw_min, raw_max = max(tmin, math.ceil(lo_q)), min(tmax, math.floor(hi_q))
+    doc_min, doc_max = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None else (None, None)
+    raw_min, raw_max = raw_range(length, signed, factor, offset, (doc_min, doc_max) if rng is not None else None)
     phys_a, phys_b = raw_min * factor + offset, raw_max * factor + offset
     phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
     check_min = doc_min if doc_min is not None else phys_min
@@ -44,8 +42,10 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     is_integer = factor.denominator == 1 and offset.denominator == 1
     tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
     specials = tuple(
-        ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset) for raw, (ident, zh) in sorted(sig.get("special", {}).items())
+        ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset)
+        for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
     )
+    table = tables.get(sig["values"]) if sig.get("values") else None
     return ir.Signal(
         name=sig["name"],
         zh=sig.get("zh", ""),
@@ -71,9 +71,13 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         accept_min=check_min - tolerance,
         accept_max=check_max + tolerance,
         storage_bits=storage_bits(length),
-        value_table=tables.get(sig["values"]) if sig.get("values") else None,
+        value_table=table,
         specials=specials,
         segments=segments(sig["start"], length),
+        word_mask=((1 << length) - 1) << sig["start"],
+        sign_bit=1 << (length - 1) if signed else 0,
+        labels=_labels(table, specials),
+        decimals=0 if is_integer else max(decimals(factor), decimals(offset)),
         is_integer=is_integer,
         is_identity=factor == 1 and offset == 0,
         since=str(sig["since"]) if sig.get("since") else None,
@@ -85,10 +89,8 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
 def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], node_names: tuple[str, ...]) -> ir.Message:
     dlc = msg.get("dlc", 8)
     signals = tuple(_signal(s, tables) for s in msg["signals"])
-    checksum = next(
-        (ir.Checksum("xor", s.name, s.start // 8, tuple(b for b in range(dlc) if b != s.start // 8)) for s in signals if s.role == "checksum"), None
-    )
-    counter = next((ir.Counter(s.name, s.length, 1 << s.length) for s in signals if s.role == "counter"), None)
+    checksum = next((_checksum(s, dlc) for s in signals if s.role == "checksum"), None)
+    counter = next((ir.Counter(s.name, s.length, 1 << s.length, s.start, s.word_mask) for s in signals if s.role == "counter"), None)
     mf = msg.get("multiframe")
     multiframe = None
     if mf is not None:
@@ -100,6 +102,9 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
     fingerprint = layout_fingerprint(
         msg["id"], dlc, [(s.role, s.start, s.length, s.signed, decimal_text(s.factor), decimal_text(s.offset)) for s in signals if not s.is_reserved]
     )
+    bus = can.doc.data["bus"]
+    extended = msg.get("extended", bus["id_format"] == "extended")
+    cycle = msg.get("cycle_ms") or None  # 0 or absent: event-driven
     return ir.Message(
         name=msg["name"],
         title=msg.get("title", msg["name"]),
@@ -107,12 +112,14 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         desc=msg.get("desc", ""),
         section=str(msg.get("section", "")),
         frame_id=msg["id"],
-        is_extended=msg.get("extended", can.doc.data["bus"]["id_format"] == "extended"),
+        is_extended=extended,
+        id_text=f"0x{msg['id']:08X}" if extended else f"0x{msg['id']:03X}",
         dlc=dlc,
-        cycle_ms=msg["cycle_ms"],
+        cycle_ms=cycle,
+        timeout_ms=cycle * ir.MONITOR_TIMEOUT_CYCLES if cycle else None,
         sender=msg["sender"],
         receivers=tuple(receivers),
-        j1939=j1939.decompose(msg["id"]),
+        j1939=j1939.decompose(msg["id"]) if bus["addressing"] == "j1939" else None,
         signals=signals,
         layout=msg.get("layout"),
         layout_undefined=bool(msg.get("layout_undefined", False)),
@@ -125,11 +132,17 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
     )
 
 
+def _checksum(sig: ir.Signal, dlc: int) -> ir.Checksum:
+    byte = sig.start // 8
+    covers = tuple(b for b in range(dlc) if b != byte)
+    return ir.Checksum("xor", sig.name, byte, covers, sum(0xFF << (8 * b) for b in covers))
+
+
 def build_can(can: ResolvedCan) -> ir.CanProtocol:
     data = can.doc.data
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
     nodes = tuple(
-        ir.Node(n["name"], n.get("label", n["name"]), n["sa"], n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", []))) for n in data["nodes"]
+        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", []))) for n in data["nodes"]
     )
     names = tuple(n.name for n in nodes)
     p, b = data["protocol"], data["bus"]
@@ -149,7 +162,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
 def _enum(table: LocDict | None) -> tuple[ir.JsonEnumValue, ...]:
     if not table:
         return ()
-    return tuple(ir.JsonEnumValue(value, ident, zh, humanize(ident)) for value, (ident, zh) in table.items())
+    return tuple(ir.JsonEnumValue(value, ident, zh, humanize(ident)) for value, (ident, zh) in ((v, label_pair(p)) for v, p in table.items()))
 
 
 def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
@@ -168,8 +181,8 @@ def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
         json_type=t["json"],
         type_min=bound(t.get("min")),
         type_max=bound(t.get("max")),
-        min=_frac(rng[0]) if rng else None,
-        max=_frac(rng[1]) if rng else None,
+        min=Fraction(rng[0]) if rng else None,
+        max=Fraction(rng[1]) if rng else None,
         decimals=fdef.get("decimals"),
         unit=fdef.get("unit", ""),
         enum=_enum(fdef.get("enum")),
@@ -207,7 +220,7 @@ def build_json(doc: Any) -> ir.JsonProtocol:
                 fields.append(_json_field(ref["name"], ref, types))
         messages.append(
             ir.JsonMessage(
-                name=m["name"], zh=m["zh"], desc=m.get("desc", ""), cmd=m.get("cmd"), role=m.get("role"), reply_to=m.get("reply_to"),
+                name=m["name"], zh=m.get("zh", ""), desc=m.get("desc", ""), cmd=m.get("cmd"), role=m.get("role"), reply_to=m.get("reply_to"),
                 sender=m["from"], receiver=m["to"], fields=tuple(fields), examples=tuple(_plain(e) for e in m.get("examples", [])),
             )
         )
@@ -225,7 +238,7 @@ def build_changelog(doc: Any) -> ir.Changelog:
         ir.ChangeVersion(
             version=str(v["version"]), date=v.get("date"), authors=tuple(v.get("authors", [])), label=v.get("label", ""), label_zh=v.get("label_zh", ""),
             items=tuple(
-                ir.ChangeItem(i + 1, it["zh"], it.get("en", ""), tuple(it.get("ids", [])), tuple(it.get("errata", [])), tuple(_plain(c) for c in it.get("changes", [])))
+                ir.ChangeItem(i + 1, it.get("zh", ""), it.get("en", ""), tuple(it.get("ids", [])), tuple(it.get("errata", [])), tuple(_plain(c) for c in it.get("changes", [])))
                 for i, it in enumerate(v["items"])
             ),
             errata=tuple(v.get("errata", [])),

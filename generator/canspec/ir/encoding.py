@@ -1,8 +1,23 @@
 """Physical ↔ raw conversion rules every generated language shares.
 
-`to_raw_exact` is the reference: exact rational arithmetic on the decimal the user meant.
-`to_raw_runtime` is the same rule as the generated code computes it in IEEE doubles; tests
-prove the two agree on every decimal value and tie of every signal in the spec.
+`to_raw_exact` is the reference: exact rational arithmetic on the decimal the user meant —
+round half away from zero. `to_raw_runtime` is the rule as every generated language computes
+it, step for step in IEEE-754 doubles (see model.TIE_EPSILON / EXACT_LIMIT), so C, Python and
+Rust give the same raw value for the same double input, for every field width up to 64 bits.
+
+What the runtime rule guarantees (tested in tests/ir/test_encoding_rules.py), with q the exact
+quotient (physical - offset) / factor of the decimal the user meant:
+- Where (|physical| + |offset|) / |factor| < TIE_GUARANTEE (2^21), the result equals the exact
+  rule on every tie and on every input at least 2·TIE_EPSILON (in raw steps) away from a tie:
+  the double errors of the input, the subtraction and the division stay below
+  3·2^-32 < TIE_EPSILON there. Every tie and every value of a field of up to 21 bits is covered
+  unless its offset dwarfs its steps.
+- Above that, up to 2^52, doubles cannot resolve every tie of the decimal the user meant (at
+  2^32 their spacing is 2^-20): the result is the rounding of the double quotient itself (to
+  nearest, half away from zero, TIE_EPSILON included), within 1 of the exact rule, and equal to
+  it wherever q is further than TIE_EPSILON + 2^-50·|q| from a tie.
+- From 2^52 up every double is an integer: raw = q. Raw values a double cannot hold (beyond
+  2^53 in magnitude) are reached only through the raw-value APIs, never from a physical value.
 """
 
 from __future__ import annotations
@@ -11,7 +26,9 @@ import math
 from decimal import Decimal
 from fractions import Fraction
 
-from canspec.ir import TIE_EPSILON
+from canspec.ir.model import EXACT_LIMIT, TIE_EPSILON
+
+TIE_GUARANTEE = 2**21  # see above: below this the runtime rule equals the exact one on ties
 
 
 def exact(value: float | str | Decimal | Fraction) -> Fraction:
@@ -34,11 +51,38 @@ def to_raw_exact(physical: float | str | Decimal | Fraction, factor: Fraction, o
 
 
 def to_raw_runtime(physical: float, factor: float, offset: float) -> int:
-    """The generated code's rule, step for step (see ir.TIE_EPSILON)."""
+    """The generated code's rule, step for step (see model.TIE_EPSILON, model.EXACT_LIMIT)."""
     q = (physical - offset) / factor
-    if q >= 0:
-        return math.floor((q + 0.5) + TIE_EPSILON)
-    return -math.floor((-q + 0.5) + TIE_EPSILON)
+    a = abs(q)
+    r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
+    return -r if q < 0 else r
+
+
+def raw_range(length: int, signed: bool, factor: Fraction, offset: Fraction, documented: tuple[Fraction, Fraction] | None) -> tuple[int, int]:
+    """The raw values a physical encode may produce: those of the field whose physical value lies
+    in the documented range (exactly), or every value of the field without one. Empty (min > max)
+    when none does — `canspec check` refuses that spec (rule range-empty)."""
+    tmin, tmax = raw_type_range(length, signed)
+    if documented is None:
+        return tmin, tmax
+    qa, qb = sorted(((documented[0] - offset) / factor, (documented[1] - offset) / factor))
+    return max(tmin, math.ceil(qa)), min(tmax, math.floor(qb))
+
+
+def raw_type_range(length: int, signed: bool) -> tuple[int, int]:
+    """What the bits of a field can carry."""
+    if signed:
+        return -(1 << (length - 1)), (1 << (length - 1)) - 1
+    return 0, (1 << length) - 1
+
+
+def decimals(value: Fraction) -> int:
+    """Decimal places of a value with a finite decimal expansion (0.05 → 2; capped at 15)."""
+    places = 0
+    while value.denominator != 1 and places < 15:
+        value *= 10
+        places += 1
+    return places
 
 
 def to_physical(raw: int, factor: Fraction, offset: Fraction) -> Fraction:

@@ -16,7 +16,7 @@ def decompose(frame_id: int) -> J1939Id:
     sa = frame_id & 0xFF
     pdu2 = pf >= PDU2_MIN_PF
     pgn = (edp << 17) | (dp << 16) | (pf << 8) | (ps if pdu2 else 0)
-    return J1939Id(priority, edp, dp, pf, ps, sa, pgn, None if pdu2 else ps, pdu2)
+    return J1939Id(priority, edp, dp, pf, ps, sa, pgn, None if pdu2 else ps, pdu2, f"0x{pgn:05X}")
 
 
 def compose(priority: int, pgn: int, sa: int, da: int | None = None) -> int:

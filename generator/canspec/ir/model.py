@@ -1,7 +1,9 @@
 """The intermediate representation: frozen, computed once by `build.py`, read by every target.
 
-Everything a target needs is here already computed — raw ranges, storage widths, per-byte
-segments and masks, J1939 fields, fingerprints — so templates only shape text.
+Everything more than one target needs is here already computed — raw ranges, storage widths,
+per-byte segments, frame-word masks and sign bits, merged value labels, J1939 fields (only where
+J1939 applies), what a checksum covers, send type and receive timeout, fingerprints — so targets
+read it and templates only shape text.
 """
 
 from __future__ import annotations
@@ -11,13 +13,18 @@ from fractions import Fraction
 
 from canspec.spec.problems import Loc
 
-# Runtime rounding rule shared by every generated language (see encoding.py):
+# Runtime rounding rule shared by every generated language (ir/encoding.py states what it guarantees):
 #   q = (physical - offset) / factor            (IEEE-754 double, in this order)
-#   raw = q >= 0 ? floor((q + 0.5) + TIE_EPSILON) : -floor((-q + 0.5) + TIE_EPSILON)
+#   a = |q|;  r = a >= EXACT_LIMIT ? a : floor((a + 0.5) + TIE_EPSILON);  raw = q < 0 ? -r : r
 # TIE_EPSILON absorbs the representation error of decimal inputs such as -8.99 so that a
-# decimal tie rounds away from zero exactly as the exact (Fraction) rule does.
+# decimal tie rounds away from zero exactly as the exact (Fraction) rule does; from EXACT_LIMIT
+# (2^52) up every double is an integer already, and adding 0.5 would round to even.
 TIE_EPSILON = 1e-9
 TIE_EPSILON_TEXT = "1e-9"
+EXACT_LIMIT = 2**52
+EXACT_LIMIT_TEXT = "4503599627370496.0"
+# Receive monitors time a cyclic message out after this many cycle times without a frame.
+MONITOR_TIMEOUT_CYCLES = 3
 
 
 
@@ -45,6 +52,18 @@ class SpecialValue:
     label_zh: str
     label: str
     physical: Fraction
+
+
+@dataclass(frozen=True)
+class Label:
+    """A raw value with a name of its own: a value-table entry, or a special value (such as
+    0x3FF "no obstacle") where the table has none for that raw value."""
+
+    raw: int
+    name: str
+    label_zh: str
+    label: str
+    is_special: bool
 
 
 @dataclass(frozen=True)
@@ -91,6 +110,10 @@ class Signal:
     value_table: ValueTable | None
     specials: tuple[SpecialValue, ...]
     segments: tuple[Segment, ...]
+    word_mask: int  # the field's bits in the frame read as one little-endian integer (bit `start` up)
+    sign_bit: int  # 1 << (length - 1) for signed fields, else 0: raw = (bits ^ sign_bit) - sign_bit
+    labels: tuple[Label, ...]  # value-table entries, then specials the table does not name, by raw
+    decimals: int  # decimal places that print every physical value exactly (0: integer physical values)
     is_integer: bool  # factor and offset are integers: physical values are integers
     is_identity: bool  # factor 1, offset 0
     since: str | None
@@ -109,6 +132,9 @@ class Signal:
     def mask(self) -> int:
         return (1 << self.length) - 1
 
+    def label_of(self, raw: int) -> Label | None:
+        return next((lb for lb in self.labels if lb.raw == raw), None)
+
     @property
     def last_bit(self) -> int:
         return self.start + self.length - 1
@@ -123,17 +149,23 @@ class Signal:
 
 @dataclass(frozen=True)
 class Checksum:
+    """The XOR checksum: the frame's last byte is the XOR of every other byte of the frame, so
+    a frame is intact exactly when the XOR of all its DLC bytes is 0."""
+
     algorithm: str  # "xor"
     signal: str
-    byte: int  # the byte holding the checksum
-    covers: tuple[int, ...]  # bytes XORed together
+    byte: int  # the byte holding the checksum (the last byte)
+    covers: tuple[int, ...]  # bytes XORed together: every other byte of the frame
+    cover_mask: int  # those bytes in the frame read as one little-endian integer
 
 
 @dataclass(frozen=True)
 class Counter:
     signal: str
     length: int
-    modulo: int
+    modulo: int  # 2^length: the counter wraps to 0 after modulo - 1
+    start: int  # its bits in the frame word
+    word_mask: int
 
 
 @dataclass(frozen=True)
@@ -161,6 +193,7 @@ class J1939Id:
     pgn: int
     da: int | None  # destination address for PDU1 (pf < 240); None for broadcast PDU2
     is_pdu2: bool
+    pgn_text: str  # "0x0F004"
 
 
 @dataclass(frozen=True)
@@ -171,12 +204,14 @@ class Message:
     desc: str
     section: str
     frame_id: int
-    is_extended: bool
+    is_extended: bool  # 29-bit identifier (else 11-bit)
+    id_text: str  # "0x1801B0A0" (29-bit) / "0x123" (11-bit)
     dlc: int
-    cycle_ms: int
+    cycle_ms: int | None  # None: event-driven (sent on change or on request)
+    timeout_ms: int | None  # receive monitors' default timeout: MONITOR_TIMEOUT_CYCLES cycles; None when event-driven
     sender: str  # a node name, or "ALL"
     receivers: tuple[str, ...]
-    j1939: J1939Id
+    j1939: J1939Id | None  # the ID's J1939 fields when the bus uses J1939 addressing
     signals: tuple[Signal, ...]  # every field including reserved ones, by start bit
     layout: str | None
     layout_undefined: bool
@@ -190,6 +225,10 @@ class Message:
     @property
     def last_byte(self) -> int:
         return self.dlc - 1
+
+    @property
+    def is_cyclic(self) -> bool:
+        return self.cycle_ms is not None
 
     @property
     def data_signals(self) -> tuple[Signal, ...]:
@@ -208,7 +247,7 @@ class Message:
 class Node:
     name: str
     label: str
-    sa: int
+    sa: int | None  # J1939 source address (None on a bus without J1939 addressing)
     zh: str
     desc: str
     aliases: tuple[str, ...]
@@ -217,9 +256,13 @@ class Node:
 @dataclass(frozen=True)
 class Bus:
     bitrate: int
-    id_format: str
-    addressing: str
+    id_format: str  # "extended" | "standard": the messages' default
+    addressing: str  # "j1939" | "none"
     byte_order: str
+
+    @property
+    def is_j1939(self) -> bool:
+        return self.addressing == "j1939"
 
     @property
     def kbit(self) -> int | float:
@@ -240,6 +283,31 @@ class CanProtocol:
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)
+
+    # What the protocol uses at all: targets leave out the helpers of what it does not.
+    @property
+    def has_extended(self) -> bool:
+        return any(m.is_extended for m in self.messages)
+
+    @property
+    def has_standard(self) -> bool:
+        return any(not m.is_extended for m in self.messages)
+
+    @property
+    def has_counters(self) -> bool:
+        return any(m.counter is not None for m in self.messages)
+
+    @property
+    def has_checksums(self) -> bool:
+        return any(m.checksum is not None for m in self.messages)
+
+    @property
+    def has_multiframe(self) -> bool:
+        return any(m.multiframe is not None for m in self.messages)
+
+    @property
+    def has_cyclic(self) -> bool:
+        return any(m.is_cyclic for m in self.messages)
 
     def by_id(self, frame_id: int) -> Message | None:
         return next((m for m in self.messages if m.frame_id == frame_id), None)

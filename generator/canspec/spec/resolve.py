@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from canspec.spec.loader import Document, LoadedSpec
-from canspec.spec.problems import Loc, Problem, error
+from canspec.spec.problems import Problem, error
 from canspec.spec.yamlsource import LocDict, LocList
 
 SIGNAL_DEFAULTS: dict[str, Any] = {"factor": 1, "offset": 0, "unit": "", "role": "data", "signed": False, "desc": "", "desc_zh": ""}
@@ -118,12 +118,10 @@ def resolve(spec: LoadedSpec) -> Resolved:
     return Resolved(can, spec.of_kind("json_protocol"), logs[0] if logs else None, problems)
 
 
-def value_table(resolved: ResolvedCan, sig: LocDict) -> LocDict | None:
-    name = sig.get("values")
-    return resolved.value_tables.get(name) if name else None
+def label_pair(value: Any) -> tuple[str, str]:
+    """A value's (identifier, Chinese label) from any of its written forms: `ident`, `[ident]`
+    or `[ident, 中文]` (the label is optional: an English-only spec names values by identifier)."""
+    if isinstance(value, str):
+        return value, ""
+    return str(value[0]), str(value[1]) if len(value) > 1 else ""
 
-
-def loc(d: Any, key: str | None = None) -> Loc | None:
-    if isinstance(d, LocDict):
-        return d.loc_of(key) if key else d.loc
-    return None

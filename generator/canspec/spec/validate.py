@@ -5,14 +5,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
 from canspec.ir import j1939
-from canspec.ir.bits import raw_type_range
+from canspec.ir.encoding import raw_range, raw_type_range
 from canspec.spec.problems import Problem, error, warning
-from canspec.spec.resolve import Resolved, ResolvedCan
+from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict, LocList
 
 MAX_CYCLE_MS = 600_000
@@ -37,10 +36,6 @@ def _finite(value: Any) -> bool:
     except OverflowError:  # an int beyond the double range
         return False
     return math.isfinite(as_double) and (as_double != 0 or value == 0)
-
-
-def _frac(value: Any) -> Fraction:
-    return Fraction(value) if not isinstance(value, Decimal) else Fraction(value)
 
 
 def _signals(msg: LocDict) -> LocList:
@@ -70,13 +65,18 @@ def nodes(can: ResolvedCan) -> Iterator[Problem]:
     nodes = can.doc.data["nodes"]
     names: dict[str, Any] = {}
     sas: dict[int, str] = {}
+    j1939_bus = can.doc.data["bus"]["addressing"] == "j1939"
     for node in nodes:
         if node["name"] in names:
             yield error(f"node {node['name']!r} is defined twice", node.loc_of("name"), None, "duplicate-node")
-        if node["sa"] in sas:
+        if "sa" not in node:
+            if j1939_bus:
+                yield error(f"node {node['name']!r} has no source address, which J1939 addressing needs", node.loc, "add `sa: 0x..` (its J1939 source address)", "node-sa")
+        elif node["sa"] in sas:
             yield error(f"source address 0x{node['sa']:02X} of {node['name']!r} is already {sas[node['sa']]!r}'s", node.loc_of("sa"), "each node needs its own source address", "duplicate-node")
         names[node["name"]] = node
-        sas.setdefault(node["sa"], node["name"])
+        if "sa" in node:
+            sas.setdefault(node["sa"], node["name"])
     aliases = {a: n["name"] for n in nodes for a in n.get("aliases", [])}
     for msg in can.messages:
         refs = [("sender", msg["sender"], msg.loc_of("sender"))]
@@ -89,7 +89,7 @@ def nodes(can: ResolvedCan) -> Iterator[Problem]:
             hint = f"{ref!r} is an alias of {aliases[ref]!r}; use the node name" if ref in aliases else f"known nodes: {', '.join(names)} (or ALL)"
             yield error(f"{what} {ref!r} of message {msg['name']!r} is not a node", where, hint, "unknown-node")
         sender = names.get(msg["sender"])
-        if sender is not None and can.doc.data["bus"]["addressing"] == "j1939" and (msg["id"] & 0xFF) != sender["sa"]:
+        if sender is not None and j1939_bus and "sa" in sender and (msg["id"] & 0xFF) != sender["sa"]:
             yield error(
                 f"message {msg['name']!r} is sent by {sender['name']!r} (SA 0x{sender['sa']:02X}) but its ID 0x{msg['id']:08X} carries SA 0x{msg['id'] & 0xFF:02X}",
                 msg.loc_of("id"), "fix the ID's last byte or the sender", "sender-sa")
@@ -97,16 +97,23 @@ def nodes(can: ResolvedCan) -> Iterator[Problem]:
 
 @rule
 def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
-    extended = can.doc.data["bus"]["id_format"] == "extended"
+    bus = can.doc.data["bus"]
+    extended, j1939_bus = bus["id_format"] == "extended", bus["addressing"] == "j1939"
     for msg in can.messages:
-        limit = 0x1FFFFFFF if msg.get("extended", extended) else 0x7FF
+        is_extended = msg.get("extended", extended)
+        limit = 0x1FFFFFFF if is_extended else 0x7FF
         if not 0 <= msg["id"] <= limit:
             yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if limit > 0x7FF else 11} bits", msg.loc_of("id"), None, "id-range")
             continue
+        if j1939_bus and not is_extended:
+            where = msg.loc_of("extended") if "extended" in msg else bus.loc_of("id_format")
+            yield error(f"message {msg['name']!r} has an 11-bit ID, but J1939 addressing needs 29-bit IDs", where, "use `id_format: extended`, or `addressing: none` for a bus without J1939", "j1939-addressing")
+            continue
         declared = msg.get("j1939")
         if declared is None:
-            if can.doc.data["bus"]["addressing"] == "j1939":
-                yield error(f"message {msg['name']!r} does not declare its J1939 fields", msg.loc, "add `j1939: {priority: .., pf: .., ps: .., sa: ..}` as printed in the document", "j1939-missing")
+            continue  # derived from the ID
+        if not j1939_bus:
+            yield error(f"message {msg['name']!r} declares J1939 fields on a bus without J1939 addressing", msg.loc_of("j1939"), "remove `j1939:`, or set the bus's `addressing: j1939`", "j1939-addressing")
             continue
         actual = j1939.decompose(msg["id"])
         for key in ("priority", "edp", "dp", "pf", "ps", "sa"):
@@ -119,14 +126,14 @@ def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
 @rule
 def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
-        if not 0 < msg["cycle_ms"] <= MAX_CYCLE_MS:
-            yield error(f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 1..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"), "give the period in milliseconds", "cycle-time")
+        if not 0 <= msg.get("cycle_ms", 0) <= MAX_CYCLE_MS:
+            yield error(f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 0..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"), "give the period in milliseconds (0, or no `cycle_ms`, for an event-driven message)", "cycle-time")
         if not 0 <= msg.get("dlc", 8) <= 8:
             yield error(f"DLC {msg['dlc']} of {msg['name']!r} is not in 0..8", msg.loc_of("dlc"), "classic CAN frames carry 0 to 8 bytes", "dlc-range")
         if msg.get("layout_undefined") and len(_signals(msg)):
             yield error(f"message {msg['name']!r} says `layout_undefined` but lists signals", msg.loc_of("layout_undefined"), None, "empty-message")
-        if not msg.get("layout_undefined") and not len(_signals(msg)):
-            yield error(f"message {msg['name']!r} has no signals", msg.loc, "list its signals, or set `layout_undefined: true` if the document defines none", "empty-message")
+        if not msg.get("layout_undefined") and not len(_signals(msg)) and msg.get("dlc", 8) != 0:
+            yield error(f"message {msg['name']!r} has no signals", msg.loc, "list its signals, or set `layout_undefined: true` if the document defines none (a DLC-0 frame needs none)", "empty-message")
 
 
 @rule
@@ -165,14 +172,14 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
             if not all(_finite(v) for v in rng):
                 yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
                 continue
-            lo, hi = _frac(rng[0]), _frac(rng[1])
+            lo, hi = Fraction(rng[0]), Fraction(rng[1])
             if lo > hi:
                 yield error(f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] has min > max", sig.loc_of("range"), "write the range as [min, max]", "range-order")
                 continue
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
-            factor, offset = _frac(sig["factor"]), _frac(sig["offset"])
+            factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
             ends = sorted([tmin * factor + offset, tmax * factor + offset])
-            if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, tmin, tmax):
+            if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, sig["len"], sig["signed"]):
                 yield error(
                     f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
                     sig.loc_of("range"), "check offset, factor, length and range against the document", "range-empty")
@@ -182,10 +189,10 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                     sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
 
 
-def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, tmin: int, tmax: int) -> bool:
-    """True when no raw value of the field maps into [lo, hi] (build.py would get raw_min > raw_max)."""
-    qa, qb = sorted([(lo - offset) / factor, (hi - offset) / factor])
-    return max(tmin, math.ceil(qa)) > min(tmax, math.floor(qb))
+def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, length: int, signed: bool) -> bool:
+    """True when no raw value of the field maps into [lo, hi] (the IR's raw range would be empty)."""
+    raw_min, raw_max = raw_range(length, signed, factor, offset, (lo, hi))
+    return raw_min > raw_max
 
 
 def _num(f: Fraction) -> str:
@@ -219,7 +226,8 @@ def value_fit(can: ResolvedCan) -> Iterator[Problem]:
 def value_table_identifiers(can: ResolvedCan) -> Iterator[Problem]:
     for tname, table in can.value_tables.items():
         seen: dict[str, int] = {}
-        for raw, (ident, _label) in table.items():
+        for raw, value in table.items():
+            ident = label_pair(value)[0]
             if ident in seen:
                 yield error(f"value table {tname!r}: identifier {ident!r} names both {seen[ident]} and {raw}", table.loc_of(raw), "identifiers become enum members and must be unique", "duplicate-value-name")
             seen.setdefault(ident, raw)
@@ -241,13 +249,15 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(f"{role} {sig['name']!r} must be unsigned with factor 1 and offset 0", sig.loc_of("role"), None, f"{role}-shape")
             full = [0, (1 << sig["len"]) - 1] if 1 <= sig["len"] <= 64 else None
             rng = sig.get("range")
-            if rng is not None and full is not None and all(_finite(v) for v in rng) and [_frac(rng[0]), _frac(rng[1])] != full:
+            if rng is not None and full is not None and all(_finite(v) for v in rng) and [Fraction(rng[0]), Fraction(rng[1])] != full:
                 yield error(
                     f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}",
                     sig.loc_of("range"), f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
             if role == "checksum":
                 if sig["len"] != 8 or sig["start"] % 8:
                     yield error(f"checksum {sig['name']!r} must be one whole byte (8 bits at a multiple of 8), not {sig['len']} bits at bit {sig['start']}", sig.loc_of("start"), "the XOR checksum is byte 7 = XOR of bytes 0..6", "checksum-shape")
+                elif dlc < 2:
+                    yield error(f"checksum {sig['name']!r} in a {dlc}-byte frame has no byte to cover", sig.loc_of("start"), "the XOR checksum needs a frame of at least 2 bytes", "checksum-shape")
                 elif sig["start"] // 8 != dlc - 1:
                     yield error(f"checksum {sig['name']!r} in byte {sig['start'] // 8} would not cover the bytes after it; the XOR checksum is the last byte of the frame", sig.loc_of("start"), f"put it at start bit {8 * (dlc - 1)}", "checksum-shape")
             if role == "counter" and sig["len"] > 8:

@@ -1,15 +1,19 @@
-"""Output targets. Each module in this package defines `TARGET`, a `Target`; they are found
-by discovery, so adding a target is adding a module (and its template family)."""
+"""Output targets. Each package in this folder defines `TARGET`, a `Target`; they are found by
+discovery, so adding a target is adding a package (its view model and helpers) and its template
+family under templates/. A target that cannot express something a valid spec may hold says so in
+its `check`, which `canspec check` runs: the user gets file:line:col and a hint, never a failed
+generation."""
 
 from __future__ import annotations
 
 import importlib
 import pkgutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from functools import lru_cache
 
 from canspec import ir
+from canspec.spec.problems import Problem
 
 
 @dataclass(frozen=True)
@@ -20,6 +24,12 @@ class Target:
     render: Callable[[ir.Spec], dict[str, bytes]]  # relative path (under the output dir) → bytes
     order: int = 50  # generation order; lower first
     cost: int = 1  # relative render time, to schedule slow targets first
+    check: Callable[[ir.Spec], Iterable[Problem]] | None = None  # what this target cannot express
+
+
+def target_problems(spec: ir.Spec) -> list[Problem]:
+    """Every target's refusals of a spec the spec rules accept."""
+    return [p for target in registry().values() if target.check is not None for p in target.check(spec)]
 
 
 @lru_cache(maxsize=1)

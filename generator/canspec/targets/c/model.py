@@ -20,7 +20,7 @@ from fractions import Fraction
 from canspec import ir
 from canspec.ir.encoding import decimal_text
 from canspec.ir.names import c_ident, snake, upper_snake
-from canspec.render.literals import c_double
+from canspec.render.literals import c_hex, c_int, c_uint, float_lit
 from canspec.targets.c import words as cwords
 
 MAX_DLC = 8
@@ -33,26 +33,6 @@ TIMEOUT_ENTRY = "message_timeout"
 
 class CModelError(ValueError):
     pass
-
-
-def uint_lit(value: int, bits: int = 32) -> str:
-    if value < 0:
-        raise CModelError(f"negative unsigned literal {value}")
-    if bits > 32 or value > 0xFFFFFFFF:
-        return f"UINT64_C({value})"
-    return f"{value}u"
-
-
-def int_lit(value: int, bits: int = 32) -> str:
-    if bits > 32 or not -(2**31) < value < 2**31:
-        return f"INT64_C({value})" if value > -(2**63) else "INT64_MIN"
-    return f"{value}" if value >= 0 else f"({value})"
-
-
-def hex_lit(value: int, bits: int = 32) -> str:
-    if bits > 32 or value > 0xFFFFFFFF:
-        return f"UINT64_C(0x{value:X})"
-    return f"0x{value:X}u"
 
 
 def ctype(bits: int, signed: bool) -> str:
@@ -246,10 +226,10 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         raise CModelError(f"{msg.name}.{sig.name}: {sig.length}-bit unsigned fields are not supported by the C target")
     fits_type = sig.length == bits
     if sig.signed:
-        lit = lambda v: int_lit(v, bits)
+        lit = lambda v: c_int(v, bits)
         range_check = "" if fits_type else f"(src->{field} < {lit(sig.raw_type_min)}) | (src->{field} > {lit(sig.raw_type_max)})"
     else:
-        lit = lambda v: uint_lit(v, bits)
+        lit = lambda v: c_uint(v, bits)
         range_check = ""
     # physical (double)
     factor, offset = sig.factor, sig.offset
@@ -257,11 +237,11 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     # (clang does when constant folding), which would round differently from the shared rule.
     expr = "(double)raw"
     if factor != 1:
-        expr += f" * {c_double(factor)}"
+        expr += f" * {float_lit(factor)}"
     if offset:
         sign = "+" if offset > 0 else "-"
-        expr = f"scaled {sign} {c_double(abs(offset))}" if factor != 1 else f"{expr} {sign} {c_double(abs(offset))}"
-    decode_pre = f"(double)raw * {c_double(factor)}" if factor != 1 and offset else ""
+        expr = f"scaled {sign} {float_lit(abs(offset))}" if factor != 1 else f"{expr} {sign} {float_lit(abs(offset))}"
+    decode_pre = f"(double)raw * {float_lit(factor)}" if factor != 1 and offset else ""
     # fixed point: physical * 10^k is an integer for every raw value, both range bounds and
     # (for scaled signals) every half step, so the integer path can express each rounding tie
     # and rounds it exactly as the double path does.
@@ -276,9 +256,9 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
     ft = ctype(fbits, True)
     fexpr = f"({ft})raw"
     if ff != 1:
-        fexpr += f" * {int_lit(ff, fbits)}"
+        fexpr += f" * {c_int(ff, fbits)}"
     if fo:
-        fexpr += f" + {int_lit(fo, fbits)}" if fo > 0 else f" - {int_lit(-fo, fbits)}"
+        fexpr += f" + {c_int(fo, fbits)}" if fo > 0 else f" - {c_int(-fo, fbits)}"
     specials = tuple(
         CSpecial(f"{pmacro}_{upper_snake(msg.name)}_{upper_snake(sig.name)}_{upper_snake(sp.name)}", lit(sp.raw), sp.raw, sp.label)
         for sp in sig.specials
@@ -291,14 +271,14 @@ def _signal(prefix: str, pmacro: str, msg: ir.Message, sig: ir.Signal, enums: di
         fn=f"{prefix}_{mname}_{sname}", type=t, length=sig.length, start=sig.start,
         range_check=range_check, needs_check=not fits_type and not sig.signed,
         raw_type_min=lit(sig.raw_type_min), raw_type_max=lit(sig.raw_type_max),
-        raw_min=int_lit(sig.raw_min, 64), raw_max=int_lit(sig.raw_max, 64),
-        q_low=c_double(sig.raw_type_min - 1), q_high=c_double(sig.raw_type_max + 1),
-        factor=c_double(factor), offset=c_double(offset),
-        check_min=c_double(sig.check_min), check_max=c_double(sig.check_max), accept_min=c_double(sig.accept_min), accept_max=c_double(sig.accept_max), decode_expr=expr, decode_pre=decode_pre,
+        raw_min=c_int(sig.raw_min, 64), raw_max=c_int(sig.raw_max, 64),
+        q_low=float_lit(sig.raw_type_min - 1), q_high=float_lit(sig.raw_type_max + 1),
+        factor=float_lit(factor), offset=float_lit(offset),
+        check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max), accept_min=float_lit(sig.accept_min), accept_max=float_lit(sig.accept_max), decode_expr=expr, decode_pre=decode_pre,
         specials=specials, enum=enums.get(sig.value_table.name) if sig.value_table else None,
-        scale=int_lit(scale), scale_int=scale, fixed_type=ft, fixed_factor=int_lit(ff, fbits), fixed_offset=int_lit(fo, fbits),
-        fixed_min=int_lit(fmin, fbits), fixed_max=int_lit(fmax, fbits), fixed_decode_expr=fexpr,
-        fixed_q_low=int_lit(fql, fbits), fixed_q_high=int_lit(fqh, fbits),
+        scale=c_int(scale), scale_int=scale, fixed_type=ft, fixed_factor=c_int(ff, fbits), fixed_offset=c_int(fo, fbits),
+        fixed_min=c_int(fmin, fbits), fixed_max=c_int(fmax, fbits), fixed_decode_expr=fexpr,
+        fixed_q_low=c_int(fql, fbits), fixed_q_high=c_int(fqh, fbits),
         is_data=sig.role == "data", has_double=max(-sig.raw_type_min, sig.raw_type_max) <= DOUBLE_EXACT, unit=sig.unit, comment=comment,
     )
 
@@ -337,7 +317,7 @@ def _move(word: str, mask: int, shift: int) -> str:
             return _shifted(f"({word} >> {lo})" if lo else word, dest)
         if lo == 0 or dest == 0:  # nothing below it before, or nothing left below after
             return _shifted(f"({word} << {64 - n - lo})" if 64 - n - lo else word, dest - (64 - n))
-    return _shifted(f"({word} & {hex_lit(mask, 64)})", shift)
+    return _shifted(f"({word} & {c_hex(mask, 64)})", shift)
 
 
 def _runs(sigs: list[CSignal] | tuple[CSignal, ...], offsets: dict[str, int], size: int, letter: str, drop: int) -> tuple[CRun, ...]:
@@ -352,19 +332,19 @@ def _crun(run: cwords.Run, var: str, by_field: dict[str, CSignal], offset: int, 
     """`drop`: frame bits pack leaves out (the checksum byte, filled afterwards)."""
     storage = sum(((1 << f.storage) - 1) << s for f, s in zip(run.fields, run.slots))
     # group moves mask their fields; SWAR steps need zeros around them
-    pad = "" if run.groups or storage == (1 << (8 * nbytes)) - 1 else f"{var} &= {hex_lit(storage, 64)};"
+    pad = "" if run.groups or storage == (1 << (8 * nbytes)) - 1 else f"{var} &= {c_hex(storage, 64)};"
     le_value = var
     signed = next((f for f in run.fields if f.signed), None)
     if signed is not None:  # alone in its run: the struct holds it sign-extended to its type
-        sign = hex_lit(1 << (signed.length - 1), 64)
-        pad = f"{var} &= {hex_lit((1 << signed.length) - 1, 64)};"
+        sign = c_hex(1 << (signed.length - 1), 64)
+        pad = f"{var} &= {c_hex((1 << signed.length) - 1, 64)};"
         le_value = f"(uint64_t)((int64_t)({var} ^ {sign}) - (int64_t){sign})"
-    m = lambda mask: hex_lit(mask, 64)
+    m = lambda mask: c_hex(mask, 64)
     stores, loads = [], []
     for f, slot in zip(run.fields, run.slots):
         s = by_field[f.name]
         if f.signed:  # alone in its run, at slot 0: sign-extend its bits
-            sign = hex_lit(1 << (f.length - 1), 64)
+            sign = c_hex(1 << (f.length - 1), 64)
             stores.append((f.name, f"({s.type})((int64_t)({var} ^ {sign}) - (int64_t){sign})"))
             loads.append(f"((uint64_t)(int64_t)src->{f.name} & {m((1 << f.length) - 1)})")
         else:
@@ -505,12 +485,12 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
     byte_fields = tuple(CByteField(s.field, s.start // 8, _byte_of("v", s.start // 8)) for s in peeled)
     typ = f"{prefix}_{mname}_t"
     layout = " && ".join([f"offsetof({typ}, {s.field}) == {offsets[s.field]}u" for s in sigs] + [f"sizeof({typ}) == {size}u"])
-    range_terms = [f"({r.var} & {hex_lit(r.run.check, 64)})" for r in pack_runs if r.run.check]
+    range_terms = [f"({r.var} & {c_hex(r.run.check, 64)})" for r in pack_runs if r.run.check]
     range_terms += [f"(uint64_t)({s.range_check})" for s in data if s.range_check]
     frame_load = " | ".join(f"(uint64_t)src[{b}]" if b == 0 else f"((uint64_t)src[{b}] << {8 * b})" for b in range(msg.dlc))
     frame_word = " | ".join(r.placed for r in pack_runs) or "0u"
     if msg.checksum is not None and any(f.name == ck_field and r.run.swar != 0 for r in pack_runs for f in r.run.fields):
-        frame_word = f"({frame_word}) & {hex_lit(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
+        frame_word = f"({frame_word}) & {c_hex(((1 << 64) - 1) & ~(0xFF << (8 * ck_byte)), 64)}"
     by_byte = {b.byte: b for b in byte_fields}
     frame_stores = tuple(
         f"src->{by_byte[b].field}" if b in by_byte and msg.checksum is None else "(uint8_t)w" if b == 0 else f"(uint8_t)(w >> {8 * b})"
@@ -523,8 +503,8 @@ def _message(prefix: str, pmacro: str, msg: ir.Message, enums: dict[str, CEnum],
         frame_stores=frame_stores, range_terms=tuple(range_terms), byte_fields=byte_fields,
         pack_byte_stores=() if msg.checksum is not None else byte_fields,
         checksum_byte=ck_byte, checksum_pack=ck_pack, checksum_ok=ck_ok, checksum_fold=ck_fold,
-        counter=counter, counter_mask=hex_lit(msg.counter.modulo - 1) if msg.counter else "",
-        da=hex_lit(j.da) if j.da is not None else None, fault_xor_codes=tuple(xor_codes),
+        counter=counter, counter_mask=c_hex(msg.counter.modulo - 1) if msg.counter else "",
+        da=c_hex(j.da) if j.da is not None else None, fault_xor_codes=tuple(xor_codes),
         comment=f"{msg.title} / {msg.zh}" if msg.title else msg.zh,
     )
 
@@ -562,7 +542,7 @@ def build_model(spec: ir.Spec) -> CModel:
             raise CModelError(f"{cm.msg.name}: multi-frame payload must start at byte {mf.payload_byte} and hold {mf.bytes_per_frame} bytes")
         vins.append(CVin(
             cm=cm, index=by[mf.index_signal], payload=payload, frames=mf.frames, bytes_per_frame=mf.bytes_per_frame,
-            payload_byte=mf.payload_byte, text_length=mf.text_length, padding=hex_lit(mf.padding),
+            payload_byte=mf.payload_byte, text_length=mf.text_length, padding=c_hex(mf.padding),
             fn=f"{cm.fn}_text", type=f"{cm.fn}_text_rx_t", macro=f"{cm.macro}_TEXT",
             others=tuple(s for s in cm.signals if s.sig.name not in (mf.index_signal, mf.payload_signal)),
         ))

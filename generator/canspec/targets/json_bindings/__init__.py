@@ -5,7 +5,6 @@ literals, check calls) are computed here; the templates only shape the text."""
 
 from __future__ import annotations
 
-import json
 import keyword
 import textwrap
 from typing import Any
@@ -15,6 +14,7 @@ from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import FieldRule, MessageModel, ProtocolModel
 from canspec.render.environment import render
 from canspec.render.formatters import rustfmt
+from canspec.render.literals import double_repr, py_string, rust_string, ts_value
 from canspec.targets import Target
 
 RUST_INTS = {"U8": "u8", "S8": "i8", "U16": "u16", "S16": "i16", "U32": "u32", "S32": "i32", "U64": "u64", "S64": "i64"}
@@ -45,9 +45,7 @@ def doc(r: FieldRule) -> str:
 
 
 def pyrepr(value: Any) -> str:
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
-    return repr(value)
+    return py_string(value) if isinstance(value, str) else repr(value)
 
 
 def wrap(text: str, indent: int, width: int = PY_LINE) -> str:
@@ -112,21 +110,12 @@ TARGET = Target("json_bindings", "typed bindings of the JSON protocol (Python, R
 # --- Rust ------------------------------------------------------------------------------------
 
 
-def rs_str(text: str) -> str:
-    return json.dumps(text, ensure_ascii=False)
-
-
 def rs_lit(value: int | str) -> str:
-    return rs_str(value) if isinstance(value, str) else str(value)
-
-
-def rs_f64(value: float) -> str:
-    text = repr(float(value)).replace("e+", "e")
-    return text if any(c in text for c in ".e") else f"{text}.0"
+    return rust_string(value) if isinstance(value, str) else str(value)
 
 
 def rs_opt_f64(value: float | None) -> str:
-    return "None" if value is None else f"Some({rs_f64(value)})"
+    return "None" if value is None else f"Some({double_repr(value)})"
 
 
 def rs_type(r: FieldRule) -> str:
@@ -152,7 +141,7 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/rust/{pm.protocol.name}"
     receivers = [p.receiver for p in pm.plans if p.receiver]
     lib = render("json_rust/lib.rs.j2", spec, "json_rust", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES, receivers=receivers,
-                 rs_str=rs_str, rs_lit=rs_lit, rs_doc=rs_lit, rs_f64=rs_f64, rs_opt_f64=rs_opt_f64, rs_type=rs_type, length_rule=length_rule, doc=doc)
+                 rs_str=rust_string, rs_lit=rs_lit, rs_doc=rs_lit, rs_f64=double_repr, rs_opt_f64=rs_opt_f64, rs_type=rs_type, length_rule=length_rule, doc=doc)
     cargo = render("json_rust/Cargo.toml.j2", spec, "json_rust", p=pm.protocol, crate=rust_crate_name(pm.protocol))
     return {f"{base}/src/lib.rs": rustfmt(lib, f"{base}/src/lib.rs").encode(), f"{base}/Cargo.toml": cargo.encode()}
 
@@ -168,10 +157,6 @@ def ts_type(r: FieldRule) -> str:
     return {"integer": "number", "number": "number", "boolean": "boolean", "string": "string"}[r.kind]
 
 
-def ts_lit(value: int | str) -> str:
-    return json.dumps(value, ensure_ascii=False)
-
-
 def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
-    text = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=ts_lit, doc=doc)
+    text = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=ts_value, doc=doc)
     return {f"json/typescript/{pm.protocol.name}.d.ts": text.encode()}

@@ -15,6 +15,7 @@ from fractions import Fraction
 from canspec import ir
 from canspec.ir.encoding import decimal_text, to_raw_runtime
 from canspec.ir.names import pascal, py_ident, snake, upper_snake
+from canspec.render.literals import double_repr
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
 MAX_TUPLE_LOOKUP_BITS = 8
@@ -167,17 +168,12 @@ class PyPackage:
     example: PyMessage
 
 
-def float_lit(value: Fraction | float) -> str:
-    """The nearest double, as Python's shortest round-tripping text."""
-    return repr(float(value))
-
-
 def num_lit(value: Fraction, as_int: bool) -> str:
     if as_int:
         if value.denominator != 1:
             raise ValueError(f"{value} is not an integer")
         return str(value.numerator)
-    return float_lit(value)
+    return double_repr(value)
 
 
 def _check_intel(msg: ir.Message, sig: ir.Signal) -> None:
@@ -226,7 +222,7 @@ def _q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     else:
         expr = f"{x} + {num_lit(-off, as_int)}"
     if not direct and sig.factor != 1:
-        expr = f"({expr}) / {float_lit(sig.factor)}" if off != 0 else f"{expr} / {float_lit(sig.factor)}"
+        expr = f"({expr}) / {double_repr(sig.factor)}" if off != 0 else f"{expr} / {double_repr(sig.factor)}"
     return expr
 
 
@@ -302,8 +298,8 @@ def _signal(msg: ir.Message, sig: ir.Signal, index: int, frame_bits: int, enum_n
     else:
         default = num_lit(default_phys, as_int)
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
-    lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else float_lit(lo)
-    hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else float_lit(hi)
+    lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else double_repr(lo)
+    hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else double_repr(hi)
     q_nonneg = sig.factor > 0 and float(lo) - float(sig.offset) >= 0
     specials = tuple(
         PySpecial(f"{upper_snake(sig.name)}_{upper_snake(s.name)}", s.raw, num_lit(s.physical, as_int), s.label_zh, s.label) for s in sig.specials
@@ -312,8 +308,8 @@ def _signal(msg: ir.Message, sig: ir.Signal, index: int, frame_bits: int, enum_n
     return PySignal(
         name=sig.name, attr=attr, zh=sig.zh, doc=_doc(sig, kind, enum), role=sig.role, py_type=py_type, kind=kind, enum=enum,
         lookup=lookup, default=default, raw_expr=raw, phys_expr=phys, shift=sig.start, length=sig.length, mask=f"0x{sig.mask:X}",
-        signed=sig.signed, direct=direct, offset_lit=num_lit(sig.offset, sig.offset.denominator == 1) if direct else float_lit(sig.offset),
-        offset_float=float_lit(sig.offset), offset_int=str(sig.offset.numerator) if direct else "0", factor_lit=float_lit(sig.factor), lo_lit=lo_lit, hi_lit=hi_lit, q_nonneg=q_nonneg, raw_min=sig.raw_min, raw_max=sig.raw_max,
+        signed=sig.signed, direct=direct, offset_lit=num_lit(sig.offset, sig.offset.denominator == 1) if direct else double_repr(sig.offset),
+        offset_float=double_repr(sig.offset), offset_int=str(sig.offset.numerator) if direct else "0", factor_lit=double_repr(sig.factor), lo_lit=lo_lit, hi_lit=hi_lit, q_nonneg=q_nonneg, raw_min=sig.raw_min, raw_max=sig.raw_max,
         raw_type_min=sig.raw_type_min, raw_type_max=sig.raw_type_max, specials=specials, range_text=_range_text(sig),
         q_expr=_q_expr(sig, direct, f"m.{attr}" if direct else f"x{index}"), var=f"x{index}", raw_check=_raw_check(sig, direct), raw_var=f"r{index}", descriptor=f"_{upper_snake(msg.name)}__{upper_snake(sig.name)}",
     )

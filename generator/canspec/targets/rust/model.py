@@ -14,9 +14,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimal_text
 from canspec.ir.names import pascal, rust_ident, snake, upper_snake
-from canspec.render.literals import num
+from canspec.render.literals import float_lit, grouped_int, num
 
 OTHER_VARIANT = "_Other"  # catch-all of every value-table enum (as dbc-codegen names it)
 RESERVED_TYPE_NAMES = frozenset({"Error", "Messages", "Frame", "Vin", "Scale", "Result", "Option", "Self"})
@@ -30,29 +29,12 @@ def int_type(bits: int, signed: bool) -> str:
     return f"{'i' if signed else 'u'}{bits}"
 
 
-def f64_lit(value: Fraction | int) -> str:
-    """A Rust f64 literal for an exact decimal: 0.1, -1080.0, 0.0015 (parsed to the nearest double)."""
-    text = decimal_text(Fraction(value))
-    return text if any(c in text for c in ".eE") else f"{text}.0"
-
-
-def int_lit(value: int) -> str:
-    """Decimal below 2^16, else hex with digit groups (readable masks and ranges)."""
-    if abs(value) < 1 << 16:
-        return str(value)
-    digits = f"{abs(value):X}"
-    groups = [digits[max(i - 4, 0):i] for i in range(len(digits), 0, -4)][::-1]
-    return ("-" if value < 0 else "") + "0x" + "_".join(groups)
 
 
 def doc_text(text: str) -> str:
     """Text safe inside a `///` comment: no accidental links, HTML tags or code fences."""
     return text.replace("\\", "\\\\").replace("[", "\\[").replace("]", "\\]").replace("<", "&lt;").replace(">", "&gt;").replace("`", "'")
 
-
-def str_lit(text: str) -> str:
-    out = text.replace("\\", "\\\\").replace('"', '\\"')
-    return f'"{out}"'
 
 
 # --- bit expressions ---------------------------------------------------------------------
@@ -68,7 +50,7 @@ def unpack_expr(sig: ir.Signal) -> str:
         return f"(({moved} as i64) >> {64 - sig.length}) as {ty}"
     shifted = f"bits >> {sig.start}" if sig.start else "bits"
     if sig.start + sig.length < 64 and sig.length != sig.storage_bits:
-        return f"(({shifted}) & {int_lit(sig.mask)}) as {ty}" if sig.start else f"({shifted} & {int_lit(sig.mask)}) as {ty}"
+        return f"(({shifted}) & {grouped_int(sig.mask)}) as {ty}" if sig.start else f"({shifted} & {grouped_int(sig.mask)}) as {ty}"
     if ty == "u64":
         return shifted
     return f"({shifted}) as {ty}" if sig.start else f"{shifted} as {ty}"
@@ -78,7 +60,7 @@ def pack_expr(sig: ir.Signal, field: str) -> str:
     """The field's bits in place in the frame word, from the variable `field` (a raw value
     that fits the field)."""
     if sig.signed:
-        value = f"({field} as u64 & {int_lit(sig.mask)})"
+        value = f"({field} as u64 & {grouped_int(sig.mask)})"
     elif sig.storage_bits == 64:
         value = field
     else:
@@ -91,12 +73,12 @@ def outside_expr(var: str, lo: int | None, hi: int | None) -> str | None:
     if lo is None and hi is None:
         return None
     if lo is None:
-        return f"{var} > {int_lit(hi)}"  # type: ignore[arg-type]
+        return f"{var} > {grouped_int(hi)}"  # type: ignore[arg-type]
     if hi is None:
-        return f"{var} < {int_lit(lo)}"
+        return f"{var} < {grouped_int(lo)}"
     if lo == hi:
-        return f"{var} != {int_lit(lo)}"
-    return f"!({int_lit(lo)}..={int_lit(hi)}).contains(&{var})"
+        return f"{var} != {grouped_int(lo)}"
+    return f"!({grouped_int(lo)}..={grouped_int(hi)}).contains(&{var})"
 
 
 def _bounds(lo: int, hi: int, sig: ir.Signal) -> tuple[int | None, int | None]:
@@ -119,7 +101,7 @@ def refused_expr(sig: ir.Signal, var: str = "value") -> str | None:
     outside = outside_expr(var, *_bounds(lo, hi, sig))
     if outside is None:
         return None
-    return " && ".join([*(f"{var} != {int_lit(s.raw)}" for s in sig.specials if not lo <= s.raw <= hi), outside])
+    return " && ".join([*(f"{var} != {grouped_int(s.raw)}" for s in sig.specials if not lo <= s.raw <= hi), outside])
 
 
 # --- view model --------------------------------------------------------------------------
@@ -209,11 +191,11 @@ class RustMessage:
 def _phys_expr(sig: ir.Signal, field: str) -> str:
     expr = f"self.{field} as f64"
     if sig.factor != 1:
-        expr += f" * {f64_lit(sig.factor)}"
+        expr += f" * {float_lit(sig.factor)}"
     if sig.offset > 0:
-        expr += f" + {f64_lit(sig.offset)}"
+        expr += f" + {float_lit(sig.offset)}"
     elif sig.offset < 0:
-        expr += f" - {f64_lit(-sig.offset)}"  # x - c == x + (-c) exactly in IEEE arithmetic
+        expr += f" - {float_lit(-sig.offset)}"  # x - c == x + (-c) exactly in IEEE arithmetic
     return expr
 
 
@@ -313,11 +295,11 @@ def documented_range_suffices(sig: ir.Signal) -> tuple[bool, bool, float | None,
 def _int_phys_expr(sig: ir.Signal, field: str, ty: str) -> str:
     expr = f"self.{field}" if ty == int_type(sig.storage_bits, sig.signed) else f"self.{field} as {ty}"
     if sig.factor != 1:
-        expr += f" * {int_lit(int(sig.factor))}"
+        expr += f" * {grouped_int(int(sig.factor))}"
     if sig.offset > 0:
-        expr += f" + {int_lit(int(sig.offset))}"
+        expr += f" + {grouped_int(int(sig.offset))}"
     elif sig.offset < 0:
-        expr += f" - {int_lit(int(-sig.offset))}"
+        expr += f" - {grouped_int(int(-sig.offset))}"
     return expr
 
 
@@ -334,10 +316,10 @@ def _field_doc(sig: ir.Signal) -> tuple[str, ...]:
         "| start bit | length | factor | offset | unit | range | raw |",
         "|---|---|---|---|---|---|---|",
         f"| {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} "
-        f"| {_range_text(sig.check_min, sig.check_max)} | {int_lit(sig.raw_min)} … {int_lit(sig.raw_max)} |",
+        f"| {_range_text(sig.check_min, sig.check_max)} | {grouped_int(sig.raw_min)} … {grouped_int(sig.raw_max)} |",
     ]
     for s in sig.specials:
-        lines += ["", doc_text(f"Special raw value {int_lit(s.raw)}: {s.label_zh} ({s.label})")]
+        lines += ["", doc_text(f"Special raw value {grouped_int(s.raw)}: {s.label_zh} ({s.label})")]
     if sig.errata:
         lines += ["", doc_text(f"Errata: {', '.join(sig.errata)} (see spec/ERRATA.md)")]
     return tuple(lines)
@@ -357,23 +339,23 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
         kind, phys_type, enum = "float", "f64", None
     if kind == "scaled_int":
         lo, hi = math.ceil(sig.check_min), math.floor(sig.check_max)
-        bounds = {"check_min": int_lit(lo), "check_max": int_lit(hi), "factor": int_lit(int(sig.factor)), "offset": int_lit(int(sig.offset))}
+        bounds = {"check_min": grouped_int(lo), "check_max": grouped_int(hi), "factor": grouped_int(int(sig.factor)), "offset": grouped_int(int(sig.offset))}
     else:
-        bounds = {"check_min": f64_lit(sig.check_min), "check_max": f64_lit(sig.check_max), "accept_min": f64_lit(sig.accept_min), "accept_max": f64_lit(sig.accept_max),
-                  "factor": f64_lit(sig.factor), "offset": f64_lit(sig.offset)}
+        bounds = {"check_min": float_lit(sig.check_min), "check_max": float_lit(sig.check_max), "accept_min": float_lit(sig.accept_min), "accept_max": float_lit(sig.accept_max),
+                  "factor": float_lit(sig.factor), "offset": float_lit(sig.offset)}
     scale = {
         **bounds,
-        "raw_min": int_lit(sig.raw_min), "raw_max": int_lit(sig.raw_max),
-        "type_min": int_lit(sig.raw_type_min), "type_max": int_lit(sig.raw_type_max),
+        "raw_min": grouped_int(sig.raw_min), "raw_max": grouped_int(sig.raw_max),
+        "type_min": grouped_int(sig.raw_type_min), "type_max": grouped_int(sig.raw_type_max),
     }
     suffices, nonnegative, pass_min, pass_max = documented_range_suffices(sig)
     if pass_min is not None and pass_max is not None:
         # The doubles the full rule accepts (without specials): the shortcut's one range check,
         # and for the full rule the same answers (outside it another check fails anyway).
         if pass_min != float(sig.accept_min):
-            scale["accept_min"] = f64_lit(Fraction(repr(pass_min)))  # shortest decimal of that double
+            scale["accept_min"] = float_lit(Fraction(repr(pass_min)))  # shortest decimal of that double
         if pass_max != float(sig.accept_max):
-            scale["accept_max"] = f64_lit(Fraction(repr(pass_max)))
+            scale["accept_max"] = float_lit(Fraction(repr(pass_max)))
     if kind == "scaled_int":
         to_raw = ("to_raw_int_documented_or_special" if sig.specials else "to_raw_int_documented") if suffices else "to_raw_int"
     elif suffices and sig.specials:
@@ -386,24 +368,24 @@ def build_field(msg: ir.Message, sig: ir.Signal, enums: dict[str, RustEnum]) -> 
                 and not _power_of_two(Fraction(sig.factor)):
             to_raw = "to_raw_documented_unsigned_recip"
     specials = tuple(
-        RustSpecial(upper_snake(f"{name}_{s.name}"), f"{int_lit(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label})") + f", raw value of `{name}`")
+        RustSpecial(upper_snake(f"{name}_{s.name}"), f"{grouped_int(s.raw)}", doc_text(f"{sig.zh}: {s.label_zh} ({s.label})") + f", raw value of `{name}`")
         for s in sig.specials
     )
     return RustField(
         sig=sig, name=name, qualified=f"{msg.name}.{sig.name}", field=rust_ident(name),
         getter=rust_ident(name), raw_getter=rust_ident(f"{name}_raw"), setter=f"set_{name}", raw_setter=f"set_{name}_raw",
         raw_type=raw_type, kind=kind, phys_type=phys_type, enum=enum,
-        unpack=unpack_expr(sig), pack=pack_expr(sig, "value"), clear=int_lit(((1 << 64) - 1) ^ (sig.mask << sig.start)),
-        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=f64_lit(sig.factor), to_raw=to_raw,
-        specials_slice="&[" + ", ".join(int_lit(s.raw) for s in sig.specials) + "]",
+        unpack=unpack_expr(sig), pack=pack_expr(sig, "value"), clear=grouped_int(((1 << 64) - 1) ^ (sig.mask << sig.start)),
+        misfit=misfit_expr(sig), refused=refused_expr(sig), scale=scale, const_prefix=upper_snake(name), factor_lit=float_lit(sig.factor), to_raw=to_raw,
+        specials_slice="&[" + ", ".join(grouped_int(s.raw) for s in sig.specials) + "]",
         phys_expr=_int_phys_expr(sig, f"{rust_ident(name + '_raw')}()", phys_type) if kind == "scaled_int" else _phys_expr(sig, f"{rust_ident(name + '_raw')}()"),
         specials=specials, doc=_field_doc(sig),
-        reciprocal=f64_lit(Fraction(repr(1.0 / float(sig.factor)))) if to_raw == "to_raw_documented_unsigned_recip" else "",
+        reciprocal=float_lit(Fraction(repr(1.0 / float(sig.factor)))) if to_raw == "to_raw_documented_unsigned_recip" else "",
         short_doc=doc_text(f"{sig.zh}: {_range_text(sig.check_min, sig.check_max)} {sig.unit}".rstrip()),
         table_row=f"| `{name}` | {doc_text(sig.zh)} | {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {doc_text(sig.unit) or '—'} |",
         is_counter=sig.role == "counter",
-        strategy_lo=int_lit(sig.raw_min), strategy_hi=int_lit(sig.raw_max),
-        type_lo=int_lit(sig.raw_type_min), type_hi=int_lit(sig.raw_type_max),
+        strategy_lo=grouped_int(sig.raw_min), strategy_hi=grouped_int(sig.raw_max),
+        type_lo=grouped_int(sig.raw_type_min), type_hi=grouped_int(sig.raw_type_max),
     )
 
 
@@ -458,7 +440,7 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
         checksum_expr = " ^ ".join(f"bytes[{b}]" for b in msg.checksum.covers)
         fold = msg.dlc == 8 and set(msg.checksum.covers) == set(range(8)) - {msg.checksum.byte}
         shift = 8 * msg.checksum.byte
-        clear = int_lit(((1 << 64) - 1) ^ (0xFF << shift))
+        clear = grouped_int(((1 << 64) - 1) ^ (0xFF << shift))
     mf = None
     if msg.multiframe:
         m = msg.multiframe
@@ -466,7 +448,7 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
             "index": next(f for f in fields if f.name == snake(m.index_signal)),
             "payload": next(f for f in fields if f.name == snake(m.payload_signal)),
             "text_length": m.text_length, "frames": m.frames, "bytes_per_frame": m.bytes_per_frame,
-            "padding": int_lit(m.padding), "assembler": f"{name}Text", "payload_bytes": m.bytes_per_frame,
+            "padding": grouped_int(m.padding), "assembler": f"{name}Text", "payload_bytes": m.bytes_per_frame,
             "total": m.frames * m.bytes_per_frame,
         }
         payload = mf["payload"]
@@ -484,7 +466,7 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum]) -> RustMessage:
         stored |= f.sig.mask << f.sig.start
     da = "None" if msg.j1939.da is None else f"Some(0x{msg.j1939.da:02X})"
     return RustMessage(msg, name, f"{name}Values", name, fields, msg.checksum, checksum_expr, fold, shift, clear, counter, mf, da,
-                       _message_doc(msg), int_lit(defined), int_lit(stored))
+                       _message_doc(msg), grouped_int(defined), grouped_int(stored))
 
 
 @dataclass(frozen=True)
@@ -527,11 +509,8 @@ __all__ = [
     "RustMessage",
     "build_crate",
     "doc_text",
-    "f64_lit",
-    "int_lit",
     "misfit_expr",
     "pack_expr",
     "refused_expr",
-    "str_lit",
     "unpack_expr",
 ]

@@ -1,0 +1,64 @@
+"""The literal layer (render/literals.py): each language's syntax, checked against the language
+itself where a compiler is at hand (gcc for C, Python's own parser, json for TypeScript)."""
+
+from __future__ import annotations
+
+import ast
+import json
+import subprocess
+from fractions import Fraction
+
+import pytest
+from canspec.render import literals
+
+NASTY = ['plain', 'quote " and backslash \\', "tab\tnewline\n", "bell\x07 del\x7f nul-ish\x01", "trigraph ??= ??(", "中文 °C m/s²", "digit after control \x017"]
+
+
+def test_numbers():
+    assert literals.float_lit(Fraction(-1080)) == "-1080.0"
+    assert literals.float_lit(Fraction(1, 10)) == "0.1"
+    assert literals.float_lit(Fraction(3, 2000)) == "0.0015"
+    assert literals.double_repr(1e-7) == "1e-07" and literals.double_repr(3.0) == "3.0" and literals.double_repr(1e22) == "1e22"
+    assert literals.grouped_int(1023) == "1023"
+    assert literals.grouped_int((1 << 64) - 1) == "0xFFFF_FFFF_FFFF_FFFF"
+    assert literals.grouped_int(-0x1_0000) == "-0x1_0000"
+    assert eval(literals.grouped_int(0x1_2345)) == 0x12345  # also a valid Python literal  # noqa: S307
+
+
+def test_c_integers():
+    assert literals.c_uint(255) == "255u"
+    assert literals.c_uint(2**40, 64) == "UINT64_C(1099511627776)"
+    assert literals.c_int(-1080) == "(-1080)"
+    assert literals.c_int(-(2**63), 64) == "INT64_MIN"
+    assert literals.c_hex(0x3FF) == "0x3FFu"
+    with pytest.raises(ValueError):
+        literals.c_uint(-1)
+
+
+def test_c_strings_compile_to_the_same_bytes(tmp_path):
+    src = tmp_path / "s.c"
+    body = ",\n".join(literals.c_string(s) for s in NASTY)
+    src.write_text(f'#include <stdio.h>\nstatic const char *const S[] = {{{body}}};\nint main(void) {{ for (unsigned i = 0; i < sizeof S / sizeof *S; i++) {{ fputs(S[i], stdout); putchar(0); }} return 0; }}\n', encoding="utf-8")
+    exe = tmp_path / "s"
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-trigraphs", str(src), "-o", str(exe)], check=True)
+    out = subprocess.run([str(exe)], capture_output=True, check=True).stdout
+    assert out.split(b"\0")[:-1] == [s.encode("utf-8") for s in NASTY]
+
+
+def test_python_and_typescript_strings():
+    for s in NASTY:
+        assert ast.literal_eval(literals.py_string(s)) == s
+        assert json.loads(literals.ts_string(s)) == s
+
+
+def test_rust_strings_compile_to_the_same_bytes(tmp_path):
+    src = tmp_path / "s.rs"
+    body = ", ".join(literals.rust_string(s) for s in NASTY)
+    src.write_text(f"fn main() {{ for s in [{body}] {{ print!(\"{{}}\\0\", s); }} }}\n", encoding="utf-8")
+    subprocess.run(["rustc", "-D", "warnings", "-o", str(tmp_path / "s"), str(src)], check=True, cwd=tmp_path)
+    out = subprocess.run([str(tmp_path / "s")], capture_output=True, check=True).stdout
+    assert out.split(b"\0")[:-1] == [s.encode("utf-8") for s in NASTY]
+
+
+def test_dbc_strings_never_hold_a_quote():
+    assert literals.dbc_string('say "hi" \\ now') == "\"say 'hi' / now\""
