@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import dataclasses
 import shutil
-from fractions import Fraction
 
 import pytest
 from canspec.generate import GenerationError, generate
