@@ -95,3 +95,15 @@ def test_emulated_runner_reports_mismatches(results, vectors, tmp_path, name):
     assert proc.returncode == 1 and m, proc.stdout + proc.stderr
     assert int(m.group(1)) == 30 and int(m.group(3)) >= 2
     assert proc.stderr.count("line ") >= 2, proc.stderr
+
+
+def test_bench_cross_smoke(tmp_path, capsys):
+    """`make bench-c-cross` still builds, traces and counts, and both sides still do the same
+    work (every library unpacks and packs the bench frames back, status 0): one core, one level."""
+    _need(cross.TARGETS["cortex-m4-O2"])
+    import bench_cross
+
+    rc = bench_cross.main(["bench_cross", "--configs", "cortex-m4:-O2", "--build", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert rc == 0, out[-3000:]
+    assert "bench: 0 mismatches" in out and "overall (sum)" in out and "helper-free" in out
