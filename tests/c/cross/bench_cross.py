@@ -169,7 +169,7 @@ def src_harness(inp: Inputs, lib: str) -> str:
         out.append(f"const uint8_t *out_{lib}_{n}(void) {{ return &O_{n}[0][0]; }}")
     out.append("typedef void (*run_fn)(int *);")
     out.append(f"const run_fn runs_{lib}[] = {{ {', '.join(runs)} }};")
-    out.append(f"typedef const uint8_t *(*out_fn)(void);")
+    out.append("typedef const uint8_t *(*out_fn)(void);")
     out.append(f"const out_fn outs_{lib}[] = {{ {', '.join(f'out_{lib}_{n}' for n in inp.names)} }};")
     return "\n".join(out) + "\n"
 
@@ -583,7 +583,7 @@ def report(inp: Inputs, results: list[ConfigResult]) -> str:
             row = [by_opt[o].sizes.get(label, (0, set())) for o in opts]
             helpers = sorted(set().union(*(h for _, h in row)))
             out.append(f"{label:<62}" + "".join(f"{s:>8}" for s, _ in row) + f"  {', '.join(helpers) or '-'}")
-        out.append(f"stack, bytes (-fstack-usage; deepest path adds frames along the call graph)")
+        out.append("stack, bytes (-fstack-usage; deepest path adds frames along the call graph)")
         for o in opts:
             r = by_opt[o]
             for label in r.frame:

@@ -129,7 +129,7 @@ def config_macros(headers: Path) -> set[str]:
     #ifndef X / #define X value pairs (tunable values, e.g. a default timeout) are not choices."""
     found: set[str] = set()
     for h in sorted(headers.glob("*.h")):
-        for m in re.finditer(r"^\s*#\s*(if|elif|ifdef)\b(.*(?:\\\n.*)*)", h.read_text(encoding="utf-8"), re.M):
+        for m in re.finditer(r"^\s*#\s*(if|elif|ifdef)\b(.*(?:\\\n.*)*)", h.read_text(encoding="utf-8"), re.MULTILINE):
             for ident in re.findall(r"[A-Za-z_]\w*", m.group(2)):
                 if ident == "defined" or ident.startswith("__") or _GUARD.search(ident):
                     continue

@@ -223,8 +223,8 @@ def _rule_key(rule: str) -> tuple[int, ...]:
 def report(by_config: dict[str, list[Finding]]) -> str:
     configs = list(by_config)
     allf = unique(by_config)
-    out = [f"MISRA C:2012, cppcheck {cppcheck_version()} misra addon + core checks, platform {PLATFORM}; "
-           f"configurations: {', '.join(configs)}; findings de-duplicated across configurations"]
+    out = [(f"MISRA C:2012, cppcheck {cppcheck_version()} misra addon + core checks, platform {PLATFORM}; "
+            f"configurations: {', '.join(configs)}; findings de-duplicated across configurations")]
     out.append(f"{'rule':<7} {'category':<10} {'findings':>8}  " + "  ".join(f"{c:>{max(8, len(c))}}" for c in configs) + "  checks")
     per_conf = {c: Counter(f.rule or f.source for f in fs) for c, fs in by_config.items()}
     groups: dict[str, list[Finding]] = defaultdict(list)
