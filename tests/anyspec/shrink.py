@@ -8,7 +8,7 @@ from __future__ import annotations
 import hashlib
 import time
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 from anyspec import harness, strategy
 
@@ -16,71 +16,78 @@ SHRINK_DIR = harness.BUILD / "shrink"
 
 
 class Shrinker:
-    def __init__(self, features: frozenset[str], target: str, signature: str, budget_s: float = 900, log: Callable[[str], None] = print) -> None:
-        self.features, self.target, self.signature = features, target, signature
+    """`fails(spec)` returns the failure (anything truthy) when `spec` still fails the same way."""
+
+    def __init__(self, features: frozenset[str], fails: Callable[[strategy.GeneratedSpec], Any], budget_s: float = 900, log: Callable[[str], None] = print) -> None:
+        self.features, self.fails = features, fails
         self.deadline = time.monotonic() + budget_s
         self.log = log
         self.cache: dict[str, bool] = {}
         self.tries = 0
         self.best: strategy.GeneratedSpec | None = None
-        self.best_failure: harness.Failure | None = None
+        self.best_failure: Any = None
 
-    def still_fails(self, choices: list[int]) -> bool:
+    def key(self, spec: strategy.GeneratedSpec) -> tuple[int, int, list[int]]:
+        return (_size(spec), len(spec.choices), spec.choices)
+
+    def try_edit(self, choices: list[int]) -> bool:
+        """True when `choices` gives a spec that still fails and is smaller than the best one."""
         spec = strategy.replay(choices, self.features)
-        key = hashlib.sha256(spec.text().encode()).hexdigest()
-        if key in self.cache:
-            return self.cache[key]
+        text = spec.text()
+        if self.best is not None and self.key(spec) >= self.key(self.best):
+            return False
+        digest = hashlib.sha256(text.encode()).hexdigest()
+        if digest in self.cache:
+            return False  # tried before: failed to fail, or not smaller than what it led to
         self.tries += 1
-        failure = failure_of(spec, self.target, self.signature)
-        self.cache[key] = failure is not None
-        if failure is not None and (self.best is None or _size(spec) <= _size(self.best)):
-            self.best, self.best_failure = spec, failure
-        return failure is not None
+        failure = self.fails(spec)
+        self.cache[digest] = failure is not None
+        if failure is None:
+            return False
+        self.best, self.best_failure = spec, failure
+        return True
 
     def out_of_time(self) -> bool:
         return time.monotonic() > self.deadline
 
-    def run(self, choices: list[int]) -> tuple[strategy.GeneratedSpec | None, harness.Failure | None]:
-        cur = list(choices)
-        if not self.still_fails(cur):
+    def run(self, choices: list[int]) -> tuple[strategy.GeneratedSpec | None, Any]:
+        if not self.try_edit(list(choices)):
             self.log("shrink: the spec does not fail this way on its own (flaky, or the failure needs the batch)")
             return None, None
-        cur = list(self.best.choices) if self.best else cur
         improved = True
         while improved and not self.out_of_time():
             improved = False
+            assert self.best is not None
             # 1. shortest failing prefix (the rest of the choices become their minimum)
+            cur = self.best.choices
             lo, hi = 0, len(cur)
             while lo < hi and not self.out_of_time():
                 mid = (lo + hi) // 2
-                if self.still_fails(cur[:mid]):
+                if self.try_edit(cur[:mid]):
                     hi = mid
+                    improved = True
                 else:
                     lo = mid + 1
-            if hi < len(cur):
-                cur, improved = list(self.best.choices) if self.best else cur[:hi], True
             # 2. delete, then zero, blocks of choices
             for k in (16, 8, 4, 2, 1):
-                i = len(cur) - k
+                i = len(self.best.choices) - k
                 while i >= 0 and not self.out_of_time():
+                    cur = self.best.choices
                     for edit in (cur[:i] + cur[i + k:], cur[:i] + [0] * k + cur[i + k:]):
-                        if edit != cur and self.still_fails(edit):
-                            cur, improved = list(self.best.choices) if self.best else edit, True
+                        if edit != cur and self.try_edit(edit):
+                            improved = True
                             break
-                    i -= k
-                    i = min(i, len(cur) - k)
+                    i = min(i - k, len(self.best.choices) - k)
             # 3. smaller single values
-            for i in range(len(cur)):
-                if self.out_of_time():
-                    break
-                if i >= len(cur) or cur[i] == 0:
-                    continue
-                for v in (0, cur[i] // 2, cur[i] - 1):
-                    edit = cur[:i] + [v] + cur[i + 1:]
-                    if v < cur[i] and self.still_fails(edit):
-                        cur, improved = list(self.best.choices) if self.best else edit, True
+            i = 0
+            while i < len(self.best.choices) and not self.out_of_time():
+                cur = self.best.choices
+                for v in sorted({0, cur[i] // 2, cur[i] - 1}):
+                    if v < cur[i] and self.try_edit(cur[:i] + [v] + cur[i + 1:]):
+                        improved = True
                         break
-            self.log(f"shrink: {self.tries} specs tried; now {_size(self.best) if self.best else '?'} bytes of YAML")
+                i += 1
+            self.log(f"shrink: {self.tries} specs tried; now {_size(self.best)} bytes of YAML")
         return self.best, self.best_failure
 
 
@@ -103,7 +110,7 @@ def failure_of(spec: strategy.GeneratedSpec, target: str, signature: str) -> har
 
 def shrink_failure(seed: int | None, choices: list[int], features: frozenset[str], failure: harness.Failure, budget_s: float = 900,
                    log: Callable[[str], None] = print) -> tuple[strategy.GeneratedSpec | None, harness.Failure | None]:
-    s = Shrinker(features, failure.target, failure.signature, budget_s, log)
+    s = Shrinker(features, lambda spec: failure_of(spec, failure.target, failure.signature), budget_s, log)
     log(f"shrink: seed {seed}: {failure.signature}")
     return s.run(choices)
 
