@@ -84,8 +84,18 @@ def signature_text(message: str) -> str:
     """A failure message without the details that differ between specs (names, numbers, paths)."""
     lines = [ln for ln in message.splitlines() if ln.strip() and not re.match(r"\s*(\d+\s*)?[|>]|\s*-->|\s*from \.|\s*In file included|\s+from ", ln)]
     line = next((ln for rx in SIGNATURE_LINES for ln in lines if re.search(rx, ln)), lines[0] if lines else "")
+    runner = [ln for ln in lines if re.match(r"line \d+: ", ln)]  # the C runner's first mismatch
+    exc = [ln for ln in lines if re.match(r"\w+(Error|Exception): ", ln)]  # a traceback's exception
+    panic = [lines[i + 1] for i, ln in enumerate(lines[:-1]) if "panicked at" in ln]  # a Rust test's panic message
+    mismatch = [ln for ln in lines if re.match(r"(case \d+|multiframe|MISMATCH) ", ln)]  # the Python runners
+    line = (runner or panic or exc[-1:] or mismatch or [line])[0]
+    line = re.sub(r"^line \d+: \S+ \(\w+\)", "line N: MSG (KIND)", line)
+    line = re.sub(r"(mismatch: |^\w+Error: )\w+:", r"\1X:", line)
     line = re.sub(r"\b\w+?_(common|messages|enums|dispatch|monitor|text)\.h\b", r"P_\1.h", line)
     line = re.sub(r"\b[\w/.-]*?(\w+\.(py|rs|ts|h))\b", r"P/\1", line)
+    m = re.match(r"(canspec gen: target \w+: )(.*)", line)
+    if m:  # names from the spec in canspec's own messages
+        line = m.group(1) + re.sub(r"(?<![/\w.])(?!error\b)(?:[a-z_][a-z0-9_]*\.)?[a-z_][a-z0-9_]*(?=:)(?!\d)|(?<=value table )\w+|(?<=JSON field )\S+", "X", m.group(2))
     line = re.sub(r"/\S+/", "", line)
     line = re.sub(r"\bs\d{4}\b", "S", line)
     line = re.sub(r"'[^']*'|\"[^\"]*\"|`[^`]*`|‘[^’]*’", "X", line)
@@ -140,8 +150,14 @@ class Ctx:
         self.res = res
         self.spec = Path(res.spec_dir) / res.entry
         self.out = Path(res.out_dir)
+        self.stage_filter: str | None = None
         self.work = Path(res.out_dir).parent / "work"
         self.work.mkdir(parents=True, exist_ok=True)
+
+    def want(self, *labels: str) -> bool:
+        """Whether to run a sub-stage (the shrinker re-runs only the one that failed)."""
+        f = self.stage_filter
+        return f is None or any(label.startswith(f) or f.startswith(label) for label in labels)
 
     def fail(self, target: str, stage: str, message: str) -> None:
         self.res.failures.append(Failure(self.res.sid, self.res.seed, target, stage, clip(message), self.res.spec_dir, self.res.features))
@@ -205,6 +221,8 @@ def stage_c(ctx: Ctx) -> None:
         unit.write_text(f'#include "{h}"\n#include "{h}"\nint canspec_dummy(void);\nint canspec_dummy(void) {{ return 0; }}\n', encoding="utf-8")
         units.append(unit)
     for cc, std, label in C_MODES:
+        if not ctx.want(f"{cc} {label} strict, each header alone"):
+            continue
         rc, out, err = sh([cc, *std, *strict, f"-I{cdir}", "-fsyntax-only", *map(str, units)])
         if rc != 0:
             bad = sorted({m.group(1) for m in re.finditer(r"only_([\w.]+\.h)\.c", err)}) or headers
@@ -212,11 +230,13 @@ def stage_c(ctx: Ctx) -> None:
     umbrella = next((u for u in units if u.name == f"only_{ctx.res.facts.get('c_prefix', '')}.h.c"), None)
     umbrella = umbrella or min(units, key=lambda u: len(u.name))
     for cc in ("gcc", "clang"):  # optimised code generation: the middle-end warnings
+        if not ctx.want(f"{cc} -O2 -c"):
+            continue
         rc, out, err = sh([cc, "-std=c99", *strict, "-O2", f"-I{cdir}", "-c", str(umbrella), "-o", os.devnull])
         if rc != 0:
             ctx.fail("c", f"{cc} -O2 -c {umbrella.name[5:-2]}", err)
     doc = _vectors(ctx)
-    if doc is None:
+    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/c/gen_runner_tables.py"):
         return
     try:
         (work / "runner_tables.h").write_text(adapters.c_runner_tables(ctx.spec), encoding="utf-8")
@@ -256,13 +276,15 @@ def stage_python(ctx: Ctx, mypy: bool) -> None:
         ctx.fail("python", "package", f"expected one package in {pydir}, found {sorted(p.name for p in pydir.iterdir())}")
         return
     ctx.res.checked.append("python")
-    rc, out, err = sh([sys.executable, str(HERE / "py_vectors.py"), str(pydir), pkg, str(ctx.out / "vectors" / "can.json")])
-    if rc != 0:
-        ctx.fail("python", "import + vector runner", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
-    rc, out, err = sh(["ruff", "check", "--no-cache", "."], cwd=pydir)
-    if rc != 0:
-        ctx.fail("python", "ruff check", out + err)
-    if mypy:
+    if ctx.want("import + vector runner"):
+        rc, out, err = sh([sys.executable, str(HERE / "py_vectors.py"), str(pydir), pkg, str(ctx.out / "vectors" / "can.json")])
+        if rc != 0:
+            ctx.fail("python", "import + vector runner", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
+    if ctx.want("ruff check"):
+        rc, out, err = sh(["ruff", "check", "--no-cache", "."], cwd=pydir)
+        if rc != 0:
+            ctx.fail("python", "ruff check", out + err)
+    if mypy and ctx.want("mypy --strict"):
         ctx.res.checked.append("python-mypy")
         targets = [pkg] + (["examples"] if (pydir / "examples").is_dir() else [])
         rc, out, err = sh([sys.executable, "-m", "mypy", "--strict", f"--cache-dir={BUILD / 'mypy-cache' / str(os.getpid())}", *targets], cwd=pydir)
@@ -403,6 +425,7 @@ class Job:
     facts: dict[str, Any]
     mypy: bool = False
     only: list[str] | None = None  # restrict to these targets (the shrinker)
+    stage_filter: str | None = None  # and to this sub-stage
 
 
 def run_spec(job: Job) -> SpecResult:
@@ -410,6 +433,7 @@ def run_spec(job: Job) -> SpecResult:
     t0 = time.monotonic()
     res = SpecResult(job.sid, job.seed, job.spec_dir, job.entry, job.out_dir, job.features, job.facts)
     ctx = Ctx(res)
+    ctx.stage_filter = job.stage_filter
     shutil.rmtree(job.out_dir, ignore_errors=True)
     want = set(job.only) if job.only else None
 

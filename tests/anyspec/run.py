@@ -34,6 +34,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--jobs", type=int, default=None, help="worker processes (default: CPU count)")
     ap.add_argument("--shrink", action="store_true", help="with --seed: shrink each distinct failure")
     ap.add_argument("--shrink-seconds", type=float, default=900)
+    ap.add_argument("--shrink-batch", type=Path, default=None, help="shrink the first spec of each distinct failure of a --json results file")
     ap.add_argument("--print", action="store_true", help="with --seed: print the spec and stop")
     ap.add_argument("--json", type=Path, default=None, help="write every result to this file")
     args = ap.parse_args(argv)
@@ -44,6 +45,11 @@ def main(argv: list[str]) -> int:
         return 1
     if args.spec is not None:
         return run_spec_path(args.spec)
+    if args.shrink_batch is not None:
+        from anyspec import shrink as shrinker
+
+        shrinker.shrink_batch(args.shrink_batch, args.shrink_seconds, args.jobs or 2)
+        return 0
     if args.seed is not None:
         spec = strategy.example(args.seed, features)
         if args.print:

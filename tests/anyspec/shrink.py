@@ -6,6 +6,8 @@ Smaller choices mean a simpler spec, so the result is a small spec with the same
 from __future__ import annotations
 
 import hashlib
+import json
+import os
 import time
 from pathlib import Path
 from typing import Any, Callable
@@ -95,22 +97,28 @@ def _size(spec: strategy.GeneratedSpec) -> int:
     return len(spec.text())
 
 
-def failure_of(spec: strategy.GeneratedSpec, target: str, signature: str) -> harness.Failure | None:
-    """Run just what `target` needs on `spec`; the failure with `signature`, if it happens."""
-    job = harness.prepare(spec, "s9999", SHRINK_DIR)
-    job.only = [target if not target.startswith("gen:") else target]
+def _work_dir() -> Path:
+    return SHRINK_DIR / f"p{os.getpid()}"
+
+
+def failure_of(spec: strategy.GeneratedSpec, target: str, signature: str, stage: str | None = None) -> harness.Failure | None:
+    """Run just what `target` (and its sub-stage `stage`) needs on `spec`; the failure with
+    `signature`, if it happens."""
+    job = harness.prepare(spec, "s9999", _work_dir())
+    job.only = [target]
+    job.stage_filter = stage.split(" (")[0] if stage and target in ("c", "python") else None
     job.mypy = True
     res = harness.run_spec(job)
     if target == "rust" and res.accepted:
-        harness.stage_rust([res], SHRINK_DIR)
+        harness.stage_rust([res], _work_dir())
     if target == "typescript" and res.accepted:
-        harness.stage_typescript([res], SHRINK_DIR)
+        harness.stage_typescript([res], _work_dir())
     return next((f for f in res.failures if f.signature == signature), None)
 
 
 def shrink_failure(seed: int | None, choices: list[int], features: frozenset[str], failure: harness.Failure, budget_s: float = 900,
                    log: Callable[[str], None] = print) -> tuple[strategy.GeneratedSpec | None, harness.Failure | None]:
-    s = Shrinker(features, lambda spec: failure_of(spec, failure.target, failure.signature), budget_s, log)
+    s = Shrinker(features, lambda spec: failure_of(spec, failure.target, failure.signature, failure.stage), budget_s, log)
     log(f"shrink: seed {seed}: {failure.signature}")
     return s.run(choices)
 
@@ -124,3 +132,40 @@ def save(spec: strategy.GeneratedSpec, failure: harness.Failure, name: str) -> P
     path = spec.write(dest)
     (dest / "FAILURE.txt").write_text(f"{failure.target}: {failure.stage}\n{failure.message}\n", encoding="utf-8")
     return Path(path)
+
+
+def _shrink_job(args: tuple[int, list[int], list[str], dict[str, Any], float, str]) -> tuple[str, str | None, str | None]:
+    seed, choices, features, fdict, budget, name = args
+    failure = harness.Failure(**fdict)
+    small, got = Shrinker(frozenset(features), lambda spec: failure_of(spec, failure.target, failure.signature, failure.stage), budget, log=lambda _: None).run(choices)
+    if small is None or got is None:
+        return name, None, None
+    path = save(small, got, name)
+    return name, str(path), got.signature
+
+
+def shrink_batch(results_json: Path, budget_s: float = 180, jobs: int = 2, log: Callable[[str], None] = print) -> list[tuple[str, str | None, str | None]]:
+    """Shrink the first spec of every distinct failure (not refusals) of a `run.py --json` file."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    doc = json.loads(Path(results_json).read_text(encoding="utf-8"))
+    firsts: dict[str, tuple[dict[str, Any], dict[str, Any]]] = {}
+    for r in doc["results"]:
+        for f in r["failures"]:
+            fobj = harness.Failure(**f)
+            if fobj.target != "check":
+                firsts.setdefault(fobj.signature, (r, f))
+    tasks = []
+    for k, (r, f) in enumerate(firsts.values()):
+        run_dir = Path(r["spec_dir"]).parent
+        choices = json.loads((run_dir / "choices.json").read_text(encoding="utf-8"))["choices"] if (run_dir / "choices.json").is_file() else None
+        if choices is None:
+            choices = strategy.example(r["seed"], frozenset(doc["features"])).choices
+        tasks.append((r["seed"], choices, doc["features"], f, budget_s, f"{k:02d}-seed-{r['seed']}-{f['target'].replace(':', '-')}"))
+    log(f"shrink: {len(tasks)} distinct failures, {budget_s:.0f} s each, {jobs} at a time")
+    out = []
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        for name, path, sig in pool.map(_shrink_job, tasks):
+            log(f"shrink: {name}: {path or 'did not reproduce alone'}  [{sig}]")
+            out.append((name, path, sig))
+    return out
