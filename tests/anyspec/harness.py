@@ -10,6 +10,7 @@ shrink one spec). See tests/anyspec/README.md.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import os
@@ -151,6 +152,7 @@ class Ctx:
         self.spec = Path(res.spec_dir) / res.entry
         self.out = Path(res.out_dir)
         self.stage_filter: str | None = None
+        self.bytewise = True
         self.work = Path(res.out_dir).parent / "work"
         self.work.mkdir(parents=True, exist_ok=True)
 
@@ -251,7 +253,9 @@ def stage_c(ctx: Ctx) -> None:
         if m:
             macro = m.group(1)
             break
-    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_LE_WORDS=0"])] if macro else [])
+    # the portable byte-wise path on every 4th spec (and whenever the shrinker asks for it)
+    bytewise = macro is not None and (ctx.bytewise or ctx.stage_filter is not None)
+    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_LE_WORDS=0"])] if bytewise else [])
     for name, extra in variants:
         exe = work / name
         rc, out, err = sh(["gcc", "-std=gnu99", "-O1", *strict[:-1], *extra, f"-I{cdir}", f"-I{work}", str(adapters.c_runner_source(work)), "-o", str(exe), "-lm"])
@@ -330,7 +334,8 @@ def stage_cantools(ctx: Ctx) -> None:
                         bad.append(f"case {i} ({case['message']}): DBC signal {sig.name} is not in the vector's physical values")
                         continue
                     expected = case["physical"][sig.name]
-                    tol = abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))
+                    ulps = 4 * math.ulp(float(expected))  # the double arithmetic of both sides
+                    tol = (abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))) + ulps
                     if not math.isclose(phys[sig.name], expected, abs_tol=tol):
                         bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools physical {sig.name} = {phys[sig.name]!r}, vectors say {expected!r}")
             except Exception as exc:  # noqa: BLE001
@@ -404,7 +409,9 @@ def stage_json(ctx: Ctx, mypy: bool) -> None:
         rc, out, err = sh([sys.executable, str(HERE / "py_json.py"), str(pkg_dir), name, str(vec_path)])
         if rc != 0:
             ctx.fail("json", "python bindings: import + vectors", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
-        rc, out, err = sh(["ruff", "check", "--no-cache", "."], cwd=pkg_dir)
+        # The bindings declare no ruff configuration: ruff's defaults, isolated from whatever
+        # configuration an ancestor directory or the user may have.
+        rc, out, err = sh(["ruff", "check", "--no-cache", "--isolated", "--target-version", "py310", "."], cwd=pkg_dir)
         if rc != 0:
             ctx.fail("json", "python bindings: ruff check", out + err)
         if mypy:
@@ -426,6 +433,7 @@ class Job:
     mypy: bool = False
     only: list[str] | None = None  # restrict to these targets (the shrinker)
     stage_filter: str | None = None  # and to this sub-stage
+    bytewise: bool = True  # also the C runner with the word path off
 
 
 def run_spec(job: Job) -> SpecResult:
@@ -434,6 +442,7 @@ def run_spec(job: Job) -> SpecResult:
     res = SpecResult(job.sid, job.seed, job.spec_dir, job.entry, job.out_dir, job.features, job.facts)
     ctx = Ctx(res)
     ctx.stage_filter = job.stage_filter
+    ctx.bytewise = job.bytewise
     shutil.rmtree(job.out_dir, ignore_errors=True)
     want = set(job.only) if job.only else None
 
@@ -448,6 +457,9 @@ def run_spec(job: Job) -> SpecResult:
             gen_targets = sorted({t for w in want for t in needs.get(w, [w.split(":", 1)[-1]]) if t in CANSPEC_TARGETS})
         stage_gen(ctx, gen_targets)
         g = set(res.generated)
+        if not (ctx.out / "vectors" / "can.json").is_file():  # a JSON-only spec: no CAN outputs to check
+            g -= {"c", "python", "dbc", "rust", "vectors"}
+            res.facts["has_json"] = True
         if wanted("c") and {"c", "vectors"} <= g:
             stage_c(ctx)
         if wanted("python") and {"python", "vectors"} <= g:
@@ -476,8 +488,13 @@ def _rust_members(results: list[SpecResult], root: Path) -> dict[str, SpecResult
             r.failures.append(Failure(r.sid, r.seed, "rust", "Cargo.toml", "no [package] name", r.spec_dir, r.features))
             continue
         lib = m.group(1)
-        if "anyspec-" not in text:  # one workspace holds every spec's crate: unique package names, the lib keeps its name
-            text = text.replace(m.group(0), f'[package]\nname = "anyspec-{r.sid}"', 1) + f'\n[lib]\nname = "{lib.replace("-", "_")}"\npath = "src/lib.rs"\n'
+        if "anyspec-" not in text:
+            # One workspace holds every spec's crate: unique package names (the lib keeps its
+            # name). Cargo hashes path packages relative to the workspace root, so the name also
+            # carries a digest of the crate: two workspaces sharing the target directory never
+            # share artifacts.
+            digest = hashlib.sha256(str(crate.resolve()).encode() + b"".join(p.read_bytes() for p in sorted(crate.rglob("*.rs")))).hexdigest()[:10]
+            text = text.replace(m.group(0), f'[package]\nname = "anyspec-{r.sid}-{digest}"', 1) + f'\n[lib]\nname = "{lib.replace("-", "_")}"\npath = "src/lib.rs"\n'
             toml.write_text(text, encoding="utf-8")
         members[os.path.relpath(crate, root)] = r
     return members
@@ -488,7 +505,8 @@ def stage_rust(results: list[SpecResult], root: Path, proptest_cases: int = 32) 
     members = _rust_members(results, root)
     if not members:
         return 0.0
-    by_pkg = {f"anyspec-{r.sid}": r for r in members.values()}
+    by_pkg = {re.search(r'^name = "(anyspec-[^"]+)"', (Path(r.out_dir) / "rust" / "Cargo.toml").read_text(encoding="utf-8"), re.M).group(1): r
+              for r in members.values()}
     (root / "Cargo.toml").write_text(
         "# The anyspec harness's workspace: one crate per generated spec, one target directory.\n[workspace]\nresolver = \"2\"\nmembers = [\n"
         + "".join(f'    "{m}",\n' for m in sorted(members)) + "]\n", encoding="utf-8")
@@ -512,8 +530,10 @@ def stage_rust(results: list[SpecResult], root: Path, proptest_cases: int = 32) 
             continue
         rc, out, err = sh(["cargo", "test", "--offline", "--all-features", "-p", pkg, "--", "--nocapture"], cwd=root, env=env, timeout=1800)
         if rc != 0 or "rust vectors:" not in out:
-            tail = "\n".join(ln for ln in (out + "\n" + err).splitlines() if not ln.startswith(("   Compiling", "    Finished", "     Running", "   Doc-tests")))
-            r.failures.append(Failure(r.sid, r.seed, "rust", "cargo test", tail[-5000:], r.spec_dir, r.features))
+            # the tests' own output (mismatches, panics) first, then cargo's
+            keep = [ln for ln in out.splitlines() if not ln.startswith(("test ", "running ")) and ln.strip() and "... ok" not in ln]
+            errs = [ln for ln in err.splitlines() if ln.startswith(("error", "thread", "  left", " right")) or "panicked" in ln]
+            r.failures.append(Failure(r.sid, r.seed, "rust", "cargo test", clip("\n".join(keep + errs)), r.spec_dir, r.features))
         else:
             m = re.search(r"rust vectors: .*?(\d+) mismatches", out)
             if not m or m.group(1) != "0":
@@ -527,16 +547,16 @@ def _attribute_rust(err: str, members: dict[str, SpecResult], by_pkg: dict[str, 
         m = re.match(r"(s\d{4})/out/rust/(\S+): error(?:\[\w+\])?: (.*)", line)
         if m:
             found.setdefault(m.group(1), []).append(f"{m.group(2)}: error: {m.group(3)}")
-    failed_pkgs = set(re.findall(r"could not compile `(anyspec-s\d{4})`", err))
-    for pkg in failed_pkgs:
-        sid = pkg.removeprefix("anyspec-")
+    failed_pkgs = set(re.findall(r"could not compile `anyspec-(s\d{4})-\w+`", err))
+    for sid in failed_pkgs:
         found.setdefault(sid, ["could not compile (see the cargo output)"])
     if not found:
         first = next(iter(members.values()))
         first.failures.append(Failure("workspace", None, "rust", stage, err[-6000:], str(BUILD), []))
         return
+    by_sid = {r.sid: r for r in by_pkg.values()}
     for sid, lines in found.items():
-        r = by_pkg.get(f"anyspec-{sid}")
+        r = by_sid.get(sid)
         if r is not None:
             r.failures.append(Failure(r.sid, r.seed, "rust", stage, "\n".join(dict.fromkeys(lines))[:6000], r.spec_dir, r.features))
 
@@ -653,6 +673,7 @@ def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, r
         spec = strategy.example(base_seed + i, features)
         job = prepare(spec, f"s{i:04d}", run_dir)
         job.mypy = mypy_every > 0 and i % mypy_every == 0
+        job.bytewise = i % 4 == 0
         jobs_list.append(job)
     timings["draw specs"] = time.monotonic() - t0
     log(f"anyspec: {n} specs drawn (seeds {base_seed}..{base_seed + n - 1}, features: {','.join(sorted(features)) or 'current'}) in {timings['draw specs']:.1f} s")

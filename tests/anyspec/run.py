@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import random
+import shutil
 import sys
 from pathlib import Path
 
@@ -87,15 +89,17 @@ def run_spec_path(path: Path) -> int:
             facts["messages"] = len(doc.get("messages", []))
     except Exception:  # noqa: BLE001 — canspec check will report a broken file
         pass
-    work = harness.BUILD / "one" / "s0000"
+    root = harness.BUILD / "one" / f"p{os.getpid()}"  # several --spec runs may share the machine
+    work = root / "s0000"
     job = harness.Job("s0000", None, str(spec_dir), entry, str(work / "out"), [], facts, mypy=True)
     res = harness.run_spec(job)
-    if res.accepted and "rust" in res.generated:
-        harness.stage_rust([res], harness.BUILD / "one")
+    if res.accepted and "rust" in res.generated and (Path(res.out_dir) / "vectors" / "can.json").is_file():
+        harness.stage_rust([res], root)
     if res.accepted and res.facts.get("has_json"):
-        harness.stage_typescript([res], harness.BUILD / "one")
+        harness.stage_typescript([res], root)
     batch = harness.Batch(0, 1, strategy.ALL, [res], res.seconds, {})
     print(harness.report(batch, verbose_specs=0))
+    shutil.rmtree(root, ignore_errors=True)
     return 1 if res.failures else 0
 
 
