@@ -735,7 +735,7 @@ def report(batch: Batch, verbose_specs: int = 3) -> str:
     out.append("timings: " + ", ".join(f"{k} {v:.0f} s" for k, v in batch.timings.items()))
     groups: dict[str, list[Failure]] = {}
     for f in batch.failures:
-        key = f.signature if f.target != "check" else f"check | refused: {', '.join(f.refusal or []) or 'UNEXPLAINED'} | {signature_text(classify_refusal(f.message)[1][0]) if classify_refusal(f.message)[1] else ''}"
+        key = f.signature if f.target != "check" else f"check | refused: {', '.join(sorted(f.refusal or [])) or 'UNEXPLAINED'} | {signature_text(classify_refusal(f.message)[1][0]) if classify_refusal(f.message)[1] else ''}"
         groups.setdefault(key, []).append(f)
     if not groups:
         out.append("anyspec: no failures")

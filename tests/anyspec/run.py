@@ -38,6 +38,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--shrink-seconds", type=float, default=900)
     ap.add_argument("--shrink-batch", type=Path, default=None, help="shrink the first spec of each distinct failure of a --json results file")
     ap.add_argument("--print", action="store_true", help="with --seed: print the spec and stop")
+    ap.add_argument("--run-dir", type=Path, default=None, help="work directory of the batch (default build/anyspec/run)")
     ap.add_argument("--json", type=Path, default=None, help="write every result to this file")
     args = ap.parse_args(argv)
     features = strategy.parse_features(args.features)
@@ -63,7 +64,7 @@ def main(argv: list[str]) -> int:
             return shrink(spec, features, batch, args.shrink_seconds)
         return 1 if batch.failures else 0
     base = args.base_seed if args.base_seed is not None else random.randrange(1_000_000_000)
-    batch = harness.run_batch(args.n, base, features, rust=args.rust, mypy_every=args.mypy_every, jobs=args.jobs)
+    batch = harness.run_batch(args.n, base, features, rust=args.rust, mypy_every=args.mypy_every, jobs=args.jobs, run_dir=args.run_dir)
     print(harness.report(batch))
     if args.json:
         args.json.write_text(json.dumps(harness.to_json(batch), indent=1, default=str), encoding="utf-8")
