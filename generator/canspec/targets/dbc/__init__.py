@@ -8,7 +8,7 @@ from __future__ import annotations
 from canspec import ir
 from canspec.render.environment import render
 from canspec.targets import Target
-from canspec.targets.dbc import attributes, model, naming
+from canspec.targets.dbc import attributes, model, naming, refusals
 
 
 def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
@@ -22,4 +22,4 @@ def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
     return {f"dbc/{spec.can.name}.dbc": text.encode("utf-8")}
 
 
-TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10)
+TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10, check=refusals.problems)
