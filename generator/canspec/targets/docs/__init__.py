@@ -44,10 +44,6 @@ def version_anchor(version: str) -> str:
     return "v" + version.replace(".", "-")
 
 
-def vt_anchor(name: str) -> str:
-    return f"vt-{name.replace('_', '-')}"
-
-
 def id_link(can: ir.CanProtocol | None, frame_id: int, prefix: str = "") -> str:
     """A frame ID of the change record, linked to its message's page where the spec has one."""
     msg = can.by_id(frame_id) if can is not None else None
@@ -115,13 +111,13 @@ def nav_yaml(spec: ir.Spec, lg: Lang) -> str:
 # --- rendering -------------------------------------------------------------------------------
 
 HELPERS: dict[str, Any] = {
-    "cell": cells.cell, "hex_id": cells.hex_id, "raw_hex": cells.raw_hex, "pct": cells.pct, "decimal": cells.decimal, "titled": cells.titled,
+    "cell": cells.cell, "raw_hex": cells.raw_hex, "pct": cells.pct, "decimal": cells.decimal, "titled": cells.titled,
     "id_kind": cells.id_kind, "cycle_text": cells.cycle_text, "doc_range": cells.doc_range, "enc_range": cells.enc_range,
     "range_note": cells.range_note, "value_cell": cells.value_cell, "special_cell": cells.special_cell, "role_cell": cells.role_cell,
     "bytes_cell": cells.bytes_cell, "byte_list": cells.byte_list, "node_label": cells.node_label, "receivers_text": cells.receivers_text,
-    "siblings": cells.siblings, "checksum_rule": cells.checksum_rule, "label_text": cells.label_text,
-    "message_page": message_page, "message_svg": message_svg, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor,
-    "json_page": json_page, "vt_anchor": vt_anchor, "erratum_anchor": erratum_anchor, "errata_links": errata_links, "id_link": id_link,
+    "siblings": cells.siblings, "checksum_rule": cells.checksum_rule,
+    "message_page": message_page, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor,
+    "json_page": json_page, "vt_anchor": cells.vt_anchor, "erratum_anchor": erratum_anchor, "errata_links": errata_links, "id_link": id_link,
     "json_range": jsonpage.json_range, "json_values": jsonpage.json_values, "json_example": jsonpage.json_example,
     "json_pairs": jsonpage.json_pairs, "party_label": jsonpage.party_label, "id_format_text": id_format_text,
     "shared_layout_senders": shared_layout_senders, "and_list": and_list, "tie_epsilon": ir.TIE_EPSILON_TEXT,

@@ -73,11 +73,15 @@ def label_text(lb: ir.Label, lang: Lang) -> str:
     return " ".join(t for t in (lang.only_zh(lb.label_zh), lb.label) if t)
 
 
-def value_cell(sig: ir.Signal, prefix: str, lang: Lang, vt_anchor: str) -> str:
+def vt_anchor(name: str) -> str:
+    return f"vt-{name.replace('_', '-')}"
+
+
+def value_cell(sig: ir.Signal, prefix: str, lang: Lang) -> str:
     """The signal's value table (linked) and its entries: the labels that are not special values."""
     if sig.value_table is None:
         return ""
-    parts = [f"[`{sig.value_table.name}`]({prefix}value_tables.md#{vt_anchor})"]
+    parts = [f"[`{sig.value_table.name}`]({prefix}value_tables.md#{vt_anchor(sig.value_table.name)})"]
     parts += [f"{lb.raw} = {label_text(lb, lang)}" for lb in sig.labels if not lb.is_special]
     return "<br>".join(cell(p) for p in parts)
 
