@@ -105,7 +105,7 @@ def nav(spec: ir.Spec, lg: Lang) -> dict[str, Any]:
 def nav_yaml(spec: ir.Spec, lg: Lang) -> str:
     head = "".join(f"# {line}\n" for line in header_lines(spec, "docs"))
     head += "# Site navigation, merged into the top-level mkdocs.yml with `INHERIT`.\n"
-    return head + yaml.safe_dump(nav(spec, lg), allow_unicode=True, sort_keys=False, width=200)
+    return head + str(yaml.safe_dump(nav(spec, lg), allow_unicode=True, sort_keys=False, width=200))
 
 
 # --- rendering -------------------------------------------------------------------------------

@@ -14,8 +14,8 @@ from canspec.targets.docs.lang import Lang
 def json_range(field: ir.JsonField) -> str:
     if field.json_type == "string":
         if field.min_length is not None or field.max_length is not None:
-            lo, hi = field.min_length, field.max_length
-            return f"length {lo if lo is not None else 0} … {hi if hi is not None else '∞'}"
+            shortest, longest = field.min_length, field.max_length
+            return f"length {shortest if shortest is not None else 0} … {longest if longest is not None else '∞'}"
         return ""
     if field.min is not None or field.max is not None:
         lo = num(field.min) if field.min is not None else _type_bound(field.type_min)
