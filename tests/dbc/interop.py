@@ -94,6 +94,12 @@ def _one_line_comments(snap: dict[str, Any]) -> None:
                 item["comment"] = item["comment"].replace("\n", " ")
 
 
+def _six_digit_scaling(sig: dict[str, Any]) -> None:
+    """canmatrix writes factor and offset to KCD and ARXML with "%g": 6 significant digits."""
+    # "%g" % a Decimal goes through a double, as canmatrix's writer does (Decimal's own :g would not)
+    sig["scale"], sig["offset"] = Decimal("%g" % sig["scale"]), Decimal("%g" % sig["offset"])  # noqa: UP031
+
+
 def _canmatrix_kcd(snap: dict[str, Any]) -> None:
     """canmatrix writes slope and intercept with 6 significant digits ("%g"), min and max with 16,
     leaves out a minimum of 0 and a maximum of 0 or 1 (reading back the bits' range instead), and
@@ -101,8 +107,7 @@ def _canmatrix_kcd(snap: dict[str, Any]) -> None:
     snap["nodes"] = dict.fromkeys(snap["nodes"])
     for m in snap["messages"].values():
         for s in m["signals"].values():
-            # "%g" % a Decimal goes through a double, as canmatrix's writer does (Decimal's own :g would not)
-            s["scale"], s["offset"] = Decimal("%g" % s["scale"]), Decimal("%g" % s["offset"])  # noqa: UP031
+            _six_digit_scaling(s)
             bits_lo, bits_hi = _bits_range(s)
             s["min"] = bits_lo if s["min"] == 0 else Decimal(f"{s['min']:.16g}")
             s["max"] = bits_hi if s["max"] in (0, 1) else Decimal(f"{s['max']:.16g}")
@@ -112,13 +117,14 @@ def _canmatrix_kcd(snap: dict[str, Any]) -> None:
 
 def _canmatrix_arxml(snap: dict[str, Any]) -> None:
     """canmatrix's ARXML: frames come back named after their FRAME element (`FRAME_<name>`), no
-    cycle times, signal ranges as the bits' range (it writes none), and only the nodes that send
-    a message or receive a signal."""
+    cycle times, factor and offset to 6 significant digits, signal ranges as the bits' range (it
+    writes none), and only the nodes that send a message or receive a signal."""
     used = set()
     for m in snap["messages"].values():
         m["name"], m["cycle"] = f"FRAME_{m['name']}", None
         used.update(m["senders"])
         for s in m["signals"].values():
+            _six_digit_scaling(s)
             s["min"], s["max"] = _bits_range(s)
             used.update(s["receivers"])
     snap["nodes"] = {n: c for n, c in snap["nodes"].items() if n in used}
