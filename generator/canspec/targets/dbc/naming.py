@@ -5,9 +5,10 @@ A DBC names signals per message, but the formats a DBC is converted to, and the 
 a SYM enum is named after, the ARXML system signal, I-signal, compu method and unit, cantools'
 SYM signal list. Two messages with an 8-bit and a 4-bit `counter` come back as two 8-bit
 counters, and value tables are swapped. So a spec name that carries different definitions in
-different messages — anything the DBC says about the signal apart from where it sits in the frame:
-length, sign, scaling, range, unit, value labels, SigType, comment, receivers — is written `<name>_<frame ID>` (`counter_1805B0A0`, `mode_123`) in every
-message that has it; a name with one definition everywhere keeps the spec's name. A renamed name
+different messages — anything the DBC says about the signal apart from where it sits in the
+frame: length, sign, scaling, range, unit, value labels, SigType, comment, receivers — is written
+`<name>_<frame ID>` (`counter_1805B0A0`, `mode_123`) in every message that has it; a name with
+one definition everywhere keeps the spec's name. A renamed name
 keeps to the 32 characters Vector's tools want (the spec's name is shortened, never the ID) and
 says the spec's name in the signal's comment and in its `SpecSignalName` attribute, which
 `canspec diff` reads. Only the DBC is renamed: the C, Python and Rust APIs keep the spec's names.
