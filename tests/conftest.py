@@ -27,10 +27,11 @@ def can(spec):
 
 @pytest.fixture(scope="session")
 def db():
-    """cantools reading the generated DBC: the independent oracle of many tests."""
-    import cantools
+    """cantools reading the generated DBC, under the spec's signal names (dbc_names.py): the
+    independent oracle of many tests."""
+    from dbc_names import load_with_spec_names
 
-    return cantools.database.load_file(str(GENERATED / "dbc" / "kaiwo_gateway.dbc"), encoding="utf-8", strict=True)
+    return load_with_spec_names(GENERATED / "dbc" / "kaiwo_gateway.dbc")
 
 
 @pytest.fixture(scope="session")

@@ -1,8 +1,12 @@
 """DBC → comparison model, through cantools. Names and choices map onto the same model as a
 spec; what a DBC cannot say (Chinese names, descriptions, value labels) stays None and is not
 compared. Vector J1939 attributes are read when present: GenMsgCycleTime, SigType
-(MessageCounter / MessageChecksum roles). Special values are read back from the comments canspec
-writes ("0x3FF = no_obstacle (无障碍物)")."""
+(MessageCounter / MessageChecksum roles), and SpecSignalName: the spec's name of a signal the DBC
+renamed (targets/dbc/naming.py), so a spec and its own DBC compare equal. Special values are read
+back from the comments canspec writes ("0x3FF = no_obstacle (无障碍物)", "-0x4 = no_limit" for a
+negative raw value or a special without a Chinese label). Factors, offsets and ranges are taken
+as written in the SG_ lines: cantools reads them as doubles, which cannot hold 0.1 or a 64-bit
+field's 18446744073709551615 exactly."""
 
 from __future__ import annotations
 
@@ -11,6 +15,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
+from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
 
 class InputError(Exception):
@@ -18,12 +23,33 @@ class InputError(Exception):
 
 
 _SIG_TYPE_ROLES = {"MessageCounter": "counter", "MessageChecksum": "checksum"}
-_SPECIAL = re.compile(r"0x([0-9A-Fa-f]+) = ([A-Za-z_][A-Za-z0-9_]*) \(([^)]*)\)")
+_SPECIAL = re.compile(r"(-?)0x([0-9A-Fa-f]+) = ([A-Za-z_][A-Za-z0-9_]*)(?: \(([^)]*)\))?")
 _NO_NODE = "Vector__XXX"
+_BO = re.compile(r"^\s*BO_\s+(\d+)\s")
+# SG_ name [multiplexing] : start|length@order sign (factor,offset) [minimum|maximum]
+_SG = re.compile(r"^\s*SG_\s+(\w+)[^:]*:\s*\d+\|\d+@[01][+-]\s*\(([^,()]+),([^,()]+)\)\s*\[([^|\]]+)\|([^\]]+)\]")
+
+Numbers = tuple[Fraction, Fraction, Fraction, Fraction]  # factor, offset, minimum, maximum
 
 
 def _frac(value: object) -> Fraction:
     return Fraction(str(value)) if value is not None else Fraction(0)
+
+
+def written_numbers(text: str) -> dict[tuple[int, str], Numbers]:
+    """(BO_ id as written, signal name) → the SG_ line's numbers, exactly."""
+    out: dict[tuple[int, str], Numbers] = {}
+    frame = None
+    for line in text.splitlines():
+        if (bo := _BO.match(line)) is not None:
+            frame = int(bo.group(1))
+        elif frame is not None and (sg := _SG.match(line)) is not None:
+            try:
+                f, o, lo, hi = (Fraction(g.strip()) for g in sg.groups()[1:])
+            except (ValueError, ZeroDivisionError):
+                continue  # cantools' reading stands
+            out[(frame, sg.group(1))] = (f, o, lo, hi)
+    return out
 
 
 def _attr(obj: object, name: str) -> object:
@@ -43,27 +69,41 @@ def _role(sig: object, attribute_definitions: dict) -> str:  # type: ignore[type
     return _SIG_TYPE_ROLES.get(str(value), "data")
 
 
-def _signal(sig, definitions) -> SignalModel:  # type: ignore[no-untyped-def]
+def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: ignore[no-untyped-def]
     if sig.byte_order != "little_endian":
         raise InputError(f"signal {sig.name!r} is big-endian (Motorola); canspec compares Intel-order protocols only")
     specials = {}
     for m in _SPECIAL.finditer(sig.comment or ""):
-        specials[int(m.group(1), 16)] = Entry(m.group(2), m.group(3))
+        specials[int(m.group(1) + m.group(2), 16)] = Entry(m.group(3), m.group(4))
     # canspec lists special values in VAL_ too (so tools show them); they are not enum entries.
     choices = {int(raw): str(getattr(v, "name", v)) for raw, v in (sig.choices or {}).items()}
     values = {raw: Entry(name, None) for raw, name in choices.items() if not (raw in specials and specials[raw].name == name)} or None
-    factor, offset = _frac(sig.scale), _frac(sig.offset)
-    lo = _frac(sig.minimum) if sig.minimum is not None else None
-    hi = _frac(sig.maximum) if sig.maximum is not None else None
-    if lo is None or hi is None:  # no range in the DBC: what the bits can carry
+    if written is not None:
+        factor, offset, lo, hi = written
+        # [0|0] says "no range" in a DBC, but a range of exactly 0 … 0 in one canspec wrote.
+        no_range = lo == hi == 0 and SPEC_NAME_ATTRIBUTE not in definitions
+    else:
+        factor, offset, lo, hi = _frac(sig.scale), _frac(sig.offset), _frac(sig.minimum), _frac(sig.maximum)
+        no_range = sig.minimum is None or sig.maximum is None
+    if no_range:  # what the bits can carry
         raw_lo, raw_hi = (-(1 << (sig.length - 1)), (1 << (sig.length - 1)) - 1) if sig.is_signed else (0, (1 << sig.length) - 1)
         a, b = raw_lo * factor + offset, raw_hi * factor + offset
-        lo, hi = (min(a, b) if lo is None else lo), (max(a, b) if hi is None else hi)
+        lo, hi = min(a, b), max(a, b)
     return SignalModel(
-        name=sig.name, start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,
+        name=str(_attr(sig, SPEC_NAME_ATTRIBUTE) or sig.name), start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,
         unit=sig.unit or "", minimum=lo, maximum=hi, role=_role(sig, definitions), values=values, values_table=None,
         specials=specials, zh=None, desc=None,
     )
+
+
+def _read_text(path: Path, source: str) -> str:
+    data = path.read_bytes()
+    for encoding in ("utf-8", "cp1252"):  # canspec writes UTF-8; Vector tools often write cp1252
+        try:
+            return data.decode(encoding)
+        except UnicodeDecodeError:
+            continue
+    raise InputError(f"{source}: not a readable DBC file (neither UTF-8 nor cp1252 text)")
 
 
 def load_dbc(path: Path, source: str) -> ProtocolModel:
@@ -71,25 +111,21 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
         import cantools  # optional: only DBC inputs need it
     except ImportError as exc:
         raise InputError(f"{source}: reading DBC files needs cantools (pip install cantools)") from exc
-    db = None
-    for encoding in ("utf-8", "cp1252"):  # canspec writes UTF-8; Vector tools often write cp1252
-        try:
-            db = cantools.database.load_file(str(path), database_format="dbc", strict=False, encoding=encoding)
-            break
-        except UnicodeDecodeError:
-            continue
-        except Exception as exc:  # cantools raises many kinds; all mean "not a DBC"
-            first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            raise InputError(f"{source}: not a readable DBC file: {first}") from exc
-    if db is None:
-        raise InputError(f"{source}: not a readable DBC file (neither UTF-8 nor cp1252 text)")
+    text = _read_text(path, source)
+    try:
+        db = cantools.database.load_string(text, database_format="dbc", strict=False)
+    except Exception as exc:  # cantools raises many kinds; all mean "not a DBC"
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise InputError(f"{source}: not a readable DBC file: {first}") from exc
     if not isinstance(db, cantools.database.can.Database):
         raise InputError(f"{source}: not a CAN database")
     definitions = getattr(getattr(db, "dbc", None), "attribute_definitions", None) or {}
+    written = written_numbers(text)
     messages = []
     for msg in db.messages:
+        dbc_id = msg.frame_id | 0x80000000 if msg.is_extended_frame else msg.frame_id
         try:
-            signals = tuple(sorted((_signal(s, definitions) for s in msg.signals), key=lambda s: (s.start, s.length)))
+            signals = tuple(sorted((_signal(s, definitions, written.get((dbc_id, s.name))) for s in msg.signals), key=lambda s: (s.start, s.length)))
         except InputError as exc:
             raise InputError(f"{source}: message {msg.name!r}: {exc}") from exc
         senders = [s for s in msg.senders if s != _NO_NODE]

@@ -251,6 +251,7 @@ class Node:
     zh: str
     desc: str
     aliases: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ DLC, CRC); 13 bits that are never stuffed (CRC delimiter, ACK slot and delimiter
 3-bit interframe space); the floor term is the most stuff bits the stuffed region can need
 (one after the first 5 equal bits, then one per 4 bits). 8 bytes, 29-bit ID: 160 bits.
 All arithmetic is exact (Fraction) so the published figures never depend on float rounding.
+Event-driven messages have no rate to count: they are left out of the figures and listed apart.
 """
 
 from __future__ import annotations
@@ -56,8 +57,9 @@ class SenderLoad:
 @dataclass(frozen=True)
 class BusLoad:
     bitrate: int
-    messages: tuple[MessageLoad, ...]  # document order
+    messages: tuple[MessageLoad, ...]  # the cyclic messages, document order
     senders: tuple[SenderLoad, ...]  # in node order, then "ALL"
+    event_driven: tuple[ir.Message, ...]  # not counted: sent on change or on request, at no fixed rate
     frames_per_s: Fraction
     bits_per_s: Fraction
     bits_per_s_best: Fraction  # the same traffic with no stuff bits at all
@@ -74,6 +76,7 @@ class BusLoad:
 
 
 def message_load(msg: ir.Message, bitrate: int) -> MessageLoad:
+    assert msg.cycle_ms is not None, "an event-driven message has no rate"
     frames = msg.multiframe.frames if msg.multiframe is not None else 1
     frames_per_s = Fraction(1000 * frames, msg.cycle_ms)
     worst = frame_bits(msg.dlc, msg.is_extended)
@@ -84,7 +87,7 @@ def message_load(msg: ir.Message, bitrate: int) -> MessageLoad:
 
 def bus_load(can: ir.CanProtocol) -> BusLoad:
     rate = can.bus.bitrate
-    loads = tuple(message_load(m, rate) for m in can.messages)
+    loads = tuple(message_load(m, rate) for m in can.messages if m.is_cyclic)
     order = [n.name for n in can.nodes]
     order += sorted({m.sender for m in can.messages} - set(order))
     senders = []
@@ -95,5 +98,6 @@ def bus_load(can: ir.CanProtocol) -> BusLoad:
             senders.append(SenderLoad(name, mine, sum((ml.frames_per_s for ml in mine), Fraction(0)), bps, bps / rate))
     total = sum((ml.bits_per_s for ml in loads), Fraction(0))
     best = sum((ml.frames_per_s * ml.bits_min for ml in loads), Fraction(0))
-    return BusLoad(rate, loads, tuple(senders), sum((ml.frames_per_s for ml in loads), Fraction(0)), total, best, total / rate,
+    events = tuple(m for m in can.messages if not m.is_cyclic)
+    return BusLoad(rate, loads, tuple(senders), events, sum((ml.frames_per_s for ml in loads), Fraction(0)), total, best, total / rate,
                    1 - total / rate)

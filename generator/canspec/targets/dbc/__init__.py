@@ -1,67 +1,25 @@
-"""DBC for the CAN protocol, with Vector's J1939 attributes. Encoding: UTF-8 (see the README):
-identifiers are ASCII, Chinese text appears only in CM_ comments."""
+"""DBC for the CAN protocol, with the attributes of Vector's J1939 template where the bus uses
+J1939 addressing. Encoding: UTF-8 (see the README): identifiers are ASCII, Chinese text appears
+only in CM_ comments and units. model.py decides every line's content, naming.py the signal names
+(unique where a spec name has different definitions), attributes.py Vector's enumerations."""
 
 from __future__ import annotations
 
 from canspec import ir
 from canspec.render.environment import render
 from canspec.targets import Target
-
-# Vector J1939 SigType enum (index = value written in BA_).
-SIG_TYPES = ("Default", "Range", "RangeSigned", "ASCII", "Discrete", "Control", "ReferencePGN", "DTC",
-             "StringDelimiter", "StringLength", "StringLengthControl", "MessageCounter", "MessageChecksum")
-VFRAME_FORMATS = ("StandardCAN", "ExtendedCAN", "reserved", "J1939PG")
-UNKNOWN_NODE = "Vector__XXX"
-
-
-def sig_type(sig: ir.Signal) -> int:
-    if sig.role == "counter":
-        return SIG_TYPES.index("MessageCounter")
-    if sig.role == "checksum":
-        return SIG_TYPES.index("MessageChecksum")
-    if sig.value_table is not None:
-        return SIG_TYPES.index("Discrete")
-    return SIG_TYPES.index("Range")
-
-
-def dbc_id(msg: ir.Message) -> int:
-    return msg.frame_id | 0x80000000 if msg.is_extended else msg.frame_id
-
-
-def sender(msg: ir.Message) -> str:
-    return UNKNOWN_NODE if msg.sender == "ALL" else msg.sender
-
-
-def signal_comment(sig: ir.Signal) -> str:
-    parts = [sig.zh]
-    if sig.desc:
-        parts.append(sig.desc)
-    if sig.desc_zh:
-        parts.append(sig.desc_zh)
-    if sig.doc_min is not None and (sig.doc_min != sig.phys_min or sig.doc_max != sig.phys_max):
-        parts.append(f"Documented range [{ir_num(sig.doc_min)}, {ir_num(sig.doc_max)}]")
-    for s in sig.specials:
-        parts.append(f"0x{s.raw:X} = {s.name} ({s.label_zh})")
-    if sig.value_table is not None:
-        parts.append("; ".join(f"{e.raw}: {e.label_zh}" for e in sig.value_table.entries))
-    return " | ".join(p for p in parts if p)
-
-
-def ir_num(value: object) -> str:
-    from canspec.render.literals import num
-
-    return num(value)  # type: ignore[arg-type]
+from canspec.targets.dbc import attributes, model, naming, refusals
 
 
 def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
     text = render(
-        "dbc/protocol.dbc.j2", spec, "dbc", can=spec.can, sig_type=sig_type, dbc_id=dbc_id, sender=sender,
-        signal_comment=signal_comment, sig_types=SIG_TYPES, vframe_formats=VFRAME_FORMATS,
-        vframe_j1939=VFRAME_FORMATS.index("J1939PG"),
+        "dbc/protocol.dbc.j2", spec, "dbc", dbc=model.build(spec, spec.can), unknown_node=model.UNKNOWN_NODE,
+        sig_types=attributes.SIG_TYPES, vframe_formats=attributes.VFRAME_FORMATS, send_types=attributes.MSG_SEND_TYPES, default_send_type=attributes.MSG_SEND_TYPES[attributes.NOT_CYCLIC],
+        max_cycle_ms=attributes.MAX_CYCLE_MS, spec_name_attribute=naming.SPEC_NAME_ATTRIBUTE,
     )
     return {f"dbc/{spec.can.name}.dbc": text.encode("utf-8")}
 
 
-TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10)
+TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10, check=refusals.problems)

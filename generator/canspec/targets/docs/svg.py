@@ -69,10 +69,11 @@ def _text(x: int, y: int, text: str, size: float, room: int, weight: str = "norm
     return f"<text {attrs}>{escape(text)}</text>"
 
 
-def bit_layout(msg: ir.Message) -> str:
+def bit_layout(msg: ir.Message, zh: bool) -> str:
+    """`zh`: the handbook is bilingual, so a signal's tooltip gives its Chinese name too."""
     width = LEFT + 8 * CELL_W + 8
     height = TOP + msg.dlc * CELL_H + 8
-    title = f"{msg.name} (0x{msg.frame_id:08X}) bit layout"
+    title = f"{msg.name} ({msg.id_text}) bit layout"
     out = [
         (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" '
          f'font-family="{FONT}" role="img" aria-label={quoteattr(title)}>'),
@@ -101,7 +102,8 @@ def bit_layout(msg: ir.Message) -> str:
         else:
             bits = f"bits {span.value_lo}–{span.value_hi} of {sig.length}"
         out.append(f'<g class="signal" data-signal={quoteattr(sig.name)}>')
-        out.append(f"<title>{escape(f'{sig.name} {sig.zh}'.strip())}: start {sig.start}, length {sig.length}</title>")
+        name = f"{sig.name} {sig.zh}".strip() if zh else sig.name
+        out.append(f"<title>{escape(name)}: start {sig.start}, length {sig.length}</title>")
         out.append(f'<rect x="{x + 2}" y="{y + 2}" width="{w - 4}" height="{CELL_H - 4}" rx="5" fill="{span.fill}" stroke="{span.stroke}" stroke-width="1.5"/>')
         out.append(_text(x + w // 2, y + 28, label, 11.5, w - 12, "bold"))
         out.append(_text(x + w // 2, y + 43, bits, 10, w - 12, colour="#444444"))

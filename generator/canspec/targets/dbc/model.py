@@ -1,0 +1,91 @@
+"""The DBC's view of the protocol: every name, number, comment and attribute value the template
+writes, decided here (the template only lays the lines out)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from canspec import ir
+from canspec.render.environment import header_lines
+from canspec.targets.dbc import attributes, comments, naming
+
+UNKNOWN_NODE = "Vector__XXX"  # a DBC's "no node": sender ALL, or no receiver
+
+
+@dataclass(frozen=True)
+class DbcSignal:
+    name: str  # in the DBC
+    spec_name: str | None  # the spec's name where the DBC renamed the signal (naming.py), else None
+    sig: ir.Signal
+    sig_type: int
+    comment: str
+
+
+@dataclass(frozen=True)
+class DbcMessage:
+    msg: ir.Message
+    dbc_id: int  # the frame ID, with bit 31 set for a 29-bit identifier
+    sender: str
+    receivers: str
+    comment: str
+    vframe_format: int
+    send_type: int
+    signals: tuple[DbcSignal, ...]
+
+
+@dataclass(frozen=True)
+class DbcNode:
+    node: ir.Node
+    comment: str
+
+
+@dataclass(frozen=True)
+class Dbc:
+    can: ir.CanProtocol
+    comment: str
+    nodes: tuple[DbcNode, ...]
+    messages: tuple[DbcMessage, ...]
+    protocol_type: str  # "J1939" on a J1939 bus, else ""
+    default_vframe_format: str
+
+    @property
+    def renamed(self) -> tuple[tuple[DbcMessage, DbcSignal], ...]:
+        return tuple((m, s) for m in self.messages for s in m.signals if s.spec_name is not None)
+
+
+def dbc_id(msg: ir.Message) -> int:
+    return msg.frame_id | 0x80000000 if msg.is_extended else msg.frame_id
+
+
+def _message(can: ir.CanProtocol, msg: ir.Message, names: dict[tuple[str, str], str]) -> DbcMessage:
+    signals = []
+    for sig in msg.data_signals:
+        name = names[(msg.name, sig.name)]
+        spec_name = sig.name if name != sig.name else None
+        signals.append(DbcSignal(name, spec_name, sig, attributes.sig_type(msg, sig), comments.signal_comment(sig, spec_name)))
+    return DbcMessage(
+        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else msg.sender,
+        receivers=",".join(msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
+        vframe_format=attributes.vframe_format(can.bus, msg), send_type=attributes.send_type(msg), signals=tuple(signals),
+    )
+
+
+def network_comment(spec: ir.Spec, messages: tuple[DbcMessage, ...]) -> str:
+    text = " ".join(header_lines(spec, "dbc"))
+    if any(s.spec_name is not None for m in messages for s in m.signals):
+        text += (f". Signal names: a name the spec gives different definitions in different messages is written <name>_<frame ID> "
+                 f"(at most {naming.MAX_NAME} characters) in each of them; attribute {naming.SPEC_NAME_ATTRIBUTE} holds the spec's name.")
+    return text
+
+
+def build(spec: ir.Spec, can: ir.CanProtocol) -> Dbc:
+    names = naming.signal_names(can)
+    messages = tuple(_message(can, msg, names) for msg in can.messages)
+    if can.bus.is_j1939:
+        default_vframe = "J1939PG"
+    else:
+        default_vframe = "ExtendedCAN" if can.bus.id_format == "extended" else "StandardCAN"
+    return Dbc(
+        can=can, comment=network_comment(spec, messages), nodes=tuple(DbcNode(n, comments.node_comment(n)) for n in can.nodes),
+        messages=messages, protocol_type="J1939" if can.bus.is_j1939 else "", default_vframe_format=default_vframe,
+    )

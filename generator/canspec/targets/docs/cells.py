@@ -1,0 +1,144 @@
+"""What the CAN pages' table cells say: Python decides every number and word, in the spec's
+languages (lang.py); the templates only place the cells."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from canspec import ir
+from canspec.render.literals import num
+from canspec.targets.docs.lang import Lang
+
+
+def cell(text: object) -> str:
+    """Text made safe for a Markdown table cell."""
+    return str(text).replace("|", "\\|").replace("\n", "<br>")
+
+
+def hex_id(value: int) -> str:
+    """A frame ID from the change record, which does not say whether it is 11 or 29 bits."""
+    return f"0x{value:08X}"
+
+
+def raw_hex(raw: int) -> str:
+    return f"-0x{-raw:X}" if raw < 0 else f"0x{raw:X}"
+
+
+def pct(value: Fraction, places: int = 2) -> str:
+    """A share (0..1) as a percentage, rounded half up at `places` decimals: 0.34944 → 34.94 %."""
+    scaled = value * 100 * 10**places
+    n = int(scaled + Fraction(1, 2)) if scaled >= 0 else -int(-scaled + Fraction(1, 2))
+    text = f"{abs(n) // 10**places}.{abs(n) % 10**places:0{places}d}" if places else str(abs(n))
+    return ("-" if n < 0 else "") + text + " %"
+
+
+def decimal(value: Fraction, places: int = 1) -> str:
+    """A rate rounded half up to `places` decimals, trailing zeros kept: 1600 → 1600.0."""
+    return pct(value / 100, places)[:-2]
+
+
+def titled(zh: str, en: str) -> str:
+    """A page or section title from a Chinese and an English name, either of which may be missing."""
+    return " — ".join(t for t in (zh, en) if t)
+
+
+def id_kind(msg: ir.Message, lang: Lang) -> str:
+    return lang.en_zh("29-bit extended", "扩展帧") if msg.is_extended else lang.en_zh("11-bit standard", "标准帧")
+
+
+def cycle_text(msg: ir.Message, lang: Lang) -> str:
+    return f"{msg.cycle_ms} ms" if msg.cycle_ms is not None else lang.en_zh("event-driven", "事件触发")
+
+
+def doc_range(sig: ir.Signal) -> str:
+    if sig.doc_min is None or sig.doc_max is None:
+        return "—"
+    return f"{num(sig.doc_min)} … {num(sig.doc_max)}"
+
+
+def enc_range(sig: ir.Signal) -> str:
+    """What a physical encode can produce: the documented range cut to what the bits carry."""
+    return f"{num(sig.phys_min)} … {num(sig.phys_max)}<br><small>raw {sig.raw_min} … {sig.raw_max}</small>"
+
+
+def range_note(sig: ir.Signal, lang: Lang) -> str:
+    if sig.doc_min is None or sig.doc_max is None:
+        return ""
+    if (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
+        return "⚠ " + lang.en_zh("differs from the documented range", "与文档范围不同")
+    return ""
+
+
+def label_text(lb: ir.Label, lang: Lang) -> str:
+    return " ".join(t for t in (lang.only_zh(lb.label_zh), lb.label) if t)
+
+
+def vt_anchor(name: str) -> str:
+    return f"vt-{name.replace('_', '-')}"
+
+
+def value_cell(sig: ir.Signal, prefix: str, lang: Lang) -> str:
+    """The signal's value table (linked) and its entries: the labels that are not special values."""
+    if sig.value_table is None:
+        return ""
+    parts = [f"[`{sig.value_table.name}`]({prefix}value_tables.md#{vt_anchor(sig.value_table.name)})"]
+    parts += [f"{lb.raw} = {label_text(lb, lang)}" for lb in sig.labels if not lb.is_special]
+    return "<br>".join(cell(p) for p in parts)
+
+
+def special_cell(sig: ir.Signal, lang: Lang) -> str:
+    """Special values, as decoders name them (a value the table names keeps the table's name)."""
+    return "<br>".join(cell(f"{raw_hex(lb.raw)} = {label_text(lb, lang)}") for lb in sig.labels if lb.is_special)
+
+
+def role_cell(sig: ir.Signal, msg: ir.Message, lang: Lang) -> str:
+    if sig.role == "counter" and msg.counter is not None:
+        return lang.zh_en("心跳", f"rolling counter, mod {msg.counter.modulo}")
+    if sig.role == "checksum" and msg.checksum is not None:
+        return lang.zh_en("异或校验", f"{msg.checksum.algorithm.upper()} of bytes {byte_list(msg.checksum.covers)} → byte {msg.checksum.byte}")
+    if sig.role == "reserved":
+        return lang.zh_en("保留", lang.en_zh("reserved, sent as 0", "发送 0"))
+    if msg.multiframe is not None and sig.name == msg.multiframe.index_signal:
+        return lang.zh_en("多帧序号", "frame index")
+    if msg.multiframe is not None and sig.name == msg.multiframe.payload_signal:
+        return lang.zh_en("VIN 片段", f"text chunk ({msg.multiframe.bytes_per_frame} × {msg.multiframe.encoding.upper()})")
+    return ""
+
+
+def byte_list(covers: tuple[int, ...]) -> str:
+    """0, 1, 2, 3 → "0–3"; anything not contiguous is listed."""
+    if len(covers) > 1 and list(covers) == list(range(covers[0], covers[-1] + 1)):
+        return f"{covers[0]}–{covers[-1]}"
+    return ", ".join(map(str, covers))
+
+
+def bytes_cell(sig: ir.Signal) -> str:
+    first, last = sig.segments[0].byte, sig.segments[-1].byte
+    return str(first) if first == last else f"{first}–{last}"
+
+
+def node_label(can: ir.CanProtocol, name: str, lang: Lang) -> str:
+    node = next((n for n in can.nodes if n.name == name), None)
+    if node is not None:
+        return f"{node.label} ({node.zh})" if lang.zh and node.zh else node.label
+    return f"ALL ({lang.zh_en('任意', 'any')})" if name == "ALL" else name
+
+
+def receivers_text(can: ir.CanProtocol, msg: ir.Message) -> str:
+    return ", ".join(next((n.label for n in can.nodes if n.name == r), r) for r in msg.receivers) or "—"
+
+
+def siblings(can: ir.CanProtocol, msg: ir.Message) -> tuple[ir.Message, ...]:
+    """The other messages built from the same shared layout."""
+    if msg.layout is None:
+        return ()
+    return tuple(m for m in can.messages if m.layout == msg.layout and m.name != msg.name)
+
+
+def checksum_rule(can: ir.CanProtocol) -> str:
+    """The checksum rule for the overview: the bytes themselves when every checksum has the same."""
+    shapes = {(m.checksum.byte, m.checksum.covers) for m in can.messages if m.checksum is not None}
+    if len(shapes) == 1:
+        ((byte, covers),) = shapes
+        return f"byte {byte} = XOR of bytes {byte_list(covers)}"
+    return "the last byte = XOR of every other byte of the frame"
