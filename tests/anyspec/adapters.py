@@ -9,7 +9,8 @@ these existing test helpers; if one of them moves or changes its interface, fix 
 - tests/python/vector_runner.py: the Python vector runner (written for the shipped package
   `kaiwo_gateway`; `python_vector_runner` points that name at another package);
 - tests/json/py_runner.py: the Python JSON-bindings check of one vector case;
-- tests/json/node/ajv_check.cjs + build/json-node (ajv, typescript from `.ci/setup.d/60-json.sh`).
+- tests/json/node/ajv_check.cjs + build/json-node (ajv, typescript from `.ci/setup.d/60-json.sh`);
+- tests/dbc_names.py: cantools reading a canspec DBC under the spec's signal names.
 """
 
 from __future__ import annotations
@@ -34,6 +35,11 @@ JSON_PY_RUNNER = TESTS / "json" / "py_runner.py"
 AJV_CHECK = TESTS / "json" / "node" / "ajv_check.cjs"
 NODE_MODULES = ROOT / "build" / "json-node" / "node_modules"
 TSC = NODE_MODULES / "typescript" / "bin" / "tsc"
+
+
+def load_dbc_with_spec_names(dbc: Path) -> Any:
+    """cantools (strict) on a generated DBC, its DBC-unique signal names read back as the spec's."""
+    return _load(TESTS / "dbc_names.py", "anyspec_dbc_names").load_with_spec_names(dbc, strict=True)
 
 
 def _load(path: Path, name: str) -> ModuleType:
