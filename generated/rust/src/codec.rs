@@ -543,10 +543,12 @@ mod tests {
             (0.003, 0.0, 12.0),
             (0.01, -40.0, 600.0),
         ] {
+            // From the tie epsilon below the field's 0, which the field check lets through.
+            let low = offset - factor * TIE_EPSILON;
             let scale = Scale {
                 factor,
                 offset,
-                check_min: offset,
+                check_min: low,
                 check_max: max,
                 raw_min: 0,
                 raw_max: i64::MAX,
@@ -554,6 +556,18 @@ mod tests {
                 type_max: i64::MAX,
             };
             let reciprocal = 1.0 / factor;
+            for x in [low, (offset + low) / 2.0, offset] {
+                assert_eq!(
+                    to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                    Some(0),
+                    "{factor} {x}"
+                );
+                assert_eq!(
+                    to_raw_documented_unsigned(x, &scale),
+                    Some(0),
+                    "{factor} {x}"
+                );
+            }
             let steps = ((max - offset) / factor) as i64;
             for raw in 0..=steps {
                 // Every raw step, its decimal tie, and values around both.

@@ -11,7 +11,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.names import humanize
-from canspec.render.literals import grouped_int, num
+from canspec.render.literals import grouped_int, hex_byte, num
 
 BIDI_CONTROLS = re.compile("[\u202a-\u202e\u2066-\u2069]")
 LIST_MARKER = re.compile(r"^([-*+]|\d+[.)])(\s|$)")
@@ -112,7 +112,8 @@ def message_doc(msg: ir.Message) -> tuple[str, ...]:
     lines.append(f"ID `{msg.id_text}` ({width}), DLC {msg.dlc}, {timing}{section}.")
     j = msg.j1939
     if j is not None:
-        lines.append(f"J1939: priority {j.priority}, PGN {j.pgn_text}, source address 0x{j.sa:02X}" + (f", destination 0x{j.da:02X}." if j.da is not None else " (broadcast)."))
+        destination = f", destination {hex_byte(j.da)}." if j.da is not None else " (broadcast)."
+        lines.append(f"J1939: priority {j.priority}, PGN {j.pgn_text}, source address {hex_byte(j.sa)}{destination}")
     receivers = f"; receivers {', '.join(msg.receivers)}" if msg.receivers else ""
     lines.append(doc_text(f"Sender {msg.sender}{receivers}."))
     if msg.layout_undefined:

@@ -398,8 +398,14 @@ mod tests {
     fn reciprocal_path_matches_the_division() {
         let mut state = 0x2545_F491_4F6C_DD1D_u64;
         for (factor, offset, max) in [(0.2, 0.0, 800.0), (0.02, -500.0, 800.0), (0.1, -1080.0, 1080.0), (0.05, 0.0, 100.0), (0.001, 0.0, 65.535), (0.5, 0.0, 125.0), (0.4, 0.0, 100.0), (0.003, 0.0, 12.0), (0.01, -40.0, 600.0)] {
-            let scale = Scale { factor, offset, check_min: offset, check_max: max, raw_min: 0, raw_max: i64::MAX, type_min: 0, type_max: i64::MAX };
+            // From the tie epsilon below the field's 0, which the field check lets through.
+            let low = offset - factor * TIE_EPSILON;
+            let scale = Scale { factor, offset, check_min: low, check_max: max, raw_min: 0, raw_max: i64::MAX, type_min: 0, type_max: i64::MAX };
             let reciprocal = 1.0 / factor;
+            for x in [low, (offset + low) / 2.0, offset] {
+                assert_eq!(to_raw_documented_unsigned_recip(x, &scale, reciprocal), Some(0), "{factor} {x}");
+                assert_eq!(to_raw_documented_unsigned(x, &scale), Some(0), "{factor} {x}");
+            }
             let steps = ((max - offset) / factor) as i64;
             for raw in 0..=steps {
                 // Every raw step, its decimal tie, and values around both.
