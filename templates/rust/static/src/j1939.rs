@@ -31,7 +31,12 @@ impl J1939Id {
 
     /// The 29-bit identifier.
     pub const fn to_id(&self) -> u32 {
-        compose(self.priority, self.pgn, self.source_address, self.destination_address)
+        compose(
+            self.priority,
+            self.pgn,
+            self.source_address,
+            self.destination_address,
+        )
     }
 }
 
@@ -110,11 +115,27 @@ mod tests {
     fn decomposes_and_composes() {
         // PDU1: 0x1801B0A0 = priority 6, PF 0x01, DA 0xB0, SA 0xA0.
         let id = J1939Id::from_id(0x1801_B0A0);
-        assert_eq!(id, J1939Id { priority: 6, pgn: 0x0100, source_address: 0xA0, destination_address: Some(0xB0) });
+        assert_eq!(
+            id,
+            J1939Id {
+                priority: 6,
+                pgn: 0x0100,
+                source_address: 0xA0,
+                destination_address: Some(0xB0)
+            }
+        );
         assert_eq!(id.to_id(), 0x1801_B0A0);
         // PDU2: 0x18FFAF00 = priority 6, PGN 0xFFAF, SA 0x00.
         let id = J1939Id::from_id(0x18FF_AF00);
-        assert_eq!(id, J1939Id { priority: 6, pgn: 0xFFAF, source_address: 0, destination_address: None });
+        assert_eq!(
+            id,
+            J1939Id {
+                priority: 6,
+                pgn: 0xFFAF,
+                source_address: 0,
+                destination_address: None
+            }
+        );
         assert_eq!(id.to_id(), 0x18FF_AF00);
     }
 }
