@@ -129,6 +129,7 @@ class RustCrate:
     package: str
     version: str
     title: tuple[str, ...]
+    summary: tuple[str, ...]
     enums: tuple[RustEnum, ...]
     messages: tuple[RustMessage, ...]
     message_table: tuple[str, ...]
@@ -264,7 +265,8 @@ def build_crate(can: ir.CanProtocol) -> RustCrate:
     messages = tuple(build_message(m, enums, id_flag_matters) for m in can.messages)
     kinds = frozenset(f.kind for m in messages for f in m.fields)
     return RustCrate(
-        package=rust_crate_name(can.name), version=semver(can.version), title=docs.crate_title(can), enums=tuple(enums.values()), messages=messages,
+        package=rust_crate_name(can.name), version=semver(can.version), title=docs.crate_title(can),
+        summary=docs.crate_summary(can, bool(enums)), enums=tuple(enums.values()), messages=messages,
         message_table=(*docs.message_table_head(bilingual), *(docs.message_row(m.msg, m.name, bilingual) for m in messages)),
         is_j1939=can.bus.is_j1939, pdu2_min_pf=j1939.PDU2_MIN_PF, global_address=hex_byte(j1939.GLOBAL_ADDRESS),
         id_flag_matters=id_flag_matters, max_standard_id=grouped_int(MAX_STANDARD_ID),
