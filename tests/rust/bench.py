@@ -76,7 +76,7 @@ def ours_value(f, value) -> str:  # type: ignore[no-untyped-def]
     if f.kind == "float":
         return f64_lit(value)
     if f.kind == "enum":
-        return f"{f.enum}::from_raw({int(value)})"
+        return f"{f.enum.name}::from_raw({int(value)})"
     if f.kind == "scaled_int" and value != int(value):
         return ""  # a tie input the integer-typed API cannot take
     return str(int(value))
@@ -121,7 +121,7 @@ def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # ty
     k = len(cases)
     frames = ",\n".join("[" + ", ".join(f"0x{b:02X}" for b in bytes.fromhex(c["data"]).ljust(8, b"\0")) + "]" for c in cases)
     ours = ",\n".join(
-        f"{rm.values} {{ " + ", ".join(f"{f.field}: {ours_value(f, c['physical'][f.sig.name])}" for f in rm.fields) + " }"
+        f"{rm.values} {{ " + ", ".join(f"{f.names.field}: {ours_value(f, c['physical'][f.sig.name])}" for f in rm.fields) + " }"
         for c in cases
     )
     theirs = ",\n".join(
@@ -130,7 +130,7 @@ def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # ty
     theirs_types = "(" + "".join(f"dbc::{ty}, " if ty in others else f"{ty}, " for _, ty in params) + ")"
     theirs_args = ", ".join(f"t.{i}" for i in range(len(params)))
     ours_sum = consume([
-        ("float", f"m.{f.getter}()") if f.kind == "float" else ("int", f"(m.{f.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.getter}() as u64)")
+        ("float", f"m.{f.names.getter}()") if f.kind == "float" else ("int", f"(m.{f.names.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.names.getter}() as u64)")
         for f in rm.fields
     ])
     theirs_sum = consume([read_back(getters[(name, p)], others, f"m.{p}()") for p, _ in params if p in by_name or p == "checksum"])

@@ -3,13 +3,10 @@
 
 //! J1939 (SAE J1939-21) fields of a 29-bit identifier: priority (3 bits), extended data page,
 //! data page, PDU format (PF), PDU specific (PS) and source address (SA). PF below
-//! 240 is PDU1 (PS is a destination address), from 240 up PDU2
-//! (broadcast; PS is a group extension and part of the PGN).
+//! [`PDU2_MIN_PF`] is PDU1 (PS is a destination address), from there up PDU2 (broadcast; PS
+//! is a group extension and part of the PGN).
 
-/// The first PDU format value of PDU2 (broadcast) parameter groups.
-pub const PDU2_MIN_PF: u8 = 240;
-/// The global (broadcast) destination address.
-pub const GLOBAL_ADDRESS: u8 = 0xFF;
+pub use crate::constants::{GLOBAL_ADDRESS, PDU2_MIN_PF};
 
 /// A 29-bit identifier taken apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -3,10 +3,11 @@
 
 //! One type per message: the raw values in place in the frame word, raw and physical getters,
 //! range-checked setters, `encode` into a frame and `decode` (also `TryFrom<&[u8]>`) out of one.
+// Scaling factors and ranges are the document's decimals, even where one looks like a rounded
+// mathematical constant.
+#![allow(clippy::approx_constant)]
 
-#[allow(unused_imports)]
-use crate::codec::{self, Scale};
-#[allow(unused_imports)]
+use crate::codec;
 use crate::values::*;
 use crate::{Error, Frame};
 
@@ -66,6 +67,8 @@ impl AutocarEpsCommand {
     pub const NAME_ZH: &'static str = "智能控制器 EPS 命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1801B0A0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -91,8 +94,8 @@ impl AutocarEpsCommand {
     const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
         factor: 2,
         offset: 0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
+        check_min: 0,
+        check_max: 512,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -102,10 +105,10 @@ impl AutocarEpsCommand {
     pub const STEERING_ANGLE_CMD_MIN: f64 = -1080.0;
     /// Largest physical value of `steering_angle_cmd` (deg).
     pub const STEERING_ANGLE_CMD_MAX: f64 = 1080.0;
-    const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
+    const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0,
+        check_min: -1080.0000000000998,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -174,9 +177,9 @@ impl AutocarEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -230,8 +233,7 @@ impl AutocarEpsCommand {
     /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -270,8 +272,7 @@ impl AutocarEpsCommand {
     /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -311,8 +312,7 @@ impl AutocarEpsCommand {
     /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -357,8 +357,7 @@ impl AutocarEpsCommand {
     /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 24) as u16
+        (self.bits >> 24) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -402,6 +401,7 @@ impl TryFrom<&[u8]> for AutocarEpsCommand {
 impl Frame for AutocarEpsCommand {
     const NAME: &'static str = AutocarEpsCommand::NAME;
     const FRAME_ID: u32 = AutocarEpsCommand::FRAME_ID;
+    const IS_EXTENDED: bool = AutocarEpsCommand::IS_EXTENDED;
     const DLC: usize = AutocarEpsCommand::DLC;
 
     #[inline]
@@ -483,6 +483,8 @@ impl EpsState {
     pub const NAME_ZH: &'static str = "线控车辆控制器 EPS 状态";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1802A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -503,11 +505,11 @@ impl EpsState {
     pub const STEERING_TORQUE_MIN: f64 = -12.8;
     /// Largest physical value of `steering_torque` (Nm).
     pub const STEERING_TORQUE_MAX: f64 = 12.7;
-    const STEERING_TORQUE_SCALE: Scale = Scale {
+    const STEERING_TORQUE_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -12.8,
-        check_min: -12.8,
-        check_max: 12.700000000000001,
+        check_min: -12.800000000099999,
+        check_max: 12.700000000099998,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -517,11 +519,11 @@ impl EpsState {
     pub const EPS_OUTPUT_TORQUE_MIN: f64 = -38.4;
     /// Largest physical value of `eps_output_torque` (Nm).
     pub const EPS_OUTPUT_TORQUE_MAX: f64 = 38.1;
-    const EPS_OUTPUT_TORQUE_SCALE: Scale = Scale {
+    const EPS_OUTPUT_TORQUE_SCALE: codec::Scale = codec::Scale {
         factor: 0.3,
         offset: -38.4,
-        check_min: -38.4,
-        check_max: 38.10000000000001,
+        check_min: -38.4000000003,
+        check_max: 38.1000000003,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -531,10 +533,10 @@ impl EpsState {
     pub const STEERING_ANGLE_MIN: f64 = -1080.0;
     /// Largest physical value of `steering_angle` (deg).
     pub const STEERING_ANGLE_MAX: f64 = 1080.0;
-    const STEERING_ANGLE_SCALE: Scale = Scale {
+    const STEERING_ANGLE_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0,
+        check_min: -1080.0000000000998,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -548,8 +550,8 @@ impl EpsState {
     const CONTROLLER_TEMP_SCALE: codec::IntScale = codec::IntScale {
         factor: 2,
         offset: 0,
-        check_min: Self::CONTROLLER_TEMP_MIN as i64,
-        check_max: Self::CONTROLLER_TEMP_MAX as i64,
+        check_min: 0,
+        check_max: 126,
         raw_min: 0,
         raw_max: 63,
         type_min: 0,
@@ -635,8 +637,7 @@ impl EpsState {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -676,8 +677,7 @@ impl EpsState {
     /// Raw value of `eps_ctrl_state` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -716,8 +716,7 @@ impl EpsState {
     /// Raw value of `steering_torque` (bits 8..=15).
     #[inline]
     pub fn steering_torque_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -762,8 +761,7 @@ impl EpsState {
     /// Raw value of `eps_output_torque` (bits 16..=23).
     #[inline]
     pub fn eps_output_torque_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -812,8 +810,7 @@ impl EpsState {
     /// Raw value of `steering_angle` (bits 24..=39).
     #[inline]
     pub fn steering_angle_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 24) as u16
+        (self.bits >> 24) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -856,8 +853,7 @@ impl EpsState {
     /// Raw value of `controller_temp` (bits 40..=45).
     #[inline]
     pub fn controller_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 63) as u8
+        ((self.bits >> 40) & 63) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -905,8 +901,7 @@ impl EpsState {
     /// Raw value of `eps_fault_level` (bits 48..=49).
     #[inline]
     pub fn eps_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 48) & 3) as u8
+        ((self.bits >> 48) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -955,8 +950,7 @@ impl EpsState {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 56) as u8
+        (self.bits >> 56) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -992,6 +986,7 @@ impl TryFrom<&[u8]> for EpsState {
 impl Frame for EpsState {
     const NAME: &'static str = EpsState::NAME;
     const FRAME_ID: u32 = EpsState::FRAME_ID;
+    const IS_EXTENDED: bool = EpsState::IS_EXTENDED;
     const DLC: usize = EpsState::DLC;
 
     #[inline]
@@ -1065,6 +1060,8 @@ impl AutocarSpeedCommand {
     pub const NAME_ZH: &'static str = "智能控制器车速命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1803B0A0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -1085,10 +1082,10 @@ impl AutocarSpeedCommand {
     pub const ACCEL_CMD_MIN: f64 = -9.0;
     /// Largest physical value of `accel_cmd` (m/s²).
     pub const ACCEL_CMD_MAX: f64 = 3.6;
-    const ACCEL_CMD_SCALE: Scale = Scale {
+    const ACCEL_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.0,
+        check_min: -9.000000000019998,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -1163,9 +1160,9 @@ impl AutocarSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -1221,8 +1218,7 @@ impl AutocarSpeedCommand {
     /// Raw value of `accel_cmd` (bits 0..=9).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1270,8 +1266,7 @@ impl AutocarSpeedCommand {
     /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1320,8 +1315,7 @@ impl AutocarSpeedCommand {
     /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 15) as u8
+        ((self.bits >> 12) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1370,8 +1364,7 @@ impl AutocarSpeedCommand {
     /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1409,8 +1402,7 @@ impl AutocarSpeedCommand {
     /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 1) as u8
+        ((self.bits >> 24) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1457,6 +1449,7 @@ impl TryFrom<&[u8]> for AutocarSpeedCommand {
 impl Frame for AutocarSpeedCommand {
     const NAME: &'static str = AutocarSpeedCommand::NAME;
     const FRAME_ID: u32 = AutocarSpeedCommand::FRAME_ID;
+    const IS_EXTENDED: bool = AutocarSpeedCommand::IS_EXTENDED;
     const DLC: usize = AutocarSpeedCommand::DLC;
 
     #[inline]
@@ -1542,6 +1535,8 @@ impl DrivingState {
     pub const NAME_ZH: &'static str = "行车状态";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1804A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -1563,8 +1558,8 @@ impl DrivingState {
     const MOTOR_SPEED_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -15000,
-        check_min: Self::MOTOR_SPEED_MIN as i64,
-        check_max: Self::MOTOR_SPEED_MAX as i64,
+        check_min: -15000,
+        check_max: 15000,
         raw_min: 0,
         raw_max: 30000,
         type_min: 0,
@@ -1577,8 +1572,8 @@ impl DrivingState {
     const MOTOR_TORQUE_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -5000,
-        check_min: Self::MOTOR_TORQUE_MIN as i64,
-        check_max: Self::MOTOR_TORQUE_MAX as i64,
+        check_min: -5000,
+        check_max: 5000,
         raw_min: 0,
         raw_max: 10000,
         type_min: 0,
@@ -1593,8 +1588,8 @@ impl DrivingState {
     const MOTOR_SPEED_RATIO_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: 1,
-        check_min: Self::MOTOR_SPEED_RATIO_MIN as i64,
-        check_max: Self::MOTOR_SPEED_RATIO_MAX as i64,
+        check_min: 1,
+        check_max: 254,
         raw_min: 0,
         raw_max: 253,
         type_min: 0,
@@ -1604,10 +1599,10 @@ impl DrivingState {
     pub const CURRENT_ACCEL_MIN: f64 = -9.0;
     /// Largest physical value of `current_accel` (m/s²).
     pub const CURRENT_ACCEL_MAX: f64 = 3.6;
-    const CURRENT_ACCEL_SCALE: Scale = Scale {
+    const CURRENT_ACCEL_SCALE: codec::Scale = codec::Scale {
         factor: 0.05,
         offset: -9.0,
-        check_min: -9.0,
+        check_min: -9.00000000005,
         check_max: 3.60000000005,
         raw_min: 0,
         raw_max: 252,
@@ -1702,9 +1697,9 @@ impl DrivingState {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -1750,8 +1745,7 @@ impl DrivingState {
     /// Raw value of `epb_state` (bits 0..=1).
     #[inline]
     pub fn epb_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1798,8 +1792,7 @@ impl DrivingState {
     /// Raw value of `gear_state` (bits 2..=5).
     #[inline]
     pub fn gear_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 15) as u8
+        ((self.bits >> 2) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1846,8 +1839,7 @@ impl DrivingState {
     /// Raw value of `emergency_brake_state` (bits 6..=6).
     #[inline]
     pub fn emergency_brake_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 1) as u8
+        ((self.bits >> 6) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1896,8 +1888,7 @@ impl DrivingState {
     /// Raw value of `uss_brake_state` (bits 7..=7).
     #[inline]
     pub fn uss_brake_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1946,8 +1937,7 @@ impl DrivingState {
     /// Raw value of `motor_speed` (bits 8..=23).
     #[inline]
     pub fn motor_speed_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 8) as u16
+        (self.bits >> 8) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -1992,8 +1982,7 @@ impl DrivingState {
     /// Raw value of `motor_torque` (bits 24..=39).
     #[inline]
     pub fn motor_torque_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 24) as u16
+        (self.bits >> 24) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2042,8 +2031,7 @@ impl DrivingState {
     /// Raw value of `motor_speed_ratio` (bits 40..=47).
     #[inline]
     pub fn motor_speed_ratio_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 40) as u8
+        (self.bits >> 40) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2092,8 +2080,7 @@ impl DrivingState {
     /// Raw value of `current_accel` (bits 48..=55).
     #[inline]
     pub fn current_accel_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 48) as u8
+        (self.bits >> 48) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2136,6 +2123,7 @@ impl TryFrom<&[u8]> for DrivingState {
 impl Frame for DrivingState {
     const NAME: &'static str = DrivingState::NAME;
     const FRAME_ID: u32 = DrivingState::FRAME_ID;
+    const IS_EXTENDED: bool = DrivingState::IS_EXTENDED;
     const DLC: usize = DrivingState::DLC;
 
     #[inline]
@@ -2287,6 +2275,8 @@ impl AutocarControlCommand1 {
     pub const NAME_ZH: &'static str = "智能控制器控制命令1";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1805B0A0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -2307,10 +2297,10 @@ impl AutocarControlCommand1 {
     pub const AC_SET_TEMP_MIN: f64 = 16.0;
     /// Largest physical value of `ac_set_temp` (°C).
     pub const AC_SET_TEMP_MAX: f64 = 30.0;
-    const AC_SET_TEMP_SCALE: Scale = Scale {
+    const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 16.0,
+        check_min: 15.999999999500002,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -2507,8 +2497,7 @@ impl AutocarControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -2548,8 +2537,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2598,8 +2586,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 3) as u8
+        ((self.bits >> 2) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2646,8 +2633,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 4) & 3) as u8
+        ((self.bits >> 4) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2694,8 +2680,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 3) as u8
+        ((self.bits >> 6) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2742,8 +2727,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 8) & 3) as u8
+        ((self.bits >> 8) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2790,8 +2774,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2838,8 +2821,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 3) as u8
+        ((self.bits >> 12) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2886,8 +2868,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 14) & 3) as u8
+        ((self.bits >> 14) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2934,8 +2915,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 16) & 3) as u8
+        ((self.bits >> 16) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -2982,8 +2962,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 18) & 3) as u8
+        ((self.bits >> 18) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3030,8 +3009,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 20) & 3) as u8
+        ((self.bits >> 20) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3078,8 +3056,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 22) & 3) as u8
+        ((self.bits >> 22) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3126,8 +3103,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 3) as u8
+        ((self.bits >> 24) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3174,8 +3150,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 26) & 3) as u8
+        ((self.bits >> 26) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3222,8 +3197,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 28) & 1) as u8
+        ((self.bits >> 28) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3270,8 +3244,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3318,8 +3291,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 3) as u8
+        ((self.bits >> 34) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3366,8 +3338,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 3) as u8
+        ((self.bits >> 36) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3416,8 +3387,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 3) as u8
+        ((self.bits >> 38) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3468,8 +3438,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 7) as u8
+        ((self.bits >> 40) & 7) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3518,8 +3487,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 43) & 31) as u8
+        ((self.bits >> 43) & 31) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3569,8 +3537,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 48) & 15) as u8
+        ((self.bits >> 48) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3618,8 +3585,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 52) & 15) as u8
+        ((self.bits >> 52) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3667,8 +3633,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 56) & 15) as u8
+        ((self.bits >> 56) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3716,8 +3681,7 @@ impl AutocarControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -3763,6 +3727,7 @@ impl TryFrom<&[u8]> for AutocarControlCommand1 {
 impl Frame for AutocarControlCommand1 {
     const NAME: &'static str = AutocarControlCommand1::NAME;
     const FRAME_ID: u32 = AutocarControlCommand1::FRAME_ID;
+    const IS_EXTENDED: bool = AutocarControlCommand1::IS_EXTENDED;
     const DLC: usize = AutocarControlCommand1::DLC;
 
     #[inline]
@@ -3904,6 +3869,8 @@ impl VehicleState1 {
     pub const NAME_ZH: &'static str = "车辆状态 1";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1806A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -3927,8 +3894,8 @@ impl VehicleState1 {
     const VEHICLE_SPEED_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -50,
-        check_min: Self::VEHICLE_SPEED_MIN as i64,
-        check_max: Self::VEHICLE_SPEED_MAX as i64,
+        check_min: -50,
+        check_max: 200,
         raw_min: 0,
         raw_max: 250,
         type_min: 0,
@@ -3938,10 +3905,10 @@ impl VehicleState1 {
     pub const SOC_MIN: f64 = 0.0;
     /// Largest physical value of `soc` (%).
     pub const SOC_MAX: f64 = 125.0;
-    const SOC_SCALE: Scale = Scale {
+    const SOC_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -5e-10,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -3955,8 +3922,8 @@ impl VehicleState1 {
     const ODOMETER_SCALE: codec::IntScale = codec::IntScale {
         factor: 2,
         offset: 0,
-        check_min: Self::ODOMETER_MIN as i64,
-        check_max: Self::ODOMETER_MAX as i64,
+        check_min: 0,
+        check_max: 0x1_D4C0,
         raw_min: 0,
         raw_max: 60000,
         type_min: 0,
@@ -4134,8 +4101,7 @@ impl VehicleState1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -4175,8 +4141,7 @@ impl VehicleState1 {
     /// Raw value of `drive_mode_state` (bits 0..=1).
     #[inline]
     pub fn drive_mode_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4223,8 +4188,7 @@ impl VehicleState1 {
     /// Raw value of `door_state` (bits 2..=2).
     #[inline]
     pub fn door_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 1) as u8
+        ((self.bits >> 2) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4271,8 +4235,7 @@ impl VehicleState1 {
     /// Raw value of `drl_state` (bits 3..=3).
     #[inline]
     pub fn drl_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 3) & 1) as u8
+        ((self.bits >> 3) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4319,8 +4282,7 @@ impl VehicleState1 {
     /// Raw value of `left_turn_state` (bits 4..=4).
     #[inline]
     pub fn left_turn_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 4) & 1) as u8
+        ((self.bits >> 4) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4367,8 +4329,7 @@ impl VehicleState1 {
     /// Raw value of `right_turn_state` (bits 5..=5).
     #[inline]
     pub fn right_turn_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 5) & 1) as u8
+        ((self.bits >> 5) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4415,8 +4376,7 @@ impl VehicleState1 {
     /// Raw value of `hazard_state` (bits 6..=6).
     #[inline]
     pub fn hazard_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 1) as u8
+        ((self.bits >> 6) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4463,8 +4423,7 @@ impl VehicleState1 {
     /// Raw value of `position_light_state` (bits 7..=7).
     #[inline]
     pub fn position_light_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4513,8 +4472,7 @@ impl VehicleState1 {
     /// Raw value of `headlight_state` (bits 8..=9).
     #[inline]
     pub fn headlight_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 8) & 3) as u8
+        ((self.bits >> 8) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4561,8 +4519,7 @@ impl VehicleState1 {
     /// Raw value of `rear_fog_state` (bits 10..=10).
     #[inline]
     pub fn rear_fog_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 1) as u8
+        ((self.bits >> 10) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4609,8 +4566,7 @@ impl VehicleState1 {
     /// Raw value of `left_fog_state` (bits 11..=11).
     #[inline]
     pub fn left_fog_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 11) & 1) as u8
+        ((self.bits >> 11) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4657,8 +4613,7 @@ impl VehicleState1 {
     /// Raw value of `right_fog_state` (bits 12..=12).
     #[inline]
     pub fn right_fog_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 1) as u8
+        ((self.bits >> 12) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4705,8 +4660,7 @@ impl VehicleState1 {
     /// Raw value of `dome_light_state` (bits 13..=13).
     #[inline]
     pub fn dome_light_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 13) & 1) as u8
+        ((self.bits >> 13) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4753,8 +4707,7 @@ impl VehicleState1 {
     /// Raw value of `ambient_light_state` (bits 14..=14).
     #[inline]
     pub fn ambient_light_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 14) & 1) as u8
+        ((self.bits >> 14) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4801,8 +4754,7 @@ impl VehicleState1 {
     /// Raw value of `door_button_state` (bits 15..=15).
     #[inline]
     pub fn door_button_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 15) & 1) as u8
+        ((self.bits >> 15) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4849,8 +4801,7 @@ impl VehicleState1 {
     /// Raw value of `vehicle_speed` (bits 16..=23).
     #[inline]
     pub fn vehicle_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4895,8 +4846,7 @@ impl VehicleState1 {
     /// Raw value of `soc` (bits 24..=31).
     #[inline]
     pub fn soc_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 24) as u8
+        (self.bits >> 24) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4939,8 +4889,7 @@ impl VehicleState1 {
     /// Raw value of `system_power_cmd` (bits 32..=33).
     #[inline]
     pub fn system_power_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -4987,8 +4936,7 @@ impl VehicleState1 {
     /// Raw value of `charge_state` (bits 34..=35).
     #[inline]
     pub fn charge_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 3) as u8
+        ((self.bits >> 34) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5035,8 +4983,7 @@ impl VehicleState1 {
     /// Raw value of `charge_connection` (bits 36..=37).
     #[inline]
     pub fn charge_connection_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 3) as u8
+        ((self.bits >> 36) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5083,8 +5030,7 @@ impl VehicleState1 {
     /// Raw value of `vehicle_fault_level` (bits 38..=39).
     #[inline]
     pub fn vehicle_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 3) as u8
+        ((self.bits >> 38) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5131,8 +5077,7 @@ impl VehicleState1 {
     /// Raw value of `odometer` (bits 40..=55).
     #[inline]
     pub fn odometer_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 40) as u16
+        (self.bits >> 40) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5177,8 +5122,7 @@ impl VehicleState1 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 56) as u8
+        (self.bits >> 56) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5214,6 +5158,7 @@ impl TryFrom<&[u8]> for VehicleState1 {
 impl Frame for VehicleState1 {
     const NAME: &'static str = VehicleState1::NAME;
     const FRAME_ID: u32 = VehicleState1::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleState1::IS_EXTENDED;
     const DLC: usize = VehicleState1::DLC;
 
     #[inline]
@@ -5305,6 +5250,8 @@ impl AutocarControlCommand2 {
     pub const NAME_ZH: &'static str = "智能控制器控制命令2";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1807B0A0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -5327,10 +5274,10 @@ impl AutocarControlCommand2 {
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
     /// Largest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MAX: f64 = 125.0;
-    const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
+    const DOWNHILL_REGEN_SPEED_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -5e-10,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -5341,10 +5288,10 @@ impl AutocarControlCommand2 {
     pub const CHASSIS_PITCH_MIN: f64 = -25.0;
     /// Largest physical value of `chassis_pitch` (deg).
     pub const CHASSIS_PITCH_MAX: f64 = 25.0;
-    const CHASSIS_PITCH_SCALE: Scale = Scale {
+    const CHASSIS_PITCH_SCALE: codec::Scale = codec::Scale {
         factor: 0.05,
         offset: -25.0,
-        check_min: -25.0,
+        check_min: -25.000000000049997,
         check_max: 25.00000000005,
         raw_min: 0,
         raw_max: 1000,
@@ -5355,10 +5302,10 @@ impl AutocarControlCommand2 {
     pub const CHASSIS_ROLL_MIN: f64 = -40.0;
     /// Largest physical value of `chassis_roll` (deg).
     pub const CHASSIS_ROLL_MAX: f64 = 40.0;
-    const CHASSIS_ROLL_SCALE: Scale = Scale {
+    const CHASSIS_ROLL_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.0,
+        check_min: -40.000000000099995,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -5369,10 +5316,10 @@ impl AutocarControlCommand2 {
     pub const CARGO_PITCH_MIN: f64 = -30.0;
     /// Largest physical value of `cargo_pitch` (deg).
     pub const CARGO_PITCH_MAX: f64 = 100.0;
-    const CARGO_PITCH_SCALE: Scale = Scale {
+    const CARGO_PITCH_SCALE: codec::Scale = codec::Scale {
         factor: 0.2,
         offset: -30.0,
-        check_min: -30.0,
+        check_min: -30.000000000199996,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 650,
@@ -5383,10 +5330,10 @@ impl AutocarControlCommand2 {
     pub const CARGO_ROLL_MIN: f64 = -40.0;
     /// Largest physical value of `cargo_roll` (deg).
     pub const CARGO_ROLL_MAX: f64 = 40.0;
-    const CARGO_ROLL_SCALE: Scale = Scale {
+    const CARGO_ROLL_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.0,
+        check_min: -40.000000000099995,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -5493,8 +5440,7 @@ impl AutocarControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -5534,8 +5480,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 1) as u8
+        (self.bits & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5582,8 +5527,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 1) & 3) as u8
+        ((self.bits >> 1) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5632,8 +5576,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 3) & 15) as u8
+        ((self.bits >> 3) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5679,8 +5622,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5716,7 +5658,7 @@ impl AutocarControlCommand2 {
 
     /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
     ///
-    /// 0:默认车速;1~125:设定下坡车速。
+    /// 0:默认车速;1\~125:设定下坡车速。
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
@@ -5731,8 +5673,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5777,8 +5718,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `chassis_pitch` (bits 16..=25).
     #[inline]
     pub fn chassis_pitch_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 16) & 1023) as u16
+        ((self.bits >> 16) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5828,8 +5768,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `chassis_roll` (bits 26..=35).
     #[inline]
     pub fn chassis_roll_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 26) & 1023) as u16
+        ((self.bits >> 26) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5879,8 +5818,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `cargo_pitch` (bits 36..=45).
     #[inline]
     pub fn cargo_pitch_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 36) & 1023) as u16
+        ((self.bits >> 36) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5930,8 +5868,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `cargo_roll` (bits 46..=55).
     #[inline]
     pub fn cargo_roll_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 46) & 1023) as u16
+        ((self.bits >> 46) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -5981,8 +5918,7 @@ impl AutocarControlCommand2 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 56) as u8
+        (self.bits >> 56) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6018,6 +5954,7 @@ impl TryFrom<&[u8]> for AutocarControlCommand2 {
 impl Frame for AutocarControlCommand2 {
     const NAME: &'static str = AutocarControlCommand2::NAME;
     const FRAME_ID: u32 = AutocarControlCommand2::FRAME_ID;
+    const IS_EXTENDED: bool = AutocarControlCommand2::IS_EXTENDED;
     const DLC: usize = AutocarControlCommand2::DLC;
 
     #[inline]
@@ -6088,6 +6025,8 @@ impl VehicleState2 {
     pub const NAME_ZH: &'static str = "车辆状态 2";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1810A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -6106,10 +6045,10 @@ impl VehicleState2 {
     pub const BATTERY_VOLTAGE_MIN: f64 = 0.0;
     /// Largest physical value of `battery_voltage` (V).
     pub const BATTERY_VOLTAGE_MAX: f64 = 800.0;
-    const BATTERY_VOLTAGE_SCALE: Scale = Scale {
+    const BATTERY_VOLTAGE_SCALE: codec::Scale = codec::Scale {
         factor: 0.2,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -2e-10,
         check_max: 800.0000000002,
         raw_min: 0,
         raw_max: 4000,
@@ -6120,10 +6059,10 @@ impl VehicleState2 {
     pub const BATTERY_CURRENT_MIN: f64 = -500.0;
     /// Largest physical value of `battery_current` (A).
     pub const BATTERY_CURRENT_MAX: f64 = 800.0;
-    const BATTERY_CURRENT_SCALE: Scale = Scale {
+    const BATTERY_CURRENT_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -500.0,
-        check_min: -500.0,
+        check_min: -500.00000000001995,
         check_max: 800.00000000002,
         raw_min: 0,
         raw_max: 65000,
@@ -6192,8 +6131,7 @@ impl VehicleState2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -6225,8 +6163,7 @@ impl VehicleState2 {
     /// Raw value of `battery_voltage` (bits 0..=15).
     #[inline]
     pub fn battery_voltage_raw(&self) -> u16 {
-        let bits = self.bits;
-        bits as u16
+        self.bits as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6271,8 +6208,7 @@ impl VehicleState2 {
     /// Raw value of `battery_current` (bits 16..=31).
     #[inline]
     pub fn battery_current_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 16) as u16
+        (self.bits >> 16) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6315,8 +6251,7 @@ impl VehicleState2 {
     /// Raw value of `battery_charge_energy` (bits 32..=47).
     #[inline]
     pub fn battery_charge_energy_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 32) as u16
+        (self.bits >> 32) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6354,8 +6289,7 @@ impl VehicleState2 {
     /// Raw value of `battery_discharge_energy` (bits 48..=63).
     #[inline]
     pub fn battery_discharge_energy_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 48) as u16
+        (self.bits >> 48) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6391,6 +6325,7 @@ impl TryFrom<&[u8]> for VehicleState2 {
 impl Frame for VehicleState2 {
     const NAME: &'static str = VehicleState2::NAME;
     const FRAME_ID: u32 = VehicleState2::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleState2::IS_EXTENDED;
     const DLC: usize = VehicleState2::DLC;
 
     #[inline]
@@ -6466,6 +6401,8 @@ impl VehicleState3 {
     pub const NAME_ZH: &'static str = "车辆状态 3";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1811A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -6487,8 +6424,8 @@ impl VehicleState3 {
     const BATTERY_MAX_TEMP_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -40,
-        check_min: Self::BATTERY_MAX_TEMP_MIN as i64,
-        check_max: Self::BATTERY_MAX_TEMP_MAX as i64,
+        check_min: -40,
+        check_max: 215,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6501,8 +6438,8 @@ impl VehicleState3 {
     const BATTERY_MIN_TEMP_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -40,
-        check_min: Self::BATTERY_MIN_TEMP_MIN as i64,
-        check_max: Self::BATTERY_MIN_TEMP_MAX as i64,
+        check_min: -40,
+        check_max: 215,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6512,10 +6449,10 @@ impl VehicleState3 {
     pub const MAX_CELL_VOLTAGE_MIN: f64 = 0.0;
     /// Largest physical value of `max_cell_voltage` (V).
     pub const MAX_CELL_VOLTAGE_MAX: f64 = 6.0;
-    const MAX_CELL_VOLTAGE_SCALE: Scale = Scale {
+    const MAX_CELL_VOLTAGE_SCALE: codec::Scale = codec::Scale {
         factor: 0.0015,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -1.5e-12,
         check_max: 6.0000000000015,
         raw_min: 0,
         raw_max: 4000,
@@ -6526,10 +6463,10 @@ impl VehicleState3 {
     pub const MIN_CELL_VOLTAGE_MIN: f64 = 0.0;
     /// Largest physical value of `min_cell_voltage` (V).
     pub const MIN_CELL_VOLTAGE_MAX: f64 = 6.0;
-    const MIN_CELL_VOLTAGE_SCALE: Scale = Scale {
+    const MIN_CELL_VOLTAGE_SCALE: codec::Scale = codec::Scale {
         factor: 0.0015,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -1.5e-12,
         check_max: 6.0000000000015,
         raw_min: 0,
         raw_max: 4000,
@@ -6543,8 +6480,8 @@ impl VehicleState3 {
     const MOTOR_TEMP_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -40,
-        check_min: Self::MOTOR_TEMP_MIN as i64,
-        check_max: Self::MOTOR_TEMP_MAX as i64,
+        check_min: -40,
+        check_max: 215,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6557,8 +6494,8 @@ impl VehicleState3 {
     const MOTOR_CONTROLLER_TEMP_SCALE: codec::IntScale = codec::IntScale {
         factor: 1,
         offset: -40,
-        check_min: Self::MOTOR_CONTROLLER_TEMP_MIN as i64,
-        check_max: Self::MOTOR_CONTROLLER_TEMP_MAX as i64,
+        check_min: -40,
+        check_max: 215,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -6638,8 +6575,7 @@ impl VehicleState3 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -6673,8 +6609,7 @@ impl VehicleState3 {
     /// Raw value of `battery_max_temp` (bits 0..=7).
     #[inline]
     pub fn battery_max_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6717,8 +6652,7 @@ impl VehicleState3 {
     /// Raw value of `battery_min_temp` (bits 8..=15).
     #[inline]
     pub fn battery_min_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6761,8 +6695,7 @@ impl VehicleState3 {
     /// Raw value of `max_cell_voltage` (bits 16..=27).
     #[inline]
     pub fn max_cell_voltage_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 16) & 4095) as u16
+        ((self.bits >> 16) & 4095) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6814,8 +6747,7 @@ impl VehicleState3 {
     /// Raw value of `min_cell_voltage` (bits 28..=39).
     #[inline]
     pub fn min_cell_voltage_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 28) & 4095) as u16
+        ((self.bits >> 28) & 4095) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6867,8 +6799,7 @@ impl VehicleState3 {
     /// Raw value of `motor_temp` (bits 40..=47).
     #[inline]
     pub fn motor_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 40) as u8
+        (self.bits >> 40) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6911,8 +6842,7 @@ impl VehicleState3 {
     /// Raw value of `motor_controller_temp` (bits 48..=55).
     #[inline]
     pub fn motor_controller_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 48) as u8
+        (self.bits >> 48) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -6955,6 +6885,7 @@ impl TryFrom<&[u8]> for VehicleState3 {
 impl Frame for VehicleState3 {
     const NAME: &'static str = VehicleState3::NAME;
     const FRAME_ID: u32 = VehicleState3::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleState3::IS_EXTENDED;
     const DLC: usize = VehicleState3::DLC;
 
     #[inline]
@@ -7054,6 +6985,8 @@ impl VehicleState4 {
     pub const NAME_ZH: &'static str = "车辆状态 4";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1812A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -7072,10 +7005,10 @@ impl VehicleState4 {
     pub const OUTSIDE_TEMP_MIN: f64 = -30.0;
     /// Largest physical value of `outside_temp` (°C).
     pub const OUTSIDE_TEMP_MAX: f64 = 95.0;
-    const OUTSIDE_TEMP_SCALE: Scale = Scale {
+    const OUTSIDE_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: -30.0,
-        check_min: -30.0,
+        check_min: -30.0000000005,
         check_max: 95.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -7086,10 +7019,10 @@ impl VehicleState4 {
     pub const INSIDE_TEMP_MIN: f64 = -30.0;
     /// Largest physical value of `inside_temp` (°C).
     pub const INSIDE_TEMP_MAX: f64 = 95.0;
-    const INSIDE_TEMP_SCALE: Scale = Scale {
+    const INSIDE_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: -30.0,
-        check_min: -30.0,
+        check_min: -30.0000000005,
         check_max: 95.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -7100,10 +7033,10 @@ impl VehicleState4 {
     pub const AC_SET_TEMP_MIN: f64 = 16.0;
     /// Largest physical value of `ac_set_temp` (°C).
     pub const AC_SET_TEMP_MAX: f64 = 30.0;
-    const AC_SET_TEMP_SCALE: Scale = Scale {
+    const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 16.0,
+        check_min: 15.999999999500002,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -7114,10 +7047,10 @@ impl VehicleState4 {
     pub const BATTERY_POWER_MIN: f64 = -325.0;
     /// Largest physical value of `battery_power` (kW).
     pub const BATTERY_POWER_MAX: f64 = 325.0;
-    const BATTERY_POWER_SCALE: Scale = Scale {
+    const BATTERY_POWER_SCALE: codec::Scale = codec::Scale {
         factor: 0.01,
         offset: -325.0,
-        check_min: -325.0,
+        check_min: -325.00000000000995,
         check_max: 325.00000000001,
         raw_min: 0,
         raw_max: 65000,
@@ -7236,8 +7169,7 @@ impl VehicleState4 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -7269,8 +7201,7 @@ impl VehicleState4 {
     /// Raw value of `outside_temp` (bits 0..=7).
     #[inline]
     pub fn outside_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7313,8 +7244,7 @@ impl VehicleState4 {
     /// Raw value of `inside_temp` (bits 8..=15).
     #[inline]
     pub fn inside_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7357,8 +7287,7 @@ impl VehicleState4 {
     /// Raw value of `ac_state` (bits 16..=19).
     #[inline]
     pub fn ac_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 16) & 15) as u8
+        ((self.bits >> 16) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7405,8 +7334,7 @@ impl VehicleState4 {
     /// Raw value of `vehicle_power_state` (bits 20..=21).
     #[inline]
     pub fn vehicle_power_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 20) & 3) as u8
+        ((self.bits >> 20) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7455,8 +7383,7 @@ impl VehicleState4 {
     /// Raw value of `hill_hold_state` (bits 22..=22).
     #[inline]
     pub fn hill_hold_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 22) & 1) as u8
+        ((self.bits >> 22) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7505,8 +7432,7 @@ impl VehicleState4 {
     /// Raw value of `regen_brake_state` (bits 23..=23).
     #[inline]
     pub fn regen_brake_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 23) & 1) as u8
+        ((self.bits >> 23) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7553,8 +7479,7 @@ impl VehicleState4 {
     /// Raw value of `remaining_range` (bits 24..=35).
     #[inline]
     pub fn remaining_range_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 24) & 4095) as u16
+        ((self.bits >> 24) & 4095) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7600,8 +7525,7 @@ impl VehicleState4 {
     /// Raw value of `manual_takeover_state` (bits 36..=36).
     #[inline]
     pub fn manual_takeover_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 1) as u8
+        ((self.bits >> 36) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7650,8 +7574,7 @@ impl VehicleState4 {
     /// Raw value of `remote_driving_allowed` (bits 39..=39).
     #[inline]
     pub fn remote_driving_allowed_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 39) & 1) as u8
+        ((self.bits >> 39) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7701,8 +7624,7 @@ impl VehicleState4 {
     /// Raw value of `ac_set_temp` (bits 40..=44).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 31) as u8
+        ((self.bits >> 40) & 31) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7752,8 +7674,7 @@ impl VehicleState4 {
     /// Raw value of `pto_state` (bits 45..=45).
     #[inline]
     pub fn pto_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 45) & 1) as u8
+        ((self.bits >> 45) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7802,8 +7723,7 @@ impl VehicleState4 {
     /// Raw value of `battery_power` (bits 48..=63).
     #[inline]
     pub fn battery_power_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 48) as u16
+        (self.bits >> 48) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -7846,6 +7766,7 @@ impl TryFrom<&[u8]> for VehicleState4 {
 impl Frame for VehicleState4 {
     const NAME: &'static str = VehicleState4::NAME;
     const FRAME_ID: u32 = VehicleState4::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleState4::IS_EXTENDED;
     const DLC: usize = VehicleState4::DLC;
 
     #[inline]
@@ -8022,6 +7943,8 @@ impl VehicleFault {
     pub const NAME_ZH: &'static str = "车辆故障状态";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1813A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -8250,8 +8173,7 @@ impl VehicleFault {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -8283,8 +8205,7 @@ impl VehicleFault {
     /// Raw value of `insulation_fault_level` (bits 0..=1).
     #[inline]
     pub fn insulation_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8333,8 +8254,7 @@ impl VehicleFault {
     /// Raw value of `dc_fault` (bits 2..=2).
     #[inline]
     pub fn dc_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 1) as u8
+        ((self.bits >> 2) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8381,8 +8301,7 @@ impl VehicleFault {
     /// Raw value of `soc_low` (bits 3..=3).
     #[inline]
     pub fn soc_low_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 3) & 1) as u8
+        ((self.bits >> 3) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8429,8 +8348,7 @@ impl VehicleFault {
     /// Raw value of `cell_undervoltage` (bits 4..=4).
     #[inline]
     pub fn cell_undervoltage_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 4) & 1) as u8
+        ((self.bits >> 4) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8477,8 +8395,7 @@ impl VehicleFault {
     /// Raw value of `brake_boost_pressure_fault` (bits 5..=5).
     #[inline]
     pub fn brake_boost_pressure_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 5) & 1) as u8
+        ((self.bits >> 5) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8525,8 +8442,7 @@ impl VehicleFault {
     /// Raw value of `vacuum_pump_fault` (bits 6..=6).
     #[inline]
     pub fn vacuum_pump_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 1) as u8
+        ((self.bits >> 6) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8573,8 +8489,7 @@ impl VehicleFault {
     /// Raw value of `vehicle_system_fault` (bits 7..=7).
     #[inline]
     pub fn vehicle_system_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8621,8 +8536,7 @@ impl VehicleFault {
     /// Raw value of `battery_overheat` (bits 8..=8).
     #[inline]
     pub fn battery_overheat_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 8) & 1) as u8
+        ((self.bits >> 8) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8669,8 +8583,7 @@ impl VehicleFault {
     /// Raw value of `motor_overheat` (bits 9..=9).
     #[inline]
     pub fn motor_overheat_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 9) & 1) as u8
+        ((self.bits >> 9) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8717,8 +8630,7 @@ impl VehicleFault {
     /// Raw value of `traction_battery_fault` (bits 10..=10).
     #[inline]
     pub fn traction_battery_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 1) as u8
+        ((self.bits >> 10) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8765,8 +8677,7 @@ impl VehicleFault {
     /// Raw value of `motor_fault` (bits 11..=11).
     #[inline]
     pub fn motor_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 11) & 1) as u8
+        ((self.bits >> 11) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8813,8 +8724,7 @@ impl VehicleFault {
     /// Raw value of `battery_comm_fault` (bits 12..=12).
     #[inline]
     pub fn battery_comm_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 1) as u8
+        ((self.bits >> 12) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8861,8 +8771,7 @@ impl VehicleFault {
     /// Raw value of `motor_comm_fault` (bits 13..=13).
     #[inline]
     pub fn motor_comm_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 13) & 1) as u8
+        ((self.bits >> 13) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8909,8 +8818,7 @@ impl VehicleFault {
     /// Raw value of `eps_fault` (bits 14..=14).
     #[inline]
     pub fn eps_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 14) & 1) as u8
+        ((self.bits >> 14) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -8957,8 +8865,7 @@ impl VehicleFault {
     /// Raw value of `ac_fault` (bits 15..=15).
     #[inline]
     pub fn ac_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 15) & 1) as u8
+        ((self.bits >> 15) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9007,8 +8914,7 @@ impl VehicleFault {
     /// Raw value of `aux_battery_fault` (bits 16..=16).
     #[inline]
     pub fn aux_battery_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 16) & 1) as u8
+        ((self.bits >> 16) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9055,8 +8961,7 @@ impl VehicleFault {
     /// Raw value of `epb_fault` (bits 17..=17).
     #[inline]
     pub fn epb_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 17) & 1) as u8
+        ((self.bits >> 17) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9103,8 +9008,7 @@ impl VehicleFault {
     /// Raw value of `brake_by_wire_fault` (bits 18..=18).
     #[inline]
     pub fn brake_by_wire_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 18) & 1) as u8
+        ((self.bits >> 18) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9151,8 +9055,7 @@ impl VehicleFault {
     /// Raw value of `key_not_detected` (bits 19..=19).
     #[inline]
     pub fn key_not_detected_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 19) & 1) as u8
+        ((self.bits >> 19) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9199,8 +9102,7 @@ impl VehicleFault {
     /// Raw value of `tire_pressure_low` (bits 20..=20).
     #[inline]
     pub fn tire_pressure_low_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 20) & 1) as u8
+        ((self.bits >> 20) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9247,8 +9149,7 @@ impl VehicleFault {
     /// Raw value of `body_motor_fault` (bits 21..=21).
     #[inline]
     pub fn body_motor_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 21) & 1) as u8
+        ((self.bits >> 21) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9295,8 +9196,7 @@ impl VehicleFault {
     /// Raw value of `body_motor_overheat` (bits 22..=22).
     #[inline]
     pub fn body_motor_overheat_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 22) & 1) as u8
+        ((self.bits >> 22) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9343,8 +9243,7 @@ impl VehicleFault {
     /// Raw value of `battery_system_fault_level` (bits 24..=25).
     #[inline]
     pub fn battery_system_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 3) as u8
+        ((self.bits >> 24) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9394,8 +9293,7 @@ impl VehicleFault {
     /// Raw value of `motor_system_fault_level` (bits 26..=27).
     #[inline]
     pub fn motor_system_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 26) & 3) as u8
+        ((self.bits >> 26) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9447,8 +9345,7 @@ impl VehicleFault {
     /// Raw value of `unmanned_entry_fault` (bits 28..=31).
     #[inline]
     pub fn unmanned_entry_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 28) & 15) as u8
+        ((self.bits >> 28) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9497,8 +9394,7 @@ impl VehicleFault {
     /// Raw value of `protocol_version_a` (bits 32..=35).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 15) as u8
+        ((self.bits >> 32) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9546,8 +9442,7 @@ impl VehicleFault {
     /// Raw value of `protocol_version_b` (bits 36..=39).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 15) as u8
+        ((self.bits >> 36) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9595,8 +9490,7 @@ impl VehicleFault {
     /// Raw value of `protocol_version_c` (bits 40..=43).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 15) as u8
+        ((self.bits >> 40) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9646,8 +9540,7 @@ impl VehicleFault {
     /// Raw value of `remote_entry_fault` (bits 44..=47).
     #[inline]
     pub fn remote_entry_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 44) & 15) as u8
+        ((self.bits >> 44) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -9694,6 +9587,7 @@ impl TryFrom<&[u8]> for VehicleFault {
 impl Frame for VehicleFault {
     const NAME: &'static str = VehicleFault::NAME;
     const FRAME_ID: u32 = VehicleFault::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleFault::IS_EXTENDED;
     const DLC: usize = VehicleFault::DLC;
 
     #[inline]
@@ -9716,7 +9610,6 @@ impl Frame for VehicleFault {
 /// The document lists this message but defines no layout: it carries no signals.
 ///
 /// Errata: E04 (see spec/ERRATA.md)
-///
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState5 {
     /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
@@ -9743,6 +9636,8 @@ impl VehicleState5 {
     pub const NAME_ZH: &'static str = "车辆状态 5";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1808A0B0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -9788,7 +9683,7 @@ impl VehicleState5 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        [0; 8]
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -9818,6 +9713,7 @@ impl TryFrom<&[u8]> for VehicleState5 {
 impl Frame for VehicleState5 {
     const NAME: &'static str = VehicleState5::NAME;
     const FRAME_ID: u32 = VehicleState5::FRAME_ID;
+    const IS_EXTENDED: bool = VehicleState5::IS_EXTENDED;
     const DLC: usize = VehicleState5::DLC;
 
     #[inline]
@@ -9887,6 +9783,8 @@ impl RgateEpsCommand {
     pub const NAME_ZH: &'static str = "远程控制器 EPS 命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1801B0C0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -9912,8 +9810,8 @@ impl RgateEpsCommand {
     const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
         factor: 2,
         offset: 0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
+        check_min: 0,
+        check_max: 512,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -9923,10 +9821,10 @@ impl RgateEpsCommand {
     pub const STEERING_ANGLE_CMD_MIN: f64 = -1080.0;
     /// Largest physical value of `steering_angle_cmd` (deg).
     pub const STEERING_ANGLE_CMD_MAX: f64 = 1080.0;
-    const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
+    const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0,
+        check_min: -1080.0000000000998,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -9995,9 +9893,9 @@ impl RgateEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -10051,8 +9949,7 @@ impl RgateEpsCommand {
     /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10091,8 +9988,7 @@ impl RgateEpsCommand {
     /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10132,8 +10028,7 @@ impl RgateEpsCommand {
     /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10178,8 +10073,7 @@ impl RgateEpsCommand {
     /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 24) as u16
+        (self.bits >> 24) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10223,6 +10117,7 @@ impl TryFrom<&[u8]> for RgateEpsCommand {
 impl Frame for RgateEpsCommand {
     const NAME: &'static str = RgateEpsCommand::NAME;
     const FRAME_ID: u32 = RgateEpsCommand::FRAME_ID;
+    const IS_EXTENDED: bool = RgateEpsCommand::IS_EXTENDED;
     const DLC: usize = RgateEpsCommand::DLC;
 
     #[inline]
@@ -10296,6 +10191,8 @@ impl RgateSpeedCommand {
     pub const NAME_ZH: &'static str = "远程控制器车速命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1803B0C0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -10316,10 +10213,10 @@ impl RgateSpeedCommand {
     pub const ACCEL_CMD_MIN: f64 = -9.0;
     /// Largest physical value of `accel_cmd` (m/s²).
     pub const ACCEL_CMD_MAX: f64 = 3.6;
-    const ACCEL_CMD_SCALE: Scale = Scale {
+    const ACCEL_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.0,
+        check_min: -9.000000000019998,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -10394,9 +10291,9 @@ impl RgateSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -10452,8 +10349,7 @@ impl RgateSpeedCommand {
     /// Raw value of `accel_cmd` (bits 0..=9).
     #[inline]
     pub fn accel_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10501,8 +10397,7 @@ impl RgateSpeedCommand {
     /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10551,8 +10446,7 @@ impl RgateSpeedCommand {
     /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 15) as u8
+        ((self.bits >> 12) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10601,8 +10495,7 @@ impl RgateSpeedCommand {
     /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10640,8 +10533,7 @@ impl RgateSpeedCommand {
     /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 1) as u8
+        ((self.bits >> 24) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -10688,6 +10580,7 @@ impl TryFrom<&[u8]> for RgateSpeedCommand {
 impl Frame for RgateSpeedCommand {
     const NAME: &'static str = RgateSpeedCommand::NAME;
     const FRAME_ID: u32 = RgateSpeedCommand::FRAME_ID;
+    const IS_EXTENDED: bool = RgateSpeedCommand::IS_EXTENDED;
     const DLC: usize = RgateSpeedCommand::DLC;
 
     #[inline]
@@ -10841,6 +10734,8 @@ impl RgateControlCommand1 {
     pub const NAME_ZH: &'static str = "远程车辆控制命令 1";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1805B0C0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -10861,10 +10756,10 @@ impl RgateControlCommand1 {
     pub const AC_SET_TEMP_MIN: f64 = 16.0;
     /// Largest physical value of `ac_set_temp` (°C).
     pub const AC_SET_TEMP_MAX: f64 = 30.0;
-    const AC_SET_TEMP_SCALE: Scale = Scale {
+    const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 16.0,
+        check_min: 15.999999999500002,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -11061,8 +10956,7 @@ impl RgateControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -11102,8 +10996,7 @@ impl RgateControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11152,8 +11045,7 @@ impl RgateControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 3) as u8
+        ((self.bits >> 2) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11200,8 +11092,7 @@ impl RgateControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 4) & 3) as u8
+        ((self.bits >> 4) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11248,8 +11139,7 @@ impl RgateControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 3) as u8
+        ((self.bits >> 6) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11296,8 +11186,7 @@ impl RgateControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 8) & 3) as u8
+        ((self.bits >> 8) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11344,8 +11233,7 @@ impl RgateControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11392,8 +11280,7 @@ impl RgateControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 3) as u8
+        ((self.bits >> 12) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11440,8 +11327,7 @@ impl RgateControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 14) & 3) as u8
+        ((self.bits >> 14) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11488,8 +11374,7 @@ impl RgateControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 16) & 3) as u8
+        ((self.bits >> 16) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11536,8 +11421,7 @@ impl RgateControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 18) & 3) as u8
+        ((self.bits >> 18) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11584,8 +11468,7 @@ impl RgateControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 20) & 3) as u8
+        ((self.bits >> 20) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11632,8 +11515,7 @@ impl RgateControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 22) & 3) as u8
+        ((self.bits >> 22) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11680,8 +11562,7 @@ impl RgateControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 3) as u8
+        ((self.bits >> 24) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11728,8 +11609,7 @@ impl RgateControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 26) & 3) as u8
+        ((self.bits >> 26) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11776,8 +11656,7 @@ impl RgateControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 28) & 1) as u8
+        ((self.bits >> 28) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11824,8 +11703,7 @@ impl RgateControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11872,8 +11750,7 @@ impl RgateControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 3) as u8
+        ((self.bits >> 34) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11920,8 +11797,7 @@ impl RgateControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 3) as u8
+        ((self.bits >> 36) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -11970,8 +11846,7 @@ impl RgateControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 3) as u8
+        ((self.bits >> 38) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12022,8 +11897,7 @@ impl RgateControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 7) as u8
+        ((self.bits >> 40) & 7) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12072,8 +11946,7 @@ impl RgateControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 43) & 31) as u8
+        ((self.bits >> 43) & 31) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12123,8 +11996,7 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 48) & 15) as u8
+        ((self.bits >> 48) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12172,8 +12044,7 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 52) & 15) as u8
+        ((self.bits >> 52) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12221,8 +12092,7 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 56) & 15) as u8
+        ((self.bits >> 56) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12270,8 +12140,7 @@ impl RgateControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12317,6 +12186,7 @@ impl TryFrom<&[u8]> for RgateControlCommand1 {
 impl Frame for RgateControlCommand1 {
     const NAME: &'static str = RgateControlCommand1::NAME;
     const FRAME_ID: u32 = RgateControlCommand1::FRAME_ID;
+    const IS_EXTENDED: bool = RgateControlCommand1::IS_EXTENDED;
     const DLC: usize = RgateControlCommand1::DLC;
 
     #[inline]
@@ -12394,6 +12264,8 @@ impl RgateControlCommand2 {
     pub const NAME_ZH: &'static str = "远程车辆控制命令 2";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1807B0C0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -12416,10 +12288,10 @@ impl RgateControlCommand2 {
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
     /// Largest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MAX: f64 = 125.0;
-    const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
+    const DOWNHILL_REGEN_SPEED_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -5e-10,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -12500,8 +12372,7 @@ impl RgateControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -12541,8 +12412,7 @@ impl RgateControlCommand2 {
     /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 1) as u8
+        (self.bits & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12589,8 +12459,7 @@ impl RgateControlCommand2 {
     /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 1) & 3) as u8
+        ((self.bits >> 1) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12639,8 +12508,7 @@ impl RgateControlCommand2 {
     /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 3) & 15) as u8
+        ((self.bits >> 3) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12686,8 +12554,7 @@ impl RgateControlCommand2 {
     /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12723,7 +12590,7 @@ impl RgateControlCommand2 {
 
     /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
     ///
-    /// 0:默认车速;1~125:设定下坡车速。
+    /// 0:默认车速;1\~125:设定下坡车速。
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
@@ -12738,8 +12605,7 @@ impl RgateControlCommand2 {
     /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12784,8 +12650,7 @@ impl RgateControlCommand2 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 56) as u8
+        (self.bits >> 56) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -12821,6 +12686,7 @@ impl TryFrom<&[u8]> for RgateControlCommand2 {
 impl Frame for RgateControlCommand2 {
     const NAME: &'static str = RgateControlCommand2::NAME;
     const FRAME_ID: u32 = RgateControlCommand2::FRAME_ID;
+    const IS_EXTENDED: bool = RgateControlCommand2::IS_EXTENDED;
     const DLC: usize = RgateControlCommand2::DLC;
 
     #[inline]
@@ -12884,6 +12750,8 @@ impl DeviceId {
     pub const NAME_ZH: &'static str = "车辆/设备 ID 信息";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x18FFAF00;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -12946,8 +12814,7 @@ impl DeviceId {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -12968,7 +12835,7 @@ impl DeviceId {
 
     /// 设备类型 — Device type; 2-63 reserved.
     ///
-    /// 02~63:预留
+    /// 02\~63:预留
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
@@ -12981,8 +12848,7 @@ impl DeviceId {
     /// Raw value of `device_type` (bits 0..=5).
     #[inline]
     pub fn device_type_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 63) as u8
+        (self.bits & 63) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13031,8 +12897,7 @@ impl DeviceId {
     /// Raw value of `id_frame_index` (bits 6..=7).
     #[inline]
     pub fn id_frame_index_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 3) as u8
+        ((self.bits >> 6) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13081,8 +12946,7 @@ impl DeviceId {
     /// Raw value of `id_chars` (bits 8..=63).
     #[inline]
     pub fn id_chars_raw(&self) -> u64 {
-        let bits = self.bits;
-        bits >> 8
+        self.bits >> 8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13122,7 +12986,7 @@ impl DeviceId {
     /// Text bytes per frame.
     pub const TEXT_BYTES_PER_FRAME: usize = 7;
     /// Byte that pads the text to whole frames.
-    pub const TEXT_PADDING: u8 = 0;
+    pub const TEXT_PADDING: u8 = 0x00;
 
     /// Split `text` (ASCII, at most [`Self::TEXT_LEN`] characters) into the frames that carry
     /// it: copies of `self` with `id_frame_index` and `id_chars` set.
@@ -13162,6 +13026,7 @@ impl TryFrom<&[u8]> for DeviceId {
 impl Frame for DeviceId {
     const NAME: &'static str = DeviceId::NAME;
     const FRAME_ID: u32 = DeviceId::FRAME_ID;
+    const IS_EXTENDED: bool = DeviceId::IS_EXTENDED;
     const DLC: usize = DeviceId::DLC;
 
     #[inline]
@@ -13176,14 +13041,14 @@ impl Frame for DeviceId {
 }
 
 /// Reassembles the text (VIN) that [`DeviceId`] frames carry, without allocation.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DeviceIdText {
     bytes: [u8; 21],
     seen: u32,
 }
 
 impl DeviceIdText {
-    const ALL: u32 = (1 << 3) - 1;
+    const ALL: u32 = 7;
 
     /// An empty assembler.
     pub const fn new() -> Self {
@@ -13232,6 +13097,12 @@ impl DeviceIdText {
                 frame_id: DeviceId::FRAME_ID,
             },
         )
+    }
+}
+
+impl Default for DeviceIdText {
+    fn default() -> Self {
+        Self::new()
     }
 }
 
@@ -13303,6 +13174,8 @@ impl FrontSensorDistance1 {
     pub const NAME_ZH: &'static str = "前超声波雷达信息 1 报文";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x18FF0123;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -13411,8 +13284,7 @@ impl FrontSensorDistance1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -13454,8 +13326,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_1_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13503,8 +13374,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_2_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 10) & 1023) as u16
+        ((self.bits >> 10) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13552,8 +13422,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_3_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 20) & 1023) as u16
+        ((self.bits >> 20) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13601,8 +13470,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_4_distance` (bits 30..=39).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 30) & 1023) as u16
+        ((self.bits >> 30) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13650,8 +13518,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_5_distance` (bits 40..=49).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 40) & 1023) as u16
+        ((self.bits >> 40) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13699,8 +13566,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `sensor_6_distance` (bits 50..=59).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 50) & 1023) as u16
+        ((self.bits >> 50) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13748,8 +13614,7 @@ impl FrontSensorDistance1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -13795,6 +13660,7 @@ impl TryFrom<&[u8]> for FrontSensorDistance1 {
 impl Frame for FrontSensorDistance1 {
     const NAME: &'static str = FrontSensorDistance1::NAME;
     const FRAME_ID: u32 = FrontSensorDistance1::FRAME_ID;
+    const IS_EXTENDED: bool = FrontSensorDistance1::IS_EXTENDED;
     const DLC: usize = FrontSensorDistance1::DLC;
 
     #[inline]
@@ -13904,6 +13770,8 @@ impl FrontSensorDistance2 {
     pub const NAME_ZH: &'static str = "前超声波雷达信息 2 报文";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x18FF0223;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -14050,8 +13918,7 @@ impl FrontSensorDistance2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -14093,8 +13960,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_7_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14142,8 +14008,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_8_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 10) & 1023) as u16
+        ((self.bits >> 10) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14191,8 +14056,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_9_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 20) & 1023) as u16
+        ((self.bits >> 20) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14238,8 +14102,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `uss_system_state` (bits 32..=33).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14286,8 +14149,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_1_fault` (bits 34..=34).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 1) as u8
+        ((self.bits >> 34) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14334,8 +14196,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_2_fault` (bits 35..=35).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 35) & 1) as u8
+        ((self.bits >> 35) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14382,8 +14243,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_3_fault` (bits 36..=36).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 1) as u8
+        ((self.bits >> 36) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14430,8 +14290,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_4_fault` (bits 37..=37).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 37) & 1) as u8
+        ((self.bits >> 37) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14478,8 +14337,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_5_fault` (bits 38..=38).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 1) as u8
+        ((self.bits >> 38) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14526,8 +14384,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_6_fault` (bits 39..=39).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 39) & 1) as u8
+        ((self.bits >> 39) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14574,8 +14431,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_7_fault` (bits 40..=40).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 1) as u8
+        ((self.bits >> 40) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14622,8 +14478,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_8_fault` (bits 41..=41).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 41) & 1) as u8
+        ((self.bits >> 41) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14670,8 +14525,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `sensor_9_fault` (bits 42..=42).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 42) & 1) as u8
+        ((self.bits >> 42) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14720,8 +14574,7 @@ impl FrontSensorDistance2 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -14767,6 +14620,7 @@ impl TryFrom<&[u8]> for FrontSensorDistance2 {
 impl Frame for FrontSensorDistance2 {
     const NAME: &'static str = FrontSensorDistance2::NAME;
     const FRAME_ID: u32 = FrontSensorDistance2::FRAME_ID;
+    const IS_EXTENDED: bool = FrontSensorDistance2::IS_EXTENDED;
     const DLC: usize = FrontSensorDistance2::DLC;
 
     #[inline]
@@ -14848,6 +14702,8 @@ impl RearSensorDistance1 {
     pub const NAME_ZH: &'static str = "后超声波雷达信息 1 报文";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x18FF0323;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -14956,8 +14812,7 @@ impl RearSensorDistance1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -14999,8 +14854,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_1_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_1_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15048,8 +14902,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_2_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_2_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 10) & 1023) as u16
+        ((self.bits >> 10) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15097,8 +14950,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_3_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_3_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 20) & 1023) as u16
+        ((self.bits >> 20) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15146,8 +14998,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_4_distance` (bits 30..=39).
     #[inline]
     pub fn sensor_4_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 30) & 1023) as u16
+        ((self.bits >> 30) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15195,8 +15046,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_5_distance` (bits 40..=49).
     #[inline]
     pub fn sensor_5_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 40) & 1023) as u16
+        ((self.bits >> 40) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15244,8 +15094,7 @@ impl RearSensorDistance1 {
     /// Raw value of `sensor_6_distance` (bits 50..=59).
     #[inline]
     pub fn sensor_6_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 50) & 1023) as u16
+        ((self.bits >> 50) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15293,8 +15142,7 @@ impl RearSensorDistance1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15340,6 +15188,7 @@ impl TryFrom<&[u8]> for RearSensorDistance1 {
 impl Frame for RearSensorDistance1 {
     const NAME: &'static str = RearSensorDistance1::NAME;
     const FRAME_ID: u32 = RearSensorDistance1::FRAME_ID;
+    const IS_EXTENDED: bool = RearSensorDistance1::IS_EXTENDED;
     const DLC: usize = RearSensorDistance1::DLC;
 
     #[inline]
@@ -15449,6 +15298,8 @@ impl RearSensorDistance2 {
     pub const NAME_ZH: &'static str = "后超声波雷达信息 2 报文";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x18FF0423;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -15595,8 +15446,7 @@ impl RearSensorDistance2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -15638,8 +15488,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_7_distance` (bits 0..=9).
     #[inline]
     pub fn sensor_7_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15687,8 +15536,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_8_distance` (bits 10..=19).
     #[inline]
     pub fn sensor_8_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 10) & 1023) as u16
+        ((self.bits >> 10) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15736,8 +15584,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_9_distance` (bits 20..=29).
     #[inline]
     pub fn sensor_9_distance_raw(&self) -> u16 {
-        let bits = self.bits;
-        ((bits >> 20) & 1023) as u16
+        ((self.bits >> 20) & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15783,8 +15630,7 @@ impl RearSensorDistance2 {
     /// Raw value of `uss_system_state` (bits 32..=33).
     #[inline]
     pub fn uss_system_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15831,8 +15677,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_1_fault` (bits 34..=34).
     #[inline]
     pub fn sensor_1_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 1) as u8
+        ((self.bits >> 34) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15879,8 +15724,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_2_fault` (bits 35..=35).
     #[inline]
     pub fn sensor_2_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 35) & 1) as u8
+        ((self.bits >> 35) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15927,8 +15771,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_3_fault` (bits 36..=36).
     #[inline]
     pub fn sensor_3_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 1) as u8
+        ((self.bits >> 36) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -15975,8 +15818,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_4_fault` (bits 37..=37).
     #[inline]
     pub fn sensor_4_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 37) & 1) as u8
+        ((self.bits >> 37) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16023,8 +15865,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_5_fault` (bits 38..=38).
     #[inline]
     pub fn sensor_5_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 1) as u8
+        ((self.bits >> 38) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16071,8 +15912,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_6_fault` (bits 39..=39).
     #[inline]
     pub fn sensor_6_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 39) & 1) as u8
+        ((self.bits >> 39) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16119,8 +15959,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_7_fault` (bits 40..=40).
     #[inline]
     pub fn sensor_7_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 1) as u8
+        ((self.bits >> 40) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16167,8 +16006,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_8_fault` (bits 41..=41).
     #[inline]
     pub fn sensor_8_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 41) & 1) as u8
+        ((self.bits >> 41) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16215,8 +16053,7 @@ impl RearSensorDistance2 {
     /// Raw value of `sensor_9_fault` (bits 42..=42).
     #[inline]
     pub fn sensor_9_fault_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 42) & 1) as u8
+        ((self.bits >> 42) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16265,8 +16102,7 @@ impl RearSensorDistance2 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16312,6 +16148,7 @@ impl TryFrom<&[u8]> for RearSensorDistance2 {
 impl Frame for RearSensorDistance2 {
     const NAME: &'static str = RearSensorDistance2::NAME;
     const FRAME_ID: u32 = RearSensorDistance2::FRAME_ID;
+    const IS_EXTENDED: bool = RearSensorDistance2::IS_EXTENDED;
     const DLC: usize = RearSensorDistance2::DLC;
 
     #[inline]
@@ -16381,6 +16218,8 @@ impl TeleEpsCommand {
     pub const NAME_ZH: &'static str = "遥控控制器 EPS 命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1801B0D0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -16406,8 +16245,8 @@ impl TeleEpsCommand {
     const MAX_ANGULAR_SPEED_SCALE: codec::IntScale = codec::IntScale {
         factor: 2,
         offset: 0,
-        check_min: Self::MAX_ANGULAR_SPEED_MIN as i64,
-        check_max: Self::MAX_ANGULAR_SPEED_MAX as i64,
+        check_min: 0,
+        check_max: 512,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -16417,10 +16256,10 @@ impl TeleEpsCommand {
     pub const STEERING_ANGLE_CMD_MIN: f64 = -1080.0;
     /// Largest physical value of `steering_angle_cmd` (deg).
     pub const STEERING_ANGLE_CMD_MAX: f64 = 1080.0;
-    const STEERING_ANGLE_CMD_SCALE: Scale = Scale {
+    const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0,
+        check_min: -1080.0000000000998,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -16489,9 +16328,9 @@ impl TeleEpsCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -16545,8 +16384,7 @@ impl TeleEpsCommand {
     /// Raw value of `eps_ctrl_mode` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_mode_raw(&self) -> u8 {
-        let bits = self.bits;
-        bits as u8
+        self.bits as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16585,8 +16423,7 @@ impl TeleEpsCommand {
     /// Raw value of `counter` (bits 8..=15).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16626,8 +16463,7 @@ impl TeleEpsCommand {
     /// Raw value of `max_angular_speed` (bits 16..=23).
     #[inline]
     pub fn max_angular_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16672,8 +16508,7 @@ impl TeleEpsCommand {
     /// Raw value of `steering_angle_cmd` (bits 24..=39).
     #[inline]
     pub fn steering_angle_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits >> 24) as u16
+        (self.bits >> 24) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16717,6 +16552,7 @@ impl TryFrom<&[u8]> for TeleEpsCommand {
 impl Frame for TeleEpsCommand {
     const NAME: &'static str = TeleEpsCommand::NAME;
     const FRAME_ID: u32 = TeleEpsCommand::FRAME_ID;
+    const IS_EXTENDED: bool = TeleEpsCommand::IS_EXTENDED;
     const DLC: usize = TeleEpsCommand::DLC;
 
     #[inline]
@@ -16790,6 +16626,8 @@ impl TeleSpeedCommand {
     pub const NAME_ZH: &'static str = "遥控控制器车速命令";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1803B0D0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -16810,10 +16648,10 @@ impl TeleSpeedCommand {
     pub const THROTTLE_BRAKE_CMD_MIN: f64 = -100.0;
     /// Largest physical value of `throttle_brake_cmd` (%).
     pub const THROTTLE_BRAKE_CMD_MAX: f64 = 100.0;
-    const THROTTLE_BRAKE_CMD_SCALE: Scale = Scale {
+    const THROTTLE_BRAKE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.2,
         offset: -100.0,
-        check_min: -100.0,
+        check_min: -100.00000000019999,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 1000,
@@ -16888,9 +16726,9 @@ impl TeleSpeedCommand {
     /// The frame bytes: reserved bits 0, checksum filled in.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        // The checksum byte is still 0 in `bits`, so the XOR of all bytes is the checksum.
-        (bits | u64::from(codec::xor_bytes(bits)) << 56).to_le_bytes()
+        // The checksum byte is still 0 in `bits`, and so are the bytes beyond the DLC: the XOR
+        // of all bytes is the checksum.
+        (self.bits | u64::from(codec::xor_bytes(self.bits)) << 56).to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes, valid checksum.
@@ -16946,8 +16784,7 @@ impl TeleSpeedCommand {
     /// Raw value of `throttle_brake_cmd` (bits 0..=9).
     #[inline]
     pub fn throttle_brake_cmd_raw(&self) -> u16 {
-        let bits = self.bits;
-        (bits & 1023) as u16
+        (self.bits & 1023) as u16
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -16995,8 +16832,7 @@ impl TeleSpeedCommand {
     /// Raw value of `epb_cmd` (bits 10..=11).
     #[inline]
     pub fn epb_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17045,8 +16881,7 @@ impl TeleSpeedCommand {
     /// Raw value of `gear_cmd` (bits 12..=15).
     #[inline]
     pub fn gear_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 15) as u8
+        ((self.bits >> 12) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17095,8 +16930,7 @@ impl TeleSpeedCommand {
     /// Raw value of `counter` (bits 16..=23).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 16) as u8
+        (self.bits >> 16) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17134,8 +16968,7 @@ impl TeleSpeedCommand {
     /// Raw value of `emergency_brake_cmd` (bits 24..=24).
     #[inline]
     pub fn emergency_brake_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 1) as u8
+        ((self.bits >> 24) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17182,6 +17015,7 @@ impl TryFrom<&[u8]> for TeleSpeedCommand {
 impl Frame for TeleSpeedCommand {
     const NAME: &'static str = TeleSpeedCommand::NAME;
     const FRAME_ID: u32 = TeleSpeedCommand::FRAME_ID;
+    const IS_EXTENDED: bool = TeleSpeedCommand::IS_EXTENDED;
     const DLC: usize = TeleSpeedCommand::DLC;
 
     #[inline]
@@ -17335,6 +17169,8 @@ impl TeleControlCommand1 {
     pub const NAME_ZH: &'static str = "遥控车辆控制命令 1";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1805B0D0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -17355,10 +17191,10 @@ impl TeleControlCommand1 {
     pub const AC_SET_TEMP_MIN: f64 = 16.0;
     /// Largest physical value of `ac_set_temp` (°C).
     pub const AC_SET_TEMP_MAX: f64 = 30.0;
-    const AC_SET_TEMP_SCALE: Scale = Scale {
+    const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 16.0,
+        check_min: 15.999999999500002,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -17555,8 +17391,7 @@ impl TeleControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -17598,8 +17433,7 @@ impl TeleControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 3) as u8
+        (self.bits & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17648,8 +17482,7 @@ impl TeleControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 2) & 3) as u8
+        ((self.bits >> 2) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17696,8 +17529,7 @@ impl TeleControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 4) & 3) as u8
+        ((self.bits >> 4) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17744,8 +17576,7 @@ impl TeleControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 6) & 3) as u8
+        ((self.bits >> 6) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17792,8 +17623,7 @@ impl TeleControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 8) & 3) as u8
+        ((self.bits >> 8) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17840,8 +17670,7 @@ impl TeleControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 10) & 3) as u8
+        ((self.bits >> 10) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17888,8 +17717,7 @@ impl TeleControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 12) & 3) as u8
+        ((self.bits >> 12) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17936,8 +17764,7 @@ impl TeleControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 14) & 3) as u8
+        ((self.bits >> 14) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -17984,8 +17811,7 @@ impl TeleControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 16) & 3) as u8
+        ((self.bits >> 16) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18032,8 +17858,7 @@ impl TeleControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 18) & 3) as u8
+        ((self.bits >> 18) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18080,8 +17905,7 @@ impl TeleControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 20) & 3) as u8
+        ((self.bits >> 20) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18128,8 +17952,7 @@ impl TeleControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 22) & 3) as u8
+        ((self.bits >> 22) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18176,8 +17999,7 @@ impl TeleControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 24) & 3) as u8
+        ((self.bits >> 24) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18224,8 +18046,7 @@ impl TeleControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 26) & 3) as u8
+        ((self.bits >> 26) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18272,8 +18093,7 @@ impl TeleControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 28) & 1) as u8
+        ((self.bits >> 28) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18322,8 +18142,7 @@ impl TeleControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 32) & 3) as u8
+        ((self.bits >> 32) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18370,8 +18189,7 @@ impl TeleControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 34) & 3) as u8
+        ((self.bits >> 34) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18418,8 +18236,7 @@ impl TeleControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 36) & 3) as u8
+        ((self.bits >> 36) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18468,8 +18285,7 @@ impl TeleControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 38) & 3) as u8
+        ((self.bits >> 38) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18520,8 +18336,7 @@ impl TeleControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 40) & 7) as u8
+        ((self.bits >> 40) & 7) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18570,8 +18385,7 @@ impl TeleControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 43) & 31) as u8
+        ((self.bits >> 43) & 31) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18621,8 +18435,7 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 48) & 15) as u8
+        ((self.bits >> 48) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18670,8 +18483,7 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 52) & 15) as u8
+        ((self.bits >> 52) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18719,8 +18531,7 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 56) & 15) as u8
+        ((self.bits >> 56) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18768,8 +18579,7 @@ impl TeleControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 60) as u8
+        (self.bits >> 60) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -18815,6 +18625,7 @@ impl TryFrom<&[u8]> for TeleControlCommand1 {
 impl Frame for TeleControlCommand1 {
     const NAME: &'static str = TeleControlCommand1::NAME;
     const FRAME_ID: u32 = TeleControlCommand1::FRAME_ID;
+    const IS_EXTENDED: bool = TeleControlCommand1::IS_EXTENDED;
     const DLC: usize = TeleControlCommand1::DLC;
 
     #[inline]
@@ -18892,6 +18703,8 @@ impl TeleControlCommand2 {
     pub const NAME_ZH: &'static str = "遥控车辆控制命令 2";
     /// 29-bit extended identifier.
     pub const FRAME_ID: u32 = 0x1807B0D0;
+    /// Whether [`Self::FRAME_ID`] is a 29-bit (extended) identifier.
+    pub const IS_EXTENDED: bool = true;
     /// Data length code (bytes on the wire).
     pub const DLC: usize = 8;
     /// Cycle time in milliseconds.
@@ -18914,10 +18727,10 @@ impl TeleControlCommand2 {
     pub const DOWNHILL_REGEN_SPEED_MIN: f64 = 0.0;
     /// Largest physical value of `downhill_regen_speed` (km/h).
     pub const DOWNHILL_REGEN_SPEED_MAX: f64 = 125.0;
-    const DOWNHILL_REGEN_SPEED_SCALE: Scale = Scale {
+    const DOWNHILL_REGEN_SPEED_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 0.0,
-        check_min: 0.0,
+        check_min: -5e-10,
         check_max: 125.0000000005,
         raw_min: 0,
         raw_max: 250,
@@ -18998,8 +18811,7 @@ impl TeleControlCommand2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        let bits: u64 = self.bits;
-        bits.to_le_bytes()
+        self.bits.to_le_bytes()
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
@@ -19039,8 +18851,7 @@ impl TeleControlCommand2 {
     /// Raw value of `downhill_regen_enable` (bits 0..=0).
     #[inline]
     pub fn downhill_regen_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits & 1) as u8
+        (self.bits & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19087,8 +18898,7 @@ impl TeleControlCommand2 {
     /// Raw value of `cargo_lift` (bits 1..=2).
     #[inline]
     pub fn cargo_lift_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 1) & 3) as u8
+        ((self.bits >> 1) & 3) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19137,8 +18947,7 @@ impl TeleControlCommand2 {
     /// Raw value of `cargo_lift_speed` (bits 3..=6).
     #[inline]
     pub fn cargo_lift_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 3) & 15) as u8
+        ((self.bits >> 3) & 15) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19184,8 +18993,7 @@ impl TeleControlCommand2 {
     /// Raw value of `pto_enable` (bits 7..=7).
     #[inline]
     pub fn pto_enable_raw(&self) -> u8 {
-        let bits = self.bits;
-        ((bits >> 7) & 1) as u8
+        ((self.bits >> 7) & 1) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19221,7 +19029,7 @@ impl TeleControlCommand2 {
 
     /// 下坡制动回收速度 — Downhill regenerative braking target speed; raw 0 keeps the default.
     ///
-    /// 0:默认车速;1~125:设定下坡车速。
+    /// 0:默认车速;1\~125:设定下坡车速。
     ///
     /// | start bit | length | factor | offset | unit | range | raw |
     /// |---|---|---|---|---|---|---|
@@ -19236,8 +19044,7 @@ impl TeleControlCommand2 {
     /// Raw value of `downhill_regen_speed` (bits 8..=15).
     #[inline]
     pub fn downhill_regen_speed_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 8) as u8
+        (self.bits >> 8) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19282,8 +19089,7 @@ impl TeleControlCommand2 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        let bits = self.bits;
-        (bits >> 56) as u8
+        (self.bits >> 56) as u8
     }
 
     /// Put a raw value that fits the field into the frame word.
@@ -19319,6 +19125,7 @@ impl TryFrom<&[u8]> for TeleControlCommand2 {
 impl Frame for TeleControlCommand2 {
     const NAME: &'static str = TeleControlCommand2::NAME;
     const FRAME_ID: u32 = TeleControlCommand2::FRAME_ID;
+    const IS_EXTENDED: bool = TeleControlCommand2::IS_EXTENDED;
     const DLC: usize = TeleControlCommand2::DLC;
 
     #[inline]

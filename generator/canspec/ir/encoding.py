@@ -58,6 +58,18 @@ def to_raw_runtime(physical: float, factor: float, offset: float) -> int:
     return -r if q < 0 else r
 
 
+def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
+    """The runtime rule's field check: the double quotient q lies in the field's raw range
+    widened by TIE_EPSILON (exactly, in real arithmetic), as the documented range is widened to
+    accept_min/accept_max: so the quotient of a decimal at the field's end (the exact rule's q is
+    the end itself) passes although its double lands a hair beyond, and q rounds into the field.
+    NaN fails."""
+    if math.isnan(q) or math.isinf(q):
+        return False
+    eps = Fraction(TIE_EPSILON)
+    return type_min - eps <= Fraction(q) <= type_max + eps
+
+
 def raw_range(length: int, signed: bool, factor: Fraction, offset: Fraction, documented: tuple[Fraction, Fraction] | None) -> tuple[int, int]:
     """The raw values a physical encode may produce: those of the field whose physical value lies
     in the documented range (exactly), or every value of the field without one. Empty (min > max)

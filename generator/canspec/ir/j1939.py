@@ -5,6 +5,7 @@ from __future__ import annotations
 from canspec.ir import J1939Id
 
 PDU2_MIN_PF = 240  # PF >= 240: broadcast, PS is a group extension
+GLOBAL_ADDRESS = 0xFF  # the destination "every node" of a PDU1 group
 
 
 def decompose(frame_id: int) -> J1939Id:
@@ -23,5 +24,5 @@ def compose(priority: int, pgn: int, sa: int, da: int | None = None) -> int:
     """29-bit ID from priority, PGN, source and (for PDU1) destination address."""
     pf = (pgn >> 8) & 0xFF
     if pf < PDU2_MIN_PF:
-        pgn = (pgn & 0x3FF00) | ((da if da is not None else 0xFF) & 0xFF)
+        pgn = (pgn & 0x3FF00) | ((da if da is not None else GLOBAL_ADDRESS) & 0xFF)
     return ((priority & 0x7) << 26) | ((pgn & 0x3FFFF) << 8) | (sa & 0xFF)

@@ -34,6 +34,7 @@ class ValueEntry:
     name: str  # lower_snake identifier
     label_zh: str
     label: str  # English label derived from the identifier
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)

@@ -1,39 +1,52 @@
 """Rust bindings: a `no_std` Cargo crate named after the CAN protocol (`rust/`).
 
-Every `.rs` file is formatted by rustfmt in memory, so the committed files are exactly what
-`make gen` writes. The view model (names, literals, bit expressions) is `canspec.rust_model`.
+The spec-independent modules (`codec`, `j1939`) are real Rust files under
+templates/rust/static/, copied with the generated header; the constants they read come from
+the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory,
+so the committed files are exactly what `make gen` writes. The view model is `model.py`.
 """
 
 from __future__ import annotations
 
-from canspec import ir
-from canspec.ir import j1939
-from canspec.render.environment import render
+from canspec import ir, resources
+from canspec.render.environment import header_lines, render
 from canspec.render.formatters import rustfmt
 from canspec.targets import Target
-from canspec.targets.rust.model import build_crate
+from canspec.targets.rust.check import problems
+from canspec.targets.rust.model import RustCrate, build_crate
+from canspec.targets.rust.tests_view import build_tests
 
-SOURCES = {
+TARGET_NAME = "rust"
+TEMPLATES = {
     "Cargo.toml": "rust/Cargo.toml.j2",
     "src/lib.rs": "rust/lib.rs.j2",
-    "src/codec.rs": "rust/codec.rs.j2",
-    "src/j1939.rs": "rust/j1939.rs.j2",
-    "src/values.rs": "rust/values.rs.j2",
+    "src/constants.rs": "rust/constants.rs.j2",
     "src/messages.rs": "rust/messages.rs.j2",
+    "src/values.rs": "rust/values.rs.j2",
     "tests/vectors.rs": "rust/tests/vectors.rs.j2",
     "tests/properties.rs": "rust/tests/properties.rs.j2",
 }
+STATIC = ("src/codec.rs", "src/j1939.rs")
+
+
+def _wanted(rel: str, crate: RustCrate) -> bool:
+    """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables."""
+    return {"src/j1939.rs": crate.is_j1939, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
+
+
+def _static(rel: str, spec: ir.Spec) -> str:
+    source = (resources.templates_dir() / "rust" / "static" / rel).read_text(encoding="utf-8")
+    return "".join(f"// {line}\n" for line in header_lines(spec, TARGET_NAME)) + "\n" + source
+
+
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
     crate = build_crate(spec.can)
-    out = {}
-    for rel, template in SOURCES.items():
-        text = render(template, spec, "rust", can=spec.can, crate=crate, tie_epsilon=ir.TIE_EPSILON_TEXT, pdu2_min_pf=j1939.PDU2_MIN_PF)
-        if rel.endswith(".rs"):
-            text = rustfmt(text, rel)
-        out[f"rust/{rel}"] = text.encode("utf-8")
-    return out
+    tests = build_tests(crate)
+    sources = {rel: render(template, spec, TARGET_NAME, can=spec.can, crate=crate, tests=tests) for rel, template in TEMPLATES.items() if _wanted(rel, crate)}
+    sources.update({rel: _static(rel, spec) for rel in STATIC if _wanted(rel, crate)})
+    return {f"rust/{rel}": (rustfmt(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
 
 
-TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8)
+TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems)

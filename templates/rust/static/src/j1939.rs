@@ -1,14 +1,9 @@
-{% with comment = "//" %}{% include "rust/_header.j2" %}{% endwith %}
-
 //! J1939 (SAE J1939-21) fields of a 29-bit identifier: priority (3 bits), extended data page,
 //! data page, PDU format (PF), PDU specific (PS) and source address (SA). PF below
-//! {{ pdu2_min_pf }} is PDU1 (PS is a destination address), from {{ pdu2_min_pf }} up PDU2
-//! (broadcast; PS is a group extension and part of the PGN).
+//! [`PDU2_MIN_PF`] is PDU1 (PS is a destination address), from there up PDU2 (broadcast; PS
+//! is a group extension and part of the PGN).
 
-/// The first PDU format value of PDU2 (broadcast) parameter groups.
-pub const PDU2_MIN_PF: u8 = {{ pdu2_min_pf }};
-/// The global (broadcast) destination address.
-pub const GLOBAL_ADDRESS: u8 = 0xFF;
+pub use crate::constants::{GLOBAL_ADDRESS, PDU2_MIN_PF};
 
 /// A 29-bit identifier taken apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,7 +31,12 @@ impl J1939Id {
 
     /// The 29-bit identifier.
     pub const fn to_id(&self) -> u32 {
-        compose(self.priority, self.pgn, self.source_address, self.destination_address)
+        compose(
+            self.priority,
+            self.pgn,
+            self.source_address,
+            self.destination_address,
+        )
     }
 }
 
@@ -115,11 +115,27 @@ mod tests {
     fn decomposes_and_composes() {
         // PDU1: 0x1801B0A0 = priority 6, PF 0x01, DA 0xB0, SA 0xA0.
         let id = J1939Id::from_id(0x1801_B0A0);
-        assert_eq!(id, J1939Id { priority: 6, pgn: 0x0100, source_address: 0xA0, destination_address: Some(0xB0) });
+        assert_eq!(
+            id,
+            J1939Id {
+                priority: 6,
+                pgn: 0x0100,
+                source_address: 0xA0,
+                destination_address: Some(0xB0)
+            }
+        );
         assert_eq!(id.to_id(), 0x1801_B0A0);
         // PDU2: 0x18FFAF00 = priority 6, PGN 0xFFAF, SA 0x00.
         let id = J1939Id::from_id(0x18FF_AF00);
-        assert_eq!(id, J1939Id { priority: 6, pgn: 0xFFAF, source_address: 0, destination_address: None });
+        assert_eq!(
+            id,
+            J1939Id {
+                priority: 6,
+                pgn: 0xFFAF,
+                source_address: 0,
+                destination_address: None
+            }
+        );
         assert_eq!(id.to_id(), 0x18FF_AF00);
     }
 }

@@ -1,11 +1,7 @@
-{% with comment = "//" %}{% include "rust/_header.j2" %}{% endwith %}
-
 //! The encoding rules every canspec language shares: physical → raw rounding, range checks,
 //! rolling counters. The C and Python bindings implement the same rules step for step.
 
-/// Tie epsilon of the rounding rule: absorbs the representation error of decimal inputs
-/// such as `-8.99` so that a decimal tie rounds away from zero exactly.
-pub const TIE_EPSILON: f64 = {{ tie_epsilon }};
+pub use crate::constants::{EXACT_LIMIT, TIE_EPSILON};
 
 /// The scaling and the allowed range of one scaled signal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,16 +43,47 @@ fn floor_i64(t: f64) -> i64 {
     }
 }
 
-/// Round half away from zero, the shared runtime rule:
-/// `q >= 0 ? floor((q + 0.5) + ε) : -floor((-q + 0.5) + ε)`. `q` must be finite and
-/// `|q| < 2^61`.
+/// Round half away from zero, the shared runtime rule: with `a = |q|`,
+/// `a >= EXACT_LIMIT ? q : ±floor((a + 0.5) + ε)` (from 2^52 up every double is an integer,
+/// and adding 0.5 would round to even). `q` must be finite; beyond ±2^63 the result saturates.
 #[inline(always)]
 pub fn round_half_away(q: f64) -> i64 {
-    let magnitude = floor_i64((f64::from_bits(q.to_bits() & !(1 << 63)) + 0.5) + TIE_EPSILON); // |q|
+    let a = f64::from_bits(q.to_bits() & !(1 << 63)); // |q|
+    if a >= EXACT_LIMIT {
+        return q as i64;
+    }
+    let magnitude = floor_i64((a + 0.5) + TIE_EPSILON);
     if q >= 0.0 {
         magnitude
     } else {
         -magnitude
+    }
+}
+
+/// `q >= bound - ε` in exact arithmetic, the field check of the shared rule (the field's raw
+/// range widened by the tie epsilon, as the documented range is: the double quotient of a
+/// value at the field's end may land a hair beyond it). Where `bound` is a double, `bound - q`
+/// is exact near it (Sterbenz); beyond 2^53 `bound as f64` rounds, no double lies between
+/// `bound` and its rounding and the epsilon is below their spacing, so only equality with a
+/// rounded bound needs a second look.
+#[inline(always)]
+fn at_least(q: f64, bound: i64) -> bool {
+    let rounded = bound as f64;
+    if rounded as i128 == i128::from(bound) {
+        rounded - q <= TIE_EPSILON
+    } else {
+        (q > rounded) | ((q == rounded) & (rounded as i128 >= i128::from(bound)))
+    }
+}
+
+/// `q <= bound + ε` in exact arithmetic (see [`at_least`]).
+#[inline(always)]
+fn at_most(q: f64, bound: i64) -> bool {
+    let rounded = bound as f64;
+    if rounded as i128 == i128::from(bound) {
+        q - rounded <= TIE_EPSILON
+    } else {
+        (q < rounded) | ((q == rounded) & (rounded as i128 <= i128::from(bound)))
     }
 }
 
@@ -67,10 +94,57 @@ pub fn round_half_away(q: f64) -> i64 {
 pub fn to_raw(value: f64, scale: &Scale, specials: &[i64]) -> Option<i64> {
     let q = (value - scale.offset) / scale.factor;
     // Within the field's raw range (NaN fails both comparisons); then `raw` is too.
-    let fits = (q >= scale.type_min as f64) & (q <= scale.type_max as f64);
+    let fits = at_least(q, scale.type_min) & at_most(q, scale.type_max);
     // Saturating casts keep `raw` defined when `q` is not in range; `fits` rejects it then.
     let raw = round_half_away(q);
-    let documented = (value >= scale.check_min) & (value <= scale.check_max) & (raw >= scale.raw_min) & (raw <= scale.raw_max);
+    let documented = (value >= scale.check_min)
+        & (value <= scale.check_max)
+        & (raw >= scale.raw_min)
+        & (raw <= scale.raw_max);
+    if fits & (documented || specials.contains(&raw)) {
+        Some(raw)
+    } else {
+        None
+    }
+}
+
+/// The scaling and the allowed range of a scaled 64-bit unsigned field, whose raw values
+/// reach beyond `i64`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScaleU64 {
+    /// physical = raw × factor + offset
+    pub factor: f64,
+    /// physical = raw × factor + offset
+    pub offset: f64,
+    /// Smallest physical value a caller may pass (the documented range).
+    pub check_min: f64,
+    /// Largest physical value a caller may pass (the documented range).
+    pub check_max: f64,
+    /// Smallest raw value a physical encode may produce.
+    pub raw_min: u64,
+    /// Largest raw value a physical encode may produce.
+    pub raw_max: u64,
+}
+
+/// 2^64: the doubles below it are exactly those of at most `u64::MAX` plus the tie epsilon
+/// (none lies between).
+const TWO_POW_64: f64 = 18_446_744_073_709_551_616.0;
+
+/// [`to_raw`] for a [`ScaleU64`] field (it holds every `u64`).
+#[inline]
+pub fn to_raw_u64(value: f64, scale: &ScaleU64, specials: &[u64]) -> Option<u64> {
+    let q = (value - scale.offset) / scale.factor;
+    let fits = (-TIE_EPSILON..TWO_POW_64).contains(&q);
+    // For a `q` that fits, rounding it is `round_half_away` (a negative `q` that fits rounds to 0).
+    let raw = if q >= EXACT_LIMIT {
+        q as u64
+    } else {
+        floor_i64((q + 0.5) + TIE_EPSILON) as u64
+    };
+    let documented = (value >= scale.check_min)
+        & (value <= scale.check_max)
+        & (raw >= scale.raw_min)
+        & (raw <= scale.raw_max);
     if fits & (documented || specials.contains(&raw)) {
         Some(raw)
     } else {
@@ -109,7 +183,10 @@ pub fn to_raw_int(value: i64, scale: &IntScale, specials: &[i64]) -> Option<i64>
     let fits = (n >= scale.type_min * scale.factor) & (n <= scale.type_max * scale.factor);
     let magnitude = (2 * n.abs() + scale.factor) / (2 * scale.factor);
     let raw = if n >= 0 { magnitude } else { -magnitude };
-    let documented = (value >= scale.check_min) & (value <= scale.check_max) & (raw >= scale.raw_min) & (raw <= scale.raw_max);
+    let documented = (value >= scale.check_min)
+        & (value <= scale.check_max)
+        & (raw >= scale.raw_min)
+        & (raw <= scale.raw_max);
     if fits & (documented || specials.contains(&raw)) {
         Some(raw)
     } else {
@@ -129,11 +206,14 @@ pub fn to_raw_documented(value: f64, scale: &Scale) -> Option<i64> {
     }
 }
 
-/// [`to_raw_documented`] where the documented range also makes `q` non-negative.
+/// [`to_raw_documented`] where the documented range also makes `q` non-negative and below
+/// [`EXACT_LIMIT`] (the rounding's first branch never applies).
 #[inline(always)]
 pub fn to_raw_documented_unsigned(value: f64, scale: &Scale) -> Option<i64> {
     if (value >= scale.check_min) & (value <= scale.check_max) {
-        Some(floor_i64(((value - scale.offset) / scale.factor + 0.5) + TIE_EPSILON))
+        Some(floor_i64(
+            ((value - scale.offset) / scale.factor + 0.5) + TIE_EPSILON,
+        ))
     } else {
         None
     }
@@ -193,7 +273,11 @@ pub fn to_raw_int_documented(value: i64, scale: &IntScale) -> Option<i64> {
 /// [`to_raw_int_documented`] for a signal with special values (see
 /// [`to_raw_documented_or_special`]).
 #[inline(always)]
-pub fn to_raw_int_documented_or_special(value: i64, scale: &IntScale, specials: &[i64]) -> Option<i64> {
+pub fn to_raw_int_documented_or_special(
+    value: i64,
+    scale: &IntScale,
+    specials: &[i64],
+) -> Option<i64> {
     match to_raw_int_documented(value, scale) {
         Some(raw) => Some(raw),
         None => to_raw_int(value, scale, specials),
@@ -237,8 +321,104 @@ mod tests {
     }
 
     #[test]
+    fn rounds_doubles_from_two_to_the_52_as_they_are() {
+        // Adding 0.5 to 2^52 + 1 would round to even (2^52 + 2).
+        assert_eq!(
+            round_half_away(4_503_599_627_370_497.0),
+            4_503_599_627_370_497
+        );
+        assert_eq!(
+            round_half_away(-4_503_599_627_370_497.0),
+            -4_503_599_627_370_497
+        );
+        assert_eq!(
+            round_half_away(4_503_599_627_370_495.5),
+            4_503_599_627_370_496
+        );
+        assert_eq!(round_half_away(-9_223_372_036_854_775_808.0), i64::MIN);
+    }
+
+    #[test]
+    fn range_checks_are_exact_beyond_two_to_the_53() {
+        // A 64-bit signed field: 2^63 does not fit although `i64::MAX as f64` is 2^63.
+        let scale = Scale {
+            factor: 1.0,
+            offset: 0.5,
+            check_min: -1e19,
+            check_max: 1e19,
+            raw_min: i64::MIN,
+            raw_max: i64::MAX,
+            type_min: i64::MIN,
+            type_max: i64::MAX,
+        };
+        assert_eq!(to_raw(9_223_372_036_854_775_808.5, &scale, &[]), None);
+        assert_eq!(
+            to_raw(-9_223_372_036_854_775_807.5, &scale, &[]),
+            Some(i64::MIN)
+        );
+        let wide = ScaleU64 {
+            factor: 2.0,
+            offset: 0.0,
+            check_min: -1.0,
+            check_max: 4e19,
+            raw_min: 0,
+            raw_max: u64::MAX,
+        };
+        assert_eq!(to_raw_u64(36_893_488_147_419_103_232.0, &wide, &[]), None); // 2^64 × 2
+        assert_eq!(
+            to_raw_u64(36_893_488_147_419_099_136.0, &wide, &[]),
+            Some(18_446_744_073_709_549_568)
+        );
+        assert_eq!(to_raw_u64(1.0, &wide, &[]), Some(1)); // the tie 0.5 rounds away from zero
+        assert_eq!(to_raw_u64(-0.5, &wide, &[]), None);
+        assert_eq!(to_raw_u64(-1e-10, &wide, &[]), Some(0)); // within the tie epsilon of the field
+        assert_eq!(to_raw_u64(f64::NAN, &wide, &[]), None);
+    }
+
+    #[test]
+    fn the_field_check_allows_the_tie_epsilon() {
+        // 15 bits signed, factor 0.01, offset -5: the double quotient of the field's largest
+        // value 158.83 is 16383.000000000002, a hair beyond the field.
+        let scale = Scale {
+            factor: 0.01,
+            offset: -5.0,
+            check_min: -168.84,
+            check_max: 158.83,
+            raw_min: -16384,
+            raw_max: 16383,
+            type_min: -16384,
+            type_max: 16383,
+        };
+        assert_eq!(to_raw(158.83, &scale, &[]), Some(16383));
+        assert_eq!(to_raw(-168.84, &scale, &[]), Some(-16384));
+        assert_eq!(to_raw(158.835, &scale, &[16383]), None); // half a step beyond is not in the field
+        assert!(at_most(16_383.000_000_000_9, 16383) && !at_most(16_383.000_000_001_1, 16383));
+        assert!(
+            at_least(-16_384.000_000_000_9, -16384) && !at_least(-16_384.000_000_001_1, -16384)
+        );
+    }
+
+    #[test]
     fn floor_matches_std() {
-        for t in [-3.5, -3.0, -2.9999, -0.5, -0.0, 0.0, 0.25, 0.5, 1.0, 1.5, 2.5, 7.999_999, 1e15 + 0.5, -1e15 - 0.5, 4.5e15, 2_251_799_813_685_247.5, 2_251_799_813_685_248.0] {
+        for t in [
+            -3.5,
+            -3.0,
+            -2.9999,
+            -0.5,
+            -0.0,
+            0.0,
+            0.25,
+            0.5,
+            1.0,
+            1.5,
+            2.5,
+            7.999_999,
+            1e15 + 0.5,
+            -1e15 - 0.5,
+            4.5e15,
+            2_251_799_813_685_247.5,
+            2_251_799_813_685_248.0,
+        ] {
             assert_eq!(floor_i64(t), t.floor() as i64, "floor({t})");
         }
     }
@@ -252,7 +432,16 @@ mod tests {
 
     #[test]
     fn to_raw_applies_the_range_rules() {
-        let scale = Scale { factor: 0.02, offset: -9.0, check_min: -9.0, check_max: 3.6, raw_min: 0, raw_max: 630, type_min: 0, type_max: 1023 };
+        let scale = Scale {
+            factor: 0.02,
+            offset: -9.0,
+            check_min: -9.0,
+            check_max: 3.6,
+            raw_min: 0,
+            raw_max: 630,
+            type_min: 0,
+            type_max: 1023,
+        };
         assert_eq!(to_raw(-8.99, &scale, &[]), Some(1)); // decimal tie rounds away from zero
         assert_eq!(to_raw(3.6, &scale, &[]), Some(630));
         assert_eq!(to_raw(3.62, &scale, &[]), None); // outside the documented range
@@ -265,16 +454,60 @@ mod tests {
     #[test]
     fn integer_rule_matches_the_double_rule() {
         // max_angular_speed: factor 2, 0..512 deg/s, raw 0 = no limit.
-        let scale = IntScale { factor: 2, offset: 0, check_min: 0, check_max: 512, raw_min: 0, raw_max: 255, type_min: 0, type_max: 255 };
-        let float = Scale { factor: 2.0, offset: 0.0, check_min: 0.0, check_max: 512.0, raw_min: 0, raw_max: 255, type_min: 0, type_max: 255 };
+        let scale = IntScale {
+            factor: 2,
+            offset: 0,
+            check_min: 0,
+            check_max: 512,
+            raw_min: 0,
+            raw_max: 255,
+            type_min: 0,
+            type_max: 255,
+        };
+        let float = Scale {
+            factor: 2.0,
+            offset: 0.0,
+            check_min: 0.0,
+            check_max: 512.0,
+            raw_min: 0,
+            raw_max: 255,
+            type_min: 0,
+            type_max: 255,
+        };
         for value in -5..=520 {
-            assert_eq!(to_raw_int(value, &scale, &[0]), to_raw(value as f64, &float, &[0]), "{value}");
+            assert_eq!(
+                to_raw_int(value, &scale, &[0]),
+                to_raw(value as f64, &float, &[0]),
+                "{value}"
+            );
         }
         // battery temperature: offset -40.
-        let scale = IntScale { factor: 1, offset: -40, check_min: -40, check_max: 215, raw_min: 0, raw_max: 255, type_min: 0, type_max: 255 };
-        let float = Scale { factor: 1.0, offset: -40.0, check_min: -40.0, check_max: 215.0, raw_min: 0, raw_max: 255, type_min: 0, type_max: 255 };
+        let scale = IntScale {
+            factor: 1,
+            offset: -40,
+            check_min: -40,
+            check_max: 215,
+            raw_min: 0,
+            raw_max: 255,
+            type_min: 0,
+            type_max: 255,
+        };
+        let float = Scale {
+            factor: 1.0,
+            offset: -40.0,
+            check_min: -40.0,
+            check_max: 215.0,
+            raw_min: 0,
+            raw_max: 255,
+            type_min: 0,
+            type_max: 255,
+        };
         for value in -300..=300 {
-            assert_eq!(to_raw_int(value, &scale, &[]), to_raw(value as f64, &float, &[]), "{value}");
+            assert_eq!(
+                to_raw_int(value, &scale, &[]),
+                to_raw(value as f64, &float, &[]),
+                "{value}"
+            );
         }
     }
 
@@ -296,14 +529,56 @@ mod tests {
     #[test]
     fn reciprocal_path_matches_the_division() {
         let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        for (factor, offset, max) in [(0.2, 0.0, 800.0), (0.02, -500.0, 800.0), (0.1, -1080.0, 1080.0), (0.05, 0.0, 100.0), (0.001, 0.0, 65.535), (0.5, 0.0, 125.0), (0.4, 0.0, 100.0), (0.003, 0.0, 12.0), (0.01, -40.0, 600.0)] {
-            let scale = Scale { factor, offset, check_min: offset, check_max: max, raw_min: 0, raw_max: i64::MAX, type_min: 0, type_max: i64::MAX };
+        for (factor, offset, max) in [
+            (0.2, 0.0, 800.0),
+            (0.02, -500.0, 800.0),
+            (0.1, -1080.0, 1080.0),
+            (0.05, 0.0, 100.0),
+            (0.001, 0.0, 65.535),
+            (0.5, 0.0, 125.0),
+            (0.4, 0.0, 100.0),
+            (0.003, 0.0, 12.0),
+            (0.01, -40.0, 600.0),
+        ] {
+            // From the tie epsilon below the field's 0, which the field check lets through.
+            let low = offset - factor * TIE_EPSILON;
+            let scale = Scale {
+                factor,
+                offset,
+                check_min: low,
+                check_max: max,
+                raw_min: 0,
+                raw_max: i64::MAX,
+                type_min: 0,
+                type_max: i64::MAX,
+            };
             let reciprocal = 1.0 / factor;
+            for x in [low, (offset + low) / 2.0, offset] {
+                assert_eq!(
+                    to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                    Some(0),
+                    "{factor} {x}"
+                );
+                assert_eq!(
+                    to_raw_documented_unsigned(x, &scale),
+                    Some(0),
+                    "{factor} {x}"
+                );
+            }
             let steps = ((max - offset) / factor) as i64;
             for raw in 0..=steps {
                 // Every raw step, its decimal tie, and values around both.
-                for x in [raw as f64 * factor + offset, (raw as f64 + 0.5) * factor + offset, raw as f64 * factor + offset + factor * 0.4999, raw as f64 * factor + offset + factor * 0.5001] {
-                    assert_eq!(to_raw_documented_unsigned_recip(x, &scale, reciprocal), to_raw_documented_unsigned(x, &scale), "{factor} {x}");
+                for x in [
+                    raw as f64 * factor + offset,
+                    (raw as f64 + 0.5) * factor + offset,
+                    raw as f64 * factor + offset + factor * 0.4999,
+                    raw as f64 * factor + offset + factor * 0.5001,
+                ] {
+                    assert_eq!(
+                        to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                        to_raw_documented_unsigned(x, &scale),
+                        "{factor} {x}"
+                    );
                 }
             }
             for _ in 0..200_000 {
@@ -311,7 +586,11 @@ mod tests {
                 state ^= state >> 7;
                 state ^= state << 17;
                 let x = offset + (state >> 11) as f64 / (1u64 << 53) as f64 * (max - offset);
-                assert_eq!(to_raw_documented_unsigned_recip(x, &scale, reciprocal), to_raw_documented_unsigned(x, &scale), "{factor} {x}");
+                assert_eq!(
+                    to_raw_documented_unsigned_recip(x, &scale, reciprocal),
+                    to_raw_documented_unsigned(x, &scale),
+                    "{factor} {x}"
+                );
             }
         }
     }

@@ -1,0 +1,118 @@
+"""What the generated crate's own tests (tests/vectors.rs, tests/properties.rs) need beyond the
+crate's view: which helpers a spec's messages use, and the raw values whose physical round trip
+(raw → physical → raw in doubles) the shared rule guarantees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+from canspec import ir
+from canspec.ir.encoding import TIE_GUARANTEE, fits_runtime, to_raw_runtime
+from canspec.render.literals import grouped_int
+from canspec.targets.rust.model import RustCrate, RustField, RustMessage
+
+
+@dataclass(frozen=True)
+class Pick:
+    """The raw values the physical round trip of one field draws from: `lo..=hi`, or `values`."""
+
+    lo: str = ""
+    hi: str = ""
+    values: tuple[str, ...] = ()
+
+
+def _decoded(sig: ir.Signal, raw: int) -> float:
+    """The physical value the crate's getter computes, in the same IEEE steps."""
+    x = -float(raw) if sig.factor == -1 else float(raw) * float(sig.factor) if sig.factor != 1 else float(raw)
+    return x + float(sig.offset) if sig.offset else x
+
+
+def _encodes_back(sig: ir.Signal, raw: int) -> bool:
+    """The shared rule (every encode path computes it) takes the decoded value back to `raw`."""
+    x, f, o = _decoded(sig, raw), float(sig.factor), float(sig.offset)
+    if not fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
+        return False
+    return any(s.raw == raw for s in sig.specials) or (float(sig.accept_min) <= x <= float(sig.accept_max) and sig.raw_min <= raw <= sig.raw_max)
+
+
+def float_pick(sig: ir.Signal) -> Pick | None:
+    """Where (|physical| + |offset|) / |factor| < TIE_GUARANTEE the decoded double is within
+    2^-31 steps of the raw value and within the accepted range (ir/encoding.py), so every raw
+    value there round-trips. Outside it doubles may not resolve one step: sample values checked
+    here step for step instead. None: no raw value round-trips."""
+    c = Fraction(sig.offset) / Fraction(sig.factor)
+    room = TIE_GUARANTEE - abs(c)
+    if room > 0:
+        lo = max(sig.raw_min, math.floor(-c - room) + 1)
+        hi = min(sig.raw_max, math.ceil(-c + room) - 1)
+        if lo <= hi:
+            return Pick(grouped_int(lo), grouped_int(hi))
+    mid = (sig.raw_min + sig.raw_max) // 2
+    samples = sorted(r for r in {sig.raw_min, sig.raw_min + 1, mid, mid + 1, sig.raw_max - 1, sig.raw_max} if sig.raw_min <= r <= sig.raw_max)
+    good = tuple(grouped_int(r) for r in samples if _encodes_back(sig, r))
+    return Pick(values=good) if good else None
+
+
+def pick(field: RustField) -> Pick | None:
+    if field.kind == "float":
+        return float_pick(field.sig)
+    return Pick(grouped_int(field.sig.raw_min), grouped_int(field.sig.raw_max))
+
+
+@dataclass(frozen=True)
+class MessageTests:
+    msg: RustMessage
+    picks: tuple[Pick, ...] | None  # per field; None: some field has no raw value that round-trips
+    checksum_arg: str  # `frame`'s checksum argument: Some((byte, cover mask)) or None
+
+    @property
+    def fields_picks(self) -> tuple[tuple[RustField, Pick], ...]:
+        return tuple(zip(self.msg.fields, self.picks or ()))
+
+    @property
+    def sampled(self) -> bool:
+        return any(p.values for p in self.picks or ())
+
+    @property
+    def uses_physical(self) -> bool:
+        """The vector check reads the case's physical values (enums compare raw values)."""
+        return any(f.kind != "enum" for f in self.msg.fields)
+
+
+@dataclass(frozen=True)
+class CrateTests:
+    messages: tuple[MessageTests, ...]
+    kinds: frozenset[str]  # field kinds in any message
+    has_fields: bool
+    has_scaled: bool  # some field has a physical value other than its raw one (float or scaled_int)
+    has_checksums: bool
+    has_texts: bool
+    picks_range: bool  # some physical round trip picks from a range
+    picks_values: bool  # some from a list
+    vector_imports: str  # the crate's items tests/vectors.rs names
+    property_imports: str  # and tests/properties.rs
+    strategy_shadowed: bool  # a message type is named like proptest's Strategy trait
+
+
+def build_tests(crate: RustCrate) -> CrateTests:
+    tests = []
+    for m in crate.messages:
+        picks = tuple(pick(f) for f in m.fields)
+        ck = f"Some(({m.msg.checksum.byte}, {m.cover_mask}))" if m.msg.checksum else "None"
+        tests.append(MessageTests(m, None if any(p is None for p in picks) else picks, ck))  # type: ignore[arg-type]
+    used = [p for t in tests if t.msg.fields for p in t.picks or ()]
+    types = [m.name for m in crate.messages]
+    texts = [m.text.assembler for m in crate.messages if m.text]
+    enums = sorted({f.enum.name for m in crate.messages for f in m.fields if f.enum is not None})
+    return CrateTests(
+        messages=tuple(tests), kinds=crate.kinds, has_fields=any(m.fields for m in crate.messages),
+        has_scaled=bool(crate.kinds & {"float", "scaled_int"}),
+        has_checksums=any(m.msg.checksum for m in crate.messages), has_texts=bool(texts),
+        picks_range=any(not p.values for p in used), picks_values=any(p.values for p in used),
+        vector_imports=", ".join(["Messages", *(["EXTENDED_ID_FLAG"] if any(m.flagged for m in crate.messages) else []), *types, *enums, *texts]),
+        property_imports=", ".join(["Error", "Messages", "EXTENDED_ID_FLAG", *types, *texts]),
+        strategy_shadowed="Strategy" in types,
+    )
