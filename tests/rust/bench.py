@@ -23,6 +23,7 @@ sys.path.insert(0, str(ROOT / "generator"))
 
 from canspec import ir
 from canspec.pipeline import compile_spec
+from canspec.targets.dbc.naming import signal_names
 from canspec.targets.rust.model import RustMessage, build_crate
 
 BUILD = ROOT / "build" / "rust-bench"
@@ -113,10 +114,20 @@ def consume(parts: list[tuple[str, str]]) -> str:
     return " ".join(out)
 
 
-def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # type: ignore[type-arg]
+def _folded(name: str) -> str:
+    return name.replace("_", "").lower()
+
+
+def spec_names(dbc_names: dict[tuple[str, str], str], msg) -> dict[str, str]:  # type: ignore[no-untyped-def]
+    """dbc-codegen's parameter name (snake case of the DBC's signal name, which may carry the
+    frame ID to be unique in the DBC) → the spec's signal name; both fold to the same letters."""
+    return {_folded(dbc): spec for (m, spec), dbc in dbc_names.items() if m == msg.name}
+
+
+def message_module(rm: RustMessage, cases: list[dict], api: tuple, names: dict[str, str]) -> str:  # type: ignore[type-arg]
     news, others, getters = api
     name = rm.name
-    params = news[name]
+    params = [(names.get(_folded(p), p), p, ty) for p, ty in news[name]]
     by_name = {f.sig.name: f for f in rm.fields}
     k = len(cases)
     frames = ",\n".join("[" + ", ".join(f"0x{b:02X}" for b in bytes.fromhex(c["data"]).ljust(8, b"\0")) + "]" for c in cases)
@@ -125,15 +136,16 @@ def message_module(rm: RustMessage, cases: list[dict], api: tuple) -> str:  # ty
         for c in cases
     )
     theirs = ",\n".join(
-        "(" + "".join(f"{theirs_value(ty, others, c['physical'].get(p, c['raw'].get(p)))}, " for p, ty in params) + ")" for c in cases
+        "(" + "".join(f"{theirs_value(ty, others, c['physical'].get(s, c['raw'].get(s)))}, " for s, _, ty in params) + ")" for c in cases
     )
-    theirs_types = "(" + "".join(f"dbc::{ty}, " if ty in others else f"{ty}, " for _, ty in params) + ")"
+    theirs_types = "(" + "".join(f"dbc::{ty}, " if ty in others else f"{ty}, " for _, _, ty in params) + ")"
     theirs_args = ", ".join(f"t.{i}" for i in range(len(params)))
     ours_sum = consume([
         ("float", f"m.{f.names.getter}()") if f.kind == "float" else ("int", f"(m.{f.names.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.names.getter}() as u64)")
         for f in rm.fields
     ])
-    theirs_sum = consume([read_back(getters[(name, p)], others, f"m.{p}()") for p, _ in params if p in by_name or p == "checksum"])
+    checksum = rm.msg.checksum.signal if rm.msg.checksum is not None else None
+    theirs_sum = consume([read_back(getters[(name, p)], others, f"m.{p}()") for s, p, _ in params if s in by_name or s == checksum])
     checked = ""
     if rm.msg.checksum is not None:
         ck = rm.msg.checksum
@@ -314,13 +326,14 @@ def main() -> int:
         return 1
     modules, rows = [], []
     counts: dict[str, int] = {}
+    dbc_names = signal_names(spec.can)  # the DBC target's own naming (unique names carry the frame ID)
     for rm in crate.messages:
         # Physical-encodable cases; ties of integer-valued signals have no whole-number input.
         cases = [c for c in vectors["cases"] if c["message"] == rm.msg.name and c["kind"] != "raw_only"
                  and all(float(c["physical"][f.sig.name]).is_integer() for f in rm.fields if f.kind == "scaled_int")]
         if not cases:
             continue
-        modules.append(message_module(rm, cases, api))
+        modules.append(message_module(rm, cases, api, spec_names(dbc_names, rm.msg)))
         rows.append((rm.msg.name, rm.msg.checksum is not None))
         counts[rm.msg.name] = len(cases)
     body = MAIN_HEAD.format(package=crate.package) + "".join(modules)
