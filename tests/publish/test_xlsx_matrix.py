@@ -7,6 +7,7 @@ fields, negative scaling, a formula-like text)."""
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
@@ -186,3 +187,31 @@ def test_edge_spec(tmp_path):
     assert cell.data_type == "s"  # text stays text: no formula injection
     assert not any(isinstance(v, float) and math.isnan(v) for r in rows.values() for v in r.values())
     assert "Chinese" not in " ".join(book.headers("值表 Value tables") + book.headers("节点 Nodes"))
+
+
+def decimal(value: object) -> Fraction:
+    """The decimal a cell or DBC number stands for (a float by its shortest repr, text exactly)."""
+    return Fraction(repr(value)) if isinstance(value, float) else Fraction(str(value))
+
+
+def test_shipped_matrix_agrees_with_the_dbc(spec, db):
+    """cantools reading the generated DBC, the independent oracle: same IDs, cycle times, senders and
+    receivers, and per signal the same bits, scaling, range, unit and value table."""
+    book = workbook(spec)
+    label_to_node = {r["Label"]: r["Node"] for r in book.rows("节点 Nodes")}
+    for row in book.rows(MATRIX):
+        m = db.get_message_by_frame_id(int(row["Message ID"], 16))
+        assert (m.name, m.is_extended_frame, m.length, m.cycle_time) == (row["Message name"], row["Frame format"] == "Extended", row["DLC (bytes)"], row["Cycle time (ms)"])
+        senders = {label_to_node[k] for k, v in row.items() if k in label_to_node and "S" in (v or "")}
+        receivers = {label_to_node[k] for k, v in row.items() if k in label_to_node and "R" in (v or "")}
+        assert set(m.senders) == senders
+        if row["Signal name"] is None:
+            assert m.signals == []
+            continue
+        s = m.get_signal_by_name(row["Signal name"])
+        assert (s.start, s.length, s.is_signed, s.byte_order) == (row["Start bit"], row["Length (bits)"], row["Signedness"] == "Signed", "little_endian")
+        dbc = [decimal(v) for v in (s.scale, s.offset, s.minimum, s.maximum)]
+        assert dbc == [decimal(row[k]) for k in ("Factor", "Offset", "Physical min", "Physical max")], s.name
+        assert (s.unit or "") == (row["Unit"] or "") and set(s.receivers) == receivers
+        named = [line.split(":")[0] for key in ("Value table", "Invalid / special values") for line in (row[key] or "").splitlines()]
+        assert sorted(int(raw, 16) for raw in named) == sorted(int(raw) for raw in (s.choices or {})), s.name  # VAL_: table + specials
