@@ -21,8 +21,7 @@ class Cover:
 def cover(spec: ir.Spec) -> Cover:
     can = spec.can
     title, subtitle = (can.title_zh or can.title, can.title if can.title_zh else "") if can else (spec.name, "")
-    versions = spec.changelog.versions if spec.changelog is not None else ()
-    date = next((v.date for v in versions if v.version == spec.version and v.date), None)
+    date = spec.changelog.date_of(spec.version) if spec.changelog is not None else None
     facts = [("文档 Document", can.document)] if can is not None and can.document else []
     facts += [("规范 Spec", f"{spec.name} {spec.version}")]
     facts += [("日期 Date", date)] if date else []

@@ -13,7 +13,7 @@ from canspec import ir
 from canspec.targets import Target
 from canspec.targets.xlsx.errata import errata
 from canspec.targets.xlsx.matrix import matrix
-from canspec.targets.xlsx.model import Sheet
+from canspec.targets.xlsx.model import Sheet, joined
 from canspec.targets.xlsx.sheets import about, history, nodes, value_tables
 from canspec.targets.xlsx.workbook import workbook
 
@@ -23,8 +23,7 @@ EPOCH = datetime(1980, 1, 1)  # docProps date when the change record does not da
 
 def release_date(spec: ir.Spec) -> datetime:
     """The change record's date of this version: the workbook's creation date, never the clock."""
-    versions = spec.changelog.versions if spec.changelog is not None else ()
-    date = next((v.date for v in versions if v.version == spec.version and v.date), None)
+    date = spec.changelog.date_of(spec.version) if spec.changelog is not None else None
     return datetime.strptime(date, "%Y-%m-%d") if date else EPOCH
 
 
@@ -34,7 +33,7 @@ def render_xlsx(spec: ir.Spec) -> dict[str, bytes]:
         return {}
     sheets: list[Sheet] = [s for s in (matrix(can), value_tables(can), nodes(can), history(spec.changelog), errata(spec)) if s is not None]
     sheets.append(about(spec, can, [s.name for s in sheets]))
-    title = " ".join(t for t in (can.title_zh, can.title) if t)
+    title = joined(can.title_zh, can.title)
     properties = {
         "title": f"{title} V{can.version} — 通信矩阵 communication matrix",
         "subject": f"{spec.name} {spec.version}",

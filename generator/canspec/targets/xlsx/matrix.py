@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import num, sheet_number
-from canspec.targets.xlsx.model import Cell, Column, Sheet, sheet
+from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
 NAME = "通信矩阵 Matrix"
 BYTE_ORDER = {"little_endian": "Intel"}
@@ -57,20 +57,16 @@ def raw_hex(sig: ir.Signal, raw: int) -> str:
     return text if raw >= 0 else f"{text} ({raw})"
 
 
-def bilingual(en: str, zh: str) -> str:
-    return " ".join(t for t in (en, zh) if t)
-
-
 def label_lines(sig: ir.Signal, special: bool) -> str:
     """`0x3FF: No obstacle 无障碍物`, one line per value-table entry (or per special value)."""
-    return "\n".join(f"{raw_hex(sig, lb.raw)}: {bilingual(lb.label, lb.label_zh)}" for lb in sig.labels if lb.is_special == special)
+    return "\n".join(f"{raw_hex(sig, lb.raw)}: {joined(lb.label, lb.label_zh)}" for lb in sig.labels if lb.is_special == special)
 
 
 def initial_value(sig: ir.Signal) -> str:
     """The protocol defines no initial values: raw 0, what an all-zero message packs to (the
     generated codecs' zero-initialised structs), with what it means, so a reviewer sees it."""
     label = sig.label_of(0)
-    meaning = bilingual(label.label, label.label_zh) if label else " ".join(t for t in (num(sig.physical(0)), sig.unit) if t)
+    meaning = joined(label.label, label.label_zh) if label else joined(num(sig.physical(0)), sig.unit)
     return f"0x0 ({meaning})"
 
 

@@ -9,6 +9,11 @@ from dataclasses import dataclass
 Cell = str | int | float | None
 
 
+def joined(*texts: str) -> str:
+    """Texts side by side (English and Chinese, a number and its unit), the empty ones left out."""
+    return " ".join(t for t in texts if t)
+
+
 @dataclass(frozen=True)
 class Column:
     key: str  # stable name (tests, builders)

@@ -7,7 +7,7 @@ from __future__ import annotations
 from canspec import ir
 from canspec.render.environment import header_lines
 from canspec.render.literals import hex_byte, sheet_number
-from canspec.targets.xlsx.model import Cell, Column, Sheet, sheet
+from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
 INITIAL_VALUE_NOTE = (
     "The protocol document defines no initial values. The column shows raw 0x0 — what the generated codecs send for a "
@@ -65,7 +65,7 @@ def history(log: ir.Changelog | None) -> Sheet | None:
     rows: list[list[Cell]] = []
     bands: list[int] = []
     for i, v in enumerate(reversed(log.versions)):  # newest first, as the handbook shows it
-        head: list[Cell] = [f"V{v.version}", v.date, ", ".join(v.authors), " ".join(t for t in (v.label, v.label_zh) if t)]
+        head: list[Cell] = [f"V{v.version}", v.date, ", ".join(v.authors), joined(v.label, v.label_zh)]
         for item in v.items:
             rows.append([*head, item.number, item.zh, item.en, "\n".join(f"0x{fid:08X}" for fid in item.ids), ", ".join(item.errata)])
         if not v.items:
@@ -77,7 +77,7 @@ def history(log: ir.Changelog | None) -> Sheet | None:
 def about(spec: ir.Spec, can: ir.CanProtocol, sheet_names: list[str]) -> Sheet:
     bus = can.bus
     facts: list[tuple[str, Cell]] = [
-        ("协议 Protocol", " ".join(t for t in (can.title_zh, can.title) if t)),
+        ("协议 Protocol", joined(can.title_zh, can.title)),
         ("版本 Version", f"V{can.version}" + (f" (document {can.document})" if can.document else "")),
         ("规范 Spec", f"{spec.name} {spec.version}"),
         ("规范哈希 Spec sha256", spec.sha256),
