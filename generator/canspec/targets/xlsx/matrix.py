@@ -127,7 +127,7 @@ def no_signal_cells(msg: ir.Message) -> list[Cell]:
 def node_column(node: ir.Node) -> Column:
     """Wide enough for the node's name on one line, up to a limit (CJK characters count double)."""
     chars = max(len(node.label), 2 * len(node.zh))
-    return Column(f"node:{node.name}", node.zh, node.label, min(max(chars + 2, 8), 18))
+    return Column(f"node:{node.name}", node.zh, node.label, min(max(chars + 2, 8), 18), center=True)
 
 
 def matrix(can: ir.CanProtocol) -> Sheet:

@@ -21,6 +21,7 @@ class Column:
     en: str  # header, English line
     width: float  # in Excel character widths
     wrap: bool = False  # multi-line text: wrapped, rows grow
+    center: bool = False  # short flags (S/R) read down the column
     optional: bool = False  # left out when no row has a value (e.g. Chinese names of an English-only spec)
 
     @property

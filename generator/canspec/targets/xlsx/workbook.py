@@ -30,19 +30,19 @@ HEADER_PAD = 4  # points around the header's lines
 LINE_HEIGHT = 15  # points per text line at FONT_SIZE, with the taller CJK fallback fonts
 A3 = 8
 ZIP_EPOCH = (1980, 1, 1, 0, 0, 0)
+HEADER = -1  # the header row's "band"
 
 
-def _formats(wb: Any) -> dict[tuple[bool, int], Any]:
-    """(wrap, band) → cell format; band 2 is the header."""
+def _formats(wb: Any) -> dict[tuple[bool, bool, int], Any]:
+    """(wrap, center, band) → cell format; band 0/1 shade data rows, HEADER is the header row."""
     base = {"valign": "top", "border": 1, "border_color": BORDER_COLOUR}
     out = {}
     for wrap in (False, True):
-        for band in (0, 1):
-            props = {**base, "text_wrap": wrap}
-            if band:
-                props["bg_color"] = BAND_FILL
-            out[(wrap, band)] = wb.add_format(props)
-        out[(wrap, 2)] = wb.add_format({**base, "bold": True, "text_wrap": True, "valign": "vcenter", "bg_color": HEADER_FILL})
+        for center in (False, True):
+            align = {"align": "center"} if center else {}
+            for band in (0, 1):
+                out[(wrap, center, band)] = wb.add_format({**base, **align, "text_wrap": wrap, **({"bg_color": BAND_FILL} if band else {})})
+            out[(wrap, center, HEADER)] = wb.add_format({**base, **align, "bold": True, "text_wrap": True, "valign": "vcenter", "bg_color": HEADER_FILL})
     return out
 
 
@@ -62,11 +62,11 @@ def row_lines(s: Sheet, row: tuple[object, ...]) -> int:
     return max([1] + [text_lines(v, c.width) for c, v in zip(s.columns, row) if c.wrap and isinstance(v, str)])
 
 
-def _write_sheet(wb: Any, s: Sheet, formats: dict[tuple[bool, int], Any]) -> None:
+def _write_sheet(wb: Any, s: Sheet, formats: dict[tuple[bool, bool, int], Any]) -> None:
     ws = wb.add_worksheet(s.name)
     for c, col in enumerate(s.columns):
         ws.set_column(c, c, col.width)
-        ws.write_string(0, c, col.header, formats[(True, 2)])
+        ws.write_string(0, c, col.header, formats[(True, col.center, HEADER)])
     ws.set_row(0, max(text_lines(c.header, c.width) for c in s.columns) * LINE_HEIGHT + HEADER_PAD)
     for r, row in enumerate(s.rows, start=1):
         band = s.bands[r - 1] if s.bands else 0
@@ -74,7 +74,7 @@ def _write_sheet(wb: Any, s: Sheet, formats: dict[tuple[bool, int], Any]) -> Non
         if lines > 1:
             ws.set_row(r, lines * LINE_HEIGHT)
         for c, value in enumerate(row):
-            fmt = formats[(s.columns[c].wrap, band)]
+            fmt = formats[(s.columns[c].wrap, s.columns[c].center, band)]
             if value is None or value == "":
                 ws.write_blank(r, c, None, fmt)
             elif isinstance(value, str):  # never write(): it would turn "=…" into a formula and URLs into links
