@@ -7,6 +7,7 @@ fields, negative scaling, a formula-like text)."""
 from __future__ import annotations
 
 import math
+import re
 from fractions import Fraction
 from pathlib import Path
 
@@ -156,6 +157,12 @@ def test_shipped_spec(spec):
     check_matrix(spec, book)
     check_companions(spec, book)
     assert book.wb.sheetnames == ["通信矩阵 Matrix", "值表 Value tables", "节点 Nodes", "修订历史 History", "勘误 Errata", "说明 About"]
+    # Every erratum of spec/ERRATA.md has its row; where the spec cites one, the row says where.
+    described = re.findall(r"^\| ([A-Z]+\d+) \|", (ROOT / "spec" / "ERRATA.md").read_text(encoding="utf-8"), re.MULTILINE)
+    errata = {r["Erratum"]: r for r in book.rows("勘误 Errata")}
+    assert described and list(errata)[: len(described)] == described
+    assert "0x1801B0A0 autocar_eps_command.max_angular_speed" in errata["E10"]["Cited by"].splitlines()
+    assert errata["E10"]["Section"] == "CAN protocol (D)" and "8 bits × 2 encode at most 510" in errata["E10"]["Resolution"]
 
 
 @pytest.mark.parametrize("path", sorted(VALID.glob("*.yaml")), ids=lambda p: p.stem)

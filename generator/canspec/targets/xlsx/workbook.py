@@ -2,8 +2,9 @@
 
 Every sheet: a bold bilingual header row that stays in view (frozen, with the sheet's key columns),
 a filter on every column, fixed column widths, wrapped multi-line cells in rows tall enough for
-them (set here: LibreOffice does not fit row heights when it opens a file), thin borders, alternate shading by message, a font with Chinese glyphs, and a landscape
-A3 page set-up that prints one page wide with the header repeated.
+them (set here: LibreOffice does not fit row heights when it opens a file), thin borders,
+alternate shading by message, a font with Chinese glyphs, and a landscape A3 page set-up that
+prints one page wide with the header repeated.
 
 Reproducible: the creation date is fixed (docProps created = modified), and the package is
 re-zipped with fixed entry dates and attributes and stored uncompressed, so the bytes depend on
