@@ -14,3 +14,13 @@ history-diff:  ## diff each revision against the next one (DIFF_FORMAT=text|mark
 
 changelog:  ## print the change record as bilingual Markdown
 	$(CANSPEC) changelog $(SPEC)
+
+# The revision report published with a release: this spec against the previous revision, the
+# computed changes beside the declared change record (RELEASE_OLD: a spec or DBC of the old version).
+RELEASE_OLD ?= $(patsubst %/canspec.yaml,%,$(lastword $(REVISIONS)))
+RELEASE_REPORT ?= build/release-report.html
+.PHONY: release-report
+
+release-report:  ## the release's revision report (HTML): canspec diff $(RELEASE_OLD) $(SPEC) --format html → $(RELEASE_REPORT)
+	@mkdir -p $(dir $(RELEASE_REPORT))
+	$(CANSPEC) diff $(RELEASE_OLD) $(SPEC) --format html > $(RELEASE_REPORT)

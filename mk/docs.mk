@@ -13,3 +13,11 @@ docs: docs-gen  ## build the static HTML handbook into site/ (offline, with sear
 
 docs-serve: docs-gen  ## preview the handbook on http://127.0.0.1:8000
 	$(MKDOCS) serve --strict
+
+# The handbook as one PDF (not part of `make gen`: it needs WeasyPrint and fonts-noto-cjk,
+# installed by .ci/setup.d/75-pdf.sh). Same spec, same bytes.
+DOCS_PDF ?= build/handbook.pdf
+.PHONY: docs-pdf
+
+docs-pdf:  ## the bilingual PDF handbook: cover, contents, history, every page of the site (→ $(DOCS_PDF))
+	$(CANSPEC) pdf $(SPEC) -o $(DOCS_PDF)

@@ -62,3 +62,15 @@ def test_rust_strings_compile_to_the_same_bytes(tmp_path):
 
 def test_dbc_strings_never_hold_a_quote():
     assert literals.dbc_string('say "hi" \\ now') == "\"say 'hi' / now\""
+
+
+def test_sheet_numbers_are_exact_or_text():
+    # Excel keeps 15 significant digits: a number cell only where that is the exact value.
+    assert literals.sheet_number(Fraction(1, 50)) == 0.02 and isinstance(literals.sheet_number(Fraction(1, 50)), float)
+    assert literals.sheet_number(-1080) == -1080 and isinstance(literals.sheet_number(-1080), int)
+    assert literals.sheet_number(10**20) == 10**20  # one significant digit: exact as a double
+    assert literals.sheet_number(123456789012345) == 123456789012345
+    assert literals.sheet_number(1234567890123456) == "1234567890123456"
+    assert literals.sheet_number(2**64 - 1) == "18446744073709551615"
+    assert literals.sheet_number(Fraction(2**64 - 1, 1000)) == "18446744073709551.615"
+    assert literals.sheet_number(Fraction(-3, 10**20)) == -3e-20

@@ -1,4 +1,4 @@
-"""`canspec diff OLD NEW [--format text|markdown|json] [--fail-on wire|source|compatible|any]`.
+"""`canspec diff OLD NEW [--format text|markdown|json|html] [--fail-on wire|source|compatible|any]`.
 
 Every change is classed, strictest first:
   wire        an old receiver would decode different values (layout, factor/offset, signedness,
@@ -7,6 +7,9 @@ Every change is classed, strictest first:
   compatible  new message, new signal in formerly reserved bits, new enum value, widened range,
               cycle time, sender/receivers
   docs        names as printed, descriptions
+
+--format html writes the revision report to publish with a release: one self-contained page with
+the changes, the suggested bump and the new revision's declared change record beside them.
 
 Exit status: 0 no failing change, 1 a change at or above --fail-on, 2 an input that cannot be
 read (the message says which and why)."""
@@ -20,7 +23,10 @@ from canspec.diff.classes import FAIL_ON
 from canspec.diff.compare import compare
 from canspec.diff.dbcimport import InputError
 from canspec.diff.inputs import load_model
-from canspec.diff.report import FORMATS
+from canspec.diff.report import FORMATS as TEXT_FORMATS
+from canspec.diff.report_html import html
+
+FORMATS = {**TEXT_FORMATS, "html": html}
 
 
 def run(args: argparse.Namespace) -> int:

@@ -11,11 +11,10 @@ from pathlib import Path
 from canspec import ir
 from canspec.diff.compare import Change, compare
 from canspec.diff.model import from_spec
+from canspec.diff.release import UNRECONSTRUCTED, declares
 from canspec.pipeline import compile_spec
 from canspec.spec.loader import display_name, load
 from canspec.spec.problems import Problem, SpecError, error, warning
-
-UNRECONSTRUCTED = "unreconstructed"
 
 
 def _describe(c: Change) -> str:
@@ -69,8 +68,7 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
         for j, d in enumerate(declared):
             if d["kind"] == UNRECONSTRUCTED:
                 continue
-            hits = [i for i, c in enumerate(changes)
-                    if c.kind == d["kind"] and c.frame_id == d["message"] and ("signal" not in d or c.signal == d["signal"])]
+            hits = [i for i, c in enumerate(changes) if declares(d, c)]
             if not hits:
                 what = f" {d['signal']}" if "signal" in d else ""
                 problems.append(error(f"{label} item {n} declares {d['kind']}{what} in 0x{d['message']:08X}, which the diff from {old.version} does not show",

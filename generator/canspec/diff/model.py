@@ -81,6 +81,7 @@ class ProtocolModel:
     name: str
     version: str | None
     messages: tuple[MessageModel, ...]
+    changelog: ir.Changelog | None = None  # the revision's own change record (spec only): what it declares
 
     def by_id(self, frame_id: int) -> MessageModel | None:
         return next((m for m in self.messages if m.frame_id == frame_id), None)
@@ -130,4 +131,4 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
         )
     name = spec.can.name if spec.can is not None else spec.name
     version = spec.can.version if spec.can is not None else spec.version
-    return ProtocolModel(source, "spec", name, version, tuple(messages))
+    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog)

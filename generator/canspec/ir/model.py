@@ -412,6 +412,10 @@ class Changelog:
     protocol: str
     versions: tuple[ChangeVersion, ...]  # oldest first
 
+    def date_of(self, version: str) -> str | None:
+        """The date the record gives a version (its release date), if any."""
+        return next((v.date for v in self.versions if v.version == version and v.date), None)
+
 
 # --- the whole spec ----------------------------------------------------------------------
 

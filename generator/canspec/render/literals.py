@@ -120,6 +120,21 @@ def dbc_string(text: str) -> str:
     return '"' + text.replace("\\", "/").replace('"', "'") + '"'
 
 
+# --- spreadsheets (XLSX) -----------------------------------------------------------------------
+
+SHEET_DIGITS = 15  # significant digits Excel keeps and shows
+
+
+def sheet_number(value: Fraction | int) -> int | float | str:
+    """A spreadsheet cell for an exact decimal: a number when Excel holds and shows it exactly (at
+    most 15 significant digits: 0.02, -1080), else its exact decimal text (2^64 - 1, 1.844674407370955e19
+    would be wrong by thousands)."""
+    text = decimal_text(Fraction(value))
+    if len(text.lstrip("-").replace(".", "").strip("0")) > SHEET_DIGITS:
+        return text
+    return float(text) if "." in text else int(text)
+
+
 FILTERS = {
     "num": num,
     "float_lit": float_lit,
