@@ -322,6 +322,7 @@ class JsonEnumValue:
     name: str
     label_zh: str
     label: str
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)
@@ -344,6 +345,8 @@ class JsonField:
     desc: str
     desc_zh: str
     errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # the field's definition
+    type_loc: Loc | None = field(default=None, compare=False, hash=False)  # its type's definition
 
 
 @dataclass(frozen=True)
@@ -358,6 +361,7 @@ class JsonMessage:
     receiver: str
     fields: tuple[JsonField, ...]
     examples: tuple[dict, ...]  # type: ignore[type-arg]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)
@@ -376,6 +380,7 @@ class JsonProtocol:
     parties: tuple[JsonParty, ...]
     messages: tuple[JsonMessage, ...]
     errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # its `name`
 
     def message(self, name: str) -> JsonMessage:
         return next(m for m in self.messages if m.name == name)

@@ -56,13 +56,12 @@ def _object(message: str, obj: Any, keys: Tuple[str, ...]) -> Dict[str, Any]:
 def _integer(message: str, key: str, value: Any, lo: int, hi: int, type_rule: str, range_rule: str) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(message, key, value, "type", type_rule)
-    if isinstance(value, float):
-        if not value.is_integer():
-            raise ValidationError(message, key, value, "type", type_rule)
-        value = int(value)
-    if not lo <= value <= hi:
-        raise ValidationError(message, key, value, "type_range", range_rule)
-    return value
+    if isinstance(value, float) and not value.is_integer():
+        raise ValidationError(message, key, value, "type", type_rule)
+    number = int(value)
+    if not lo <= number <= hi:
+        raise ValidationError(message, key, number, "type_range", range_rule)
+    return number
 
 
 def _number(message: str, key: str, value: Any, lo: Optional[float], hi: Optional[float], type_rule: str, range_rule: str) -> Union[int, float]:
@@ -171,6 +170,7 @@ class Control:
     vts: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "ts",
@@ -339,6 +339,7 @@ class Status:
     sat_cnt: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "ts",
@@ -519,6 +520,7 @@ class ShutdownRequest:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -558,11 +560,15 @@ class ShutdownRequest:
 
     def reply(self, res: Union[Res, int] = Res.OK) -> "ShutdownReply":
         """The reply to this request (`bn` echoed)."""
-        return ShutdownReply(res=res, bn=self.bn)
+        return ShutdownReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, ShutdownReply) and reply.bn == self.bn
+
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("shutdown_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -584,6 +590,7 @@ class ShutdownReply:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -636,6 +643,10 @@ class ShutdownReply:
             "bn": self.bn,
         }
 
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("shutdown_request", self.bn)
+
 
 @dataclass(frozen=True)
 class RestartRequest:
@@ -651,6 +662,7 @@ class RestartRequest:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -690,11 +702,15 @@ class RestartRequest:
 
     def reply(self, res: Union[Res, int] = Res.OK) -> "RestartReply":
         """The reply to this request (`bn` echoed)."""
-        return RestartReply(res=res, bn=self.bn)
+        return RestartReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RestartReply) and reply.bn == self.bn
+
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("restart_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -716,6 +732,7 @@ class RestartReply:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -768,6 +785,10 @@ class RestartReply:
             "bn": self.bn,
         }
 
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("restart_request", self.bn)
+
 
 @dataclass(frozen=True)
 class RecordRequest:
@@ -785,6 +806,7 @@ class RecordRequest:
     ro: bool
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -828,11 +850,15 @@ class RecordRequest:
 
     def reply(self, res: Union[Res, int] = Res.OK, *, ro: bool) -> "RecordReply":
         """The reply to this request (`bn` echoed)."""
-        return RecordReply(res=res, bn=self.bn, ro=ro)
+        return RecordReply(res=Res(res), bn=self.bn, ro=ro)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RecordReply) and reply.bn == self.bn
+
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("record_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -857,6 +883,7 @@ class RecordReply:
     ro: bool
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -913,6 +940,10 @@ class RecordReply:
             "ro": self.ro,
         }
 
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("record_request", self.bn)
+
 
 @dataclass(frozen=True)
 class PhotoRequest:
@@ -928,6 +959,7 @@ class PhotoRequest:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -967,11 +999,15 @@ class PhotoRequest:
 
     def reply(self, res: Union[Res, int] = Res.OK) -> "PhotoReply":
         """The reply to this request (`bn` echoed)."""
-        return PhotoReply(res=res, bn=self.bn)
+        return PhotoReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, PhotoReply) and reply.bn == self.bn
+
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("photo_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -993,6 +1029,7 @@ class PhotoReply:
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -1044,6 +1081,10 @@ class PhotoReply:
             "res": self.res.value,
             "bn": self.bn,
         }
+
+    def match_key(self) -> Tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("photo_request", self.bn)
 
 
 Message = Union[Control, Status, ShutdownRequest, ShutdownReply, RestartRequest, RestartReply, RecordRequest, RecordReply, PhotoRequest, PhotoReply]
@@ -1098,7 +1139,7 @@ def _read_any(obj: Any) -> Message:
     return Status.from_json(obj)
 
 
-def _read_autonomous(obj: Any) -> Message:
+def _read_to_autonomous(obj: Any) -> Message:
     if not isinstance(obj, dict):
         raise ValidationError("message", "", obj, "object", "must be a JSON object")
     if "cmd" in obj:
@@ -1115,7 +1156,7 @@ def _read_autonomous(obj: Any) -> Message:
     return Control.from_json(obj)
 
 
-def _read_vehicle(obj: Any) -> Message:
+def _read_to_vehicle(obj: Any) -> Message:
     if not isinstance(obj, dict):
         raise ValidationError("message", "", obj, "object", "must be a JSON object")
     if "cmd" in obj:
@@ -1139,39 +1180,45 @@ def parse(obj: Any, receiver: Optional[str] = None) -> Message:
     direction tells the messages apart.
     autonomous receives shutdown_reply, restart_reply, record_reply, photo_reply, control.
     vehicle receives shutdown_request, restart_request, record_request, photo_request, status.
-    Without it: a message with `cmd` is that command, and a reply when it carries `res`;
-    a message without `cmd` carrying tr, bk, st or vts is control, otherwise status.
+    Without it: a message with `cmd` is the command of that number (1: shutdown_reply /
+    shutdown_request, 2: restart_reply / restart_request, 3: record_reply / record_request, 4:
+    photo_reply / photo_request); with cmd 1, a message carrying res is shutdown_reply, otherwise
+    shutdown_request; with cmd 2, a message carrying res is restart_reply, otherwise
+    restart_request; with cmd 3, a message carrying res is record_reply, otherwise record_request;
+    with cmd 4, a message carrying res is photo_reply, otherwise photo_request; without `cmd`, a
+    message carrying tr or bk or st or vts is control; without `cmd`, the message is status
+    otherwise.
     Raises ValidationError.
     """
     if receiver == "autonomous":
-        return _read_autonomous(obj)
+        return _read_to_autonomous(obj)
     if receiver == "vehicle":
-        return _read_vehicle(obj)
+        return _read_to_vehicle(obj)
     if receiver is not None:
         raise ValueError(f"unknown receiver {receiver!r}: one of {RECEIVERS}")
     return _read_any(obj)
 
 
 def is_reply_to(reply: Any, request: Any) -> bool:
-    """Whether `reply` answers `request`: the reply type of the request's cmd, with its bn."""
-    return REPLY_OF.get(type(request)) is type(reply) and reply.bn == request.bn
+    """Whether `reply` answers `request`: the reply type of its command, with its `match_key`."""
+    return REPLY_OF.get(type(request)) is type(reply) and reply.match_key() == request.match_key()
 
 
 class PendingRequests:
-    """Requests sent and not yet answered, matched to their replies by (cmd, bn)."""
+    """Requests sent and not yet answered, matched to their replies by command and `match_key`."""
 
     def __init__(self) -> None:
-        self._pending: Dict[Tuple[int, int], Any] = {}
+        self._pending: Dict[Tuple[Any, ...], Request] = {}
 
     def add(self, request: Request) -> None:
-        self._pending[(request.CMD, request.bn)] = request
+        self._pending[request.match_key()] = request
 
     def match(self, reply: Reply) -> Optional[Request]:
         """The request `reply` answers (forgotten from now on), or None when none is pending."""
-        request = self._pending.get((reply.CMD, reply.bn))
+        request = self._pending.get(reply.match_key())
         if request is None or not is_reply_to(reply, request):
             return None
-        del self._pending[(reply.CMD, reply.bn)]
+        del self._pending[reply.match_key()]
         return request
 
     def __len__(self) -> int:
