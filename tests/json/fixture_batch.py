@@ -21,6 +21,9 @@ VALID = ROOT / "tests" / "fixtures" / "valid"
 JSON_TARGETS = ["jsonschema", "json_bindings", "json_vectors"]
 CARGO_TARGET = BUILD / "json-fixtures-rust"  # shared by runs: only changed crates rebuild
 RUN_RS = HERE / "rust_runner" / "src" / "run.rs"
+# ruff's default rules (the packages declare no configuration) for their Python, plus W: trailing
+# whitespace is where an empty Chinese label would show.
+RUFF_ARGS = ["--no-cache", "--isolated", "--target-version", "py310", "--extend-select", "W"]
 RUNNER_LOCK = HERE / "rust_runner" / "Cargo.lock"  # pins serde / serde_json to the versions the shipped crate uses
 
 
@@ -47,20 +50,23 @@ class Output:
         return f"{self.fixture}_{protocol}"
 
 
+def generate_one(path: Path, out: Path) -> Output | None:
+    """The JSON targets of the spec at `path` under `out` (None: the spec has no JSON protocol)."""
+    compiled = compile_spec(path)
+    assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
+    if not compiled.spec.json:
+        return None
+    for files in generate(compiled.spec, JSON_TARGETS).values():
+        for rel, body in files.items():
+            (out / rel).parent.mkdir(parents=True, exist_ok=True)
+            (out / rel).write_bytes(body)
+    return Output(out.name, out, tuple(p.name for p in compiled.spec.json))
+
+
 def generate_all(root: Path) -> list[Output]:
-    outputs = []
-    for path in sorted(VALID.glob("*.yaml")):
-        compiled = compile_spec(path)
-        assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
-        if not compiled.spec.json:
-            continue
-        out = root / path.stem
-        for files in generate(compiled.spec, JSON_TARGETS).values():
-            for rel, body in files.items():
-                (out / rel).parent.mkdir(parents=True, exist_ok=True)
-                (out / rel).write_bytes(body)
-        outputs.append(Output(path.stem, out, tuple(p.name for p in compiled.spec.json)))
-    return outputs
+    """Every valid fixture's (tests/fixtures/valid/*.yaml) that holds a JSON protocol."""
+    outputs = (generate_one(path, root / path.stem) for path in sorted(VALID.glob("*.yaml")))
+    return [o for o in outputs if o is not None]
 
 
 def ajv(outputs: list[Output]) -> dict[tuple[str, str, str], dict[str, Any]]:
@@ -80,7 +86,7 @@ def python_lint(outputs: list[Output], root: Path) -> None:
     """ruff over every package; mypy --strict over copies named uniquely (one mypy program)."""
     ruff = require_tool("ruff")
     packages = [o.out / "json" / "python" / p / p for o in outputs for p in o.protocols]
-    run([ruff, "check", "--no-cache", "--isolated", "--select", "E,F,W", "--ignore", "E501", *map(str, packages)], "ruff check")
+    run([ruff, "check", *RUFF_ARGS, *map(str, packages)], "ruff check")
     copies = root / "mypy"
     for o in outputs:
         for p in o.protocols:

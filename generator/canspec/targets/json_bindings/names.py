@@ -24,8 +24,9 @@ PY_KEYWORDS = frozenset({
     "for", "from", "global", "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return", "try", "while", "with",
     "yield",
 })
-# Attributes and parameters the Python message classes use themselves.
-PY_MEMBERS = frozenset({"to_json", "from_json", "reply", "is_answered_by", "match_key", "self", "cls"})
+# Attributes and parameters the Python message classes use themselves, and the builtins their
+# class bodies annotate with (a field `int` would shadow the type in the annotations after it).
+PY_MEMBERS = frozenset({"to_json", "from_json", "reply", "is_answered_by", "match_key", "self", "cls", "int", "float", "bool", "str"})
 # Names the Rust `from_value` uses for the value and its map.
 RUST_LOCALS = frozenset({"v", "obj"})
 

@@ -12,7 +12,7 @@ from canspec.render.environment import render
 from canspec.render.literals import py_string
 from canspec.targets.json_bindings import names, text
 
-TYPING = ("Any", "ClassVar", "Dict", "NoReturn", "Optional", "Tuple", "Type", "Union")
+TYPING = ("Any", "ClassVar", "NoReturn")
 
 
 def pyrepr(value: Any) -> str:
@@ -34,7 +34,7 @@ def py_type(r: FieldRule) -> str:
 def param_type(r: FieldRule) -> str:
     """A parameter taking the field's value: an enum field takes the enum or its raw value."""
     if r.enum is not None:
-        return f"Union[{r.enum.name}, {'str' if r.enum.json_type == 'string' else 'int'}]"
+        return f"{r.enum.name} | {'str' if r.enum.json_type == 'string' else 'int'}"
     return py_type(r)
 
 
@@ -132,7 +132,7 @@ def markers_test(b: Branch) -> str:
 
 
 def union(types: list[str]) -> str:
-    return f"Union[{', '.join(types)}]" if types else "NoReturn"
+    return " | ".join(types) if types else "NoReturn"
 
 
 def reader(plan: Plan) -> str:
@@ -140,8 +140,10 @@ def reader(plan: Plan) -> str:
 
 
 def exports(pm: ProtocolModel) -> list[str]:
-    """The package's names besides the fixed ones, sorted as `__init__` lists them."""
-    return [*sorted(e.name for e in pm.enums), *sorted(mm.type_name for mm in pm.messages), "Message", *(["PendingRequests", "Reply", "Request"] if pm.pairs else [])]
+    """The package's names, in isort's order (constants, classes, functions; each sorted)."""
+    fixed = ["MESSAGES", "PROTOCOL", "RECEIVERS", "REPLY_OF", "VERSION", "Message", "ValidationError", "is_reply_to", "parse"]
+    names = fixed + [e.name for e in pm.enums] + [mm.type_name for mm in pm.messages] + (["PendingRequests", "Reply", "Request"] if pm.pairs else [])
+    return sorted(names, key=lambda n: (0 if n.isupper() and len(n) > 1 else 1 if n[0].isupper() else 2, n))
 
 
 def typing_names(pm: ProtocolModel) -> tuple[str, ...]:
@@ -168,7 +170,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     context = {"p": pm.protocol, "pm": pm, "codes": jsonmodel.ERROR_CODES, "typing": typing_names(pm), **types, **helpers}
     files = {
         f"{base}/{name}/messages.py": render("json_python/messages.py.j2", spec, "json_python", **context),
-        f"{base}/{name}/__init__.py": render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, exports=exports(pm)),
+        f"{base}/{name}/__init__.py": render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, exports=exports(pm), py_string=py_string),
         f"{base}/{name}/py.typed": "",
         f"{base}/pyproject.toml": render("json_python/pyproject.toml.j2", spec, "json_python", p=pm.protocol),
     }

@@ -125,8 +125,11 @@ def field_schema(r: FieldRule) -> dict[str, Any]:
             documented["maximum"] = r.hi
         if r.sentinels:
             s["anyOf"] = [documented, *({"const": x.value, "title": x.name, "description": _bilingual(x.label, x.label_zh)} for x in r.sentinels)]
-        else:
-            s.update({k: v for k, v in documented.items() if k != "title"})
+        else:  # one object: the tighter of the type's and the documented bound
+            if "minimum" in documented:
+                s["minimum"] = documented["minimum"] if r.type_lo is None else max(r.type_lo, documented["minimum"])
+            if "maximum" in documented:
+                s["maximum"] = documented["maximum"] if r.type_hi is None else min(r.type_hi, documented["maximum"])
     return s
 
 

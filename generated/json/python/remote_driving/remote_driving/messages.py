@@ -14,7 +14,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar, Dict, Optional, Tuple, Type, Union
+from typing import Any, ClassVar
 
 PROTOCOL = "remote_driving"
 VERSION = "1.0.0"
@@ -41,7 +41,7 @@ class ValidationError(ValueError):
         super().__init__(f"{where}: {shown} {rule}")
 
 
-def _object(message: str, obj: Any, keys: Tuple[str, ...]) -> Dict[str, Any]:
+def _object(message: str, obj: Any, keys: tuple[str, ...]) -> dict[str, Any]:
     if not isinstance(obj, dict):
         raise ValidationError(message, "", obj, "object", "must be a JSON object")
     for key in keys:
@@ -64,7 +64,7 @@ def _integer(message: str, key: str, value: Any, lo: int, hi: int, type_rule: st
     return number
 
 
-def _number(message: str, key: str, value: Any, lo: Optional[float], hi: Optional[float], type_rule: str, range_rule: str) -> Union[int, float]:
+def _number(message: str, key: str, value: Any, lo: float | None, hi: float | None, type_rule: str, range_rule: str) -> int | float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(message, key, value, "type", type_rule)
     if isinstance(value, float) and not math.isfinite(value):
@@ -80,7 +80,7 @@ def _boolean(message: str, key: str, value: Any, type_rule: str) -> bool:
     return value
 
 
-def _string(message: str, key: str, value: Any, lo: Optional[int], hi: Optional[int], type_rule: str, length_rule: str) -> str:
+def _string(message: str, key: str, value: Any, lo: int | None, hi: int | None, type_rule: str, length_rule: str) -> str:
     if not isinstance(value, str):
         raise ValidationError(message, key, value, "type", type_rule)
     if (lo is not None and len(value) < lo) or (hi is not None and len(value) > hi):
@@ -88,7 +88,7 @@ def _string(message: str, key: str, value: Any, lo: Optional[int], hi: Optional[
     return value
 
 
-def _command(value: Any) -> Optional[int]:
+def _command(value: Any) -> int | None:
     """The integer value of a `cmd` key, or None when it is not an integer."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return None
@@ -159,7 +159,7 @@ class Control:
     """
 
     NAME: ClassVar[str] = "control"
-    KEYS: ClassVar[Tuple[str, ...]] = ("ts", "bn", "tr", "bk", "st", "g", "m", "vts")
+    KEYS: ClassVar[tuple[str, ...]] = ("ts", "bn", "tr", "bk", "st", "g", "m", "vts")
     ts: int
     bn: int
     tr: float
@@ -265,7 +265,7 @@ class Control:
         _set(self, "vts", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "Control":
+    def from_json(cls, obj: Any) -> Control:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         return cls(
@@ -279,7 +279,7 @@ class Control:
             vts=obj["vts"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "ts": self.ts,
@@ -322,7 +322,7 @@ class Status:
     """
 
     NAME: ClassVar[str] = "status"
-    KEYS: ClassVar[Tuple[str, ...]] = ("ts", "bn", "g", "m", "pL", "spd", "located", "lng", "lat", "alt", "angle", "satCnt")
+    KEYS: ClassVar[tuple[str, ...]] = ("ts", "bn", "g", "m", "pL", "spd", "located", "lng", "lat", "alt", "angle", "satCnt")
     POWER_LEVEL_UNKNOWN: ClassVar[int] = -1  # Unknown / 未知
     SPD_UNKNOWN: ClassVar[int] = -1  # Unknown / 未知
     ts: int
@@ -470,7 +470,7 @@ class Status:
         _set(self, "sat_cnt", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "Status":
+    def from_json(cls, obj: Any) -> Status:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         return cls(
@@ -488,7 +488,7 @@ class Status:
             sat_cnt=obj["satCnt"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "ts": self.ts,
@@ -515,7 +515,7 @@ class ShutdownRequest:
     """
 
     NAME: ClassVar[str] = "shutdown_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 1
     bn: int
 
@@ -533,7 +533,7 @@ class ShutdownRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "ShutdownRequest":
+    def from_json(cls, obj: Any) -> ShutdownRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -551,14 +551,14 @@ class ShutdownRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "ShutdownReply":
+    def reply(self, res: Res | int = Res.OK) -> ShutdownReply:
         """The reply to this request (`bn` echoed)."""
         return ShutdownReply(res=Res(res), bn=self.bn)
 
@@ -566,7 +566,7 @@ class ShutdownRequest:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, ShutdownReply) and reply.bn == self.bn
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("shutdown_request", self.bn)
 
@@ -584,7 +584,7 @@ class ShutdownReply:
     """
 
     NAME: ClassVar[str] = "shutdown_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 1
     res: Res
     bn: int
@@ -616,7 +616,7 @@ class ShutdownReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "ShutdownReply":
+    def from_json(cls, obj: Any) -> ShutdownReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -635,7 +635,7 @@ class ShutdownReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -643,7 +643,7 @@ class ShutdownReply:
             "bn": self.bn,
         }
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("shutdown_request", self.bn)
 
@@ -657,7 +657,7 @@ class RestartRequest:
     """
 
     NAME: ClassVar[str] = "restart_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 2
     bn: int
 
@@ -675,7 +675,7 @@ class RestartRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RestartRequest":
+    def from_json(cls, obj: Any) -> RestartRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -693,14 +693,14 @@ class RestartRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "RestartReply":
+    def reply(self, res: Res | int = Res.OK) -> RestartReply:
         """The reply to this request (`bn` echoed)."""
         return RestartReply(res=Res(res), bn=self.bn)
 
@@ -708,7 +708,7 @@ class RestartRequest:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RestartReply) and reply.bn == self.bn
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("restart_request", self.bn)
 
@@ -726,7 +726,7 @@ class RestartReply:
     """
 
     NAME: ClassVar[str] = "restart_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 2
     res: Res
     bn: int
@@ -758,7 +758,7 @@ class RestartReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RestartReply":
+    def from_json(cls, obj: Any) -> RestartReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -777,7 +777,7 @@ class RestartReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -785,7 +785,7 @@ class RestartReply:
             "bn": self.bn,
         }
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("restart_request", self.bn)
 
@@ -800,7 +800,7 @@ class RecordRequest:
     """
 
     NAME: ClassVar[str] = "record_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn", "ro")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn", "ro")
     CMD: ClassVar[int] = 3
     bn: int
     ro: bool
@@ -821,7 +821,7 @@ class RecordRequest:
         _set(self, "ro", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RecordRequest":
+    def from_json(cls, obj: Any) -> RecordRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -840,7 +840,7 @@ class RecordRequest:
             ro=obj["ro"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -848,7 +848,7 @@ class RecordRequest:
             "ro": self.ro,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK, *, ro: bool) -> "RecordReply":
+    def reply(self, res: Res | int = Res.OK, *, ro: bool) -> RecordReply:
         """The reply to this request (`bn` echoed)."""
         return RecordReply(res=Res(res), bn=self.bn, ro=ro)
 
@@ -856,7 +856,7 @@ class RecordRequest:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RecordReply) and reply.bn == self.bn
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("record_request", self.bn)
 
@@ -876,7 +876,7 @@ class RecordReply:
     """
 
     NAME: ClassVar[str] = "record_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn", "ro")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn", "ro")
     CMD: ClassVar[int] = 3
     res: Res
     bn: int
@@ -911,7 +911,7 @@ class RecordReply:
         _set(self, "ro", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RecordReply":
+    def from_json(cls, obj: Any) -> RecordReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -931,7 +931,7 @@ class RecordReply:
             ro=obj["ro"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -940,7 +940,7 @@ class RecordReply:
             "ro": self.ro,
         }
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("record_request", self.bn)
 
@@ -954,7 +954,7 @@ class PhotoRequest:
     """
 
     NAME: ClassVar[str] = "photo_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 4
     bn: int
 
@@ -972,7 +972,7 @@ class PhotoRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "PhotoRequest":
+    def from_json(cls, obj: Any) -> PhotoRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -990,14 +990,14 @@ class PhotoRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "PhotoReply":
+    def reply(self, res: Res | int = Res.OK) -> PhotoReply:
         """The reply to this request (`bn` echoed)."""
         return PhotoReply(res=Res(res), bn=self.bn)
 
@@ -1005,7 +1005,7 @@ class PhotoRequest:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, PhotoReply) and reply.bn == self.bn
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("photo_request", self.bn)
 
@@ -1023,7 +1023,7 @@ class PhotoReply:
     """
 
     NAME: ClassVar[str] = "photo_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 4
     res: Res
     bn: int
@@ -1055,7 +1055,7 @@ class PhotoReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "PhotoReply":
+    def from_json(cls, obj: Any) -> PhotoReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -1074,7 +1074,7 @@ class PhotoReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -1082,16 +1082,16 @@ class PhotoReply:
             "bn": self.bn,
         }
 
-    def match_key(self) -> Tuple[Any, ...]:
+    def match_key(self) -> tuple[Any, ...]:
         """What a request and its reply share: the command and the bn."""
         return ("photo_request", self.bn)
 
 
-Message = Union[Control, Status, ShutdownRequest, ShutdownReply, RestartRequest, RestartReply, RecordRequest, RecordReply, PhotoRequest, PhotoReply]
-Request = Union[ShutdownRequest, RestartRequest, RecordRequest, PhotoRequest]
-Reply = Union[ShutdownReply, RestartReply, RecordReply, PhotoReply]
+Message = Control | Status | ShutdownRequest | ShutdownReply | RestartRequest | RestartReply | RecordRequest | RecordReply | PhotoRequest | PhotoReply
+Request = ShutdownRequest | RestartRequest | RecordRequest | PhotoRequest
+Reply = ShutdownReply | RestartReply | RecordReply | PhotoReply
 
-MESSAGES: Dict[str, Type[Any]] = {
+MESSAGES: dict[str, type[Any]] = {
     "control": Control,
     "status": Status,
     "shutdown_request": ShutdownRequest,
@@ -1103,13 +1103,13 @@ MESSAGES: Dict[str, Type[Any]] = {
     "photo_request": PhotoRequest,
     "photo_reply": PhotoReply,
 }
-REPLY_OF: Dict[Type[Any], Type[Any]] = {
+REPLY_OF: dict[type[Any], type[Any]] = {
     ShutdownRequest: ShutdownReply,
     RestartRequest: RestartReply,
     RecordRequest: RecordReply,
     PhotoRequest: PhotoReply,
 }
-RECEIVERS: Tuple[str, ...] = ("autonomous", "vehicle")
+RECEIVERS: tuple[str, ...] = ("autonomous", "vehicle")
 
 
 def _read_any(obj: Any) -> Message:
@@ -1173,7 +1173,7 @@ def _read_to_vehicle(obj: Any) -> Message:
     return Status.from_json(obj)
 
 
-def parse(obj: Any, receiver: Optional[str] = None) -> Message:
+def parse(obj: Any, receiver: str | None = None) -> Message:
     """Read any message of the protocol from a decoded JSON value.
 
     With `receiver` (one of RECEIVERS) only what is sent to that party is accepted, and the
@@ -1208,12 +1208,12 @@ class PendingRequests:
     """Requests sent and not yet answered, matched to their replies by command and `match_key`."""
 
     def __init__(self) -> None:
-        self._pending: Dict[Tuple[Any, ...], Request] = {}
+        self._pending: dict[tuple[Any, ...], Request] = {}
 
     def add(self, request: Request) -> None:
         self._pending[request.match_key()] = request
 
-    def match(self, reply: Reply) -> Optional[Request]:
+    def match(self, reply: Reply) -> Request | None:
         """The request `reply` answers (forgotten from now on), or None when none is pending."""
         request = self._pending.get(reply.match_key())
         if request is None or not is_reply_to(reply, request):
