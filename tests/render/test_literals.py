@@ -62,3 +62,9 @@ def test_rust_strings_compile_to_the_same_bytes(tmp_path):
 
 def test_dbc_strings_never_hold_a_quote():
     assert literals.dbc_string('say "hi" \\ now') == "\"say 'hi' / now\""
+
+
+def test_json_scalars_in_python_and_rust():
+    for value in ["N", 'q"\\', 3, -7, -1.5, 1e-07, 3.4028234663852886e38, True, False, None]:
+        assert ast.literal_eval(literals.py_value(value)) == value
+    assert [literals.rust_value(v) for v in ("N", 3, -1.5, 1e22, True)] == ['"N"', "3", "-1.5", "1e22", "true"]

@@ -9,19 +9,15 @@ from canspec import ir
 from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import Branch, FieldRule, MessageModel, Pair, Plan, ProtocolModel
 from canspec.render.environment import render
-from canspec.render.literals import py_string
+from canspec.render.literals import py_string, py_value
 from canspec.targets.json_bindings import names, text
 
 TYPING = ("Any", "ClassVar", "NoReturn")
 
 
-def pyrepr(value: Any) -> str:
-    return py_string(value) if isinstance(value, str) else repr(value)
-
-
 def py_tuple(values: tuple[Any, ...]) -> str:
     """A tuple literal: (), ("a",), ("a", "b")."""
-    items = [pyrepr(v) for v in values]
+    items = [py_value(v) for v in values]
     return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
 
 
@@ -42,16 +38,16 @@ def check(r: FieldRule, expr: str, indent: int = 8) -> str:
     """The call that type-checks `expr` for field `r` and returns its normalised value; its
     arguments go on their own line when the call would pass PY_LINE characters."""
     name = "self.NAME" if expr.startswith("self.") else "cls.NAME"
-    args = [name, pyrepr(r.key), expr]
+    args = [name, py_value(r.key), expr]
     if r.kind == "integer":
-        fn, args = "_integer", [*args, repr(r.type_lo), repr(r.type_hi), pyrepr(r.type_rule), pyrepr(r.type_range_rule)]
+        fn, args = "_integer", [*args, py_value(r.type_lo), py_value(r.type_hi), py_value(r.type_rule), py_value(r.type_range_rule)]
     elif r.kind == "number":
-        fn, args = "_number", [*args, repr(r.type_lo), repr(r.type_hi), pyrepr(r.type_rule), pyrepr(r.type_range_rule)]
+        fn, args = "_number", [*args, py_value(r.type_lo), py_value(r.type_hi), py_value(r.type_rule), py_value(r.type_range_rule)]
     elif r.kind == "boolean":
-        fn, args = "_boolean", [*args, pyrepr(r.type_rule)]
+        fn, args = "_boolean", [*args, py_value(r.type_rule)]
     else:
         f = r.field
-        fn, args = "_string", [*args, repr(f.min_length), repr(f.max_length), pyrepr(r.type_rule), pyrepr(r.length_rule)]
+        fn, args = "_string", [*args, py_value(f.min_length), py_value(f.max_length), py_value(r.type_rule), py_value(r.length_rule)]
     one_line = f"{fn}({', '.join(args)})"
     if indent + len("value = ") + len(one_line) <= text.PY_LINE:
         return one_line
@@ -61,8 +57,8 @@ def check(r: FieldRule, expr: str, indent: int = 8) -> str:
 
 def range_test(r: FieldRule) -> str:
     """The condition a value outside the documented range (and not a sentinel) meets."""
-    bounds = " <= ".join([*([pyrepr(r.lo)] if r.lo is not None else []), "value", *([pyrepr(r.hi)] if r.hi is not None else [])])
-    return f"not {bounds}" + "".join(f" and value != {pyrepr(s.value)}" for s in r.sentinels)
+    bounds = " <= ".join([*([py_value(r.lo)] if r.lo is not None else []), "value", *([py_value(r.hi)] if r.hi is not None else [])])
+    return f"not {bounds}" + "".join(f" and value != {py_value(s.value)}" for s in r.sentinels)
 
 
 def to_json_expr(r: FieldRule) -> str:
@@ -105,7 +101,7 @@ def echo_test(pm: ProtocolModel, pair: Pair) -> str:
 
 def match_key(pair: Pair, mm: MessageModel) -> str:
     """What a request shares with its reply: the request's name and the echoed keys' values."""
-    items = [pyrepr(pair.request), *(f"self.{names.py_attr(mm.rule(k))}" for k in pair.echoed)]
+    items = [py_value(pair.request), *(f"self.{names.py_attr(mm.rule(k))}" for k in pair.echoed)]
     return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
 
 
@@ -114,7 +110,7 @@ def self_attr(r: FieldRule) -> str:
 
 
 def item(key: str) -> str:
-    return f"obj[{pyrepr(key)}]"
+    return f"obj[{py_value(key)}]"
 
 
 def enum_values(r: FieldRule) -> str:
@@ -128,7 +124,7 @@ def field_line(r: FieldRule) -> str:
 
 
 def markers_test(b: Branch) -> str:
-    return " or ".join(f"{pyrepr(k)} in obj" for k in b.markers)
+    return " or ".join(f"{py_value(k)} in obj" for k in b.markers)
 
 
 def union(types: list[str]) -> str:
@@ -155,7 +151,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     name = pm.protocol.name
     base = f"json/python/{name}"
     helpers = {
-        "pyrepr": pyrepr, "py_tuple": py_tuple, "py_type": py_type, "check": check, "range_test": range_test, "to_json_expr": to_json_expr,
+        "py_value": py_value, "py_tuple": py_tuple, "py_type": py_type, "check": check, "range_test": range_test, "to_json_expr": to_json_expr,
         "reply_params": reply_params, "reply_args": reply_args, "echo_test": echo_test, "match_key": match_key, "attr": names.py_attr,
         "member": names.member, "sentinel_const": names.sentinel_const, "doc": text.field_doc, "wrap": text.py_wrap, "label": text.label,
         "both": text.both, "self_attr": self_attr, "item": item, "enum_values": enum_values, "field_line": field_line,

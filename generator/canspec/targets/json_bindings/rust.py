@@ -9,7 +9,7 @@ from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import Branch, FieldRule, MessageModel, Pair, Plan, ProtocolModel
 from canspec.render.environment import header_lines, render
 from canspec.render.formatters import rustfmt
-from canspec.render.literals import double_repr, rust_string
+from canspec.render.literals import double_repr, rust_string, rust_value
 from canspec.targets.json_bindings import names, text
 
 # Rust integer types, narrowest first: a field holds its declared type's range in the first that fits.
@@ -18,15 +18,9 @@ RUST_INTS = (("u8", 0, 2**8 - 1), ("i8", -(2**7), 2**7 - 1), ("u16", 0, 2**16 - 
 CLIPPY_MAX_ARGS = 7  # clippy::too_many_arguments fires above this many parameters (self included)
 
 
-def rs_lit(value: int | str) -> str:
-    return rust_string(value) if isinstance(value, str) else str(value)
-
-
 def rs_value(r: FieldRule, value: float | str) -> str:
     """A value of the field's Rust type (a number field's as an f64 literal)."""
-    if r.kind == "number" or isinstance(value, float):
-        return double_repr(float(value))
-    return rs_lit(value)
+    return rust_value(float(value) if r.kind == "number" else value)
 
 
 def rs_opt_f64(value: float | None) -> str:
@@ -118,7 +112,7 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/rust/{pm.protocol.name}"
     receivers = {p.receiver for p in pm.receiver_plans}
     helpers = {
-        "rs_str": rust_string, "rs_lit": rs_lit, "rs_value": rs_value, "rs_opt_f64": rs_opt_f64, "rs_type": rs_type, "src": src,
+        "rs_str": rust_string, "rust_value": rust_value, "rs_value": rs_value, "rs_opt_f64": rs_opt_f64, "rs_type": rs_type, "src": src,
         "range_test": range_test, "length_bounds": length_bounds, "reply_params": reply_params, "reply_many_args": reply_many_args,
         "reply_fields": reply_fields, "echo_tests": echo_tests, "markers_test": markers_test, "reader": reader, "reads_keys": reads_keys, "unexpected_rule": unexpected_rule,
         "field": names.rust_field, "local": names.rust_local, "variant": names.rust_variant, "sentinel_const": names.sentinel_const,
