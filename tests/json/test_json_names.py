@@ -13,7 +13,7 @@ from canspec.ir import json_fields as jsonmodel
 from canspec.pipeline import compile_spec
 from canspec.reference import jsonvalue
 from canspec.targets.json_bindings import names
-from json_support import RUST_CRATE, ROOT
+from json_support import ROOT, RUST_CRATE
 
 VALID = ROOT / "tests" / "fixtures" / "valid"
 
@@ -32,7 +32,7 @@ def kw() -> jsonmodel.ProtocolModel:
 
 def test_type_names_avoid_keywords_and_the_bindings_own_names(kw):
     assert {mm.name: mm.type_name for mm in kw.messages} == {
-        "type": "TypeMessage",  # typing.Type
+        "type": "Type",
         "match": "Match",
         "none": "NoneMessage",  # Python None, Rust None
         "result": "ResultMessage",  # Rust Result
@@ -47,6 +47,7 @@ def test_type_names_avoid_keywords_and_the_bindings_own_names(kw):
 def test_identifiers_are_escaped_per_language(kw):
     t = kw.message("type")
     assert [names.py_attr(r) for r in t.rules] == ["class_", "from_", "self_", "async_"]
+    assert kw.message("match").type_name == "Match" and names.py_attr(kw.message("match").rules[0]) == "type"
     assert [names.rust_field(r) for r in t.rules] == ["class", "from", "self_", "r#async"]
     assert [names.py_attr(r) for r in kw.message("match").rules] == ["type", "to_json_"]  # soft keyword kept; a method name escaped
     assert [names.rust_local(r) for r in kw.message("none").rules] == ["obj_", "v_"]  # from_value's own locals

@@ -32,7 +32,7 @@ ERROR_CODES = ("object", "required", "unexpected", "type", "type_range", "enum",
 # Names the bindings define or import themselves (Python, Rust and its prelude, TypeScript): a
 # message, enum or receiver type never takes one of them.
 RESERVED_TYPE_NAMES = frozenset({
-    "Any", "ClassVar", "Dict", "NoReturn", "Optional", "Tuple", "Type", "Union", "None", "True", "False", "ValidationError", "PendingRequests",
+    "Any", "ClassVar", "NoReturn", "None", "True", "False", "ValidationError", "PendingRequests",
     "Message", "Request", "Reply", "ErrorCode", "Party", "Value", "Map", "Serialize", "Deserialize", "Serializer", "Deserializer", "Option", "Result",
     "Some", "Ok", "Err", "String", "Vec", "Box", "Self", "Clone", "Copy", "Debug", "Default", "Eq", "PartialEq", "Ord", "PartialOrd", "Hash", "Send",
     "Sync", "Sized", "Unpin", "Drop", "Fn", "FnMut", "FnOnce", "From", "Into", "TryFrom", "TryInto", "AsRef", "AsMut", "Iterator", "IntoIterator",
@@ -115,10 +115,6 @@ class Branch:
     message: str
     markers: tuple[str, ...]  # any of these keys present selects it
     tried: bool = False  # no key tells it apart: selected when the object is valid as it
-
-    @property
-    def is_default(self) -> bool:
-        return not self.markers and not self.tried
 
 
 @dataclass(frozen=True)

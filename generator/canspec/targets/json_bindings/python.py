@@ -153,8 +153,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     helpers = {
         "py_value": py_value, "py_tuple": py_tuple, "py_type": py_type, "check": check, "range_test": range_test, "to_json_expr": to_json_expr,
         "reply_params": reply_params, "reply_args": reply_args, "echo_test": echo_test, "match_key": match_key, "attr": names.py_attr,
-        "member": names.member, "sentinel_const": names.sentinel_const, "doc": text.field_doc, "wrap": text.py_wrap, "label": text.label,
-        "both": text.both, "self_attr": self_attr, "item": item, "enum_values": enum_values, "field_line": field_line,
+        "member": names.member, "sentinel_const": names.sentinel_const, "wrap": text.py_wrap, "label": text.label, "self_attr": self_attr, "item": item, "enum_values": enum_values, "field_line": field_line,
         "markers_test": markers_test, "union": union, "reader": reader, "summary": text.summary, "echo_clause": text.echo_clause,
         "receives": text.receives, "without_receiver": text.without_receiver,
     }

@@ -41,6 +41,6 @@ def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
         "reply_to_doc": "it carries the same `cmd`" + "".join(f" and echoes `{k}`" for k in dict.fromkeys(k for p in pm.pairs for k in p.echoed)),
     }
     body = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=ts_value, doc=text.field_doc,
-                  ts_doc=text.ts_doc, paren=text.paren, heading=text.heading, echo_clause=text.echo_clause, union=union, reply_chain=reply_chain(pm),
+                  ts_doc=text.ts_doc, paren=text.paren, heading=text.heading, echo_clause=text.echo_clause, reply_chain=reply_chain(pm),
                   receiver_types=lambda plan: receiver_types(pm, plan), **types)
     return {f"json/typescript/{pm.protocol.name}.d.ts": body.encode()}
