@@ -8,8 +8,9 @@
 //! impls go through them (serialising checks the value first, so an invalid message is never
 //! written). Bad input gives a [`ValidationError`] naming the message, the field (JSON key),
 //! the value and the rule. [`Message::from_value`] tells the messages apart; with
-//! [`Message::from_value_to`] the receiver's direction does. Numbers declared Float32 are held
-//! as `f64` so that the JSON value round-trips exactly; the Float32 range is still checked.
+//! [`Message::from_value_to`] the receiver's direction does. Numbers are held as `f64` (even
+//! those declared Float32) so that the JSON value round-trips exactly; the declared type's
+//! range is still checked.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
