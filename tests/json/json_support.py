@@ -41,3 +41,16 @@ def require_tool(name: str) -> str:
     if exe is None:
         pytest.fail(f"{name} is not installed: run `make setup` (.ci/setup.d/60-json.sh)")
     return exe
+
+
+def fields_at_fault(v: Any, instance: Any) -> set[str]:
+    """The JSON keys a jsonschema validator's errors point at ("" for the value itself)."""
+    out = set()
+    for e in v.iter_errors(instance):
+        if e.validator == "required" and isinstance(instance, dict):
+            out |= {k for k in e.validator_value if k not in instance}
+        elif e.validator == "additionalProperties" and isinstance(instance, dict):
+            out |= {k for k in instance if k not in e.schema.get("properties", {})}
+        else:
+            out.add(str(e.absolute_path[0]) if e.absolute_path else "")
+    return out

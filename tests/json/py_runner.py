@@ -1,6 +1,7 @@
 """Run the generated Python JSON bindings over a JSON-protocol vectors file and compare with
 its expectations (own verdict, field and rule at fault, receiver's and whole-protocol reading,
-round trip). Usage: python3 tests/json/py_runner.py VECTORS_JSON; ends with `N passed, N failed`."""
+round trip). Usage: python3 tests/json/py_runner.py [--bindings DIR] VECTORS_JSON (DIR holds one
+package folder per protocol, as generated/json/python does); ends with `N passed, N failed`."""
 
 from __future__ import annotations
 
@@ -51,8 +52,11 @@ def check(rd: Any, c: dict[str, Any]) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
+    bindings = ROOT / "generated" / "json" / "python"
+    if len(argv) == 3 and argv[0] == "--bindings":
+        bindings, argv = Path(argv[1]), argv[2:]
     if len(argv) != 1:
-        print("usage: py_runner.py VECTORS_JSON", file=sys.stderr)
+        print("usage: py_runner.py [--bindings DIR] VECTORS_JSON", file=sys.stderr)
         return 2
     try:
         doc = json.loads(Path(argv[0]).read_text(encoding="utf-8"))
@@ -61,18 +65,17 @@ def main(argv: list[str]) -> int:
         return 2
     total = failed = 0
     for proto in doc.get("protocols", []):
-        pkg = ROOT / "generated" / "json" / "python" / proto["protocol"]
-        sys.path.insert(0, str(pkg))
+        sys.path.insert(0, str(bindings / proto["protocol"]))
         rd = __import__(proto["protocol"])
         for c in proto["cases"]:
             total += 1
             why = check(rd, c)
             if why:
                 failed += 1
-                print(f"MISMATCH {c['id']}: {'; '.join(why)}", file=sys.stderr)
+                print(f"MISMATCH {proto['protocol']} {c['id']}: {'; '.join(why)}", file=sys.stderr)
     print(f"python json vectors: {total} cases")
     print(f"{total - failed} passed, {failed} failed")
-    return 1 if failed or not total else 0
+    return 1 if failed or not doc.get("protocols") else 0
 
 
 if __name__ == "__main__":

@@ -5,11 +5,13 @@ protocol), round trips, errors that name field, value and rule, and the request/
 from __future__ import annotations
 
 import json
+import sys
 
 import jsonschema
 import py_runner
 import pytest
-from json_support import same
+from fixture_batch import RUFF_ARGS
+from json_support import PY_BINDINGS, require_tool, run, same
 
 
 def test_every_vector_case(rd, cases):
@@ -88,3 +90,8 @@ def test_direction_tells_reply_from_request(rd):
     assert (info.value.message, info.value.field, info.value.code) == ("shutdown_reply", "res", "required")
     with pytest.raises(ValueError, match="unknown receiver"):
         rd.parse({}, "server")
+
+
+def test_package_is_ruff_and_mypy_strict_clean():
+    run([require_tool("ruff"), "check", *RUFF_ARGS, "."], "ruff check", cwd=PY_BINDINGS)
+    run([sys.executable, "-m", "mypy", "--strict", "--no-incremental", "--cache-dir=/dev/null", "-p", "remote_driving"], "mypy --strict", cwd=PY_BINDINGS)

@@ -8,6 +8,7 @@ import dataclasses
 
 import pytest
 from canspec.ir import json_fields as jsonmodel
+from canspec.reference import jsonvalue
 from json_support import PY_BINDINGS
 
 
@@ -46,14 +47,21 @@ def test_direction_plans_need_no_markers(pm):
     ([], None),
 ])
 def test_select(pm, obj, expected):
-    assert jsonmodel.select(pm.any_plan, obj) == expected
+    assert jsonvalue.select(pm.protocol, pm.any_plan, obj) == expected
 
 
-def test_messages_without_a_telling_key_are_refused(spec):
+def test_messages_no_key_tells_apart_are_tried_in_order(spec):
+    """A message with the same keys as another (here one with another direction) is read as the
+    first of them the object is valid as; the last is the group's default."""
     (proto,) = spec.json
-    twin = dataclasses.replace(proto.message("photo_request"), name="photo_twin")
-    with pytest.raises(ValueError, match="no key that tells them apart"):
-        jsonmodel.model(dataclasses.replace(proto, messages=(*proto.messages, twin)))
+    twin = dataclasses.replace(proto.message("photo_request"), name="photo_twin", sender="vehicle", receiver="autonomous")
+    twin_proto = dataclasses.replace(proto, messages=(*proto.messages, twin))
+    p = jsonmodel.model(twin_proto).any_plan
+    group = dict(p.commands)[4]
+    assert [(b.message, b.markers, b.tried) for b in group] == [("photo_reply", ("res",), False), ("photo_request", (), True), ("photo_twin", (), False)]
+    assert jsonvalue.select(twin_proto, p, {"cmd": 4, "bn": 1}) == "photo_request"
+    assert jsonvalue.select(twin_proto, p, {"cmd": 4, "bn": -1}) == "photo_twin"  # valid as neither: the default reports it
+    assert "a message valid as photo_request is photo_request" in "; ".join(p.rules)
 
 
 def test_rule_texts(pm):
@@ -66,12 +74,13 @@ def test_rule_texts(pm):
 
 
 def test_reply_pairs(pm):
-    assert [(p.request, p.reply, p.cmd, p.echoed, p.extra) for p in pm.pairs] == [
-        ("shutdown_request", "shutdown_reply", 1, ("bn",), ()),
-        ("restart_request", "restart_reply", 2, ("bn",), ()),
-        ("record_request", "record_reply", 3, ("bn",), ("ro",)),
-        ("photo_request", "photo_reply", 4, ("bn",), ()),
+    assert [(p.request, p.reply, p.cmd, p.echoed, p.result, p.extra) for p in pm.pairs] == [
+        ("shutdown_request", "shutdown_reply", 1, ("bn",), "res", ()),
+        ("restart_request", "restart_reply", 2, ("bn",), "res", ()),
+        ("record_request", "record_reply", 3, ("bn",), "res", ("ro",)),
+        ("photo_request", "photo_reply", 4, ("bn",), "res", ()),
     ]
+    assert pm.replies_by_cmd
 
 
 def test_python_bindings_use_only_the_standard_library():
@@ -86,8 +95,13 @@ def test_python_bindings_use_only_the_standard_library():
 
 
 def test_clashing_binding_identifiers_are_refused(spec):
+    from canspec.targets.json_bindings import names
+
     (proto,) = spec.json
     ctrl = proto.message("control")
     fields = (*ctrl.fields[:-1], dataclasses.replace(ctrl.fields[-1], name="tr"))
-    with pytest.raises(ValueError, match="share the binding identifier"):
-        jsonmodel.model(dataclasses.replace(proto, messages=(dataclasses.replace(ctrl, fields=fields), *proto.messages[1:])))
+    clashing = dataclasses.replace(spec, json=(dataclasses.replace(proto, messages=(dataclasses.replace(ctrl, fields=fields), *proto.messages[1:])),))
+    assert [(p.rule, p.message) for p in names.problems(clashing)] == [
+        ("json-binding-name", "two fields of 'control' would share the name 'tr' in the generated bindings")
+    ]
+    assert list(names.problems(spec)) == []

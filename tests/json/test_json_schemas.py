@@ -10,7 +10,7 @@ from typing import Any
 import jsonschema
 import pytest
 from document_examples import load
-from json_support import SEED
+from json_support import SEED, fields_at_fault
 
 # Message order of the document's code blocks (the spec lists them in the same order).
 DOCUMENT_ORDER = ["control", "status", "shutdown_request", "shutdown_reply", "restart_request", "restart_reply",
@@ -19,18 +19,6 @@ DOCUMENT_ORDER = ["control", "status", "shutdown_request", "shutdown_reply", "re
 
 def validator(schema: dict[str, Any]) -> jsonschema.Draft202012Validator:
     return jsonschema.Draft202012Validator(schema)
-
-
-def fields_at_fault(v: jsonschema.Draft202012Validator, instance: Any) -> set[str]:
-    out = set()
-    for e in v.iter_errors(instance):
-        if e.validator == "required" and isinstance(instance, dict):
-            out |= {k for k in e.validator_value if k not in instance}
-        elif e.validator == "additionalProperties" and isinstance(instance, dict):
-            out |= {k for k in instance if k not in e.schema.get("properties", {})}
-        else:
-            out.add(str(e.absolute_path[0]) if e.absolute_path else "")
-    return out
 
 
 def walk(node: Any):

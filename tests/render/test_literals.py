@@ -74,3 +74,9 @@ def test_sheet_numbers_are_exact_or_text():
     assert literals.sheet_number(2**64 - 1) == "18446744073709551615"
     assert literals.sheet_number(Fraction(2**64 - 1, 1000)) == "18446744073709551.615"
     assert literals.sheet_number(Fraction(-3, 10**20)) == -3e-20
+
+
+def test_json_scalars_in_python_and_rust():
+    for value in ["N", 'q"\\', 3, -7, -1.5, 1e-07, 3.4028234663852886e38, True, False, None]:
+        assert ast.literal_eval(literals.py_value(value)) == value
+    assert [literals.rust_value(v) for v in ("N", 3, -1.5, 1e22, True)] == ['"N"', "3", "-1.5", "1e22", "true"]

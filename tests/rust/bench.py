@@ -54,7 +54,7 @@ def parse_dbc_code(text: str) -> tuple[dict[str, list[tuple[str, str]]], dict[st
             continue
         params = re.findall(r"(\w+): ([\w:]+),", new.group(1))
         news[m.group(1)] = params
-        for g in re.finditer(r"    pub fn (\w+)\(&self\) -> ([\w:]+) \{", body):
+        for g in re.finditer(r"    pub fn (\w+)\(\s*&self,?\s*\) -> ([\w:]+) \{", body):  # rustfmt wraps long ones
             getters[(m.group(1), g.group(1))] = g.group(2)
     others = dict(re.findall(r"pub enum (\w+) \{[^}]*?_Other\((\w+)\),", text, re.DOTALL))
     # Named variants by value, so both sides are given the same kind of enum values.

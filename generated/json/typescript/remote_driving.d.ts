@@ -6,8 +6,8 @@
  *
  * They describe the JSON on the wire (keys as sent). Ranges, precision and sentinels are in
  * the comments; validate untrusted input against the JSON Schemas in generated/jsonschema/
- * (`to_<receiver>.schema.json`, `protocol.schema.json`). Integers declared U64 stay below
- * 2^53 (Number.MAX_SAFE_INTEGER), so `number` holds them exactly.
+ * (`to_<receiver>.schema.json`, `protocol.schema.json`). Integers stay within ±(2^53 - 1)
+ * (Number.MAX_SAFE_INTEGER), so `number` holds them exactly.
  */
 
 /** The protocol's name and version in the spec. */

@@ -324,6 +324,7 @@ class JsonEnumValue:
     name: str
     label_zh: str
     label: str
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)
@@ -346,6 +347,8 @@ class JsonField:
     desc: str
     desc_zh: str
     errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # the field's definition
+    type_loc: Loc | None = field(default=None, compare=False, hash=False)  # its type's definition
 
 
 @dataclass(frozen=True)
@@ -360,6 +363,7 @@ class JsonMessage:
     receiver: str
     fields: tuple[JsonField, ...]
     examples: tuple[dict, ...]  # type: ignore[type-arg]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)
@@ -378,6 +382,7 @@ class JsonProtocol:
     parties: tuple[JsonParty, ...]
     messages: tuple[JsonMessage, ...]
     errata: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # its `name`
 
     def message(self, name: str) -> JsonMessage:
         return next(m for m in self.messages if m.name == name)

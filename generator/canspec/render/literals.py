@@ -112,6 +112,24 @@ def ts_value(value: int | str) -> str:
     return json.dumps(value, ensure_ascii=False)
 
 
+def py_value(value: bool | float | str | None) -> str:
+    """A Python literal of a JSON scalar: "N", 3, -1.5, True, None."""
+    if isinstance(value, str):
+        return py_string(value)
+    if isinstance(value, float):
+        return double_repr(value)
+    return repr(value)
+
+
+def rust_value(value: bool | float | str) -> str:
+    """A Rust literal of a JSON scalar: "N", 3, -1.5, true (an f64 where the value is a float)."""
+    if isinstance(value, str):
+        return rust_string(value)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return double_repr(value) if isinstance(value, float) else str(value)
+
+
 # --- DBC ---------------------------------------------------------------------------------------
 
 

@@ -14,6 +14,7 @@ must reproduce them.
 from __future__ import annotations
 
 import copy
+import itertools
 import json
 from decimal import ROUND_DOWN, Decimal
 from fractions import Fraction
@@ -39,16 +40,30 @@ def _num(value: Fraction | float) -> int | float:
     return out
 
 
-def _beyond(r: FieldRule, bound: float, sign: int) -> int | float:
+def _beyond(r: FieldRule, bound: float, sign: int) -> int | float | None:
     """A value just outside a type bound: one step for integers and small bounds; 3% for huge
-    float bounds (±3.4e38), where one decimal step vanishes in the double."""
+    float bounds (±3.4e38), where one decimal step vanishes in the double; None when only
+    infinity lies beyond."""
     if r.kind == "number" and abs(bound) > 1e15:
-        return float(bound) * 1.03
+        beyond = float(bound) * 1.03
+        return beyond if abs(beyond) != float("inf") else None
     return _num(Fraction(bound) + sign * _step(r))
 
 
 def _in_type(r: FieldRule, v: Fraction) -> bool:
     return (r.type_lo is None or v >= Fraction(r.type_lo)) and (r.type_hi is None or v <= Fraction(r.type_hi))
+
+
+def _free(taken: set[str], *candidates: str) -> str:
+    """The first candidate key that is not taken (then the first with underscores appended)."""
+    return next((c for c in candidates if c not in taken), None) or _free(taken, *(c + "_" for c in candidates))
+
+
+def _bounds(r: FieldRule) -> tuple[Any, Any]:
+    """The documented range within the type's."""
+    lo = r.type_lo if r.lo is None else (r.lo if r.type_lo is None else max(r.lo, r.type_lo))
+    hi = r.type_hi if r.hi is None else (r.hi if r.type_hi is None else min(r.hi, r.type_hi))
+    return lo, hi
 
 
 def valid_values(r: FieldRule) -> list[tuple[Any, str, str]]:
@@ -60,9 +75,11 @@ def valid_values(r: FieldRule) -> list[tuple[Any, str, str]]:
         return [(True, "boundary", f"{key}=true"), (False, "boundary", f"{key}=false")]
     if r.enum is not None:
         return [(e.value, "enum", f"{key}={e.name}") for e in r.enum.values]
+    if r.kind == "string":
+        f = r.field
+        return [("x" * n, "boundary", f"{key} of {n} character(s)") for n in dict.fromkeys((f.min_length or 0, f.max_length)) if n is not None]
     out: list[tuple[Any, str, str]] = []
-    lo = r.lo if r.lo is not None else r.type_lo
-    hi = r.hi if r.hi is not None else r.type_hi
+    lo, hi = _bounds(r)
     for v, what in ((lo, "minimum"), (hi, "maximum")):
         if v is not None:
             out.append((v, "boundary", f"{key} {what} {v}"))
@@ -77,46 +94,70 @@ def valid_values(r: FieldRule) -> list[tuple[Any, str, str]]:
     return out
 
 
+def _enum_outsiders(values: list[int]) -> list[int]:
+    """Integers next to an enum's values: below, above, and the first two missing between them."""
+    gaps = [v for a, b in itertools.pairwise(values) for v in range(a + 1, min(b, a + 3))][:2]
+    return sorted({values[0] - 1, values[-1] + 1, *gaps})
+
+
+def _number_invalid(r: FieldRule, pm: ProtocolModel) -> list[tuple[Any, str, str]]:
+    key, out = r.key, list[tuple[Any, str, str]]()
+    for bound, sign, what in ((r.type_lo, -1, "below"), (r.type_hi, 1, "above")):
+        beyond = None if bound is None else _beyond(r, bound, sign)
+        if beyond is not None:
+            out.append((beyond, "type_range", f"{key} {what} its {r.field.type} range"))
+    if r.const is not None:
+        known = pm.any_plan.command_values
+        for c in (0, max(known) + 1):
+            if c != r.const and _in_type(r, Fraction(c)):
+                out.append((c, "cmd", f"cmd {c}: no such command" if c not in known else f"cmd {c}: another command's"))
+    elif r.enum is not None:
+        for v in _enum_outsiders(sorted(int(e.value) for e in r.enum.values)):
+            if _in_type(r, Fraction(v)):
+                out.append((v, "enum", f"{key}={v}: not a documented value"))
+    elif r.has_range:
+        sentinels = {s.value for s in r.sentinels}
+        for bound, sign in ((r.lo, -1), (r.hi, 1)):
+            if bound is None:
+                continue
+            x = Fraction(bound) + sign * _step(r)
+            while x in sentinels:
+                x += sign * _step(r)
+            if _in_type(r, x):
+                out.append((_num(x) if r.kind == "integer" else float(x), "range", f"{key}={float(x)!r}: outside the documented range"))
+    return out
+
+
+def _string_invalid(r: FieldRule, pm: ProtocolModel) -> list[tuple[Any, str, str]]:
+    key, f, out = r.key, r.field, []
+    if f.max_length is not None:
+        out.append(("N" * (f.max_length + 1), "length", f"{key} longer than {f.max_length} character(s)"))
+    if f.min_length:
+        out.append(("", "length", f"{key} empty"))
+    if r.enum is not None:
+        values = [e.value for e in r.enum.values]
+        elsewhere: dict[Any, list[str]] = {}
+        for mm in pm.messages:
+            for rr in mm.rules:
+                if rr.enum is not None and rr.key == key:
+                    for e in rr.enum.values:
+                        elsewhere.setdefault(e.value, []).append(mm.name)
+        for v in sorted(set(elsewhere) - set(values)) + [v for v in ("X", "n") if v not in values]:
+            if jsonvalue.type_fault(f, v) is None:
+                owners = f" (only {', '.join(elsewhere[v])} has it)" if v in elsewhere else ""
+                out.append((v, "enum", f"{key}={v!r}: not a value of this message{owners}"))
+    return out
+
+
 def invalid_values(r: FieldRule, pm: ProtocolModel) -> list[tuple[Any, str, str]]:
     """(value, rule, note) for one field."""
-    key = r.key
-    out: list[tuple[Any, str, str]] = []
-    wrong_type = {"integer": ["1", 1.5, None], "number": ["1", None, True], "boolean": [1, "true", None], "string": [1, None]}[r.kind]
-    out += [(w, "type", f"{key} as {json.dumps(w)}") for w in wrong_type]
+    wrong_types: dict[str, list[Any]] = {"integer": ["1", 1.5, None], "number": ["1", None, True], "boolean": [1, "true", None], "string": [1, None]}
+    wrong_type = wrong_types[r.kind]
+    out: list[tuple[Any, str, str]] = [(w, "type", f"{r.key} as {json.dumps(w)}") for w in wrong_type]
     if r.kind in ("integer", "number"):
-        step = _step(r)
-        for bound, sign, what in ((r.type_lo, -1, "below"), (r.type_hi, 1, "above")):
-            if bound is not None:
-                out.append((_beyond(r, bound, sign), "type_range", f"{key} {what} its {r.field.type} range"))
-        if r.const is not None:
-            for c in (0, max(pm.any_plan.command_values) + 1):
-                out.append((c, "cmd", f"cmd {c}: no such command"))
-        elif r.enum is not None:
-            values = sorted(int(e.value) for e in r.enum.values)
-            gaps = [v for v in range(values[0], values[-1]) if v not in values][:2]
-            for v in sorted({values[0] - 1, values[-1] + 1, *gaps}):
-                if _in_type(r, Fraction(v)):
-                    out.append((v, "enum", f"{key}={v}: not a documented value"))
-        elif r.has_range:
-            sentinels = {s.value for s in r.sentinels}
-            for bound, sign in ((r.lo, -1), (r.hi, 1)):
-                if bound is None:
-                    continue
-                v = Fraction(bound) + sign * step
-                while v in sentinels:
-                    v += sign * step
-                if _in_type(r, v):
-                    out.append((_num(v) if r.kind == "integer" else float(v), "range", f"{key}={float(v)!r}: outside the documented range"))
+        out += _number_invalid(r, pm)
     if r.kind == "string":
-        if r.field.max_length is not None:
-            out.append(("N" * (r.field.max_length + 1), "length", f"{key} longer than {r.field.max_length} character(s)"))
-        if r.field.min_length:
-            out.append(("", "length", f"{key} empty"))
-        if r.enum is not None:
-            values = [e.value for e in r.enum.values]
-            others = {e.value for mm in pm.messages for rr in mm.rules if rr.enum is not None and rr.key == key for e in rr.enum.values} - set(values)
-            for v in sorted(others) + [v for v in ("X", "n") if v not in values]:
-                out.append((v, "enum", f"{key}={v!r}: not a value of this message" + (" (J04: only status reports '-')" if v == "-" else "")))
+        out += _string_invalid(r, pm)
     return out
 
 
@@ -127,54 +168,65 @@ class _Cases:
         self.plans = {p.receiver: p for p in pm.plans}
 
     def add(self, mm: MessageModel, obj: Any, kind: str, note: str, field: str | None = None, rule: str | None = None) -> None:
-        m = mm.message
-        problems = jsonvalue.message_problems(m, obj)
-        valid = not problems
-        if valid != (rule is None):
-            raise AssertionError(f"{m.name} {note}: expected {'valid' if rule is None else rule}, the reference checker says {problems or 'valid'}")
-        if field and not any(p.startswith(f"{field}:") for p in problems):
-            raise AssertionError(f"{m.name} {note}: fault expected in {field}, the reference checker says {problems}")
-        case: dict[str, Any] = {"id": f"{m.name}/{kind}/{len(self.cases)}", "message": m.name, "receiver": m.receiver, "valid": valid,
+        """One case; the reference checker must find exactly the fault intended (`field`, `rule`) first."""
+        m, protocol = mm.message, self.pm.protocol
+        faults = jsonvalue.message_faults(m, obj)
+        got = (faults[0].key, faults[0].code) if faults else None
+        if got != (None if rule is None else (field, rule)):
+            raise AssertionError(f"{m.name} {note}: expected {rule and (field, rule) or 'valid'}, the reference checker says {[f.text for f in faults] or 'valid'}")
+        case: dict[str, Any] = {"id": f"{m.name}/{kind}/{len(self.cases)}", "message": m.name, "receiver": m.receiver, "valid": not faults,
                                 "kind": kind, "note": note, "json": obj}
         for label, receiver in (("as_received", m.receiver), ("as_any", None)):
-            chosen = jsonmodel.select(self.plans[receiver], obj)
-            ok = chosen is not None and not jsonvalue.message_problems(self.pm.protocol.message(chosen), obj)
+            chosen = jsonvalue.select(protocol, self.plans[receiver], obj)
+            ok = chosen is not None and not jsonvalue.message_faults(protocol.message(chosen), obj)
             case[label] = chosen if ok else None
-        if valid and (case["as_received"] != m.name or case["as_any"] != m.name):
-            raise AssertionError(f"{m.name} {note}: a valid message is read as {case['as_received']} / {case['as_any']}")
-        if not valid:
+        if not faults and (case["as_received"] is None or case["as_any"] is None):  # messages with the same keys: read as the first that fits
+            raise AssertionError(f"{m.name} {note}: a valid message is rejected by a reader ({case['as_received']} / {case['as_any']})")
+        if faults:
             case["field"] = field
             case["rule"] = rule
         self.cases.append(case)
 
 
+def _base(mm: MessageModel) -> dict[str, Any]:
+    """The message's first example, or one made of a value each field accepts."""
+    if mm.message.examples:
+        return dict(mm.message.examples[0])
+    return {r.key: r.const if r.const is not None else jsonvalue.sample(r.field)[0] for r in mm.rules}
+
+
+def _message_cases(c: _Cases, mm: MessageModel) -> None:
+    m = mm.message
+    base = _base(mm)
+    for i, ex in enumerate(m.examples):
+        c.add(mm, dict(ex), "example", f"document example {i + 1}")
+    for r in mm.rules:
+        for value, kind, note in valid_values(r):
+            c.add(mm, {**base, r.key: value}, kind, note)
+        if r.kind == "integer" and isinstance(base[r.key], int):
+            # JSON has one number type: 9120.0 is the integer 9120 (JSON Schema's rule, and every binding's).
+            c.add(mm, {**base, r.key: float(base[r.key])}, "integral_float", f"{r.key} written as {float(base[r.key])!r}")
+    for r in mm.rules:
+        missing = {k: v for k, v in base.items() if k != r.key}
+        note = f"{r.key} missing"
+        if m.role == "reply" and r.key != jsonmodel.RESULT_KEY:
+            note = f"reply without its request's {r.key}" if r.key in (jsonmodel.CMD_KEY, jsonmodel.MATCH_KEY) else f"reply without {r.key}"
+        c.add(mm, missing, "missing", note, r.key, "required")
+        for value, rule, vnote in invalid_values(r, c.pm):
+            c.add(mm, {**base, r.key: value}, "invalid", vnote, r.key, rule)
+    extra = _free(set(base), "extra")
+    c.add(mm, {**base, extra: 1}, "extra", "unknown key", extra, "unexpected")
+    cased = _free(set(base) | {extra}, "Extra", "X")
+    c.add(mm, {**base, cased: 1}, "extra", "unknown key differing from a field only by case", cased, "unexpected")
+
+
 def protocol_cases(pm: ProtocolModel) -> list[dict[str, Any]]:
     c = _Cases(pm)
     for mm in pm.messages:
-        m = mm.message
-        base = dict(m.examples[0])
-        for i, ex in enumerate(m.examples):
-            c.add(mm, dict(ex), "example", f"document example {i + 1}")
-        for r in mm.rules:
-            for value, kind, note in valid_values(r):
-                c.add(mm, {**base, r.key: value}, kind, note)
-            if r.kind == "integer" and isinstance(base[r.key], int):
-                # JSON has one number type: 9120.0 is the integer 9120 (JSON Schema's rule, and every binding's).
-                c.add(mm, {**base, r.key: float(base[r.key])}, "integral_float", f"{r.key} written as {float(base[r.key])!r}")
-        for r in mm.rules:
-            missing = {k: v for k, v in base.items() if k != r.key}
-            note = f"{r.key} missing"
-            if m.role == "reply" and r.key != "res":
-                note = f"reply without its request's {r.key}" if r.key in ("cmd", "bn") else f"reply without {r.key}"
-            c.add(mm, missing, "missing", note, r.key, "required")
-            for value, rule, vnote in invalid_values(r, pm):
-                c.add(mm, {**base, r.key: value}, "invalid", vnote, r.key, rule)
-        c.add(mm, {**base, "extra": 1}, "extra", "unknown key", "extra", "unexpected")
-        case_key = {"Extra": 1} if "extra" not in base else {"X": 1}
-        c.add(mm, {**base, **case_key}, "extra", "unknown key differing from a field only by case", next(iter(case_key)), "unexpected")
-    first = pm.messages[0]
-    for value in ([], "text", None, 1):
-        c.add(first, copy.deepcopy(value), "not_object", f"{json.dumps(value)} is not a JSON object", "", "object")
+        _message_cases(c, mm)
+    not_objects: tuple[Any, ...] = ([], "text", None, 1) if pm.messages else ()
+    for value in not_objects:
+        c.add(pm.messages[0], copy.deepcopy(value), "not_object", f"{json.dumps(value)} is not a JSON object", "", "object")
     return c.cases
 
 

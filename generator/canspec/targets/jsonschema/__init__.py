@@ -3,7 +3,7 @@ accepting any message of a protocol (`protocol.schema.json`), and one per receiv
 (`to_<party>.schema.json`) accepting what that party receives.
 
 Decisions carried by every schema (and stated in its description):
-- `additionalProperties: false`: the protocol is unversioned (erratum J01), so a receiver
+- `additionalProperties: false`: the protocol is unversioned (the shipped one: erratum J01), so a receiver
   cannot tell a newer sender's field from a typo ("Spd"); unknown keys are rejected and a
   revision that adds a field must add it to the spec (and so to these schemas).
 - Integer fields carry the range of their declared type (U8, S16, U64 limited to 2^53-1: J08).
@@ -24,15 +24,16 @@ from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import FieldRule, MessageModel, Plan, ProtocolModel
 from canspec.render.environment import header_lines
 from canspec.targets import Target
+from canspec.targets.jsonschema.check import problems
 
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
 ANNOTATION = "x-canspec"
 ADDITIONAL_NOTE = (
-    "Unknown keys are rejected (additionalProperties: false): the protocol carries no version (erratum J01), so a receiver cannot tell "
+    "Unknown keys are rejected (additionalProperties: false): the protocol carries no version, so a receiver cannot tell "
     "a newer sender's field from a misspelt one."
 )
 ADDITIONAL_NOTE_ZH = "不接受未定义的字段（additionalProperties: false）：协议没有版本号，接收方无法区分新字段和拼写错误。"
-PRECISION_NOTE = "Precision is documented (x-canspec.decimals), not enforced: receivers accept any finite number in range (erratum J11)."
+PRECISION_NOTE = "Precision is documented (x-canspec.decimals), not enforced: receivers accept any finite number in range."
 PRECISION_NOTE_ZH = "有效小数位仅作说明（x-canspec.decimals），不作校验。"
 
 
@@ -45,6 +46,7 @@ def _bilingual(en: str, zh: str) -> str:
 
 
 def _field_description(r: FieldRule) -> str:
+    """English facts, then (for a field with a Chinese name or description) the same in Chinese."""
     f = r.field
     facts, facts_zh = [f.type], [f.type]
     if f.unit:
@@ -59,15 +61,25 @@ def _field_description(r: FieldRule) -> str:
         facts_zh.append(f"有效小数位{f.decimals}位（不作校验）")
     for s in r.sentinels:
         facts.append(f"{s.value}: {s.label.lower()}")
-        facts_zh.append(f"{s.value}：{s.label_zh}")
+        facts_zh.append(f"{s.value}：{s.label_zh or s.label.lower()}")
     if r.enum is not None:
         facts.append("values " + ", ".join(f"{e.value} {e.label.lower()}" for e in r.enum.values))
-        facts_zh.append("值为" + "、".join(f"{e.value}（{e.label_zh}）" for e in r.enum.values))
+        facts_zh.append("值为" + "、".join(f"{e.value}（{e.label_zh or e.label.lower()}）" for e in r.enum.values))
     en = (f.desc + " " if f.desc else "") + "(" + "; ".join(facts) + ")"
-    zh = f.zh + ("：" + f.desc_zh if f.desc_zh else "") + "；" + "；".join(facts_zh)
     if f.errata:
         en += " Errata: " + ", ".join(f.errata) + "."
+    if not (f.zh or f.desc_zh):
+        return en
+    zh = "：".join(t for t in (f.zh, f.desc_zh) if t) + "；" + "；".join(facts_zh)
     return _bilingual(en, zh)
+
+
+def _titled(name: str, zh: str) -> str:
+    return f"{name}: {zh}" if zh else name
+
+
+def _labels(v: ir.JsonEnumValue) -> dict[str, str]:
+    return {"name": v.name, "en": v.label, **({"zh": v.label_zh} if v.label_zh else {})}
 
 
 def _annotation(r: FieldRule) -> dict[str, Any]:
@@ -81,15 +93,15 @@ def _annotation(r: FieldRule) -> dict[str, Any]:
         out["errata"] = list(f.errata)
     if r.enum is not None:
         out["enum_type"] = r.enum.name
-        out["enum"] = {str(e.value): {"name": e.name, "en": e.label, "zh": e.label_zh} for e in r.enum.values}
+        out["enum"] = {str(e.value): _labels(e) for e in r.enum.values}
     if r.sentinels:
-        out["sentinels"] = {str(s.value): {"name": s.name, "en": s.label, "zh": s.label_zh} for s in r.sentinels}
+        out["sentinels"] = {str(s.value): _labels(s) for s in r.sentinels}
     return out
 
 
 def field_schema(r: FieldRule) -> dict[str, Any]:
     f = r.field
-    s: dict[str, Any] = {"title": f"{r.key}: {f.zh}", "description": _field_description(r), ANNOTATION: _annotation(r)}
+    s: dict[str, Any] = {"title": _titled(r.key, f.zh), "description": _field_description(r), ANNOTATION: _annotation(r)}
     s["type"] = r.kind
     if r.kind in ("integer", "number"):
         if r.type_lo is not None:
@@ -113,17 +125,23 @@ def field_schema(r: FieldRule) -> dict[str, Any]:
             documented["maximum"] = r.hi
         if r.sentinels:
             s["anyOf"] = [documented, *({"const": x.value, "title": x.name, "description": _bilingual(x.label, x.label_zh)} for x in r.sentinels)]
-        else:
-            s.update({k: v for k, v in documented.items() if k != "title"})
+        else:  # one object: the tighter of the type's and the documented bound
+            if "minimum" in documented:
+                s["minimum"] = documented["minimum"] if r.type_lo is None else max(r.type_lo, documented["minimum"])
+            if "maximum" in documented:
+                s["maximum"] = documented["maximum"] if r.type_hi is None else min(r.type_hi, documented["maximum"])
     return s
 
 
-def message_schema(mm: MessageModel, protocol: ir.JsonProtocol) -> dict[str, Any]:
+def message_schema(pm: ProtocolModel, mm: MessageModel) -> dict[str, Any]:
     m = mm.message
     role = f" ({m.role} of cmd {m.cmd})" if m.role else ""
-    en = f"{m.desc} Sent by {m.sender} to {m.receiver}{role}."
-    if m.reply_to:
-        en += f" Answers {m.reply_to}: matched to it by cmd and bn (the reply echoes the request's bn)."
+    en = f"{m.desc} Sent by {m.sender} to {m.receiver}{role}.".strip()
+    pair = next((p for p in pm.pairs if p.reply == m.name), None)
+    if pair is not None:
+        by = " and ".join(("cmd", *pair.echoed))
+        echo = "".join(f" (the reply echoes the request's {k})" for k in pair.echoed)
+        en += f" Answers {pair.request}: matched to it by {by}{echo}."
     decimals = any(r.field.decimals is not None for r in mm.rules)
     en += " " + ADDITIONAL_NOTE + (" " + PRECISION_NOTE if decimals else "")
     ann: dict[str, Any] = {"message": m.name, "from": m.sender, "to": m.receiver, "type_name": mm.type_name}
@@ -131,17 +149,19 @@ def message_schema(mm: MessageModel, protocol: ir.JsonProtocol) -> dict[str, Any
         ann.update({"cmd": m.cmd, "role": m.role})
     if m.reply_to:
         ann["reply_to"] = m.reply_to
-    zh = f"{m.zh}（{m.sender} → {m.receiver}）。" + ADDITIONAL_NOTE_ZH + (PRECISION_NOTE_ZH if decimals else "")
-    return {
-        "title": f"{m.name}: {m.zh}",
+    zh = f"{m.zh}（{m.sender} → {m.receiver}）。" + ADDITIONAL_NOTE_ZH + (PRECISION_NOTE_ZH if decimals else "") if m.zh else ""
+    out = {
+        "title": _titled(m.name, m.zh),
         "description": _bilingual(en, zh),
         "type": "object",
         "properties": {r.key: field_schema(r) for r in mm.rules},
         "required": [r.key for r in mm.rules],
         "additionalProperties": False,
-        "examples": [dict(e) for e in m.examples],
         ANNOTATION: ann,
     }
+    if m.examples:
+        out["examples"] = [dict(e) for e in m.examples]
+    return out
 
 
 def _root(spec: ir.Spec, protocol: ir.JsonProtocol, name: str, body: dict[str, Any]) -> dict[str, Any]:
@@ -153,45 +173,38 @@ def _any_of_keys(keys: tuple[str, ...]) -> dict[str, Any]:
 
 
 def _group_schema(group: tuple[jsonmodel.Branch, ...]) -> dict[str, Any]:
-    """if <a marker of the first message> then it, else the rest of the group."""
+    """if <a marker of the first message> (or: valid as it, where no key tells) then it, else the rest of the group."""
     head, *rest = group
     ref = {"$ref": f"#/$defs/{head.message}"}
     if not rest:
         return ref
-    return {"if": _any_of_keys(head.markers), "then": ref, "else": _group_schema(tuple(rest))}
+    return {"if": ref if head.tried else _any_of_keys(head.markers), "then": ref, "else": _group_schema(tuple(rest))}
 
 
 def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
-    defs = {name: message_schema(pm.message(name), pm.protocol) for name in p.messages}
+    defs = {name: message_schema(pm, pm.message(name)) for name in p.messages}
     who = "any message of the protocol" if p.receiver is None else f"a message sent to {p.receiver}"
-    rules = []
-    if p.commands:
-        listing = ", ".join(f"{c}: " + " / ".join(b.message for b in g) for c, g in p.commands)
-        rules.append(f"a message with `cmd` is the command of that number ({listing})")
-        for c, g in p.commands:
-            for b in g[:-1]:
-                rules.append(f"with cmd {c}, a message carrying {' or '.join(b.markers)} is {b.message}, otherwise {g[-1].message}")
-    if p.plain:
-        for b in p.plain[:-1]:
-            rules.append(f"without `cmd`, a message carrying {' or '.join(b.markers)} is {b.message}")
-        rules.append(f"without `cmd`, the message is {p.plain[-1].message}" + (" otherwise" if len(p.plain) > 1 else ""))
+    how = f"telling them apart as follows: {'; '.join(p.rules)}." if p.messages else "none: the protocol has no messages."
+    title_zh = pm.protocol.title_zh
+    zh = title_zh + ("：任意消息。" if p.receiver is None else f"：发给 {p.receiver} 的消息。") + ADDITIONAL_NOTE_ZH if title_zh else ""
     body: dict[str, Any] = {
         "title": f"{pm.protocol.name}: {who}",
-        "description": _bilingual(f"Accepts {who}, telling them apart as follows: " + "; ".join(rules) + ". " + ADDITIONAL_NOTE,
-                                  pm.protocol.title_zh + ("：任意消息。" if p.receiver is None else f"：发给 {p.receiver} 的消息。") + ADDITIONAL_NOTE_ZH),
+        "description": _bilingual(f"Accepts {who}, {how} " + ADDITIONAL_NOTE, zh),
         "type": "object",
         ANNOTATION: {"protocol": pm.protocol.name, "version": pm.protocol.version, "receiver": p.receiver, "messages": list(p.messages)},
         "$defs": defs,
     }
-    plain = _group_schema(p.plain) if p.plain else {"required": ["cmd"]}
+    plain = _group_schema(p.plain) if p.plain else {"required": [jsonmodel.CMD_KEY]}
     if p.commands:
         command = {
-            "properties": {"cmd": {"enum": list(p.command_values), "description": "known commands"}},
-            "allOf": [{"if": {"properties": {"cmd": {"const": c}}}, "then": _group_schema(g)} for c, g in p.commands],
+            "properties": {jsonmodel.CMD_KEY: {"enum": list(p.command_values), "description": "known commands"}},
+            "allOf": [{"if": {"properties": {jsonmodel.CMD_KEY: {"const": c}}}, "then": _group_schema(g)} for c, g in p.commands],
         }
-        body.update({"if": {"required": ["cmd"]}, "then": command, "else": plain})
-    else:
+        body.update({"if": {"required": [jsonmodel.CMD_KEY]}, "then": command, "else": plain})
+    elif p.plain:
         body.update(plain)
+    else:
+        body["not"] = {}  # no message: nothing is accepted
     return body
 
 
@@ -200,7 +213,7 @@ def build_schemas(spec: ir.Spec) -> dict[str, dict[str, Any]]:
     for protocol in spec.json:
         pm = jsonmodel.model(protocol)
         for mm in pm.messages:
-            out[f"{protocol.name}/{mm.name}.schema.json"] = _root(spec, protocol, mm.name, message_schema(mm, protocol))
+            out[f"{protocol.name}/{mm.name}.schema.json"] = _root(spec, protocol, mm.name, message_schema(pm, mm))
         for p in pm.plans:
             name = "protocol" if p.receiver is None else f"to_{p.receiver}"
             out[f"{protocol.name}/{name}.schema.json"] = _root(spec, protocol, name, plan_schema(pm, p))
@@ -211,4 +224,4 @@ def render_schemas(spec: ir.Spec) -> dict[str, bytes]:
     return {f"jsonschema/{rel}": (json.dumps(s, indent=2, sort_keys=True, ensure_ascii=False) + "\n").encode("utf-8") for rel, s in build_schemas(spec).items()}
 
 
-TARGET = Target("jsonschema", "JSON Schemas (draft 2020-12) of the JSON protocol", "jsonschema/", render_schemas, order=40)
+TARGET = Target("jsonschema", "JSON Schemas (draft 2020-12) of the JSON protocol", "jsonschema/", render_schemas, order=40, check=problems)

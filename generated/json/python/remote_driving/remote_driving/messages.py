@@ -14,7 +14,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar, Dict, Optional, Tuple, Type, Union
+from typing import Any, ClassVar
 
 PROTOCOL = "remote_driving"
 VERSION = "1.0.0"
@@ -41,7 +41,7 @@ class ValidationError(ValueError):
         super().__init__(f"{where}: {shown} {rule}")
 
 
-def _object(message: str, obj: Any, keys: Tuple[str, ...]) -> Dict[str, Any]:
+def _object(message: str, obj: Any, keys: tuple[str, ...]) -> dict[str, Any]:
     if not isinstance(obj, dict):
         raise ValidationError(message, "", obj, "object", "must be a JSON object")
     for key in keys:
@@ -56,16 +56,15 @@ def _object(message: str, obj: Any, keys: Tuple[str, ...]) -> Dict[str, Any]:
 def _integer(message: str, key: str, value: Any, lo: int, hi: int, type_rule: str, range_rule: str) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(message, key, value, "type", type_rule)
-    if isinstance(value, float):
-        if not value.is_integer():
-            raise ValidationError(message, key, value, "type", type_rule)
-        value = int(value)
-    if not lo <= value <= hi:
-        raise ValidationError(message, key, value, "type_range", range_rule)
-    return value
+    if isinstance(value, float) and not value.is_integer():
+        raise ValidationError(message, key, value, "type", type_rule)
+    number = int(value)
+    if not lo <= number <= hi:
+        raise ValidationError(message, key, number, "type_range", range_rule)
+    return number
 
 
-def _number(message: str, key: str, value: Any, lo: Optional[float], hi: Optional[float], type_rule: str, range_rule: str) -> Union[int, float]:
+def _number(message: str, key: str, value: Any, lo: float | None, hi: float | None, type_rule: str, range_rule: str) -> int | float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(message, key, value, "type", type_rule)
     if isinstance(value, float) and not math.isfinite(value):
@@ -81,7 +80,7 @@ def _boolean(message: str, key: str, value: Any, type_rule: str) -> bool:
     return value
 
 
-def _string(message: str, key: str, value: Any, lo: Optional[int], hi: Optional[int], type_rule: str, length_rule: str) -> str:
+def _string(message: str, key: str, value: Any, lo: int | None, hi: int | None, type_rule: str, length_rule: str) -> str:
     if not isinstance(value, str):
         raise ValidationError(message, key, value, "type", type_rule)
     if (lo is not None and len(value) < lo) or (hi is not None and len(value) > hi):
@@ -89,7 +88,7 @@ def _string(message: str, key: str, value: Any, lo: Optional[int], hi: Optional[
     return value
 
 
-def _command(value: Any) -> Optional[int]:
+def _command(value: Any) -> int | None:
     """The integer value of a `cmd` key, or None when it is not an integer."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return None
@@ -160,7 +159,7 @@ class Control:
     """
 
     NAME: ClassVar[str] = "control"
-    KEYS: ClassVar[Tuple[str, ...]] = ("ts", "bn", "tr", "bk", "st", "g", "m", "vts")
+    KEYS: ClassVar[tuple[str, ...]] = ("ts", "bn", "tr", "bk", "st", "g", "m", "vts")
     ts: int
     bn: int
     tr: float
@@ -171,6 +170,7 @@ class Control:
     vts: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "ts",
@@ -195,8 +195,8 @@ class Control:
             self.NAME,
             "tr",
             self.tr,
-            -3.4028234663852886e+38,
-            3.4028234663852886e+38,
+            -3.4028234663852886e38,
+            3.4028234663852886e38,
             "must be a number (Float32)",
             "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
         )
@@ -207,8 +207,8 @@ class Control:
             self.NAME,
             "bk",
             self.bk,
-            -3.4028234663852886e+38,
-            3.4028234663852886e+38,
+            -3.4028234663852886e38,
+            3.4028234663852886e38,
             "must be a number (Float32)",
             "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
         )
@@ -219,8 +219,8 @@ class Control:
             self.NAME,
             "st",
             self.st,
-            -3.4028234663852886e+38,
-            3.4028234663852886e+38,
+            -3.4028234663852886e38,
+            3.4028234663852886e38,
             "must be a number (Float32)",
             "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
         )
@@ -265,7 +265,7 @@ class Control:
         _set(self, "vts", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "Control":
+    def from_json(cls, obj: Any) -> Control:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         return cls(
@@ -279,7 +279,7 @@ class Control:
             vts=obj["vts"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "ts": self.ts,
@@ -322,7 +322,7 @@ class Status:
     """
 
     NAME: ClassVar[str] = "status"
-    KEYS: ClassVar[Tuple[str, ...]] = ("ts", "bn", "g", "m", "pL", "spd", "located", "lng", "lat", "alt", "angle", "satCnt")
+    KEYS: ClassVar[tuple[str, ...]] = ("ts", "bn", "g", "m", "pL", "spd", "located", "lng", "lat", "alt", "angle", "satCnt")
     POWER_LEVEL_UNKNOWN: ClassVar[int] = -1  # Unknown / 未知
     SPD_UNKNOWN: ClassVar[int] = -1  # Unknown / 未知
     ts: int
@@ -339,6 +339,7 @@ class Status:
     sat_cnt: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "ts",
@@ -439,8 +440,8 @@ class Status:
             self.NAME,
             "alt",
             self.alt,
-            -3.4028234663852886e+38,
-            3.4028234663852886e+38,
+            -3.4028234663852886e38,
+            3.4028234663852886e38,
             "must be a number (Float32)",
             "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
         )
@@ -449,8 +450,8 @@ class Status:
             self.NAME,
             "angle",
             self.angle,
-            -3.4028234663852886e+38,
-            3.4028234663852886e+38,
+            -3.4028234663852886e38,
+            3.4028234663852886e38,
             "must be a number (Float32)",
             "must be within [-3.4028234663852886e+38, 3.4028234663852886e+38] (Float32)",
         )
@@ -469,7 +470,7 @@ class Status:
         _set(self, "sat_cnt", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "Status":
+    def from_json(cls, obj: Any) -> Status:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         return cls(
@@ -487,7 +488,7 @@ class Status:
             sat_cnt=obj["satCnt"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "ts": self.ts,
@@ -514,11 +515,12 @@ class ShutdownRequest:
     """
 
     NAME: ClassVar[str] = "shutdown_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 1
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -531,7 +533,7 @@ class ShutdownRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "ShutdownRequest":
+    def from_json(cls, obj: Any) -> ShutdownRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -549,20 +551,24 @@ class ShutdownRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "ShutdownReply":
+    def reply(self, res: Res | int = Res.OK) -> ShutdownReply:
         """The reply to this request (`bn` echoed)."""
-        return ShutdownReply(res=res, bn=self.bn)
+        return ShutdownReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, ShutdownReply) and reply.bn == self.bn
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("shutdown_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -578,12 +584,13 @@ class ShutdownReply:
     """
 
     NAME: ClassVar[str] = "shutdown_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 1
     res: Res
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -609,7 +616,7 @@ class ShutdownReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "ShutdownReply":
+    def from_json(cls, obj: Any) -> ShutdownReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -628,13 +635,17 @@ class ShutdownReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "res": self.res.value,
             "bn": self.bn,
         }
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("shutdown_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -646,11 +657,12 @@ class RestartRequest:
     """
 
     NAME: ClassVar[str] = "restart_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 2
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -663,7 +675,7 @@ class RestartRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RestartRequest":
+    def from_json(cls, obj: Any) -> RestartRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -681,20 +693,24 @@ class RestartRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "RestartReply":
+    def reply(self, res: Res | int = Res.OK) -> RestartReply:
         """The reply to this request (`bn` echoed)."""
-        return RestartReply(res=res, bn=self.bn)
+        return RestartReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RestartReply) and reply.bn == self.bn
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("restart_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -710,12 +726,13 @@ class RestartReply:
     """
 
     NAME: ClassVar[str] = "restart_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 2
     res: Res
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -741,7 +758,7 @@ class RestartReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RestartReply":
+    def from_json(cls, obj: Any) -> RestartReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -760,13 +777,17 @@ class RestartReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "res": self.res.value,
             "bn": self.bn,
         }
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("restart_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -779,12 +800,13 @@ class RecordRequest:
     """
 
     NAME: ClassVar[str] = "record_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn", "ro")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn", "ro")
     CMD: ClassVar[int] = 3
     bn: int
     ro: bool
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -799,7 +821,7 @@ class RecordRequest:
         _set(self, "ro", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RecordRequest":
+    def from_json(cls, obj: Any) -> RecordRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -818,7 +840,7 @@ class RecordRequest:
             ro=obj["ro"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -826,13 +848,17 @@ class RecordRequest:
             "ro": self.ro,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK, *, ro: bool) -> "RecordReply":
+    def reply(self, res: Res | int = Res.OK, *, ro: bool) -> RecordReply:
         """The reply to this request (`bn` echoed)."""
-        return RecordReply(res=res, bn=self.bn, ro=ro)
+        return RecordReply(res=Res(res), bn=self.bn, ro=ro)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, RecordReply) and reply.bn == self.bn
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("record_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -850,13 +876,14 @@ class RecordReply:
     """
 
     NAME: ClassVar[str] = "record_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn", "ro")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn", "ro")
     CMD: ClassVar[int] = 3
     res: Res
     bn: int
     ro: bool
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -884,7 +911,7 @@ class RecordReply:
         _set(self, "ro", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "RecordReply":
+    def from_json(cls, obj: Any) -> RecordReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -904,7 +931,7 @@ class RecordReply:
             ro=obj["ro"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -912,6 +939,10 @@ class RecordReply:
             "bn": self.bn,
             "ro": self.ro,
         }
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("record_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -923,11 +954,12 @@ class PhotoRequest:
     """
 
     NAME: ClassVar[str] = "photo_request"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "bn")
     CMD: ClassVar[int] = 4
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         value = _integer(
             self.NAME,
             "bn",
@@ -940,7 +972,7 @@ class PhotoRequest:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "PhotoRequest":
+    def from_json(cls, obj: Any) -> PhotoRequest:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -958,20 +990,24 @@ class PhotoRequest:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
             "bn": self.bn,
         }
 
-    def reply(self, res: Union[Res, int] = Res.OK) -> "PhotoReply":
+    def reply(self, res: Res | int = Res.OK) -> PhotoReply:
         """The reply to this request (`bn` echoed)."""
-        return PhotoReply(res=res, bn=self.bn)
+        return PhotoReply(res=Res(res), bn=self.bn)
 
     def is_answered_by(self, reply: Any) -> bool:
         """Whether `reply` answers this request: same cmd and bn."""
         return isinstance(reply, PhotoReply) and reply.bn == self.bn
+
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("photo_request", self.bn)
 
 
 @dataclass(frozen=True)
@@ -987,12 +1023,13 @@ class PhotoReply:
     """
 
     NAME: ClassVar[str] = "photo_reply"
-    KEYS: ClassVar[Tuple[str, ...]] = ("cmd", "res", "bn")
+    KEYS: ClassVar[tuple[str, ...]] = ("cmd", "res", "bn")
     CMD: ClassVar[int] = 4
     res: Res
     bn: int
 
     def __post_init__(self) -> None:
+        value: Any  # each field's checked value in turn
         if not isinstance(self.res, Res):
             value = _integer(
                 self.NAME,
@@ -1018,7 +1055,7 @@ class PhotoReply:
         _set(self, "bn", value)
 
     @classmethod
-    def from_json(cls, obj: Any) -> "PhotoReply":
+    def from_json(cls, obj: Any) -> PhotoReply:
         """Read a decoded JSON value; raises ValidationError."""
         _object(cls.NAME, obj, cls.KEYS)
         value = _integer(
@@ -1037,7 +1074,7 @@ class PhotoReply:
             bn=obj["bn"],
         )
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The message as a JSON-ready dict (`json.dumps` it)."""
         return {
             "cmd": self.CMD,
@@ -1045,12 +1082,16 @@ class PhotoReply:
             "bn": self.bn,
         }
 
+    def match_key(self) -> tuple[Any, ...]:
+        """What a request and its reply share: the command and the bn."""
+        return ("photo_request", self.bn)
 
-Message = Union[Control, Status, ShutdownRequest, ShutdownReply, RestartRequest, RestartReply, RecordRequest, RecordReply, PhotoRequest, PhotoReply]
-Request = Union[ShutdownRequest, RestartRequest, RecordRequest, PhotoRequest]
-Reply = Union[ShutdownReply, RestartReply, RecordReply, PhotoReply]
 
-MESSAGES: Dict[str, Type[Any]] = {
+Message = Control | Status | ShutdownRequest | ShutdownReply | RestartRequest | RestartReply | RecordRequest | RecordReply | PhotoRequest | PhotoReply
+Request = ShutdownRequest | RestartRequest | RecordRequest | PhotoRequest
+Reply = ShutdownReply | RestartReply | RecordReply | PhotoReply
+
+MESSAGES: dict[str, type[Any]] = {
     "control": Control,
     "status": Status,
     "shutdown_request": ShutdownRequest,
@@ -1062,13 +1103,13 @@ MESSAGES: Dict[str, Type[Any]] = {
     "photo_request": PhotoRequest,
     "photo_reply": PhotoReply,
 }
-REPLY_OF: Dict[Type[Any], Type[Any]] = {
+REPLY_OF: dict[type[Any], type[Any]] = {
     ShutdownRequest: ShutdownReply,
     RestartRequest: RestartReply,
     RecordRequest: RecordReply,
     PhotoRequest: PhotoReply,
 }
-RECEIVERS: Tuple[str, ...] = ("autonomous", "vehicle")
+RECEIVERS: tuple[str, ...] = ("autonomous", "vehicle")
 
 
 def _read_any(obj: Any) -> Message:
@@ -1098,7 +1139,7 @@ def _read_any(obj: Any) -> Message:
     return Status.from_json(obj)
 
 
-def _read_autonomous(obj: Any) -> Message:
+def _read_to_autonomous(obj: Any) -> Message:
     if not isinstance(obj, dict):
         raise ValidationError("message", "", obj, "object", "must be a JSON object")
     if "cmd" in obj:
@@ -1115,7 +1156,7 @@ def _read_autonomous(obj: Any) -> Message:
     return Control.from_json(obj)
 
 
-def _read_vehicle(obj: Any) -> Message:
+def _read_to_vehicle(obj: Any) -> Message:
     if not isinstance(obj, dict):
         raise ValidationError("message", "", obj, "object", "must be a JSON object")
     if "cmd" in obj:
@@ -1132,46 +1173,52 @@ def _read_vehicle(obj: Any) -> Message:
     return Status.from_json(obj)
 
 
-def parse(obj: Any, receiver: Optional[str] = None) -> Message:
+def parse(obj: Any, receiver: str | None = None) -> Message:
     """Read any message of the protocol from a decoded JSON value.
 
     With `receiver` (one of RECEIVERS) only what is sent to that party is accepted, and the
     direction tells the messages apart.
     autonomous receives shutdown_reply, restart_reply, record_reply, photo_reply, control.
     vehicle receives shutdown_request, restart_request, record_request, photo_request, status.
-    Without it: a message with `cmd` is that command, and a reply when it carries `res`;
-    a message without `cmd` carrying tr, bk, st or vts is control, otherwise status.
+    Without it: a message with `cmd` is the command of that number (1: shutdown_reply /
+    shutdown_request, 2: restart_reply / restart_request, 3: record_reply / record_request, 4:
+    photo_reply / photo_request); with cmd 1, a message carrying res is shutdown_reply, otherwise
+    shutdown_request; with cmd 2, a message carrying res is restart_reply, otherwise
+    restart_request; with cmd 3, a message carrying res is record_reply, otherwise record_request;
+    with cmd 4, a message carrying res is photo_reply, otherwise photo_request; without `cmd`, a
+    message carrying tr or bk or st or vts is control; without `cmd`, the message is status
+    otherwise.
     Raises ValidationError.
     """
     if receiver == "autonomous":
-        return _read_autonomous(obj)
+        return _read_to_autonomous(obj)
     if receiver == "vehicle":
-        return _read_vehicle(obj)
+        return _read_to_vehicle(obj)
     if receiver is not None:
         raise ValueError(f"unknown receiver {receiver!r}: one of {RECEIVERS}")
     return _read_any(obj)
 
 
 def is_reply_to(reply: Any, request: Any) -> bool:
-    """Whether `reply` answers `request`: the reply type of the request's cmd, with its bn."""
-    return REPLY_OF.get(type(request)) is type(reply) and reply.bn == request.bn
+    """Whether `reply` answers `request`: the reply type of its command, with its `match_key`."""
+    return REPLY_OF.get(type(request)) is type(reply) and reply.match_key() == request.match_key()
 
 
 class PendingRequests:
-    """Requests sent and not yet answered, matched to their replies by (cmd, bn)."""
+    """Requests sent and not yet answered, matched to their replies by command and `match_key`."""
 
     def __init__(self) -> None:
-        self._pending: Dict[Tuple[int, int], Any] = {}
+        self._pending: dict[tuple[Any, ...], Request] = {}
 
     def add(self, request: Request) -> None:
-        self._pending[(request.CMD, request.bn)] = request
+        self._pending[request.match_key()] = request
 
-    def match(self, reply: Reply) -> Optional[Request]:
+    def match(self, reply: Reply) -> Request | None:
         """The request `reply` answers (forgotten from now on), or None when none is pending."""
-        request = self._pending.get((reply.CMD, reply.bn))
+        request = self._pending.get(reply.match_key())
         if request is None or not is_reply_to(reply, request):
             return None
-        del self._pending[(reply.CMD, reply.bn)]
+        del self._pending[reply.match_key()]
         return request
 
     def __len__(self) -> int:

@@ -8,8 +8,9 @@
 //! impls go through them (serialising checks the value first, so an invalid message is never
 //! written). Bad input gives a [`ValidationError`] naming the message, the field (JSON key),
 //! the value and the rule. [`Message::from_value`] tells the messages apart; with
-//! [`Message::from_value_to`] the receiver's direction does. Numbers declared Float32 are held
-//! as `f64` so that the JSON value round-trips exactly; the Float32 range is still checked.
+//! [`Message::from_value_to`] the receiver's direction does. Numbers are held as `f64` (even
+//! those declared Float32) so that the JSON value round-trips exactly; the declared type's
+//! range is still checked.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -95,175 +96,7 @@ impl fmt::Display for ValidationError {
 
 impl std::error::Error for ValidationError {}
 
-mod rt {
-    //! The checks every message applies, in this order: object, required keys, unknown keys,
-    //! then per field its JSON type, its declared type's range, and its documented values.
-    use super::{ErrorCode, ValidationError};
-    use serde_json::{Map, Value};
-
-    pub(crate) fn err(
-        message: &'static str,
-        field: &str,
-        value: &Value,
-        code: ErrorCode,
-        rule: &'static str,
-    ) -> ValidationError {
-        ValidationError {
-            message,
-            field: field.to_owned(),
-            value: value.clone(),
-            code,
-            rule,
-        }
-    }
-
-    pub(crate) fn object<'a>(
-        message: &'static str,
-        v: &'a Value,
-        keys: &[&str],
-        unexpected: &'static str,
-    ) -> Result<&'a Map<String, Value>, ValidationError> {
-        let Some(obj) = v.as_object() else {
-            return Err(err(
-                message,
-                "",
-                v,
-                ErrorCode::Object,
-                "must be a JSON object",
-            ));
-        };
-        if let Some(key) = keys.iter().find(|k| !obj.contains_key(**k)) {
-            return Err(err(
-                message,
-                key,
-                &Value::Null,
-                ErrorCode::Required,
-                "is required",
-            ));
-        }
-        // The least unknown key in code-point order, as every binding reports it (whatever
-        // order serde_json's map keeps).
-        if let Some((key, value)) = obj
-            .iter()
-            .filter(|(k, _)| !keys.contains(&k.as_str()))
-            .min_by(|a, b| a.0.cmp(b.0))
-        {
-            return Err(err(message, key, value, ErrorCode::Unexpected, unexpected));
-        }
-        Ok(obj)
-    }
-
-    /// The integer a JSON number denotes (`2.0` is the integer 2), if it is one.
-    pub(crate) fn integral(v: &Value) -> Option<i128> {
-        if let Some(i) = v.as_i64() {
-            return Some(i128::from(i));
-        }
-        if let Some(u) = v.as_u64() {
-            return Some(i128::from(u));
-        }
-        let f = v.as_f64()?;
-        if !f.is_finite() || f.fract() != 0.0 {
-            return None;
-        }
-        // Beyond ±1e38 no declared type reaches: saturate (still out of every range).
-        Some(if f.abs() > 1e38 {
-            if f > 0.0 {
-                i128::MAX
-            } else {
-                i128::MIN
-            }
-        } else {
-            f as i128
-        })
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn integer(
-        message: &'static str,
-        key: &str,
-        v: &Value,
-        lo: i128,
-        hi: i128,
-        type_rule: &'static str,
-        range_rule: &'static str,
-    ) -> Result<i128, ValidationError> {
-        if !v.is_number() {
-            return Err(err(message, key, v, ErrorCode::Type, type_rule));
-        }
-        let n = integral(v).ok_or_else(|| err(message, key, v, ErrorCode::Type, type_rule))?;
-        if n < lo || n > hi {
-            return Err(err(message, key, v, ErrorCode::TypeRange, range_rule));
-        }
-        Ok(n)
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn number(
-        message: &'static str,
-        key: &str,
-        v: &Value,
-        lo: Option<f64>,
-        hi: Option<f64>,
-        type_rule: &'static str,
-        range_rule: &'static str,
-    ) -> Result<f64, ValidationError> {
-        let x = v
-            .as_f64()
-            .ok_or_else(|| err(message, key, v, ErrorCode::Type, type_rule))?;
-        if !x.is_finite() {
-            return Err(err(message, key, v, ErrorCode::Type, type_rule));
-        }
-        if lo.is_some_and(|lo| x < lo) || hi.is_some_and(|hi| x > hi) {
-            return Err(err(message, key, v, ErrorCode::TypeRange, range_rule));
-        }
-        Ok(x)
-    }
-
-    pub(crate) fn boolean(
-        message: &'static str,
-        key: &str,
-        v: &Value,
-        type_rule: &'static str,
-    ) -> Result<bool, ValidationError> {
-        v.as_bool()
-            .ok_or_else(|| err(message, key, v, ErrorCode::Type, type_rule))
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn string<'a>(
-        message: &'static str,
-        key: &str,
-        v: &'a Value,
-        lo: usize,
-        hi: usize,
-        type_rule: &'static str,
-        length_rule: &'static str,
-    ) -> Result<&'a str, ValidationError> {
-        let s = v
-            .as_str()
-            .ok_or_else(|| err(message, key, v, ErrorCode::Type, type_rule))?;
-        let n = s.chars().count();
-        if n < lo || n > hi {
-            return Err(err(message, key, v, ErrorCode::Length, length_rule));
-        }
-        Ok(s)
-    }
-
-    /// A documented range check; `ok` tells whether the value lies within it (or is a sentinel).
-    pub(crate) fn documented(
-        message: &'static str,
-        key: &str,
-        v: &Value,
-        ok: bool,
-        rule: &'static str,
-    ) -> Result<(), ValidationError> {
-        if ok {
-            Ok(())
-        } else {
-            Err(err(message, key, v, ErrorCode::Range, rule))
-        }
-    }
-}
+mod rt;
 
 /// ControlGear: the documented values (JSON string).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -1775,6 +1608,7 @@ impl PhotoReply {
 
 /// Any message of the protocol.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)] // each message is held inline, whatever its size
 pub enum Message {
     /// See [`Control`].
     Control(Control),
@@ -1807,10 +1641,35 @@ pub enum Party {
     Autonomous,
 }
 
+impl Party {
+    /// Every party, in document order.
+    pub const ALL: [Self; 2] = [Self::Vehicle, Self::Autonomous];
+
+    /// The party's name in the spec.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Vehicle => "vehicle",
+            Self::Autonomous => "autonomous",
+        }
+    }
+
+    /// The party of a name in the spec, if there is one.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|p| p.name() == name)
+    }
+}
+
 impl Message {
-    /// Read any message of the protocol: a message with `cmd` is that command (the reply
-    /// when it carries `res`); without `cmd`, a message carrying tr, bk, st or vts is
-    /// control, otherwise status.
+    /// Read any message of the protocol: a message with `cmd` is the command of that number (1:
+    /// shutdown_reply / shutdown_request, 2: restart_reply / restart_request, 3: record_reply /
+    /// record_request, 4: photo_reply / photo_request); with cmd 1, a message carrying res is
+    /// shutdown_reply, otherwise shutdown_request; with cmd 2, a message carrying res is
+    /// restart_reply, otherwise restart_request; with cmd 3, a message carrying res is
+    /// record_reply, otherwise record_request; with cmd 4, a message carrying res is photo_reply,
+    /// otherwise photo_request; without `cmd`, a message carrying tr or bk or st or vts is control;
+    /// without `cmd`, the message is status otherwise.
     ///
     /// # Errors
     /// A [`ValidationError`] naming the first field that breaks the protocol.
@@ -1824,8 +1683,8 @@ impl Message {
     /// A [`ValidationError`] naming the first field that breaks the protocol.
     pub fn from_value_to(v: &Value, receiver: Party) -> Result<Self, ValidationError> {
         match receiver {
-            Party::Autonomous => read_autonomous(v),
-            Party::Vehicle => read_vehicle(v),
+            Party::Autonomous => read_to_autonomous(v),
+            Party::Vehicle => read_to_vehicle(v),
         }
     }
 
@@ -1900,7 +1759,7 @@ impl Message {
         }
     }
 
-    /// Whether this message is the reply to `request` (same cmd, same `bn`).
+    /// Whether this message is the reply to `request` (same cmd, same `bn` where both carry it).
     #[must_use]
     pub fn answers(&self, request: &Self) -> bool {
         match (self, request) {
@@ -1977,7 +1836,7 @@ fn read_any(v: &Value) -> Result<Message, ValidationError> {
     Status::from_value(v).map(Message::Status)
 }
 
-fn read_autonomous(v: &Value) -> Result<Message, ValidationError> {
+fn read_to_autonomous(v: &Value) -> Result<Message, ValidationError> {
     let Some(obj) = v.as_object() else {
         return Err(rt::err(
             "message",
@@ -2016,7 +1875,7 @@ fn read_autonomous(v: &Value) -> Result<Message, ValidationError> {
     Control::from_value(v).map(Message::Control)
 }
 
-fn read_vehicle(v: &Value) -> Result<Message, ValidationError> {
+fn read_to_vehicle(v: &Value) -> Result<Message, ValidationError> {
     let Some(obj) = v.as_object() else {
         return Err(rt::err(
             "message",
