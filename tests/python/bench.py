@@ -24,7 +24,9 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import cantools
 import pkgpath
-from vector_runner import PHYSICAL_KINDS, attr_names, gw
+from vector_runner import PHYSICAL_KINDS, attr_names, shipped_package
+
+gw = shipped_package()
 
 
 def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],
