@@ -23,7 +23,8 @@ IND = "    "
 class PyChecksum:
     attr: str
     shift: int  # bit position of the checksum byte in the frame integer
-    folds: tuple[int, ...]  # shifts that XOR-fold every byte of the frame into its lowest byte
+    cover_mask: str  # hex literal: the bytes the XOR covers, in the frame integer
+    folds: tuple[int, ...]  # shifts that XOR-fold the frame's bytes into its lowest byte
 
 
 @dataclass(frozen=True)
@@ -54,9 +55,9 @@ def xor_folds(nbytes: int) -> tuple[int, ...]:
     return tuple(out)
 
 
-def _fold(first: str, folds: tuple[int, ...]) -> list[str]:
-    """`c` = the XOR of every byte of `first` (in its lowest byte)."""
-    return [f"c = {first} ^ {first} >> {folds[0]}", *(f"c ^= c >> {f}" for f in folds[1:])]
+def _xor(checksum: PyChecksum) -> list[str]:
+    """`c & 0xFF` = the XOR of the bytes of the frame integer `v` that the checksum covers."""
+    return [f"c = v & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in checksum.folds)]
 
 
 def frame_checks(f: Frame) -> tuple[str, ...]:
@@ -66,8 +67,8 @@ def frame_checks(f: Frame) -> tuple[str, ...]:
         lines.append('v = _from_bytes(data, "little")')
     if f.checksum is not None:
         byte = f"(v >> {f.checksum.shift}) & 0xFF"
-        lines += ["if verify_checksum:", *(IND + s for s in _fold("v", f.checksum.folds)), f"{IND}if c & 0xFF:  # every byte, the checksum included, XORs to 0"]
-        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, (c ^ v >> {f.checksum.shift}) & 0xFF, {byte}, id_text="{f.id_lit}")')
+        lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if (c & 0xFF) != {byte}:"]
+        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, c & 0xFF, {byte}, id_text="{f.id_lit}")')
     return tuple(lines)
 
 
@@ -75,7 +76,8 @@ def checksum_ok(f: Frame) -> tuple[str, ...]:
     """The body of `checksum_ok(data)`: never raises."""
     if f.checksum is None:
         return ("return True",)
-    return (f"if len(data) != {f.dlc}:", f"{IND}return False", 'v = _from_bytes(data, "little")', *_fold("v", f.checksum.folds), "return (c & 0xFF) == 0")
+    byte = f"(v >> {f.checksum.shift}) & 0xFF"
+    return (f"if len(data) != {f.dlc}:", f"{IND}return False", 'v = _from_bytes(data, "little")', *_xor(f.checksum), f"return (c & 0xFF) == {byte}")
 
 
 def pack_tail(f: Frame) -> tuple[str, ...]:
@@ -85,7 +87,7 @@ def pack_tail(f: Frame) -> tuple[str, ...]:
     terms = [(f"({s.raw_var} & 0x{s.sig.mask:X})" if s.sig.signed else s.raw_var) + (f" << {s.sig.start}" if s.sig.start else "") for s in f.values]
     lines = ["v = " + " | ".join(terms)]
     if f.checksum is not None:
-        lines += [*_fold("v", f.checksum.folds), f"v |= (c & 0xFF) << {f.checksum.shift}  # the checksum byte was 0 until now"]
+        lines += [*_xor(f.checksum), f"v |= (c & 0xFF) << {f.checksum.shift}"]
     return (*lines, f'return v.to_bytes({f.dlc}, "little")')
 
 

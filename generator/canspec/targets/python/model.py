@@ -198,7 +198,8 @@ class _Builder:
         by_name = {s.name: s for s in signals}
         checksum = None
         if msg.checksum is not None:
-            checksum = code.PyChecksum(by_name[msg.checksum.signal].attr, msg.checksum.byte * 8, code.xor_folds(msg.dlc))
+            cover = msg.checksum
+            checksum = code.PyChecksum(by_name[cover.signal].attr, cover.byte * 8, f"0x{cover.cover_mask:X}", code.xor_folds(max(cover.covers) + 1))
         frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
