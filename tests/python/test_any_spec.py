@@ -57,7 +57,7 @@ def packages(tmp_path_factory) -> dict[str, tuple[Path, Path]]:
 
 def test_fixtures_cover_what_the_target_must_handle():
     names = {p.stem for p in FIXTURES}
-    assert {"py_english_standard", "py_wide_and_keywords", "py_name_clashes", "py_no_messages"} <= names
+    assert {"py_english_standard", "py_wide_and_keywords", "py_name_clashes", "py_no_messages", "py_special_at_field_edge", "py_value_tables"} <= names
 
 
 def test_ruff_check_and_format(packages):
