@@ -100,8 +100,10 @@ def _run_encode(sig, x):
     return got if isinstance(got, dict) else int.from_bytes(got, "little")
 
 
-@pytest.mark.parametrize(("signed", "factor", "offset"), [(False, Fraction(1, 10), Fraction(0)), (True, Fraction(1, 10), Fraction(-5, 2)), (True, Fraction(-3), Fraction(0)),
-                                                            (False, Fraction(2), Fraction(7))])
+WIDE_SCALINGS = [(False, Fraction(1, 10), Fraction(0)), (True, Fraction(1, 10), Fraction(-5, 2)), (True, Fraction(-3), Fraction(0)), (False, Fraction(2), Fraction(7))]
+
+
+@pytest.mark.parametrize(("signed", "factor", "offset"), WIDE_SCALINGS)
 def test_inline_rounding_is_the_shared_rule_also_beyond_2_to_the_52(can, signed, factor, offset):
     """The fast path of encode gives the reference rule's raw (ir/encoding.to_raw_runtime) on every
     double, including quotients at and beyond 2^52 where q + 0.5 would round to even."""
