@@ -21,7 +21,6 @@ IND = "    "
 
 @dataclass(frozen=True)
 class PyChecksum:
-    attr: str
     shift: int  # bit position of the checksum byte in the frame integer
     cover_mask: str  # hex literal: the bytes the XOR covers, in the frame integer
     folds: tuple[int, ...]  # shifts that XOR-fold the frame's bytes into its lowest byte

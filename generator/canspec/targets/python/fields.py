@@ -24,7 +24,6 @@ ATTRIBUTE_RESERVED = METHODS | CLASS_SCOPE_BUILTINS
 @dataclass(frozen=True)
 class PySpecial:
     const: str  # class constant name, e.g. SENSOR_1_DISTANCE_NO_OBSTACLE
-    raw: int
     raw_hex: str
     physical: str  # literal in the attribute's type
     comment: str
@@ -226,7 +225,7 @@ class SignalContext:
 
 def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecial, ...]:
     return tuple(
-        PySpecial(consts.take(f"{sig.name}_{s.name}".upper()), s.raw, f"-0x{-s.raw:X}" if s.raw < 0 else f"0x{s.raw:X}", num_lit(s.physical, as_int),
+        PySpecial(consts.take(f"{sig.name}_{s.name}".upper()), f"-0x{-s.raw:X}" if s.raw < 0 else f"0x{s.raw:X}", num_lit(s.physical, as_int),
                   label_comment(s.label, s.label_zh))
         for s in sig.specials
     )

@@ -199,7 +199,7 @@ class _Builder:
         checksum = None
         if msg.checksum is not None:
             cover = msg.checksum
-            checksum = code.PyChecksum(by_name[cover.signal].attr, cover.byte * 8, f"0x{cover.cover_mask:X}", code.xor_folds(max(cover.covers) + 1))
+            checksum = code.PyChecksum(cover.byte * 8, f"0x{cover.cover_mask:X}", code.xor_folds(max(cover.covers) + 1))
         frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
