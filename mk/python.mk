@@ -4,8 +4,9 @@ BENCH_TARGETS += bench-python
 
 .PHONY: roundtrip-python bench-python
 
-roundtrip-python:  ## the generated Python package on $(VECTORS); fails on any mismatch
-	$(PYTHON) tests/python/vector_runner.py $(VECTORS)
+PYTHON_PACKAGE ?=
+roundtrip-python:  ## the generated Python package ($(PYTHON_PACKAGE), default the shipped one) on $(VECTORS); fails on any mismatch
+	$(PYTHON) tests/python/vector_runner.py $(VECTORS) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
 
 BENCH_PYTHON_FRAMES ?= 1000000
 bench-python:  ## generated Python vs cantools (µs/frame), canspec decode vs cantools decode on a candump log

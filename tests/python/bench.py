@@ -26,7 +26,9 @@ sys.path.insert(1, str(Path(__file__).resolve().parents[1]))  # tests/: dbc_name
 import cantools
 from dbc_names import load_with_spec_names
 import pkgpath
-from vector_runner import PHYSICAL_KINDS, attr_names, gw
+from vector_runner import PHYSICAL_KINDS, attr_names, shipped_package
+
+gw = shipped_package()
 
 
 def pair_us(ours: Callable[..., Any], theirs: Callable[..., Any], our_items: list[tuple[Any, ...]], their_items: list[tuple[Any, ...]],

@@ -26,6 +26,21 @@ def test_to_and_from_can_message(gw):
     assert bus.from_can_message(bad, verify_checksum=False).counter == 9
 
 
+def test_a_frame_matches_a_message_only_with_its_id_format(gw):
+    from kaiwo_gateway import bus
+
+    data = gw.AutocarSpeedCommand().encode()
+    standard = can.Message(arbitration_id=0x1803B0A0 & 0x7FF, is_extended_id=False, data=data)
+    wrong_format = can.Message(arbitration_id=0x1803B0A0, is_extended_id=False, data=data)
+    for frame in (standard, wrong_format):
+        with pytest.raises(gw.UnknownFrameError, match=r"unknown frame ID 0x[0-9A-F]+ \(11-bit\)") as exc:
+            bus.from_can_message(frame)
+        assert exc.value.is_extended is False
+    with can.Bus(interface="virtual", channel="canspec-format") as tx, can.Bus(interface="virtual", channel="canspec-format") as rx:
+        tx.send(wrong_format)
+        assert bus.receive(rx, timeout=0.05) is None  # skipped: the protocol's 0x1803B0A0 is a 29-bit ID
+
+
 def test_send_receive_skips_foreign_frames(gw):
     from kaiwo_gateway import bus
 

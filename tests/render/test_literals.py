@@ -51,6 +51,16 @@ def test_python_and_typescript_strings():
         assert json.loads(literals.ts_string(s)) == s
 
 
+def test_python_docstring_and_comment_text():
+    for s in NASTY + ['ends in a quote"', 'triple """ inside', '""', "\\"]:
+        doc = literals.py_doc(s)
+        assert ast.literal_eval(f'"""{doc}"""') == " ".join(s.split()), s  # reads back as the one-line text
+        assert ast.literal_eval(f'"""x {doc}"""') == "x " + " ".join(s.split()), s
+        comment = literals.py_comment(s)
+        assert "\n" not in comment and not any(ord(c) < 0x20 for c in comment), s
+        assert ast.parse(f"x = 1  # {comment}\n")
+
+
 def test_rust_strings_compile_to_the_same_bytes(tmp_path):
     src = tmp_path / "s.rs"
     body = ", ".join(literals.rust_string(s) for s in NASTY)

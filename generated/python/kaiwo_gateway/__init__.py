@@ -8,9 +8,9 @@
     data = encode(AutocarEpsCommand())
     message = decode(AutocarEpsCommand.FRAME_ID, data)
 
-Modules: `messages` (dataclasses, encode/decode), `enums` (value tables), `errors`,
-`j1939` (29-bit ID helpers), `multiframe` (texts spread over several frames, e.g. the VIN),
-`bus` (python-can integration; needs python-can).
+Modules: `messages` (dataclasses, encode/decode), `enums` (value tables), `errors` (what decode and
+encode raise), `j1939` (29-bit ID helpers), `multiframe` (texts spread over several frames, e.g. the
+VIN), `bus` (python-can integration; needs python-can).
 """
 
 from __future__ import annotations

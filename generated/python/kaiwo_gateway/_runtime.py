@@ -11,11 +11,8 @@ from collections.abc import Mapping
 from enum import IntEnum
 from typing import NamedTuple, TypeVar
 
+from ._rules import EXACT_LIMIT, TIE_EPSILON
 from .errors import RangeError, RawRangeError
-
-# physical → raw: q = (x - offset) / factor; raw = floor(q + 0.5 + TIE_EPSILON) for q >= 0,
-# -floor(-q + 0.5 + TIE_EPSILON) otherwise (round half away from zero on decimal ties).
-TIE_EPSILON = 1e-9
 
 E = TypeVar("E")
 M = TypeVar("M", bound=IntEnum)
@@ -57,9 +54,11 @@ def physical_to_raw(value: object, s: SignalSpec) -> int:
     else:
         raise TypeError(f"{s.message}.{s.signal}: expected a number, got {type(value).__name__} {value!r}")
     q = (x - s.offset) / s.factor
-    if not s.raw_type_min <= q <= s.raw_type_max:  # also NaN
+    if not math.isfinite(q):  # the raw checks below refuse every other value that does not fit
         raise RangeError(s.message, s.signal, value, s.allowed)
-    raw = math.floor((q + 0.5) + TIE_EPSILON) if q >= 0 else -math.floor((-q + 0.5) + TIE_EPSILON)
+    a = abs(q)
+    r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
+    raw = -r if q < 0 else r
     if raw in s.specials or (s.lo <= x <= s.hi and s.raw_min <= raw <= s.raw_max):
         return raw
     raise RangeError(s.message, s.signal, value, s.allowed)

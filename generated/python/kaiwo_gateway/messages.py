@@ -505,12 +505,12 @@ class AutocarEpsCommandRaw(TypedDict, total=False):
 class AutocarEpsCommand:
     """AUTOCAR EPS Command — 智能控制器 EPS 命令 (§3.1).
 
-    Frame 0x1801B0A0, DLC 8, every 20 ms, AUTOCAR → Wire_Car_ECU.
+    Frame 0x1801B0A0 (29-bit), DLC 8, every 20 ms, AUTOCAR → Wire_Car_ECU.
 
     Attributes:
         eps_ctrl_mode: EPS 控制模式; range [0, 255]; values EpsModeCmd
         counter: 心跳值; range [0, 255]; rolling counter
-        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2 + 0; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
+        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
         steering_angle_cmd: 方向盘角度指令; unit deg; range [-1080, 1080]; physical = raw × 0.1 - 1080; Steering wheel angle request; clockwise positive.
         checksum: 异或校验; range [0, 255]; XOR checksum, filled by encode
     """
@@ -596,15 +596,15 @@ class AutocarEpsCommand:
 
 def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
     if len(data) != 8:
-        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data))
+        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
     m = _new(AutocarEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -616,15 +616,15 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
 
 def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data))
+        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -705,14 +705,14 @@ class EpsStateRaw(TypedDict, total=False):
 class EpsState:
     """Wire_Car_ECU EPS State — 线控车辆控制器 EPS 状态 (§3.2).
 
-    Frame 0x1802A0B0, DLC 8, every 20 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1802A0B0 (29-bit), DLC 8, every 20 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
         eps_ctrl_state: EPS 控制状态; range [0, 255]; values EpsModeState
         steering_torque: 方向盘力矩; unit Nm; range [-12.8, 12.7]; physical = raw × 0.1 - 12.8; Driver torque on the steering wheel; clockwise positive.
         eps_output_torque: EPS 输出力矩; unit Nm; range [-38.4, 38.1]; physical = raw × 0.3 - 38.4; EPS motor output torque; clockwise positive.
         steering_angle: 方向盘角度; unit deg; range [-1080, 1080]; physical = raw × 0.1 - 1080; Steering wheel angle; clockwise positive.
-        controller_temp: 控制器温度; unit °C; range [0, 126]; physical = raw × 2 + 0
+        controller_temp: 控制器温度; unit °C; range [0, 126]; physical = raw × 2
         eps_fault_level: EPS 故障级别; range [0, 3]; values EpsFaultLevel
         counter: 心跳值; range [0, 255]; rolling counter
     """
@@ -794,9 +794,8 @@ class EpsState:
 
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
     if len(data) != 8:
-        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data))
+        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(EpsState)  # slot stores are faster than a call of __init__
     m.eps_ctrl_state = _EPS_MODE_STATE_8[v & 0xFF]
     m.steering_torque = ((v >> 8) & 0xFF) * 0.1 - 12.8
@@ -810,9 +809,8 @@ def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
 
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
     if len(data) != 8:
-        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data))
+        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "eps_ctrl_state": v & 0xFF,
         "steering_torque": (v >> 8) & 0xFF,
@@ -900,7 +898,7 @@ class AutocarSpeedCommandRaw(TypedDict, total=False):
 class AutocarSpeedCommand:
     """AUTOCAR Speed Command — 智能控制器车速命令 (§3.3).
 
-    Frame 0x1803B0A0, DLC 8, every 20 ms, AUTOCAR → Wire_Car_ECU.
+    Frame 0x1803B0A0 (29-bit), DLC 8, every 20 ms, AUTOCAR → Wire_Car_ECU.
 
     Attributes:
         accel_cmd: 加速度指令; unit m/s²; range [-9, 3.6]; physical = raw × 0.02 - 9; Acceleration request; positive accelerates towards the vehicle front.
@@ -993,15 +991,15 @@ class AutocarSpeedCommand:
 
 def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
     if len(data) != 8:
-        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data))
+        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
     m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
     m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -1014,15 +1012,15 @@ def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
 
 def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data))
+        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
     return {
         "accel_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -1107,16 +1105,16 @@ class DrivingStateRaw(TypedDict, total=False):
 class DrivingState:
     """Driving State — 行车状态 (§3.4).
 
-    Frame 0x1804A0B0, DLC 8, every 20 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1804A0B0 (29-bit), DLC 8, every 20 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
         epb_state: 电子手刹状态; range [0, 3]; values Epb
         gear_state: 档位状态; range [0, 3]; values Gear
         emergency_brake_state: 紧急制动状态; range [0, 1]; values BrakeState
         uss_brake_state: 超声波雷达制动状态; range [0, 1]; values BrakeState
-        motor_speed: 电机转速; unit rpm; range [-15000, 15000]; physical = raw × 1 - 15000; Motor speed; positive drives the vehicle forward.
-        motor_torque: 电机扭矩; unit Nm; range [-5000, 5000]; physical = raw × 1 - 5000; Motor torque; positive pushes the vehicle forward.
-        motor_speed_ratio: 电机转速与车速比值; unit rpm/(km/h); range [1, 254]; physical = raw × 1 + 1; 256 = invalid (无效); Ratio of motor speed to vehicle speed.
+        motor_speed: 电机转速; unit rpm; range [-15000, 15000]; physical = raw - 15000; Motor speed; positive drives the vehicle forward.
+        motor_torque: 电机扭矩; unit Nm; range [-5000, 5000]; physical = raw - 5000; Motor torque; positive pushes the vehicle forward.
+        motor_speed_ratio: 电机转速与车速比值; unit rpm/(km/h); range [1, 254]; physical = raw + 1; 256 = invalid (无效); Ratio of motor speed to vehicle speed.
         current_accel: 当前加速度; unit m/s²; range [-9, 3.6]; physical = raw × 0.05 - 9; Current acceleration; positive towards the vehicle front.
         checksum: 异或校验; range [0, 255]; XOR checksum, filled by encode
     """
@@ -1199,15 +1197,15 @@ class DrivingState:
 
 def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingState:
     if len(data) != 8:
-        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data))
+        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
     m = _new(DrivingState)  # slot stores are faster than a call of __init__
     m.epb_state = _EPB_2[v & 0x3]
     m.gear_state = _GEAR_4[(v >> 2) & 0xF]
@@ -1223,15 +1221,15 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
 
 def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingStateRaw:
     if len(data) != 8:
-        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data))
+        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
     return {
         "epb_state": v & 0x3,
         "gear_state": (v >> 2) & 0xF,
@@ -1350,7 +1348,7 @@ class AutocarControlCommand1Raw(TypedDict, total=False):
 class AutocarControlCommand1:
     """AUTOCAR Control Command 1 — 智能控制器控制命令1 (§3.5).
 
-    Frame 0x1805B0A0, DLC 8, every 50 ms, AUTOCAR → Wire_Car_ECU.
+    Frame 0x1805B0A0 (29-bit), DLC 8, every 50 ms, AUTOCAR → Wire_Car_ECU.
 
     Attributes:
         drive_mode_cmd: 自驾控制模式; range [0, 1]; values DriveModeCmdAutocar
@@ -1493,9 +1491,8 @@ class AutocarControlCommand1:
 
 def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
     if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data))
+        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
     v = _from_bytes(data, "little")
-
     m = _new(AutocarControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_AUTOCAR_2[v & 0x3]
     m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
@@ -1527,9 +1524,8 @@ def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
 
 def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
     if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data))
+        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
     v = _from_bytes(data, "little")
-
     return {
         "drive_mode_cmd": v & 0x3,
         "door_cmd": (v >> 2) & 0x3,
@@ -1788,7 +1784,7 @@ class VehicleState1Raw(TypedDict, total=False):
 class VehicleState1:
     """Vehicle State 1 — 车辆状态 1 (§3.6).
 
-    Frame 0x1806A0B0, DLC 8, every 50 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1806A0B0 (29-bit), DLC 8, every 50 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
         drive_mode_state: 驾驶控制模式; range [0, 3]; values DriveModeState
@@ -1805,13 +1801,13 @@ class VehicleState1:
         dome_light_state: 内顶灯; range [0, 1]; values OffOn
         ambient_light_state: 氛围灯; range [0, 1]; values OffOn
         door_button_state: 车门按键状态; range [0, 1]; values Button
-        vehicle_speed: 车速; unit km/h; range [-50, 200]; physical = raw × 1 - 50
-        soc: SOC; unit %; range [0, 125]; physical = raw × 0.5 + 0; Traction battery state of charge.
+        vehicle_speed: 车速; unit km/h; range [-50, 200]; physical = raw - 50
+        soc: SOC; unit %; range [0, 125]; physical = raw × 0.5; Traction battery state of charge.
         system_power_cmd: 智能系统电源指令; range [0, 1]; values PowerCmd; Power command from the vehicle to the smart driving system.
         charge_state: 充电状态; range [0, 3]; values ChargeState
         charge_connection: 充电连接指示; range [0, 1]; values ChargeConnection
         vehicle_fault_level: 整车故障级别; range [0, 3]; values VehicleFaultLevel
-        odometer: 总里程; unit km; range [0, 120000]; physical = raw × 2 + 0
+        odometer: 总里程; unit km; range [0, 120000]; physical = raw × 2
         counter: 心跳值; range [0, 255]; rolling counter
     """
 
@@ -1922,9 +1918,8 @@ class VehicleState1:
 
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(VehicleState1)  # slot stores are faster than a call of __init__
     m.drive_mode_state = _DRIVE_MODE_STATE_2[v & 0x3]
     m.door_state = _OFF_ON_1[(v >> 2) & 0x1]
@@ -1953,9 +1948,8 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "drive_mode_state": v & 0x3,
         "door_state": (v >> 2) & 0x1,
@@ -2177,14 +2171,14 @@ class AutocarControlCommand2Raw(TypedDict, total=False):
 class AutocarControlCommand2:
     """AUTOCAR Control Command 2 — 智能控制器控制命令2 (§3.7).
 
-    Frame 0x1807B0A0, DLC 8, every 100 ms, AUTOCAR → Wire_Car_ECU.
+    Frame 0x1807B0A0 (29-bit), DLC 8, every 100 ms, AUTOCAR → Wire_Car_ECU.
 
     Attributes:
         downhill_regen_enable: 下坡制动回收使能; range [0, 1]; values DownhillRegenEnable
         cargo_lift: 货箱上装; range [0, 3]; values CargoLift
         cargo_lift_speed: 货箱上装速度; range [0, 10]; Lift/lower motor speed level; 0 stationary, 10 fastest.
         pto_enable: 取力使能; range [0, 1]; values PtoEnable
-        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5 + 0; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
+        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
         chassis_pitch: 底盘俯仰角; unit deg; range [-25, 25]; physical = raw × 0.05 - 25; Chassis pitch; leaning back positive.
         chassis_roll: 底盘侧倾角; unit deg; range [-40, 40]; physical = raw × 0.1 - 40; Chassis roll; right positive.
         cargo_pitch: 货箱俯仰角; unit deg; range [-30, 100]; physical = raw × 0.2 - 30; Cargo box pitch; leaning back positive.
@@ -2276,9 +2270,8 @@ class AutocarControlCommand2:
 
 def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
     if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data))
+        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
     v = _from_bytes(data, "little")
-
     m = _new(AutocarControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
@@ -2295,9 +2288,8 @@ def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
 
 def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
     if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data))
+        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
     v = _from_bytes(data, "little")
-
     return {
         "downhill_regen_enable": v & 0x1,
         "cargo_lift": (v >> 1) & 0x3,
@@ -2412,10 +2404,10 @@ class VehicleState2Raw(TypedDict, total=False):
 class VehicleState2:
     """Vehicle State 2 — 车辆状态 2 (§3.8).
 
-    Frame 0x1810A0B0, DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1810A0B0 (29-bit), DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
-        battery_voltage: 动力电池电压; unit V; range [0, 800]; physical = raw × 0.2 + 0
+        battery_voltage: 动力电池电压; unit V; range [0, 800]; physical = raw × 0.2
         battery_current: 动力电池电流; unit A; range [-500, 800]; physical = raw × 0.02 - 500; Traction battery current; positive discharges, negative charges.
         battery_charge_energy: 电池组累计充电电量; unit kWh; range [0, 65535]
         battery_discharge_energy: 电池组累计放电电量; unit kWh; range [0, 65535]
@@ -2481,9 +2473,8 @@ class VehicleState2:
 
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(VehicleState2)  # slot stores are faster than a call of __init__
     m.battery_voltage = (v & 0xFFFF) * 0.2
     m.battery_current = ((v >> 16) & 0xFFFF) * 0.02 - 500.0
@@ -2494,9 +2485,8 @@ def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "battery_voltage": v & 0xFFFF,
         "battery_current": (v >> 16) & 0xFFFF,
@@ -2566,15 +2556,15 @@ class VehicleState3Raw(TypedDict, total=False):
 class VehicleState3:
     """Vehicle State 3 — 车辆状态 3 (§3.9).
 
-    Frame 0x1811A0B0, DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1811A0B0 (29-bit), DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
-        battery_max_temp: 电池最高温度; unit °C; range [-40, 215]; physical = raw × 1 - 40
-        battery_min_temp: 电池最低温度; unit °C; range [-40, 215]; physical = raw × 1 - 40
-        max_cell_voltage: 最高单体电压; unit V; range [0, 6]; physical = raw × 0.0015 + 0
-        min_cell_voltage: 最低单体电压; unit V; range [0, 6]; physical = raw × 0.0015 + 0
-        motor_temp: 电机温度; unit °C; range [-40, 215]; physical = raw × 1 - 40
-        motor_controller_temp: 电控温度; unit °C; range [-40, 215]; physical = raw × 1 - 40
+        battery_max_temp: 电池最高温度; unit °C; range [-40, 215]; physical = raw - 40
+        battery_min_temp: 电池最低温度; unit °C; range [-40, 215]; physical = raw - 40
+        max_cell_voltage: 最高单体电压; unit V; range [0, 6]; physical = raw × 0.0015
+        min_cell_voltage: 最低单体电压; unit V; range [0, 6]; physical = raw × 0.0015
+        motor_temp: 电机温度; unit °C; range [-40, 215]; physical = raw - 40
+        motor_controller_temp: 电控温度; unit °C; range [-40, 215]; physical = raw - 40
     """
 
     NAME: ClassVar[str] = "vehicle_state_3"
@@ -2641,9 +2631,8 @@ class VehicleState3:
 
 def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
     m.battery_max_temp = (v & 0xFF) - 40
     m.battery_min_temp = ((v >> 8) & 0xFF) - 40
@@ -2656,9 +2645,8 @@ def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "battery_max_temp": v & 0xFF,
         "battery_min_temp": (v >> 8) & 0xFF,
@@ -2744,7 +2732,7 @@ class VehicleState4Raw(TypedDict, total=False):
 class VehicleState4:
     """Vehicle State 4 — 车辆状态 4 (§3.10).
 
-    Frame 0x1812A0B0, DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1812A0B0 (29-bit), DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
         outside_temp: 车外温度; unit °C; range [-30, 95]; physical = raw × 0.5 - 30
@@ -2837,9 +2825,8 @@ class VehicleState4:
 
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
     m.outside_temp = (v & 0xFF) * 0.5 - 30.0
     m.inside_temp = ((v >> 8) & 0xFF) * 0.5 - 30.0
@@ -2858,9 +2845,8 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "outside_temp": v & 0xFF,
         "inside_temp": (v >> 8) & 0xFF,
@@ -3031,7 +3017,7 @@ class VehicleFaultRaw(TypedDict, total=False):
 class VehicleFault:
     """Vehicle Fault — 车辆故障状态 (§3.11).
 
-    Frame 0x1813A0B0, DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1813A0B0 (29-bit), DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
 
     Attributes:
         insulation_fault_level: 绝缘故障等级; range [0, 3]; values InsulationFaultLevel
@@ -3175,9 +3161,8 @@ class VehicleFault:
 
 def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFault:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
     v = _from_bytes(data, "little")
-
     m = _new(VehicleFault)  # slot stores are faster than a call of __init__
     m.insulation_fault_level = _INSULATION_FAULT_LEVEL_2[v & 0x3]
     m.dc_fault = _NORMAL_FAULT_1[(v >> 2) & 0x1]
@@ -3213,9 +3198,8 @@ def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> Vehicle
 
 def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFaultRaw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data))
+        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
     v = _from_bytes(data, "little")
-
     return {
         "insulation_fault_level": v & 0x3,
         "dc_fault": (v >> 2) & 0x1,
@@ -3488,7 +3472,7 @@ class VehicleState5Raw(TypedDict, total=False):
 class VehicleState5:
     """Vehicle State 5 — 车辆状态 5 (§2).
 
-    Frame 0x1808A0B0, DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
+    Frame 0x1808A0B0 (29-bit), DLC 8, every 100 ms, Wire_Car_ECU → AUTOCAR, R_GATE, RC.
     """
 
     NAME: ClassVar[str] = "vehicle_state_5"
@@ -3541,29 +3525,25 @@ class VehicleState5:
 
 def _decode_vehicle_state_5(data: Buffer, verify_checksum: bool = True) -> VehicleState5:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_5", 0x1808A0B0, 8, len(data))
-
+        raise FrameLengthError("vehicle_state_5", 0x1808A0B0, 8, len(data), id_text="0x1808A0B0")
     m = _new(VehicleState5)  # slot stores are faster than a call of __init__
     return m
 
 
 def _unpack_vehicle_state_5(data: Buffer, verify_checksum: bool = True) -> VehicleState5Raw:
     if len(data) != 8:
-        raise FrameLengthError("vehicle_state_5", 0x1808A0B0, 8, len(data))
-
+        raise FrameLengthError("vehicle_state_5", 0x1808A0B0, 8, len(data), id_text="0x1808A0B0")
     return {}
 
 
 def _encode_vehicle_state_5(m: VehicleState5) -> bytes:
-    v = 0
-    return v.to_bytes(8, "little")
+    return bytes(8)
 
 
 def _pack_vehicle_state_5(raw: Mapping[str, object]) -> bytes:
     if not raw.keys() <= _VEHICLE_STATE_5_SIGNALS:
         raise UnknownSignalError("vehicle_state_5", sorted(raw.keys() - _VEHICLE_STATE_5_SIGNALS))
-    v = 0
-    return v.to_bytes(8, "little")
+    return bytes(8)
 
 
 class RgateEpsCommandRaw(TypedDict, total=False):
@@ -3580,12 +3560,12 @@ class RgateEpsCommandRaw(TypedDict, total=False):
 class RgateEpsCommand:
     """R-GATE EPS Command — 远程控制器 EPS 命令 (§3.12).
 
-    Frame 0x1801B0C0, DLC 8, every 20 ms, R_GATE → Wire_Car_ECU.
+    Frame 0x1801B0C0 (29-bit), DLC 8, every 20 ms, R_GATE → Wire_Car_ECU.
 
     Attributes:
         eps_ctrl_mode: EPS 控制模式; range [0, 255]; values EpsModeCmd
         counter: 心跳值; range [0, 255]; rolling counter
-        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2 + 0; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
+        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
         steering_angle_cmd: 方向盘角度指令; unit deg; range [-1080, 1080]; physical = raw × 0.1 - 1080; Steering wheel angle request; clockwise positive.
         checksum: 异或校验; range [0, 255]; XOR checksum, filled by encode
     """
@@ -3671,15 +3651,15 @@ class RgateEpsCommand:
 
 def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
     if len(data) != 8:
-        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data))
+        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
     m = _new(RgateEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -3691,15 +3671,15 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
 
 def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data))
+        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -3779,7 +3759,7 @@ class RgateSpeedCommandRaw(TypedDict, total=False):
 class RgateSpeedCommand:
     """R-GATE Speed Command — 远程控制器车速命令 (§3.13).
 
-    Frame 0x1803B0C0, DLC 8, every 20 ms, R_GATE → Wire_Car_ECU.
+    Frame 0x1803B0C0 (29-bit), DLC 8, every 20 ms, R_GATE → Wire_Car_ECU.
 
     Attributes:
         accel_cmd: 加速度指令; unit m/s²; range [-9, 3.6]; physical = raw × 0.02 - 9; Acceleration request; positive accelerates towards the vehicle front.
@@ -3872,15 +3852,15 @@ class RgateSpeedCommand:
 
 def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
     if len(data) != 8:
-        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data))
+        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
     m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
     m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -3893,15 +3873,15 @@ def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
 
 def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data))
+        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
     return {
         "accel_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -4002,7 +3982,7 @@ class RgateControlCommand1Raw(TypedDict, total=False):
 class RgateControlCommand1:
     """R-GATE Control Command 1 — 远程车辆控制命令 1 (§3.14).
 
-    Frame 0x1805B0C0, DLC 8, every 50 ms, R_GATE → Wire_Car_ECU.
+    Frame 0x1805B0C0 (29-bit), DLC 8, every 50 ms, R_GATE → Wire_Car_ECU.
 
     Attributes:
         drive_mode_cmd: 自驾控制模式; range [0, 3]; values DriveModeCmdRgate
@@ -4145,9 +4125,8 @@ class RgateControlCommand1:
 
 def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
     if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data))
+        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
     v = _from_bytes(data, "little")
-
     m = _new(RgateControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_RGATE_2[v & 0x3]
     m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
@@ -4179,9 +4158,8 @@ def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
 
 def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1Raw:
     if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data))
+        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
     v = _from_bytes(data, "little")
-
     return {
         "drive_mode_cmd": v & 0x3,
         "door_cmd": (v >> 2) & 0x3,
@@ -4424,14 +4402,14 @@ class RgateControlCommand2Raw(TypedDict, total=False):
 class RgateControlCommand2:
     """R-GATE Control Command 2 — 远程车辆控制命令 2 (§3.15).
 
-    Frame 0x1807B0C0, DLC 8, every 100 ms, R_GATE → Wire_Car_ECU.
+    Frame 0x1807B0C0 (29-bit), DLC 8, every 100 ms, R_GATE → Wire_Car_ECU.
 
     Attributes:
         downhill_regen_enable: 下坡制动回收使能; range [0, 1]; values DownhillRegenEnable
         cargo_lift: 货箱上装; range [0, 3]; values CargoLift
         cargo_lift_speed: 货箱上装速度; range [0, 10]; Lift/lower motor speed level; 0 stationary, 10 fastest.
         pto_enable: 取力使能; range [0, 1]; values PtoEnable
-        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5 + 0; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
+        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
         counter: 心跳; range [0, 255]; rolling counter
     """
 
@@ -4511,9 +4489,8 @@ class RgateControlCommand2:
 
 def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
     if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data))
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
     v = _from_bytes(data, "little")
-
     m = _new(RgateControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
@@ -4526,9 +4503,8 @@ def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
 
 def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
     if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data))
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
     v = _from_bytes(data, "little")
-
     return {
         "downhill_regen_enable": v & 0x1,
         "cargo_lift": (v >> 1) & 0x3,
@@ -4604,7 +4580,7 @@ class DeviceIdRaw(TypedDict, total=False):
 class DeviceId:
     """Device Id Msg — 车辆/设备 ID 信息 (§3.16).
 
-    Frame 0x18FFAF00, DLC 8, every 500 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
+    Frame 0x18FFAF00 (29-bit), DLC 8, every 500 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
 
     Attributes:
         device_type: 设备类型; range [0, 63]; values DeviceType; Device type; 2-63 reserved.
@@ -4670,9 +4646,8 @@ class DeviceId:
 
 def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
     if len(data) != 8:
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data))
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
     v = _from_bytes(data, "little")
-
     m = _new(DeviceId)  # slot stores are faster than a call of __init__
     m.device_type = _DEVICE_TYPE_6[v & 0x3F]
     m.id_frame_index = _ID_FRAME_INDEX_2[(v >> 6) & 0x3]
@@ -4682,9 +4657,8 @@ def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
 
 def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
     if len(data) != 8:
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data))
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
     v = _from_bytes(data, "little")
-
     return {
         "device_type": v & 0x3F,
         "id_frame_index": (v >> 6) & 0x3,
@@ -4741,7 +4715,7 @@ class FrontSensorDistance1Raw(TypedDict, total=False):
 class FrontSensorDistance1:
     """Front Sensor Distance Info 1 — 前超声波雷达信息 1 报文 (§3.17).
 
-    Frame 0x18FF0123, DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
+    Frame 0x18FF0123 (29-bit), DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
 
     Attributes:
         sensor_1_distance: 传感器 1 距离; unit cm; range [0, 500]; 1023 = no_obstacle (无障碍物)
@@ -4836,9 +4810,8 @@ class FrontSensorDistance1:
 
 def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
     if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data))
+        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
     v = _from_bytes(data, "little")
-
     m = _new(FrontSensorDistance1)  # slot stores are faster than a call of __init__
     m.sensor_1_distance = v & 0x3FF
     m.sensor_2_distance = (v >> 10) & 0x3FF
@@ -4852,9 +4825,8 @@ def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) 
 
 def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
     if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data))
+        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
     v = _from_bytes(data, "little")
-
     return {
         "sensor_1_distance": v & 0x3FF,
         "sensor_2_distance": (v >> 10) & 0x3FF,
@@ -4942,7 +4914,7 @@ class FrontSensorDistance2Raw(TypedDict, total=False):
 class FrontSensorDistance2:
     """Front Sensor Distance Info 2 — 前超声波雷达信息 2 报文 (§3.18).
 
-    Frame 0x18FF0223, DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
+    Frame 0x18FF0223 (29-bit), DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
 
     Attributes:
         sensor_7_distance: 传感器 7 距离; unit cm; range [0, 500]; 1023 = no_obstacle (无障碍物)
@@ -5055,9 +5027,8 @@ class FrontSensorDistance2:
 
 def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
     if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data))
+        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
     v = _from_bytes(data, "little")
-
     m = _new(FrontSensorDistance2)  # slot stores are faster than a call of __init__
     m.sensor_7_distance = v & 0x3FF
     m.sensor_8_distance = (v >> 10) & 0x3FF
@@ -5078,9 +5049,8 @@ def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) 
 
 def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
     if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data))
+        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
     v = _from_bytes(data, "little")
-
     return {
         "sensor_7_distance": v & 0x3FF,
         "sensor_8_distance": (v >> 10) & 0x3FF,
@@ -5233,7 +5203,7 @@ class RearSensorDistance1Raw(TypedDict, total=False):
 class RearSensorDistance1:
     """Rear Sensor Distance Info 1 — 后超声波雷达信息 1 报文 (§3.19).
 
-    Frame 0x18FF0323, DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
+    Frame 0x18FF0323 (29-bit), DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
 
     Attributes:
         sensor_1_distance: 传感器 1 距离; unit cm; range [0, 500]; 1023 = no_obstacle (无障碍物)
@@ -5328,9 +5298,8 @@ class RearSensorDistance1:
 
 def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
     if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data))
+        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
     v = _from_bytes(data, "little")
-
     m = _new(RearSensorDistance1)  # slot stores are faster than a call of __init__
     m.sensor_1_distance = v & 0x3FF
     m.sensor_2_distance = (v >> 10) & 0x3FF
@@ -5344,9 +5313,8 @@ def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -
 
 def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
     if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data))
+        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
     v = _from_bytes(data, "little")
-
     return {
         "sensor_1_distance": v & 0x3FF,
         "sensor_2_distance": (v >> 10) & 0x3FF,
@@ -5434,7 +5402,7 @@ class RearSensorDistance2Raw(TypedDict, total=False):
 class RearSensorDistance2:
     """Rear Sensor Distance Info 2 — 后超声波雷达信息 2 报文 (§3.20).
 
-    Frame 0x18FF0423, DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
+    Frame 0x18FF0423 (29-bit), DLC 8, every 100 ms, ALL → Wire_Car_ECU, AUTOCAR, R_GATE, RC.
 
     Attributes:
         sensor_7_distance: 传感器 7 距离; unit cm; range [0, 500]; 1023 = no_obstacle (无障碍物)
@@ -5547,9 +5515,8 @@ class RearSensorDistance2:
 
 def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
     if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data))
+        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
     v = _from_bytes(data, "little")
-
     m = _new(RearSensorDistance2)  # slot stores are faster than a call of __init__
     m.sensor_7_distance = v & 0x3FF
     m.sensor_8_distance = (v >> 10) & 0x3FF
@@ -5570,9 +5537,8 @@ def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -
 
 def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
     if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data))
+        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
     v = _from_bytes(data, "little")
-
     return {
         "sensor_7_distance": v & 0x3FF,
         "sensor_8_distance": (v >> 10) & 0x3FF,
@@ -5723,12 +5689,12 @@ class TeleEpsCommandRaw(TypedDict, total=False):
 class TeleEpsCommand:
     """TeleControl EPS Command — 遥控控制器 EPS 命令 (§3.21).
 
-    Frame 0x1801B0D0, DLC 8, every 50 ms, RC → Wire_Car_ECU.
+    Frame 0x1801B0D0 (29-bit), DLC 8, every 50 ms, RC → Wire_Car_ECU.
 
     Attributes:
         eps_ctrl_mode: EPS 控制模式; range [0, 255]; values EpsModeCmd
         counter: 心跳值; range [0, 255]; rolling counter
-        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2 + 0; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
+        max_angular_speed: 最大角速度; unit deg/s; range [0, 512]; physical = raw × 2; 0 = no_limit (不限制角速度); Maximum steering angular speed; 0 means no limit.
         steering_angle_cmd: 方向盘角度指令; unit deg; range [-1080, 1080]; physical = raw × 0.1 - 1080; Steering wheel angle request; clockwise positive.
         checksum: 异或校验; range [0, 255]; XOR checksum, filled by encode
     """
@@ -5814,15 +5780,15 @@ class TeleEpsCommand:
 
 def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
     if len(data) != 8:
-        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data))
+        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
     m = _new(TeleEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -5834,15 +5800,15 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
 
 def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data))
+        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -5922,7 +5888,7 @@ class TeleSpeedCommandRaw(TypedDict, total=False):
 class TeleSpeedCommand:
     """TeleControl Speed Command — 遥控控制器车速命令 (§3.22).
 
-    Frame 0x1803B0D0, DLC 8, every 50 ms, RC → Wire_Car_ECU.
+    Frame 0x1803B0D0 (29-bit), DLC 8, every 50 ms, RC → Wire_Car_ECU.
 
     Attributes:
         throttle_brake_cmd: 遥控器油门刹车指令; unit %; range [-100, 100]; physical = raw × 0.2 - 100; Throttle (positive) or brake (negative) request, outside body-work operation.
@@ -6015,15 +5981,15 @@ class TeleSpeedCommand:
 
 def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
     if len(data) != 8:
-        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data))
+        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
     m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
     m.throttle_brake_cmd = (v & 0x3FF) * 0.2 - 100.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -6036,15 +6002,15 @@ def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
 
 def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
     if len(data) != 8:
-        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data))
+        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v ^ v >> 32  # every byte, the checksum included, XORs to 0
+        c = v & 0xFFFFFFFFFFFFFF
+        c ^= c >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if c & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF)
-
+        if (c & 0xFF) != (v >> 56) & 0xFF:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
     return {
         "throttle_brake_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -6145,7 +6111,7 @@ class TeleControlCommand1Raw(TypedDict, total=False):
 class TeleControlCommand1:
     """TeleControl Command 1 — 遥控车辆控制命令 1 (§3.23).
 
-    Frame 0x1805B0D0, DLC 8, every 50 ms, RC → Wire_Car_ECU.
+    Frame 0x1805B0D0 (29-bit), DLC 8, every 50 ms, RC → Wire_Car_ECU.
 
     Attributes:
         drive_mode_cmd: 自遥控控制模式; range [0, 2]; values DriveModeCmdTele
@@ -6288,9 +6254,8 @@ class TeleControlCommand1:
 
 def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
     if len(data) != 8:
-        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data))
+        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
     v = _from_bytes(data, "little")
-
     m = _new(TeleControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_TELE_2[v & 0x3]
     m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
@@ -6322,9 +6287,8 @@ def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
 
 def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1Raw:
     if len(data) != 8:
-        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data))
+        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
     v = _from_bytes(data, "little")
-
     return {
         "drive_mode_cmd": v & 0x3,
         "door_cmd": (v >> 2) & 0x3,
@@ -6567,14 +6531,14 @@ class TeleControlCommand2Raw(TypedDict, total=False):
 class TeleControlCommand2:
     """TeleControl Command 2 — 遥控车辆控制命令 2 (§3.24).
 
-    Frame 0x1807B0D0, DLC 8, every 100 ms, RC → Wire_Car_ECU.
+    Frame 0x1807B0D0 (29-bit), DLC 8, every 100 ms, RC → Wire_Car_ECU.
 
     Attributes:
         downhill_regen_enable: 下坡制动回收使能; range [0, 1]; values DownhillRegenEnable
         cargo_lift: 货箱上装; range [0, 3]; values CargoLift
         cargo_lift_speed: 货箱上装速度; range [0, 10]; Lift/lower motor speed level; 0 stationary, 10 fastest.
         pto_enable: 取力使能; range [0, 1]; values PtoEnable
-        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5 + 0; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
+        downhill_regen_speed: 下坡制动回收速度; unit km/h; range [0, 125]; physical = raw × 0.5; 0 = default_speed (默认车速); Downhill regenerative braking target speed; raw 0 keeps the default.
         counter: 心跳; range [0, 255]; rolling counter
     """
 
@@ -6654,9 +6618,8 @@ class TeleControlCommand2:
 
 def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
     if len(data) != 8:
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data))
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
     v = _from_bytes(data, "little")
-
     m = _new(TeleControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
@@ -6669,9 +6632,8 @@ def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
 
 def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
     if len(data) != 8:
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data))
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
     v = _from_bytes(data, "little")
-
     return {
         "downhill_regen_enable": v & 0x1,
         "cargo_lift": (v >> 1) & 0x3,
@@ -6762,6 +6724,7 @@ Message: TypeAlias = (
     | TeleControlCommand1
     | TeleControlCommand2
 )
+
 MESSAGES: tuple[type[Message], ...] = (
     AutocarEpsCommand,
     EpsState,

@@ -5,6 +5,7 @@ language's syntax rules live in one place and each has a test."""
 from __future__ import annotations
 
 import json
+import re
 from fractions import Fraction
 
 from canspec.ir.encoding import decimal_text
@@ -103,6 +104,23 @@ def py_string(text: str) -> str:
     return json.dumps(text, ensure_ascii=False)
 
 
+def _one_line(text: str, control: str) -> str:
+    text = " ".join(text.split())  # newlines (and every other whitespace run) as one space
+    return re.sub(r"[\x00-\x08\x0e-\x1f\x7f]", lambda m: control.format(ord(m.group())), text)
+
+
+def py_doc(text: str) -> str:
+    """Text for one line of a Python docstring: backslashes doubled and a quote before a quote (or
+    at the end) escaped, so the docstring reads back as the text and never ends early; other control
+    characters as escapes; whitespace runs, newlines included, as one space."""
+    return re.sub(r'"(?="|$)', '\\\\"', _one_line(text.replace("\\", "\\\\"), "\\x{:02x}"))
+
+
+def py_comment(text: str) -> str:
+    """Text for a Python `#` comment: one line; other control characters shown as `\\xNN`."""
+    return _one_line(text, "\\x{:02x}")
+
+
 ts_string = py_string
 toml_string = py_string
 
@@ -161,6 +179,8 @@ FILTERS = {
     "c_string": c_string,
     "rust_string": rust_string,
     "py_string": py_string,
+    "py_doc": py_doc,
+    "py_comment": py_comment,
     "toml_string": toml_string,
     "dbc_string": dbc_string,
 }

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
+from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
@@ -187,6 +188,26 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                 yield warning(
                     f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} can encode [{_num(ends[0])}, {_num(ends[1])}]",
                     sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
+
+
+@rule
+def physical_doubles(can: ResolvedCan) -> Iterator[Problem]:
+    """Every physical value a field may carry is a double: each target computes them in doubles."""
+    for msg in can.messages:
+        for sig in _signals(msg):
+            if not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
+                continue
+            factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
+            rng = sig.get("range")
+            documented = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None and all(_finite(v) for v in rng) else None
+            raw_min, raw_max = raw_range(sig["len"], sig["signed"], factor, offset, documented)
+            for raw, where in ((raw_min, "factor"), (raw_max, "factor"), *((r, "special") for r in sig.get("special", {}))):
+                physical = raw * factor + offset
+                if raw_min <= raw_max and not _finite(physical):
+                    about = format(Decimal(physical.numerator) / Decimal(physical.denominator), ".4g")
+                    yield error(f"signal {sig['name']!r}: raw {raw} is the physical value {about}, beyond the range of a double",
+                                sig.loc_of(where), "give the signal a documented `range`, or a smaller factor or offset", "physical-range")
+                    break
 
 
 def _no_raw_in(lo: Fraction, hi: Fraction, factor: Fraction, offset: Fraction, length: int, signed: bool) -> bool:

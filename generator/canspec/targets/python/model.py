@@ -1,34 +1,55 @@
-"""The Python target's view of the IR: every name, literal, shift, mask and bound the
-generated package needs, computed here so the templates only place text.
-
-Decode reads the whole frame as one little-endian integer `v` (Intel signals are then a
-shift and a mask); encode ORs the raw values back into one integer. Python owns the
-literal syntax: floats as their shortest repr (the nearest double of the exact decimal).
-"""
+"""The Python target's view of the IR: every name, literal, text and statement the generated
+package needs, so the templates only place text. Signals are in `fields.py`, the statements
+of encode/decode in `code.py`, identifiers in `naming.py`."""
 
 from __future__ import annotations
 
-import keyword
+import textwrap
 from dataclasses import dataclass
-from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimal_text, to_raw_runtime
-from canspec.ir.names import pascal, py_ident, snake, upper_snake
-from canspec.render.literals import double_repr
+from canspec.ir.names import pascal, snake
+from canspec.render.literals import py_doc
+from canspec.targets.python import code
+from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, label_comment
+from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
 MAX_TUPLE_LOOKUP_BITS = 8
-# Method names of every message class: a signal of that name gets a trailing underscore.
-RESERVED_ATTRS = frozenset({"encode", "decode", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter"})
+# Names the package defines itself (its modules, __init__ constants, errors, messages.py's API and
+# imports): message and enum classes never take one.
+PACKAGE_NAMES = frozenset(
+    {
+        "annotations", "enums", "errors", "j1939", "messages", "multiframe", "bus", "PROTOCOL", "VERSION", "DOCUMENT", "BITRATE", "SPEC_SHA256",
+        "Error", "DecodeError", "EncodeError", "ChecksumError", "FrameLengthError", "RangeError", "RawRangeError", "UnknownFrameError",
+        "UnknownSignalError", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode", "encode_raw", "Callable",
+        "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum", "_new", "_from_bytes",
+        "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
+    }
+)
+# The package's modules, as its docstring introduces them.
+MODULE_DOCS = {
+    "messages": "dataclasses, encode/decode",
+    "enums": "value tables",
+    "errors": "what decode and encode raise",
+    "j1939": "29-bit ID helpers",
+    "multiframe": "texts spread over several frames, e.g. the VIN",
+    "bus": "python-can integration; needs python-can",
+}
+# Constants of every message class: special-value constants never take one.
+CLASS_CONSTANTS = frozenset(
+    {
+        "NAME", "FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "PDU_FORMAT", "PDU_SPECIFIC", "SOURCE_ADDRESS",
+        "DESTINATION_ADDRESS", "FINGERPRINT", "SIGNALS", "COUNTER_MODULO",
+    }
+)
 
 
 @dataclass(frozen=True)
 class PyEnumMember:
     name: str  # UPPER_SNAKE
     raw: int
-    label_zh: str
-    label: str
+    comment: str
 
 
 @dataclass(frozen=True)
@@ -39,81 +60,13 @@ class PyEnum:
 
 
 @dataclass(frozen=True)
-class PyLookup:
-    """Raw → enum member (or the plain int where the table has no entry), for decode."""
-
-    var: str
-    enum: str
-    bits: int
-    is_tuple: bool  # a tuple indexed by raw (every raw of the field); else a dict of the members
-
-
-@dataclass(frozen=True)
-class PySpecial:
-    const: str  # class constant name, e.g. SENSOR_1_DISTANCE_NO_OBSTACLE
-    raw: int
-    physical: str  # literal in the attribute's type
-    label_zh: str
-    label: str
-
-
-@dataclass(frozen=True)
-class PySignal:
-    name: str  # the spec's signal name (keys of raw dicts, vectors)
-    attr: str  # attribute name
-    zh: str
-    doc: str  # one docstring line: Chinese name, unit, range, encoding
-    role: str
-    py_type: str  # "float", "int", "Gear | int"
-    kind: str  # "enum" | "int" | "float"
-    enum: str | None
-    lookup: str | None
-    default: str  # literal of the default attribute value
-    raw_expr: str  # raw value from the frame integer `v` (sign-extended)
-    phys_expr: str  # physical value from the frame integer `v`
-    shift: int
-    length: int
-    mask: str  # hex literal of (1 << length) - 1
-    signed: bool
-    # encode
-    direct: bool  # factor 1 and an integer offset: raw = x - offset, exact on ints
-    offset_lit: str
-    offset_float: str  # the offset as a float literal (slow path)
-    offset_int: str  # the integer offset of a direct signal, else 0
-    factor_lit: str
-    q_expr: str  # (x - offset) / factor as the runtime computes it, on `var`
-    var: str  # encode: local holding the attribute
-    raw_var: str  # encode: local holding the raw value
-    lo_lit: str  # the physical range check, as literals comparable with the attribute
-    hi_lit: str
-    q_nonneg: bool  # q >= 0 for every value passing the range check: no sign branch
-    raw_check: bool  # a value passing the range check may still round outside raw_min..raw_max
-    raw_min: int
-    raw_max: int
-    raw_type_min: int
-    raw_type_max: int
-    specials: tuple[PySpecial, ...]
-    range_text: str  # the allowed range as shown in errors, e.g. "[-1080, 1080] deg"
-    descriptor: str  # module-level name of the slow-path descriptor
-
-
-@dataclass(frozen=True)
-class PyChecksum:
-    attr: str
-    shift: int  # bit position of the checksum byte in the frame integer
-    cover_mask: str  # hex literal: bytes the XOR covers
-    folds: tuple[int, ...]  # shifts that fold the covered bytes into one (XOR)
-    whole_frame: bool  # covers + checksum byte = every byte: a frame is right when all its bytes XOR to 0
-
-
-@dataclass(frozen=True)
 class PyMultiFrame:
     index_attr: str
     payload_attr: str
     frames: int
     bytes_per_frame: int
     text_length: int
-    padding: int
+    padding_hex: str
     encoding: str
     func_split: str
     func_join: str
@@ -128,19 +81,17 @@ class PyMessage:
     name: str
     class_name: str
     raw_class: str  # TypedDict of raw values
-    title: str
-    zh: str
+    heading: str  # first docstring line
+    frame_line: str  # second docstring line: ID, DLC, timing, sender → receivers
     desc: str
-    section: str
-    frame_id: int
+    id_lit: str  # the frame ID as the protocol writes it: 0x1801B0A0, 0x123
+    is_extended: bool
     dlc: int
-    cycle_ms: int
-    sender: str
-    receivers: tuple[str, ...]
-    j1939: ir.J1939Id
-    fingerprint: int
+    cycle_ms: int | None  # None: event-driven
+    j1939: ir.J1939Id | None
+    fingerprint: str
     signals: tuple[PySignal, ...]  # data signals (reserved bits are not in the API)
-    checksum: PyChecksum | None
+    checksum: code.PyChecksum | None
     counter: PySignal | None
     counter_modulo: int
     multiframe: PyMultiFrame | None
@@ -149,239 +100,141 @@ class PyMessage:
     pack_func: str
     unpack_func: str
     names_var: str  # frozenset of the raw keys
-    raw_functional: bool  # raw keys that are not identifiers: functional TypedDict syntax
-    frame_bits: int
+    raw_functional: bool  # a raw key is a keyword: the TypedDict needs the functional syntax
+    frame_checks: tuple[str, ...]  # statements (see code.py)
+    encode_lines: tuple[str, ...]
+    pack_lines: tuple[str, ...]
+    checksum_ok_lines: tuple[str, ...]
 
 
 @dataclass(frozen=True)
 class PyPackage:
     package: str  # import name
+    protocol: str
     dist_name: str
     version: str
-    title: str
-    title_zh: str
+    title: str  # "Title (中文标题)", docstring-safe
+    description: str  # the distribution's one-line description
     document: str
     bitrate: int
+    is_j1939: bool
     enums: tuple[PyEnum, ...]
+    used_enums: tuple[str, ...]  # enum classes messages.py names (fields that decode to them)
     lookups: tuple[PyLookup, ...]
     messages: tuple[PyMessage, ...]
-    example: PyMessage
+    example: PyMessage | None
+    modules: tuple[str, ...]  # submodules __init__ imports (all but `bus`, which needs python-can)
+    modules_doc: tuple[str, ...]  # the package docstring's lines about its modules
+    has_signals: bool  # some message has a data signal (slow-path descriptors)
+    has_values: bool  # some message has a signal encode takes from the caller (not only a checksum)
+    has_checksums: bool
+    has_multiframe: bool
+    tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
+    dict_lookups: bool  # some through a dict (`_member`)
 
 
-def num_lit(value: Fraction, as_int: bool) -> str:
-    if as_int:
-        if value.denominator != 1:
-            raise ValueError(f"{value} is not an integer")
-        return str(value.numerator)
-    return double_repr(value)
+def titled(title: str, zh: str) -> str:
+    return f"{title} ({zh})" if zh else title
 
 
-def _check_intel(msg: ir.Message, sig: ir.Signal) -> None:
-    for seg in sig.segments:
-        if seg.byte * 8 + seg.byte_shift != sig.start + seg.value_shift:
-            raise ValueError(f"{msg.name}.{sig.name}: only Intel (little-endian) signals are supported by the python target")
+def _frame_line(msg: ir.Message) -> str:
+    timing = f"every {msg.cycle_ms} ms" if msg.cycle_ms is not None else "event-driven"
+    route = f"{msg.sender} → {', '.join(msg.receivers)}" if msg.receivers else f"sent by {msg.sender}"
+    return py_doc(f"Frame {msg.id_text} ({'29' if msg.is_extended else '11'}-bit), DLC {msg.dlc}, {timing}, {route}.")
 
 
-def _raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from the frame integer `v`: shift, mask, sign-extend (no outer parentheses)."""
-    expr = "v" if sig.start == 0 else f"v >> {sig.start}"
-    if sig.start + sig.length < frame_bits:
-        expr = f"{_paren(expr)} & 0x{sig.mask:X}"
-    if sig.signed:
-        sign = 1 << (sig.length - 1)
-        expr = f"({expr} ^ 0x{sign:X}) - 0x{sign:X}"
-    return expr
+def _heading(msg: ir.Message) -> str:
+    text = f"{msg.title} — {msg.zh}" if msg.zh else msg.title
+    return py_doc(f"{text} (§{msg.section})." if msg.section else f"{text}.")
 
 
-def _paren(expr: str) -> str:
-    return expr if expr.isidentifier() else f"({expr})"
+class _Builder:
+    """Builds the messages in document order, handing out names from the package's scopes."""
 
-
-def _phys_expr(sig: ir.Signal, raw: str, kind: str, lookup: str | None) -> str:
-    if kind == "enum":
-        return f"{lookup}[{raw}]"
-    as_int = kind == "int"
-    expr = raw
-    if sig.factor != 1:
-        expr = f"{_paren(expr)} * {num_lit(sig.factor, as_int)}"
-    if sig.offset != 0:
-        expr = _paren(expr) if sig.factor == 1 else expr
-        expr = f"{expr} + {num_lit(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {num_lit(-sig.offset, as_int)}"
-    return expr
-
-
-def _q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
-    """`(x - offset) / factor` in the rule's order; `x - off` stays exact on ints when direct.
-    Subtracting a negative offset is written as adding its magnitude (the same IEEE result)."""
-    off = sig.offset
-    as_int = direct
-    if off == 0:
-        expr = x
-    elif off > 0:
-        expr = f"{x} - {num_lit(off, as_int)}"
-    else:
-        expr = f"{x} + {num_lit(-off, as_int)}"
-    if not direct and sig.factor != 1:
-        expr = f"({expr}) / {double_repr(sig.factor)}" if off != 0 else f"{expr} / {double_repr(sig.factor)}"
-    return expr
-
-
-def _raw_check(sig: ir.Signal, direct: bool) -> bool:
-    """Whether a value inside the (double) range check can round to a raw outside raw_min..raw_max.
-    Rounding is monotonic, so the two ends of the range decide."""
-    if direct:
-        return True
-    ends = (to_raw_runtime(float(sig.accept_min), float(sig.factor), float(sig.offset)), to_raw_runtime(float(sig.accept_max), float(sig.factor), float(sig.offset)))
-    return not all(sig.raw_min <= raw <= sig.raw_max for raw in ends)
-
-
-def _range_text(sig: ir.Signal) -> str:
-    text = f"[{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]"
-    if sig.unit:
-        text += f" {sig.unit}"
-    if sig.specials:
-        text += " or " + ", ".join(f"{decimal_text(s.physical)} ({s.name})" for s in sig.specials)
-    return text
-
-
-def _doc(sig: ir.Signal, kind: str, enum: str | None) -> str:
-    parts = [sig.zh] if sig.zh else []
-    if sig.unit:
-        parts.append(f"unit {sig.unit}")
-    parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
-    if sig.is_scaled:
-        sign = "-" if sig.offset < 0 else "+"
-        parts.append(f"physical = raw × {decimal_text(sig.factor)} {sign} {decimal_text(abs(sig.offset))}")
-    if enum is not None:
-        parts.append(f"values {enum}")
-    for s in sig.specials:
-        parts.append(f"{decimal_text(s.physical)} = {s.name} ({s.label_zh})")
-    if sig.role in ("counter", "checksum"):
-        parts.append({"counter": "rolling counter", "checksum": "XOR checksum, filled by encode"}[sig.role])
-    if sig.desc:
-        parts.append(sig.desc)
-    return "; ".join(parts)
-
-
-def _signal(msg: ir.Message, sig: ir.Signal, index: int, frame_bits: int, enum_names: dict[str, str], lookups: dict[tuple[str, int], PyLookup]) -> PySignal:
-    _check_intel(msg, sig)
-    attr = py_ident(snake(sig.name))
-    if attr in RESERVED_ATTRS:
-        attr = f"{attr}_"
-    enum = enum_names[sig.value_table.name] if sig.value_table is not None and sig.is_identity else None
-    if enum is not None:
-        kind = "enum"
-    elif sig.is_integer:
-        kind = "int"
-    else:
-        kind = "float"
-    as_int = kind != "float"
-    lookup = None
-    if enum is not None:
-        assert sig.value_table is not None
-        key = (sig.value_table.name, sig.length)
-        if key not in lookups:
-            is_tuple = not sig.signed and sig.length <= MAX_TUPLE_LOOKUP_BITS
-            lookups[key] = PyLookup(f"_{upper_snake(sig.value_table.name)}_{sig.length}", enum, sig.length, is_tuple)
-        lookup = lookups[key].var
-    raw = _raw_expr(sig, frame_bits)
-    phys = _phys_expr(sig, raw, kind, lookup)
-    if enum is not None and sig.value_table is not None and not lookups[(sig.value_table.name, sig.length)].is_tuple:
-        phys = f"_member({lookup}, {raw})"
-    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max
-    default_raw = _default_raw(sig)
-    default_phys = sig.physical(default_raw)
-    if enum is not None:
-        assert sig.value_table is not None
-        entry = sig.value_table.by_raw(default_raw)
-        default = f"{enum}.{upper_snake(entry.name)}" if entry is not None else str(default_raw)
-    else:
-        default = num_lit(default_phys, as_int)
-    lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
-    lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else double_repr(lo)
-    hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else double_repr(hi)
-    q_nonneg = sig.factor > 0 and float(lo) - float(sig.offset) >= 0
-    specials = tuple(
-        PySpecial(f"{upper_snake(sig.name)}_{upper_snake(s.name)}", s.raw, num_lit(s.physical, as_int), s.label_zh, s.label) for s in sig.specials
-    )
-    py_type = {"enum": f"{enum} | int", "int": "int", "float": "float"}[kind]
-    return PySignal(
-        name=sig.name, attr=attr, zh=sig.zh, doc=_doc(sig, kind, enum), role=sig.role, py_type=py_type, kind=kind, enum=enum,
-        lookup=lookup, default=default, raw_expr=raw, phys_expr=phys, shift=sig.start, length=sig.length, mask=f"0x{sig.mask:X}",
-        signed=sig.signed, direct=direct, offset_lit=num_lit(sig.offset, sig.offset.denominator == 1) if direct else double_repr(sig.offset),
-        offset_float=double_repr(sig.offset), offset_int=str(sig.offset.numerator) if direct else "0", factor_lit=double_repr(sig.factor), lo_lit=lo_lit, hi_lit=hi_lit, q_nonneg=q_nonneg, raw_min=sig.raw_min, raw_max=sig.raw_max,
-        raw_type_min=sig.raw_type_min, raw_type_max=sig.raw_type_max, specials=specials, range_text=_range_text(sig),
-        q_expr=_q_expr(sig, direct, f"m.{attr}" if direct else f"x{index}"), var=f"x{index}", raw_check=_raw_check(sig, direct), raw_var=f"r{index}", descriptor=f"_{upper_snake(msg.name)}__{upper_snake(sig.name)}",
-    )
-
-
-def _default_raw(sig: ir.Signal) -> int:
-    """The raw value of a new message's attribute: physical 0 when allowed, else raw 0, else the nearest allowed raw."""
-    if sig.check_min <= 0 <= sig.check_max and (-sig.offset / sig.factor).denominator == 1:
-        raw = int(-sig.offset / sig.factor)
-        if sig.raw_min <= raw <= sig.raw_max:
-            return raw
-    return min(max(0, sig.raw_min), sig.raw_max)
-
-
-def _folds(nbytes: int) -> tuple[int, ...]:
-    """Shifts that XOR-fold `nbytes` bytes of an integer into its lowest byte."""
-    out = []
-    span = 1
-    while span < nbytes:
-        span *= 2
-    while span > 1:
-        span //= 2
-        out.append(span * 8)
-    return tuple(out)
-
-
-def _message(msg: ir.Message, enum_names: dict[str, str], lookups: dict[tuple[str, int], PyLookup]) -> PyMessage:
-    frame_bits = msg.dlc * 8
-    signals = tuple(_signal(msg, s, i, frame_bits, enum_names, lookups) for i, s in enumerate(msg.data_signals))
-    by_name = {s.name: s for s in signals}
-    checksum = None
-    if msg.checksum is not None:
-        if msg.checksum.algorithm != "xor":
-            raise ValueError(f"{msg.name}: checksum algorithm {msg.checksum.algorithm!r} is not supported by the python target")
-        cover = sum(0xFF << (8 * b) for b in msg.checksum.covers)
-        whole = sorted((*msg.checksum.covers, msg.checksum.byte)) == list(range(msg.dlc))
-        checksum = PyChecksum(by_name[msg.checksum.signal].attr, msg.checksum.byte * 8, f"0x{cover:X}", _folds(msg.dlc), whole)
-    counter = by_name[msg.counter.signal] if msg.counter is not None else None
-    mf = None
-    if msg.multiframe is not None:
-        m = msg.multiframe
-        base = snake(msg.name)
-        mf = PyMultiFrame(
-            by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, m.padding, m.encoding,
-            f"split_{base}_text", f"join_{base}_text", f"{pascal(msg.name)}TextAssembler", m.frames * m.bytes_per_frame, m.frames - 1,
-            repr(bytes([m.padding])),
+    def __init__(self, can: ir.CanProtocol) -> None:
+        self.module = Namespace(PACKAGE_NAMES | BUILTINS)
+        self.classes = {m.name: self.module.take(pascal(m.name)) for m in can.messages}
+        self.enum_names = {t.name: self.module.take(pascal(t.name)) for t in can.value_tables}
+        self.enums = tuple(
+            PyEnum(self.enum_names[t.name], t.name, tuple(PyEnumMember(e.name.upper(), e.raw, label_comment(e.label, e.label_zh)) for e in t.entries))
+            for t in can.value_tables
         )
-    base = snake(msg.name)
-    return PyMessage(
-        name=msg.name, class_name=pascal(msg.name), raw_class=f"{pascal(msg.name)}Raw", title=msg.title, zh=msg.zh, desc=msg.desc,
-        section=msg.section, frame_id=msg.frame_id, dlc=msg.dlc, cycle_ms=msg.cycle_ms, sender=msg.sender, receivers=msg.receivers,
-        j1939=msg.j1939, fingerprint=msg.fingerprint, signals=signals, checksum=checksum, counter=counter,
-        counter_modulo=msg.counter.modulo if msg.counter is not None else 0, multiframe=mf,
-        decode_func=f"_decode_{base}", encode_func=f"_encode_{base}", pack_func=f"_pack_{base}", unpack_func=f"_unpack_{base}",
-        names_var=f"_{upper_snake(msg.name)}_SIGNALS", raw_functional=any(not s.name.isidentifier() or keyword.iskeyword(s.name) for s in signals),
-        frame_bits=frame_bits,
-    )
+        self.members = {e.table: {m.raw: m.name for m in e.members} for e in self.enums}
+        self.lookups: dict[tuple[str, int], PyLookup] = {}
+
+    def lookup(self, sig: ir.Signal) -> PyLookup | None:
+        if sig.value_table is None or not sig.is_identity:
+            return None
+        key = (sig.value_table.name, sig.length)
+        if key not in self.lookups:
+            is_tuple = not sig.signed and sig.length <= MAX_TUPLE_LOOKUP_BITS
+            var = self.module.take(f"_{sig.value_table.name}_{sig.length}".upper())
+            self.lookups[key] = PyLookup(var, self.enum_names[sig.value_table.name], sig.length, is_tuple)
+        return self.lookups[key]
+
+    def signals(self, msg: ir.Message) -> tuple[PySignal, ...]:
+        attrs, consts = Namespace(ATTRIBUTE_RESERVED), Namespace(CLASS_CONSTANTS)
+        out = []
+        for i, sig in enumerate(msg.data_signals):
+            lookup = self.lookup(sig)
+            enum = lookup.enum if lookup is not None else None
+            members = self.members[sig.value_table.name] if lookup is not None and sig.value_table is not None else {}
+            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup)
+            out.append(build_signal(sig, ctx))
+        return tuple(out)
+
+    def multiframe(self, msg: ir.Message, by_name: dict[str, PySignal]) -> PyMultiFrame | None:
+        m = msg.multiframe
+        if m is None:
+            return None
+        split, join = self.module.take(f"split_{msg.name}_text"), self.module.take(f"join_{msg.name}_text")
+        return PyMultiFrame(
+            by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, f"0x{m.padding:02X}", m.encoding,
+            split, join, self.module.take(f"{self.classes[msg.name]}TextAssembler"), m.frames * m.bytes_per_frame, m.frames - 1, repr(bytes([m.padding])),
+        )
+
+    def message(self, msg: ir.Message) -> PyMessage:
+        signals = self.signals(msg)
+        by_name = {s.name: s for s in signals}
+        checksum = None
+        if msg.checksum is not None:
+            cover = msg.checksum
+            checksum = code.PyChecksum(cover.byte * 8, f"0x{cover.cover_mask:X}", code.xor_folds(max(cover.covers) + 1))
+        frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
+        cls = self.classes[msg.name]
+        names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
+        funcs = {kind: self.module.take(f"_{kind}_{msg.name}") for kind in ("decode", "encode", "unpack")}
+        return PyMessage(
+            name=msg.name, class_name=cls, raw_class=self.module.take(f"{cls}Raw"), heading=_heading(msg), frame_line=_frame_line(msg),
+            desc=py_doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
+            fingerprint=f"0x{msg.fingerprint:08X}", signals=signals, checksum=checksum,
+            counter=by_name[msg.counter.signal] if msg.counter is not None else None, counter_modulo=msg.counter.modulo if msg.counter is not None else 0,
+            multiframe=self.multiframe(msg, by_name), decode_func=funcs["decode"], encode_func=funcs["encode"], pack_func=pack_func,
+            unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
+            frame_checks=code.frame_checks(frame), encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
+            checksum_ok_lines=code.checksum_ok(frame),
+        )
+
+
+def _modules_doc(present: dict[str, bool]) -> tuple[str, ...]:
+    return tuple(textwrap.wrap("Modules: " + ", ".join(f"`{m}` ({doc})" for m, doc in MODULE_DOCS.items() if present[m]) + ".", 100))
 
 
 def build_package(spec: ir.Spec) -> PyPackage:
     can = spec.can
     assert can is not None
-    enum_names = {t.name: pascal(t.name) for t in can.value_tables}
-    enums = tuple(
-        PyEnum(enum_names[t.name], t.name, tuple(PyEnumMember(upper_snake(e.name), e.raw, e.label_zh, e.label) for e in t.entries))
-        for t in can.value_tables
-    )
-    lookups: dict[tuple[str, int], PyLookup] = {}
-    messages = tuple(_message(m, enum_names, lookups) for m in can.messages)
-    example = next((m for m in messages if m.checksum is not None and m.counter is not None), messages[0])
+    b = _Builder(can)
+    messages = tuple(b.message(m) for m in can.messages)
+    example = next((m for m in messages if m.checksum is not None and m.counter is not None), messages[0] if messages else None)
+    lookups = tuple(sorted(b.lookups.values(), key=lambda lk: lk.var))
+    present = dict.fromkeys(MODULE_DOCS, True) | {"enums": bool(can.value_tables), "j1939": can.bus.is_j1939, "multiframe": can.has_multiframe}
+    title = titled(can.title, can.title_zh)
     return PyPackage(
-        package=py_ident(snake(can.name)), dist_name=snake(can.name).replace("_", "-"), version=can.version, title=can.title,
-        title_zh=can.title_zh, document=can.document, bitrate=can.bus.bitrate, enums=enums,
-        lookups=tuple(sorted(lookups.values(), key=lambda lk: lk.var)), messages=messages, example=example,
+        package=package_name(can.name), protocol=can.name, dist_name=snake(can.name).replace("_", "-"), version=can.version, title=py_doc(title),
+        description=f"{title} V{can.version}: generated CAN bindings", document=can.document, bitrate=can.bus.bitrate, is_j1939=can.bus.is_j1939,
+        enums=b.enums, used_enums=tuple(sorted({lk.enum for lk in lookups})), lookups=lookups, messages=messages, example=example,
+        modules=tuple(sorted(m for m in MODULE_DOCS if m != "bus" and present[m])), modules_doc=_modules_doc(present),
+        has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
+        has_checksums=can.has_checksums, has_multiframe=can.has_multiframe,
+        tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups),
     )

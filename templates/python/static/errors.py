@@ -1,6 +1,4 @@
-{% import "python/_macros.j2" as m %}
-{{ m.header(header) }}
-"""Errors raised by {{ pkg.package }}: every one names the message, and where it applies the
+"""Errors raised by this package: every one names the message, and where it applies the
 signal, the value and what was expected."""
 
 from __future__ import annotations
@@ -15,20 +13,25 @@ class DecodeError(Error, ValueError):
 
 
 class UnknownFrameError(DecodeError):
-    """The frame ID belongs to no message of the protocol."""
+    """The frame ID belongs to no message of the protocol (or a 29-bit ID to an 11-bit message, or
+    the other way round: `is_extended` is the frame's flag when it is known)."""
 
-    def __init__(self, frame_id: int) -> None:
-        super().__init__(f"unknown frame ID 0x{frame_id:08X}: no message of {{ pkg.package }} has this ID")
+    def __init__(self, frame_id: int, is_extended: bool | None = None) -> None:
+        digits = 8 if is_extended or frame_id > 0x7FF else 3
+        kind = "" if is_extended is None else f" ({'29' if is_extended else '11'}-bit)"
+        super().__init__(f"unknown frame ID 0x{frame_id:0{digits}X}{kind}: no message of {__package__} has this ID")
         self.frame_id = frame_id
+        self.is_extended = is_extended
 
 
 class FrameLengthError(DecodeError):
     """The frame has a different number of data bytes than the message's DLC."""
 
-    def __init__(self, message: str, frame_id: int, expected: int, actual: int) -> None:
-        super().__init__(f"{message} (0x{frame_id:08X}): frame has {actual} data bytes, expected {expected}")
+    def __init__(self, message: str, frame_id: int, expected: int, actual: int, *, id_text: str) -> None:
+        super().__init__(f"{message} ({id_text}): frame has {actual} data bytes, expected {expected}")
         self.message = message
         self.frame_id = frame_id
+        self.id_text = id_text
         self.expected = expected
         self.actual = actual
 
@@ -36,10 +39,11 @@ class FrameLengthError(DecodeError):
 class ChecksumError(DecodeError):
     """The frame's checksum byte does not match the checksum of its other bytes."""
 
-    def __init__(self, message: str, frame_id: int, expected: int, actual: int) -> None:
-        super().__init__(f"{message} (0x{frame_id:08X}): checksum mismatch: frame carries 0x{actual:02X}, bytes give 0x{expected:02X}")
+    def __init__(self, message: str, frame_id: int, expected: int, actual: int, *, id_text: str) -> None:
+        super().__init__(f"{message} ({id_text}): checksum mismatch: frame carries 0x{actual:02X}, bytes give 0x{expected:02X}")
         self.message = message
         self.frame_id = frame_id
+        self.id_text = id_text
         self.expected = expected
         self.actual = actual
 

@@ -1,5 +1,3 @@
-{% import "python/_macros.j2" as m %}
-{{ m.header(header) }}
 """The slow paths of encode: the full physical → raw rule with its errors. The generated
 per-message code handles in-range values inline and calls these only otherwise."""
 
@@ -10,11 +8,8 @@ from collections.abc import Mapping
 from enum import IntEnum
 from typing import NamedTuple, TypeVar
 
+from ._rules import EXACT_LIMIT, TIE_EPSILON
 from .errors import RangeError, RawRangeError
-
-# physical → raw: q = (x - offset) / factor; raw = floor(q + 0.5 + TIE_EPSILON) for q >= 0,
-# -floor(-q + 0.5 + TIE_EPSILON) otherwise (round half away from zero on decimal ties).
-TIE_EPSILON = {{ tie_epsilon }}
 
 E = TypeVar("E")
 M = TypeVar("M", bound=IntEnum)
@@ -56,9 +51,11 @@ def physical_to_raw(value: object, s: SignalSpec) -> int:
     else:
         raise TypeError(f"{s.message}.{s.signal}: expected a number, got {type(value).__name__} {value!r}")
     q = (x - s.offset) / s.factor
-    if not s.raw_type_min <= q <= s.raw_type_max:  # also NaN
+    if not math.isfinite(q):  # the raw checks below refuse every other value that does not fit
         raise RangeError(s.message, s.signal, value, s.allowed)
-    raw = math.floor((q + 0.5) + TIE_EPSILON) if q >= 0 else -math.floor((-q + 0.5) + TIE_EPSILON)
+    a = abs(q)
+    r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
+    raw = -r if q < 0 else r
     if raw in s.specials or (s.lo <= x <= s.hi and s.raw_min <= raw <= s.raw_max):
         return raw
     raise RangeError(s.message, s.signal, value, s.allowed)

@@ -1,5 +1,3 @@
-{% import "python/_macros.j2" as m %}
-{{ m.header(header) }}
 """J1939 29-bit identifiers (SAE J1939-21): priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8).
 PF < 240 is PDU1 (PS is the destination address), PF >= 240 is PDU2 (broadcast, PS is a
 group extension and part of the PGN)."""

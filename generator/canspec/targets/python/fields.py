@@ -1,0 +1,253 @@
+"""The Python view of one signal: its attribute, type, default, docstring line, and the
+expressions and decisions its decode and encode need (`code.py` turns them into statements).
+
+Decode reads the whole frame as one little-endian integer `v`, so an Intel signal is a shift,
+a mask and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in
+doubles; floats are written as the shortest repr of the nearest double of the exact decimal.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from canspec import ir
+from canspec.ir.encoding import decimal_text, to_raw_runtime
+from canspec.render.literals import double_repr, py_comment, py_doc, py_string
+from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
+
+# Method names of every message class: an attribute never takes one of these.
+METHODS = frozenset({"encode", "decode", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter"})
+ATTRIBUTE_RESERVED = METHODS | CLASS_SCOPE_BUILTINS
+
+
+@dataclass(frozen=True)
+class PySpecial:
+    const: str  # class constant name, e.g. SENSOR_1_DISTANCE_NO_OBSTACLE
+    raw_hex: str
+    physical: str  # literal in the attribute's type
+    comment: str
+
+
+@dataclass(frozen=True)
+class PyLookup:
+    """Raw → enum member (or the plain int where the table has no entry), for decode."""
+
+    var: str
+    enum: str
+    bits: int
+    is_tuple: bool  # a tuple indexed by raw (every raw of the field); else a dict of the members
+
+
+@dataclass(frozen=True)
+class PySignal:
+    sig: ir.Signal
+    name: str  # the spec's signal name (keys of raw dicts, vectors)
+    attr: str  # attribute name
+    doc: str  # one docstring line: Chinese name, unit, range, encoding
+    py_type: str  # "float", "int", "Gear | int"
+    const_type: str  # type of its special-value constants: "float" | "int"
+    default: str  # literal of the default attribute value
+    raw_expr: str  # raw value from the frame integer `v` (sign-extended)
+    phys_expr: str  # physical value from the frame integer `v`
+    specials: tuple[PySpecial, ...]
+    allowed: str  # string literal: the allowed range as errors show it
+    descriptor: str  # module-level name of the slow-path descriptor
+    descriptor_args: str  # its _SignalSpec(...) arguments after message and signal name
+    var: str  # encode: local holding the attribute
+    raw_var: str  # encode: local holding the raw value
+    # encode decisions
+    direct: bool  # factor 1 and an integer offset: raw = x - offset, exact on ints
+    q_expr: str  # (x - offset) / factor as the runtime computes it (on `m.attr` when direct, else on `var`)
+    lo_lit: str  # the physical range check, as literals comparable with the attribute
+    hi_lit: str
+    q_nonneg: bool  # q >= 0 for every value passing the range check: no sign branch
+    exact_branch: bool  # |q| may reach EXACT_LIMIT inside the range: the rule's 2^52 branch is needed
+    raw_check: bool  # a value passing the range check may still round outside raw_min..raw_max
+
+    @property
+    def is_checksum(self) -> bool:
+        return self.sig.role == "checksum"
+
+
+def num_lit(value: Fraction, as_int: bool) -> str:
+    if as_int:
+        if value.denominator != 1:
+            raise ValueError(f"{value} is not an integer")
+        return str(value.numerator)
+    return double_repr(value)
+
+
+def _paren(expr: str) -> str:
+    return expr if expr.isidentifier() else f"({expr})"
+
+
+def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
+    """The raw value from the frame integer `v`: shift, mask, sign-extend (no outer parentheses)."""
+    expr = "v" if sig.start == 0 else f"v >> {sig.start}"
+    if sig.start + sig.length < frame_bits:
+        expr = f"{_paren(expr)} & 0x{sig.mask:X}"
+    if sig.signed:
+        expr = f"({expr} ^ 0x{sig.sign_bit:X}) - 0x{sig.sign_bit:X}"
+    return expr
+
+
+def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
+    """physical = raw × factor + offset: integers for integer scaling, else doubles."""
+    as_int = kind == "int"
+    expr = raw
+    if sig.factor != 1:
+        expr = f"{_paren(expr)} * {num_lit(sig.factor, as_int)}"
+    if sig.offset != 0:
+        expr = _paren(expr) if sig.factor == 1 else expr
+        expr = f"{expr} + {num_lit(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {num_lit(-sig.offset, as_int)}"
+    return expr
+
+
+def q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
+    """`(x - offset) / factor` in the rule's order; `x - off` stays exact on ints when direct.
+    Subtracting a negative offset is written as adding its magnitude (the same IEEE result)."""
+    off = sig.offset
+    if off == 0:
+        expr = x
+    elif off > 0:
+        expr = f"{x} - {num_lit(off, direct)}"
+    else:
+        expr = f"{x} + {num_lit(-off, direct)}"
+    if not direct and sig.factor != 1:
+        expr = f"({expr}) / {double_repr(sig.factor)}" if off != 0 else f"{expr} / {double_repr(sig.factor)}"
+    return expr
+
+
+def raw_check(sig: ir.Signal, direct: bool) -> bool:
+    """Whether a value inside the (double) range check can round to a raw outside raw_min..raw_max.
+    Rounding is monotonic, so the two ends of the range decide."""
+    if direct:
+        return True
+    ends = (to_raw_runtime(float(x), float(sig.factor), float(sig.offset)) for x in (sig.accept_min, sig.accept_max))
+    return not all(sig.raw_min <= raw <= sig.raw_max for raw in ends)
+
+
+def exact_branch(sig: ir.Signal) -> bool:
+    """Whether a value inside the range check may give |q| >= EXACT_LIMIT (with a margin for the
+    double arithmetic): only then does the generated fast path need the rule's 2^52 branch."""
+    q_max = max(abs(sig.accept_min - sig.offset), abs(sig.accept_max - sig.offset)) / abs(sig.factor)
+    return q_max >= ir.EXACT_LIMIT * Fraction(999, 1000)
+
+
+def range_text(sig: ir.Signal) -> str:
+    """The allowed range as errors show it, e.g. "[-1080, 1080] deg or 0 (no_limit)"."""
+    text = f"[{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]"
+    if sig.unit:
+        text += f" {sig.unit}"
+    if sig.specials:
+        text += " or " + ", ".join(f"{decimal_text(s.physical)} ({s.name})" for s in sig.specials)
+    return text
+
+
+def labelled(name: str, label_zh: str) -> str:
+    """`name (中文)`, or the name alone in an English-only spec."""
+    return f"{name} ({label_zh})" if label_zh else name
+
+
+def label_comment(label: str, label_zh: str) -> str:
+    """A value's comment: `中文 (English)`, or the English label alone."""
+    return py_comment(f"{label_zh} ({label})" if label_zh else label)
+
+
+def doc_line(sig: ir.Signal, enum: str | None) -> str:
+    parts = [sig.zh] if sig.zh else []
+    if sig.unit:
+        parts.append(f"unit {sig.unit}")
+    parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
+    if sig.is_scaled:
+        formula = "raw" if sig.factor == 1 else f"raw × {decimal_text(sig.factor)}"
+        if sig.offset:
+            formula += f" {'-' if sig.offset < 0 else '+'} {decimal_text(abs(sig.offset))}"
+        parts.append(f"physical = {formula}")
+    if enum is not None:
+        parts.append(f"values {enum}")
+    parts += [f"{decimal_text(s.physical)} = {labelled(s.name, s.label_zh)}" for s in sig.specials]
+    if sig.role in ("counter", "checksum"):
+        parts.append({"counter": "rolling counter", "checksum": "XOR checksum, filled by encode"}[sig.role])
+    if sig.desc:
+        parts.append(sig.desc)
+    return py_doc("; ".join(parts))
+
+
+def default_raw(sig: ir.Signal) -> int:
+    """The raw value of a new message's attribute: physical 0 when allowed, else raw 0, else the nearest allowed raw."""
+    if sig.check_min <= 0 <= sig.check_max and (-sig.offset / sig.factor).denominator == 1:
+        raw = int(-sig.offset / sig.factor)
+        if sig.raw_min <= raw <= sig.raw_max:
+            return raw
+    return min(max(0, sig.raw_min), sig.raw_max)
+
+
+def _kind(sig: ir.Signal, enum: str | None) -> str:
+    if enum is not None:
+        return "enum"
+    return "int" if sig.is_integer else "float"
+
+
+def _default(sig: ir.Signal, kind: str, enum: str | None, members: dict[int, str]) -> str:
+    raw = default_raw(sig)
+    if enum is not None:
+        return f"{enum}.{members[raw]}" if raw in members else str(raw)
+    return num_lit(sig.physical(raw), kind != "float")
+
+
+def _descriptor_args(sig: ir.Signal, direct: bool, lo_lit: str, hi_lit: str) -> str:
+    """What the slow path of encode needs (see _runtime.SignalSpec), after message and signal name."""
+    raws = [str(s.raw) for s in sig.specials]
+    specials = ", ".join(raws) + ("," if len(raws) == 1 else "")
+    offset_int = str(sig.offset.numerator) if direct else "0"
+    return ", ".join(
+        (str(direct), double_repr(sig.factor), double_repr(sig.offset), offset_int, lo_lit, hi_lit, str(sig.raw_min), str(sig.raw_max),
+         str(sig.raw_type_min), str(sig.raw_type_max), f"frozenset(({specials}))")
+    )
+
+
+@dataclass(frozen=True)
+class SignalContext:
+    """What a signal's view needs from its message and package."""
+
+    message: str  # the message's name
+    index: int  # position among the message's data signals (names encode locals)
+    frame_bits: int
+    attrs: Namespace  # the message class's attribute names
+    consts: Namespace  # the message class's constant names
+    module: Namespace  # module-level names of messages.py
+    enum: str | None  # the enum class of its value table, when it decodes to one
+    members: dict[int, str]  # raw → member name of that enum
+    lookup: PyLookup | None
+
+
+def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecial, ...]:
+    return tuple(
+        PySpecial(consts.take(f"{sig.name}_{s.name}".upper()), f"-0x{-s.raw:X}" if s.raw < 0 else f"0x{s.raw:X}", num_lit(s.physical, as_int),
+                  label_comment(s.label, s.label_zh))
+        for s in sig.specials
+    )
+
+
+def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
+    kind = _kind(sig, ctx.enum)
+    as_int = kind != "float"
+    raw = raw_expr(sig, ctx.frame_bits)
+    phys = phys_expr(sig, raw, kind)
+    if ctx.lookup is not None:
+        phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
+    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max
+    lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
+    lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else double_repr(lo)
+    hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else double_repr(hi)
+    attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
+    return PySignal(
+        sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
+        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, phys_expr=phys,
+        specials=_specials(sig, ctx.consts, as_int), allowed=py_string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
+        descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), var=var, raw_var=f"r{ctx.index}", direct=direct,
+        q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
+        q_nonneg=sig.factor > 0 and float(lo) - float(sig.offset) >= 0, exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
+    )
