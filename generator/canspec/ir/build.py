@@ -18,7 +18,8 @@ from canspec.spec.yamlsource import LocDict
 
 
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
-    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident)) for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in table.items())))
+    entries = sorted((r, label_pair(v)) for r, v in table.items())
+    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident), table.loc_of(raw)) for raw, (ident, zh) in entries), table.loc)
 
 
 def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) -> tuple[ir.Label, ...]:

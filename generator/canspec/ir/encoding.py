@@ -23,7 +23,7 @@ quotient (physical - offset) / factor of the decimal the user meant:
 from __future__ import annotations
 
 import math
-from decimal import Decimal
+from decimal import Decimal, localcontext
 from fractions import Fraction
 
 from canspec.ir.model import EXACT_LIMIT, TIE_EPSILON
@@ -94,9 +94,11 @@ def decimal_text(value: Fraction | int) -> str:
     value = Fraction(value)
     if value.denominator == 1:
         return str(value.numerator)
-    # Every factor/offset in a spec comes from decimal text, so this terminates.
-    d = Decimal(value.numerator) / Decimal(value.denominator)
-    text = format(d.normalize(), "f")
+    # Every factor/offset in a spec comes from decimal text, so this terminates: a denominator
+    # 2^a 5^b adds at most max(a, b) <= its bit length digits to the numerator's.
+    with localcontext() as ctx:
+        ctx.prec = len(str(abs(value.numerator))) + value.denominator.bit_length()
+        text = format((Decimal(value.numerator) / Decimal(value.denominator)).normalize(), "f")
     if Fraction(Decimal(text)) != value:
         raise ValueError(f"{value} has no finite decimal expansion")
     return text

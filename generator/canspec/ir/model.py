@@ -34,12 +34,14 @@ class ValueEntry:
     name: str  # lower_snake identifier
     label_zh: str
     label: str  # English label derived from the identifier
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True)
 class ValueTable:
     name: str
     entries: tuple[ValueEntry, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
     def by_raw(self, raw: int) -> ValueEntry | None:
         return next((e for e in self.entries if e.raw == raw), None)
