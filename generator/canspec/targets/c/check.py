@@ -1,0 +1,37 @@
+"""What the C target refuses: C names that collide.
+
+Distinct spec names can give the same C name (see names.py), and two declarations or two struct
+fields of one name do not compile. A name the C target escapes (a keyword gets a trailing `_`)
+can meet another that way too. Neither can be renamed silently without changing the other's
+API, so `canspec check` reports the place, the name and the other element."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+from canspec import ir
+from canspec.spec.problems import Problem, error
+from canspec.targets.c.names import Origin, declared, members
+
+HINT = "rename one of them: C names join the words of spec names with `_` after the protocol's prefix, and escape C and C++ keywords with a trailing `_`"
+
+
+def _clashes(items: Iterable[tuple[str, Origin]], scope: str, pairs: set[tuple[str, str]]) -> Iterator[Problem]:
+    """One problem per pair of elements whose names meet (at the first name they share)."""
+    first: dict[str, Origin] = {}
+    for name, origin in items:
+        seen = first.setdefault(name, origin)
+        if seen is origin or (origin[0], seen[0]) in pairs:
+            continue
+        pairs.add((origin[0], seen[0]))
+        where = f" (at {seen[1]})" if seen[1] is not None else ""
+        yield error(f"{origin[0]} gives the C {scope} `{name}`, which {seen[0]}{where} gives too", origin[1] or seen[1], HINT, "c-name-clash")
+
+
+def c_problems(spec: ir.Spec) -> Iterator[Problem]:
+    if spec.can is None:
+        return
+    pairs: set[tuple[str, str]] = set()  # two elements clash once, however many names they share
+    yield from _clashes(declared(spec.can), "name", pairs)
+    for msg in spec.can.messages:
+        yield from _clashes(members(msg), f"field of `{msg.name}`", pairs)

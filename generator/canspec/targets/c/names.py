@@ -1,0 +1,143 @@
+"""C identifiers: every name the headers declare, derived once from the spec's names.
+
+Every global C name is the protocol prefix followed by the words of spec names and a fixed
+suffix (`kaiwo_gateway_eps_state_pack`, `KAIWO_GATEWAY_EPS_STATE_FRAME_ID`). A message whose
+names would meet the runtime's own (a message `status`: `<prefix>_status_t`) is named
+`<message>_msg` instead, and a value table whose names would meet the runtime's or a message's
+`<table>_values`. Other spec names can still meet (a message `a` with a signal `b_c` and a
+message `a_b` with a signal `c`): `declared()` lists every name with the spec element it comes
+from, so the target's `check` refuses such a spec at the element's line instead of the
+compiler failing on the header. A test holds the lists below to what the generated headers
+declare.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+
+from canspec import ir
+from canspec.ir.names import c_ident, snake, upper_snake
+from canspec.spec.problems import Loc
+
+# The names the runtime declares whatever the spec holds (common.h, dispatch.h, monitor.h).
+RUNTIME_FUNCTIONS = (
+    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "le_load", "le_store", "xor_fold32", "xor_fold", "xor_is_zero",
+    "j1939_id_t", "j1939_decompose", "j1939_compose",
+    "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
+    "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out",
+)
+RUNTIME_MACROS = (
+    "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "LE_WORDS",
+    "OK", "ERR_LENGTH", "ERR_CHECKSUM", "ERR_RANGE", "ERR_UNKNOWN_ID", "ERR_INDEX", "ERR_INCOMPLETE", "ERR_INCONSISTENT",
+    "J1939_PDU2_MIN_PF", "J1939_GLOBAL_ADDRESS", "J1939_ID_MASK", "J1939_PRIORITY_MASK", "MSG_NONE", "MSG_COUNT",
+    "MONITOR_TIMEOUT_CYCLES", "RX_UNKNOWN_ID", "RX_LENGTH", "RX_CHECKSUM", "RX_COUNTER_JUMP", "RX_COUNTER_REPEAT", "RX_TIMEOUT", "RX_RECOVERED",
+    "H", "COMMON_H", "ENUMS_H", "MESSAGES_H", "DISPATCH_H", "TEXT_H", "MONITOR_H",
+)
+# Per message (after <prefix>_<message>_ / <PREFIX>_<MESSAGE>_), per signal, per multi-frame text.
+MESSAGE_FUNCTIONS = ("t", "pack", "unpack", "init", "counter_next", "layout_check")
+MESSAGE_MACROS = ("FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "SA", "DA", "FINGERPRINT")
+SIGNAL_FUNCTIONS = ("decode", "encode", "decode_fixed", "encode_fixed")
+SIGNAL_MACROS = ("FACTOR", "OFFSET", "MIN", "MAX", "FIXED_SCALE")
+TEXT_FUNCTIONS = ("split", "rx_t", "rx_init", "rx_complete", "rx_feed", "rx_get")
+TEXT_MACROS = ("LENGTH", "FRAMES", "BYTES_PER_FRAME", "PADDING")
+# A value-table entry named `<layout>_xor_error` is the fault code for a checksum failure of
+# a message with that layout; `message_timeout` is the code for a receive timeout. A table with
+# the latter (and a 0 code) gets a monitor function `<prefix>_monitor_<table>`.
+XOR_ERROR_SUFFIX = "_xor_error"
+TIMEOUT_ENTRY = "message_timeout"
+
+
+MESSAGE_SUFFIX = "msg"  # appended to a message's C name that meets the runtime's
+TABLE_SUFFIX = "values"  # appended to a value table's that meets the runtime's or a message's
+
+Origin = tuple[str, Loc | None]  # what declares a name, and where the spec says so
+
+
+@dataclass(frozen=True)
+class CNames:
+    """How a protocol's spec names become C names."""
+
+    prefix: str  # lower_snake: functions and types
+    macro: str  # UPPER_SNAKE: macros and enum constants
+    bases: Mapping[tuple[str, str], str] = field(default_factory=dict)  # ("message" | "table", name) → C base
+
+    @classmethod
+    def of(cls, can: ir.CanProtocol) -> CNames:
+        plain = cls(snake(can.name), upper_snake(can.name))
+        taken = {name for name, _ in plain.runtime()}
+        bases: dict[tuple[str, str], str] = {}
+        for msg in can.messages:
+            own = {name for name, _ in _message_names(plain, msg, msg.name)}
+            bases["message", msg.name] = f"{msg.name}_{MESSAGE_SUFFIX}" if own & taken else msg.name
+        named = cls(plain.prefix, plain.macro, bases)
+        taken |= {name for msg in can.messages for name, _ in _message_names(named, msg, named.message(msg.name))}
+        for table in can.value_tables:
+            own = {name for name, _ in _table_names(plain, table, table.name)}
+            bases["table", table.name] = f"{table.name}_{TABLE_SUFFIX}" if own & taken else table.name
+        return named
+
+    def fn(self, *words: str) -> str:
+        return "_".join([self.prefix, *(snake(w) for w in words)])
+
+    def const(self, *words: str) -> str:
+        return "_".join([self.macro, *(upper_snake(w) for w in words)])
+
+    def message(self, name: str) -> str:
+        """The words a message's C names start with."""
+        return self.bases.get(("message", name), name)
+
+    def table(self, name: str) -> str:
+        return self.bases.get(("table", name), name)
+
+    @staticmethod
+    def member(name: str) -> str:
+        """A struct field or union member: the bare name, a keyword escaped."""
+        return c_ident(snake(name))
+
+    def runtime(self) -> Iterator[tuple[str, Origin]]:
+        origin: Origin = ("the C target's runtime", None)
+        yield from ((self.fn(w), origin) for w in RUNTIME_FUNCTIONS)
+        yield from ((self.const(w), origin) for w in RUNTIME_MACROS)
+
+
+def declared(can: ir.CanProtocol) -> Iterator[tuple[str, Origin]]:
+    """Every global name the headers declare (some only where the spec uses the feature), with
+    the element it comes from."""
+    n = CNames.of(can)
+    yield from n.runtime()
+    for msg in can.messages:
+        yield from _message_names(n, msg, n.message(msg.name))
+    for table in can.value_tables:
+        yield from _table_names(n, table, n.table(table.name))
+
+
+def _table_names(n: CNames, table: ir.ValueTable, base: str) -> Iterator[tuple[str, Origin]]:
+    origin: Origin = (f"value table {table.name!r}", table.loc)
+    yield n.fn(base, "t"), origin
+    yield n.fn(base, "name"), origin
+    if any(e.name == TIMEOUT_ENTRY for e in table.entries):
+        yield n.fn("monitor", base), origin
+    yield from ((n.const(base, e.name), (f"value {e.name!r} of table {table.name!r}", e.loc)) for e in table.entries)
+
+
+def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str, Origin]]:
+    origin: Origin = (f"message {msg.name!r}", msg.loc)
+    yield n.const("msg", base), origin
+    yield from ((n.fn(base, w), origin) for w in MESSAGE_FUNCTIONS)
+    yield from ((n.const(base, w), origin) for w in MESSAGE_MACROS)
+    if msg.multiframe is not None:
+        yield from ((n.fn(base, "text", w), origin) for w in TEXT_FUNCTIONS)
+        yield from ((n.const(base, "text", w), origin) for w in TEXT_MACROS)
+    for sig in msg.data_signals:
+        where: Origin = (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
+        if sig.role == "data":  # counters and checksums have no physical functions
+            yield from ((n.fn(base, sig.name, w), where) for w in SIGNAL_FUNCTIONS)
+            yield from ((n.const(base, sig.name, w), where) for w in SIGNAL_MACROS)
+        yield from ((n.const(base, sig.name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
+
+
+def members(msg: ir.Message) -> Iterator[tuple[str, Origin]]:
+    """The message struct's fields, which share one scope."""
+    for sig in msg.data_signals:
+        yield CNames.member(sig.name), (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
