@@ -79,7 +79,7 @@ def test_vector_runner_all_cases(build, vectors):
     exe = cbuild.build_runner(build, "gcc", cbuild.STRICT[:-1])
     lines = cbuild.vectors_lines(cbuild.DEFAULT_VECTORS, build)
     assert _check_runner(exe, lines, len(vectors["cases"])) >= 2000
-    code, out, _ = cbuild.run_runner(exe, lines)
+    _, out, _ = cbuild.run_runner(exe, lines)
     assert f", {len(vectors['multiframe'])} multi-frame texts" in out
 
 
