@@ -56,7 +56,7 @@ def _physical_checks(s: CSignal) -> list[str]:
 
 
 def _message_check(c: CModel, cm: CMessage) -> list[str]:
-    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", "    uint8_t buf[8];", "    int bad = 0, st;"]
+    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", "    uint8_t buf[8] = {0};", "    int bad = 0, st;"]
     out += ["    memset(&s, 0, sizeof s);", f"    st = (int){cm.fn}_unpack(&s, vc->data, vc->len);", "    if (st != 0) bad += fail(vc, \"unpack returned %d\", st);"]
     out += [f"    bad += check_raw(vc, \"{s.sig.name}\", {_bits(s, 's.' + s.field)}, {int(s.sig.signed)});" for s in cm.signals]
     out += ["    memset(&p, 0, sizeof p);"] + [f"    p.{s.field} = ({s.type})raw_of(vc, \"{s.sig.name}\");" for s in cm.signals]

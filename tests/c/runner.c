@@ -17,6 +17,9 @@
 #define NAME_CAP 160
 #define TEXT_CAP 96
 
+/* Checks a spec without counters, multi-frame texts, ... does not call. */
+#define MAYBE_UNUSED __attribute__((unused))
+
 __extension__ typedef __int128 i128;
 __extension__ typedef unsigned __int128 u128;
 
@@ -60,7 +63,7 @@ static int fail(const vcase_t *vc, const char *fmt, ...) {
     return 1;
 }
 
-static int fail_text(const vtext_t *vt, const char *fmt, ...) {
+MAYBE_UNUSED static int fail_text(const vtext_t *vt, const char *fmt, ...) {
     va_list ap;
     fprintf(stderr, "line %lu: text \"%s\": ", vt->line, vt->text);
     va_start(ap, fmt);
@@ -122,7 +125,7 @@ static int check_raw(const vcase_t *vc, const char *name, uint64_t got, int is_s
     return 0;
 }
 
-static int check_identity(const vcase_t *vc, const char *name, uint64_t raw) {
+MAYBE_UNUSED static int check_identity(const vcase_t *vc, const char *name, uint64_t raw) {
     const phys_t *ph = phys_of(vc, name);
     if (ph != NULL && ph->value != (double)raw) return fail(vc, "%s: physical %s, raw %llu", name, ph->text, (unsigned long long)raw);
     return 0;
@@ -222,14 +225,24 @@ static int fixed_input(const vcase_t *vc, const phys_t *ph, uint64_t raw, int is
     return 1;
 }
 
-/* decode_fixed(raw) must be raw × ff + fo exactly, and agree with the case's physical text
- * wherever that text is an exact multiple of 1/scale. */
+/* Significant decimal digits of an integer. */
+static int significant_digits(i128 v) {
+    int n = 0;
+    if (v < 0) v = -v;
+    while (v != 0 && v % 10 == 0) v /= 10;
+    for (; v != 0; v /= 10) n++;
+    return n;
+}
+
+/* decode_fixed(raw) must be raw × ff + fo exactly, and the case's physical text must be that
+ * value / scale wherever a double holds it to the digit (at most 15 significant digits: the
+ * vectors write the shortest text of the nearest double). */
 static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, i128 got, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo) {
     const i128 want = raw_number(raw, is_signed) * ff + fo;
     i128 from_text;
     char a[48], b[48];
     if (got != want) return fail(vc, "%s: fixed decode %s, expected %s", ph->name, i128_text(got, a), i128_text(want, b));
-    if (!is_tie(vc) && scaled_text(ph->text, scale, &from_text) && from_text != want)
+    if (!is_tie(vc) && significant_digits(want) <= 15 && (!scaled_text(ph->text, scale, &from_text) || from_text != want))
         return fail(vc, "%s: physical %s × %s is not raw × factor + offset = %s", ph->name, ph->text, i128_text(scale, a), i128_text(want, b));
     return 0;
 }

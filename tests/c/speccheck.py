@@ -69,7 +69,7 @@ def run_vectors(spec_path: Path, can: ir.CanProtocol, headers: Path, doc: dict, 
     failures = []
     for name, flags in (("runner", []), ("runner-bytes", [f"-D{macro}_LE_WORDS=0"])):
         try:
-            exe = cbuild.build_runner(work / name, "gcc", [*cbuild.STRICT[:-1], *flags], name, spec_path, headers)
+            exe = cbuild.build_runner(work / name, "gcc", [*cbuild.STRICT, *flags], name, spec_path, headers)
         except RuntimeError as exc:
             failures.append(f"{name}: {exc}")
             continue

@@ -85,10 +85,6 @@ class CMessage:
     fault_xor_codes: tuple[tuple[str, str], ...]  # (fault table, enum const) per fault table
     comment: str
 
-    @property
-    def checksum_byte(self) -> int:
-        return self.checksum.byte if self.checksum is not None else -1
-
 
 def _j1939(msg: ir.Message) -> CJ1939 | None:
     j = msg.j1939

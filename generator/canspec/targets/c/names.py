@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from canspec import ir
 from canspec.ir.names import c_ident, snake, upper_snake
@@ -48,6 +49,11 @@ XOR_ERROR_SUFFIX = "_xor_error"
 TIMEOUT_ENTRY = "message_timeout"
 
 
+# Spec names recur in every name derived from them: convert each once (a 30000-signal spec
+# derives about a million names).
+_snake = lru_cache(maxsize=None)(snake)
+_upper_snake = lru_cache(maxsize=None)(upper_snake)
+
 MESSAGE_SUFFIX = "msg"  # appended to a message's C name that meets the runtime's
 TABLE_SUFFIX = "values"  # appended to a value table's that meets the runtime's or a message's
 
@@ -64,24 +70,13 @@ class CNames:
 
     @classmethod
     def of(cls, can: ir.CanProtocol) -> CNames:
-        plain = cls(snake(can.name), upper_snake(can.name))
-        taken = {name for name, _ in plain.runtime()}
-        bases: dict[tuple[str, str], str] = {}
-        for msg in can.messages:
-            own = {name for name, _ in _message_names(plain, msg, msg.name)}
-            bases["message", msg.name] = f"{msg.name}_{MESSAGE_SUFFIX}" if own & taken else msg.name
-        named = cls(plain.prefix, plain.macro, bases)
-        taken |= {name for msg in can.messages for name, _ in _message_names(named, msg, named.message(msg.name))}
-        for table in can.value_tables:
-            own = {name for name, _ in _table_names(plain, table, table.name)}
-            bases["table", table.name] = f"{table.name}_{TABLE_SUFFIX}" if own & taken else table.name
-        return named
+        return named(can)[0]
 
     def fn(self, *words: str) -> str:
-        return "_".join([self.prefix, *(snake(w) for w in words)])
+        return "_".join([self.prefix, *map(_snake, words)])
 
     def const(self, *words: str) -> str:
-        return "_".join([self.macro, *(upper_snake(w) for w in words)])
+        return "_".join([self.macro, *map(_upper_snake, words)])
 
     def message(self, name: str) -> str:
         """The words a message's C names start with."""
@@ -95,21 +90,39 @@ class CNames:
         """A struct field or union member: the bare name, a keyword escaped."""
         return c_ident(snake(name))
 
-    def runtime(self) -> Iterator[tuple[str, Origin]]:
+    def runtime(self) -> list[tuple[str, Origin]]:
         origin: Origin = ("the C target's runtime", None)
-        yield from ((self.fn(w), origin) for w in RUNTIME_FUNCTIONS)
-        yield from ((self.const(w), origin) for w in RUNTIME_MACROS)
+        return [(self.fn(w), origin) for w in RUNTIME_FUNCTIONS] + [(self.const(w), origin) for w in RUNTIME_MACROS]
 
 
-def declared(can: ir.CanProtocol) -> Iterator[tuple[str, Origin]]:
-    """Every global name the headers declare (some only where the spec uses the feature), with
-    the element it comes from."""
-    n = CNames.of(can)
-    yield from n.runtime()
+def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
+    """The protocol's C names, and every global name the headers declare (some only where the
+    spec uses the feature) with the element it comes from."""
+    plain = CNames(snake(can.name), upper_snake(can.name))
+    runtime = plain.runtime()
+    taken = {name for name, _ in runtime}
+    bases: dict[tuple[str, str], str] = {}
     for msg in can.messages:
-        yield from _message_names(n, msg, n.message(msg.name))
+        meets = _may_meet(plain, msg.name, taken) and any(name in taken for name, _ in _message_names(plain, msg, msg.name))
+        bases["message", msg.name] = f"{msg.name}_{MESSAGE_SUFFIX}" if meets else msg.name
+    names = CNames(plain.prefix, plain.macro, bases)
+    found = runtime + [item for msg in can.messages for item in _message_names(names, msg, names.message(msg.name))]
+    taken |= {name for name, _ in found}
     for table in can.value_tables:
-        yield from _table_names(n, table, n.table(table.name))
+        meets = any(name in taken for name, _ in _table_names(plain, table, table.name))
+        bases["table", table.name] = f"{table.name}_{TABLE_SUFFIX}" if meets else table.name
+    return names, found + [item for table in can.value_tables for item in _table_names(names, table, names.table(table.name))]
+
+
+def declared(can: ir.CanProtocol) -> list[tuple[str, Origin]]:
+    return named(can)[1]
+
+
+def _may_meet(n: CNames, base: str, taken: set[str]) -> bool:
+    """Whether a message's names can meet these (runtime) names: every one of them starts with
+    its function or macro stem, or is its enumerator."""
+    stems = (n.fn(base) + "_", n.const(base) + "_")
+    return n.const("msg", base) in taken or any(name.startswith(stems) for name in taken)
 
 
 def _table_names(n: CNames, table: ir.ValueTable, base: str) -> Iterator[tuple[str, Origin]]:
@@ -122,19 +135,22 @@ def _table_names(n: CNames, table: ir.ValueTable, base: str) -> Iterator[tuple[s
 
 
 def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str, Origin]]:
+    """(The suffixes are snake / UPPER words already: they are joined as they are.)"""
     origin: Origin = (f"message {msg.name!r}", msg.loc)
+    fn, const = n.fn(base), n.const(base)
     yield n.const("msg", base), origin
-    yield from ((n.fn(base, w), origin) for w in MESSAGE_FUNCTIONS)
-    yield from ((n.const(base, w), origin) for w in MESSAGE_MACROS)
+    yield from ((f"{fn}_{w}", origin) for w in MESSAGE_FUNCTIONS)
+    yield from ((f"{const}_{w}", origin) for w in MESSAGE_MACROS)
     if msg.multiframe is not None:
-        yield from ((n.fn(base, "text", w), origin) for w in TEXT_FUNCTIONS)
-        yield from ((n.const(base, "text", w), origin) for w in TEXT_MACROS)
+        yield from ((f"{fn}_text_{w}", origin) for w in TEXT_FUNCTIONS)
+        yield from ((f"{const}_TEXT_{w}", origin) for w in TEXT_MACROS)
     for sig in msg.data_signals:
         where: Origin = (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
+        sig_fn, sig_const = f"{fn}_{_snake(sig.name)}", f"{const}_{_upper_snake(sig.name)}"
         if sig.role == "data":  # counters and checksums have no physical functions
-            yield from ((n.fn(base, sig.name, w), where) for w in SIGNAL_FUNCTIONS)
-            yield from ((n.const(base, sig.name, w), where) for w in SIGNAL_MACROS)
-        yield from ((n.const(base, sig.name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
+            yield from ((f"{sig_fn}_{w}", where) for w in SIGNAL_FUNCTIONS)
+            yield from ((f"{sig_const}_{w}", where) for w in SIGNAL_MACROS)
+        yield from ((f"{sig_const}_{_upper_snake(sp.name)}", (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
 
 
 def members(msg: ir.Message) -> Iterator[tuple[str, Origin]]:

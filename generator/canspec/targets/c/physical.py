@@ -115,12 +115,17 @@ def fixed_scale(sig: ir.Signal) -> int:
 
 
 def _places(value: Fraction) -> int:
-    """Decimal places of a decimal number (its denominator is 2^a 5^b: max(a, b))."""
-    den, places = value.denominator, 0
-    while den != 1:
-        den //= 10 if den % 10 == 0 else 2 if den % 2 == 0 else 5
-        places += 1
-    return places
+    """Decimal places of a decimal number: max(a, b) for its denominator 2^a 5^b."""
+    den, counts = value.denominator, []
+    for p in (2, 5):
+        n = 0
+        while den % p == 0:
+            den //= p
+            n += 1
+        counts.append(n)
+    if den != 1:
+        raise ValueError(f"{value} is not a decimal number")
+    return max(counts)
 
 
 def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
@@ -133,7 +138,7 @@ def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
     fmin, fmax = int(sig.check_min * scale), int(sig.check_max * scale)
     for bits, ctype, lo, hi in INT_TYPES:
         fits = all(lo <= v <= hi for v in core)
-        if bits == 32:  # as narrow as the bounds allow: every bound and range end a literal of the type
+        if bits == 32:  # int32_t only where every bound it is compared with is an int32_t too
             fits = fits and all(lo <= v <= hi for v in (below, above, fmin, fmax))
         if fits and _difference_fits(ff, fo, max(below + 1, lo), min(above - 1, hi)):
             return _signed_fixed(names, sig, scale, (ff, fo), ctype, (below, above), (lo, hi))

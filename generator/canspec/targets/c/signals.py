@@ -43,8 +43,8 @@ class CSignal:
     range_check: str  # C condition true when a signed src->field does not fit its bits ("" if it always does)
     needs_check: bool  # unsigned field whose type is wider than its bits
     specials: tuple[CSpecial, ...]
-    factor: str  # double literals of the scaling and the documented (else encodable) range
-    offset: str
+    factor: str  # the *_FACTOR macro's value (a negative one in parentheses)
+    offset: str  # double literals of the offset and the documented (else encodable) range
     check_min: str
     check_max: str
     enum_type: str  # C type of its value table ("" if none)
@@ -53,10 +53,6 @@ class CSignal:
     fixed: CFixed | None  # the integer path (None: its values do not fit 64-bit integers)
     unit: str
     comment: str  # its Chinese name (or English description) and unit
-
-    @property
-    def has_double(self) -> bool:
-        return self.double is not None
 
 
 def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dict[str, str]) -> CSignal:
@@ -76,7 +72,7 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
     return CSignal(
         sig=sig, field=field, macro=macro, fn=names.fn(base, sig.name), type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
         range_check=range_check, needs_check=not fits_type and not sig.signed, specials=specials,
-        factor=float_lit(sig.factor), offset=float_lit(sig.offset), check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max),
+        factor=float_lit(sig.factor) if sig.factor > 0 else f"({float_lit(sig.factor)})", offset=float_lit(sig.offset), check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max),
         enum_type=enum_types.get(sig.value_table.name, "") if sig.value_table else "",
         is_data=is_data, double=double, fixed=fixed, unit=sig.unit, comment=comment,
     )
