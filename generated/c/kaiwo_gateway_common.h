@@ -41,7 +41,7 @@ static inline uint64_t kaiwo_gateway_round_abs(double a) {
     return a >= 4503599627370496.0 ? (uint64_t)a : (uint64_t)((a + 0.5) + 1e-9);
 }
 
-/** Physical → raw rounding: q rounded half away from zero (kaiwo_gateway_round_abs), |q| <= 2^63. */
+/** Physical → raw rounding: q rounded half away from zero (kaiwo_gateway_round_abs), -2^63 <= q < 2^63. */
 static inline int64_t kaiwo_gateway_round_half_away(double q) {
     const uint64_t r = kaiwo_gateway_round_abs(q < 0.0 ? -q : q);
     return q < 0.0 ? (int64_t)(0u - r) : (int64_t)r;
