@@ -17,7 +17,7 @@
 #define NAME_CAP 160
 #define TEXT_CAP 96
 
-/* Checks a spec without counters, multi-frame texts, ... does not call. */
+/* The checks: a spec without data signals, counters, multi-frame texts, ... calls only some. */
 #define MAYBE_UNUSED __attribute__((unused))
 
 __extension__ typedef __int128 i128;
@@ -53,7 +53,7 @@ typedef struct {
     uint8_t (*frames)[8];
 } vtext_t;
 
-static int fail(const vcase_t *vc, const char *fmt, ...) {
+MAYBE_UNUSED static int fail(const vcase_t *vc, const char *fmt, ...) {
     va_list ap;
     fprintf(stderr, "line %lu: %s (%s) mismatch: ", vc->line, vc->message, vc->kind);
     va_start(ap, fmt);
@@ -74,7 +74,7 @@ MAYBE_UNUSED static int fail_text(const vtext_t *vt, const char *fmt, ...) {
 }
 
 /* A 128-bit integer as decimal text (for messages). */
-static const char *i128_text(i128 v, char *buf) {
+MAYBE_UNUSED static const char *i128_text(i128 v, char *buf) {
     char tmp[48];
     int n = 0, neg = v < 0;
     u128 u = neg ? (u128)0 - (u128)v : (u128)v;
@@ -88,7 +88,7 @@ static const char *i128_text(i128 v, char *buf) {
     return buf;
 }
 
-static int find_raw(const vcase_t *vc, const char *name, uint64_t *out) {
+MAYBE_UNUSED static int find_raw(const vcase_t *vc, const char *name, uint64_t *out) {
     for (int i = 0; i < vc->nraw; i++) {
         if (strcmp(vc->raw_names[i], name) == 0) {
             *out = vc->raw_values[i];
@@ -98,26 +98,26 @@ static int find_raw(const vcase_t *vc, const char *name, uint64_t *out) {
     return 0;
 }
 
-static uint64_t raw_of(const vcase_t *vc, const char *name) {
+MAYBE_UNUSED static uint64_t raw_of(const vcase_t *vc, const char *name) {
     uint64_t v = 0;
     (void)find_raw(vc, name, &v);
     return v;
 }
 
-static const phys_t *phys_of(const vcase_t *vc, const char *name) {
+MAYBE_UNUSED static const phys_t *phys_of(const vcase_t *vc, const char *name) {
     for (int i = 0; i < vc->nphys; i++) {
         if (strcmp(vc->phys[i].name, name) == 0) return &vc->phys[i];
     }
     return NULL;
 }
 
-static int encodable(const vcase_t *vc) { return strcmp(vc->kind, "raw_only") != 0; }
-static int is_tie(const vcase_t *vc) { return strcmp(vc->kind, "tie") == 0; }
+MAYBE_UNUSED static int encodable(const vcase_t *vc) { return strcmp(vc->kind, "raw_only") != 0; }
+MAYBE_UNUSED static int is_tie(const vcase_t *vc) { return strcmp(vc->kind, "tie") == 0; }
 
 /* The raw value's bits as the number they denote. */
-static i128 raw_number(uint64_t bits, int is_signed) { return is_signed ? (i128)(int64_t)bits : (i128)bits; }
+MAYBE_UNUSED static i128 raw_number(uint64_t bits, int is_signed) { return is_signed ? (i128)(int64_t)bits : (i128)bits; }
 
-static int check_raw(const vcase_t *vc, const char *name, uint64_t got, int is_signed) {
+MAYBE_UNUSED static int check_raw(const vcase_t *vc, const char *name, uint64_t got, int is_signed) {
     uint64_t want;
     char a[48], b[48];
     if (!find_raw(vc, name, &want)) return fail(vc, "%s: no raw value in the case", name);
@@ -131,7 +131,7 @@ MAYBE_UNUSED static int check_identity(const vcase_t *vc, const char *name, uint
     return 0;
 }
 
-static int check_bytes(const vcase_t *vc, int st, const uint8_t *buf) {
+MAYBE_UNUSED static int check_bytes(const vcase_t *vc, int st, const uint8_t *buf) {
     if (st != 0) return fail(vc, "pack returned %d", st);
     for (size_t i = 0; i < vc->len; i++) {
         if (buf[i] != vc->data[i]) return fail(vc, "packed byte %u is %02X, expected %02X", (unsigned)i, buf[i], vc->data[i]);
@@ -139,13 +139,13 @@ static int check_bytes(const vcase_t *vc, int st, const uint8_t *buf) {
     return 0;
 }
 
-static int check_decode(const vcase_t *vc, const phys_t *ph, double got, double factor) {
+MAYBE_UNUSED static int check_decode(const vcase_t *vc, const phys_t *ph, double got, double factor) {
     const double tol = fabs(factor) / 2.0 + 1e-9 * (fabs(ph->value) > 1.0 ? fabs(ph->value) : 1.0);
     if (!(fabs(got - ph->value) <= tol)) return fail(vc, "%s: decoded %.17g, expected %s", ph->name, got, ph->text);
     return 0;
 }
 
-static int check_encode(const vcase_t *vc, const phys_t *ph, const char *path, int st, uint64_t got, uint64_t want, int is_signed) {
+MAYBE_UNUSED static int check_encode(const vcase_t *vc, const phys_t *ph, const char *path, int st, uint64_t got, uint64_t want, int is_signed) {
     char a[48], b[48];
     if (st != 0) return fail(vc, "%s: %s encode of %s returned %d (expected raw %s)", ph->name, path, ph->text, st, i128_text(raw_number(want, is_signed), b));
     if (got != want) return fail(vc, "%s: %s encode of %s gave %s, expected %s", ph->name, path, ph->text, i128_text(raw_number(got, is_signed), a), i128_text(raw_number(want, is_signed), b));
@@ -154,7 +154,7 @@ static int check_encode(const vcase_t *vc, const phys_t *ph, const char *path, i
 
 /* The double encode of the case's physical value: what the shared rule gives for that double
  * when the lines say (on every case), else the case's raw value (physical-encodable cases). */
-static int check_double_encode(const vcase_t *vc, const phys_t *ph, int st, uint64_t got, uint64_t raw, int is_signed) {
+MAYBE_UNUSED static int check_double_encode(const vcase_t *vc, const phys_t *ph, int st, uint64_t got, uint64_t raw, int is_signed) {
     char a[48];
     if (!ph->rule) return encodable(vc) ? check_encode(vc, ph, "double", st, got, raw, is_signed) : 0;
     if (!ph->rule_refuses) return check_encode(vc, ph, "double", st, got, ph->rule_raw, is_signed);
@@ -163,7 +163,7 @@ static int check_double_encode(const vcase_t *vc, const phys_t *ph, int st, uint
 }
 
 /* The decimal text of a physical value times `scale`, exactly, when that is an integer. */
-static int scaled_text(const char *text, i128 scale, i128 *out) {
+MAYBE_UNUSED static int scaled_text(const char *text, i128 scale, i128 *out) {
     i128 mant = 0, div = 1;
     int neg = 0, exp10 = 0, frac = 0, digits = 0;
     const char *p = text;
@@ -195,7 +195,7 @@ static int scaled_text(const char *text, i128 scale, i128 *out) {
 }
 
 /* num / den rounded half away from zero, exactly (den != 0): the rule's exact form. */
-static i128 div_round_exact(i128 num, i128 den) {
+MAYBE_UNUSED static i128 div_round_exact(i128 num, i128 den) {
     if (den < 0) {
         num = -num;
         den = -den;
@@ -210,7 +210,7 @@ static i128 div_round_exact(i128 num, i128 den) {
  * scaled physical value of the case's raw value, or a tie as written with its exact rounding
  * (half away from zero) when the text is exactly halfway between two steps (a tie of a wide
  * field may be written as a nearby double). 0: no fixed encode check. */
-static int fixed_input(const vcase_t *vc, const phys_t *ph, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo, i128 *in, uint64_t *want) {
+MAYBE_UNUSED static int fixed_input(const vcase_t *vc, const phys_t *ph, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo, i128 *in, uint64_t *want) {
     const i128 step = ff < 0 ? -ff : ff;
     if (!encodable(vc)) return 0;
     if (!is_tie(vc)) {
@@ -226,7 +226,7 @@ static int fixed_input(const vcase_t *vc, const phys_t *ph, uint64_t raw, int is
 }
 
 /* Significant decimal digits of an integer. */
-static int significant_digits(i128 v) {
+MAYBE_UNUSED static int significant_digits(i128 v) {
     int n = 0;
     if (v < 0) v = -v;
     while (v != 0 && v % 10 == 0) v /= 10;
@@ -237,7 +237,7 @@ static int significant_digits(i128 v) {
 /* decode_fixed(raw) must be raw × ff + fo exactly, and the case's physical text must be that
  * value / scale wherever a double holds it to the digit (at most 15 significant digits: the
  * vectors write the shortest text of the nearest double). */
-static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, i128 got, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo) {
+MAYBE_UNUSED static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, i128 got, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo) {
     const i128 want = raw_number(raw, is_signed) * ff + fo;
     i128 from_text;
     char a[48], b[48];

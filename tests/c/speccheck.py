@@ -1,7 +1,7 @@
 """The C target's checks on any spec: generate its C headers and vectors, compile each header
 alone with gcc and clang as C99 and as C++ under the strict warning flags (and the umbrella
 header optimised, where the middle-end warnings live), run the vector runner on the spec's own
-vectors through both pack/unpack paths, and hold every global name the headers declare to the
+vectors through both pack/unpack paths and under the sanitizers, and hold every global name the headers declare to the
 list `canspec check` checks for clashes (targets/c/names.py). Used by test_c_any_spec.py for
 every valid fixture, and from the command line for any spec:
 
@@ -62,14 +62,15 @@ def compile_matrix(headers: Path, work: Path) -> list[str]:
 
 
 def run_vectors(spec_path: Path, can: ir.CanProtocol, headers: Path, doc: dict, work: Path) -> list[str]:  # type: ignore[type-arg]
-    """The vector runner on the spec's own vectors, word path and byte-wise path."""
+    """The vector runner on the spec's own vectors: word path, byte-wise path, and under ASan and UBSan."""
     lines = work / "vectors.lines.txt"
     lines.write_text(convert(doc, can), encoding="ascii")
     macro = next(p.read_text(encoding="utf-8") for p in headers.glob("*_common.h")).split("#ifndef ", 1)[1].split("_COMMON_H", 1)[0]
     failures = []
-    for name, flags in (("runner", []), ("runner-bytes", [f"-D{macro}_LE_WORDS=0"])):
+    variants = (("runner", "gcc", cbuild.STRICT), ("runner-bytes", "gcc", [*cbuild.STRICT, f"-D{macro}_LE_WORDS=0"]), ("runner-asan", "clang", cbuild.SANITIZE))
+    for name, cc, flags in variants:
         try:
-            exe = cbuild.build_runner(work / name, "gcc", [*cbuild.STRICT, *flags], name, spec_path, headers)
+            exe = cbuild.build_runner(work / name, cc, flags, name, spec_path, headers)
         except RuntimeError as exc:
             failures.append(f"{name}: {exc}")
             continue

@@ -1,7 +1,7 @@
 """Every valid fixture (tests/fixtures/valid/) through the C target: each header compiles alone,
 warning-free, with gcc and clang as C99 and as C++ (and optimised); the vector runner agrees
-with the spec's own vectors on both pack/unpack paths; every name the headers declare is one
-the C target's clash check knows (speccheck.py). Two specs at a time."""
+with the spec's own vectors on both pack/unpack paths and under ASan/UBSan; every name the
+headers declare is one the C target's clash check knows (speccheck.py). Two specs at a time."""
 
 from __future__ import annotations
 
