@@ -157,6 +157,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         nodes=nodes,
         messages=tuple(_message(m, can, tables, names) for m in can.messages),
         value_tables=tuple(tables.values()),
+        loc=p.loc_of("name"),
     )
 
 

@@ -282,6 +282,7 @@ class CanProtocol:
     nodes: tuple[Node, ...]
     messages: tuple[Message, ...]  # in document order
     value_tables: tuple[ValueTable, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

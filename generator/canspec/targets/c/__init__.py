@@ -13,21 +13,10 @@ from canspec.render.environment import render
 from canspec.targets import Target
 from canspec.targets.c.check import c_problems
 from canspec.targets.c.model import build_model
+from canspec.targets.c.names import HEADERS
 
 CLANG_FORMAT = "clang-format"
 STYLE_FILE = ".clang-format"
-# (template, file suffix): one header per concern, each compiles alone.
-HEADERS = (
-    ("c/common.h.j2", "_common.h"),
-    ("c/enums.h.j2", "_enums.h"),
-    ("c/messages.h.j2", "_messages.h"),
-    ("c/dispatch.h.j2", "_dispatch.h"),
-    ("c/text.h.j2", "_text.h"),
-    ("c/monitor.h.j2", "_monitor.h"),
-    ("c/umbrella.h.j2", ".h"),
-)
-
-
 def clang_format(text: str, name: str) -> str:
     style = resources.templates_dir() / "c" / STYLE_FILE
     return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")

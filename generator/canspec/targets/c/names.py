@@ -21,6 +21,16 @@ from canspec import ir
 from canspec.ir.names import c_ident, snake, upper_snake
 from canspec.spec.problems import Loc
 
+# (template, file suffix after the prefix): one header per concern, each compiles alone.
+HEADERS = (
+    ("c/common.h.j2", "_common.h"),
+    ("c/enums.h.j2", "_enums.h"),
+    ("c/messages.h.j2", "_messages.h"),
+    ("c/dispatch.h.j2", "_dispatch.h"),
+    ("c/text.h.j2", "_text.h"),
+    ("c/monitor.h.j2", "_monitor.h"),
+    ("c/umbrella.h.j2", ".h"),
+)
 # The names the runtime declares whatever the spec holds (common.h, dispatch.h, monitor.h).
 RUNTIME_FUNCTIONS = (
     "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "le_load", "le_store", "xor_fold32", "xor_fold", "xor_is_zero",
@@ -116,6 +126,10 @@ def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
 
 def declared(can: ir.CanProtocol) -> list[tuple[str, Origin]]:
     return named(can)[1]
+
+
+def header_names(can: ir.CanProtocol) -> list[str]:
+    return [f"{snake(can.name)}{suffix}" for _, suffix in HEADERS]
 
 
 def _may_meet(n: CNames, base: str, taken: set[str]) -> bool:
