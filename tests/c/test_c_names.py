@@ -87,3 +87,9 @@ def test_two_fields_of_one_message_that_meet_are_refused_once(tmp_path):
     compiled = _spec(tmp_path, ("m", ["{name: mode, start: 0, len: 8, role: counter}", "{name: mode_, start: 56, len: 8, role: checksum}"]))
     assert compiled.spec is None
     assert [p.rule for p in compiled.errors] == ["c-name-clash"] and "field of `m`" in compiled.errors[0].message
+
+
+def test_a_special_value_named_like_a_signal_macro_gets_a_suffix(tmp_path):
+    compiled = _spec(tmp_path, ("m", ["{name: speed, start: 0, len: 8, special: {0xFF: max, 0xFE: stop}}"]))
+    cm = build_model(compiled.spec).messages[0]
+    assert [sp.macro for sp in cm.signals[0].specials] == ["DEMO_M_SPEED_STOP", "DEMO_M_SPEED_MAX_VALUE"]

@@ -95,6 +95,12 @@ class CNames:
     def table(self, name: str) -> str:
         return self.bases.get(("table", name), name)
 
+    def special(self, base: str, signal: str, name: str) -> str:
+        """A special value's constant; `<name>_value` where the name is one of the signal's own
+        macros (a special value `max` beside `<SIGNAL>_MAX`)."""
+        words = (base, signal, name, "value") if _upper_snake(name) in SIGNAL_MACROS else (base, signal, name)
+        return self.const(*words)
+
     @staticmethod
     def member(name: str) -> str:
         """A struct field or union member: the bare name, a keyword escaped."""
@@ -164,7 +170,7 @@ def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str,
         if sig.role == "data":  # counters and checksums have no physical functions
             yield from ((f"{sig_fn}_{w}", where) for w in SIGNAL_FUNCTIONS)
             yield from ((f"{sig_const}_{w}", where) for w in SIGNAL_MACROS)
-        yield from ((f"{sig_const}_{_upper_snake(sp.name)}", (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
+        yield from ((n.special(base, sig.name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
 
 
 def members(msg: ir.Message) -> Iterator[tuple[str, Origin]]:

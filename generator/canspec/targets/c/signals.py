@@ -64,7 +64,7 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
         range_check = f"(src->{field} < {c_int(sig.raw_type_min, bits)}) | (src->{field} > {c_int(sig.raw_type_max, bits)})"
     base = names.message(msg.name)
     macro = names.const(base, sig.name)
-    specials = tuple(CSpecial(names.const(base, sig.name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
+    specials = tuple(CSpecial(names.special(base, sig.name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
     is_data = sig.role == "data"
     fixed = fixed_path(names, sig) if is_data else None
     double = double_path(names, sig, force=fixed is None) if is_data else None
