@@ -19,7 +19,8 @@ from canspec.targets.c.signals import CSignal
 
 
 def _i128(value: int) -> str:
-    return f"(i128)INT64_C({value})"
+    """A 128-bit constant of a value of at most 64 bits (factor, offset, scale: |value| < 2^64)."""
+    return f"(i128)UINT64_C({value})" if value >= 0 else f"-(i128)UINT64_C({-value})"
 
 
 def _bits(s: CSignal, expr: str) -> str:
