@@ -111,7 +111,9 @@ MAYBE_UNUSED static const phys_t *phys_of(const vcase_t *vc, const char *name) {
     return NULL;
 }
 
-MAYBE_UNUSED static int encodable(const vcase_t *vc) { return strcmp(vc->kind, "raw_only") != 0; }
+/* raw_only: a physical encode must refuse it; beyond_double: its physical values do not survive
+ * doubles (decode and raw pack only). */
+MAYBE_UNUSED static int encodable(const vcase_t *vc) { return strcmp(vc->kind, "raw_only") != 0 && strcmp(vc->kind, "beyond_double") != 0; }
 MAYBE_UNUSED static int is_tie(const vcase_t *vc) { return strcmp(vc->kind, "tie") == 0; }
 
 /* The raw value's bits as the number they denote. */
