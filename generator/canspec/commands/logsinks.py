@@ -1,0 +1,130 @@
+"""Where `canspec decode` puts decoded frames: text, JSON lines and CSV are written frame by frame
+in log order (compiled per-message formatters); Parquet takes the bulk decoder's per-message
+Arrow tables and writes one dataset per message, Hive-partitioned by source log:
+
+    OUT/<message>/source=<log name>/part-0.parquet
+
+so pandas, Polars, DuckDB and Spark read `OUT/<message>` as one table (with a `source` column)
+and prune by source and, through row-group statistics, by time."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import re
+from typing import IO, Any
+
+import numpy as np
+
+from canspec import ir
+from canspec.reference import codec
+from canspec.reference.bulk import Decoder
+
+
+class FrameSink:
+    """Per-frame outputs: one call per decoded chunk, frames in log order."""
+
+    def __init__(self, decoder: Decoder, out: IO[str]) -> None:
+        self.decoder, self.out = decoder, out
+
+    def rows(self, batch: Any, decoded: Any) -> tuple[list[Any], ...]:
+        rows = np.flatnonzero(decoded.fits)
+        ok = np.ones(len(batch), bool)
+        ok[decoded.bad_checksum] = False
+        return (decoded.key[rows].tolist(), batch.word[rows].tolist(), batch.timestamp[rows].tolist(),
+                batch.channel_names()[rows].tolist(), ok[rows].tolist())
+
+    def close(self) -> None:
+        self.out.flush()
+
+
+class TextSink(FrameSink):
+    def __init__(self, decoder: Decoder, out: IO[str]) -> None:
+        super().__init__(decoder, out)
+        self.heads = {k: (f" {lay.msg.id_text[2:]} {lay.msg.name}: ", codec.text_decoder(lay.msg)) for k, lay in decoder.layouts.items()}
+
+    def __call__(self, source: str, batch: Any, decoded: Any) -> None:
+        heads, parts = self.heads, []
+        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
+            head, fields = heads[k]
+            lead = f"({t:.6f}) {c}" if t == t else c
+            parts.append(f"{lead}{head if lead else head[1:]}{fields(w)}{'' if ok else '  [checksum mismatch]'}\n")
+        self.out.write("".join(parts))
+
+
+def json_value(sig: ir.Signal, raw: int) -> str | float | int:
+    label = sig.label_of(raw)
+    if label is not None:
+        return label.name
+    phys = codec.physical_number(sig, raw)
+    return round(phys, sig.decimals) if sig.decimals else phys
+
+
+class JsonSink(FrameSink):
+    def __call__(self, source: str, batch: Any, decoded: Any) -> None:
+        parts = []
+        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
+            msg = self.decoder.layouts[k].msg
+            record = {
+                "timestamp": None if t != t else t, "channel": c or None, "frame_id": msg.id_text[2:], "message": msg.name,
+                "signals": {s.name: json_value(s, codec.raw_value(s, w)) for s in msg.data_signals}, "checksum_ok": ok,
+            }
+            parts.append(json.dumps(record, ensure_ascii=False) + "\n")
+        self.out.write("".join(parts))
+
+
+class CsvSink(FrameSink):
+    """One row per signal value (long form), so every message fits one CSV stream."""
+
+    def __init__(self, decoder: Decoder, out: IO[str]) -> None:
+        super().__init__(decoder, out)
+        self.csv = csv.writer(out, lineterminator="\n")
+        self.csv.writerow(["timestamp", "channel", "frame_id", "message", "signal", "raw", "value", "unit", "checksum_ok"])
+
+    def __call__(self, source: str, batch: Any, decoded: Any) -> None:
+        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
+            msg = self.decoder.layouts[k].msg
+            ts = "" if t != t else f"{t:.6f}"
+            for s in msg.data_signals:
+                raw = codec.raw_value(s, w)
+                self.csv.writerow([ts, c, msg.id_text[2:], msg.name, s.name, raw, codec.value_text(s, raw), s.unit, int(ok)])
+
+
+def partition_name(source: str, taken: set[str]) -> str:
+    """A log's partition value: its file name without format extensions, made path-safe and unique."""
+    base = "stdin" if source == "<stdin>" else os.path.basename(source)
+    base = re.sub(r"(\.gz)?$", "", base, flags=re.IGNORECASE)
+    base = re.sub(r"[^A-Za-z0-9._-]", "_", os.path.splitext(base)[0]) or "log"
+    name, n = base, 1
+    while name in taken:
+        n += 1
+        name = f"{base}-{n}"
+    taken.add(name)
+    return name
+
+
+class ParquetSink:
+    """Per (message, source) one Parquet file, a row group per decoded chunk (bounded memory)."""
+
+    def __init__(self, decoder: Decoder, out_dir: str) -> None:
+        self.decoder, self.out_dir = decoder, out_dir
+        self.writers: dict[tuple[str, str], Any] = {}
+        self.partitions: dict[str, str] = {}
+        self.taken: set[str] = set()
+
+    def __call__(self, source: str, batch: Any, decoded: Any) -> None:
+        import pyarrow.parquet as pq
+
+        part = self.partitions.get(source) or self.partitions.setdefault(source, partition_name(source, self.taken))
+        for name, table in decoded.tables.items():
+            writer = self.writers.get((name, part))
+            if writer is None:
+                folder = os.path.join(self.out_dir, name, f"source={part}")
+                os.makedirs(folder, exist_ok=True)
+                writer = self.writers[(name, part)] = pq.ParquetWriter(os.path.join(folder, "part-0.parquet"), table.schema, compression="zstd")
+            writer.write_table(table)
+
+    def close(self) -> None:
+        for writer in self.writers.values():
+            writer.close()
