@@ -110,7 +110,7 @@ def each_chunk(args: argparse.Namespace, decoder: Any, command: str, want_tables
                consume: Callable[[str, Any, Any], None]) -> list[InputStats]:
     """Reads every input chunk by chunk, decodes each chunk in bulk, reports its problems and
     hands (source, batch, decoded) to `consume`; returns per-input statistics."""
-    from canspec.reference.logread import InputError, detect_format, input_size, read_log
+    from canspec.reference.logread import InputError, input_size, read_log
 
     results = []
     for path in args.logs:
@@ -121,7 +121,7 @@ def each_chunk(args: argparse.Namespace, decoder: Any, command: str, want_tables
         progress = Progress(source, input_size(path), sys.stderr)
         problems = Problems(source, args.max_problems, progress.write)
         try:
-            for chunk in read_log(path, detect_format(path, args.input_format)):
+            for chunk in read_log(path, args.input_format):
                 batch = chunk.batch
                 decoded = decoder.decode(batch, tables=want_tables)
                 items = [(line, "malformed", text) for line, text in chunk.problems]

@@ -16,7 +16,7 @@ import pyarrow as pa
 
 from canspec import ir
 from canspec.reference.bulk import Decoder
-from canspec.reference.logread import detect_format, read_log
+from canspec.reference.logread import read_log
 
 
 @dataclass
@@ -30,7 +30,7 @@ def decode_file(messages: Iterable[ir.Message], path: str, fmt: str | None = Non
     decoder = Decoder(messages, raw)
     parts: dict[str, list[pa.Table]] = {}
     result = FileResult()
-    for chunk in read_log(path, detect_format(path, fmt)):
+    for chunk in read_log(path, fmt):
         decoded = decoder.decode(chunk.batch)
         for name, table in decoded.tables.items():
             parts.setdefault(name, []).append(table)

@@ -88,9 +88,16 @@ def _head(stream: IO[bytes], fmt: str) -> bytes:
     return head
 
 
-def read_log(path: str, fmt: str) -> Iterator[Chunk]:
-    """The log's frames, chunk by chunk. InputError before the first chunk when unreadable."""
+def read_log(path: str, fmt: str | None = None) -> Iterator[Chunk]:
+    """The log's frames, chunk by chunk (`fmt` None: from the extension). InputError before the
+    first chunk when the input cannot be read or is not in its format."""
     stream, raw = _open(path)
+    try:
+        fmt = detect_format(path, fmt)
+    except InputError:
+        if raw is not None:
+            raw.close()
+        raise
     if not hasattr(stream, "peek"):
         stream = io.BufferedReader(stream)  # type: ignore[arg-type]
     try:
