@@ -131,3 +131,31 @@ def main() -> int:
 
 if __name__ == "__main__":
     sys.exit(main())
+
+
+def drive_frames(can, seconds: float, t0: float = T0) -> list[Frame]:  # type: ignore[no-untyped-def]
+    """A plausible drive: every cyclic message at its cycle, counters stepping, checksums filled
+    by the reference codec; accel_cmd a sine, steering a slow sweep, gear_cmd stepping through
+    its values. Raw values of other signals stay 0."""
+    import math
+
+    from canspec.reference import codec
+
+    frames = []
+    for msg in can.messages:
+        if msg.cycle_ms is None:
+            continue
+        for k in range(int(seconds * 1000 / msg.cycle_ms)):
+            t = t0 + k * msg.cycle_ms / 1000
+            raw = {}
+            for sig in msg.data_signals:
+                if sig.name == "accel_cmd":
+                    raw[sig.name] = codec.to_raw(sig, round(2 * math.sin(t - t0), 2))
+                elif sig.name == "steering_angle_cmd":
+                    raw[sig.name] = codec.to_raw(sig, round(300 * math.sin((t - t0) / 3), 1))
+                elif sig.name == "gear_cmd":
+                    raw[sig.name] = int((t - t0) // 2) % 3
+            if msg.counter is not None:
+                raw[msg.counter.signal] = k % msg.counter.modulo
+            frames.append(Frame(round(t, 6), msg.frame_id, msg.is_extended, codec.pack(msg, raw)))
+    return sorted(frames, key=lambda f: f.timestamp)
