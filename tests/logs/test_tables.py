@@ -49,13 +49,14 @@ def test_parquet_read_back_with_duckdb_pandas_polars(eight_logs, tmp_path, db):
         assert abs(ts - f.timestamp) < 1e-6 and accel == theirs["accel_cmd"] and gear_raw == cm.decode(f.data, scaling=False, decode_choices=False)["gear_cmd"]
         assert gear == (str(theirs["gear_cmd"]) if not isinstance(theirs["gear_cmd"], (int, float)) else None)
     # partition pruning: one drive only
-    one = duckdb.sql(f"SELECT count(*) FROM read_parquet('{glob}', hive_partitioning = true) WHERE source = 'drive3'").fetchone()[0]
+    one = duckdb.sql(f"SELECT count(*) FROM read_parquet('{glob}', hive_partitioning = true) WHERE source = 'drive3'").fetchall()[0][0]
     assert one == sum(1 for f in frames[6000:8000] if f.frame_id == cm.frame_id)
     frame = pd.read_parquet(out / "autocar_speed_command").sort_values("timestamp")
     assert frame["accel_cmd"].tolist() == [r[2] for r in rows] and str(frame["gear_cmd_raw"].dtype) == "uint8"
     assert isinstance(frame["gear_cmd_label"].dtype, pd.CategoricalDtype)
     polars = pl.read_parquet(str(out / "autocar_speed_command" / "**" / "*.parquet"), hive_partitioning=True).sort("timestamp")
-    assert polars["accel_cmd"].to_list() == [r[2] for r in rows] and set(polars["source"].unique()) == {f"drive{i}" for i in range(8)}
+    assert polars["accel_cmd"].to_list() == [r[2] for r in rows] and set(polars["source"].unique()) == {
+        f"drive{i}" for i in range(8) if any(f.frame_id == cm.frame_id for f in frames[i * 2000:(i + 1) * 2000])}
 
 
 def test_dask_local_cluster_gives_the_single_process_tables(eight_logs, can):
@@ -106,7 +107,7 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
     assert r["frames"] == len(mine) - 10 and r["cycle_ms"] == 20 and r["timeout_ms"] == 60
     assert r["counter_repeats"] == 1 and r["counter_jumps"] == 2  # the repeat is followed by a jump of 2; the gap is a jump
     assert r["checksum_errors"] == 1 and r["gaps"] == 1 and r["longest_gap_ms"] == pytest.approx(220, abs=0.01)
-    assert r["period_ms"] == pytest.approx(20 * (len(mine) - 1) / (len(mine) - 11), rel=1e-6)
+    assert r["period_ms"] == pytest.approx(20 * (len(mine) - 1) / (len(mine) - 11), abs=1e-3)
     steady = by["vehicle_state_1"]
     assert steady["counter_jumps"] == steady["counter_repeats"] == steady["gaps"] == 0 and steady["period_ms"] == pytest.approx(50, abs=1e-3)
     assert report["unknown_ids"] == {"0x18FEEE00": 1} and report["counts"]["checksum"] == 1
