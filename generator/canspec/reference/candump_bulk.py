@@ -26,11 +26,16 @@ def _next(positions: np.ndarray, after: np.ndarray) -> np.ndarray:
     return np.append(positions, np.iinfo(np.int64).max)[k]
 
 
-def _gather(b: np.ndarray, start: np.ndarray, length: np.ndarray, width: int) -> tuple[np.ndarray, np.ndarray]:
-    """Bytes [start, start+length) of each row, zero-padded to `width`; and the valid-cell mask."""
-    idx = start[:, None] + np.arange(width)
+def _gather(b: np.ndarray, start: np.ndarray, length: np.ndarray, width: int, zero: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Bytes [start, start+length) of each row in `width` columns (zero-padded unless `zero` is
+    False: then cells past the length hold whatever follows); and the valid-cell mask. `b` ends
+    in at least `width` spare bytes."""
+    width = min(width, int(length.max(initial=0)))
+    cells = b[start[:, None] + np.arange(width, dtype=np.int64)]
     valid = np.arange(width) < length[:, None]
-    return np.where(valid, b[np.minimum(idx, len(b) - 1)], 0).astype(np.uint8), valid
+    if zero:
+        cells *= valid
+    return cells, valid
 
 
 def _hex_value(cells: np.ndarray, valid: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -39,7 +44,7 @@ def _hex_value(cells: np.ndarray, valid: np.ndarray, length: np.ndarray) -> tupl
     ok = np.all((nib < 16) | ~valid, axis=1)
     shift = (length[:, None] - 1 - np.arange(cells.shape[1])) * 4
     value = np.where(valid & ok[:, None], nib.astype(np.uint64) << np.maximum(shift, 0).astype(np.uint64), np.uint64(0))
-    return np.bitwise_or.reduce(value, axis=1), ok
+    return np.bitwise_or.reduce(value, axis=1, initial=np.uint64(0)), ok
 
 
 def _data_word(cells: np.ndarray, valid: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -48,7 +53,7 @@ def _data_word(cells: np.ndarray, valid: np.ndarray) -> tuple[np.ndarray, np.nda
     ok = np.all((nib < 16) | ~valid, axis=1)
     nib = np.where(valid, nib, 0).astype(np.uint64)
     byte = (nib[:, 0::2] << np.uint64(4)) | nib[:, 1::2]
-    return np.bitwise_or.reduce(byte << (np.arange(8, dtype=np.uint64) * np.uint64(8)), axis=1), ok
+    return np.bitwise_or.reduce(byte << (np.arange(byte.shape[1], dtype=np.uint64) * np.uint64(8)), axis=1, initial=np.uint64(0)), ok
 
 
 def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -66,11 +71,11 @@ def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarr
     id_len, data_len, ts_len, ch_len = hash_at - chan_end - 1, data_end - hash_at - 1, close - starts - 1, chan_end - close - 2
     ok &= ((id_len == 3) | (id_len == 8)) & (data_len % 2 == 0) & (data_len <= 16) & (ts_len > 0) & (ts_len <= MAX_TIME) & (ch_len > 0) & (ch_len <= MAX_CHANNEL)
     rows = np.flatnonzero(ok)
-    cells, valid = _gather(b, chan_end[rows] + 1, id_len[rows], 8)
+    cells, valid = _gather(b, chan_end[rows] + 1, id_len[rows], 8, zero=False)
     frame_id, id_ok = _hex_value(cells, valid, id_len[rows])
     extended = id_len[rows] == 8
     id_ok &= frame_id <= np.where(extended, 0x1FFFFFFF, 0x7FF)  # error frames (CAN_ERR_FLAG) take the line reader
-    cells, valid = _gather(b, hash_at[rows] + 1, data_len[rows], 16)
+    cells, valid = _gather(b, hash_at[rows] + 1, data_len[rows], 16, zero=False)
     word, data_ok = _data_word(cells, valid)
     cells, valid = _gather(b, starts[rows] + 1, ts_len[rows], MAX_TIME)
     digit = (cells >= 48) & (cells <= 57)
@@ -79,9 +84,10 @@ def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarr
     good = id_ok & data_ok & ts_ok
     rows, ok[:] = rows[good], False
     ok[rows] = True
-    timestamp = cells[good].view(f"S{MAX_TIME}").ravel().astype(np.float64)
+    timestamp = np.ascontiguousarray(cells[good]).view(f"S{cells.shape[1]}").ravel().astype(np.float64) if cells.size else np.zeros(len(rows))
     chan_cells, _ = _gather(b, close[rows] + 2, ch_len[rows], MAX_CHANNEL)
-    names, codes = np.unique(chan_cells.view(f"S{MAX_CHANNEL}").ravel(), return_inverse=True)
+    chan_cells = np.ascontiguousarray(chan_cells)
+    names, codes = np.unique(chan_cells.view(f"S{chan_cells.shape[1]}").ravel(), return_inverse=True) if chan_cells.size else (np.zeros(0, "S1"), np.zeros(0, np.int64))
     return ok, {
         "timestamp": timestamp, "channel": codes.astype(np.int32), "channels": tuple(n.decode("latin-1") for n in names),
         "frame_id": frame_id[good].astype(np.uint32), "extended": extended[good], "dlc": (data_len[rows] // 2).astype(np.uint8), "word": word[good],
@@ -99,7 +105,7 @@ def read_chunk(buf: bytes, first_line: int) -> tuple[fr.Batch, list[tuple[int, s
     ends = nl.astype(np.int64)
     if len(b):
         ends = ends - ((ends > starts) & (b[np.maximum(ends - 1, 0)] == CR))
-    ok, cols = _fast(np.append(b, np.uint8(NL)), starts, ends) if len(starts) else (np.zeros(0, bool), None)
+    ok, cols = _fast(np.concatenate((b, np.full(MAX_TIME + 2, NL, np.uint8))), starts, ends) if len(starts) else (np.zeros(0, bool), None)
     fast_lines = np.flatnonzero(ok) + first_line
     fast = fr.Batch(
         cols["timestamp"], cols["channel"], cols["frame_id"], cols["extended"], np.zeros(len(fast_lines), np.uint8),
