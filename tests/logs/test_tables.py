@@ -113,3 +113,23 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
     assert report["unknown_ids"] == {"0x18FEEE00": 1} and report["counts"]["checksum"] == 1
     text = canspec("decode", "--report", str(log)).stdout
     assert "autocar_eps_command" in text and "unknown IDs: 0x18FEEE00 ×1" in text
+
+
+def test_arrow_frames_round_trip_and_spark_schema(eight_logs, can):
+    """What a Spark job does: frame columns through Arrow, decoded per batch, cast to the plain schema."""
+    from canspec.reference.bulk import Decoder, decode_arrow
+    from canspec.reference.frames import Batch
+    from canspec.reference.logread import read_log
+
+    logs, _ = eight_logs
+    decoder = Decoder(can.messages)
+    for chunk in read_log(str(logs[0])):
+        record_batch = chunk.batch.to_arrow()
+        assert record_batch.schema.names == ["timestamp", "channel", "frame_id", "extended", "kind", "dlc", "word", "line"]
+        direct = decoder.decode(chunk.batch).tables
+        via_arrow = decode_arrow(can.messages, record_batch)
+        assert sorted(direct) == sorted(via_arrow) and all(direct[n].equals(via_arrow[n]) for n in direct)
+        assert Batch.from_arrow(record_batch).channels == chunk.batch.channels
+        for name, table in direct.items():
+            plain = table.cast(decoder.layout(name).plain_schema())
+            assert not any(pa.types.is_dictionary(f.type) for f in plain.schema)

@@ -76,6 +76,11 @@ class Layout:
         meta = {b"message": self.msg.name.encode(), b"frame_id": self.msg.id_text.encode()}
         return pa.schema(cols, metadata=meta)
 
+    def plain_schema(self) -> pa.Schema:
+        """The schema with dictionary columns as plain strings (what Spark's mapInArrow takes)."""
+        schema = self.schema()
+        return pa.schema([pa.field(f.name, pa.string()) if pa.types.is_dictionary(f.type) else f for f in schema], metadata=schema.metadata)
+
 
 def raw_type(sig: ir.Signal) -> pa.DataType:
     return getattr(pa, f"{'int' if sig.signed else 'uint'}{sig.storage_bits}")()
@@ -153,6 +158,9 @@ class Decoder:
         self.layouts = {message_key(m.frame_id, m.is_extended): Layout.of(m, raw) for m in messages}
         self.keys = np.array(sorted(self.layouts), dtype=np.int64)
         self.dlcs = np.array([self.layouts[k].msg.dlc for k in sorted(self.layouts)], dtype=np.int64)
+
+    def layout(self, name: str) -> Layout:
+        return next(lay for lay in self.layouts.values() if lay.msg.name == name)
 
     def decode(self, batch: fr.Batch, tables: bool = True) -> Decoded:
         key = (batch.frame_id.astype(np.int64) << 1) | batch.extended
