@@ -26,11 +26,18 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests" / "logs"))
-from logsynth import FORMATS, STEP, T0, frames_from_cases, vector_cases, write  # noqa: E402
+from logsynth import FORMATS, STEP, T0, frames_from_cases, vector_cases, write
 
 DBC = ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
 ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generator"))
 CANSPEC = [sys.executable, "-m", "canspec", "decode"]
+PROBE = """
+import resource, subprocess, sys, time
+t = time.perf_counter()
+rc = subprocess.call(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, stdin=sys.stdin)
+u = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(time.perf_counter() - t, u.ru_utime + u.ru_stime, u.ru_maxrss / 1024, rc)
+"""
 ASAMMDF = """
 import sys
 from asammdf import MDF
@@ -39,15 +46,9 @@ MDF(sys.argv[1]).extract_bus_logging({"CAN": [(sys.argv[2], 0)]}).save(sys.argv[
 
 
 def measure(cmd: list[str], stdin: Path | None = None) -> tuple[float, float, float]:
-    """(wall s, CPU s, peak RSS MiB) of a command, run through /usr/bin/time-like accounting."""
-    import time
-
-    probe = [sys.executable, "-c", "import resource, subprocess, sys, time\n"
-             "t = time.perf_counter(); rc = subprocess.call(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, stdin=sys.stdin)\n"
-             "u = resource.getrusage(resource.RUSAGE_CHILDREN)\n"
-             "print(time.perf_counter() - t, u.ru_utime + u.ru_stime, u.ru_maxrss / 1024, rc)", *cmd]
+    """(wall s, CPU s, peak RSS MiB) of a command, measured by a parent process of its own."""
+    probe = [sys.executable, "-c", PROBE, *cmd]
     with (stdin.open("rb") if stdin else open(os.devnull, "rb")) as inp:
-        t = time.perf_counter()
         out = subprocess.run(probe, stdin=inp, capture_output=True, text=True, env=ENV, check=True).stdout.split()
     wall, cpu, rss, rc = float(out[0]), float(out[1]), float(out[2]), int(out[3])
     if rc != 0:

@@ -75,8 +75,8 @@ def test_dask_local_cluster_gives_the_single_process_tables(eight_logs, can):
         for name, table in result.tables.items():
             distributed.setdefault(name, []).append(table)
     assert sorted(single) == sorted(distributed) and len(single) == len(can.messages)
-    for name in single:
-        a, b = (pa.concat_tables(t).unify_dictionaries().combine_chunks() for t in (single[name], distributed[name]))
+    for name, parts in single.items():
+        a, b = (pa.concat_tables(t).unify_dictionaries().combine_chunks() for t in (parts, distributed[name]))
         assert a.equals(b), name
 
 

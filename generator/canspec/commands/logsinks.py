@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import os
 import re
 from typing import IO, Any
@@ -48,7 +49,7 @@ class TextSink(FrameSink):
         heads, parts = self.heads, []
         for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
             head, fields = heads[k]
-            lead = f"({t:.6f}) {c}" if t == t else c
+            lead = c if math.isnan(t) else f"({t:.6f}) {c}"
             parts.append(f"{lead}{head if lead else head[1:]}{fields(w)}{'' if ok else '  [checksum mismatch]'}\n")
         self.out.write("".join(parts))
 
@@ -67,7 +68,7 @@ class JsonSink(FrameSink):
         for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
             msg = self.decoder.layouts[k].msg
             record = {
-                "timestamp": None if t != t else t, "channel": c or None, "frame_id": msg.id_text[2:], "message": msg.name,
+                "timestamp": None if math.isnan(t) else t, "channel": c or None, "frame_id": msg.id_text[2:], "message": msg.name,
                 "signals": {s.name: json_value(s, codec.raw_value(s, w)) for s in msg.data_signals}, "checksum_ok": ok,
             }
             parts.append(json.dumps(record, ensure_ascii=False) + "\n")
@@ -85,7 +86,7 @@ class CsvSink(FrameSink):
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
         for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
             msg = self.decoder.layouts[k].msg
-            ts = "" if t != t else f"{t:.6f}"
+            ts = "" if math.isnan(t) else f"{t:.6f}"
             for s in msg.data_signals:
                 raw = codec.raw_value(s, w)
                 self.csv.writerow([ts, c, msg.id_text[2:], msg.name, s.name, raw, codec.value_text(s, raw), s.unit, int(ok)])

@@ -120,7 +120,7 @@ def checksum_column(msg: ir.Message, word: np.ndarray) -> np.ndarray:
 
 def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
     """The table of frames that all carry layout.msg with the right length."""
-    n, word = layout.names, batch.word
+    word = batch.word
     channel = pa.DictionaryArray.from_arrays(pa.array(batch.channel, mask=batch.channel < 0), pa.array(batch.channels, pa.string()))
     cols: list[pa.Array] = [pa.array(batch.timestamp), channel]
     for s in layout.msg.data_signals:

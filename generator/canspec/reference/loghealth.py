@@ -98,7 +98,7 @@ class MessageHealth:
 
     def record(self) -> dict[str, Any]:
         span = self.last - self.first
-        period = span / (self.frames - 1) * 1000 if self.frames > 1 and span == span else None
+        period = span / (self.frames - 1) * 1000 if self.frames > 1 and not math.isnan(span) else None
         return {
             "message": self.msg.name, "id": self.msg.id_text, "frames": self.frames,
             "cycle_ms": self.msg.cycle_ms, "timeout_ms": self.msg.timeout_ms,
