@@ -195,3 +195,9 @@ def test_line_forms():
     assert parse_line("(2.0) can0 123#R2 R") == (2.0, "can0", 0x123, False, b"", REMOTE)
     assert parse_line("  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME")[4:] == (bytes([0, 4]) + bytes(6), ERROR)
     assert parse_line("   ") is None and parse_line("# comment") is None
+
+
+def test_gen_and_check_do_not_import_the_logs_extra():
+    code = ("import sys; from canspec import cli; cli.build_parser(); "
+            "print(sorted(m for m in ('numpy', 'pyarrow', 'can', 'matplotlib', 'tqdm', 'asammdf') if m in sys.modules))")
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=ENV, check=True).stdout.strip() == "[]"

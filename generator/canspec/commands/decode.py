@@ -22,7 +22,7 @@ FORMATS = ("text", "json", "csv", "parquet")
 
 
 def _sink(args: argparse.Namespace, decoder, out: IO[str]):  # type: ignore[no-untyped-def]
-    from canspec.commands import logsinks
+    from canspec.reference import logsinks
 
     if args.format == "parquet":
         return logsinks.ParquetSink(decoder, args.output)
