@@ -16,7 +16,7 @@ for _i, _c in enumerate(b"0123456789abcdef"):
     HEX[_c] = _i
 for _i, _c in enumerate(b"ABCDEF"):
     HEX[_c] = 10 + _i
-MAX_TIME, MAX_CHANNEL = 24, 16  # longer time stamps / channel names take the line reader
+MAX_TIME, MAX_CHANNEL = 24, 8  # longer time stamps / channel names take the line reader
 SP, HASH, LPAREN, RPAREN, NL, CR = (ord(c) for c in " #()\n\r")
 
 
@@ -56,6 +56,19 @@ def _data_word(cells: np.ndarray, valid: np.ndarray) -> tuple[np.ndarray, np.nda
     return np.bitwise_or.reduce(byte << (np.arange(byte.shape[1], dtype=np.uint64) * np.uint64(8)), axis=1, initial=np.uint64(0)), ok
 
 
+def _channels(b: np.ndarray, start: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Channel names (up to 8 bytes, read as one integer each) → distinct names and codes."""
+    cells, _ = _gather(b, start, length, MAX_CHANNEL)
+    packed = np.zeros((len(start), MAX_CHANNEL), np.uint8)
+    packed[:, : cells.shape[1]] = cells
+    key = packed.view("<u8").ravel()
+    if len(key) and np.all(key == key[0]):  # the usual log: one channel
+        names, codes = key[:1], np.zeros(len(key), np.int64)
+    else:
+        names, codes = np.unique(key, return_inverse=True)
+    return names.view(f"S{MAX_CHANNEL}"), codes
+
+
 def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """Which lines are plain `-L` form, and their columns."""
     close = _next(np.flatnonzero(b == RPAREN), starts)
@@ -85,9 +98,7 @@ def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarr
     rows, ok[:] = rows[good], False
     ok[rows] = True
     timestamp = np.ascontiguousarray(cells[good]).view(f"S{cells.shape[1]}").ravel().astype(np.float64) if cells.size else np.zeros(len(rows))
-    chan_cells, _ = _gather(b, close[rows] + 2, ch_len[rows], MAX_CHANNEL)
-    chan_cells = np.ascontiguousarray(chan_cells)
-    names, codes = np.unique(chan_cells.view(f"S{chan_cells.shape[1]}").ravel(), return_inverse=True) if chan_cells.size else (np.zeros(0, "S1"), np.zeros(0, np.int64))
+    names, codes = _channels(b, close[rows] + 2, ch_len[rows])
     return ok, {
         "timestamp": timestamp, "channel": codes.astype(np.int32), "channels": tuple(n.decode("latin-1") for n in names),
         "frame_id": frame_id[good].astype(np.uint32), "extended": extended[good], "dlc": (data_len[rows] // 2).astype(np.uint8), "word": word[good],
