@@ -21,6 +21,7 @@ import numpy as np
 from canspec import ir
 from canspec.reference import codec
 from canspec.reference.bulk import Decoder
+from canspec.reference.bulktext import message_texts
 
 
 class FrameSink:
@@ -41,17 +42,37 @@ class FrameSink:
 
 
 class TextSink(FrameSink):
+    """`(TIME) CHANNEL ID message: signal=value unit, ...` per frame. The lines of one message are
+    made together (bulktext: a column of texts per signal), then put in log order."""
+
     def __init__(self, decoder: Decoder, out: IO[str]) -> None:
         super().__init__(decoder, out)
-        self.heads = {k: (f" {lay.msg.id_text[2:]} {lay.msg.name}: ", codec.text_decoder(lay.msg)) for k, lay in decoder.layouts.items()}
+        self.messages = {lay.msg.name: (f" {lay.msg.id_text[2:]} {lay.msg.name}: ", lay.msg) for lay in decoder.layouts.values()}
+        self.tables: dict[str, dict[str, np.ndarray]] = {}
 
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
-        heads, parts = self.heads, []
-        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
-            head, fields = heads[k]
-            lead = c if math.isnan(t) else f"({t:.6f}) {c}"
-            parts.append(f"{lead}{head if lead else head[1:]}{fields(w)}{'' if ok else '  [checksum mismatch]'}\n")
-        self.out.write("".join(parts))
+        rows = np.flatnonzero(decoded.fits)
+        if not len(rows):
+            return
+        lines = np.empty(len(rows), dtype=object)
+        for name, group in decoded.groups.items():
+            head, msg = self.messages[name]
+            texts = message_texts(msg, batch.word[group], self.tables.setdefault(name, {}))
+            lines[np.searchsorted(rows, group)] = list(map(head.__add__, texts))
+        if len(decoded.bad_checksum):
+            at = np.searchsorted(rows, decoded.bad_checksum)
+            lines[at] = lines[at] + "  [checksum mismatch]"
+        channel = batch.channel_names()[rows]
+        time = batch.timestamp[rows]
+        if not np.isnan(time).any():  # one format per line: time, channel, the message's text
+            if len(batch.channels) == 1 and not (batch.channel < 0).any():
+                lines = list(map(("({:.6f}) " + batch.channels[0].replace("{", "{{").replace("}", "}}") + "{}").format, time.tolist(), lines.tolist()))
+            else:
+                lines = list(map("({:.6f}) {}{}".format, time.tolist(), channel.tolist(), lines.tolist()))
+        else:  # no time stamps (or only some): the channel, when there is one, leads
+            lead = [("" if t != t else f"({t:.6f}) ") + c for t, c in zip(time.tolist(), channel.tolist())]  # noqa: PLR0124 - NaN test
+            lines = [(lead_text + line if lead_text else line[1:]) for lead_text, line in zip(lead, lines.tolist())]
+        self.out.write("\n".join(lines) + "\n")
 
 
 def json_value(sig: ir.Signal, raw: int) -> str | float | int:
