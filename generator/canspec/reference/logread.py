@@ -26,7 +26,8 @@ EXTENSIONS = {".log": "candump", ".candump": "candump", ".txt": "candump", ".asc
 TEXT_FORMATS = ("candump", "asc", "trc")
 MAGIC = {"blf": b"LOGG", "mf4": b"MDF     "}
 CHUNK_BYTES = 4 << 20  # candump text per bulk step (bounds the working memory)
-CHUNK_FRAMES = 1 << 18  # frames per batch from the record readers
+CHUNK_FRAMES = 1 << 18  # frames per batch from the python-can readers
+MF4_CHUNK = 1 << 20  # records per asammdf read (about 90 MiB of 64-byte data records)
 
 
 class InputError(Exception):
@@ -197,7 +198,7 @@ MF4_GROUPS = {"CAN_DataFrame": DATA, "CAN_RemoteFrame": REMOTE, "CAN_ErrorFrame"
 
 def _mf4(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
     """ASAM MF4 bus logging: the CAN_DataFrame / _RemoteFrame / _ErrorFrame channel groups read
-    as whole columns by asammdf, CHUNK_FRAMES records at a time."""
+    as whole columns by asammdf, MF4_CHUNK records at a time."""
     from asammdf import MDF
 
     mdf = MDF(io.BytesIO(stream.read()) if not stream.seekable() else stream)
@@ -210,28 +211,32 @@ def _mf4(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
                 if kind is None:
                     continue
                 total = group.channel_group.cycles_nr
-                for offset in range(0, total, CHUNK_FRAMES):
-                    sig = mdf.get(ch.name, group=gi, record_offset=offset, record_count=min(CHUNK_FRAMES, total - offset), raw=True)
+                for offset in range(0, total, MF4_CHUNK):
+                    sig = mdf.get(ch.name, group=gi, record_offset=offset, record_count=min(MF4_CHUNK, total - offset), raw=True)
                     yield Chunk(_mf4_columns(sig, ch.name, kind, start, record), [], len(sig.timestamps))
                     record += len(sig.timestamps)
     finally:
         mdf.close()
 
 
+BYTE_MASKS = np.array([(1 << 8 * k) - 1 for k in range(8)] + [2**64 - 1], dtype=np.uint64)  # the first k bytes of a word
+
+
 def _mf4_columns(sig: Any, name: str, kind: int, start: float, first: int) -> fr.Batch:
     s = sig.samples
     n = len(s)
-    ids = s[f"{name}.ID"].astype(np.uint32)
     if kind == DATA:
         dlc = s[f"{name}.DataLength"].astype(np.uint8)
-        raw = np.ascontiguousarray(s[f"{name}.DataBytes"][:, :8]).astype(np.uint8)
-        raw = np.where(np.arange(8) < dlc[:, None], raw, 0).astype(np.uint8)
-        word = np.ascontiguousarray(raw).view("<u8").ravel()
+        word = np.ascontiguousarray(s[f"{name}.DataBytes"][:, :8]).view("<u8").ravel() & BYTE_MASKS[np.minimum(dlc, 8)]
     else:
         dlc, word = np.zeros(n, np.uint8), np.zeros(n, np.uint64)
-    channels, codes = np.unique(s[f"{name}.BusChannel"], return_inverse=True)
+    bus = s[f"{name}.BusChannel"]
+    if n and np.all(bus == bus[0]):  # the usual log: one channel
+        channels, codes = bus[:1], np.zeros(n, np.int32)
+    else:
+        channels, codes = np.unique(bus, return_inverse=True)
     return fr.Batch(
-        sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), ids & np.uint32(0x1FFFFFFF),
-        s[f"{name}.IDE"].astype(bool), np.full(n, kind, np.uint8), dlc, word.astype(np.uint64),
+        sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), s[f"{name}.ID"].astype(np.uint32) & np.uint32(0x1FFFFFFF),
+        s[f"{name}.IDE"].astype(bool), np.full(n, kind, np.uint8), dlc, word,
         np.arange(first + 1, first + n + 1, dtype=np.int64), channels=tuple(str(c) for c in channels.tolist()),
     )
