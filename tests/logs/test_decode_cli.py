@@ -221,3 +221,36 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
         words = [w for m, w in cases if m is msg]
         mine = bulktext.message_texts(msg, np.array(words, dtype=np.uint64), {})
         assert mine == [codec.text_decoder(msg)(w) for w in words], msg.name
+
+
+LINE_PIECES = st.sampled_from(["(1.5)", "(1700000000.000100)", "(abc)", "(1.2.3)", "(2023-11-14 22:13:20.123456)", "can0", "vcan12", "RX", "-", "123", "7FF", "800",
+                               "1806A0B0", "20000080", "3FFFFFFF", "[0]", "[2]", "[8]", "[12]", "[x]", "01", "0A", "ff", "0", "GG", "123#0102", "1806A0B0#R",
+                               "123#", "7FF##1" + "00" * 9, "ERRORFRAME", "remote", "request", "'..'", "R", "T", "#", ";"])
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.lists(st.lists(LINE_PIECES, max_size=12).map(" ".join) | st.lists(LINE_PIECES, max_size=12).map("  ".join), min_size=1, max_size=30))
+def test_bulk_reader_equals_the_line_reader(lines):
+    """Every line the NumPy reader takes apart, it reads as candump.parse_line does; every other
+    line it hands to parse_line — so the frames and problems are exactly the line reader's."""
+    import math
+
+    from canspec.reference.candump_bulk import read_chunk
+
+    batch, problems, count = read_chunk(("\n".join(lines) + "\n").encode(), 1)
+    assert count == len(lines)
+    got = {int(i): row for i, *row in zip(batch.line, batch.timestamp.tolist(), batch.channel_names().tolist(), batch.frame_id.tolist(),
+                                          batch.extended.tolist(), batch.kind.tolist(), batch.dlc.tolist(), batch.word.tolist())}
+    bad = {line for line, _ in problems}
+    for i, line in enumerate(lines, 1):
+        try:
+            frame = parse_line(line)
+        except LineError:
+            assert i in bad and i not in got, line
+            continue
+        if frame is None:
+            assert i not in got and i not in bad, line
+            continue
+        t, *rest = got[i]
+        assert (None if math.isnan(t) else t, *rest) == (frame.timestamp, frame.channel or "", frame.frame_id, frame.extended, frame.kind,
+                                                          len(frame.data), int.from_bytes(frame.data[:8], "little")), line
