@@ -143,8 +143,7 @@ def _candump(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
 def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
     """ASC, TRC and BLF through python-can: batches of its messages turned into columns. The
     text readers see a line-counting file, so frames carry their line numbers."""
-    import can
-
+    can = _import_can()
     counter = _LineCounter(stream) if fmt in TEXT_FORMATS else None
     kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
     reader_cls = {"asc": can.ASCReader, "trc": can.TRCReader, "blf": can.BLFReader}[fmt]
@@ -168,6 +167,21 @@ def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
         return
     end = counter.line if counter is not None else record
     yield Chunk(fr.from_frames(frames, lines), [], end - done)
+
+
+def _import_can() -> Any:
+    """python-can without the 2 s import of asammdf that its MF4 module does on `import can`:
+    these readers do not need it, and MF4 files are read with asammdf directly (_mf4)."""
+    if "can" in sys.modules or "asammdf" in sys.modules:
+        import can
+
+        return can
+    sys.modules["asammdf"] = None  # type: ignore[assignment]  # makes python-can's `import asammdf` fail fast, as if absent
+    try:
+        import can
+    finally:
+        del sys.modules["asammdf"]
+    return can
 
 
 class _LineCounter(io.TextIOBase):
