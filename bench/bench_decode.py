@@ -16,6 +16,7 @@ The logs are written once per N into --cache (python-can's writers take a while)
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
@@ -67,7 +68,8 @@ def logs(cache: Path, frames: int) -> dict[str, Path]:
     paths = {}
     for fmt, name in FORMATS.items():
         print(f"  writing {frames:,} frames as {fmt} …", file=sys.stderr, flush=True)
-        paths[fmt] = str(write(fmt, folder / name, data))
+        with contextlib.redirect_stdout(sys.stderr):  # the MF4 writer reports progress on stdout
+            paths[fmt] = str(write(fmt, folder / name, data))
     done.write_text(json.dumps(paths))
     return {k: Path(v) for k, v in paths.items()}
 

@@ -106,12 +106,37 @@ def message_problems(msg_of: Callable[[int], ir.Message], batch: Any, decoded: A
     return items
 
 
+class _NoPandas:
+    """An import finder that says pandas is not installed."""
+
+    def find_spec(self, name: str, path: object = None, target: object = None) -> None:
+        if name == "pandas" or name.startswith("pandas."):
+            raise ModuleNotFoundError("hidden from pyarrow", name=name)
+
+
+def pyarrow_without_pandas() -> None:
+    """pyarrow imports pandas (0.6 s) the first time it builds an array, only to learn whether it
+    exists; the commands never hand it pandas objects, so it is told pandas is absent (it caches
+    the answer). pandas itself stays importable (asammdf needs it). Only for the CLI's process."""
+    if "pandas" in sys.modules:
+        return
+    import pyarrow as pa
+
+    finder = _NoPandas()
+    sys.meta_path.insert(0, finder)  # type: ignore[arg-type]
+    try:
+        pa.array([0.0])
+    finally:
+        sys.meta_path.remove(finder)  # type: ignore[arg-type]
+
+
 def each_chunk(args: argparse.Namespace, decoder: Any, command: str, want_tables: bool,
                consume: Callable[[str, Any, Any], None]) -> list[InputStats]:
     """Reads every input chunk by chunk, decodes each chunk in bulk, reports its problems and
     hands (source, batch, decoded) to `consume`; returns per-input statistics."""
     from canspec.reference.logread import InputError, input_size, read_log
 
+    pyarrow_without_pandas()
     results = []
     for path in args.logs:
         source = "<stdin>" if path == "-" else path
