@@ -1,6 +1,6 @@
 """Bus logs → batches of frame columns (frames.Batch), read in bounded chunks so memory does not
-grow with the log. Formats: candump (every output form; the `-L` form in bulk, candump_bulk),
-Vector ASC, BLF and PEAK TRC through python-can's readers, ASAM MF4 through asammdf (whole
+grow with the log. Formats: candump (every output form, in bulk: candump_bulk), Vector BLF (in bulk:
+blf_bulk), Vector ASC and PEAK TRC through python-can's readers, ASAM MF4 through asammdf (whole
 columns of the bus-logging groups at once). Picked by extension (`.gz` too) or by name; `-` is
 stdin (text forms). A file that cannot be read, or is not in its format, raises InputError with
 one line saying what is wrong."""
@@ -103,7 +103,7 @@ def read_log(path: str, fmt: str | None = None) -> Iterator[Chunk]:
         stream = io.BufferedReader(stream)  # type: ignore[arg-type]
     try:
         _head(stream, fmt)
-        reader = {"candump": _candump, "mf4": _mf4}.get(fmt, _python_can)
+        reader = {"candump": _candump, "mf4": _mf4, "blf": _blf}.get(fmt, _python_can)
         for chunk in reader(stream, fmt):
             chunk.position = raw.tell() if raw is not None and not raw.closed else None
             yield chunk
@@ -140,13 +140,20 @@ def _candump(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
             return
 
 
+def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+    from canspec.reference.blf_bulk import read_blf
+
+    for batch, objects in read_blf(stream):
+        yield Chunk(batch, [], objects)
+
+
 def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
-    """ASC, TRC and BLF through python-can: batches of its messages turned into columns. The
+    """ASC and TRC through python-can: batches of its messages turned into columns. The
     text readers see a line-counting file, so frames carry their line numbers."""
     can = _import_can()
     counter = _LineCounter(stream) if fmt in TEXT_FORMATS else None
     kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
-    reader_cls = {"asc": can.ASCReader, "trc": can.TRCReader, "blf": can.BLFReader}[fmt]
+    reader_cls = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt]
     reader = reader_cls(counter if counter is not None else stream, **kwargs)
     frames: list[Frame] = []
     lines: list[int] = []
