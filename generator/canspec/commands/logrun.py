@@ -136,7 +136,8 @@ def each_chunk(args: argparse.Namespace, decoder: Any, command: str, want_tables
     hands (source, batch, decoded) to `consume`; returns per-input statistics."""
     from canspec.reference.logread import InputError, input_size, read_log
 
-    pyarrow_without_pandas()
+    if want_tables:
+        pyarrow_without_pandas()
     results = []
     for path in args.logs:
         source = "<stdin>" if path == "-" else path

@@ -15,13 +15,16 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pyarrow as pa
 
 from canspec import ir
 from canspec.reference import frames as fr
 from canspec.reference.candump import DATA, ERROR, REMOTE
+
+if TYPE_CHECKING:  # pyarrow is imported where tables are made: the text output needs none
+    import pyarrow as pa
 
 U64 = np.uint64
 
@@ -62,6 +65,8 @@ class Layout:
         return cls(msg, raw, names)
 
     def schema(self) -> pa.Schema:
+        import pyarrow as pa
+
         n = self.names
         cols = [pa.field(n["timestamp"], pa.float64()), pa.field(n["channel"], pa.dictionary(pa.int32(), pa.string()))]
         for s in self.msg.data_signals:
@@ -78,11 +83,15 @@ class Layout:
 
     def plain_schema(self) -> pa.Schema:
         """The schema with dictionary columns as plain strings (what Spark's mapInArrow takes)."""
+        import pyarrow as pa
+
         schema = self.schema()
         return pa.schema([pa.field(f.name, pa.string()) if pa.types.is_dictionary(f.type) else f for f in schema], metadata=schema.metadata)
 
 
 def raw_type(sig: ir.Signal) -> pa.DataType:
+    import pyarrow as pa
+
     return getattr(pa, f"{'int' if sig.signed else 'uint'}{sig.storage_bits}")()
 
 
@@ -102,6 +111,8 @@ def physical_column(sig: ir.Signal, raw: np.ndarray) -> np.ndarray:
 
 
 def label_column(sig: ir.Signal, raw: np.ndarray) -> pa.DictionaryArray:
+    import pyarrow as pa
+
     labels = sorted(sig.labels, key=lambda lb: lb.raw)
     keys = np.array([lb.raw for lb in labels], dtype=raw.dtype)
     at = np.minimum(np.searchsorted(keys, raw), len(keys) - 1)
@@ -120,6 +131,8 @@ def checksum_column(msg: ir.Message, word: np.ndarray) -> np.ndarray:
 
 def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
     """The table of frames that all carry layout.msg with the right length."""
+    import pyarrow as pa
+
     word = batch.word
     channel = pa.DictionaryArray.from_arrays(pa.array(batch.channel, mask=batch.channel < 0), pa.array(batch.channels, pa.string()))
     cols: list[pa.Array] = [pa.array(batch.timestamp), channel]
@@ -129,7 +142,7 @@ def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
         if s.labels:
             cols.append(label_column(s, raw))
         if layout.raw:
-            cols.append(pa.array(raw.astype(raw_type(s).to_pandas_dtype())))
+            cols.append(pa.array(raw.astype(f"{'int' if s.signed else 'uint'}{s.storage_bits}")))
     if layout.msg.checksum is not None:
         cols.append(pa.array(checksum_column(layout.msg, word)))
     return pa.Table.from_arrays(cols, schema=layout.schema())

@@ -25,7 +25,7 @@ FORMATS = ("candump", "asc", "blf", "trc", "mf4")
 EXTENSIONS = {".log": "candump", ".candump": "candump", ".txt": "candump", ".asc": "asc", ".blf": "blf", ".trc": "trc", ".mf4": "mf4"}
 TEXT_FORMATS = ("candump", "asc", "trc")
 MAGIC = {"blf": b"LOGG", "mf4": b"MDF     "}
-CHUNK_BYTES = 4 << 20  # candump text per bulk step (bounds the working memory)
+CHUNK_BYTES = 2 << 20  # candump text per bulk step (bounds the working memory)
 CHUNK_FRAMES = 1 << 18  # frames per batch from the python-can readers
 MF4_CHUNK = 1 << 20  # records per asammdf read (about 90 MiB of 64-byte data records)
 
