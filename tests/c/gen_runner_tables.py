@@ -18,7 +18,12 @@ def tables(spec_path: str) -> str:
     compiled = compile_spec(spec_path)
     assert compiled.spec is not None, [p.format() for p in compiled.problems]
     c = build_model(compiled.spec)
-    out = [f'#include "{c.prefix}.h"', ""]
+    out = [f'#include "{c.prefix}.h"', "",
+           "/* runner.c names the spec's lookup functions through these (any prefix). */",
+           f"typedef {c.prefix}_msg_t runner_msg_t;",
+           f"typedef {c.prefix}_msg_info_t runner_msg_info_t;",
+           f"#define runner_lookup_id {c.prefix}_lookup_id",
+           f"#define runner_msg_info {c.prefix}_msg_info", ""]
     for cm in c.messages:
         out.append(f"static int check_{cm.name}(const vcase_t *vc) {{")
         out.append(f"    {cm.type} s, p;")

@@ -221,8 +221,8 @@ int main(int argc, char **argv) {
                 ph->value = strtod(num, NULL);
             }
         } else if (line[0] == 'E' && in_case) {
-            const kaiwo_gateway_msg_t msg = kaiwo_gateway_lookup_id((uint32_t)vc.frame_id);
-            const kaiwo_gateway_msg_info_t *info = kaiwo_gateway_msg_info(msg);
+            const runner_msg_t msg = runner_lookup_id((uint32_t)vc.frame_id);
+            const runner_msg_info_t *info = runner_msg_info(msg);
             cases++;
             in_case = 0;
             if (info == NULL || strcmp(info->name, vc.message) != 0) {

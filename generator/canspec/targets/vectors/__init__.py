@@ -125,7 +125,8 @@ def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
         mf = msg.multiframe
         if mf is None:
             continue
-        for vin in (SAMPLE_VIN, "0" * mf.text_length):
+        sample = (SAMPLE_VIN * (mf.text_length // len(SAMPLE_VIN) + 1))[: mf.text_length]  # the VIN, fitted to the text's length
+        for vin in (sample, "0" * mf.text_length):
             text = vin.encode("ascii")
             frames = []
             for i in range(mf.frames):

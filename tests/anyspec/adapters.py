@@ -1,0 +1,113 @@
+"""Every dependency of the anyspec harness on the rest of the repository, in one place.
+
+The harness drives canspec through its CLI only (`python -m canspec check|gen`). It reuses
+these existing test helpers; if one of them moves or changes its interface, fix it here:
+
+- tests/c/runner.c + tests/c/gen_runner_tables.py (+ vectors_to_lines.py): the C vector runner
+  (gen_runner_tables imports canspec's C model: that import happens in `c_runner_tables`);
+- tests/c/cbuild.py: the strict warning flags and the runner's summary line;
+- tests/python/vector_runner.py: the Python vector runner (written for the shipped package
+  `kaiwo_gateway`; `python_vector_runner` points that name at another package);
+- tests/json/py_runner.py: the Python JSON-bindings check of one vector case;
+- tests/json/node/ajv_check.cjs + build/json-node (ajv, typescript from `.ci/setup.d/60-json.sh`).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import os
+import re
+import sys
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+TESTS = ROOT / "tests"
+GENERATOR = ROOT / "generator"
+
+C_RUNNER = TESTS / "c" / "runner.c"
+PY_VECTOR_RUNNER = TESTS / "python" / "vector_runner.py"
+JSON_PY_RUNNER = TESTS / "json" / "py_runner.py"
+AJV_CHECK = TESTS / "json" / "node" / "ajv_check.cjs"
+NODE_MODULES = ROOT / "build" / "json-node" / "node_modules"
+TSC = NODE_MODULES / "typescript" / "bin" / "tsc"
+
+
+def _load(path: Path, name: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None, path
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _c_helpers() -> tuple[ModuleType, ModuleType, ModuleType]:
+    cdir = str(TESTS / "c")
+    if cdir not in sys.path:
+        sys.path.insert(0, cdir)
+    if str(GENERATOR) not in sys.path:
+        sys.path.insert(0, str(GENERATOR))
+    return importlib.import_module("cbuild"), importlib.import_module("gen_runner_tables"), importlib.import_module("vectors_to_lines")
+
+
+def c_strict_flags() -> list[str]:
+    return list(_c_helpers()[0].STRICT)
+
+
+def c_cases_re() -> Any:
+    """The C runner's summary line: groups (cases, multi-frame texts, mismatches)."""
+    return _c_helpers()[0].CASES_RE
+
+
+def c_runner_tables(spec_path: Path) -> str:
+    """runner_tables.h for `spec_path` (the per-message part of the C vector runner).
+
+    runner.c's main() names the shipped spec's prefix (`kaiwo_gateway_lookup_id`, ...):
+    the aliases below point those names at this spec's prefix."""
+    text = _c_helpers()[1].tables(str(spec_path))
+    prefix = text.splitlines()[0].split('"')[1].removesuffix(".h")
+    if prefix != "kaiwo_gateway":
+        text += "".join(f"#define kaiwo_gateway_{n} {prefix}_{n}\n" for n in ("msg_t", "lookup_id", "msg_info_t", "msg_info"))
+    # A DLC-0 message has no shorter buffer to refuse (the tables would pass length -1u).
+    text = re.sub(r"    st = \(int\)\w+_unpack\(&s, vc->data, -1u\);\n    if \(st != \(int\)\w+_ERR_LENGTH\) bad \+= fail\(vc, \"short buffer gave %d\", st\);\n",
+                  "    /* DLC 0: no shorter frame */\n", text)
+    return text
+
+
+def c_vectors_lines(doc: dict[str, Any]) -> str:
+    """The line form of a vectors file that runner.c reads (an empty frame written as `-`)."""
+    text = _c_helpers()[2].convert(doc)
+    return re.sub(r"^(C \d+ \S+) ( \S+)$", r"\1 -\2", text, flags=re.M)
+
+
+def c_runner_source(work: Path) -> Path:
+    """tests/c/runner.c, reading `-` as an empty frame (DLC 0): a patched copy in `work`."""
+    src = C_RUNNER.read_text(encoding="utf-8")
+    old = "!hex_bytes(hex, vc.data, sizeof vc.data, &vc.len)"
+    if old not in src:
+        raise RuntimeError(f"{C_RUNNER} changed: update anyspec's adapters.c_runner_source")
+    out = work / "runner.c"
+    out.write_text(src.replace(old, '!(strcmp(hex, "-") == 0 ? (vc.len = 0, 1) : hex_bytes(hex, vc.data, sizeof vc.data, &vc.len))'), encoding="utf-8")
+    return out
+
+
+def python_vector_runner(package_dir: Path, package: str) -> ModuleType:
+    """tests/python/vector_runner.py bound to the generated package `package` in `package_dir`
+    (call in a fresh interpreter: it imports the package under the shipped name)."""
+    sys.path.insert(0, str(package_dir))
+    mod = importlib.import_module(package)
+    sys.modules["kaiwo_gateway"] = mod
+    return _load(PY_VECTOR_RUNNER, "anyspec_vector_runner")
+
+
+def json_case_check() -> Any:
+    """py_runner.check(bindings_module, case) -> list of complaints (empty: agrees)."""
+    return _load(JSON_PY_RUNNER, "anyspec_json_py_runner").check
+
+
+def node_env() -> dict[str, str]:
+    return {**os.environ, "NODE_PATH": str(NODE_MODULES)}

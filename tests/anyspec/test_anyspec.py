@@ -1,0 +1,108 @@
+"""The "any valid spec" property: for specs drawn by tests/anyspec/strategy.py, `canspec check`
+accepts them, `canspec gen` succeeds, and every output passes its own toolchain's strict
+checks and its own vectors (C with gcc/clang as C99 and C++, Python with ruff/mypy, cantools and
+canmatrix on the DBC, Rust with clippy and cargo test, JSON Schemas with jsonschema and ajv,
+TypeScript with tsc --strict). See tests/anyspec/README.md.
+
+Environment: ANYSPEC_N (specs, default 100), ANYSPEC_SEED (first seed, default 20261201),
+ANYSPEC_FEATURES (all | current | a comma list, default all), ANYSPEC_RUST (crates, default 12).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+import yaml
+from hypothesis import given, settings
+
+from anyspec import fixture, harness, shrink, strategy
+
+N = int(os.environ.get("ANYSPEC_N", "100"))
+SEED = int(os.environ.get("ANYSPEC_SEED", "20261201"))
+FEATURES = strategy.parse_features(os.environ.get("ANYSPEC_FEATURES", "all"))
+RUST = int(os.environ.get("ANYSPEC_RUST", "12"))
+MIN_RUST, MIN_JSON = min(10, RUST), 10
+
+
+# --- the strategy itself (fast) --------------------------------------------------------------
+
+
+def test_example_is_deterministic_and_replayable():
+    for seed in (0, 1, 12345):
+        a, b = strategy.example(seed), strategy.example(seed)
+        assert a.text() == b.text() and a.features == b.features
+        assert strategy.replay(a.choices).text() == a.text()
+    assert strategy.example(1).text() != strategy.example(2).text()
+
+
+@settings(max_examples=40, deadline=None)
+@given(strategy.specs())
+def test_drawn_specs_are_well_formed_yaml(spec):
+    docs = {name: yaml.safe_load(text) for name, text in spec.files.items()}
+    assert spec.entry in docs
+    kinds = sorted(d["kind"] for d in docs.values())
+    assert "can_protocol" in kinds and all(d["schema_version"] == 1 for d in docs.values())
+    assert spec.features <= strategy.ALL
+
+
+@settings(max_examples=20, deadline=None)
+@given(strategy.specs(strategy.CURRENT))
+def test_current_format_specs_use_no_relaxation(spec):
+    assert spec.features == frozenset()
+
+
+def test_shrinker_reaches_a_minimal_spec():
+    """A failure that needs two messages shrinks to a spec of exactly two small messages."""
+    seed = next(s for s in range(100) if strategy.example(s).facts["messages"] >= 4)
+    big = strategy.example(seed)
+    small, _ = shrink.Shrinker(strategy.ALL, lambda s: s.facts["messages"] >= 2 or None, budget_s=60, log=lambda _: None).run(big.choices)
+    assert small is not None and small.facts["messages"] == 2
+    assert len(small.text()) < len(big.text()) / 2
+
+
+def test_fixture_tool_writes_a_checked_valid_fixture(tmp_path):
+    spec = next(strategy.example(s, strategy.CURRENT) for s in range(100) if not strategy.example(s, strategy.CURRENT).facts["bundle"])
+    src = spec.write(tmp_path / "spec")
+    dest = fixture.write_fixture(src, "anyspec_probe", "probe", tmp_path)
+    assert dest.read_text(encoding="utf-8").splitlines()[1] == "# expect: ok"
+    rc, out, err = harness.canspec("check", str(dest))
+    assert rc == 0, err
+
+
+def test_refusals_are_classified_by_relaxation():
+    text = ("a.yaml:3:5: error: message 'm' does not declare its J1939 fields [j1939-missing]\n"
+            "a.yaml:9:9: error: messages.0.signals.1: 'zh' is required [schema]\n"
+            "a.yaml:9:9: error: something else [other-rule]\n")
+    features, unexplained = harness.classify_refusal(text)
+    assert features == ["j1939_derived", "optional_signal_zh"] and unexplained == ["a.yaml:9:9: error: something else [other-rule]"]
+
+
+# --- the property over a batch of specs ------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def batch() -> harness.Batch:
+    missing = harness.missing_tools()
+    if missing:
+        pytest.fail("anyspec needs these toolchains (run `make setup`): " + "; ".join(missing))
+    return harness.run_batch(N, SEED, FEATURES, rust=RUST, mypy_every=10, log=lambda line: print(line, file=sys.stderr))
+
+
+def test_every_drawn_spec_passes_every_toolchain(batch):
+    assert not batch.failures, harness.report(batch)
+
+
+def test_the_batch_reached_every_toolchain(batch):
+    want = {"c": N, "python": N, "cantools": N, "canmatrix": N, "rust": MIN_RUST, "json": min(MIN_JSON, N), "typescript": min(MIN_JSON, N),
+            "python-mypy": max(1, N // 10)}
+    got = {k: batch.count(k) for k in want}
+    short = {k: f"{got[k]} < {v}" for k, v in want.items() if got[k] < v}
+    assert not short, f"specs that reached each toolchain: {short} (a spec that fails check or gen reaches none)"
+
+
+def test_make_fragment_runs_the_long_mode():
+    proc = subprocess.run(["make", "-n", "test-any-spec", "N=3"], cwd=harness.ROOT, capture_output=True, text=True, check=False)
+    assert proc.returncode == 0 and "tests/anyspec/run.py" in proc.stdout and "-n 3" in proc.stdout, proc.stdout + proc.stderr
