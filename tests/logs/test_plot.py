@@ -36,7 +36,7 @@ def test_png_svg_pdf_files(drive, tmp_path):
         assert proc.returncode == 0, proc.stderr
         assert out.read_bytes().startswith(magic)
     image = matplotlib.image.imread(str(tmp_path / "p.png"))
-    assert image.shape[:2] == (250, 500)  # 10 × 5 inches at 50 dpi
+    assert image.shape[:2] == (300, 500)  # two units (m/s², deg): 10 × (2 × 2.2 + 1.6) inches at 50 dpi
     assert image[..., :3].std() > 0.05  # not blank
 
 

@@ -2,8 +2,9 @@
 
 Signals are names or shell patterns (`accel_*`, `vehicle_state_1.*`) matched against `signal`
 and `message.signal`. Time is in seconds from the first decoded frame; `--start/--stop` cut it.
-Value-table signals are drawn as steps with their labels on the axis; the legend names message,
-signal and unit. `-o FILE` writes PNG/SVG/PDF (by extension); without it a window opens."""
+Signals of one unit share an axis (`--stack`: one axis per signal); value-table signals are drawn
+as steps on an axis of their own with their labels as ticks; the legend names message, signal and
+unit. `-o FILE` writes PNG/SVG/PDF (by extension); without it a window opens."""
 
 from __future__ import annotations
 
@@ -64,21 +65,30 @@ def collect(tables: dict[str, list[Any]], chosen: list[tuple[ir.Message, ir.Sign
     return series
 
 
+def panels(series: list[Series], stack: bool) -> list[list[Series]]:
+    """The axes: one per signal with --stack; otherwise signals of one unit share an axis and a
+    value-table signal gets its own (its labels are the axis ticks)."""
+    groups: dict[object, list[Series]] = {}
+    for s in series:
+        key = (s.msg.name, s.sig.name) if stack or s.sig.labels else ("unit", s.sig.unit)
+        groups.setdefault(key, []).append(s)
+    return list(groups.values())
+
+
 def figure(series: list[Series], stack: bool, title: str):  # type: ignore[no-untyped-def]
-    """A matplotlib figure: every series on one axis, or one stacked subplot per series."""
+    """A matplotlib figure, one row of axes per panel, time shared."""
     import matplotlib.pyplot as plt
 
-    rows = len(series) if stack else 1
-    fig, axes = plt.subplots(rows, 1, sharex=True, squeeze=False, figsize=(10, 2.2 * rows + 1.6 if stack else 5), layout="constrained")
-    for i, s in enumerate(series):
-        ax = axes[i if stack else 0][0]
-        if s.sig.labels:
-            ax.step(s.time, s.value, where="post", label=s.label)
-            if stack or len(series) == 1:
+    rows = panels(series, stack)
+    fig, axes = plt.subplots(len(rows), 1, sharex=True, squeeze=False, figsize=(10, 2.2 * len(rows) + 1.6), layout="constrained")
+    for (ax,), group in zip(axes, rows):
+        for s in group:
+            if s.sig.labels:
+                ax.step(s.time, s.value, where="post", label=s.label)
                 ticks = sorted({lb.raw for lb in s.sig.labels})
                 ax.set_yticks([float(s.sig.physical(r)) for r in ticks], [s.sig.label_of(r).name for r in ticks])  # type: ignore[union-attr]
-        else:
-            ax.plot(s.time, s.value, label=s.label, linewidth=1)
+            else:
+                ax.plot(s.time, s.value, label=s.label, linewidth=1)
         ax.grid(True, alpha=0.3)
         ax.legend(loc="upper right", fontsize="small")
     axes[-1][0].set_xlabel("time [s] from the first frame")
@@ -141,7 +151,7 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("--input-format", choices=LOG_FORMATS, default=None, help="the logs' format (default: from the extension)")
     p.add_argument("--spec", default=None, help="spec bundle, directory or file (default: the shipped spec)")
     p.add_argument("-o", "--output", metavar="FILE", help="write the plot to FILE (.png, .svg, .pdf); default: open a window")
-    p.add_argument("--stack", action="store_true", help="one subplot per signal, stacked (default: all on one axis)")
+    p.add_argument("--stack", action="store_true", help="one subplot per signal (default: one per unit; value-table signals get their own)")
     p.add_argument("--start", type=float, default=None, metavar="S", help="from S seconds after the first frame")
     p.add_argument("--stop", type=float, default=None, metavar="S", help="up to S seconds after the first frame")
     p.add_argument("--dpi", type=int, default=100, help="resolution of PNG output (default 100)")
