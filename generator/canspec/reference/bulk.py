@@ -104,10 +104,17 @@ def raw_column(sig: ir.Signal, word: np.ndarray) -> np.ndarray:
 
 
 def physical_column(sig: ir.Signal, raw: np.ndarray) -> np.ndarray:
-    """raw × factor + offset in doubles, as codec.physical_number computes it."""
-    if sig.is_integer:
-        return raw.astype(np.float64) * float(int(sig.factor)) + float(int(sig.offset))
-    return raw.astype(np.float64) * float(sig.factor) + float(sig.offset)
+    """The physical values as float64, as float(codec.physical_number) gives them: integer
+    scaling exactly (int64 where it cannot overflow, else Python ints) and rounded once;
+    otherwise raw × factor + offset in doubles."""
+    if not sig.is_integer:
+        return raw.astype(np.float64) * float(sig.factor) + float(sig.offset)
+    factor, offset = int(sig.factor), int(sig.offset)
+    if factor == 1 and offset == 0:
+        return raw.astype(np.float64)
+    if sig.length + abs(factor).bit_length() < 62 and abs(offset) < 2**62:
+        return (raw.astype(np.int64) * factor + offset).astype(np.float64)
+    return np.array([float(r * factor + offset) for r in raw.tolist()], dtype=np.float64)
 
 
 def label_column(sig: ir.Signal, raw: np.ndarray) -> pa.DictionaryArray:
