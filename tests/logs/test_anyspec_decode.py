@@ -6,6 +6,7 @@ flags, the text line), and the health report's counts with a per-frame count of 
 
 from __future__ import annotations
 
+import itertools
 import random
 import sys
 from pathlib import Path
@@ -72,6 +73,6 @@ def test_bulk_decoding_of_any_spec_equals_the_reference_codec(tmp_path_factory, 
         assert record["frames"] == len(mine)
         if msg.counter is not None:
             values = [(w & msg.counter.word_mask) >> msg.counter.start for w in mine]
-            steps = list(zip(values, values[1:]))
+            steps = list(itertools.pairwise(values))
             assert record["counter_repeats"] == sum(a == b for a, b in steps)
             assert record["counter_jumps"] == sum(a != b and b != (a + 1) % msg.counter.modulo for a, b in steps)
