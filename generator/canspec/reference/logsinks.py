@@ -127,26 +127,48 @@ def partition_name(source: str, taken: set[str]) -> str:
 
 
 class ParquetSink:
-    """Per (message, source) one Parquet file, a row group per decoded chunk (bounded memory)."""
+    """Per (message, source) one Parquet file; a message's rows are gathered into row groups of
+    up to ROW_GROUP_ROWS (fewer, larger row groups write faster and read better), all pending
+    rows written once they hold PENDING_BYTES (memory stays bounded)."""
+
+    ROW_GROUP_ROWS = 1 << 16
+    PENDING_BYTES = 32 << 20
 
     def __init__(self, decoder: Decoder, out_dir: str) -> None:
         self.decoder, self.out_dir = decoder, out_dir
         self.writers: dict[tuple[str, str], Any] = {}
+        self.pending: dict[tuple[str, str], list[Any]] = {}
         self.partitions: dict[str, str] = {}
         self.taken: set[str] = set()
 
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
-        import pyarrow.parquet as pq
-
         part = self.partitions.get(source) or self.partitions.setdefault(source, partition_name(source, self.taken))
         for name, table in decoded.tables.items():
-            writer = self.writers.get((name, part))
-            if writer is None:
-                folder = os.path.join(self.out_dir, name, f"source={part}")
-                os.makedirs(folder, exist_ok=True)
-                writer = self.writers[(name, part)] = pq.ParquetWriter(os.path.join(folder, "part-0.parquet"), table.schema, compression="zstd")
-            writer.write_table(table)
+            pending = self.pending.setdefault((name, part), [])
+            pending.append(table)
+            if sum(t.num_rows for t in pending) >= self.ROW_GROUP_ROWS:
+                self._flush((name, part))
+        if sum(t.nbytes for tables in self.pending.values() for t in tables) >= self.PENDING_BYTES:
+            for key in list(self.pending):
+                self._flush(key)
+
+    def _flush(self, key: tuple[str, str]) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        tables = self.pending.pop(key, [])
+        if not tables:
+            return
+        table = pa.concat_tables(tables).unify_dictionaries().combine_chunks()
+        writer = self.writers.get(key)
+        if writer is None:
+            folder = os.path.join(self.out_dir, key[0], f"source={key[1]}")
+            os.makedirs(folder, exist_ok=True)
+            writer = self.writers[key] = pq.ParquetWriter(os.path.join(folder, "part-0.parquet"), table.schema, compression="zstd")
+        writer.write_table(table, row_group_size=max(table.num_rows, 1))
 
     def close(self) -> None:
+        for key in list(self.pending):
+            self._flush(key)
         for writer in self.writers.values():
             writer.close()
