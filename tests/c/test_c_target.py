@@ -90,7 +90,7 @@ def test_vector_runner_byte_wise_path(build, vectors, spec):
     _check_runner(exe, lines, len(vectors["cases"]))
 
 
-def test_vector_runner_reports_mismatches(build, vectors):
+def test_vector_runner_reports_mismatches(build, vectors, spec):
     """The runner is not a rubber stamp: a wrong byte, raw value or physical value fails it."""
     exe = cbuild.build_runner(build, "gcc", name="runner-neg")
     doc = json.loads(json.dumps(vectors))
@@ -104,7 +104,7 @@ def test_vector_runner_reports_mismatches(build, vectors):
     doc["multiframe"][0]["text"] = "X" + doc["multiframe"][0]["text"][1:]
     bad = build / "bad.json"
     bad.write_text(json.dumps(doc))
-    code, out, err = cbuild.run_runner(exe, cbuild.vectors_lines(bad, build))
+    code, out, err = cbuild.run_runner(exe, cbuild.vectors_lines(bad, build, spec.can))
     assert code != 0
     assert "40 cases" in out and "mismatches" in out
     assert err.count("line ") >= 4, err
