@@ -86,7 +86,7 @@ def c_runner_tables(spec_path: Path) -> str:
 
 def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
     """The line form of a vectors file that runner.c reads (an empty frame written as `-`), each
-    physical value with what the shared rounding rule makes of its double (from the spec's IR)."""
+    physical value with what its encodes and fixed-point decode must give (from the spec's IR)."""
     from canspec.pipeline import compile_spec
 
     spec = compile_spec(spec_path).spec
