@@ -144,15 +144,17 @@ class ParquetSink:
         self.pending: dict[tuple[str, str], list[Any]] = {}
         self.partitions: dict[str, str] = {}
         self.taken: set[str] = set()
+        self.pending_bytes = 0  # of every pending table (kept as a sum: Table.nbytes walks the buffers)
 
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
         part = self.partitions.get(source) or self.partitions.setdefault(source, partition_name(source, self.taken))
         for name, table in decoded.tables.items():
             pending = self.pending.setdefault((name, part), [])
             pending.append(table)
+            self.pending_bytes += table.nbytes
             if sum(t.num_rows for t in pending) >= self.ROW_GROUP_ROWS:
                 self._flush((name, part))
-        if sum(t.nbytes for tables in self.pending.values() for t in tables) >= self.PENDING_BYTES:
+        if self.pending_bytes >= self.PENDING_BYTES:
             for key in list(self.pending):
                 self._flush(key)
 
@@ -163,6 +165,7 @@ class ParquetSink:
         tables = self.pending.pop(key, [])
         if not tables:
             return
+        self.pending_bytes -= sum(t.nbytes for t in tables)
         table = pa.concat_tables(tables).unify_dictionaries().combine_chunks()
         writer = self.writers.get(key)
         if writer is None:
