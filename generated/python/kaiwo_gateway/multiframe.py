@@ -14,6 +14,7 @@ from .messages import (
 )
 
 __all__ = [
+    "TEXT_ASSEMBLERS",
     "DeviceIdTextAssembler",
     "join_device_id_text",
     "split_device_id_text",
@@ -119,3 +120,9 @@ class DeviceIdTextAssembler:
     def reset(self) -> None:
         self._chunks.clear()
         self._keys = ()
+
+
+# The assembler class of each multi-frame message, by message name.
+TEXT_ASSEMBLERS: dict[str, type[DeviceIdTextAssembler]] = {
+    DeviceId.NAME: DeviceIdTextAssembler,
+}

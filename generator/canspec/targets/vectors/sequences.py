@@ -154,6 +154,37 @@ def checksums(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
         yield seq.done()
 
 
+def fault_codes(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
+    """The fault-code tables: checksum failures of messages with different codes and a timeout at
+    once give the lowest code; each clears with an accepted frame of its message."""
+    seen = set()
+    for table in can.fault_tables:
+        by_code: dict[int, ir.Message] = {}
+        for name, code in table.checksum:
+            by_code.setdefault(code, can.message(name))
+        msgs = [by_code[c] for c in sorted(by_code)]
+        if not msgs or (table.checksum, table.timeout) in seen:
+            continue
+        seen.add((table.checksum, table.timeout))
+        names = ", ".join(m.name for m in msgs)
+        seq = Sequence(can, "fault_codes", f"{table.table}: checksum failures of {names}, then a timeout as well, then recovery", msgs)
+        seq.start(0)
+        t = 0
+        for m in reversed(msgs):
+            t += 1
+            seq.frame(t, m, corrupt(m, frame(m, 0)))
+        t += 1
+        seq.frame(t, msgs[0], frame(msgs[0], 1))
+        t += max(m.timeout_ms or 0 for m in msgs) + 1
+        seq.check(t)
+        for c in (5, 6):
+            for m in msgs:
+                t += 1
+                seq.frame(t, m, frame(m, c))
+        seq.check(t)
+        yield seq.done()
+
+
 def timeouts(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
     """A check and a frame exactly at the limit and just past it; recovery; timeout from start."""
     for msg in pick(can, lambda m: m.timeout_ms is not None):
@@ -253,7 +284,7 @@ def interleaved(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
     yield seq.done()
 
 
-MONITOR_BUILDERS = (in_order, counters, checksums, timeouts, event_driven, frames_refused, interleaved)
+MONITOR_BUILDERS = (in_order, counters, checksums, fault_codes, timeouts, event_driven, frames_refused, interleaved)
 
 
 def monitor_sequences(can: ir.CanProtocol) -> list[dict[str, Any]]:
