@@ -86,7 +86,7 @@ class ModelMonitor:
         if m is None:
             self.unknown += 1
             return {"message": None, "faults": ["unknown_id"], "accepted": False, "state": None, "counter_delta": None,
-                    "checksum_ok": None, "recovered": False, "codes": {}}
+                    "checksum_ok": None, "recovered": False, "codes": self.codes()}
         s = self.msgs[m.name]
         before = s.state
         s.bump("frames")

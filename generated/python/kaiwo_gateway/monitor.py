@@ -299,26 +299,7 @@ class Monitor:
         """Judge one received frame at `now_ms`."""
         rule = self._by_key.get((frame_id, bool(extended)))
         if rule is None:
-            self._unknown_total = _add(self._unknown_total)
-            key = (frame_id, bool(extended))
-            if key in self._unknown or len(self._unknown) < UNKNOWN_IDS_KEPT:
-                self._unknown[key] = _add(self._unknown.get(key, 0))
-            return FrameEvent(
-                now_ms,
-                frame_id,
-                bool(extended),
-                None,
-                (Fault.UNKNOWN_ID,),
-                False,
-                None,
-                None,
-                None,
-                None,
-                None,
-                None,
-                False,
-                {},
-            )
+            return self._unknown_frame(now_ms, frame_id, bool(extended))
         track = self._tracks[rule.name]
         previous = track.state
         gap = None if track.last_frame_ms is None else (now_ms - track.last_frame_ms) % TICK_MODULO
@@ -347,6 +328,24 @@ class Monitor:
             gap,
             recovered,
             self.fault_codes(),
+        )
+
+    def _unknown_frame(self, now_ms: int, frame_id: int, extended: bool) -> FrameEvent:
+        self._unknown_total = _add(self._unknown_total)
+        key = (frame_id, extended)
+        if key in self._unknown or len(self._unknown) < UNKNOWN_IDS_KEPT:
+            self._unknown[key] = _add(self._unknown.get(key, 0))
+        nothing = dict.fromkeys(("state", "previous_state", "counter", "counter_delta", "checksum_ok", "gap_ms"))
+        return FrameEvent(
+            now_ms,
+            frame_id,
+            extended,
+            None,
+            (Fault.UNKNOWN_ID,),
+            False,
+            **nothing,
+            recovered=False,
+            fault_codes=self.fault_codes(),
         )
 
     @staticmethod

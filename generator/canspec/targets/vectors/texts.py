@@ -23,12 +23,6 @@ SAMPLE = "LSKG5GC13KA123456"
 OTHER = "ZZZZZZZ13KA654321"
 
 
-def fit(text: str, mf: ir.MultiFrame) -> str:
-    """`text` repeated or cut to the text length, in characters the padding byte is not."""
-    chars = "".join(c for c in text if ord(c) != mf.padding) or "A"
-    return (chars * (mf.text_length // len(chars) + 1))[: mf.text_length]
-
-
 def frames_of(msg: ir.Message, text: bytes, **keys: int) -> list[bytes]:
     """The frames carrying `text` (already at most frames × bytes long), other fields at their base."""
     mf = msg.multiframe
@@ -64,22 +58,10 @@ class TextSequence:
         return self.record
 
 
-def _other_key(msg: ir.Message) -> tuple[str, int] | None:
-    """A key signal and a second valid raw value for it: another sender."""
-    mf = msg.multiframe
-    assert mf is not None
-    for name in mf.key_signals:
-        sig = msg.signal(name)
-        other = next((r for r in range(sig.raw_min, sig.raw_max + 1) if r != base_raw(sig)), None)
-        if other is not None:
-            return name, other
-    return None
-
-
 def text_sequences(msg: ir.Message) -> Iterator[dict[str, Any]]:
     mf = msg.multiframe
     assert mf is not None
-    a, b = fit(SAMPLE, mf).encode(), fit(OTHER, mf).encode()
+    a, b = tf.sample_text(mf, SAMPLE).encode(), tf.sample_text(mf, OTHER).encode()
     fa, fb = frames_of(msg, a), frames_of(msg, b)
     n = msg.name
     yield TextSequence(msg, "in_order", f"{n}: frames 0..{mf.frames - 1}").feed(*fa).done()
@@ -89,7 +71,7 @@ def text_sequences(msg: ir.Message) -> Iterator[dict[str, Any]]:
         yield TextSequence(msg, "stale", f"{n}: a complete text, then a frame of the next text, then the rest of it").feed(*fa, *fb).done()
         note = f"{n}: the next text begins, a stale frame of the previous one arrives, then a complete set (recovery)"
         yield TextSequence(msg, "stale", note).feed(*fa, fb[0], fa[0], *fb).done()
-    other = _other_key(msg)
+    other = tf.other_key(msg)
     if other is not None and mf.frames > 1:
         fc = frames_of(msg, b, **{other[0]: other[1]})
         mixed = [f for pair in zip(fa, fc) for f in pair]
