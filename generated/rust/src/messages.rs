@@ -13082,10 +13082,10 @@ impl DeviceIdText {
         let word = frame.id_chars_raw().to_le_bytes();
         let chunk = &word[..DeviceId::TEXT_BYTES_PER_FRAME];
         let bit = 1 << index;
-        let other = frame.device_type_raw() != self.first.device_type_raw()
-            || (self.seen & bit != 0
-                && self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME] != *chunk);
-        let inconsistent = self.seen != 0 && other;
+        let changed = self.seen & bit != 0
+            && self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME] != *chunk;
+        let inconsistent =
+            self.seen != 0 && (frame.device_type_raw() != self.first.device_type_raw() || changed);
         if inconsistent {
             self.seen = 0;
         }
