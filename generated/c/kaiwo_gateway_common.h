@@ -33,26 +33,32 @@ typedef enum {
     KAIWO_GATEWAY_ERR_INCONSISTENT = -7 /**< frames or text contradict each other */
 } kaiwo_gateway_status_t;
 
-/** Physical → raw rounding shared by every canspec language: half away from zero, with a
- * 1e-9 tie epsilon that absorbs the representation error of decimal inputs (-8.99 / 0.02).
- * |q| must be below 2^62; callers check the raw range first. */
+/** |q| rounded half away from zero by the rule every canspec language shares: from 2^52 up every
+ * double is an integer already (adding 0.5 would round to even); below, a 1e-9 tie epsilon
+ * absorbs the representation error of decimal inputs (-8.99 / 0.02). 0 <= a < 2^64; callers
+ * check the raw range first. */
+static inline uint64_t kaiwo_gateway_round_abs(double a) {
+    return a >= 4503599627370496.0 ? (uint64_t)a : (uint64_t)((a + 0.5) + 1e-9);
+}
+
+/** Physical → raw rounding: q rounded half away from zero (kaiwo_gateway_round_abs), -2^63 <= q < 2^63. */
 static inline int64_t kaiwo_gateway_round_half_away(double q) {
-    return q >= 0.0 ? (int64_t)((q + 0.5) + 1e-9) : -(int64_t)((-q + 0.5) + 1e-9);
+    const uint64_t r = kaiwo_gateway_round_abs(q < 0.0 ? -q : q);
+    return q < 0.0 ? (int64_t)(0u - r) : (int64_t)r;
+}
+
+/** a / d rounded half away from zero, in integers only (d > 0). */
+static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
+    const uint64_t q = a / d;
+    const uint64_t rem = a % d;
+    return rem >= d - rem ? q + 1u : q;
 }
 
 /** num / den rounded half away from zero, in integers only (den > 0). */
 static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
     const uint64_t a = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
-    const uint64_t d = (uint64_t)den;
-    uint64_t q = a / d;
-    const uint64_t rem = a % d;
-    if (rem >= d - rem) {
-        q++;
-    }
-    if (q > (uint64_t)INT64_MAX) {
-        q = (uint64_t)INT64_MAX;
-    }
-    return num < 0 ? -(int64_t)q : (int64_t)q;
+    const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
+    return num < 0 ? (int64_t)(0u - q) : (int64_t)q; /* INT64_MIN / 1 included */
 }
 
 /* On little-endian hosts pack/unpack copy whole 64-bit words between frames and structs (one

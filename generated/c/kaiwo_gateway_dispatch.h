@@ -55,7 +55,7 @@ typedef struct {
     uint32_t frame_id;
     uint32_t pgn;
     uint32_t fingerprint;
-    uint16_t cycle_ms;
+    uint16_t cycle_ms; /**< 0: event-driven */
     uint8_t dlc;
     uint8_t priority;
     uint8_t sa;

@@ -186,10 +186,10 @@ static inline int32_t kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 256)) {
+    if (value <= (-1) || value >= 256) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -233,10 +233,10 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 512)) {
+    if (value <= (-2) || value >= 512) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
         if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -282,10 +282,10 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-108010) && value < 547360)) {
+    if (value <= (-108010) || value >= 547360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
     if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -480,10 +480,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_ctrl_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 256)) {
+    if (value <= (-1) || value >= 256) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -526,10 +526,10 @@ static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1290) && value < 1280)) {
+    if (value <= (-1290) || value >= 1280) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-1280), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 1280, 10);
     if (value < (-1280) || value > 1270 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -572,10 +572,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-3870) && value < 3840)) {
+    if (value <= (-3870) || value >= 3840) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-3840), 30);
+    r = kaiwo_gateway_div_round((int64_t)value + 3840, 30);
     if (value < (-3840) || value > 3810 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -618,10 +618,10 @@ static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-108010) && value < 547360)) {
+    if (value <= (-108010) || value >= 547360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
     if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -662,10 +662,10 @@ static inline int32_t kaiwo_gateway_eps_state_controller_temp_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 128)) {
+    if (value <= (-2) || value >= 128) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (value < 0 || value > 126 || r < INT64_C(0) || r > INT64_C(63)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -706,10 +706,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_fault_level_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -899,10 +899,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-902) && value < 1148)) {
+    if (value <= (-902) || value >= 1148) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-900), 2);
+    r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
     if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -943,10 +943,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_epb_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -987,10 +987,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_gear_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1032,10 +1032,10 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1258,10 +1258,10 @@ static inline int32_t kaiwo_gateway_driving_state_epb_state_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_epb_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1302,10 +1302,10 @@ static inline int32_t kaiwo_gateway_driving_state_gear_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_gear_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1346,10 +1346,10 @@ static inline int32_t kaiwo_gateway_driving_state_emergency_brake_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_emergency_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1390,10 +1390,10 @@ static inline int32_t kaiwo_gateway_driving_state_uss_brake_state_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_uss_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1434,10 +1434,10 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint1
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-150010) && value < 505360)) {
+    if (value <= (-150010) || value >= 505360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-150000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 150000, 10);
     if (value < (-150000) || value > 150000 || r < INT64_C(0) || r > INT64_C(30000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1478,10 +1478,10 @@ static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-50010) && value < 605360)) {
+    if (value <= (-50010) || value >= 605360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-50000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 50000, 10);
     if (value < (-50000) || value > 50000 || r < INT64_C(0) || r > INT64_C(10000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1524,7 +1524,7 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 0 && value < 2570)) {
+    if (value <= 0 || value >= 2570) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 10, 10);
@@ -1572,10 +1572,10 @@ static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-9050) && value < 3800)) {
+    if (value <= (-9050) || value >= 3800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-9000), 50);
+    r = kaiwo_gateway_div_round((int64_t)value + 9000, 50);
     if (value < (-9000) || value > 3600 || r < INT64_C(0) || r > INT64_C(252)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1975,10 +1975,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2019,10 +2019,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_door_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2063,10 +2063,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_horn_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2107,10 +2107,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_drl_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2152,10 +2152,10 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2197,10 +2197,10 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2241,10 +2241,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_hazard_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2288,10 +2288,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2333,10 +2333,10 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2378,10 +2378,10 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2423,10 +2423,10 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2468,10 +2468,10 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2513,10 +2513,10 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2559,10 +2559,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2604,10 +2604,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2649,10 +2649,10 @@ kaiwo_gateway_autocar_control_command_1_system_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2696,10 +2696,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_reliability_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2743,10 +2743,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_fault_level_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2787,10 +2787,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_lock_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2831,10 +2831,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_ac_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 8)) {
+    if (value <= (-1) || value >= 8) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2877,7 +2877,7 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 1550 && value < 3200)) {
+    if (value <= 1550 || value >= 3200) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
@@ -2924,10 +2924,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2971,10 +2971,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3018,10 +3018,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3378,10 +3378,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drive_mode_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drive_mode_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3422,10 +3422,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_state_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3466,10 +3466,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drl_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3510,10 +3510,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_turn_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3554,10 +3554,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_turn_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3598,10 +3598,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_hazard_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_hazard_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3642,10 +3642,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_position_light_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_position_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3686,10 +3686,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_headlight_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_headlight_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3730,10 +3730,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_rear_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_rear_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3774,10 +3774,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3818,10 +3818,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_fog_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3862,10 +3862,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_dome_light_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_dome_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3906,10 +3906,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_ambient_light_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_ambient_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3950,10 +3950,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_button_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_button_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3994,10 +3994,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-510) && value < 2060)) {
+    if (value <= (-510) || value >= 2060) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-500), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 500, 10);
     if (value < (-500) || value > 2000 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4039,10 +4039,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_soc_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fixed(int32_t value,
                                                                                     uint8_t *raw) {
     int64_t r;
-    if (!(value > (-50) && value < 12800)) {
+    if (value <= (-50) || value >= 12800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
+    r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4083,10 +4083,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_system_power_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_system_power_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4127,10 +4127,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4171,10 +4171,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_connection_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_connection_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4215,10 +4215,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_fault_level_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4259,10 +4259,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_odometer_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 131072)) {
+    if (value <= (-2) || value >= 131072) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (value < 0 || value > 120000 || r < INT64_C(0) || r > INT64_C(60000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4506,10 +4506,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                            uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4550,10 +4550,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_cargo_lift_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4595,10 +4595,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4639,10 +4639,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_pto_enable_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4689,10 +4689,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                           uint8_t *raw) {
     int64_t r;
-    if (!(value > (-50) && value < 12800)) {
+    if (value <= (-50) || value >= 12800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
+    r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
         if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -4738,10 +4738,10 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-25050) && value < 26200)) {
+    if (value <= (-25050) || value >= 26200) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-25000), 50);
+    r = kaiwo_gateway_div_round((int64_t)value + 25000, 50);
     if (value < (-25000) || value > 25000 || r < INT64_C(0) || r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4785,10 +4785,10 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-4010) && value < 6240)) {
+    if (value <= (-4010) || value >= 6240) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-4000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
     if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4832,10 +4832,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-302) && value < 1748)) {
+    if (value <= (-302) || value >= 1748) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-300), 2);
+    r = kaiwo_gateway_div_round((int64_t)value + 300, 2);
     if (value < (-300) || value > 1000 || r < INT64_C(0) || r > INT64_C(650)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4879,10 +4879,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-4010) && value < 6240)) {
+    if (value <= (-4010) || value >= 6240) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-4000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
     if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5050,10 +5050,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_voltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 131072)) {
+    if (value <= (-2) || value >= 131072) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (value < 0 || value > 8000 || r < INT64_C(0) || r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5096,10 +5096,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-50002) && value < 81072)) {
+    if (value <= (-50002) || value >= 81072) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-50000), 2);
+    r = kaiwo_gateway_div_round((int64_t)value + 50000, 2);
     if (value < (-50000) || value > 80000 || r < INT64_C(0) || r > INT64_C(65000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5141,10 +5141,10 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 65536)) {
+    if (value <= (-1) || value >= 65536) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5186,10 +5186,10 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 65536)) {
+    if (value <= (-1) || value >= 65536) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5375,10 +5375,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-410) && value < 2160)) {
+    if (value <= (-410) || value >= 2160) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
     if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5419,10 +5419,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-410) && value < 2160)) {
+    if (value <= (-410) || value >= 2160) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
     if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5464,10 +5464,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-150) && value < 614400)) {
+    if (value <= (-150) || value >= 614400) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 150);
+    r = kaiwo_gateway_div_round((int64_t)value, 150);
     if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5509,10 +5509,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-150) && value < 614400)) {
+    if (value <= (-150) || value >= 614400) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 150);
+    r = kaiwo_gateway_div_round((int64_t)value, 150);
     if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5553,10 +5553,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-410) && value < 2160)) {
+    if (value <= (-410) || value >= 2160) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
     if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5598,10 +5598,10 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-410) && value < 2160)) {
+    if (value <= (-410) || value >= 2160) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-400), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
     if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5863,10 +5863,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-3050) && value < 9800)) {
+    if (value <= (-3050) || value >= 9800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-3000), 50);
+    r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
     if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5909,10 +5909,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-3050) && value < 9800)) {
+    if (value <= (-3050) || value >= 9800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-3000), 50);
+    r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
     if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5953,10 +5953,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5997,10 +5997,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_vehicle_power_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6041,10 +6041,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_hill_hold_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_hill_hold_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6085,10 +6085,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_regen_brake_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_regen_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6129,10 +6129,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_remaining_range_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4096)) {
+    if (value <= (-1) || value >= 4096) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6174,10 +6174,10 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6219,10 +6219,10 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6264,7 +6264,7 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 1550 && value < 3200)) {
+    if (value <= 1550 || value >= 3200) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
@@ -6308,10 +6308,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_pto_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6354,10 +6354,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-325010) && value < 330360)) {
+    if (value <= (-325010) || value >= 330360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-325000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 325000, 10);
     if (value < (-325000) || value > 325000 || r < INT64_C(0) || r > INT64_C(65000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6798,10 +6798,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_insulation_fault_level_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_insulation_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6842,10 +6842,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_dc_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_dc_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6886,10 +6886,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_soc_low_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_soc_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6930,10 +6930,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_cell_undervoltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_cell_undervoltage_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6975,10 +6975,10 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7019,10 +7019,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vacuum_pump_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7063,10 +7063,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vehicle_system_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7107,10 +7107,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_overheat_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7151,10 +7151,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_overheat_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7195,10 +7195,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_traction_battery_fault_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_traction_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7239,10 +7239,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_fault_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7283,10 +7283,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_comm_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7327,10 +7327,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_comm_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7371,10 +7371,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_eps_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_eps_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7415,10 +7415,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_ac_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_ac_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7459,10 +7459,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_aux_battery_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_aux_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7503,10 +7503,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_epb_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_epb_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7547,10 +7547,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_brake_by_wire_fault_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7591,10 +7591,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_key_not_detected_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_key_not_detected_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7635,10 +7635,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_tire_pressure_low_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_tire_pressure_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7679,10 +7679,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7723,10 +7723,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_overheat_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7768,10 +7768,10 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7813,10 +7813,10 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7857,10 +7857,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_unmanned_entry_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7901,10 +7901,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_a_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7945,10 +7945,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_b_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7989,10 +7989,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_c_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8033,10 +8033,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_remote_entry_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_remote_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8263,10 +8263,10 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 256)) {
+    if (value <= (-1) || value >= 256) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8309,10 +8309,10 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_max_angular_speed_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 512)) {
+    if (value <= (-2) || value >= 512) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
         if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -8358,10 +8358,10 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-108010) && value < 547360)) {
+    if (value <= (-108010) || value >= 547360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
     if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8551,10 +8551,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-902) && value < 1148)) {
+    if (value <= (-902) || value >= 1148) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-900), 2);
+    r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
     if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8595,10 +8595,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_epb_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8639,10 +8639,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_gear_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8684,10 +8684,10 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9086,10 +9086,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9130,10 +9130,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_door_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9174,10 +9174,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_horn_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9218,10 +9218,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_drl_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9263,10 +9263,10 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9308,10 +9308,10 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9352,10 +9352,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_hazard_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9397,10 +9397,10 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9442,10 +9442,10 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9486,10 +9486,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9530,10 +9530,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_left_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9575,10 +9575,10 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9620,10 +9620,10 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9665,10 +9665,10 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9710,10 +9710,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9754,10 +9754,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_system_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9799,10 +9799,10 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9844,10 +9844,10 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9888,10 +9888,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_lock_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9932,10 +9932,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 8)) {
+    if (value <= (-1) || value >= 8) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9977,7 +9977,7 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 1550 && value < 3200)) {
+    if (value <= 1550 || value >= 3200) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
@@ -10022,10 +10022,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10067,10 +10067,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10112,10 +10112,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10312,10 +10312,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                          uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10356,10 +10356,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_cargo_lift_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10401,10 +10401,10 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10445,10 +10445,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_pto_enable_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10495,10 +10495,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-50) && value < 12800)) {
+    if (value <= (-50) || value >= 12800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
+    r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
         if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10664,10 +10664,10 @@ static inline int32_t kaiwo_gateway_device_id_device_type_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_device_type_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 64)) {
+    if (value <= (-1) || value >= 64) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 63 || r < INT64_C(0) || r > INT64_C(63)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10708,10 +10708,10 @@ static inline int32_t kaiwo_gateway_device_id_id_frame_index_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10720,20 +10720,21 @@ kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw)
 }
 
 /* id_chars: 56-bit values are not exact in a double: use the integer functions. */
+
 /** id_chars: raw → physical × 1, integers only. */
 static inline int64_t kaiwo_gateway_device_id_id_chars_decode_fixed(uint64_t raw) {
     return (int64_t)raw;
 }
 
-/** id_chars: physical × 1 → raw, integers only, same rounding and range rules as
- * kaiwo_gateway_device_id_id_chars_encode(). */
+/** id_chars: physical × 1 → raw, integers only, rounding half away from zero.
+ * KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is outside [0.0, 72057594037927935.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_chars_encode_fixed(int64_t value,
                                                                                    uint64_t *raw) {
     int64_t r;
-    if (!(value > INT64_C(-1) && value < INT64_C(72057594037927936))) {
+    if (value <= INT64_C(-1) || value >= INT64_C(72057594037927936)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - INT64_C(0), INT64_C(1));
+    r = (int64_t)value;
     if (value < INT64_C(0) || value > INT64_C(72057594037927935) || r < INT64_C(0) ||
         r > INT64_C(72057594037927935)) {
         return KAIWO_GATEWAY_ERR_RANGE;
@@ -10958,10 +10959,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11007,10 +11008,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11056,10 +11057,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11105,10 +11106,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11154,10 +11155,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11203,10 +11204,10 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11505,10 +11506,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11554,10 +11555,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11603,10 +11604,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11650,10 +11651,10 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11695,10 +11696,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11740,10 +11741,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11785,10 +11786,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11830,10 +11831,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11875,10 +11876,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11920,10 +11921,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11965,10 +11966,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12010,10 +12011,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12055,10 +12056,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12276,10 +12277,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12325,10 +12326,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12374,10 +12375,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12423,10 +12424,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12472,10 +12473,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12521,10 +12522,10 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12820,10 +12821,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12869,10 +12870,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12918,10 +12919,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 1024)) {
+    if (value <= (-1) || value >= 1024) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (!(r == 1023)) {
         if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12965,10 +12966,10 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13010,10 +13011,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13055,10 +13056,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13100,10 +13101,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13145,10 +13146,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13190,10 +13191,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13235,10 +13236,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13280,10 +13281,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13325,10 +13326,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13370,10 +13371,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13548,10 +13549,10 @@ static inline int32_t kaiwo_gateway_tele_eps_command_eps_ctrl_mode_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 256)) {
+    if (value <= (-1) || value >= 256) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13594,10 +13595,10 @@ static inline int32_t kaiwo_gateway_tele_eps_command_max_angular_speed_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-2) && value < 512)) {
+    if (value <= (-2) || value >= 512) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 2);
+    r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
         if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -13642,10 +13643,10 @@ static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-108010) && value < 547360)) {
+    if (value <= (-108010) || value >= 547360) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-108000), 10);
+    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
     if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13836,10 +13837,10 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (!(value > (-1002) && value < 1048)) {
+    if (value <= (-1002) || value >= 1048) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - (-1000), 2);
+    r = kaiwo_gateway_div_round((int64_t)value + 1000, 2);
     if (value < (-1000) || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13880,10 +13881,10 @@ static inline int32_t kaiwo_gateway_tele_speed_command_epb_cmd_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13924,10 +13925,10 @@ static inline int32_t kaiwo_gateway_tele_speed_command_gear_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13969,10 +13970,10 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14371,10 +14372,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14415,10 +14416,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_door_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14459,10 +14460,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_horn_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14503,10 +14504,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_drl_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14547,10 +14548,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_turn_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14592,10 +14593,10 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14636,10 +14637,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_hazard_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14681,10 +14682,10 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14725,10 +14726,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_headlight_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14769,10 +14770,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_rear_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14813,10 +14814,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14857,10 +14858,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_right_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14902,10 +14903,10 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14947,10 +14948,10 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14992,10 +14993,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15036,10 +15037,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_system_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15081,10 +15082,10 @@ kaiwo_gateway_tele_control_command_1_system_reliability_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15126,10 +15127,10 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15170,10 +15171,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_lock_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15214,10 +15215,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 8)) {
+    if (value <= (-1) || value >= 8) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15259,7 +15260,7 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > 1550 && value < 3200)) {
+    if (value <= 1550 || value >= 3200) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
@@ -15304,10 +15305,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15349,10 +15350,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15394,10 +15395,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15594,10 +15595,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15638,10 +15639,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_cargo_lift_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 4)) {
+    if (value <= (-1) || value >= 4) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15683,10 +15684,10 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 16)) {
+    if (value <= (-1) || value >= 16) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15727,10 +15728,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_pto_enable_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (!(value > (-1) && value < 2)) {
+    if (value <= (-1) || value >= 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 1);
+    r = (int64_t)value;
     if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -15776,10 +15777,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (!(value > (-50) && value < 12800)) {
+    if (value <= (-50) || value >= 12800) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 0, 50);
+    r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
         if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
             return KAIWO_GATEWAY_ERR_RANGE;

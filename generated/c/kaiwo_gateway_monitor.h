@@ -61,7 +61,7 @@ static inline void kaiwo_gateway_monitor_init(kaiwo_gateway_monitor_t *mon) {
 }
 
 /** Supervise `msg` from now on: a timeout after `timeout_cycles` × its cycle time without a
- * frame (0 cycles: KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES). */
+ * frame (0 cycles: KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES); an event-driven message never times out. */
 static inline void kaiwo_gateway_monitor_expect(kaiwo_gateway_monitor_t *mon,
                                                 kaiwo_gateway_msg_t msg, uint32_t now_ms,
                                                 uint32_t timeout_cycles) {

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import gc
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -57,13 +57,14 @@ def paused_gc() -> Iterator[None]:
             gc.enable()
 
 
-def compile_spec(path: Path | str | None = None) -> Compiled:
-    """Never raises for a bad spec: every problem comes back in `problems`."""
+def compile_spec(path: Path | str | None = None, targets: Iterable[str] | None = None) -> Compiled:
+    """Never raises for a bad spec: every problem comes back in `problems`. `targets`: whose
+    refusals apply (default: every target's — a spec is valid when all of them can express it)."""
     with paused_gc():
-        return _compile(path)
+        return _compile(path, targets)
 
 
-def _compile(path: Path | str | None) -> Compiled:
+def _compile(path: Path | str | None, targets: Iterable[str] | None) -> Compiled:
     try:
         loaded = load(path)
     except SpecError as exc:
@@ -74,7 +75,7 @@ def _compile(path: Path | str | None) -> Compiled:
         return Compiled(None, problems)
     spec = build(loaded, res)
     problems += _example_problems(spec, res)
-    problems += target_problems(spec)
+    problems += target_problems(spec, targets)
     if any(p.severity == "error" for p in problems):
         return Compiled(None, problems)
     return Compiled(spec, problems)

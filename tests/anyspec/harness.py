@@ -298,7 +298,6 @@ def stage_python(ctx: Ctx, mypy: bool) -> None:
 
 def stage_cantools(ctx: Ctx) -> None:
     import canmatrix.formats
-    from adapters import load_dbc_with_spec_names
 
     dbc = next((ctx.out / "dbc").glob("*.dbc"), None)
     doc = _vectors(ctx)
@@ -307,7 +306,7 @@ def stage_cantools(ctx: Ctx) -> None:
         return
     ctx.res.checked.append("cantools")
     try:
-        db = load_dbc_with_spec_names(dbc)  # cantools, strict; DBC-unique names read back as the spec's
+        db = adapters.load_dbc_with_spec_names(dbc)  # cantools, strict; DBC-unique names read back as the spec's
     except Exception as exc:  # noqa: BLE001
         ctx.fail("cantools", "load_file(strict=True)", f"{type(exc).__name__}: {exc}")
         db = None

@@ -225,35 +225,13 @@ def instruction_counts(exe: Path, mode: str, names: list[str]) -> None:
     print(f"[{mode}] messages where canspec executes at most as many instructions: {fewer} of {len(names)}")
 
 
-def main(argv: list[str]) -> int:
-    build = Path(argv[1]) if len(argv) > 1 else cbuild.ROOT / "build" / "c-bench"
-    iters = int(argv[2]) if len(argv) > 2 else 100_000
-    build.mkdir(parents=True, exist_ok=True)
-    ct = build / "cantools"
-    ct.mkdir(exist_ok=True)
-    dbc = cbuild.ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
-    proc = cbuild.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc), "-o", str(ct)])
-    if proc.returncode != 0:
-        print(f"bench-c: cantools generate_c_source failed: {proc.stderr}", file=sys.stderr)
-        return 1
-    vectors = json.loads(cbuild.DEFAULT_VECTORS.read_text(encoding="utf-8"))
-    names = list(dict.fromkeys(c["message"] for c in vectors["cases"]))
-    header = (ct / "kaiwo_gateway.h").read_text()
-    missing = [n for n in names if f"kaiwo_gateway_{n}_pack(" not in header]
-    if missing:
-        print(f"bench-c: cantools output lacks {missing}", file=sys.stderr)
-        return 1
-    frames = {n: frames_for(vectors["cases"], n) for n in names}
-    compiled = compile_spec(cbuild.ROOT / "spec")
-    if compiled.spec is None or compiled.spec.can is None:
-        print("bench-c: the spec does not compile", file=sys.stderr)
-        return 1
-    xor = {m.name: (m.checksum.byte, m.checksum.covers) for m in compiled.spec.can.messages if m.checksum is not None}
+XMODE = "like for like (cantools + the XOR check)"
 
+
+def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tuple[int, tuple[int, ...]]], iters: int) -> dict[str, str]:
     main_c = (MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names)))
               .replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS)))
-
-    sources = {
+    return {
         "bench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s"),
         "bench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8"),
         "call_canspec.c": harness("canspec", wrappers(names, define=False), names, frames, "", "buf, 8, &s", fn="x_"),
@@ -265,8 +243,10 @@ def main(argv: list[str]) -> int:
         "xbench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8", xor=xor),
         "xcall_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8", xor=xor),
     }
-    for name, text in sources.items():
-        (build / name).write_text(text)
+
+
+def _objects(build: Path, ct: Path) -> tuple[dict[str, list[str]], str, str]:
+    """Per mode the objects of its benchmark executable; the two size objects."""
     inc = [f"-I{cbuild.HEADERS}", f"-I{build}", f"-I{ct}"]
 
     def compile_(src: Path, obj: str, *extra: str) -> str:
@@ -275,18 +255,52 @@ def main(argv: list[str]) -> int:
 
     size_a = compile_(build / "size_canspec.c", "size_canspec.o")
     size_b = compile_(ct / "kaiwo_gateway.c", "size_cantools.o")
-    xmode = "like for like (cantools + the XOR check)"
     call_a, inline_a = compile_(build / "call_canspec.c", "call_canspec.o"), compile_(build / "bench_canspec.c", "bench_canspec.o")
     exes = {
         "call": [call_a, compile_(build / "call_cantools.c", "call_cantools.o"),
                  size_a, size_b, compile_(build / "bench_main.c", "main_call.o", '-DMODE="call"')],
         "inline": [inline_a, compile_(build / "bench_cantools.c", "bench_cantools.o"),
                    compile_(build / "bench_main.c", "main_inline.o", '-DMODE="inline"')],
-        f"call, {xmode}": [call_a, compile_(build / "xcall_cantools.c", "xcall_cantools.o"),
-                           size_a, size_b, compile_(build / "bench_main.c", "xmain_call.o", f'-DMODE="call, {xmode}"')],
-        f"inline, {xmode}": [inline_a, compile_(build / "xbench_cantools.c", "xbench_cantools.o"),
-                             compile_(build / "bench_main.c", "xmain_inline.o", f'-DMODE="inline, {xmode}"')],
+        f"call, {XMODE}": [call_a, compile_(build / "xcall_cantools.c", "xcall_cantools.o"),
+                           size_a, size_b, compile_(build / "bench_main.c", "xmain_call.o", f'-DMODE="call, {XMODE}"')],
+        f"inline, {XMODE}": [inline_a, compile_(build / "xbench_cantools.c", "xbench_cantools.o"),
+                             compile_(build / "bench_main.c", "xmain_inline.o", f'-DMODE="inline, {XMODE}"')],
     }
+    return exes, size_a, size_b
+
+
+def _inputs(ct: Path) -> tuple[list[str], dict[str, list[str]], dict[str, tuple[int, tuple[int, ...]]]] | str:
+    """Messages, their frames and checksum bytes; or what is wrong."""
+    dbc = cbuild.ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
+    proc = cbuild.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc), "-o", str(ct)])
+    if proc.returncode != 0:
+        return f"cantools generate_c_source failed: {proc.stderr}"
+    vectors = json.loads(cbuild.DEFAULT_VECTORS.read_text(encoding="utf-8"))
+    names = list(dict.fromkeys(c["message"] for c in vectors["cases"]))
+    header = (ct / "kaiwo_gateway.h").read_text()
+    missing = [n for n in names if f"kaiwo_gateway_{n}_pack(" not in header]
+    if missing:
+        return f"cantools output lacks {missing}"
+    compiled = compile_spec(cbuild.ROOT / "spec")
+    if compiled.spec is None or compiled.spec.can is None:
+        return "the spec does not compile"
+    xor = {m.name: (m.checksum.byte, m.checksum.covers) for m in compiled.spec.can.messages if m.checksum is not None}
+    return names, {n: frames_for(vectors["cases"], n) for n in names}, xor
+
+
+def main(argv: list[str]) -> int:
+    build = Path(argv[1]) if len(argv) > 1 else cbuild.ROOT / "build" / "c-bench"
+    iters = int(argv[2]) if len(argv) > 2 else 100_000
+    ct = build / "cantools"
+    ct.mkdir(parents=True, exist_ok=True)
+    inputs = _inputs(ct)
+    if isinstance(inputs, str):
+        print(f"bench-c: {inputs}", file=sys.stderr)
+        return 1
+    names, frames, xor = inputs
+    for name, text in _sources(names, frames, xor, iters).items():
+        (build / name).write_text(text)
+    exes, size_a, size_b = _objects(build, ct)
     print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
     for i, objs in enumerate(exes.values()):
         exe = build / f"bench_{i}"

@@ -1,6 +1,8 @@
-"""Write the per-message part of the C vector runner (runner_tables.h) from the IR: one check
-function per message that names its struct fields and functions. The expected values all
-come from the vectors file at run time; this only maps signal names to C code."""
+"""Write the per-message part of the C vector runner (runner_tables.h) for any spec: one check
+function per message that names its struct fields and functions, the lookup of a case's
+message, and the multi-frame text checks. The expected values all come from the vectors file
+at run time, and the fixed-point ones from the spec's own factor and offset (exact integers);
+this only maps signal names to C code."""
 
 from __future__ import annotations
 
@@ -11,105 +13,119 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1] / "generator"))
 
 from canspec.pipeline import compile_spec
-from canspec.targets.c.model import build_model
+from canspec.targets.c.messages import CMessage
+from canspec.targets.c.model import CModel, CVin, build_model
+from canspec.targets.c.signals import CSignal
+
+
+def _i128(value: int) -> str:
+    """A 128-bit constant of a value of at most 64 bits (factor, offset, scale: |value| < 2^64)."""
+    return f"(i128)UINT64_C({value})" if value >= 0 else f"-(i128)UINT64_C({-value})"
+
+
+def _bits(s: CSignal, expr: str) -> str:
+    """The raw value's two's complement bits as uint64_t (what the runner compares)."""
+    return f"(uint64_t)(int64_t){expr}" if s.sig.signed else f"(uint64_t){expr}"
+
+
+def _physical_checks(s: CSignal) -> list[str]:
+    """Decode and encode of one data signal, both paths (where the header has them)."""
+    name, signed = s.sig.name, int(s.sig.signed)
+    out = ["    {", f"        const phys_t *ph = phys_of(vc, \"{name}\");", f"        const uint64_t raw = raw_of(vc, \"{name}\");", f"        {s.type} r = 0;", "        (void)r;", "        (void)raw;", "        if (ph != NULL) {"]
+    if s.double is not None:
+        out += [
+            f"            bad += check_decode(vc, ph, {s.fn}_decode(s.{s.field}), {s.macro}_FACTOR);",
+            f"            st = (int){s.fn}_encode(ph->value, &r);",
+            f"            bad += check_double_encode(vc, ph, st, {_bits(s, 'r')}, raw, {signed});",
+        ]
+    f = s.fixed
+    if f is not None:
+        ff, fo = int(s.sig.factor * f.scale), int(s.sig.offset * f.scale)
+        scaling = f"{_i128(f.scale)}, {_i128(ff)}, {_i128(fo)}"
+        out += [
+            "            {",
+            "                i128 in;",
+            "                uint64_t want;",
+            f"                bad += check_fixed_decode(vc, ph, (i128){s.fn}_decode_fixed(s.{s.field}), raw, {signed}, {scaling});",
+            f"                if (fixed_input(vc, ph, raw, {signed}, {scaling}, &in, &want)) {{",
+            f"                    st = (int){s.fn}_encode_fixed(({f.type})in, &r);",
+            f"                    bad += check_encode(vc, ph, \"fixed\", st, {_bits(s, 'r')}, want, {signed});",
+            "                }",
+            "            }",
+        ]
+    return out + ["        }", "    }"]
+
+
+def _message_check(c: CModel, cm: CMessage) -> list[str]:
+    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", "    uint8_t buf[8] = {0};", "    int bad = 0, st;"]
+    out += ["    memset(&s, 0, sizeof s);", f"    st = (int){cm.fn}_unpack(&s, vc->data, vc->len);", "    if (st != 0) bad += fail(vc, \"unpack returned %d\", st);"]
+    out += [f"    bad += check_raw(vc, \"{s.sig.name}\", {_bits(s, 's.' + s.field)}, {int(s.sig.signed)});" for s in cm.signals]
+    out += ["    memset(&p, 0, sizeof p);"] + [f"    p.{s.field} = ({s.type})raw_of(vc, \"{s.sig.name}\");" for s in cm.signals]
+    out += [f"    st = (int){cm.fn}_pack(buf, sizeof buf, &p);", "    bad += check_bytes(vc, st, buf);"]
+    if cm.msg.dlc > 0:  # a DLC-0 frame has no shorter buffer
+        out += [f"    st = (int){cm.fn}_unpack(&s, vc->data, {cm.msg.dlc - 1}u);", f"    if (st != (int){c.macro}_ERR_LENGTH) bad += fail(vc, \"short buffer gave %d\", st);"]
+    for s in cm.signals:
+        out += _physical_checks(s) if s.is_data else [f"    bad += check_identity(vc, \"{s.sig.name}\", {_bits(s, 's.' + s.field)});"]
+    return out + ["    return bad;", "}", ""]
+
+
+def _lookup(c: CModel) -> list[str]:
+    """The message of a case's frame ID (its format is the message's: try both where it matters)."""
+    out = ["static int runner_lookup(uint32_t frame_id, const char **name) {"]
+    if c.format_arg:
+        out += [f"    {c.msg_type} msg = {c.prefix}_lookup_id(frame_id, true);", f"    if (msg == {c.msg_none}) msg = {c.prefix}_lookup_id(frame_id, false);"]
+    else:
+        out += [f"    const {c.msg_type} msg = {c.prefix}_lookup_id(frame_id);"]
+    out += [f"    const {c.prefix}_msg_info_t *info = {c.prefix}_msg_info(msg);", "    if (info == NULL) return -1;", "    *name = info->name;", "    return (int)msg;", "}", ""]
+    return out
+
+
+def _text_check(c: CModel, v: CVin) -> list[str]:
+    cm, dlc = v.cm, v.cm.msg.dlc
+    return [
+        f"        case {cm.index_const}: {{",
+        f"            {cm.type} tmpl;",
+        f"            static {v.type} rx;",
+        f"            static uint8_t frames[{v.frames}][{dlc}];",
+        f"            static char text[{v.capacity}];",
+        "            int bad = 0, order, k, st;",
+        f"            if (vt->nframes != (int){v.macro}_FRAMES) return fail_text(vt, \"expected %d frames\", (int){v.macro}_FRAMES);",
+        f"            (void){cm.fn}_unpack(&tmpl, vt->frames[0], {dlc}u);",
+        f"            st = (int){v.fn}_split(vt->text, strlen(vt->text), &tmpl, frames);",
+        "            if (st != 0) bad += fail_text(vt, \"split returned %d\", st);",
+        "            for (k = 0; k < vt->nframes; k++)",
+        f"                if (memcmp(frames[k], vt->frames[k], {dlc}u) != 0) bad += fail_text(vt, \"split frame %d differs\", k);",
+        "            for (order = 0; order < 2; order++) {",
+        f"                {v.fn}_rx_init(&rx);",
+        "                for (k = 0; k < vt->nframes; k++) {",
+        "                    const int i = order ? vt->nframes - 1 - k : k;",
+        f"                    if (k > 0 && {v.fn}_rx_get(&rx, text, sizeof text) != {c.macro}_ERR_INCOMPLETE) bad += fail_text(vt, \"incomplete text not reported (order %d)\", order);",
+        f"                    st = (int){v.fn}_rx_feed(&rx, vt->frames[i], {dlc}u);",
+        "                    if (st != 0) bad += fail_text(vt, \"feed returned %d\", st);",
+        "                }",
+        f"                st = (int){v.fn}_rx_get(&rx, text, sizeof text);",
+        "                if (st != 0 || strcmp(text, vt->text) != 0) bad += fail_text(vt, \"reassembled (order %d) status %d\", order, st);",
+        "            }",
+        "            return bad;",
+        "        }",
+    ]
 
 
 def tables(spec_path: str) -> str:
     compiled = compile_spec(spec_path)
-    assert compiled.spec is not None, [p.format() for p in compiled.problems]
+    if compiled.spec is None:
+        raise ValueError("\n".join(p.format() for p in compiled.problems))
     c = build_model(compiled.spec)
-    out = [f'#include "{c.prefix}.h"', "",
-           "/* runner.c names the spec's lookup functions through these (any prefix). */",
-           f"typedef {c.prefix}_msg_t runner_msg_t;",
-           f"typedef {c.prefix}_msg_info_t runner_msg_info_t;",
-           f"#define runner_lookup_id {c.prefix}_lookup_id",
-           f"#define runner_msg_info {c.prefix}_msg_info", ""]
+    out = [f'#include "{c.prefix}.h"', "", f"#define RUNNER_MESSAGES {len(c.messages)}", ""]
+    out += _lookup(c)
     for cm in c.messages:
-        out.append(f"static int check_{cm.name}(const vcase_t *vc) {{")
-        out.append(f"    {cm.type} s, p;")
-        out.append("    uint8_t buf[8];")
-        out.append("    int bad = 0;")
-        out.append("    memset(&s, 0, sizeof s);")
-        out.append(f"    int st = (int){cm.fn}_unpack(&s, vc->data, vc->len);")
-        out.append("    if (st != 0) bad += fail(vc, \"unpack returned %d\", st);")
-        for s in cm.signals:
-            out.append(f"    bad += check_raw(vc, \"{s.sig.name}\", (int64_t)s.{s.field});")
-        out.append("    memset(&p, 0, sizeof p);")
-        for s in cm.signals:
-            out.append(f"    p.{s.field} = ({s.type})raw_of(vc, \"{s.sig.name}\");")
-        out.append(f"    st = (int){cm.fn}_pack(buf, sizeof buf, &p);")
-        out.append("    bad += check_bytes(vc, st, buf);")
-        out.append(f"    st = (int){cm.fn}_unpack(&s, vc->data, {cm.msg.dlc - 1}u);")
-        out.append(f"    if (st != (int){c.macro}_ERR_LENGTH) bad += fail(vc, \"short buffer gave %d\", st);")
-        for s in cm.signals:
-            name = s.sig.name
-            if not s.is_data:
-                out.append(f"    bad += check_identity(vc, \"{name}\", (int64_t)s.{s.field});")
-                continue
-            out.append("    {")
-            out.append(f"        {s.type} r = 0;")
-            out.append(f"        {s.fixed_type} fx = 0;")
-            out.append(f"        const phys_t *ph = phys_of(vc, \"{name}\");")
-            out.append("        if (ph != NULL) {")
-            if s.has_double:
-                out.append(f"            bad += check_decode(vc, ph, {s.fn}_decode(s.{s.field}), {s.macro}_FACTOR);")
-            out.append("            if (encodable(vc)) {")
-            if s.has_double:
-                out.append(f"                st = (int){s.fn}_encode(ph->value, &r);")
-                out.append("                bad += check_encode(vc, ph, \"double\", st, (int64_t)r);")
-            out.append(f"                if (scaled(ph, {s.scale_int}, &fx)) {{")
-            out.append(f"                    st = (int){s.fn}_encode_fixed(fx, &r);")
-            out.append("                    bad += check_encode(vc, ph, \"fixed\", st, (int64_t)r);")
-            out.append("                } else {")
-            out.append("                    bad += fail(vc, \"%s: physical %s is not a multiple of 1/%d\", ph->name, ph->text, " + str(s.scale_int) + ");")
-            out.append("                }")
-            out.append("            }")
-            out.append(f"            if (!is_tie(vc) && scaled(ph, {s.scale_int}, &fx)) {{")
-            out.append(f"                bad += check_fixed_decode(vc, ph, (int64_t){s.fn}_decode_fixed(s.{s.field}), (int64_t)fx);")
-            out.append("            }")
-            out.append("        }")
-            out.append("    }")
-        out.append("    return bad;")
-        out.append("}")
-        out.append("")
-    out.append("typedef int (*check_fn)(const vcase_t *);")
-    out.append(f"static const check_fn CHECKS[{c.macro}_MSG_COUNT] = {{")
-    for cm in c.messages:
-        out.append(f"    check_{cm.name},")
-    out.append("};")
-    out.append("")
-    out.append("static int check_text(const vtext_t *vt) {")
-    out.append(f"    switch ({c.prefix}_lookup_id(vt->frame_id)) {{")
+        out += _message_check(c, cm)
+    out += ["typedef int (*check_fn)(const vcase_t *);", f"static const check_fn CHECKS[{max(1, len(c.messages))}] = {{"]
+    out += [f"    check_{cm.name}," for cm in c.messages] or ["    NULL,"]
+    out += ["};", "", "static int check_text(const vtext_t *vt) {", "    const char *name = NULL;", "    switch (runner_lookup((uint32_t)vt->frame_id, &name)) {"]
     for v in c.vins:
-        cm = v.cm
-        out.append(f"        case {cm.index_const}: {{")
-        out.append(f"            {cm.type} tmpl;")
-        out.append(f"            {v.type} rx;")
-        out.append(f"            uint8_t frames[{v.frames}][{cm.msg.dlc}];")
-        out.append("            char text[256];")
-        out.append("            int bad = 0, order, k, st;")
-        out.append(f"            if (vt->nframes != (int){v.macro}_FRAMES) return fail_text(vt, \"expected %d frames\", (int){v.macro}_FRAMES);")
-        out.append(f"            (void){cm.fn}_unpack(&tmpl, vt->frames[0], 8u);")
-        out.append(f"            st = (int){v.fn}_split(vt->text, strlen(vt->text), &tmpl, frames);")
-        out.append("            if (st != 0) bad += fail_text(vt, \"split returned %d\", st);")
-        out.append("            for (k = 0; k < vt->nframes; k++)")
-        out.append(f"                if (memcmp(frames[k], vt->frames[k], {cm.msg.dlc}u) != 0) bad += fail_text(vt, \"split frame %d differs\", k);")
-        out.append("            for (order = 0; order < 2; order++) {")
-        out.append(f"                {v.fn}_rx_init(&rx);")
-        out.append("                for (k = 0; k < vt->nframes; k++) {")
-        out.append("                    const int i = order ? vt->nframes - 1 - k : k;")
-        out.append(f"                    if (k > 0 && {v.fn}_rx_get(&rx, text, sizeof text) != {c.macro}_ERR_INCOMPLETE) bad += fail_text(vt, \"incomplete text not reported (order %d)\", order);")
-        out.append(f"                    st = (int){v.fn}_rx_feed(&rx, vt->frames[i], 8u);")
-        out.append("                    if (st != 0) bad += fail_text(vt, \"feed returned %d\", st);")
-        out.append("                }")
-        out.append(f"                st = (int){v.fn}_rx_get(&rx, text, sizeof text);")
-        out.append("                if (st != 0 || strcmp(text, vt->text) != 0) bad += fail_text(vt, \"reassembled (order %d) status %d\", order, st);")
-        out.append("            }")
-        out.append("            return bad;")
-        out.append("        }")
-    out.append("        default: return fail_text(vt, \"no multi-frame message has this ID\");")
-    out.append("    }")
-    out.append("}")
+        out += _text_check(c, v)
+    out += ["        default: return fail_text(vt, \"no multi-frame message has this ID\");", "    }", "}"]
     return "\n".join(out) + "\n"
 
 

@@ -17,9 +17,9 @@ import run_fuzz
 SECONDS = int(os.environ.get("CANSPEC_FUZZ_SECONDS", "20"))
 
 
-@pytest.mark.skipif(shutil.which("clang") is None, reason="clang missing (run `make setup`)")
 @pytest.mark.parametrize("target", run_fuzz.TARGETS)
 def test_fuzz_target(target, tmp_path):
+    assert shutil.which("clang") is not None, "clang missing (run `make setup`)"
     r = run_fuzz.run(target, SECONDS, tmp_path)
     print(f"fuzz_{target}: {r['executions']} executions, cov {r['cov']}, ft {r['ft']}, corpus {r['corpus']}")
     assert r["clean"], r["log"]

@@ -1,41 +1,56 @@
-"""The C target's model (cmodel.py): literal syntax, fixed-point scales, pack plans and clear
-errors for layouts the C target does not support. Expected values from the document."""
+"""The C target's model (model.py and the modules it uses): literal syntax, fixed-point scales
+and types, pack plans, names. Expected values from the document and from exact arithmetic."""
 
 from __future__ import annotations
 
 import dataclasses
 from fractions import Fraction
 
-import pytest
-from canspec.generate import GenerationError, generate
 from canspec.targets.c import model as cmodel
+from canspec.targets.c import physical
 
 
-def test_decimals():
-    assert cmodel.decimals(Fraction(3, 2000)) == 4  # 0.0015
+def _by_name(model):
+    return {m.msg.name: m for m in model.messages}
+
+
+def test_fixed_scale_expresses_every_step_bound_and_tie():
+    sig = dataclasses.make_dataclass("S", ["factor", "offset", "check_min", "check_max", "is_identity"])
+    # factor 0.0015 (4 places), its half step 0.00075 (5 places)
+    assert physical.fixed_scale(sig(Fraction(3, 2000), Fraction(0), Fraction(0), Fraction(1), False)) == 10**5
+    # an identity field with a documented range of decimals
+    assert physical.fixed_scale(sig(Fraction(1), Fraction(0), Fraction(1, 2), Fraction(10), True)) == 10
+    # 2^-20 has 20 decimal places: counted exactly, not capped
+    assert physical.fixed_scale(sig(Fraction(1, 2**20), Fraction(0), Fraction(0), Fraction(1), True)) == 10**20
 
 
 def test_signal_plans(spec):
-    model = cmodel.build_model(spec)
-    eps = next(m for m in model.messages if m.msg.name == "autocar_eps_command")
+    by = _by_name(cmodel.build_model(spec))
+    eps = by["autocar_eps_command"]
     angle = next(s for s in eps.signals if s.sig.name == "steering_angle_cmd")
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
-    assert angle.scale_int == 100 and angle.fixed_factor == "10" and angle.fixed_offset == "(-108000)"
+    assert angle.fixed.scale == 100 and angle.fixed.type == "int32_t"
+    assert angle.fixed.decode_expr == "(int32_t)raw * 10 - 108000"
+    assert angle.fixed.rounded == "kaiwo_gateway_div_round((int64_t)value + 108000, 10)"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
-    assert eps.checksum_byte == 7 and eps.checksum_fold
+    assert eps.checksum.byte == 7 and eps.checksum.ok == "kaiwo_gateway_xor_is_zero(v)"
     # the struct is one 8-byte word: fields at byte offsets 0, 1, 2, (pad), 4..5, 6
     assert [r.offset for r in eps.unpack_runs] == [0] and eps.unpack_runs[0].nbytes == 8
     assert "offsetof(kaiwo_gateway_autocar_eps_command_t, steering_angle_cmd) == 4u" in eps.layout_check
     # reserved bytes 5..6 stay 0: only the checksum byte is added to the packed data bits
-    assert "0xFFFFFF" in eps.frame_word and eps.checksum_pack.endswith("<< 56)")
-    cmd1 = next(m for m in model.messages if m.msg.name == "autocar_control_command_1")
+    assert "0xFFFFFF" in eps.frame_word and eps.checksum.pack.endswith("<< 56)")
+    cmd1 = by["autocar_control_command_1"]
     assert cmd1.counter is not None and cmd1.counter_mask == "0xFu"
-    dev = next(m for m in model.messages if m.msg.name == "device_id")
-    chars = next(s for s in dev.signals if s.sig.name == "id_chars")
-    assert not chars.has_double and chars.fixed_type == "int64_t" and chars.scale_int == 1
-    fs = next(m for m in model.messages if m.msg.name == "front_sensor_distance_1")
-    dist = fs.signals[0]
+    chars = next(s for s in by["device_id"].signals if s.sig.name == "id_chars")
+    assert chars.double is None and chars.fixed.type == "int64_t" and chars.fixed.scale == 1  # 56 bits: not exact in a double
+    dist = by["front_sensor_distance_1"].signals[0]
     assert dist.needs_check and [sp.raw for sp in dist.specials] == [0x3FF]
+
+
+def test_j1939_facts_are_the_ids(spec):
+    eps = _by_name(cmodel.build_model(spec))["autocar_eps_command"]  # 0x1801B0A0: priority 6, PF 0x01 (PDU1) to 0xB0 from 0xA0
+    assert (eps.j1939.priority, eps.j1939.pgn, eps.j1939.sa, eps.j1939.da) == ("6u", "0x00100u", "0xA0u", "0xB0u")
+    assert eps.frame_id == "0x1801B0A0u" and eps.cycle_ms == "20u"
 
 
 def test_fault_code_mapping(spec):
@@ -49,19 +64,10 @@ def test_fault_code_mapping(spec):
     assert len(codes) == 6  # the three EPS and three speed commands carry the XOR checksum
 
 
-def test_unsupported_layout_is_a_clear_generation_error(spec):
-    can = spec.can
-    big = dataclasses.replace(can.messages[0], dlc=64)
-    bad = dataclasses.replace(spec, can=dataclasses.replace(can, messages=(big, *can.messages[1:])))
-    with pytest.raises(GenerationError, match=r"target c: autocar_eps_command: DLC 64 > 8"):
-        generate(bad, ["c"])
-
-
 def test_trailing_byte_fields_are_copied_as_bytes(spec):
     """Whole-byte fields at the struct's end whose frame byte differs from their struct offset
     are copied byte by byte, when the planner's word cost says moving them costs more."""
-    model = cmodel.build_model(spec)
-    by = {m.msg.name: m for m in model.messages}
+    by = _by_name(cmodel.build_model(spec))
     cc2 = by["rgate_control_command_2"]  # ..., downhill_regen_speed (frame byte 1), counter (byte 7)
     assert [(b.field, b.byte) for b in cc2.byte_fields] == [("downhill_regen_speed", 1), ("counter", 7)]
     assert cc2.pack_byte_stores == cc2.byte_fields

@@ -1,4 +1,4 @@
-"""The C target's word plans (cwords.py): executed in Python, every plan moves every field of
+"""The C target's word plans (words.py, wordplans.py): executed in Python, every plan moves every field of
 every message exactly between its frame bits and its struct slot. The oracle is plain bit
 arithmetic on the frame word ((v >> start) & mask), not the plans themselves."""
 
@@ -7,6 +7,7 @@ from __future__ import annotations
 import random
 
 from canspec.targets.c import model as cmodel
+from canspec.targets.c import wordplans
 from canspec.targets.c import words as cwords
 
 
@@ -27,7 +28,7 @@ def test_every_plan_moves_every_field_both_ways(spec):
     for cm in model.messages:
         fields = _fields(cm)
         offsets = cwords.natural_offsets([f.storage for f in fields])
-        runs = cwords.plan_runs(fields, offsets)
+        runs = wordplans.plan_runs(fields, offsets)
         assert [f.name for r in runs for f in r.fields] == [f.name for f in fields], cm.name
         for run in runs:  # a run stays inside one 8-byte block of the struct
             first = offsets[fields.index(run.fields[0])]
@@ -66,7 +67,7 @@ def test_flags_move_by_one_multiplication(spec):
     muls = [r.run for r in cm.unpack_runs if r.run.mul is not None]
     assert len(muls) >= 2 and all(not r.steps for r in muls)
     fields = _fields(cm)
-    runs = cwords.plan_runs(fields, cwords.natural_offsets([f.storage for f in fields]))
+    runs = wordplans.plan_runs(fields, cwords.natural_offsets([f.storage for f in fields]))
     for v in ((1 << 64) - 1, 0x5555555555555555, 0xAAAAAAAAAAAAAAAA, 0x8000000000000001):
         for run in runs:
             got = cwords.unpack_run(run, v)
@@ -79,8 +80,8 @@ def test_a_multiplication_whose_copies_meet_is_refused():
     moved by flag 1's, so the sum would carry; seven flags are fine."""
     eight = tuple(cwords.Field(f"f{i}", i, 1, 8, False, True) for i in range(8))
     slots = tuple(8 * i for i in range(8))
-    assert cwords._mul_plan(eight, slots) is None
-    seven = cwords._mul_plan(eight[:7], slots[:7])
+    assert wordplans._mul_plan(eight, slots) is None
+    seven = wordplans._mul_plan(eight[:7], slots[:7])
     assert seven is not None and seven.mul is not None
     for v in range(128):
         got = cwords.unpack_run(seven, v)

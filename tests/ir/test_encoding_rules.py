@@ -149,3 +149,11 @@ def test_half_is_not_rounded_to_even_near_the_exact_limit():
     # rounding of the double quotient (4294966294.4999995 → ...94), within one of the exact 95
     assert to_raw_exact("429496629.45", Fraction(1, 10), Fraction(0)) == 4294966295
     assert to_raw_runtime(429496629.45, 0.1, 0.0) in (4294966294, 4294966295)
+
+
+def test_decimal_text_of_values_longer_than_the_decimal_context():
+    """A wide field's range widened by the tie epsilon has more than 28 significant digits."""
+    assert decimal_text(Fraction(-9223372036854775832600000001, 2000000000)) == "-4611686018427387916.3000000005"
+    assert decimal_text(Fraction(1, 2**50)) == "0.00000000000000088817841970012523233890533447265625"
+    with pytest.raises(ValueError):
+        decimal_text(Fraction(1, 3))

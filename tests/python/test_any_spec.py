@@ -1,4 +1,5 @@
-"""The Python target on every valid fixture (tests/fixtures/valid/*.yaml with a CAN protocol): each
+"""The Python target on every valid fixture (tests/fixtures/valid/*.yaml with a CAN protocol), and on
+the Python-target specs of tests/python/specs/ (names other targets refuse, `canspec gen -t python`): each
 generated package passes ruff check, ruff format and mypy --strict, imports (with its python-can
 module), round-trips the spec's own vectors through the vector runner, and its example runs on
 python-can's virtual bus. One ruff and one mypy run cover every package."""
@@ -18,6 +19,7 @@ from canspec.targets.vectors import render_vectors
 from python import pkgpath
 
 VALID = pkgpath.ROOT / "tests" / "fixtures" / "valid"
+PYTHON_ONLY = pkgpath.ROOT / "tests" / "python" / "specs"
 RUNNER = pkgpath.ROOT / "tests" / "python" / "vector_runner.py"
 
 
@@ -27,8 +29,8 @@ def run(cmd, **kw):
 
 def _can_fixtures() -> list[Path]:
     out = []
-    for path in sorted(VALID.glob("*.yaml")):
-        compiled = compile_spec(path)
+    for path, targets in [*((p, None) for p in sorted(VALID.glob("*.yaml"))), *((p, ["python"]) for p in sorted(PYTHON_ONLY.glob("*.yaml")))]:
+        compiled = compile_spec(path, targets)
         assert compiled.spec is not None, [p.format() for p in compiled.problems]
         if compiled.spec.can is not None:
             out.append(path)
@@ -44,7 +46,7 @@ def packages(tmp_path_factory) -> dict[str, tuple[Path, Path]]:
     root = tmp_path_factory.mktemp("anyspec-python")
     out = {}
     for path in FIXTURES:
-        spec = compile_spec(path).spec
+        spec = compile_spec(path, ["python"]).spec
         files = {**target.render_python(spec), **render_vectors(spec)}
         for rel, data in files.items():
             dest = root / path.stem / rel

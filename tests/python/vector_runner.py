@@ -74,6 +74,8 @@ def check_case(gw: ModuleType, case: dict[str, Any]) -> list[str]:
     # encode
     if gw.encode_raw(frame_id, case["raw"]) != data:
         errors.append(f"encode_raw gives {gw.encode_raw(frame_id, case['raw']).hex().upper()}, expected {case['data']}")
+    if case["kind"] == "beyond_double":  # physical values that do not survive doubles: decode and raw pack only
+        return errors
     built = cls(**{names[s]: v for s, v in case["physical"].items()})
     if case["kind"] in PHYSICAL_KINDS:
         try:
@@ -83,7 +85,7 @@ def check_case(gw: ModuleType, case: dict[str, Any]) -> list[str]:
         else:
             if encoded != data:
                 errors.append(f"encode gives {encoded.hex().upper()}, expected {case['data']}")
-    else:  # raw_only: the documented range excludes a value, so a physical encode must refuse it
+    elif case["kind"] == "raw_only":  # the documented range excludes a value: a physical encode must refuse it
         try:
             gw.encode(built)
             errors.append("encode accepted a value outside the documented range (raw_only case)")

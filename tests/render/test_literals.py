@@ -11,7 +11,7 @@ from fractions import Fraction
 import pytest
 from canspec.render import literals
 
-NASTY = ['plain', 'quote " and backslash \\', "tab\tnewline\n", "bell\x07 del\x7f nul-ish\x01", "trigraph ??= ??(", "中文 °C m/s²", "digit after control \x017"]
+NASTY = ['plain', 'quote " and backslash \\', "tab\tnewline\n", "bell\x07 del\x7f nul-ish\x01", "trigraph ??= ??( ???=", "中文 °C m/s²", "digit after control \x017"]
 
 
 def test_numbers():
@@ -43,6 +43,16 @@ def test_c_strings_compile_to_the_same_bytes(tmp_path):
     subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-trigraphs", str(src), "-o", str(exe)], check=True)
     out = subprocess.run([str(exe)], capture_output=True, check=True).stdout
     assert out.split(b"\0")[:-1] == [s.encode("utf-8") for s in NASTY]
+
+
+def test_c_comments_stay_one_comment(tmp_path):
+    """Spec text in a C comment cannot end it, open a nested one, form a trigraph or a line splice."""
+    texts = [*NASTY, "ends */ early", "opens /* another", "/**/ and */*", "back\\\nslash", "???/"]
+    comments = [literals.c_comment(t) for t in texts]
+    assert all("*/" not in c and "/*" not in c and "??" not in c and "\n" not in c for c in comments)
+    src = tmp_path / "c.c"
+    src.write_text("".join(f"/* {c} */ int v{i};\n" for i, c in enumerate(comments)), encoding="utf-8")
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-trigraphs", "-c", str(src), "-o", str(tmp_path / "c.o")], check=True)
 
 
 def test_python_and_typescript_strings():

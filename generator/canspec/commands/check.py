@@ -7,13 +7,19 @@ import sys
 
 from canspec.commands.common import compile_or_report, print_problems
 from canspec.diff.history import changelog_problems
+from canspec.targets import registry
 
 
 def run(args: argparse.Namespace) -> int:
+    known = registry()
+    unknown = [n for n in args.target or [] if n not in known]
+    if unknown:
+        print(f"canspec check: unknown target {', '.join(unknown)} (known: {', '.join(known)})", file=sys.stderr)
+        return 2
     specs = args.spec or [None]
     failed = False
     for spec in specs:
-        compiled = compile_or_report(spec, strict=args.strict)
+        compiled = compile_or_report(spec, strict=args.strict, targets=args.target)
         if compiled.spec is None:
             failed = True
             continue
@@ -39,5 +45,6 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p = sub.add_parser("check", help="validate a spec (schema + semantic rules)")
     p.add_argument("spec", nargs="*", help="spec bundles, directories or files (default: the shipped spec)")
     p.add_argument("--strict", action="store_true", help="treat warnings as errors")
+    p.add_argument("-t", "--target", action="append", help="apply only this target's refusals (repeatable; default: every target's)")
     p.add_argument("-q", "--quiet", action="store_true", help="print problems only")
     p.set_defaults(func=run)

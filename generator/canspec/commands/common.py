@@ -15,8 +15,8 @@ def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignor
         print(p.format(), file=stream)
 
 
-def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False) -> Compiled:
-    compiled = compile_spec(spec)
+def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False, targets: list[str] | None = None) -> Compiled:
+    compiled = compile_spec(spec, targets)
     shown = compiled.errors if quiet_warnings else compiled.problems
     print_problems(shown)
     if strict and compiled.warnings and compiled.spec is not None:

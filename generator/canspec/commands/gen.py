@@ -19,7 +19,7 @@ def run(args: argparse.Namespace) -> int:
     if unknown:
         print(f"canspec gen: unknown target {', '.join(unknown)} (known: {', '.join(known)})", file=sys.stderr)
         return 2
-    compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True)
+    compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True, targets=names)  # only these targets' refusals
     if compiled.spec is None:
         print("canspec gen: nothing written (fix the errors above)", file=sys.stderr)
         return 1

@@ -49,6 +49,7 @@ class ValueEntry:
 class ValueTable:
     name: str
     entries: tuple[ValueEntry, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
 
     def by_raw(self, raw: int) -> ValueEntry | None:
         return next((e for e in self.entries if e.raw == raw), None)
@@ -306,6 +307,7 @@ class CanProtocol:
     messages: tuple[Message, ...]  # in document order
     value_tables: tuple[ValueTable, ...]
     fault_tables: tuple[FaultTable, ...] = ()
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

@@ -86,10 +86,20 @@ def _escaped(text: str, control: str) -> str:
     return '"' + "".join(out) + '"'
 
 
+_QUESTIONS = re.compile(r"\?(?=\?)")  # a `?` followed by another: a backslash between them
+
+
 def c_string(text: str) -> str:
     """A C string literal, UTF-8 kept; other control characters as 3-digit octal escapes (which,
     unlike hex escapes, cannot swallow a following digit); `??` split so no trigraph forms."""
-    return _escaped(text, "\\{:03o}").replace("??", "?\\?")
+    return _QUESTIONS.sub("?\\\\", _escaped(text, "\\{:03o}"))
+
+
+def c_comment(text: str) -> str:
+    """Text inside a C block comment, on one line: `*/`, `/*` and `??` (a trigraph) broken up so
+    the comment neither ends early nor warns; line breaks and other control characters as spaces."""
+    flat = "".join(" " if ord(ch) < 0x20 or ord(ch) == 0x7F else ch for ch in text)
+    return _QUESTIONS.sub("?\\\\", flat.replace("*/", "*\\/").replace("/*", "/\\*"))
 
 
 # --- Rust, Python, TypeScript, TOML ------------------------------------------------------------
@@ -177,6 +187,7 @@ FILTERS = {
     "hex32": hex32,
     "hex_byte": hex_byte,
     "c_string": c_string,
+    "c_comment": c_comment,
     "rust_string": rust_string,
     "py_string": py_string,
     "py_doc": py_doc,

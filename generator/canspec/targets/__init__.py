@@ -27,9 +27,11 @@ class Target:
     check: Callable[[ir.Spec], Iterable[Problem]] | None = None  # what this target cannot express
 
 
-def target_problems(spec: ir.Spec) -> list[Problem]:
-    """Every target's refusals of a spec the spec rules accept."""
-    return [p for target in registry().values() if target.check is not None for p in target.check(spec)]
+def target_problems(spec: ir.Spec, names: Iterable[str] | None = None) -> list[Problem]:
+    """The refusals of a spec the spec rules accept, by the named targets (default: all)."""
+    targets = registry()
+    chosen = [targets[n] for n in names] if names is not None else list(targets.values())
+    return [p for target in chosen if target.check is not None for p in target.check(spec)]
 
 
 @lru_cache(maxsize=1)

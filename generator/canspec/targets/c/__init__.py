@@ -1,6 +1,7 @@
-"""Header-only C99 for ECUs (`c/<protocol>*.h`): see cmodel.py for the meaning, templates/c/
-for the text. Output is formatted by clang-format with the committed templates/c/.clang-format,
-run on the text in memory so that generation stays deterministic and atomic."""
+"""Header-only C99 for ECUs (`c/<protocol>*.h`): model.py and the modules it uses hold the
+meaning, templates/c/ the text, check.py what the target refuses. Output is formatted by
+clang-format with the committed templates/c/.clang-format, run on the text in memory so that
+generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
@@ -10,22 +11,12 @@ from canspec import ir, resources
 from canspec.render import formatters
 from canspec.render.environment import render
 from canspec.targets import Target
+from canspec.targets.c.check import c_problems
 from canspec.targets.c.model import build_model
+from canspec.targets.c.names import HEADERS
 
 CLANG_FORMAT = "clang-format"
 STYLE_FILE = ".clang-format"
-# (template, file suffix): one header per concern, each compiles alone.
-HEADERS = (
-    ("c/common.h.j2", "_common.h"),
-    ("c/enums.h.j2", "_enums.h"),
-    ("c/messages.h.j2", "_messages.h"),
-    ("c/dispatch.h.j2", "_dispatch.h"),
-    ("c/text.h.j2", "_text.h"),
-    ("c/monitor.h.j2", "_monitor.h"),
-    ("c/umbrella.h.j2", ".h"),
-)
-
-
 def clang_format(text: str, name: str) -> str:
     style = resources.templates_dir() / "c" / STYLE_FILE
     return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")
@@ -43,4 +34,4 @@ def render_c(spec: ir.Spec) -> dict[str, bytes]:
     return out
 
 
-TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10)
+TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10, check=c_problems)

@@ -16,7 +16,7 @@ from canspec.render.literals import double_repr, grouped_int, hex_byte, rust_str
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
-from canspec.targets.rust.naming import FieldNames, field_names, special_const, stored_signals, type_name
+from canspec.targets.rust.naming import FieldNames, enum_type_names, field_names, special_const, stored_signals, type_name
 from canspec.targets.rust.values import RustEnum, build_enum, enum_users
 
 # Getters named like a conversion (`to_x`, `from_x`) break clippy's naming conventions for methods
@@ -270,7 +270,9 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
 
 def build_crate(can: ir.CanProtocol) -> RustCrate:
     """The crate's view; assumes `canspec check` passed (targets/rust/check.py)."""
-    enums = {table: build_enum(users[0].value_table, users) for table, users in enum_users(can).items() if users[0].value_table is not None}
+    users = {table: signals for table, signals in enum_users(can).items() if signals[0].value_table is not None}
+    names = enum_type_names(can, users)
+    enums = {table: build_enum(signals[0].value_table, signals, names[table]) for table, signals in users.items()}
     bilingual = any(m.zh for m in can.messages)
     id_flag_matters = any(not m.is_extended or m.frame_id <= MAX_STANDARD_ID for m in can.messages)
     messages = tuple(build_message(m, enums, id_flag_matters) for m in can.messages)

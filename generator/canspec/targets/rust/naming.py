@@ -3,7 +3,8 @@
 Spec names are lower_snake (`^[a-z][a-z0-9_]*$`); Rust wants snake_case values and PascalCase
 types without doubled underscores, so `a__b` and `a_b` (or `x_1` and `x1` as types) become the
 same Rust name. Keywords and the names the generated modules use unqualified are escaped
-deterministically (`r#type`, `self_`, `Option_`); two spec names that still meet are refused
+deterministically (`r#type`, `self_`, `Option_`), a value table named like a message gets `Value`
+after its type name (`GearValue`); two spec names that still meet are refused
 (rule `rust-name-clash`): renaming one of them is the user's choice, not the generator's.
 """
 
@@ -31,6 +32,13 @@ def type_name(name: str) -> str:
     """A spec name as a Rust type (message, value table, their companions)."""
     out = pascal(name)
     return f"{out}_" if out in RESERVED_TYPES else out
+
+
+def enum_type_names(can: ir.CanProtocol, tables: Iterable[str]) -> dict[str, str]:
+    """Each value table's enum type: its PascalCase name, with `Value` after it where a message
+    type takes that name (a message and a table named alike, `gear`, are common on real buses)."""
+    messages = {type_name(m.name) for m in can.messages}
+    return {t: f"{type_name(t)}Value" if type_name(t) in messages else type_name(t) for t in tables}
 
 
 def variant_name(name: str) -> str:
@@ -124,7 +132,8 @@ def problems(can: ir.CanProtocol, enum_users: dict[str, list[ir.Signal]], scaled
     """Every Rust name clash of the crate. `enum_users`: the signals of each value table the
     crate makes an enum of; `scaled(sig)`: the field has range constants of its own."""
     types: list[tuple[str, str, Loc | None]] = [(n, f"the crate's own {n}", None) for n in ("Error", "Frame", "Messages", "Text")]
-    types += [(type_name(table), f"value table {table!r}", users[0].loc) for table, users in enum_users.items()]
+    enums = enum_type_names(can, enum_users)
+    types += [(enums[table], f"value table {table!r}", users[0].loc) for table, users in enum_users.items()]
     types += [(type_name(msg.name), f"message {msg.name!r}", msg.loc) for msg in can.messages]
     for msg in can.messages:
         types.append((f"{pascal(msg.name)}Values", f"the values struct of message {msg.name!r}", msg.loc))
@@ -133,7 +142,7 @@ def problems(can: ir.CanProtocol, enum_users: dict[str, list[ir.Signal]], scaled
     yield from _clashes(types, "the crate", TYPE_HINT)
     for table, users in enum_users.items():
         entries = users[0].value_table.entries if users[0].value_table else ()
-        yield from _clashes(((variant_name(e.name), f"value {e.name!r}", e.loc) for e in entries), f"enum {type_name(table)}", TYPE_HINT)
+        yield from _clashes(((variant_name(e.name), f"value {e.name!r}", e.loc) for e in entries), f"enum {enums[table]}", TYPE_HINT)
     for msg in can.messages:
         sigs = [(s, field_names(s)) for s in stored_signals(msg)]
         scope = f"type {type_name(msg.name)}"

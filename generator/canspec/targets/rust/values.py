@@ -11,7 +11,7 @@ from canspec.render.literals import grouped_int
 from canspec.spec.problems import Problem, error
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import int_type, type_bounds
-from canspec.targets.rust.naming import OTHER_VARIANT, type_name, variant_name
+from canspec.targets.rust.naming import OTHER_VARIANT, variant_name
 
 REPR_TYPES = ("u8", "i8", "u16", "i16", "u32", "i32", "u64", "i64")
 
@@ -60,7 +60,7 @@ def problems(users: dict[str, list[ir.Signal]]) -> Iterator[Problem]:
                         "no Rust integer type holds the raw values of both", signed.loc, "give the signed field a value table of its own", "rust-value-table-width")
 
 
-def build_enum(table: ir.ValueTable, signals: list[ir.Signal]) -> RustEnum:
+def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> RustEnum:
     repr_ = repr_type(signals)
     assert repr_ is not None, "refused by `canspec check` (rust-value-table-width)"
     variants = tuple(RustVariant(variant_name(e.name), grouped_int(e.raw), docs.variant_doc(e)) for e in table.entries)
@@ -69,7 +69,7 @@ def build_enum(table: ir.ValueTable, signals: list[ir.Signal]) -> RustEnum:
     free = next((v for v in range(hi + 1) if v not in used), None) if len(used) <= hi - lo else None
     if free is None and len(used) <= hi - lo:
         free = next(v for v in range(-1, lo - 1, -1) if v not in used)
-    return RustEnum(type_name(table.name), table.name, repr_, variants, OTHER_VARIANT if free is not None else None, grouped_int(free) if free is not None else "")
+    return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, grouped_int(free) if free is not None else "")
 
 
 def field_repr(sig: ir.Signal, enum: RustEnum) -> bool:

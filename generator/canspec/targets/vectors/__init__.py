@@ -19,7 +19,7 @@ from fractions import Fraction
 from typing import Any
 
 from canspec import ir
-from canspec.ir.encoding import to_raw_exact, to_raw_runtime
+from canspec.ir.encoding import fits_runtime, to_raw_exact, to_raw_runtime
 from canspec.reference import codec
 from canspec.targets import Target
 from canspec.targets.vectors import sequences, texts
@@ -69,7 +69,22 @@ def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, A
         phys[name] = n // d if n % d == 0 else n / d
     if physical:
         phys.update(physical)
+    if kind != "raw_only":
+        lost = [s.name for s in msg.data_signals if not s.is_integer and not _survives_doubles(s, raw[s.name], phys[s.name])]
+        if lost:
+            kind, note = "beyond_double", f"{note}; " * bool(note) + f"the physical value of {', '.join(lost)} does not encode back in doubles"
     return case_record(msg, data, raw, phys, kind, note)
+
+
+def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int) -> bool:
+    """Whether the runtime rule (ir/encoding.py), given this physical value as a double, encodes
+    it back to `raw`: always within a field's first 2^52 steps, not always beyond (a 63-bit
+    field's maximum has no double of its own). Integer-scaled signals are encoded in integers by
+    every language, so only the others are asked."""
+    x, f, o = float(physical), float(sig.factor), float(sig.offset)
+    if not fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
+        return False
+    return any(s.raw == raw for s in sig.specials) or float(sig.accept_min) <= x <= float(sig.accept_max)
 
 
 def case_record(msg: ir.Message, data: bytes, raw: dict[str, int], physical: dict[str, Any], kind: str, note: str = "") -> dict[str, Any]:
@@ -167,7 +182,7 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
             "range": "physical outside the documented range, or a raw value that does not fit, is an error unless the raw value is a special value",
             "reserved_bits": 0,
             "checksum": "XOR of every other byte of the frame, in its checksum byte",
-            "kinds": "zero/base/min/max/enum/special/tie/random cases are physical-encodable; raw_only cases only decode/pack at raw level",
+            "kinds": "zero/base/min/max/enum/special/tie/random cases are physical-encodable; raw_only cases decode and pack at raw level and a physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields wider than 2^52 steps) decode and pack at raw level only",
         },
         "cases": cases,
         "multiframe": vin_cases(spec.can),

@@ -1,0 +1,46 @@
+"""The reference a test engineer writes today: read a candump log, decode every frame with
+cantools' `decode_message`, collect the rows per message into pandas and write one Parquet file
+per message (same tables as `canspec decode --format parquet`: time stamp, channel, physical
+values, value-table labels as strings).
+
+    python3 bench/reference_parquet.py DBC LOG OUT_DIR"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections import defaultdict
+
+import cantools
+import pandas as pd
+
+
+def main(dbc: str, log: str, out: str) -> int:
+    db = cantools.database.load_file(dbc, encoding="utf-8")
+    rows: dict[str, list[dict[str, object]]] = defaultdict(list)
+    with open(log, encoding="ascii") as lines:
+        for line in lines:
+            stamp, channel, frame = line.split()[:3]
+            frame_id, data = frame.split("#")
+            msg = db.get_message_by_frame_id(int(frame_id, 16))
+            values = db.decode_message(msg.frame_id, bytes.fromhex(data))
+            row: dict[str, object] = {"timestamp": float(stamp[1:-1]), "channel": channel}
+            for name, value in values.items():
+                if isinstance(value, (int, float)):
+                    row[name] = float(value)
+                else:
+                    row[name] = float(msg.get_signal_by_name(name).conversion.choice_to_number(value))
+                    row[f"{name}_label"] = str(value)
+            rows[msg.name].append(row)
+    for name, records in rows.items():
+        os.makedirs(os.path.join(out, name), exist_ok=True)
+        frame = pd.DataFrame.from_records(records)
+        for col in frame.columns:
+            if col.endswith("_label") or col == "channel":
+                frame[col] = frame[col].astype("category")
+        frame.to_parquet(os.path.join(out, name, "part-0.parquet"), compression="zstd")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:4]))

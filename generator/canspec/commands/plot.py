@@ -1,0 +1,159 @@
+"""`canspec plot LOG... SIGNAL...`: signals over time from any supported log, with matplotlib.
+
+Signals are names or shell patterns (`accel_*`, `vehicle_state_1.*`) matched against `signal`
+and `message.signal`. Time is in seconds from the first decoded frame; `--start/--stop` cut it.
+Signals of one unit share an axis (`--stack`: one axis per signal); value-table signals are drawn
+as steps on an axis of their own with their labels as ticks; the legend names message, signal and
+unit. `-o FILE` writes PNG/SVG/PDF (by extension); without it a window opens."""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import os
+import sys
+from dataclasses import dataclass
+from typing import Any
+
+from canspec import ir
+from canspec.commands.logrun import EXTRA_HINT, LOG_FORMATS, each_chunk, load_protocol, summarize
+
+
+@dataclass
+class Series:
+    msg: ir.Message
+    sig: ir.Signal
+    time: Any  # numpy float64 seconds from the start
+    value: Any  # numpy float64 physical values
+
+    @property
+    def label(self) -> str:
+        return f"{self.msg.name}.{self.sig.name}" + (f" [{self.sig.unit}]" if self.sig.unit else "")
+
+
+def select(can: ir.CanProtocol, patterns: list[str]) -> tuple[list[tuple[ir.Message, ir.Signal]], list[str]]:
+    """The (message, signal) pairs the patterns name, in spec order; and patterns matching nothing."""
+    chosen, unmatched = [], []
+    for pattern in patterns:
+        hits = [(m, s) for m in can.messages for s in m.data_signals if fnmatch.fnmatchcase(s.name, pattern) or fnmatch.fnmatchcase(f"{m.name}.{s.name}", pattern)]
+        if not hits:
+            unmatched.append(pattern)
+        chosen += [h for h in hits if h not in chosen]
+    return chosen, unmatched
+
+
+def collect(tables: dict[str, list[Any]], chosen: list[tuple[ir.Message, ir.Signal]], start: float | None, stop: float | None) -> list[Series]:
+    """The chosen signals' values from the decoded tables, time from the first decoded frame."""
+    import numpy as np
+    import pyarrow as pa
+
+    merged = {name: pa.concat_tables(parts) for name, parts in tables.items()}
+    t0 = min((float(np.nanmin(t.column(0).to_numpy())) for t in merged.values() if t.num_rows), default=0.0)
+    series = []
+    for msg, sig in chosen:
+        table = merged.get(msg.name)
+        if table is None:
+            continue
+        time = table.column(0).to_numpy() - t0  # column 0 is the time stamp (bulk.Layout)
+        value = table.column(sig.name).to_numpy()
+        keep = np.ones(len(time), bool)
+        if start is not None:
+            keep &= time >= start
+        if stop is not None:
+            keep &= time <= stop
+        series.append(Series(msg, sig, time[keep], value[keep]))
+    return series
+
+
+def panels(series: list[Series], stack: bool) -> list[list[Series]]:
+    """The axes: one per signal with --stack; otherwise signals of one unit share an axis and a
+    value-table signal gets its own (its labels are the axis ticks)."""
+    groups: dict[object, list[Series]] = {}
+    for s in series:
+        key = (s.msg.name, s.sig.name) if stack or s.sig.labels else ("unit", s.sig.unit)
+        groups.setdefault(key, []).append(s)
+    return list(groups.values())
+
+
+def figure(series: list[Series], stack: bool, title: str):  # type: ignore[no-untyped-def]
+    """A matplotlib figure, one row of axes per panel, time shared."""
+    import matplotlib.pyplot as plt
+
+    rows = panels(series, stack)
+    fig, axes = plt.subplots(len(rows), 1, sharex=True, squeeze=False, figsize=(10, 2.2 * len(rows) + 1.6), layout="constrained")
+    for (ax,), group in zip(axes, rows):
+        for s in group:
+            if s.sig.labels:
+                ax.step(s.time, s.value, where="post", label=s.label)
+                ticks = sorted({lb.raw for lb in s.sig.labels})
+                ax.set_yticks([float(s.sig.physical(r)) for r in ticks], [s.sig.label_of(r).name for r in ticks])  # type: ignore[union-attr]
+            else:
+                ax.plot(s.time, s.value, label=s.label, linewidth=1)
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", fontsize="small")
+    axes[-1][0].set_xlabel("time [s] from the first frame")
+    fig.suptitle(title)
+    return fig
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        import matplotlib
+
+        from canspec.reference.bulk import Decoder
+    except ImportError as exc:
+        print(f"canspec plot: {exc.name} is missing; {EXTRA_HINT}", file=sys.stderr)
+        return 2
+    logs = [a for a in args.items if a == "-" or os.path.exists(a)]
+    patterns = args.items[len(logs):] if args.items[: len(logs)] == logs else None
+    if not logs or not patterns:
+        print("canspec plot: give LOG... then SIGNAL... (the logs must exist; signals are names or patterns)", file=sys.stderr)
+        return 2
+    can = load_protocol("plot", args.spec)
+    if can is None:
+        return 2
+    chosen, unmatched = select(can, patterns)
+    if unmatched:
+        print(f"canspec plot: no signal matches {', '.join(map(repr, unmatched))} (signals are 'name' or 'message.name', with * and ?)", file=sys.stderr)
+        return 2
+    if args.output:
+        matplotlib.use("Agg")
+    tables: dict[str, list[Any]] = {}
+    decoder = Decoder(can.messages)
+
+    def keep(source: str, batch: Any, decoded: Any) -> None:
+        for name, table in decoded.tables.items():
+            tables.setdefault(name, []).append(table)
+
+    args.logs, args.strict = logs, False
+    status = summarize("plot", each_chunk(args, decoder, "plot", True, keep), False, quiet=True)
+    series = collect(tables, chosen, args.start, args.stop)
+    if not series:
+        print("canspec plot: none of the chosen signals' messages is in the logs", file=sys.stderr)
+        return max(status, 1)
+    fig = figure(series, args.stack, ", ".join(os.path.basename(p) for p in logs))
+    if args.output:
+        try:
+            fig.savefig(args.output, dpi=args.dpi)
+        except (OSError, ValueError) as exc:
+            print(f"canspec plot: cannot write {args.output}: {exc}", file=sys.stderr)
+            return 2
+    else:
+        import matplotlib.pyplot as plt
+
+        plt.show()
+    return status
+
+
+def register(sub) -> None:  # type: ignore[no-untyped-def]
+    p = sub.add_parser("plot", help="plot signals over time from bus logs (PNG/SVG/PDF or a window)", description=__doc__.split("\n\n")[0])
+    p.add_argument("items", nargs="+", metavar="LOG... SIGNAL...", help="log files (or - for stdin), then signal names or patterns ('accel_*', 'eps_state.*')")
+    p.add_argument("--input-format", choices=LOG_FORMATS, default=None, help="the logs' format (default: from the extension)")
+    p.add_argument("--spec", default=None, help="spec bundle, directory or file (default: the shipped spec)")
+    p.add_argument("-o", "--output", metavar="FILE", help="write the plot to FILE (.png, .svg, .pdf); default: open a window")
+    p.add_argument("--stack", action="store_true", help="one subplot per signal (default: one per unit; value-table signals get their own)")
+    p.add_argument("--start", type=float, default=None, metavar="S", help="from S seconds after the first frame")
+    p.add_argument("--stop", type=float, default=None, metavar="S", help="up to S seconds after the first frame")
+    p.add_argument("--dpi", type=int, default=100, help="resolution of PNG output (default 100)")
+    p.add_argument("--max-problems", type=int, default=20, metavar="N", help="print at most N problems per input (default 20)")
+    p.set_defaults(func=run)

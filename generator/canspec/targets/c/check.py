@@ -1,0 +1,59 @@
+"""What the C target refuses (`canspec check` runs it):
+
+- c-name-clash: distinct spec names that give the same C name (see names.py) — two declarations,
+  or two struct fields, of one name do not compile. A name the C target escapes (a keyword gets
+  a trailing `_`) can meet another that way too. Neither can be renamed silently without
+  changing the other's API, so the report names both elements.
+- c-header-name: a protocol whose header would take the name of a C library header the
+  headers include (`string.h`): found first on the include path, it would stand in for it.
+- c-double-range: physical values beyond the largest double: C writes them as double constants.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+from canspec import ir
+from canspec.spec.problems import Problem, error
+from canspec.targets.c.names import Origin, declared, header_names, members
+
+CLASH_HINT = "rename one of them: C names join the words of spec names with `_` after the protocol's prefix, and escape C and C++ keywords with a trailing `_`"
+LIBRARY_HEADERS = ("stdbool.h", "stddef.h", "stdint.h", "string.h")
+
+
+def c_problems(spec: ir.Spec) -> Iterator[Problem]:
+    if spec.can is None:
+        return
+    for header in sorted(set(header_names(spec.can)) & set(LIBRARY_HEADERS)):
+        yield error(f"protocol {spec.can.name!r} gives the C header {header}, the name of the C library header it includes", spec.can.loc,
+                    "rename the protocol: the C target names its headers after it", "c-header-name")
+    for msg in spec.can.messages:
+        for sig in (s for s in msg.data_signals if s.role == "data" and _beyond_doubles(s)):
+            yield error(f"signal {sig.name!r} of {msg.name!r}: its physical values ({sig.length} bits × {float(sig.factor):g} + {float(sig.offset):g}) reach beyond the largest double (about 1.8e308)",
+                        sig.loc, "give the field a documented range, or a smaller factor, offset or width: C computes physical values in doubles", "c-double-range")
+    pairs: set[tuple[str, str]] = set()  # two elements clash once, however many names they share
+    yield from _clashes(declared(spec.can), "name", pairs)
+    for msg in spec.can.messages:
+        yield from _clashes(members(msg), f"field of `{msg.name}`", pairs)
+
+
+def _clashes(items: Iterable[tuple[str, Origin]], scope: str, pairs: set[tuple[str, str]]) -> Iterator[Problem]:
+    """One problem per pair of elements whose names meet (at the first name they share)."""
+    first: dict[str, Origin] = {}
+    for name, origin in items:
+        seen = first.setdefault(name, origin)
+        if seen is origin or (origin[0], seen[0]) in pairs:
+            continue
+        pairs.add((origin[0], seen[0]))
+        where = f" (at {seen[1]})" if seen[1] is not None else ""
+        yield error(f"{origin[0]} gives the C {scope} `{name}`, which {seen[0]}{where} gives too", origin[1] or seen[1], CLASH_HINT, "c-name-clash")
+
+
+def _beyond_doubles(sig: ir.Signal) -> bool:
+    """Whether a physical constant of the signal (scaling, range ends) is no finite double."""
+    try:
+        for value in (sig.factor, sig.offset, sig.check_min, sig.check_max, sig.accept_min, sig.accept_max):
+            float(value)
+    except OverflowError:
+        return True
+    return False

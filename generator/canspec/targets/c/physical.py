@@ -1,0 +1,188 @@
+"""Physical ↔ raw in C: the double path and the integer-only (fixed-point) path of a signal.
+
+The double encode is the shared rounding rule step for step (ir/encoding.py): q = (x - offset) /
+factor, then `<prefix>_round_half_away(q)` (the 2^52 branch included); a field wider than 63
+unsigned bits rounds |q| with `<prefix>_round_abs` into a uint64_t. q is first held inside the
+field's raw type widened by one step, so the rounding never leaves its integer type.
+
+The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
+factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
+gives within its tie guarantee (tested against the vectors). Every comparison whose outcome the
+operand's type already decides is left out (compilers warn about it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from canspec import ir
+from canspec.render.literals import c_int, c_uint, float_lit
+from canspec.targets.c.names import CNames
+
+INT_TYPES = ((32, "int32_t", -(2**31), 2**31 - 1), (64, "int64_t", -(2**63), 2**63 - 1))
+U64_MAX = 2**64 - 1
+DOUBLE_EXACT = 2**53  # integers up to this magnitude are exact in a double
+
+
+def int_lit(value: int, bits: int, signed: bool) -> str:
+    return c_int(value, bits) if signed else c_uint(value, bits)
+
+
+def _bound_terms(var: str, lo: int | None, hi: int | None, type_lo: int, type_hi: int, lit) -> list[str]:  # type: ignore[no-untyped-def]
+    """C terms true when `var` (of a type holding [type_lo, type_hi]) is below lo or above hi;
+    a bound the type already keeps is left out."""
+    out = []
+    if lo is not None and lo > type_lo:
+        out.append(f"{var} < {lit(lo)}")
+    if hi is not None and hi < type_hi:
+        out.append(f"{var} > {lit(hi)}")
+    return out
+
+
+@dataclass(frozen=True)
+class CRanges:
+    """What encode checks after rounding: `r` a special value, else inside the documented range
+    (`value`) and the encodable raw range (`r`)."""
+
+    specials: str  # condition: r is one of the signal's special raw values ("" if it has none)
+    outside: str  # condition: the value or r is out of range ("" if nothing can be)
+
+
+@dataclass(frozen=True)
+class CDouble:
+    decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
+    decode_expr: str  # double from `raw` (and `scaled`)
+    q_ok: str  # condition on q: its rounding stays inside the raw type widened by one step
+    r_type: str
+    rounded: str  # r from q, by the shared rule
+    wide_unsigned: bool  # r is a uint64_t holding |q| rounded: a negative q must round to 0
+    exact: bool  # every raw value is exact in a double
+    ranges: CRanges
+
+
+@dataclass(frozen=True)
+class CFixed:
+    scale: int  # 10^k
+    scale_lit: str
+    type: str  # int32_t / int64_t / uint64_t
+    decode_expr: str  # physical × scale from `raw`
+    outside: str  # condition: the input lies beyond the raw type widened by one step ("" if its type keeps it inside)
+    rounded: str  # r from `value`: (value - fo) / ff rounded half away from zero
+    r_type: str
+    ranges: CRanges
+
+
+def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str]) -> CRanges:
+    lit = (lambda v: c_int(v, 64)) if r_signed else (lambda v: c_uint(v, 64))
+    type_lo, type_hi = (-(2**63), 2**63 - 1) if r_signed else (0, U64_MAX)
+    specials = " || ".join(f"r == {c_int(sp.raw) if r_signed else c_uint(sp.raw)}" for sp in sig.specials)
+    terms = value_terms + _bound_terms("r", sig.raw_min, sig.raw_max, type_lo, type_hi, lit)
+    return CRanges(specials, " || ".join(terms))
+
+
+def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
+    """The double path of a data signal: where its raw values are exact in a double, or `force`d."""
+    exact = max(-sig.raw_type_min, sig.raw_type_max) <= DOUBLE_EXACT
+    if not exact and not force:
+        return None
+    factor, offset = sig.factor, sig.offset
+    # Two statements: compilers may contract `raw * f + o` in one expression into an FMA (clang
+    # does when constant folding), which would round differently from the shared rule.
+    expr = "(double)raw" if factor == 1 else f"(double)raw * {float_lit(factor)}"
+    pre = ""
+    if offset:
+        sign = "+" if offset > 0 else "-"
+        pre, expr = (expr, f"scaled {sign} {float_lit(abs(offset))}") if factor != 1 else ("", f"{expr} {sign} {float_lit(abs(offset))}")
+    wide_unsigned = not sig.signed and sig.raw_type_max > 2**63 - 1
+    # q's bounds are the raw type widened by one step; where that is not a double, the type's own
+    # bound (a power of two) is, and no double lies between the two.
+    low = f"q > {float_lit(sig.raw_type_min - 1)}" if sig.raw_type_min - 1 >= -DOUBLE_EXACT else f"q >= {float_lit(sig.raw_type_min)}"
+    accept = [f"!(value >= {float_lit(sig.accept_min)} && value <= {float_lit(sig.accept_max)})"]
+    return CDouble(
+        decode_pre=pre, decode_expr=expr, q_ok=f"{low} && q < {float_lit(sig.raw_type_max + 1)}",
+        r_type="uint64_t" if wide_unsigned else "int64_t",
+        rounded=f"{names.fn('round_abs')}(q < 0.0 ? -q : q)" if wide_unsigned else f"{names.fn('round_half_away')}(q)",
+        wide_unsigned=wide_unsigned, exact=exact, ranges=_ranges(sig, not wide_unsigned, accept),
+    )
+
+
+def fixed_scale(sig: ir.Signal) -> int:
+    """10^k: physical × 10^k is an integer for every raw value, both range bounds and (for
+    scaled signals) every half step."""
+    parts = [sig.factor, sig.offset, sig.check_min, sig.check_max] + ([] if sig.is_identity else [sig.factor / 2])
+    return 10 ** max(_places(v) for v in parts)
+
+
+def _places(value: Fraction) -> int:
+    """Decimal places of a decimal number: max(a, b) for its denominator 2^a 5^b."""
+    den, counts = value.denominator, []
+    for p in (2, 5):
+        n = 0
+        while den % p == 0:
+            den //= p
+            n += 1
+        counts.append(n)
+    if den != 1:
+        raise ValueError(f"{value} is not a decimal number")
+    return max(counts)
+
+
+def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
+    scale = fixed_scale(sig)
+    ff, fo = int(sig.factor * scale), int(sig.offset * scale)
+    tmin, tmax = sig.raw_type_min, sig.raw_type_max
+    core = [tmin, tmax, tmin * ff, tmax * ff, tmin * ff + fo, tmax * ff + fo, scale]
+    # the open interval of inputs whose rounding stays within one step of the raw type
+    below, above = sorted(((tmin - 1) * ff + fo, (tmax + 1) * ff + fo))
+    fmin, fmax = int(sig.check_min * scale), int(sig.check_max * scale)
+    for bits, ctype, lo, hi in INT_TYPES:
+        fits = all(lo <= v <= hi for v in core)
+        if bits == 32:  # int32_t only where every bound it is compared with is an int32_t too
+            fits = fits and all(lo <= v <= hi for v in (below, above, fmin, fmax))
+        if fits and _difference_fits(ff, fo, max(below + 1, lo), min(above - 1, hi)):
+            return _signed_fixed(names, sig, scale, (ff, fo), ctype, (below, above), (lo, hi))
+    if not sig.signed and ff > 0 and fo == 0 and tmax * ff <= U64_MAX:
+        return _unsigned_fixed(names, sig, scale, ff, above)
+    return None
+
+
+def _difference_fits(ff: int, fo: int, vlo: int, vhi: int) -> bool:
+    """Whether ±(value - fo), the numerator of the rounding, fits an int64_t for every input."""
+    ends = (vlo - fo, vhi - fo) if ff > 0 else (fo - vhi, fo - vlo)
+    return all(-(2**63) <= v <= 2**63 - 1 for v in ends)
+
+
+def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int, int], ctype: str, bounds: tuple[int, int], trange: tuple[int, int]) -> CFixed:
+    ff, fo = scaling
+    lo, hi = trange
+    lit = lambda v: c_int(v, 32 if ctype == "int32_t" else 64)
+    expr = f"({ctype})raw"
+    if ff != 1:
+        expr += f" * {lit(ff)}"
+    if fo:
+        expr += f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}"
+    outside = [f"value <= {lit(bounds[0])}"] if bounds[0] >= lo else []
+    outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
+    # ±(value - fo), so that the divisor |ff| is positive
+    value, offset = ("(int64_t)value", lit(abs(fo)))
+    if ff > 0:
+        num = value if not fo else f"{value} - {offset}" if fo > 0 else f"{value} + {offset}"
+    else:
+        num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
+    value_terms = _bound_terms("value", int(sig.check_min * scale), int(sig.check_max * scale), lo, hi, lit)
+    return CFixed(
+        scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=" || ".join(outside),
+        rounded=num if abs(ff) == 1 else f"{names.fn('div_round')}({num}, {lit(abs(ff))})", r_type="int64_t", ranges=_ranges(sig, True, value_terms),
+    )
+
+
+def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: int) -> CFixed:
+    """A wide unsigned field without offset: physical × scale = raw × ff, as a uint64_t."""
+    lit = lambda v: c_uint(v, 64)
+    expr = "(uint64_t)raw" if ff == 1 else f"(uint64_t)raw * {lit(ff)}"
+    value_terms = _bound_terms("value", int(sig.check_min * scale), int(sig.check_max * scale), 0, U64_MAX, lit)
+    return CFixed(
+        scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=f"value >= {lit(above)}" if above <= U64_MAX else "",
+        rounded="value" if ff == 1 else f"{names.fn('div_round_u')}(value, {lit(ff)})", r_type="uint64_t", ranges=_ranges(sig, False, value_terms),
+    )

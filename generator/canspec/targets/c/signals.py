@@ -1,0 +1,79 @@
+"""The C view of one signal: its struct field and the physical conversions.
+
+Two physical paths, both following the shared rules (ir/encoding.py):
+- double: `*_decode` / `*_encode`, for every field whose raw values are all exact in a double,
+  and for any field the integer path cannot hold;
+- fixed point: `*_decode_fixed` / `*_encode_fixed` in integers only, physical × 10^k, k the
+  fewest decimals that express every raw step, both range bounds and (for scaled signals) every
+  half step, so each rounding tie is an integer input. It exists when every value it computes
+  fits a 32- or 64-bit integer (signed, or unsigned for wide unsigned fields without offset).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from canspec import ir
+from canspec.render.literals import c_int, float_lit
+from canspec.targets.c.names import CNames
+from canspec.targets.c.physical import CDouble, CFixed, double_path, fixed_path, int_lit
+
+
+def ctype(bits: int, signed: bool) -> str:
+    return f"{'int' if signed else 'uint'}{bits}_t"
+
+
+@dataclass(frozen=True)
+class CSpecial:
+    macro: str
+    value: str  # literal in the field's type
+    raw: int
+    label: str
+
+
+@dataclass(frozen=True)
+class CSignal:
+    sig: ir.Signal
+    field: str
+    macro: str  # <PREFIX>_<MESSAGE>_<SIGNAL>
+    fn: str  # <prefix>_<message>_<signal>
+    type: str  # the struct field's type
+    length: int
+    start: int
+    range_check: str  # C condition true when a signed src->field does not fit its bits ("" if it always does)
+    needs_check: bool  # unsigned field whose type is wider than its bits
+    specials: tuple[CSpecial, ...]
+    factor: str  # the *_FACTOR macro's value (a negative one in parentheses)
+    offset: str  # double literals of the offset and the documented (else encodable) range
+    check_min: str
+    check_max: str
+    enum_type: str  # C type of its value table ("" if none)
+    is_data: bool  # has physical encode/decode (not counter/checksum)
+    double: CDouble | None  # the double path (None: use the fixed one)
+    fixed: CFixed | None  # the integer path (None: its values do not fit 64-bit integers)
+    unit: str
+    comment: str  # its Chinese name (or English description) and unit
+
+
+def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dict[str, str]) -> CSignal:
+    bits = sig.storage_bits
+    field = CNames.member(sig.name)
+    fits_type = sig.length == bits
+    range_check = ""
+    if sig.signed and not fits_type:
+        range_check = f"(src->{field} < {c_int(sig.raw_type_min, bits)}) | (src->{field} > {c_int(sig.raw_type_max, bits)})"
+    base = names.message(msg.name)
+    macro = names.const(base, sig.name)
+    specials = tuple(CSpecial(names.special(base, sig.name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
+    is_data = sig.role == "data"
+    fixed = fixed_path(names, sig) if is_data else None
+    double = double_path(names, sig, force=fixed is None) if is_data else None
+    comment = " ".join(t for t in (sig.zh or sig.desc, f"[{sig.unit}]" if sig.unit else "") if t)
+    return CSignal(
+        sig=sig, field=field, macro=macro, fn=names.fn(base, sig.name), type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
+        range_check=range_check, needs_check=not fits_type and not sig.signed, specials=specials,
+        factor=float_lit(sig.factor) if sig.factor > 0 else f"({float_lit(sig.factor)})", offset=float_lit(sig.offset), check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max),
+        enum_type=enum_types.get(sig.value_table.name, "") if sig.value_table else "",
+        is_data=is_data, double=double, fixed=fixed, unit=sig.unit, comment=comment,
+    )
+

@@ -1,0 +1,69 @@
+"""`canspec plot`: rendered to files on the Agg backend; the image's size is checked, and the data
+points on the axes are the values cantools decodes from the frames written into the log."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from canspec import cli
+from repo_paths import CANSPEC_ENV
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from logsynth import drive_frames, write
+
+
+@pytest.fixture(scope="module")
+def drive(tmp_path_factory, can):
+    frames = drive_frames(can, 6)
+    return write("blf", tmp_path_factory.mktemp("plot") / "drive.blf", frames), frames
+
+
+def test_png_svg_pdf_files(drive, tmp_path):
+    log, _ = drive
+    for ext, magic in (("png", b"\x89PNG"), ("svg", b"<?xml"), ("pdf", b"%PDF")):
+        out = tmp_path / f"p.{ext}"
+        proc = subprocess.run([sys.executable, "-m", "canspec", "plot", str(log), "accel_*", "steering_angle_cmd", "-o", str(out), "--dpi", "50"],
+                              capture_output=True, text=True, env=CANSPEC_ENV, check=False, timeout=120)
+        assert proc.returncode == 0, proc.stderr
+        assert out.read_bytes().startswith(magic)
+    image = matplotlib.image.imread(str(tmp_path / "p.png"))
+    assert image.shape[:2] == (300, 500)  # two units (m/s², deg): 10 × (2 × 2.2 + 1.6) inches at 50 dpi
+    assert image[..., :3].std() > 0.05  # not blank
+
+
+def test_plotted_points_are_the_decoded_values(drive, db, tmp_path):
+    log, frames = drive
+    plt.close("all")
+    assert cli.main(["plot", str(log), "autocar_speed_command.accel_cmd", "autocar_speed_command.gear_cmd", "--stack", "--start", "1", "--stop", "5",
+                     "-o", str(tmp_path / "s.png")]) == 0
+    fig = plt.gcf()
+    cm = db.get_message_by_name("autocar_speed_command")
+    mine = [f for f in frames if f.frame_id == cm.frame_id]
+    t0 = frames[0].timestamp
+    keep = [f for f in mine if 1 <= round(f.timestamp - t0, 9) <= 5]
+    (accel,), (gear,) = (ax.get_lines() for ax in fig.axes)
+    assert accel.get_label() == "autocar_speed_command.accel_cmd [m/s²]"
+    np.testing.assert_allclose(accel.get_xdata(), [f.timestamp - t0 for f in keep], atol=1e-6)
+    assert list(accel.get_ydata()) == [cm.decode(f.data, decode_choices=False)["accel_cmd"] for f in keep]
+    assert list(gear.get_ydata()) == [cm.decode(f.data, decode_choices=False)["gear_cmd"] for f in keep]
+    assert gear.get_drawstyle() == "steps-post"
+    ticks = {t.get_text() for t in fig.axes[1].get_yticklabels()}
+    assert {str(v) for v in cm.get_signal_by_name("gear_cmd").choices.values()} <= ticks
+    plt.close("all")
+
+
+def test_unknown_signal_and_missing_log(drive):
+    log, _ = drive
+    proc = subprocess.run([sys.executable, "-m", "canspec", "plot", str(log), "no_such_*", "-o", "x.png"], capture_output=True, text=True, env=CANSPEC_ENV, check=False)
+    assert proc.returncode == 2 and "no signal matches 'no_such_*'" in proc.stderr and "Traceback" not in proc.stderr
+    proc = subprocess.run([sys.executable, "-m", "canspec", "plot", "missing.blf", "accel_cmd"], capture_output=True, text=True, env=CANSPEC_ENV, check=False)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
