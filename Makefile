@@ -12,7 +12,8 @@ TEST_PREREQS :=
 ROUNDTRIP_TARGETS :=
 VECTORS ?= $(OUT)/vectors/can.json
 
-.PHONY: setup gen check test bench roundtrip
+.PHONY: help setup gen check test bench roundtrip
+.DEFAULT_GOAL := help
 
 setup:  ## install everything the generator and the tests need (apt, pip, cargo)
 	bash .ci/setup
@@ -32,3 +33,6 @@ test: $(TEST_PREREQS)  ## run the whole test suite
 bench: $(BENCH_TARGETS)  ## benchmarks against cantools and peers (prints ratios)
 
 roundtrip: $(ROUNDTRIP_TARGETS)  ## every language's vector runner on $(VECTORS)
+
+help:  ## list the make targets
+	@grep -hE '^[a-z][a-z0-9-]*:.*## ' $(MAKEFILE_LIST) | sed -E 's/^([a-z0-9-]+):.*## /\1\t/' | expand -t 20

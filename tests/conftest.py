@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+# The checkout under test is the one these tests belong to, whatever canspec pip has installed
+# (a second worktree, a CI copy): in this process and in every canspec subprocess.
+_GENERATOR = str(Path(__file__).resolve().parents[1] / "generator")
+sys.path[:0] = [str(Path(__file__).resolve().parent), _GENERATOR]
+os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [_GENERATOR, os.environ.get("PYTHONPATH")]))
 from canspec.pipeline import compile_spec
 from repo_paths import GENERATED, ROOT, SPEC  # noqa: F401
 

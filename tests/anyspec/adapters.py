@@ -86,9 +86,15 @@ def c_runner_tables(spec_path: Path) -> str:
     return text
 
 
-def c_vectors_lines(doc: dict[str, Any]) -> str:
-    """The line form of a vectors file that runner.c reads (an empty frame written as `-`)."""
-    text = _c_helpers()[2].convert(doc)
+def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
+    """The line form of a vectors file that runner.c reads (an empty frame written as `-`), each
+    physical value with what the shared rounding rule makes of its double (from the spec's IR)."""
+    from canspec.pipeline import compile_spec
+
+    spec = compile_spec(spec_path).spec
+    if spec is None or spec.can is None:
+        raise RuntimeError(f"{spec_path}: no CAN protocol to convert the vectors with")
+    text = _c_helpers()[2].convert(doc, spec.can)
     return re.sub(r"^(C \d+ \S+) ( \S+)$", r"\1 -\2", text, flags=re.M)
 
 

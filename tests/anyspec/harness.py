@@ -246,7 +246,7 @@ def stage_c(ctx: Ctx) -> None:
         ctx.fail("c", "tests/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
         return
     lines = work / "vectors.lines.txt"
-    lines.write_text(adapters.c_vectors_lines(doc), encoding="ascii")
+    lines.write_text(adapters.c_vectors_lines(doc, ctx.spec), encoding="ascii")
     macro = None
     for h in headers:
         m = re.search(r"#ifndef\s+(\w+)_LE_WORDS\b", (cdir / h).read_text(encoding="utf-8"))

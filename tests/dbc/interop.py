@@ -115,18 +115,36 @@ def _canmatrix_kcd(snap: dict[str, Any]) -> None:
                 s["comment"] = f"{s['comment']}\n\n{SPEC_NAME_ATTRIBUTE}: {s['spec_name']}"
 
 
+class _Lost:
+    """A field the converter gives wrongly: not compared."""
+
+    def __repr__(self) -> str:
+        return "LOST"
+
+
+LOST = _Lost()
+
+
 def _canmatrix_arxml(snap: dict[str, Any]) -> None:
     """canmatrix's ARXML: frames come back named after their FRAME element (`FRAME_<name>`), no
     cycle times, factor and offset to 6 significant digits, signal ranges as the bits' range (it
-    writes none), and only the nodes that send a message or receive a signal."""
+    writes none), and only the nodes that send a message or receive a signal. A message named like
+    a signal, and such a signal, get their sender and receivers wrongly (an ECU's frame and signal ports share names)."""
     used = set()
+    signal_names = {name for m in snap["messages"].values() for name in m["signals"]}
+    message_names = {m["name"] for m in snap["messages"].values()}
     for m in snap["messages"].values():
+        if m["name"] in signal_names:
+            m["senders"] = LOST
+        for name, s in m["signals"].items():
+            if m["name"] in signal_names or name in message_names:
+                s["receivers"] = LOST
         m["name"], m["cycle"] = f"FRAME_{m['name']}", None
-        used.update(m["senders"])
+        used.update(m["senders"] if m["senders"] is not LOST else ())
         for s in m["signals"].values():
             _six_digit_scaling(s)
             s["min"], s["max"] = _bits_range(s)
-            used.update(s["receivers"])
+            used.update(s["receivers"] if s["receivers"] is not LOST else ())
     snap["nodes"] = {n: c for n, c in snap["nodes"].items() if n in used}
 
 
@@ -159,14 +177,14 @@ def differences(want: dict[str, Any], got: dict[str, Any], as_doubles: bool) -> 
         return out + [f"messages: {sorted(want['messages'])} != {sorted(got['messages'])}"]
     for key, wm in want["messages"].items():
         gm = got["messages"][key]
-        out += [f"{key} {f}: {wm[f]!r} != {gm[f]!r}" for f in wm if f != "signals" and wm[f] != gm[f]]
+        out += [f"{key} {f}: {wm[f]!r} != {gm[f]!r}" for f in wm if f != "signals" and wm[f] is not LOST and wm[f] != gm[f]]
         if set(wm["signals"]) != set(gm["signals"]):
             out.append(f"{key} signals: {sorted(wm['signals'])} != {sorted(gm['signals'])}")
             continue
         for name, ws in wm["signals"].items():
             gs = gm["signals"][name]
             for f in ws:
-                if f == "spec_name":
+                if f == "spec_name" or ws[f] is LOST:
                     continue
                 same = _double(ws[f]) == _double(gs[f]) if as_doubles and f in REWRITTEN else (ws[f] == gs[f] and type(ws[f]) is type(gs[f]))
                 if not same:

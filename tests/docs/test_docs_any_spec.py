@@ -34,8 +34,15 @@ def _section(page: str, anchor: str) -> str:
 
 
 def _has_chinese(path: Path) -> bool:
-    """Whether the spec file itself holds Chinese text (read from the YAML, not from the IR)."""
-    text = "\n".join(line for line in path.read_text(encoding="utf-8").splitlines() if not line.lstrip().startswith("#"))
+    """Whether the spec's files hold Chinese text (read from the YAML, not from the IR; a bundle's
+    parts included)."""
+    import yaml
+
+    files = [path]
+    data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    if data.get("kind") == "bundle":
+        files += [path.parent / f for f in data["files"]]
+    text = "\n".join(line for f in files for line in f.read_text(encoding="utf-8").splitlines() if not line.lstrip().startswith("#"))
     return bool(CJK.search(text))
 
 

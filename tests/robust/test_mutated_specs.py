@@ -84,7 +84,7 @@ def mutated(draw: st.DrawFn) -> str:
 @settings(max_examples=1500, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(mutated())
 def test_mutated_spec_never_raises(text: str) -> None:
-    from canspec.generate import GenerationError, generate
+    from canspec.generate import generate
     from canspec.pipeline import compile_spec
     from canspec.targets import registry
 
@@ -94,8 +94,5 @@ def test_mutated_spec_never_raises(text: str) -> None:
         compiled = compile_spec(path)  # must not raise
         for p in compiled.problems:
             assert p.loc is not None and p.message, p
-        if compiled.spec is not None:
-            try:
-                generate(compiled.spec, list(registry()))
-            except GenerationError:
-                pass
+        if compiled.spec is not None:  # accepted: every target generates (a GenerationError fails the test)
+            generate(compiled.spec, list(registry()))

@@ -133,8 +133,11 @@ def _problems(can: ir.CanProtocol) -> list[tuple[str, str]]:
 
 
 def test_clashing_names_are_refused(can):
-    clashing = dataclasses.replace(can, messages=(*can.messages, dataclasses.replace(can.messages[0], name="gear", frame_id=0x1234)))
-    assert _problems(clashing) == [("rust-name-clash", "message 'gear' becomes the Rust name `Gear` in the crate, which value table 'gear' already has")]
+    # a message named like a value table is common: the table's enum gets `Value` after its name
+    alike = dataclasses.replace(can, messages=(*can.messages, dataclasses.replace(can.messages[0], name="gear", frame_id=0x1234)))
+    assert _problems(alike) == []
+    assert naming.enum_type_names(alike, ["gear", "epb"]) == {"gear": "GearValue", "epb": "Epb"}
+    assert next(e for e in rm.build_crate(alike).enums if e.table == "gear").name == "GearValue"
     speed = can.message("autocar_speed_command")
     raw = dataclasses.replace(speed.signal("accel_cmd"), name="accel_cmd_raw", start=40)
     clashing = dataclasses.replace(can, messages=tuple(dataclasses.replace(m, signals=(*m.signals, raw)) if m is speed else m for m in can.messages))
@@ -154,11 +157,11 @@ def test_value_tables_get_the_narrowest_type_holding_every_user(can):
     # A table defining every value of its type has no catch-all.
     full = ir.ValueTable("all", tuple(ir.ValueEntry(r, f"v{r}", "", f"V{r}") for r in range(256)))
     byte = dataclasses.replace(gear, length=8, raw_type_max=255, value_table=full)
-    enum = values.build_enum(full, [byte])
+    enum = values.build_enum(full, [byte], "Full")
     assert (enum.repr, enum.other, len(enum.variants)) == ("u8", None, 256)
     # Negative raw values: the first free value at 0 or above tags the catch-all.
     neg = ir.ValueTable("n", (ir.ValueEntry(-1, "minus", "", "Minus"), ir.ValueEntry(0, "zero", "", "Zero")))
-    assert values.build_enum(neg, [signed]).other_tag == "1"
+    assert values.build_enum(neg, [signed], "Neg").other_tag == "1"
 
 
 def test_encode_paths(can):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from decimal import Decimal
 from fractions import Fraction
 from typing import Any
@@ -161,7 +163,8 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
     data = can.doc.data
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
     nodes = tuple(
-        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", []))) for n in data["nodes"]
+        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc)
+        for n in data["nodes"]
     )
     names = tuple(n.name for n in nodes)
     p, b = data["protocol"], data["bus"]
@@ -184,25 +187,25 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
 def _enum(table: LocDict | None) -> tuple[ir.JsonEnumValue, ...]:
     if not table:
         return ()
-    return tuple(ir.JsonEnumValue(value, ident, zh, humanize(ident)) for value, (ident, zh) in ((v, label_pair(p)) for v, p in table.items()))
+    return tuple(ir.JsonEnumValue(v, ident, zh, humanize(ident), table.key_locs.get(v)) for v, (ident, zh) in ((v, label_pair(p)) for v, p in table.items()))
 
 
 def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
     t = types[fdef["type"]]
     rng = fdef.get("range")
 
-    def bound(v: Any) -> int | float | None:
+    def bound(v: Any, inward: Callable[[Fraction], int]) -> int | float | None:
         if v is None:
             return None
-        return int(v) if t["json"] == "integer" else float(v)
+        return int(inward(Fraction(v))) if t["json"] == "integer" else float(v)  # an integer type's bounds: the integers within
 
     return ir.JsonField(
         name=fdef.get("name", key),  # a shared field may give its binding identifier
         json_name=fdef.get("json_name", key),
         type=fdef["type"],
         json_type=t["json"],
-        type_min=bound(t.get("min")),
-        type_max=bound(t.get("max")),
+        type_min=bound(t.get("min"), math.ceil),
+        type_max=bound(t.get("max"), math.floor),
         min=Fraction(rng[0]) if rng else None,
         max=Fraction(rng[1]) if rng else None,
         decimals=fdef.get("decimals"),
@@ -215,6 +218,8 @@ def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
         desc=fdef.get("desc", ""),
         desc_zh=fdef.get("desc_zh", ""),
         errata=tuple(fdef.get("errata", ())),
+        loc=fdef.loc,
+        type_loc=types.loc_of(fdef["type"]),
     )
 
 
@@ -243,14 +248,14 @@ def build_json(doc: Any) -> ir.JsonProtocol:
         messages.append(
             ir.JsonMessage(
                 name=m["name"], zh=m.get("zh", ""), desc=m.get("desc", ""), cmd=m.get("cmd"), role=m.get("role"), reply_to=m.get("reply_to"),
-                sender=m["from"], receiver=m["to"], fields=tuple(fields), examples=tuple(_plain(e) for e in m.get("examples", [])),
+                sender=m["from"], receiver=m["to"], fields=tuple(fields), examples=tuple(_plain(e) for e in m.get("examples", [])), loc=m.loc,
             )
         )
     p = data["protocol"]
     return ir.JsonProtocol(
         name=p["name"], title=p.get("title", p["name"]), title_zh=p.get("title_zh", ""), version=str(p["version"]),
         parties=tuple(ir.JsonParty(x["name"], x.get("zh", ""), x.get("desc", "")) for x in data["parties"]),
-        messages=tuple(messages), errata=tuple(p.get("errata", ())),
+        messages=tuple(messages), errata=tuple(p.get("errata", ())), loc=p.loc_of("name"),
     )
 
 

@@ -6,7 +6,6 @@
   changing the other's API, so the report names both elements.
 - c-header-name: a protocol whose header would take the name of a C library header the
   headers include (`string.h`): found first on the include path, it would stand in for it.
-- c-double-range: physical values beyond the largest double: C writes them as double constants.
 """
 
 from __future__ import annotations
@@ -27,10 +26,6 @@ def c_problems(spec: ir.Spec) -> Iterator[Problem]:
     for header in sorted(set(header_names(spec.can)) & set(LIBRARY_HEADERS)):
         yield error(f"protocol {spec.can.name!r} gives the C header {header}, the name of the C library header it includes", spec.can.loc,
                     "rename the protocol: the C target names its headers after it", "c-header-name")
-    for msg in spec.can.messages:
-        for sig in (s for s in msg.data_signals if s.role == "data" and _beyond_doubles(s)):
-            yield error(f"signal {sig.name!r} of {msg.name!r}: its physical values ({sig.length} bits × {float(sig.factor):g} + {float(sig.offset):g}) reach beyond the largest double (about 1.8e308)",
-                        sig.loc, "give the field a documented range, or a smaller factor, offset or width: C computes physical values in doubles", "c-double-range")
     pairs: set[tuple[str, str]] = set()  # two elements clash once, however many names they share
     yield from _clashes(declared(spec.can), "name", pairs)
     for msg in spec.can.messages:
@@ -48,12 +43,3 @@ def _clashes(items: Iterable[tuple[str, Origin]], scope: str, pairs: set[tuple[s
         where = f" (at {seen[1]})" if seen[1] is not None else ""
         yield error(f"{origin[0]} gives the C {scope} `{name}`, which {seen[0]}{where} gives too", origin[1] or seen[1], CLASH_HINT, "c-name-clash")
 
-
-def _beyond_doubles(sig: ir.Signal) -> bool:
-    """Whether a physical constant of the signal (scaling, range ends) is no finite double."""
-    try:
-        for value in (sig.factor, sig.offset, sig.check_min, sig.check_max, sig.accept_min, sig.accept_max):
-            float(value)
-    except OverflowError:
-        return True
-    return False

@@ -70,7 +70,7 @@ def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, A
     if physical:
         phys.update(physical)
     if kind != "raw_only":
-        lost = [s.name for s in msg.data_signals if not s.is_integer and not _survives_doubles(s, raw[s.name], phys[s.name])]
+        lost = [s.name for s in msg.data_signals if not s.is_identity and not _survives_doubles(s, raw[s.name], phys[s.name])]
         if lost:
             kind, note = "beyond_double", f"{note}; " * bool(note) + f"the physical value of {', '.join(lost)} does not encode back in doubles"
     return case_record(msg, data, raw, phys, kind, note)
@@ -79,8 +79,9 @@ def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, A
 def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int) -> bool:
     """Whether the runtime rule (ir/encoding.py), given this physical value as a double, encodes
     it back to `raw`: always within a field's first 2^52 steps, not always beyond (a 63-bit
-    field's maximum has no double of its own). Integer-scaled signals are encoded in integers by
-    every language, so only the others are asked."""
+    field's maximum has no double of its own). Every language encodes an identity field
+    (raw = physical) in integers; scaled ones are asked, integer-scaled too: a wide one's physical
+    value may be an integer no double holds, and C's and Rust's encode of it takes a double."""
     x, f, o = float(physical), float(sig.factor), float(sig.offset)
     if not fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
         return False
