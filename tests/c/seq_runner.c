@@ -1,4 +1,4 @@
-/* The C sequence runner: replays the line form of vectors/sequences.json (tests/c/sequences.py)
+/* The C sequence runner: replays the line form of vectors/sequences.json (tests/c/c_sequences.py)
  * through the generated receive monitor and text reassembly, comparing every step. Any spec:
  * its names come from seq_tables.h. Prints "c sequences: ..., N mismatches"; exit 1 on any. */
 #include <stdio.h>

@@ -1,16 +1,15 @@
-"""The shared sequence vectors through the generated C monitor and text reassembly (tests/c/sequences.py):
+"""The shared sequence vectors through the generated C monitor and text reassembly (tests/c/c_sequences.py):
 the shipped spec with gcc and clang under ASan/UBSan, and every valid fixture's headers and sequences."""
 
 from __future__ import annotations
 
 import re
 
+import c_sequences as seq
 import pytest
 from canspec.pipeline import compile_spec
 from canspec.targets import registry
 from repo_paths import GENERATED, ROOT
-
-import sequences as seq
 
 SUMMARY = re.compile(r"c sequences: (\d+) monitor sequences \((\d+) steps\), (\d+) text sequences \((\d+) steps\), (\d+) mismatches")
 FIXTURES = sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml"))

@@ -1,7 +1,7 @@
 """The C sequence runner: every sequence of a sequence-vectors file (vectors/sequences.json)
 through the generated C receive monitor and multi-frame text reassembly, step by step.
 
-    python3 tests/c/sequences.py [SEQUENCES] [--spec SPEC] [--headers DIR] [--build DIR] [--cc CC]
+    python3 tests/c/c_sequences.py [SEQUENCES] [--spec SPEC] [--headers DIR] [--build DIR] [--cc CC]
 
 Writes seq_tables.h (the spec's names: its monitor, message indexes, fault-code functions, text
 assemblers) and the line form of the file (C has no JSON parser), builds seq_runner.c strict and
