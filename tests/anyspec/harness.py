@@ -593,7 +593,7 @@ def stage_typescript(results: list[SpecResult], root: Path) -> float:
             for i, c in enumerate(proto["cases"]):
                 if c["valid"]:
                     schema = Path(r.out_dir) / "jsonschema" / proto["protocol"] / f"{c['message']}.schema.json"
-                    tname = json.loads(schema.read_text(encoding="utf-8"))["x-canspec"]["type_name"]  # the name the bindings allocated
+                    tname = json.loads(json.loads(schema.read_text(encoding="utf-8"))["$comment"])["x-canspec"]["type_name"]  # the name the bindings allocated
                     body.append(f"export const c{i}: rd.{tname} = {json.dumps(c['json'], ensure_ascii=False)};  // {c['id']}\n")
             cases = d.parent / f"{d.name.removesuffix('.d.ts')}.cases.ts"
             cases.write_text("".join(body), encoding="utf-8")

@@ -33,6 +33,7 @@ class RustSupervision:
     tables: tuple[RustFaultTable, ...]
     uses_counter: bool
     uses_checksum: bool
+    uses_cycles: bool  # a cyclic message: monitor_rules reads its timeout_cycles
 
 
 def _rule(name: str, msg: ir.Message) -> RustRule:
@@ -52,5 +53,6 @@ def build_supervision(can: ir.CanProtocol, crate: RustCrate) -> RustSupervision:
         for t in can.fault_tables
     )
     return RustSupervision(
-        rules=tuple(_rule(m.name, m.msg) for m in crate.messages), tables=tables, uses_counter=can.has_counters, uses_checksum=can.has_checksums
+        rules=tuple(_rule(m.name, m.msg) for m in crate.messages), tables=tables, uses_counter=can.has_counters, uses_checksum=can.has_checksums,
+        uses_cycles=can.has_cyclic,
     )
