@@ -40,7 +40,7 @@ def _rule(name: str, msg: ir.Message) -> RustRule:
     c, k = msg.counter, msg.checksum
     return RustRule(
         type=name,
-        timeout=f"Some({name}::CYCLE_TIME_MS * timeout_cycles)" if msg.is_cyclic else "None",
+        timeout=f"Some(crate::messages::{name}::CYCLE_TIME_MS * timeout_cycles)" if msg.is_cyclic else "None",
         counter=f"Some(CounterRule {{ start: {c.start}, length: {c.length} }})" if c is not None else "None",
         checksum=f"Some(ChecksumRule {{ byte: {k.byte}, cover_mask: {grouped_int(k.cover_mask)} }})" if k is not None else "None",
     )
