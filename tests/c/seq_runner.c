@@ -105,6 +105,7 @@ int main(int argc, char **argv) {
             for (i = 0; i < nmsgs; i++) {
                 seq_start(&mon, seq_msgs[i], t);
             }
+            monitor_steps++;
         } else if (line[0] == 'F') {
             unsigned long t, id;
             int ext, recovered, msg, used;
