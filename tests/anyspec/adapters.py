@@ -88,25 +88,13 @@ def c_runner_tables(spec_path: Path) -> str:
 
 def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
     """The line form of a vectors file that runner.c reads (an empty frame written as `-`), each
-    physical value with what the shared rounding rule makes of its double (from the spec's IR)."""
+    physical value with what its encodes and fixed-point decode must give (from the spec's IR)."""
     from canspec.pipeline import compile_spec
 
     spec = compile_spec(spec_path).spec
     if spec is None or spec.can is None:
         raise RuntimeError(f"{spec_path}: no CAN protocol to convert the vectors with")
-    text = _c_helpers()[2].convert(doc, spec.can)
-    return re.sub(r"^(C \d+ \S+) ( \S+)$", r"\1 -\2", text, flags=re.M)
-
-
-def c_runner_source(work: Path) -> Path:
-    """tests/c/runner.c, reading `-` as an empty frame (DLC 0): a patched copy in `work`."""
-    src = C_RUNNER.read_text(encoding="utf-8")
-    old = "!hex_bytes(hex, vc.data, sizeof vc.data, &vc.len)"
-    if old not in src:
-        raise RuntimeError(f"{C_RUNNER} changed: update anyspec's adapters.c_runner_source")
-    out = work / "runner.c"
-    out.write_text(src.replace(old, '!(strcmp(hex, "-") == 0 ? (vc.len = 0, 1) : hex_bytes(hex, vc.data, sizeof vc.data, &vc.len))'), encoding="utf-8")
-    return out
+    return str(_c_helpers()[2].convert(doc, spec.can))
 
 
 def c_sequences(spec_path: Path, headers: Path, sequences: Path, build: Path) -> tuple[int, str]:

@@ -19,16 +19,17 @@ import shutil
 import subprocess
 import sys
 import time
+from collections.abc import Iterable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 HERE = Path(__file__).resolve().parent
 if str(HERE.parent) not in sys.path:
     sys.path.insert(0, str(HERE.parent))
 
-from anyspec import adapters, strategy  # noqa: E402
+from anyspec import adapters, strategy
 
 ROOT = adapters.ROOT
 BUILD = ROOT / "build" / "anyspec"
@@ -258,7 +259,7 @@ def stage_c(ctx: Ctx) -> None:
     variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_LE_WORDS=0"])] if bytewise else [])
     for name, extra in variants:
         exe = work / name
-        rc, out, err = sh(["gcc", "-std=gnu99", "-O1", *strict[:-1], *extra, f"-I{cdir}", f"-I{work}", str(adapters.c_runner_source(work)), "-o", str(exe), "-lm"])
+        rc, out, err = sh(["gcc", "-std=gnu99", "-O1", *strict[:-1], *extra, f"-I{cdir}", f"-I{work}", str(adapters.C_RUNNER), "-o", str(exe), "-lm"])
         if rc != 0:
             ctx.fail("c", f"build vector runner {' '.join(extra)}".strip(), err)
             continue
@@ -494,7 +495,7 @@ def _rust_members(results: list[SpecResult], root: Path) -> dict[str, SpecResult
         if not toml.is_file() or not (Path(r.out_dir) / "vectors" / "can.json").is_file():
             continue
         text = toml.read_text(encoding="utf-8")
-        m = re.search(r'^\[package\]\s*\nname = "([^"]+)"', text, re.M)
+        m = re.search(r'^\[package\]\s*\nname = "([^"]+)"', text, re.MULTILINE)
         if m is None:
             r.failures.append(Failure(r.sid, r.seed, "rust", "Cargo.toml", "no [package] name", r.spec_dir, r.features))
             continue
@@ -516,7 +517,7 @@ def stage_rust(results: list[SpecResult], root: Path, proptest_cases: int = 32) 
     members = _rust_members(results, root)
     if not members:
         return 0.0
-    by_pkg = {re.search(r'^name = "(anyspec-[^"]+)"', (Path(r.out_dir) / "rust" / "Cargo.toml").read_text(encoding="utf-8"), re.M).group(1): r
+    by_pkg = {re.search(r'^name = "(anyspec-[^"]+)"', (Path(r.out_dir) / "rust" / "Cargo.toml").read_text(encoding="utf-8"), re.MULTILINE).group(1): r
               for r in members.values()}
     (root / "Cargo.toml").write_text(
         "# The anyspec harness's workspace: one crate per generated spec, one target directory.\n[workspace]\nresolver = \"2\"\nmembers = [\n"

@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from anyspec import adapters  # noqa: E402
+from anyspec import adapters
 
 
 def main(argv: list[str]) -> int:

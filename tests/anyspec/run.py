@@ -21,7 +21,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from anyspec import harness, strategy  # noqa: E402
+from anyspec import harness, strategy
 
 
 def main(argv: list[str]) -> int:

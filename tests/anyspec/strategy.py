@@ -25,9 +25,10 @@ from __future__ import annotations
 
 import json
 import random
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from decimal import Decimal
-from typing import Any, Sequence
+from typing import Any
 
 from hypothesis import strategies as st
 
@@ -712,7 +713,7 @@ class Builder:
         text_length = 1 + self.ch.integer(0, frames * nbytes - 1)
         mf = {"index": index["name"], "payload": payload["name"], "encoding": "ascii", "text_length": text_length, "frames": frames,
               "padding": Hex(self.pick((0x00, 0x20, 0xFF, 0x2A)))}
-        occ = set(range(0, index_len)) | set(range(8 * first_byte, 8 * (first_byte + nbytes)))
+        occ = set(range(index_len)) | set(range(8 * first_byte, 8 * (first_byte + nbytes)))
         rest = self.signals(dlc, occ, names, counter=True, checksum=True, first_needed=False) if self.p(0.5) else []
         return [index, payload, *rest], mf
 

@@ -41,18 +41,28 @@ def compile_c(cc: str, sources: list[Path], out: Path, flags: list[str], include
         raise RuntimeError(f"compile failed: {' '.join(cmd)}\n{proc.stderr[-6000:]}")
 
 
-def build_runner(build: Path, cc: str = "gcc", flags: list[str] | None = None, name: str = "runner", spec: Path = ROOT / "spec", headers: Path = HEADERS) -> Path:
+def build_runner(
+    build: Path, cc: str = "gcc", flags: list[str] | None = None, name: str = "runner", spec: Path = ROOT / "spec", headers: Path = HEADERS
+) -> Path:
     """The vector runner of `spec`'s generated headers (in `headers`), built in `build`."""
     build.mkdir(parents=True, exist_ok=True)
     (build / "runner_tables.h").write_text(tables(str(spec)), encoding="utf-8")
     exe = build / name
-    compile_c(cc, [HERE / "runner.c"], exe, ["-std=gnu99", "-O1", "-g", *(flags or [])], [headers, build])
+    compile_c(cc, [HERE / "runner.c"], exe, ["-std=c99", "-O1", "-g", *(flags or [])], [headers, build])
     return exe
 
 
-def vectors_lines(vectors: Path, build: Path, can: ir.CanProtocol | None = None) -> Path:
-    """The runner's line form of a vectors file; with the spec, each physical value carries the
-    double encode's expected result (vectors_to_lines.py)."""
+def spec_can(spec: Path) -> ir.CanProtocol:
+    """The CAN protocol of `spec`'s IR (what vectors_lines needs)."""
+    compiled = compile_spec(spec)
+    if compiled.spec is None or compiled.spec.can is None:
+        raise ValueError(f"{spec}: no CAN protocol (canspec check {spec} tells why)")
+    return compiled.spec.can
+
+
+def vectors_lines(vectors: Path, build: Path, can: ir.CanProtocol) -> Path:
+    """The runner's line form of a vectors file, each physical value with what its encodes and
+    fixed-point decode must give under the spec's IR `can` (vectors_to_lines.py)."""
     doc = json.loads(vectors.read_text(encoding="utf-8"))
     out = build / (vectors.stem + ".lines.txt")
     out.write_text(convert(doc, can), encoding="ascii")
@@ -69,9 +79,8 @@ def main(argv: list[str]) -> int:
     vectors = Path(argv[1]) if len(argv) > 1 and argv[1] else DEFAULT_VECTORS
     build = Path(argv[2]) if len(argv) > 2 else ROOT / "build" / "c"
     try:
-        compiled = compile_spec(ROOT / "spec")
         exe = build_runner(build)
-        lines = vectors_lines(vectors, build, compiled.spec.can if compiled.spec is not None else None)
+        lines = vectors_lines(vectors, build, spec_can(ROOT / "spec"))
     except (OSError, ValueError, KeyError, RuntimeError) as exc:
         print(f"roundtrip-c: {exc}", file=sys.stderr)
         return 1

@@ -3,9 +3,10 @@
  * pack(raw) → bytes, short buffer → length error, decode → physical within half a step,
  * encode(physical) → raw in double and in fixed point, fixed decode → the exact scaled physical
  * value; multi-frame text split and reassembly in both orders. The per-message part
- * (runner_tables.h, from tests/c/gen_runner_tables.py) names the spec's structs and functions;
- * the fixed-point expectations are exact integer arithmetic on the spec's own factor and
- * offset (128-bit). Prints the number of cases checked; exits 1 on any mismatch. */
+ * (runner_tables.h, from tests/c/gen_runner_tables.py) names the spec's structs and functions.
+ * Every expected value comes with the lines (the encodes' results and the exact fixed-point
+ * values from the spec's IR): the runner only compares integers of at most 64 bits, so it
+ * builds for 32-bit cores too. Prints the number of cases checked; exits 1 on any mismatch. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -16,20 +17,23 @@
 #define MAX_SIGNALS 64
 #define NAME_CAP 160
 #define TEXT_CAP 96
+#define NUM_CAP 24 /* a 64-bit integer in decimal, sign and terminator included */
 
 /* The checks: a spec without data signals, counters, multi-frame texts, ... calls only some. */
 #define MAYBE_UNUSED __attribute__((unused))
-
-__extension__ typedef __int128 i128;
-__extension__ typedef unsigned __int128 u128;
 
 typedef struct {
     char name[NAME_CAP];
     double value;
     char text[TEXT_CAP];
-    int rule;          /* 1: the shared rule's result for this double is known (`rule_raw`, or a refusal) */
+    int rule; /* 1: the shared rule's result for this double is known (`rule_raw`, or a refusal) */
     int rule_refuses;
     uint64_t rule_raw;
+    int fixed;            /* 1: the fixed-point expectations below are known */
+    uint64_t fixed_value; /* decode_fixed(raw): raw × factor × 10^k + offset × 10^k, exactly */
+    int text_agrees;      /* 0: the physical text is not that value / 10^k */
+    int fixed_encode;     /* 1: encode_fixed(fixed_in) must give fixed_raw */
+    uint64_t fixed_in, fixed_raw;
 } phys_t;
 
 typedef struct {
@@ -73,18 +77,13 @@ MAYBE_UNUSED static int fail_text(const vtext_t *vt, const char *fmt, ...) {
     return 1;
 }
 
-/* A 128-bit integer as decimal text (for messages). */
-MAYBE_UNUSED static const char *i128_text(i128 v, char *buf) {
-    char tmp[48];
-    int n = 0, neg = v < 0;
-    u128 u = neg ? (u128)0 - (u128)v : (u128)v;
-    do {
-        tmp[n++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u != 0u);
-    if (neg) tmp[n++] = '-';
-    for (int i = 0; i < n; i++) buf[i] = tmp[n - 1 - i];
-    buf[n] = '\0';
+/* The number 64 bits denote (two's complement where signed) as decimal text, for messages. */
+MAYBE_UNUSED static const char *num_text(uint64_t bits, int is_signed, char buf[NUM_CAP]) {
+    if (is_signed) {
+        snprintf(buf, NUM_CAP, "%lld", (long long)(int64_t)bits);
+    } else {
+        snprintf(buf, NUM_CAP, "%llu", (unsigned long long)bits);
+    }
     return buf;
 }
 
@@ -111,19 +110,11 @@ MAYBE_UNUSED static const phys_t *phys_of(const vcase_t *vc, const char *name) {
     return NULL;
 }
 
-/* raw_only: a physical encode must refuse it; beyond_double: its physical values do not survive
- * doubles (decode and raw pack only). */
-MAYBE_UNUSED static int encodable(const vcase_t *vc) { return strcmp(vc->kind, "raw_only") != 0 && strcmp(vc->kind, "beyond_double") != 0; }
-MAYBE_UNUSED static int is_tie(const vcase_t *vc) { return strcmp(vc->kind, "tie") == 0; }
-
-/* The raw value's bits as the number they denote. */
-MAYBE_UNUSED static i128 raw_number(uint64_t bits, int is_signed) { return is_signed ? (i128)(int64_t)bits : (i128)bits; }
-
 MAYBE_UNUSED static int check_raw(const vcase_t *vc, const char *name, uint64_t got, int is_signed) {
     uint64_t want;
-    char a[48], b[48];
+    char a[NUM_CAP], b[NUM_CAP];
     if (!find_raw(vc, name, &want)) return fail(vc, "%s: no raw value in the case", name);
-    if (got != want) return fail(vc, "%s: unpacked raw %s, expected %s", name, i128_text(raw_number(got, is_signed), a), i128_text(raw_number(want, is_signed), b));
+    if (got != want) return fail(vc, "%s: unpacked raw %s, expected %s", name, num_text(got, is_signed, a), num_text(want, is_signed, b));
     return 0;
 }
 
@@ -148,104 +139,28 @@ MAYBE_UNUSED static int check_decode(const vcase_t *vc, const phys_t *ph, double
 }
 
 MAYBE_UNUSED static int check_encode(const vcase_t *vc, const phys_t *ph, const char *path, int st, uint64_t got, uint64_t want, int is_signed) {
-    char a[48], b[48];
-    if (st != 0) return fail(vc, "%s: %s encode of %s returned %d (expected raw %s)", ph->name, path, ph->text, st, i128_text(raw_number(want, is_signed), b));
-    if (got != want) return fail(vc, "%s: %s encode of %s gave %s, expected %s", ph->name, path, ph->text, i128_text(raw_number(got, is_signed), a), i128_text(raw_number(want, is_signed), b));
+    char a[NUM_CAP], b[NUM_CAP];
+    if (st != 0) return fail(vc, "%s: %s encode of %s returned %d (expected raw %s)", ph->name, path, ph->text, st, num_text(want, is_signed, b));
+    if (got != want) return fail(vc, "%s: %s encode of %s gave %s, expected %s", ph->name, path, ph->text, num_text(got, is_signed, a), num_text(want, is_signed, b));
     return 0;
 }
 
-/* The double encode of the case's physical value: what the shared rule gives for that double
- * when the lines say (on every case), else the case's raw value (physical-encodable cases). */
-MAYBE_UNUSED static int check_double_encode(const vcase_t *vc, const phys_t *ph, int st, uint64_t got, uint64_t raw, int is_signed) {
-    char a[48];
-    if (!ph->rule) return encodable(vc) ? check_encode(vc, ph, "double", st, got, raw, is_signed) : 0;
+/* The double encode of the case's physical value: what the shared rule gives for that double. */
+MAYBE_UNUSED static int check_double_encode(const vcase_t *vc, const phys_t *ph, int st, uint64_t got, int is_signed) {
+    char a[NUM_CAP];
+    if (!ph->rule) return fail(vc, "%s: the lines give no double encode result (convert them with the spec)", ph->name);
     if (!ph->rule_refuses) return check_encode(vc, ph, "double", st, got, ph->rule_raw, is_signed);
-    if (st == 0) return fail(vc, "%s: double encode of %s gave %s; the rule refuses it", ph->name, ph->text, i128_text(raw_number(got, is_signed), a));
+    if (st == 0) return fail(vc, "%s: double encode of %s gave %s; the rule refuses it", ph->name, ph->text, num_text(got, is_signed, a));
     return 0;
 }
 
-/* The decimal text of a physical value times `scale`, exactly, when that is an integer. */
-MAYBE_UNUSED static int scaled_text(const char *text, i128 scale, i128 *out) {
-    i128 mant = 0, div = 1;
-    int neg = 0, exp10 = 0, frac = 0, digits = 0;
-    const char *p = text;
-    if (*p == '-') {
-        neg = 1;
-        p++;
-    }
-    for (; *p; p++) {
-        if (*p >= '0' && *p <= '9') {
-            if (++digits > 30) return 0;
-            mant = mant * 10 + (*p - '0');
-            exp10 -= frac;
-        } else if (*p == '.') {
-            frac = 1;
-        } else if (*p == 'e' || *p == 'E') {
-            exp10 += atoi(p + 1);
-            break;
-        } else {
-            return 0;
-        }
-    }
-    if (exp10 > 18 || exp10 < -36) return 0;
-    mant *= scale;
-    for (; exp10 > 0; exp10--) mant *= 10;
-    for (; exp10 < 0; exp10++) div *= 10;
-    if (mant % div != 0) return 0;
-    *out = (neg ? -1 : 1) * (mant / div);
-    return 1;
-}
-
-/* num / den rounded half away from zero, exactly (den != 0): the rule's exact form. */
-MAYBE_UNUSED static i128 div_round_exact(i128 num, i128 den) {
-    if (den < 0) {
-        num = -num;
-        den = -den;
-    }
-    const i128 a = num < 0 ? -num : num;
-    i128 q = a / den;
-    if (2 * (a % den) >= den) q++;
-    return num < 0 ? -q : q;
-}
-
-/* The fixed-point input an encode check feeds, and the raw value it must give: the exact
- * scaled physical value of the case's raw value, or a tie as written with its exact rounding
- * (half away from zero) when the text is exactly halfway between two steps (a tie of a wide
- * field may be written as a nearby double). 0: no fixed encode check. */
-MAYBE_UNUSED static int fixed_input(const vcase_t *vc, const phys_t *ph, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo, i128 *in, uint64_t *want) {
-    const i128 step = ff < 0 ? -ff : ff;
-    if (!encodable(vc)) return 0;
-    if (!is_tie(vc)) {
-        *in = raw_number(raw, is_signed) * ff + fo;
-        *want = raw;
-        return 1;
-    }
-    if (!scaled_text(ph->text, scale, in)) return 0;
-    const i128 twice = 2 * (*in - fo) % (2 * step);
-    if (twice != step && twice != -step) return 0;
-    *want = (uint64_t)div_round_exact(*in - fo, ff);
-    return 1;
-}
-
-/* Significant decimal digits of an integer. */
-MAYBE_UNUSED static int significant_digits(i128 v) {
-    int n = 0;
-    if (v < 0) v = -v;
-    while (v != 0 && v % 10 == 0) v /= 10;
-    for (; v != 0; v /= 10) n++;
-    return n;
-}
-
-/* decode_fixed(raw) must be raw × ff + fo exactly, and the case's physical text must be that
- * value / scale wherever a double holds it to the digit (at most 15 significant digits: the
- * vectors write the shortest text of the nearest double). */
-MAYBE_UNUSED static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, i128 got, uint64_t raw, int is_signed, i128 scale, i128 ff, i128 fo) {
-    const i128 want = raw_number(raw, is_signed) * ff + fo;
-    i128 from_text;
-    char a[48], b[48];
-    if (got != want) return fail(vc, "%s: fixed decode %s, expected %s", ph->name, i128_text(got, a), i128_text(want, b));
-    if (!is_tie(vc) && significant_digits(want) <= 15 && (!scaled_text(ph->text, scale, &from_text) || from_text != want))
-        return fail(vc, "%s: physical %s × %s is not raw × factor + offset = %s", ph->name, ph->text, i128_text(scale, a), i128_text(want, b));
+/* decode_fixed(raw) must give the exact scaled value the lines give, and the case's physical
+ * text must be that value (where a double holds it to the digit: vectors_to_lines.py decides). */
+MAYBE_UNUSED static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, uint64_t got, int is_signed) {
+    char a[NUM_CAP], b[NUM_CAP];
+    if (!ph->fixed) return fail(vc, "%s: the lines give no fixed-point expectation (convert them with the spec)", ph->name);
+    if (got != ph->fixed_value) return fail(vc, "%s: fixed decode %s, expected %s", ph->name, num_text(got, is_signed, a), num_text(ph->fixed_value, is_signed, b));
+    if (!ph->text_agrees) return fail(vc, "%s: physical %s is not raw × factor + offset = %s / 10^k", ph->name, ph->text, num_text(ph->fixed_value, is_signed, b));
     return 0;
 }
 
@@ -271,13 +186,37 @@ static uint64_t parse_raw(const char *text) {
     return text[0] == '-' ? (uint64_t)strtoll(text, NULL, 10) : (uint64_t)strtoull(text, NULL, 10);
 }
 
+/* A number of the lines, or `-` (none): whether there is one. */
+static int optional_raw(const char *text, uint64_t *out) {
+    if (strcmp(text, "-") == 0) return 0;
+    *out = parse_raw(text);
+    return 1;
+}
+
+/* P <signal> <physical> [<double> [<fixed> <agrees> <fixed in> <fixed raw>]] (vectors_to_lines.py) */
+static int parse_physical(const char *line, phys_t *ph) {
+    char rule[NUM_CAP], fixed[NUM_CAP], agrees[NUM_CAP], in[NUM_CAP], raw[NUM_CAP];
+    const int n = sscanf(line, "P %159s %95s %23s %23s %23s %23s %23s", ph->name, ph->text, rule, fixed, agrees, in, raw);
+    if (n < 2 || (n > 3 && n != 7)) return 0;
+    ph->value = strtod(ph->text, NULL);
+    ph->rule = n >= 3;
+    ph->rule_refuses = ph->rule && !optional_raw(rule, &ph->rule_raw);
+    ph->fixed = n == 7;
+    if (ph->fixed) {
+        ph->fixed_value = parse_raw(fixed);
+        ph->text_agrees = strcmp(agrees, "1") == 0;
+        ph->fixed_encode = optional_raw(in, &ph->fixed_in) && optional_raw(raw, &ph->fixed_raw);
+    }
+    return 1;
+}
+
 static int parse_text_line(char *line, unsigned long lineno, vtext_t *vt) {
-    char *tok, *save = NULL;
+    char *tok;
     int field = 0;
     size_t n;
     memset(vt, 0, sizeof *vt);
     vt->line = lineno;
-    for (tok = strtok_r(line + 2, " ", &save); tok != NULL; tok = strtok_r(NULL, " ", &save), field++) {
+    for (tok = strtok(line + 2, " "); tok != NULL; tok = strtok(NULL, " "), field++) {
         if (field == 0) {
             vt->frame_id = strtoul(tok, NULL, 10);
         } else if (field == 1) {
@@ -292,6 +231,27 @@ static int parse_text_line(char *line, unsigned long lineno, vtext_t *vt) {
         }
     }
     return field == vt->nframes + 3 && vt->text != NULL;
+}
+
+/* The next line of `fh` into *buf (grown as needed), without its newline; 0 at the end. ISO C:
+ * newlib (the Cortex-M builds) does not declare POSIX getline. */
+static int read_line(FILE *fh, char **buf, size_t *cap) {
+    size_t len = 0;
+    for (;;) {
+        if (*cap - len < 2) {
+            const size_t bigger = *cap != 0u ? 2u * *cap : 256u;
+            char *grown = realloc(*buf, bigger);
+            if (grown == NULL) return 0;
+            *buf = grown;
+            *cap = bigger;
+        }
+        if (fgets(*buf + len, (int)(*cap - len), fh) == NULL) return len > 0;
+        len += strlen(*buf + len);
+        if (len > 0 && (*buf)[len - 1] == '\n') {
+            (*buf)[len - 1] = '\0';
+            return 1;
+        }
+    }
 }
 
 int main(int argc, char **argv) {
@@ -309,10 +269,9 @@ int main(int argc, char **argv) {
         perror(argv[1]);
         return 2;
     }
-    while (getline(&line, &cap, fh) != -1) {
-        char hex[256], name[NAME_CAP], num[TEXT_CAP];
+    while (read_line(fh, &line, &cap)) {
+        char hex[256], num[TEXT_CAP];
         lineno++;
-        line[strcspn(line, "\n")] = '\0';
         if (line[0] == 'C') {
             memset(&vc, 0, sizeof vc);
             vc.line = lineno;
@@ -324,16 +283,9 @@ int main(int argc, char **argv) {
         } else if (line[0] == 'R' && in_case && vc.nraw < MAX_SIGNALS) {
             if (sscanf(line, "R %159s %95s", vc.raw_names[vc.nraw], num) == 2) vc.raw_values[vc.nraw++] = parse_raw(num);
         } else if (line[0] == 'P' && in_case && vc.nphys < MAX_SIGNALS) {
-            char rule[TEXT_CAP];
-            const int n = sscanf(line, "P %159s %95s %95s", name, num, rule);
-            if (n >= 2) {
-                phys_t *ph = &vc.phys[vc.nphys++];
-                strcpy(ph->name, name);
-                strcpy(ph->text, num);
-                ph->value = strtod(num, NULL);
-                ph->rule = n == 3;
-                ph->rule_refuses = n == 3 && strcmp(rule, "-") == 0;
-                ph->rule_raw = n == 3 && !ph->rule_refuses ? parse_raw(rule) : 0u;
+            if (!parse_physical(line, &vc.phys[vc.nphys++])) {
+                fprintf(stderr, "line %lu: malformed physical value\n", lineno);
+                return 2;
             }
         } else if (line[0] == 'E' && in_case) {
             const char *msg_name = NULL;

@@ -90,7 +90,7 @@ def test_vector_runner_byte_wise_path(build, vectors, spec):
     _check_runner(exe, lines, len(vectors["cases"]))
 
 
-def test_vector_runner_reports_mismatches(build, vectors):
+def test_vector_runner_reports_mismatches(build, vectors, spec):
     """The runner is not a rubber stamp: a wrong byte, raw value or physical value fails it."""
     exe = cbuild.build_runner(build, "gcc", name="runner-neg")
     doc = json.loads(json.dumps(vectors))
@@ -104,10 +104,38 @@ def test_vector_runner_reports_mismatches(build, vectors):
     doc["multiframe"][0]["text"] = "X" + doc["multiframe"][0]["text"][1:]
     bad = build / "bad.json"
     bad.write_text(json.dumps(doc))
-    code, out, err = cbuild.run_runner(exe, cbuild.vectors_lines(bad, build))
+    code, out, err = cbuild.run_runner(exe, cbuild.vectors_lines(bad, build, spec.can))
     assert code != 0
     assert "40 cases" in out and "mismatches" in out
     assert err.count("line ") >= 4, err
+
+
+def test_vector_runner_checks_the_fixed_point_expectations(build, vectors, spec):
+    """The exact fixed-point values come with the lines (vectors_to_lines.py): a wrong
+    decode_fixed value, a physical text that is not raw × factor + offset, and a wrong
+    encode_fixed raw value each fail the runner."""
+    exe = cbuild.build_runner(build, "gcc", name="runner-fixed")
+    doc = build / "fixed.json"
+    doc.write_text(json.dumps({"cases": vectors["cases"][:40], "multiframe": []}))
+    lines = cbuild.vectors_lines(doc, build, spec.can).read_text(encoding="ascii").splitlines()
+    fixed = [i for i, line in enumerate(lines) if line.startswith("P ") and len(line.split()) == 8 and line.split()[6] != "-"]
+    for i, (field, wrong) in zip(fixed, ((4, lambda v: str(int(v) + 1)), (5, lambda _: "0"), (7, lambda v: str(int(v) + 1)))):
+        words = lines[i].split()
+        words[field] = wrong(words[field])
+        lines[i] = " ".join(words)
+    bad = build / "fixed.lines.txt"
+    bad.write_text("\n".join(lines) + "\n", encoding="ascii")
+    code, out, err = cbuild.run_runner(exe, bad)
+    assert code == 1 and "40 cases" in out and ", 3 mismatches" in out, out + err
+    assert "fixed decode" in err and "is not raw × factor + offset" in err and "fixed encode" in err, err
+
+
+@pytest.mark.parametrize("num,den,want", [(5, 10, 1), (-5, 10, -1), (5, -10, -1), (4, 10, 0), (15, 10, 2), (-15, 10, -2)])
+def test_fixed_encode_rounds_half_away_from_zero_exactly(num, den, want):
+    """vectors_to_lines.div_round: the exact rounding the fixed encode of a tie must give."""
+    from vectors_to_lines import div_round
+
+    assert div_round(num, den) == want
 
 
 def test_vector_runner_under_sanitizers(build, vectors, spec):

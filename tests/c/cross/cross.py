@@ -13,7 +13,8 @@ compiles the headers alone with the strict warning flags for that target (32-bit
 
 Prints one line per (target, strategy): cases, multi-frame texts, mismatches; exits 1 on any
 mismatch, failed build or missing tool. Standard library only (plus the repository's
-tests/c helpers, which read the spec to map vector signal names to struct fields)."""
+tests/c helpers, which read the spec to map vector signal names to struct fields and to work out
+what each encode and fixed-point decode must give)."""
 
 from __future__ import annotations
 
@@ -190,7 +191,7 @@ def prepare(build: Path, spec: Path, vectors: Path) -> Path:
     """runner_tables.h (from the spec) and the line form of the vectors, once for every build."""
     build.mkdir(parents=True, exist_ok=True)
     (build / "runner_tables.h").write_text(cbuild.tables(str(spec)), encoding="utf-8")
-    return cbuild.vectors_lines(vectors, build)
+    return cbuild.vectors_lines(vectors, build, cbuild.spec_can(spec))
 
 
 def check_one(target: Target, strategy: Strategy, build: Path, headers: Path, lines: Path, prefix: str) -> Result:
@@ -211,8 +212,21 @@ def check_one(target: Target, strategy: Strategy, build: Path, headers: Path, li
             res.error = f"headers not warning-free for {target.name}:\n{proc.stderr[-4000:]}"
             return res
         exe = out / ("runner.elf" if target.bare_metal else "runner")
-        proc = run([target.cc, *target.flags, "-std=gnu99", *strategy.flags(), f"-I{headers}", f"-I{build}",
-                    str(cbuild.HERE / "runner.c"), "-o", str(exe), *link_flags(target, build)])
+        proc = run(
+            [
+                target.cc,
+                *target.flags,
+                "-std=c99",
+                *cbuild.STRICT,
+                *strategy.flags(),
+                f"-I{headers}",
+                f"-I{build}",
+                str(cbuild.HERE / "runner.c"),
+                "-o",
+                str(exe),
+                *link_flags(target, build),
+            ]
+        )
         if proc.returncode != 0:
             res.error = f"runner build failed:\n{proc.stderr[-4000:]}"
             return res
@@ -239,8 +253,15 @@ def check_one(target: Target, strategy: Strategy, build: Path, headers: Path, li
     return res
 
 
-def check_all(targets: list[Target], strategies: list[Strategy], build: Path, headers: Path = cbuild.HEADERS,
-              spec: Path = ROOT / "spec", vectors: Path = cbuild.DEFAULT_VECTORS, jobs: int | None = None) -> list[Result]:
+def check_all(
+    targets: list[Target],
+    strategies: list[Strategy],
+    build: Path,
+    headers: Path = cbuild.HEADERS,
+    spec: Path = ROOT / "spec",
+    vectors: Path = cbuild.DEFAULT_VECTORS,
+    jobs: int | None = None,
+) -> list[Result]:
     lines = prepare(build, spec, vectors)
     prefix = header_prefix(headers)
     for t in targets:  # once, before the parallel builds
@@ -274,8 +295,10 @@ def main(argv: list[str]) -> int:
     results = check_all(targets, strategies, args.build, args.headers, args.spec, args.vectors, args.jobs)
     print(f"{'target':<15} {'strategy':<32} {'cases':>6} {'texts':>6} {'mismatches':>10} {'build s':>8} {'run s':>6}")
     for r in results:
-        print(f"{r.target:<15} {r.strategy:<32} {r.cases:>6} {r.texts:>6} {r.mismatches if r.mismatches >= 0 else '-':>10} {r.build_s:>8.1f} {r.run_s:>6.2f}"
-              + ("" if r.ok else "  FAILED"))
+        print(
+            f"{r.target:<15} {r.strategy:<32} {r.cases:>6} {r.texts:>6} {r.mismatches if r.mismatches >= 0 else '-':>10} {r.build_s:>8.1f} {r.run_s:>6.2f}"
+            + ("" if r.ok else "  FAILED")
+        )
     for r in results:
         if not r.ok:
             print(f"\n{r.target} {r.strategy}: {r.error}", file=sys.stderr)

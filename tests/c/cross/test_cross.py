@@ -77,7 +77,7 @@ def test_arm_builds_are_for_the_exact_core(results, name):
 
 
 @pytest.mark.parametrize("name", ["ppc", "cortex-m0plus"])
-def test_emulated_runner_reports_mismatches(results, vectors, tmp_path, name):
+def test_emulated_runner_reports_mismatches(results, vectors, can, tmp_path, name):
     """Under emulation too the runner is no rubber stamp: a wrong byte and a wrong raw value
     fail it (and the vectors really are read through the emulated program's file I/O)."""
     target = cross.TARGETS[name]
@@ -88,7 +88,7 @@ def test_emulated_runner_reports_mismatches(results, vectors, tmp_path, name):
     doc["cases"][7]["raw"][next(iter(doc["cases"][7]["raw"]))] += 1
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps(doc))
-    lines = cross.cbuild.vectors_lines(bad, tmp_path)
+    lines = cross.cbuild.vectors_lines(bad, tmp_path, can)
     exe = results[1] / name / "default" / ("runner.elf" if target.bare_metal else "runner")
     proc = subprocess.run(cross.command(target, exe, str(lines)), capture_output=True, text=True, timeout=120, check=False)
     m = cross.cbuild.CASES_RE.search(proc.stdout)
