@@ -55,24 +55,28 @@ class TextSink(FrameSink):
         if not len(rows):
             return
         lines = np.empty(len(rows), dtype=object)
+        channels = batch.channel_names()
+        one_channel = batch.channels[0] if len(batch.channels) == 1 and not (batch.channel < 0).any() else None
         for name, group in decoded.groups.items():
             head, msg = self.messages[name]
             texts = message_texts(msg, batch.word[group], self.tables.setdefault(name, {}))
-            lines[np.searchsorted(rows, group)] = list(map(head.__add__, texts))
+            lines[np.searchsorted(rows, group)] = _lines(head, texts, batch.timestamp[group], channels[group], one_channel)
         if len(decoded.bad_checksum):
             at = np.searchsorted(rows, decoded.bad_checksum)
             lines[at] = lines[at] + "  [checksum mismatch]"
-        channel = batch.channel_names()[rows]
-        time = batch.timestamp[rows]
-        if not np.isnan(time).any():  # one format per line: time, channel, the message's text
-            if len(batch.channels) == 1 and not (batch.channel < 0).any():
-                lines = list(map(("({:.6f}) " + batch.channels[0].replace("{", "{{").replace("}", "}}") + "{}").format, time.tolist(), lines.tolist()))
-            else:
-                lines = list(map("({:.6f}) {}{}".format, time.tolist(), channel.tolist(), lines.tolist()))
-        else:  # no time stamps (or only some): the channel, when there is one, leads
-            lead = [("" if t != t else f"({t:.6f}) ") + c for t, c in zip(time.tolist(), channel.tolist())]  # noqa: PLR0124 - NaN test
-            lines = [(lead_text + line if lead_text else line[1:]) for lead_text, line in zip(lead, lines.tolist())]
-        self.out.write("\n".join(lines) + "\n")
+        self.out.write("\n".join(lines.tolist()) + "\n")
+
+
+def _lines(head: str, texts: list[str], time: np.ndarray, channel: np.ndarray, one_channel: str | None) -> list[str]:
+    """One message's lines: `(TIME) CHANNEL` + head + fields, in one format call per line where
+    every frame has a time stamp (the common case: no intermediate strings)."""
+    if not np.isnan(time).any():
+        if one_channel is not None:
+            return list(map(("({:.6f}) " + (one_channel + head).replace("{", "{{").replace("}", "}}") + "{}").format, time.tolist(), texts))
+        return list(map(("({:.6f}) {}" + head.replace("{", "{{").replace("}", "}}") + "{}").format, time.tolist(), channel.tolist(), texts))
+    # no time stamps (or only some): the channel, when there is one, leads
+    lead = [("" if t != t else f"({t:.6f}) ") + c for t, c in zip(time.tolist(), channel.tolist())]  # noqa: PLR0124 - NaN test
+    return [lead_text + head + text if lead_text else head[1:] + text for lead_text, text in zip(lead, texts)]
 
 
 def json_value(sig: ir.Signal, raw: int) -> str | float | int:
