@@ -85,9 +85,9 @@ kaiwo_gateway_device_id_text_rx_complete(const kaiwo_gateway_device_id_text_rx_t
     return true;
 }
 
-/** Take one frame (any order). KAIWO_GATEWAY_ERR_LENGTH: short frame; KAIWO_GATEWAY_ERR_INDEX: index
- * outside 0..2; KAIWO_GATEWAY_ERR_INCONSISTENT: it contradicts a frame already taken (another text or
- * other fields): reassembly restarts from this frame. */
+/** Take one frame (any order). KAIWO_GATEWAY_ERR_LENGTH: not 8 bytes; KAIWO_GATEWAY_ERR_INDEX:
+ * index outside 0..2 (the frame is refused); KAIWO_GATEWAY_ERR_INCONSISTENT: it contradicts a frame already
+ * taken (another sender's fields, or another chunk at its index): reassembly restarts from this frame. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_text_rx_feed(kaiwo_gateway_device_id_text_rx_t *rx, const uint8_t *data,
                                      size_t size) {
@@ -97,9 +97,13 @@ kaiwo_gateway_device_id_text_rx_feed(kaiwo_gateway_device_id_text_rx_t *rx, cons
     size_t at;
     size_t j;
     bool any = false;
-    kaiwo_gateway_status_t result = KAIWO_GATEWAY_OK;
-    if (kaiwo_gateway_device_id_unpack(&f, data, size) != KAIWO_GATEWAY_OK) {
+    kaiwo_gateway_status_t result;
+    if (size != KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    result = kaiwo_gateway_device_id_unpack(&f, data, size);
+    if (result != KAIWO_GATEWAY_OK) {
+        return result;
     }
     if (!(f.id_frame_index < KAIWO_GATEWAY_DEVICE_ID_TEXT_FRAMES)) {
         return KAIWO_GATEWAY_ERR_INDEX;

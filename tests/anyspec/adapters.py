@@ -6,6 +6,8 @@ these existing test helpers; if one of them moves or changes its interface, fix 
 - tests/c/runner.c + tests/c/gen_runner_tables.py (+ vectors_to_lines.py): the C vector runner
   (gen_runner_tables imports canspec's C model: that import happens in `c_runner_tables`);
 - tests/c/cbuild.py: the strict warning flags and the runner's summary line;
+- tests/c/c_sequences.py + tests/c/seq_runner.c: the C sequence runner (vectors/sequences.json);
+- tests/python/sequence_runner.py: the Python sequence runner (`--package`);
 - tests/python/vector_runner.py: the Python vector runner (written for the shipped package
   `kaiwo_gateway`; `python_vector_runner` points that name at another package);
 - tests/json/py_runner.py: the Python JSON-bindings check of one vector case;
@@ -93,6 +95,15 @@ def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
     if spec is None or spec.can is None:
         raise RuntimeError(f"{spec_path}: no CAN protocol to convert the vectors with")
     return str(_c_helpers()[2].convert(doc, spec.can))
+
+
+def c_sequences(spec_path: Path, headers: Path, sequences: Path, build: Path) -> tuple[int, str]:
+    """tests/c/c_sequences.py: build the C sequence runner for the spec's headers and run it (no sanitizers)."""
+    _c_helpers()
+    return importlib.import_module("c_sequences").run_sequences(sequences, spec_path, headers, build, sanitize=False)
+
+
+PY_SEQUENCE_RUNNER = TESTS / "python" / "sequence_runner.py"
 
 
 def python_vector_runner(package_dir: Path, package: str) -> ModuleType:

@@ -267,6 +267,14 @@ def stage_c(ctx: Ctx) -> None:
         m = adapters.c_cases_re().search(out)
         if rc != 0 or not m or int(m.group(3)) != 0 or int(m.group(1)) != len(doc["cases"]):
             ctx.fail("c", f"C vector runner{' (byte-wise path)' if extra else ''}", f"exit {rc}: {out.strip()}\n{err[-4000:]}")
+    sequences = ctx.out / "vectors" / "sequences.json"
+    if ctx.want("C sequence runner"):
+        try:
+            rc, out = adapters.c_sequences(ctx.spec, cdir, sequences, work / "sequences")
+        except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
+            rc, out = 1, f"{type(exc).__name__}: {exc}"
+        if rc != 0 or ", 0 mismatches" not in out:
+            ctx.fail("c", "C sequence runner", f"exit {rc}: {out[-4000:]}")
 
 
 def _python_package(pydir: Path) -> str | None:
@@ -285,6 +293,10 @@ def stage_python(ctx: Ctx, mypy: bool) -> None:
         rc, out, err = sh([sys.executable, str(HERE / "py_vectors.py"), str(pydir), pkg, str(ctx.out / "vectors" / "can.json")])
         if rc != 0:
             ctx.fail("python", "import + vector runner", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
+    if ctx.want("sequence runner"):
+        rc, out, err = sh([sys.executable, str(adapters.PY_SEQUENCE_RUNNER), str(ctx.out / "vectors" / "sequences.json"), "--package", str(pydir / pkg)])
+        if rc != 0:
+            ctx.fail("python", "sequence runner", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
     if ctx.want("ruff check"):
         rc, out, err = sh(["ruff", "check", "--no-cache", "."], cwd=pydir)
         if rc != 0:
@@ -582,7 +594,7 @@ def stage_typescript(results: list[SpecResult], root: Path) -> float:
             for i, c in enumerate(proto["cases"]):
                 if c["valid"]:
                     schema = Path(r.out_dir) / "jsonschema" / proto["protocol"] / f"{c['message']}.schema.json"
-                    tname = json.loads(schema.read_text(encoding="utf-8"))["x-canspec"]["type_name"]  # the name the bindings allocated
+                    tname = json.loads(json.loads(schema.read_text(encoding="utf-8"))["$comment"])["x-canspec"]["type_name"]  # the name the bindings allocated
                     body.append(f"export const c{i}: rd.{tname} = {json.dumps(c['json'], ensure_ascii=False)};  // {c['id']}\n")
             cases = d.parent / f"{d.name.removesuffix('.d.ts')}.cases.ts"
             cases.write_text("".join(body), encoding="utf-8")

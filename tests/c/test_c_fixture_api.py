@@ -40,8 +40,10 @@ int main(void) {
     if (mixed_bus_monitor_check(&mon, 60u) != 0u) return 6;
     if (mixed_bus_monitor_check(&mon, 61u) != MIXED_BUS_RX_TIMEOUT || !mixed_bus_monitor_timed_out(&mon, MIXED_BUS_MSG_NODE_REPORT)) return 7;
     if (mixed_bus_monitor_check(&mon, 4000000000u) != 0u || mixed_bus_monitor_timed_out(&mon, MIXED_BUS_MSG_NODE_ALIVE)) return 8;
-    if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000001u, NULL) != MIXED_BUS_RX_RECOVERED) return 9;
-    if (mixed_bus_monitor_on_frame(&mon, 0x124u, false, f, 4, 4000000002u, NULL) != MIXED_BUS_RX_UNKNOWN_ID) return 10;
+    /* after a timeout: valid again after MIXED_BUS_MONITOR_VALID_AFTER (2) accepted frames */
+    if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000001u, NULL) != 0u || mixed_bus_monitor_state(&mon, MIXED_BUS_MSG_NODE_REPORT) != MIXED_BUS_RX_INVALID) return 9;
+    if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000021u, NULL) != MIXED_BUS_RX_RECOVERED) return 10;
+    if (mixed_bus_monitor_on_frame(&mon, 0x124u, false, f, 4, 4000000022u, NULL) != MIXED_BUS_RX_UNKNOWN_ID) return 11;
     puts("api ok");
     return 0;
 }

@@ -58,10 +58,10 @@ def test_fault_code_mapping(spec):
     tables = {ft.enum.table: ft for ft in model.fault_tables}
     assert set(tables) == {"unmanned_entry_fault", "remote_entry_fault"}
     assert tables["unmanned_entry_fault"].timeout_const.endswith("MESSAGE_TIMEOUT")
-    codes = {m.msg.name: dict(m.fault_xor_codes) for m in model.messages if m.fault_xor_codes}
-    assert codes["autocar_eps_command"]["unmanned_entry_fault"].endswith("EPS_COMMAND_XOR_ERROR")
-    assert codes["tele_speed_command"]["remote_entry_fault"].endswith("SPEED_COMMAND_XOR_ERROR")
-    assert len(codes) == 6  # the three EPS and three speed commands carry the XOR checksum
+    codes = {t: dict(ft.checksum) for t, ft in tables.items()}
+    assert codes["unmanned_entry_fault"]["KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND"].endswith("EPS_COMMAND_XOR_ERROR")
+    assert codes["remote_entry_fault"]["KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND"].endswith("SPEED_COMMAND_XOR_ERROR")
+    assert len(codes["remote_entry_fault"]) == 6  # the three EPS and three speed commands carry the XOR checksum
 
 
 def test_trailing_byte_fields_are_copied_as_bytes(spec):

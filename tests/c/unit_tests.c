@@ -180,65 +180,69 @@ static void eps_frame(uint8_t *buf, uint8_t counter) {
     (void)kaiwo_gateway_autocar_eps_command_pack(buf, 8u, &m);
 }
 
+static uint32_t eps_at(kaiwo_gateway_monitor_t *mon, uint8_t counter, uint32_t t, uint8_t corrupt) {
+    uint8_t buf[8];
+    eps_frame(buf, counter);
+    buf[7] ^= corrupt;
+    return kaiwo_gateway_monitor_on_frame(mon, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_FRAME_ID, buf, 8u, t, NULL);
+}
+
+static uint32_t speed_at(kaiwo_gateway_monitor_t *mon, uint8_t counter, uint32_t t, uint8_t corrupt) {
+    uint8_t buf[8];
+    kaiwo_gateway_autocar_speed_command_t sp = kaiwo_gateway_autocar_speed_command_init();
+    sp.counter = counter;
+    (void)kaiwo_gateway_autocar_speed_command_pack(buf, 8u, &sp);
+    buf[7] ^= corrupt;
+    return kaiwo_gateway_monitor_on_frame(mon, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_FRAME_ID, buf, 8u, t, NULL);
+}
+
+/* The rules by hand (generator/canspec/reference/monitor.py); the shared sequence vectors test them in full. */
 static void test_monitor(void) {
     kaiwo_gateway_monitor_t mon;
     uint8_t buf[8];
     kaiwo_gateway_any_t any;
-    const uint32_t id = KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_FRAME_ID;
     const kaiwo_gateway_rx_state_t *st = &mon.msgs[KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND];
-    uint32_t t = 0xFFFFFF00u; /* timestamps wrap around during the test */
+    const uint32_t t = 0xFFFFFF00u; /* timestamps wrap around during the test */
     kaiwo_gateway_monitor_init(&mon);
+    CHECK(mon.counter_tolerance == 1u && mon.valid_after == 2u && st->timeout_ms == 60u && !st->armed);
     kaiwo_gateway_monitor_expect(&mon, KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND, t, 3u); /* 60 ms */
-    CHECK(st->timeout_ms == 60u);
     eps_frame(buf, 0u);
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t, &any) == 0u);
+    CHECK(kaiwo_gateway_monitor_on_frame(&mon, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_FRAME_ID, buf, 8u, t, &any) == 0u);
     CHECK(any.msg == KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND && any.u.autocar_eps_command.steering_angle_cmd == 10800u);
-    eps_frame(buf, 1u);
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t += 20u, NULL) == 0u);
-    eps_frame(buf, 1u);
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t += 20u, NULL) == KAIWO_GATEWAY_RX_COUNTER_REPEAT);
-    eps_frame(buf, 3u);
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t += 20u, NULL) == KAIWO_GATEWAY_RX_COUNTER_JUMP);
-    CHECK(st->counter_repeats == 1u && st->counter_jumps == 1u && st->received == 4u);
-    /* checksum failure: fault code 05 until a good frame arrives */
-    eps_frame(buf, 4u);
-    buf[7] ^= 0xFFu;
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t += 20u, NULL) == KAIWO_GATEWAY_RX_CHECKSUM);
+    CHECK(st->state == KAIWO_GATEWAY_RX_INIT);
+    CHECK(eps_at(&mon, 1u, t + 20u, 0u) == 0u && st->state == KAIWO_GATEWAY_RX_VALID);
+    CHECK(eps_at(&mon, 1u, t + 40u, 0u) == KAIWO_GATEWAY_RX_COUNTER_REPEAT && st->state == KAIWO_GATEWAY_RX_INVALID);
+    CHECK(eps_at(&mon, 3u, t + 60u, 0u) == 0u && st->state == KAIWO_GATEWAY_RX_INVALID); /* one frame lost: in sequence */
+    CHECK(eps_at(&mon, 4u, t + 80u, 0u) == KAIWO_GATEWAY_RX_RECOVERED && st->state == KAIWO_GATEWAY_RX_VALID);
+    CHECK(eps_at(&mon, 7u, t + 100u, 0u) == KAIWO_GATEWAY_RX_COUNTER_JUMP && st->state == KAIWO_GATEWAY_RX_INVALID);
+    CHECK(st->frames == 6u && st->accepted == 5u && st->counter_repeats == 1u && st->counter_jumps == 1u && st->lost_frames == 1u);
+    /* a checksum failure: code 05 until an accepted frame; the bad frame's counter is not stored */
+    CHECK(eps_at(&mon, 8u, t + 120u, 0xFFu) == KAIWO_GATEWAY_RX_CHECKSUM);
     CHECK(kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR);
-    CHECK((int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 5);
     CHECK((int)kaiwo_gateway_monitor_remote_entry_fault(&mon) == 5);
-    eps_frame(buf, 5u); /* counter 4 was in the bad frame: 3 -> 5 is a jump, and a recovery */
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t += 20u, NULL) == (KAIWO_GATEWAY_RX_RECOVERED | KAIWO_GATEWAY_RX_COUNTER_JUMP));
+    CHECK(eps_at(&mon, 9u, t + 140u, 0u) == 0u && st->lost_frames == 2u); /* 7 -> 9 */
     CHECK(kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_NO_FAULT);
+    CHECK(eps_at(&mon, 10u, t + 160u, 0u) == KAIWO_GATEWAY_RX_RECOVERED);
     /* speed command checksum error: code 06 */
-    {
-        kaiwo_gateway_autocar_speed_command_t sp = kaiwo_gateway_autocar_speed_command_init();
-        (void)kaiwo_gateway_autocar_speed_command_pack(buf, 8u, &sp);
-        buf[7] ^= 0x10u;
-        CHECK(kaiwo_gateway_monitor_on_frame(&mon, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_FRAME_ID, buf, 8u, t, NULL) == KAIWO_GATEWAY_RX_CHECKSUM);
-        CHECK((int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 6);
-        buf[7] ^= 0x10u;
-        CHECK(kaiwo_gateway_monitor_on_frame(&mon, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_FRAME_ID, buf, 8u, t, NULL) == KAIWO_GATEWAY_RX_RECOVERED);
-    }
-    /* timeout: more than 3 x 20 ms without a frame; code 07; recovery on the next frame */
-    CHECK(kaiwo_gateway_monitor_check(&mon, t + 60u) == 0u);
-    CHECK(kaiwo_gateway_monitor_check(&mon, t + 61u) == KAIWO_GATEWAY_RX_TIMEOUT);
-    CHECK(kaiwo_gateway_monitor_check(&mon, t + 200u) == 0u); /* reported once */
-    CHECK(kaiwo_gateway_monitor_timed_out(&mon, KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND));
-    CHECK((int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 7);
-    eps_frame(buf, 9u); /* the sequence restarts after a timeout: no jump */
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t + 200u, NULL) == KAIWO_GATEWAY_RX_RECOVERED);
-    CHECK(!kaiwo_gateway_monitor_timed_out(&mon, KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND));
-    CHECK(st->timeouts == 1u && st->checksum_errors == 1u);
-    CHECK((int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 0);
-    /* both: the lower code (checksum 05) is reported first */
-    CHECK(kaiwo_gateway_monitor_check(&mon, t + 300u) == KAIWO_GATEWAY_RX_TIMEOUT);
-    buf[7] ^= 0x01u;
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 8u, t + 300u, NULL) == KAIWO_GATEWAY_RX_CHECKSUM);
-    CHECK((int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 5);
-    /* errors that are not faults of a known message */
+    CHECK(speed_at(&mon, 0u, t + 150u, 0x10u) == KAIWO_GATEWAY_RX_CHECKSUM && (int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 6);
+    CHECK(speed_at(&mon, 0u, t + 160u, 0u) == 0u && (int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 0);
+    /* timeout: more than 3 x 20 ms without an accepted frame (exactly 60 is not); code 07 */
+    CHECK(kaiwo_gateway_monitor_check(&mon, t + 220u) == 0u);
+    CHECK(kaiwo_gateway_monitor_check(&mon, t + 221u) == KAIWO_GATEWAY_RX_TIMEOUT);
+    CHECK(kaiwo_gateway_monitor_check(&mon, t + 300u) == 0u); /* reported once */
+    CHECK(kaiwo_gateway_monitor_timed_out(&mon, KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND) && (int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 7);
+    /* a repeat after the timeout is still no new data; another counter restarts the sequence */
+    CHECK(eps_at(&mon, 10u, t + 320u, 0u) == KAIWO_GATEWAY_RX_COUNTER_REPEAT && st->timed_out);
+    CHECK(eps_at(&mon, 15u, t + 340u, 0u) == 0u && !st->timed_out && st->state == KAIWO_GATEWAY_RX_INVALID);
+    CHECK(speed_at(&mon, 9u, t + 340u, 0u) == 0u && (int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 0);
+    CHECK(eps_at(&mon, 16u, t + 360u, 0u) == KAIWO_GATEWAY_RX_RECOVERED);
+    /* both faults: the lower code (checksum 05) */
+    CHECK(kaiwo_gateway_monitor_check(&mon, t + 500u) == KAIWO_GATEWAY_RX_TIMEOUT);
+    CHECK(eps_at(&mon, 17u, t + 500u, 0x01u) == KAIWO_GATEWAY_RX_CHECKSUM && (int)kaiwo_gateway_monitor_unmanned_entry_fault(&mon) == 5);
+    CHECK(st->timeouts == 2u && st->checksum_errors == 2u);
+    /* frames that are no known message's, or of the wrong length */
     CHECK(kaiwo_gateway_monitor_on_frame(&mon, 0x12345678u, buf, 8u, t, NULL) == KAIWO_GATEWAY_RX_UNKNOWN_ID);
-    CHECK(kaiwo_gateway_monitor_on_frame(&mon, id, buf, 3u, t, NULL) == KAIWO_GATEWAY_RX_LENGTH);
+    CHECK(kaiwo_gateway_monitor_on_frame(&mon, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_FRAME_ID, buf, 3u, t + 500u, NULL) == KAIWO_GATEWAY_RX_LENGTH);
     CHECK(mon.unknown_ids == 1u && st->length_errors == 1u);
     /* 4-bit counters wrap at 16 */
     {
@@ -250,6 +254,7 @@ static void test_monitor(void) {
         f.counter = kaiwo_gateway_front_sensor_distance_1_counter_next(f.counter);
         (void)kaiwo_gateway_front_sensor_distance_1_pack(buf, 8u, &f);
         CHECK(kaiwo_gateway_monitor_on_frame(&mon, fid, buf, 8u, t, NULL) == 0u);
+        CHECK(kaiwo_gateway_monitor_state(&mon, KAIWO_GATEWAY_MSG_FRONT_SENSOR_DISTANCE_1) == KAIWO_GATEWAY_RX_VALID);
     }
 }
 

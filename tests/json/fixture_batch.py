@@ -136,7 +136,7 @@ def typescript(outputs: list[Output], root: Path) -> None:
     for o in outputs:
         for p, cases in o.cases.items():
             decl = o.out / "json" / "typescript" / f"{p}.d.ts"
-            types = {c["message"]: o.schema(p, c["message"])["x-canspec"]["type_name"] for c in cases}
+            types = {c["message"]: json.loads(o.schema(p, c["message"])["$comment"])["x-canspec"]["type_name"] for c in cases}
             lines = [f'import type * as rd from "{os.path.relpath(decl.with_suffix("").with_suffix(""), root / "ts")}";\n', "export {};\n"]
             lines += [f"const c{i}: rd.{types[c['message']]} = {json.dumps(c['json'], ensure_ascii=False)};\n" for i, c in enumerate(cases) if c["valid"]]
             lines.append("const any: rd.Message[] = [];\nvoid any;\n")

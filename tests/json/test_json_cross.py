@@ -44,8 +44,46 @@ def test_rust_bindings_agree_with_every_vector(cases, rust_results):
             bad.append((c["id"], "fault", r.get("error"), c["field"], c["rule"]))
         if (r["as_received"], r["as_any"]) != (c["as_received"], c["as_any"]):
             bad.append((c["id"], "dispatch", r["as_received"], r["as_any"]))
+        if not r["text"]:
+            bad.append((c["id"], "the text reader disagrees with the value reader"))
     assert len(rust_results) == len(cases)
     assert bad == [], bad[:20]
+
+
+# JSON texts that json.loads / serde_json::from_str mishandle, with what both bindings' text
+# readers must say (valid, message) or (invalid, field, code): NaN and Infinity are no JSON
+# (erratum J11: numbers are finite), a key given twice is no message.
+CONTROL = '"ts": 1, "bn": 2, "tr": 0, "st": 0, "g": "N", "m": 3, "vts": 0'
+TEXTS = [
+    ("{" + CONTROL + ', "bk": 1.5}', True, "control"),
+    ("{" + CONTROL + ', "bk": NaN}', False, "bk", "json"),
+    ("{" + CONTROL + ', "bk": Infinity}', False, "bk", "json"),
+    ("{" + CONTROL + ', "bk": -Infinity}', False, "bk", "json"),
+    ("{" + CONTROL + ', "bk": 1e400}', False, "bk", "json"),  # beyond every double: read as Infinity would be
+    ("{" + CONTROL + ', "bk": 0, "bn": 3}', False, "bn", "duplicate"),
+    ('{"cmd": 1, "bn": 1, "bn": 1}', False, "bn", "duplicate"),  # even with the same value
+    ("{" + CONTROL + ', "bk": 0', False, "", "json"),  # cut short
+    ("NaN", False, "", "json"),
+]
+
+
+def _text_results_python(rd):
+    out = []
+    for text, *_ in TEXTS:
+        try:
+            out.append({"valid": True, "message": rd.loads(text).NAME})
+        except rd.ValidationError as e:
+            out.append({"valid": False, "field": e.field, "rule": e.code})
+    return out
+
+
+def test_text_readers_refuse_nan_infinity_and_duplicate_keys(rust_runner, rd, tmp_path):
+    want = [{"valid": True, "message": t[2]} if t[1] else {"valid": False, "field": t[2], "rule": t[3]} for t in TEXTS]
+    assert _text_results_python(rd) == want
+    lines = tmp_path / "texts.txt"
+    lines.write_text("".join(t[0] + "\n" for t in TEXTS), encoding="utf-8")
+    rust = json.loads(run([str(rust_runner), "--text", str(lines)], "Rust JSON text reader").stdout)
+    assert rust == want
 
 
 def test_rust_runner_check_mode(rust_runner, cases):

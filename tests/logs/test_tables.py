@@ -84,7 +84,7 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
     frames = drive_frames(can, 5)
     eps = can.message("autocar_eps_command")
     mine = [i for i, f in enumerate(frames) if f.frame_id == eps.frame_id]
-    drop = set(mine[100:110])  # 10 frames missing: one gap of 11 cycles (> 3-cycle timeout), one counter jump
+    drop = set(mine[100:110])  # 10 frames missing: one gap of 11 cycles (> the 3-cycle timeout)
     repeat = mine[50]
     bad = mine[60]
     out = []
@@ -105,11 +105,14 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
     by = {r["message"]: r for r in report["messages"]}
     r = by["autocar_eps_command"]
     assert r["frames"] == len(mine) - 10 and r["cycle_ms"] == 20 and r["timeout_ms"] == 60
-    assert r["counter_repeats"] == 1 and r["counter_jumps"] == 2  # the repeat is followed by a jump of 2; the gap is a jump
+    # the monitor's rules (README): a repeat and a bad checksum are rejected, so the next frame steps
+    # the stored counter by 2, within the tolerance of 1: one lost frame each; after the timeout the
+    # counter sequence restarts (no jump)
+    assert r["counter_repeats"] == 1 and r["lost_frames"] == 2 and r["counter_jumps"] == 0
     assert r["checksum_errors"] == 1 and r["gaps"] == 1 and r["longest_gap_ms"] == pytest.approx(220, abs=0.01)
     assert r["period_ms"] == pytest.approx(20 * (len(mine) - 1) / (len(mine) - 11), abs=1e-3)
     steady = by["vehicle_state_1"]
-    assert steady["counter_jumps"] == steady["counter_repeats"] == steady["gaps"] == 0 and steady["period_ms"] == pytest.approx(50, abs=1e-3)
+    assert steady["counter_jumps"] == steady["counter_repeats"] == steady["lost_frames"] == steady["gaps"] == 0 and steady["period_ms"] == pytest.approx(50, abs=1e-3)
     assert report["unknown_ids"] == {"0x18FEEE00": 1} and report["counts"]["checksum"] == 1
     text = canspec("decode", "--report", str(log)).stdout
     assert "autocar_eps_command" in text and "unknown IDs: 0x18FEEE00 ×1" in text

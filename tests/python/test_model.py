@@ -135,6 +135,6 @@ def test_package_model(spec):
     assert pkg.package == "kaiwo_gateway" and pkg.dist_name == "kaiwo-gateway" and pkg.version == "2.0.5"
     assert len(pkg.messages) == 25 and len(pkg.enums) == len(spec.can.value_tables)
     assert pkg.example.checksum is not None and pkg.example.counter is not None
-    assert pkg.modules == ("enums", "errors", "j1939", "messages", "multiframe") and pkg.is_j1939
+    assert pkg.modules == ("enums", "errors", "j1939", "messages", "monitor", "multiframe", "supervision") and pkg.is_j1939
     eps = next(m for m in pkg.messages if m.name == "autocar_eps_command")
     assert eps.id_lit == "0x1801B0A0" and eps.is_extended and eps.checksum.shift == 56 and eps.checksum.folds == (32, 16, 8)

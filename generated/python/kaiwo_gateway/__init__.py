@@ -10,12 +10,14 @@
 
 Modules: `messages` (dataclasses, encode/decode), `enums` (value tables), `errors` (what decode and
 encode raise), `j1939` (29-bit ID helpers), `multiframe` (texts spread over several frames, e.g. the
-VIN), `bus` (python-can integration; needs python-can).
+VIN), `monitor` (the receive monitor: timeouts, counters, checksums, states, fault codes),
+`supervision` (the monitor configured for this protocol (`new_monitor`)), `bus` (python-can
+integration; needs python-can).
 """
 
 from __future__ import annotations
 
-from . import enums, errors, j1939, messages, multiframe
+from . import enums, errors, j1939, messages, monitor, multiframe, supervision
 from .enums import *  # noqa: F403
 from .errors import (
     ChecksumError,
@@ -23,13 +25,18 @@ from .errors import (
     EncodeError,
     Error,
     FrameLengthError,
+    InconsistentTextError,
+    InvalidTextError,
     RangeError,
     RawRangeError,
+    TextError,
+    TextIndexError,
     UnknownFrameError,
     UnknownSignalError,
 )
 from .messages import *  # noqa: F403
 from .multiframe import *  # noqa: F403
+from .supervision import new_monitor
 
 PROTOCOL = "kaiwo_gateway"
 VERSION = "2.0.5"
@@ -49,15 +56,22 @@ __all__ = [
     "EncodeError",
     "Error",
     "FrameLengthError",
+    "InconsistentTextError",
+    "InvalidTextError",
     "RangeError",
     "RawRangeError",
+    "TextError",
+    "TextIndexError",
     "UnknownFrameError",
     "UnknownSignalError",
+    "new_monitor",
     "enums",
     "errors",
     "j1939",
     "messages",
+    "monitor",
     "multiframe",
+    "supervision",
 ]
 __all__ += enums.__all__
 __all__ += messages.__all__

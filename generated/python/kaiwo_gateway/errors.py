@@ -53,6 +53,30 @@ class ChecksumError(DecodeError):
         self.actual = actual
 
 
+class TextError(DecodeError):
+    """A multi-frame text (e.g. the VIN) could not be reassembled."""
+
+    def __init__(self, message: str, frame_id: int, problem: str, *, id_text: str) -> None:
+        super().__init__(f"{message} ({id_text}): {problem}")
+        self.message = message
+        self.frame_id = frame_id
+        self.id_text = id_text
+
+
+class TextIndexError(TextError):
+    """A frame's index is outside the text's frames: the frame is refused."""
+
+
+class InconsistentTextError(TextError):
+    """A frame contradicts the frames taken (another sender, or another text at the same index):
+    they are dropped and reassembly restarts from this frame."""
+
+
+class InvalidTextError(TextError):
+    """Every frame has arrived but the bytes are not a text: a character that is not printable
+    ASCII, or text after the padding."""
+
+
 class EncodeError(Error, ValueError):
     """A message could not be encoded."""
 

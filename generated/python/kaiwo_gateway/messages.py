@@ -535,6 +535,10 @@ class AutocarEpsCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 8  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
     MAX_ANGULAR_SPEED_NO_LIMIT: ClassVar[int] = 0  # raw 0x0: 不限制角速度 (No limit)
 
     eps_ctrl_mode: EpsModeCmd | int = EpsModeCmd.STOP_CONTROL
@@ -739,6 +743,8 @@ class EpsState:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 56  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
 
     eps_ctrl_state: EpsModeState | int = EpsModeState.STOP_CONTROL
     steering_torque: float = 0.0
@@ -930,6 +936,10 @@ class AutocarSpeedCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 16  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
 
     accel_cmd: float = 0.0
     epb_cmd: Epb | int = Epb.NO_ACTION
@@ -1142,6 +1152,8 @@ class DrivingState:
         "current_accel",
         "checksum",
     )  # spec names, in attribute order
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
     MOTOR_SPEED_RATIO_INVALID: ClassVar[int] = 256  # raw 0xFF: 无效 (Invalid)
 
     epb_state: Epb | int = Epb.NO_ACTION
@@ -1418,6 +1430,8 @@ class AutocarControlCommand1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
 
     drive_mode_cmd: DriveModeCmdAutocar | int = DriveModeCmdAutocar.MANUAL
     door_cmd: DoorCmd | int = DoorCmd.NO_ACTION
@@ -1848,6 +1862,8 @@ class VehicleState1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 56  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
 
     drive_mode_state: DriveModeState | int = DriveModeState.MANUAL
     door_state: OffOn | int = OffOn.OFF
@@ -2211,6 +2227,8 @@ class AutocarControlCommand2:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 56  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
     DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: ClassVar[float] = 0.0  # raw 0x0: 默认车速 (Default speed)
 
     downhill_regen_enable: DownhillRegenEnable | int = DownhillRegenEnable.DISABLED
@@ -3590,6 +3608,10 @@ class RgateEpsCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 8  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
     MAX_ANGULAR_SPEED_NO_LIMIT: ClassVar[int] = 0  # raw 0x0: 不限制角速度 (No limit)
 
     eps_ctrl_mode: EpsModeCmd | int = EpsModeCmd.STOP_CONTROL
@@ -3791,6 +3813,10 @@ class RgateSpeedCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 16  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
 
     accel_cmd: float = 0.0
     epb_cmd: Epb | int = Epb.NO_ACTION
@@ -4052,6 +4078,8 @@ class RgateControlCommand1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
 
     drive_mode_cmd: DriveModeCmdRgate | int = DriveModeCmdRgate.MANUAL
     door_cmd: DoorCmd | int = DoorCmd.NO_ACTION
@@ -4434,6 +4462,8 @@ class RgateControlCommand2:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 56  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
     DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: ClassVar[float] = 0.0  # raw 0x0: 默认车速 (Default speed)
 
     downhill_regen_enable: DownhillRegenEnable | int = DownhillRegenEnable.DISABLED
@@ -4749,6 +4779,8 @@ class FrontSensorDistance1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
     SENSOR_1_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_2_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_3_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
@@ -4962,6 +4994,8 @@ class FrontSensorDistance2:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
     SENSOR_7_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_8_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_9_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
@@ -5237,6 +5271,8 @@ class RearSensorDistance1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
     SENSOR_1_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_2_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_3_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
@@ -5450,6 +5486,8 @@ class RearSensorDistance2:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
     SENSOR_7_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_8_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
     SENSOR_9_DISTANCE_NO_OBSTACLE: ClassVar[int] = 1023  # raw 0x3FF: 无障碍物 (No obstacle)
@@ -5719,6 +5757,10 @@ class TeleEpsCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 8  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
     MAX_ANGULAR_SPEED_NO_LIMIT: ClassVar[int] = 0  # raw 0x0: 不限制角速度 (No limit)
 
     eps_ctrl_mode: EpsModeCmd | int = EpsModeCmd.STOP_CONTROL
@@ -5920,6 +5962,10 @@ class TeleSpeedCommand:
         "checksum",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 16  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
+    CHECKSUM_BYTE: ClassVar[int] = 7  # the XOR of the bytes CHECKSUM_COVER masks in the frame integer
+    CHECKSUM_COVER: ClassVar[int] = 0xFFFFFFFFFFFFFF
 
     throttle_brake_cmd: float = 0.0
     epb_cmd: Epb | int = Epb.NO_ACTION
@@ -6181,6 +6227,8 @@ class TeleControlCommand1:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 16
+    COUNTER_START: ClassVar[int] = 60  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 4
 
     drive_mode_cmd: DriveModeCmdTele | int = DriveModeCmdTele.MANUAL
     door_cmd: DoorCmd | int = DoorCmd.NO_ACTION
@@ -6563,6 +6611,8 @@ class TeleControlCommand2:
         "counter",
     )  # spec names, in attribute order
     COUNTER_MODULO: ClassVar[int] = 256
+    COUNTER_START: ClassVar[int] = 56  # the counter's bits in the frame read as a little-endian integer
+    COUNTER_LENGTH: ClassVar[int] = 8
     DOWNHILL_REGEN_SPEED_DEFAULT_SPEED: ClassVar[float] = 0.0  # raw 0x0: 默认车速 (Default speed)
 
     downhill_regen_enable: DownhillRegenEnable | int = DownhillRegenEnable.DISABLED

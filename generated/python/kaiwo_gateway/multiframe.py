@@ -8,11 +8,13 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Iterable
 
+from .errors import InconsistentTextError, InvalidTextError, TextIndexError
 from .messages import (
     DeviceId,
 )
 
 __all__ = [
+    "TEXT_ASSEMBLERS",
     "DeviceIdTextAssembler",
     "join_device_id_text",
     "split_device_id_text",
@@ -28,6 +30,8 @@ def split_device_id_text(text: str, template: DeviceId | None = None) -> list[De
         raise ValueError(f"device_id: text {text!r} is not ascii") from None
     if len(data) > 17:
         raise ValueError(f"device_id: text {text!r} has {len(data)} characters, at most 17 fit")
+    if not all(0x20 <= b <= 0x7E and b != 0x00 for b in data):
+        raise ValueError(f"device_id: text {text!r} is not printable ASCII without the padding byte 0x00")
     data = data.ljust(21, b"\x00")
     base = template if template is not None else DeviceId()
     return [
@@ -40,37 +44,85 @@ def split_device_id_text(text: str, template: DeviceId | None = None) -> list[De
     ]
 
 
+def _device_id_text(chunks: dict[int, int]) -> str:
+    """The text of a complete set of chunks: the bytes before the first padding byte, every later byte padding,
+    printable ASCII; InvalidTextError otherwise."""
+    data = b"".join(chunks[i].to_bytes(7, "little") for i in range(3))
+    end = data.find(b"\x00")
+    end = len(data) if end < 0 else end
+    if end > 17 or data[end:].strip(b"\x00") or not all(0x20 <= b <= 0x7E for b in data[:end]):
+        raise InvalidTextError(
+            "device_id",
+            0x18FFAF00,
+            f"text bytes {data!r} are not printable ASCII ended by 0x00 padding",
+            id_text="0x18FFAF00",
+        )
+    return data[:end].decode("ascii")
+
+
 def join_device_id_text(messages: Iterable[DeviceId]) -> str:
-    """The text carried by a complete set of DeviceId messages (any order); ValueError when one is missing."""
-    chunks: dict[int, bytes] = {}
+    """The text carried by a complete set of DeviceId messages (any order): TextIndexError for an
+    index outside 0..2, ValueError when a frame is missing, InvalidTextError for bytes that are no text."""
+    chunks: dict[int, int] = {}
     for message in messages:
         index = int(message.id_frame_index)
         if not 0 <= index < 3:
-            raise ValueError(f"device_id: frame index {index} is outside 0..2")
-        chunks[index] = int(message.id_chars).to_bytes(7, "little")
+            raise TextIndexError("device_id", 0x18FFAF00, f"frame index {index} is outside 0..2", id_text="0x18FFAF00")
+        chunks[index] = int(message.id_chars) & 0xFFFFFFFFFFFFFF
     missing = [i for i in range(3) if i not in chunks]
     if missing:
         raise ValueError(f"device_id: frame(s) {missing} missing")
-    data = b"".join(chunks[i] for i in range(3))[:17].rstrip(b"\x00")
-    try:
-        return data.decode("ascii")
-    except UnicodeDecodeError:
-        raise ValueError(f"device_id: text bytes {data!r} are not ascii") from None
+    return _device_id_text(chunks)
 
 
 class DeviceIdTextAssembler:
-    """Collects DeviceId messages from the bus; `feed` returns the text once every frame has been seen."""
+    """Reassembles the text DeviceId frames carry, frame by frame, in any order — checked like the C
+    `_rx_feed`: frames of another sender (device_type differ) or of another text (a different
+    chunk at an index already taken) are never mixed: such a frame raises InconsistentTextError, and reassembly
+    restarts from it, so the next complete set gives the text."""
 
     def __init__(self) -> None:
-        self._chunks: dict[int, DeviceId] = {}
+        self._chunks: dict[int, int] = {}
+        self._keys: tuple[object, ...] = ()
 
     def feed(self, message: DeviceId) -> str | None:
+        """Take one frame; the text once every frame of one text has arrived (and with every later frame of it).
+        TextIndexError (frame refused), InconsistentTextError (reassembly restarted from this frame), InvalidTextError."""
         index = int(message.id_frame_index)
-        if 0 <= index < 3:
-            self._chunks[index] = message
-        if len(self._chunks) < 3:
-            return None
-        return join_device_id_text(self._chunks.values())
+        if not 0 <= index < 3:
+            raise TextIndexError("device_id", 0x18FFAF00, f"frame index {index} is outside 0..2", id_text="0x18FFAF00")
+        chunk = int(message.id_chars) & 0xFFFFFFFFFFFFFF
+        keys: tuple[object, ...] = (message.device_type,)
+        inconsistent = bool(self._chunks) and (keys != self._keys or self._chunks.get(index, chunk) != chunk)
+        if inconsistent:
+            self._chunks.clear()
+        if not self._chunks:
+            self._keys = keys
+        self._chunks[index] = chunk
+        if inconsistent:
+            raise InconsistentTextError(
+                "device_id",
+                0x18FFAF00,
+                f"frame {index} belongs to another sender or text: restarted from it",
+                id_text="0x18FFAF00",
+            )
+        return self.text()
+
+    @property
+    def complete(self) -> bool:
+        """Whether every frame of one text has arrived."""
+        return len(self._chunks) == 3
+
+    def text(self) -> str | None:
+        """The text once complete (InvalidTextError when its bytes are no text), else None."""
+        return _device_id_text(self._chunks) if self.complete else None
 
     def reset(self) -> None:
         self._chunks.clear()
+        self._keys = ()
+
+
+# The assembler class of each multi-frame message, by message name.
+TEXT_ASSEMBLERS: dict[str, type[DeviceIdTextAssembler]] = {
+    DeviceId.NAME: DeviceIdTextAssembler,
+}

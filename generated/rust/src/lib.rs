@@ -62,9 +62,12 @@ pub mod codec;
 mod constants;
 pub mod j1939;
 mod messages;
+pub mod monitor;
+pub mod supervision;
 mod values;
 
 pub use messages::*;
+pub use supervision::new_monitor;
 pub use values::*;
 
 /// Protocol version of the spec this crate was generated from.
@@ -111,8 +114,14 @@ pub enum Error {
         /// `message.signal`
         signal: &'static str,
     },
-    /// Multi-frame text that is not ASCII, too long or contains the padding byte.
+    /// Multi-frame text that is not printable ASCII ended by padding, or too long.
     Text {
+        /// The message's identifier.
+        frame_id: u32,
+    },
+    /// A multi-frame text's frame that contradicts the frames taken (another sender, or another
+    /// text at the same index): reassembly restarted from it.
+    TextInconsistent {
         /// The message's identifier.
         frame_id: u32,
     },
@@ -155,8 +164,11 @@ impl core::fmt::Display for Error {
             }
             Self::Text { frame_id } => write!(
                 f,
-                "frame {frame_id:#010X}: text is not ASCII or does not fit"
+                "frame {frame_id:#010X}: text is not printable ASCII or does not fit"
             ),
+            Self::TextInconsistent { frame_id } => {
+                write!(f, "frame {frame_id:#010X}: another sender's or text's frame: reassembly restarted from it")
+            }
             Self::FrameIndex { frame_id, index } => write!(
                 f,
                 "frame {frame_id:#010X}: frame index {index} out of range"
@@ -192,13 +204,17 @@ pub struct Text<const N: usize> {
 }
 
 impl<const N: usize> Text<N> {
-    /// The text of `bytes` up to its trailing `padding`; `None` unless ASCII.
+    /// The text of `bytes`: the bytes before the first `padding`. `None` unless every later byte
+    /// is `padding`, the text has at most `N` bytes and is printable ASCII.
     pub fn from_padded(bytes: &[u8], padding: u8) -> Option<Self> {
-        let mut len = bytes.len().min(N);
-        while len > 0 && bytes[len - 1] == padding {
-            len -= 1;
-        }
-        if !bytes[..len].is_ascii() {
+        let len = bytes
+            .iter()
+            .position(|&b| b == padding)
+            .unwrap_or(bytes.len());
+        if len > N
+            || bytes[len..].iter().any(|&b| b != padding)
+            || !bytes[..len].iter().all(|&b| (0x20..=0x7E).contains(&b))
+        {
             return None;
         }
         let mut text = Self { bytes: [0; N], len };

@@ -12988,11 +12988,15 @@ impl DeviceId {
     /// Byte that pads the text to whole frames.
     pub const TEXT_PADDING: u8 = 0x00;
 
-    /// Split `text` (ASCII, at most [`Self::TEXT_LEN`] characters) into the frames that carry
-    /// it: copies of `self` with `id_frame_index` and `id_chars` set.
+    /// Split `text` (printable ASCII without the padding byte, at most [`Self::TEXT_LEN`]
+    /// characters) into the frames that carry it: copies of `self` with `id_frame_index` and `id_chars` set.
     pub fn text_frames(&self, text: &str) -> Result<[Self; 3], Error> {
         let bytes = text.as_bytes();
-        if bytes.len() > Self::TEXT_LEN || !text.is_ascii() || bytes.contains(&Self::TEXT_PADDING) {
+        if bytes.len() > Self::TEXT_LEN
+            || !bytes
+                .iter()
+                .all(|&b| (0x20..=0x7E).contains(&b) && b != Self::TEXT_PADDING)
+        {
             return Err(Error::Text {
                 frame_id: Self::FRAME_ID,
             });
@@ -13040,11 +13044,15 @@ impl Frame for DeviceId {
     }
 }
 
-/// Reassembles the text (VIN) that [`DeviceId`] frames carry, without allocation.
+/// Reassembles the text (VIN) that [`DeviceId`] frames carry, in any order, without
+/// allocation — keyed and checked like the C `_rx_feed`: frames of another sender (other
+/// `device_type`) or of another text (a different chunk at an index already taken) are
+/// never mixed: [`Error::TextInconsistent`], and reassembly restarts from that frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DeviceIdText {
     bytes: [u8; 21],
     seen: u32,
+    first: DeviceId,
 }
 
 impl DeviceIdText {
@@ -13055,11 +13063,13 @@ impl DeviceIdText {
         Self {
             bytes: [0; 21],
             seen: 0,
+            first: DeviceId::ZERO,
         }
     }
 
-    /// Take one frame; once every frame has been seen, the text. A frame index outside
-    /// the text's frames is an error; a later frame with the same index replaces the earlier.
+    /// Take one frame; once every frame of one text has arrived (and with every later frame of
+    /// it), the text. Errors: [`Error::FrameIndex`] (frame refused), [`Error::TextInconsistent`]
+    /// (reassembly restarted from this frame), [`Error::Text`] (complete, but no text).
     pub fn push(&mut self, frame: &DeviceId) -> Result<Option<crate::Text<17>>, Error> {
         let index = usize::from(frame.id_frame_index_raw());
         if index >= DeviceId::TEXT_FRAMES {
@@ -13070,17 +13080,32 @@ impl DeviceIdText {
         }
         let start = index * DeviceId::TEXT_BYTES_PER_FRAME;
         let word = frame.id_chars_raw().to_le_bytes();
-        self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME]
-            .copy_from_slice(&word[..DeviceId::TEXT_BYTES_PER_FRAME]);
-        self.seen |= 1 << index;
-        if self.is_complete() {
+        let chunk = &word[..DeviceId::TEXT_BYTES_PER_FRAME];
+        let bit = 1 << index;
+        let changed = self.seen & bit != 0
+            && self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME] != *chunk;
+        let inconsistent =
+            self.seen != 0 && (frame.device_type_raw() != self.first.device_type_raw() || changed);
+        if inconsistent {
+            self.seen = 0;
+        }
+        if self.seen == 0 {
+            self.first = *frame;
+        }
+        self.bytes[start..start + DeviceId::TEXT_BYTES_PER_FRAME].copy_from_slice(chunk);
+        self.seen |= bit;
+        if inconsistent {
+            Err(Error::TextInconsistent {
+                frame_id: DeviceId::FRAME_ID,
+            })
+        } else if self.is_complete() {
             self.text().map(Some)
         } else {
             Ok(None)
         }
     }
 
-    /// Whether every frame has been seen.
+    /// Whether every frame of one text has arrived.
     pub const fn is_complete(&self) -> bool {
         self.seen == Self::ALL
     }
@@ -13090,13 +13115,17 @@ impl DeviceIdText {
         *self = Self::new();
     }
 
-    /// The text so far (trailing padding removed); an error if it is not ASCII.
+    /// The text of the frames taken (padding removed); [`Error::Text`] when their bytes are
+    /// no printable ASCII text ended by padding (or frames are missing).
     pub fn text(&self) -> Result<crate::Text<17>, Error> {
-        crate::Text::from_padded(&self.bytes[..DeviceId::TEXT_LEN], DeviceId::TEXT_PADDING).ok_or(
-            Error::Text {
+        if !self.is_complete() {
+            return Err(Error::Text {
                 frame_id: DeviceId::FRAME_ID,
-            },
-        )
+            });
+        }
+        crate::Text::from_padded(&self.bytes, DeviceId::TEXT_PADDING).ok_or(Error::Text {
+            frame_id: DeviceId::FRAME_ID,
+        })
     }
 }
 

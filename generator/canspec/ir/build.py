@@ -98,7 +98,10 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
     multiframe = None
     if mf is not None:
         payload = next(s for s in signals if s.name == mf["payload"])
-        multiframe = ir.MultiFrame(mf["index"], mf["payload"], mf["encoding"], mf["text_length"], mf["frames"], payload.length // 8, payload.start // 8, mf["padding"])
+        keys = tuple(s.name for s in signals if s.role == "data" and s.name not in (mf["index"], mf["payload"]))
+        multiframe = ir.MultiFrame(
+            mf["index"], mf["payload"], mf["encoding"], mf["text_length"], mf["frames"], payload.length // 8, payload.start // 8, mf["padding"], keys
+        )
     receivers = msg["receivers"]
     if receivers == "ALL":
         receivers = tuple(n for n in node_names if n != msg["sender"])
@@ -141,6 +144,21 @@ def _checksum(sig: ir.Signal, dlc: int) -> ir.Checksum:
     return ir.Checksum("xor", sig.name, byte, covers, sum(0xFF << (8 * b) for b in covers))
 
 
+def _fault_tables(tables: dict[str, ir.ValueTable], messages: tuple[ir.Message, ...]) -> tuple[ir.FaultTable, ...]:
+    out = []
+    for t in tables.values():
+        by_name = {e.name: e.raw for e in t.entries}
+        if ir.FAULT_TIMEOUT_ENTRY not in by_name or t.by_raw(0) is None:
+            continue
+        codes = tuple(
+            (m.name, by_name[f"{m.layout}{ir.FAULT_XOR_ERROR_SUFFIX}"])
+            for m in messages
+            if m.checksum is not None and m.layout and f"{m.layout}{ir.FAULT_XOR_ERROR_SUFFIX}" in by_name
+        )
+        out.append(ir.FaultTable(t.name, 0, by_name[ir.FAULT_TIMEOUT_ENTRY], codes))
+    return tuple(out)
+
+
 def build_can(can: ResolvedCan) -> ir.CanProtocol:
     data = can.doc.data
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
@@ -150,6 +168,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
     )
     names = tuple(n.name for n in nodes)
     p, b = data["protocol"], data["bus"]
+    messages = tuple(_message(m, can, tables, names) for m in can.messages)
     return ir.CanProtocol(
         name=p["name"],
         title=p.get("title", p["name"]),
@@ -158,8 +177,9 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         document=p.get("document", ""),
         bus=ir.Bus(b["bitrate"], b["id_format"], b["addressing"], b["byte_order"]),
         nodes=nodes,
-        messages=tuple(_message(m, can, tables, names) for m in can.messages),
+        messages=messages,
         value_tables=tuple(tables.values()),
+        fault_tables=_fault_tables(tables, messages),
         loc=p.loc_of("name"),
     )
 

@@ -29,6 +29,9 @@ CMD_KEY = "cmd"  # carries a command message's number
 RESULT_KEY = "res"  # a reply's result
 MATCH_KEY = "bn"  # a reply echoes its request's sequence number (对应服务器端请求的流水号) when both carry it
 ERROR_CODES = ("object", "required", "unexpected", "type", "type_range", "enum", "range", "length", "cmd")
+# The bindings' readers of JSON text refuse, besides: text that is not JSON (NaN and Infinity
+# included), and a key given twice in an object.
+TEXT_ERROR_CODES = ("json", "duplicate")
 # Names the bindings define or import themselves (Python, Rust and its prelude, TypeScript): a
 # message, enum or receiver type never takes one of them.
 RESERVED_TYPE_NAMES = frozenset({

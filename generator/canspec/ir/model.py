@@ -23,8 +23,16 @@ TIE_EPSILON = 1e-9
 TIE_EPSILON_TEXT = "1e-9"
 EXACT_LIMIT = 2**52
 EXACT_LIMIT_TEXT = "4503599627370496.0"
-# Receive monitors time a cyclic message out after this many cycle times without a frame.
+# Receive monitors time a cyclic message out after this many cycle times without a frame,
+# accept a counter step of up to 1 + MONITOR_COUNTER_TOLERANCE (frames lost in between) and hold a
+# message valid after MONITOR_VALID_AFTER good frames in a row (reference/monitor.py states the rules).
 MONITOR_TIMEOUT_CYCLES = 3
+MONITOR_COUNTER_TOLERANCE = 1
+MONITOR_VALID_AFTER = 2
+# The value-table entries that make a table a receive-fault code table: `message_timeout` (with a
+# raw-0 "no fault" entry) and `<layout>_xor_error` for a checksum failure of a message of that layout.
+FAULT_TIMEOUT_ENTRY = "message_timeout"
+FAULT_XOR_ERROR_SUFFIX = "_xor_error"
 
 
 
@@ -182,6 +190,9 @@ class MultiFrame:
     bytes_per_frame: int
     payload_byte: int  # first frame byte of the chunk
     padding: int
+    # The other data signals but counter and checksum: the same in every frame of one text (they
+    # tell its sender apart, e.g. device_type); a frame that differs belongs to another text.
+    key_signals: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -273,6 +284,18 @@ class Bus:
 
 
 @dataclass(frozen=True)
+class FaultTable:
+    """A value table of receive-fault codes (the shipped spec's unmanned_entry_fault of 0x1813A0B0):
+    its entry `message_timeout` is the code for a message timeout, `<layout>_xor_error` the code for
+    a checksum failure of the messages of that layout, raw 0 no fault. Receive monitors report in it."""
+
+    table: str
+    none: int  # 0
+    timeout: int
+    checksum: tuple[tuple[str, int], ...]  # (message name, code), messages with a checksum, in document order
+
+
+@dataclass(frozen=True)
 class CanProtocol:
     name: str
     title: str
@@ -283,6 +306,7 @@ class CanProtocol:
     nodes: tuple[Node, ...]
     messages: tuple[Message, ...]  # in document order
     value_tables: tuple[ValueTable, ...]
+    fault_tables: tuple[FaultTable, ...] = ()
     loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
 
     def message(self, name: str) -> Message:

@@ -68,6 +68,7 @@ class CMessage:
     cycle_ms: str | None  # None: event-driven
     info_cycle: str  # msg_info_t.cycle_ms: its macro, or 0 when event-driven
     counter_modulo: str  # msg_info_t.counter_modulo: 0 without a counter
+    counter_start: str  # msg_info_t.counter_start: its first bit in the frame
     j1939: CJ1939 | None
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
     unpack_runs: tuple[CRun, ...]  # every struct field, in struct order
@@ -82,7 +83,6 @@ class CMessage:
     checksum: CChecksum | None
     counter: CSignal | None
     counter_mask: str
-    fault_xor_codes: tuple[tuple[str, str], ...]  # (fault table, enum const) per fault table
     comment: str
 
 
@@ -105,7 +105,7 @@ def _checksum(names: CNames, msg: ir.Message, data: list[CSignal]) -> CChecksum 
     return CChecksum(ck.byte, f"((uint64_t){fold} << {8 * ck.byte})", f"{names.fn('xor_is_zero')}(v)")
 
 
-def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str], fault_codes: tuple[tuple[str, str], ...]) -> CMessage:
+def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) -> CMessage:
     sigs = tuple(build_signal(names, msg, s, enum_types) for s in msg.data_signals)
     ck_name = msg.checksum.signal if msg.checksum is not None else None
     data = [s for s in sigs if s.sig.name != ck_name]
@@ -117,12 +117,12 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str], fa
         type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.name),
         frame_id=f"{msg.id_text}u", fingerprint=f"{hex32(msg.fingerprint)}u", dlc=c_uint(msg.dlc), cycle_ms=c_uint(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
         info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else c_uint(0),
-        counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0),
+        counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0), counter_start=c_uint(msg.counter.start if msg.counter else 0),
         signals=sigs, **plan, range_terms=tuple(
             [f"({r.var} & {c_hex(r.run.check, 64)})" for r in plan["pack_runs"] if r.run.check]
             + [f"(uint64_t)({s.range_check})" for s in data if s.range_check]),
         checksum=_checksum(names, msg, data), counter=counter, counter_mask=c_hex(msg.counter.modulo - 1) if msg.counter else "",
-        fault_xor_codes=fault_codes, comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,
+        comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,
     )
 
 

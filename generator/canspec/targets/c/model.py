@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from canspec import ir
 from canspec.render.literals import c_hex, c_int, c_uint
 from canspec.targets.c.messages import CMessage, build_message
-from canspec.targets.c.names import TIMEOUT_ENTRY, XOR_ERROR_SUFFIX, CNames
+from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal
 
 INT_MIN, INT_MAX = -(2**31), 2**31 - 1  # C enumerators are ints (at least 32 bits on every target host)
@@ -50,6 +50,7 @@ class CFaultTable:
     fn: str
     timeout_const: str
     none_const: str
+    checksum: tuple[tuple[str, str], ...]  # (message index const, code const) per checksum failure code
 
 
 @dataclass(frozen=True)
@@ -98,6 +99,8 @@ class CModel:
     cycle_type: str  # of msg_info_t.cycle_ms
     state_slots: str  # length of per-message arrays (1 without messages: C has no empty arrays)
     timeout_cycles: str
+    counter_tolerance: str
+    valid_after: str
 
 
 def _enum(names: CNames, table: ir.ValueTable) -> CEnum:
@@ -116,28 +119,16 @@ def _enum(names: CNames, table: ir.ValueTable) -> CEnum:
     return CEnum(table.name, names.fn(words, "t"), names.fn(words, "name"), is_enum, base, entries)
 
 
-def _fault_tables(names: CNames, can: ir.CanProtocol, enums: dict[str, CEnum]) -> tuple[CFaultTable, ...]:
-    """Value tables with a `message_timeout` code and a 0 (no fault) code, held in an enum."""
+def _fault_tables(names: CNames, can: ir.CanProtocol, enums: dict[str, CEnum], messages: tuple[CMessage, ...]) -> tuple[CFaultTable, ...]:
+    """The protocol's fault-code tables (ir.FaultTable) that C holds in an enum."""
+    index = {cm.msg.name: cm.index_const for cm in messages}
     out = []
-    for t in can.value_tables:
-        ce = enums[t.name]
-        timeout = next((e.raw for e in t.entries if e.name == TIMEOUT_ENTRY), None)
-        none = ce.const_of(0)
-        if timeout is None or none is None or not ce.is_enum:
+    for t in can.fault_tables:
+        ce = enums[t.table]
+        if not ce.is_enum:
             continue
-        out.append(CFaultTable(ce, names.fn("monitor", names.table(t.name)), ce.const_of(timeout) or "", none))
-    return tuple(out)
-
-
-def _xor_codes(msg: ir.Message, faults: tuple[CFaultTable, ...], tables: dict[str, ir.ValueTable]) -> tuple[tuple[str, str], ...]:
-    """The fault code of each fault table for a checksum failure of this message."""
-    if msg.checksum is None or not msg.layout:
-        return ()
-    out = []
-    for ft in faults:
-        entry = next((e for e in tables[ft.enum.table].entries if e.name == f"{msg.layout}{XOR_ERROR_SUFFIX}"), None)
-        if entry is not None:
-            out.append((ft.enum.table, ft.enum.const_of(entry.raw) or ""))
+        checksum = tuple((index[name], ce.const_of(code) or "") for name, code in t.checksum)
+        out.append(CFaultTable(ce, names.fn("monitor", names.table(t.table)), ce.const_of(t.timeout) or "", ce.const_of(t.none) or "", checksum))
     return tuple(out)
 
 
@@ -166,10 +157,9 @@ def build_model(spec: ir.Spec) -> CModel:
         raise ValueError("the spec has no CAN protocol")
     names = CNames.of(can)
     enums = {t.name: _enum(names, t) for t in can.value_tables}
-    faults = _fault_tables(names, can, enums)
-    tables = {t.name: t for t in can.value_tables}
     enum_types = {name: e.type for name, e in enums.items()}
-    messages = tuple(build_message(names, m, enum_types, _xor_codes(m, faults, tables)) for m in can.messages)
+    messages = tuple(build_message(names, m, enum_types) for m in can.messages)
+    faults = _fault_tables(names, can, enums, messages)
     return CModel(
         prefix=names.prefix, macro=names.macro, guard=names.const("h"), can=can, names=names, messages=messages,
         extended=tuple(cm for cm in messages if cm.msg.is_extended), standard=tuple(cm for cm in messages if not cm.msg.is_extended),
@@ -178,4 +168,5 @@ def build_model(spec: ir.Spec) -> CModel:
         is_j1939=can.bus.is_j1939, format_arg=can.has_standard,
         bitrate=c_uint(can.bus.bitrate), cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
         state_slots=names.const("msg_count") if messages else c_uint(1), timeout_cycles=c_uint(ir.MONITOR_TIMEOUT_CYCLES),
+        counter_tolerance=c_uint(ir.MONITOR_COUNTER_TOLERANCE), valid_after=c_uint(ir.MONITOR_VALID_AFTER),
     )

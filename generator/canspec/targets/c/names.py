@@ -36,13 +36,15 @@ RUNTIME_FUNCTIONS = (
     "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "le_load", "le_store", "xor_fold32", "xor_fold", "xor_is_zero",
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
-    "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out",
+    "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out", "monitor_state",
+    "monitor_count_up", "monitor_invalidate", "monitor_expire", "monitor_counter_fault",  # the monitor's helpers
 )
 RUNTIME_MACROS = (
     "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "LE_WORDS",
     "OK", "ERR_LENGTH", "ERR_CHECKSUM", "ERR_RANGE", "ERR_UNKNOWN_ID", "ERR_INDEX", "ERR_INCOMPLETE", "ERR_INCONSISTENT",
     "J1939_PDU2_MIN_PF", "J1939_GLOBAL_ADDRESS", "J1939_ID_MASK", "J1939_PRIORITY_MASK", "MSG_NONE", "MSG_COUNT",
-    "MONITOR_TIMEOUT_CYCLES", "RX_UNKNOWN_ID", "RX_LENGTH", "RX_CHECKSUM", "RX_COUNTER_JUMP", "RX_COUNTER_REPEAT", "RX_TIMEOUT", "RX_RECOVERED",
+    "MONITOR_TIMEOUT_CYCLES", "MONITOR_COUNTER_TOLERANCE", "MONITOR_VALID_AFTER", "RX_NO_DATA", "RX_INIT", "RX_VALID", "RX_INVALID",
+    "RX_UNKNOWN_ID", "RX_LENGTH", "RX_CHECKSUM", "RX_COUNTER_JUMP", "RX_COUNTER_REPEAT", "RX_TIMEOUT", "RX_RECOVERED",
     "H", "COMMON_H", "ENUMS_H", "MESSAGES_H", "DISPATCH_H", "TEXT_H", "MONITOR_H",
 )
 # Per message (after <prefix>_<message>_ / <PREFIX>_<MESSAGE>_), per signal, per multi-frame text.
@@ -52,11 +54,8 @@ SIGNAL_FUNCTIONS = ("decode", "encode", "decode_fixed", "encode_fixed")
 SIGNAL_MACROS = ("FACTOR", "OFFSET", "MIN", "MAX", "FIXED_SCALE")
 TEXT_FUNCTIONS = ("split", "rx_t", "rx_init", "rx_complete", "rx_feed", "rx_get")
 TEXT_MACROS = ("LENGTH", "FRAMES", "BYTES_PER_FRAME", "PADDING")
-# A value-table entry named `<layout>_xor_error` is the fault code for a checksum failure of
-# a message with that layout; `message_timeout` is the code for a receive timeout. A table with
-# the latter (and a 0 code) gets a monitor function `<prefix>_monitor_<table>`.
-XOR_ERROR_SUFFIX = "_xor_error"
-TIMEOUT_ENTRY = "message_timeout"
+# A fault-code table (ir.FaultTable: a value table with a `message_timeout` entry) gets a monitor
+# function `<prefix>_monitor_<table>`.
 
 
 # Spec names recur in every name derived from them: convert each once (a 30000-signal spec
@@ -149,7 +148,7 @@ def _table_names(n: CNames, table: ir.ValueTable, base: str) -> Iterator[tuple[s
     origin: Origin = (f"value table {table.name!r}", table.loc)
     yield n.fn(base, "t"), origin
     yield n.fn(base, "name"), origin
-    if any(e.name == TIMEOUT_ENTRY for e in table.entries):
+    if any(e.name == ir.FAULT_TIMEOUT_ENTRY for e in table.entries):
         yield n.fn("monitor", base), origin
     yield from ((n.const(base, e.name), (f"value {e.name!r} of table {table.name!r}", e.loc)) for e in table.entries)
 

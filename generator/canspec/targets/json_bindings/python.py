@@ -137,7 +137,7 @@ def reader(plan: Plan) -> str:
 
 def exports(pm: ProtocolModel) -> list[str]:
     """The package's names, in isort's order (constants, classes, functions; each sorted)."""
-    fixed = ["MESSAGES", "PROTOCOL", "RECEIVERS", "REPLY_OF", "VERSION", "Message", "ValidationError", "is_reply_to", "parse"]
+    fixed = ["MESSAGES", "PROTOCOL", "RECEIVERS", "REPLY_OF", "VERSION", "Message", "ValidationError", "is_reply_to", "loads", "parse"]
     names = fixed + [e.name for e in pm.enums] + [mm.type_name for mm in pm.messages] + (["PendingRequests", "Reply", "Request"] if pm.pairs else [])
     return sorted(names, key=lambda n: (0 if n.isupper() and len(n) > 1 else 1 if n[0].isupper() else 2, n))
 
@@ -162,7 +162,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
         "request_types": [pm.message(p.request).type_name for p in pm.pairs],
         "reply_types": [pm.message(p.reply).type_name for p in pm.pairs],
     }
-    context = {"p": pm.protocol, "pm": pm, "codes": jsonmodel.ERROR_CODES, "typing": typing_names(pm), **types, **helpers}
+    context = {"p": pm.protocol, "pm": pm, "codes": jsonmodel.ERROR_CODES + jsonmodel.TEXT_ERROR_CODES, "typing": typing_names(pm), **types, **helpers}
     files = {
         f"{base}/{name}/messages.py": render("json_python/messages.py.j2", spec, "json_python", **context),
         f"{base}/{name}/__init__.py": render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, exports=exports(pm), py_string=py_string),

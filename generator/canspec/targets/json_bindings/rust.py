@@ -120,7 +120,7 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
         "doc_lines": text.doc_lines,
     }
     read_any_doc = "Read any message of the protocol" + (f": {'; '.join(pm.any_plan.rules)}." if pm.messages else " (it has none).")
-    lib = render("json_rust/lib.rs.j2", spec, "json_rust", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES, read_any_doc=read_any_doc,
+    lib = render("json_rust/lib.rs.j2", spec, "json_rust", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES + jsonmodel.TEXT_ERROR_CODES, read_any_doc=read_any_doc,
                  silent=[p for p in pm.protocol.parties if p.name not in receivers], **helpers)
     cargo = render("json_rust/Cargo.toml.j2", spec, "json_rust", p=pm.protocol, crate=rust_crate_name(pm.protocol))
     return {

@@ -7,11 +7,15 @@ Decisions carried by every schema (and stated in its description):
   cannot tell a newer sender's field from a typo ("Spd"); unknown keys are rejected and a
   revision that adds a field must add it to the spec (and so to these schemas).
 - Integer fields carry the range of their declared type (U8, S16, U64 limited to 2^53-1: J08).
-- Precision notes ("2 decimal places") are annotations (`x-canspec.decimals`), never
+- Precision notes ("2 decimal places") are annotations (`decimals`, see below), never
   `multipleOf`: 12.34 is not a multiple of 0.01 in binary floating point, and the document's
   precision is a formatting note for senders, not a rule receivers enforce.
-- Vendor annotations live under the one keyword `x-canspec` (validators ignore it; ajv needs
-  it declared as a vocabulary keyword in strict mode).
+- canspec's own annotations (a field's declared type, unit, decimals, errata, labels; a
+  message's parties) are JSON text in the standard `$comment` keyword,
+  `{"x-canspec": {...}}` (a root's also names the generator: `"generated"`), never a keyword
+  of their own: validators in strict mode (ajv's default) refuse unknown keywords.
+- Numbers in JSON are finite (erratum J11); a schema cannot say so, as JSON has no NaN: a
+  reader must refuse NaN and Infinity itself (Python's `json.loads` accepts them).
 """
 
 from __future__ import annotations
@@ -33,8 +37,8 @@ ADDITIONAL_NOTE = (
     "a newer sender's field from a misspelt one."
 )
 ADDITIONAL_NOTE_ZH = "不接受未定义的字段（additionalProperties: false）：协议没有版本号，接收方无法区分新字段和拼写错误。"
-PRECISION_NOTE = "Precision is documented (x-canspec.decimals), not enforced: receivers accept any finite number in range."
-PRECISION_NOTE_ZH = "有效小数位仅作说明（x-canspec.decimals），不作校验。"
+PRECISION_NOTE = "Precision is documented (decimals in the $comment annotation), not enforced: receivers accept any finite number in range."
+PRECISION_NOTE_ZH = "有效小数位仅作说明（$comment 注解中的 decimals），不作校验。"
 
 
 def schema_id(protocol: ir.JsonProtocol, name: str) -> str:
@@ -101,7 +105,7 @@ def _annotation(r: FieldRule) -> dict[str, Any]:
 
 def field_schema(r: FieldRule) -> dict[str, Any]:
     f = r.field
-    s: dict[str, Any] = {"title": _titled(r.key, f.zh), "description": _field_description(r), ANNOTATION: _annotation(r)}
+    s: dict[str, Any] = {"title": _titled(r.key, f.zh), "description": _field_description(r), "$comment": annotation(_annotation(r))}
     s["type"] = r.kind
     if r.kind in ("integer", "number"):
         if r.type_lo is not None:
@@ -133,7 +137,7 @@ def field_schema(r: FieldRule) -> dict[str, Any]:
     return s
 
 
-def message_schema(pm: ProtocolModel, mm: MessageModel) -> dict[str, Any]:
+def message_schema(pm: ProtocolModel, mm: MessageModel, generated: str | None = None) -> dict[str, Any]:
     m = mm.message
     role = f" ({m.role} of cmd {m.cmd})" if m.role else ""
     en = f"{m.desc} Sent by {m.sender} to {m.receiver}{role}.".strip()
@@ -157,15 +161,20 @@ def message_schema(pm: ProtocolModel, mm: MessageModel) -> dict[str, Any]:
         "properties": {r.key: field_schema(r) for r in mm.rules},
         "required": [r.key for r in mm.rules],
         "additionalProperties": False,
-        ANNOTATION: ann,
+        "$comment": annotation(ann, generated),
     }
     if m.examples:
         out["examples"] = [dict(e) for e in m.examples]
     return out
 
 
-def _root(spec: ir.Spec, protocol: ir.JsonProtocol, name: str, body: dict[str, Any]) -> dict[str, Any]:
-    return {"$schema": DRAFT, "$id": schema_id(protocol, name), "$comment": " ".join(header_lines(spec, "jsonschema")), **body}
+def annotation(ann: dict[str, Any], generated: str | None = None) -> str:
+    """The `$comment` text carrying canspec's annotations (JSON; `generated`: a root's header)."""
+    return json.dumps({**({"generated": generated} if generated else {}), ANNOTATION: ann}, ensure_ascii=False, sort_keys=True, separators=(",", ":"))
+
+
+def _root(protocol: ir.JsonProtocol, name: str, body: dict[str, Any]) -> dict[str, Any]:
+    return {"$schema": DRAFT, "$id": schema_id(protocol, name), **body}
 
 
 def _any_of_keys(keys: tuple[str, ...]) -> dict[str, Any]:
@@ -181,7 +190,7 @@ def _group_schema(group: tuple[jsonmodel.Branch, ...]) -> dict[str, Any]:
     return {"if": ref if head.tried else _any_of_keys(head.markers), "then": ref, "else": _group_schema(tuple(rest))}
 
 
-def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
+def plan_schema(pm: ProtocolModel, p: Plan, generated: str | None = None) -> dict[str, Any]:
     defs = {name: message_schema(pm, pm.message(name)) for name in p.messages}
     who = "any message of the protocol" if p.receiver is None else f"a message sent to {p.receiver}"
     how = f"telling them apart as follows: {'; '.join(p.rules)}." if p.messages else "none: the protocol has no messages."
@@ -191,7 +200,7 @@ def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
         "title": f"{pm.protocol.name}: {who}",
         "description": _bilingual(f"Accepts {who}, {how} " + ADDITIONAL_NOTE, zh),
         "type": "object",
-        ANNOTATION: {"protocol": pm.protocol.name, "version": pm.protocol.version, "receiver": p.receiver, "messages": list(p.messages)},
+        "$comment": annotation({"protocol": pm.protocol.name, "version": pm.protocol.version, "receiver": p.receiver, "messages": list(p.messages)}, generated),
         "$defs": defs,
     }
     plain = _group_schema(p.plain) if p.plain else {"required": [jsonmodel.CMD_KEY]}
@@ -210,13 +219,14 @@ def plan_schema(pm: ProtocolModel, p: Plan) -> dict[str, Any]:
 
 def build_schemas(spec: ir.Spec) -> dict[str, dict[str, Any]]:
     out: dict[str, dict[str, Any]] = {}
+    generated = " ".join(header_lines(spec, "jsonschema"))
     for protocol in spec.json:
         pm = jsonmodel.model(protocol)
         for mm in pm.messages:
-            out[f"{protocol.name}/{mm.name}.schema.json"] = _root(spec, protocol, mm.name, message_schema(pm, mm))
+            out[f"{protocol.name}/{mm.name}.schema.json"] = _root(protocol, mm.name, message_schema(pm, mm, generated))
         for p in pm.plans:
             name = "protocol" if p.receiver is None else f"to_{p.receiver}"
-            out[f"{protocol.name}/{name}.schema.json"] = _root(spec, protocol, name, plan_schema(pm, p))
+            out[f"{protocol.name}/{name}.schema.json"] = _root(protocol, name, plan_schema(pm, p, generated))
     return out
 
 

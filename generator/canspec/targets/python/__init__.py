@@ -2,10 +2,12 @@
 CAN protocol, formatted with ruff at generation time (in memory, so output is deterministic
 for a pinned ruff version). Modules that depend on the spec are rendered from templates; the
 rest (errors, the encode slow path, J1939 helpers, python-can glue) are plain source files
-under templates/python/static/, copied with the generated header."""
+under templates/python/static/, copied with the generated header — and the receive monitor,
+`monitor.py`, is canspec's own reference/monitor.py, copied the same way."""
 
 from __future__ import annotations
 
+import importlib.resources
 import subprocess
 
 from canspec import ir, resources
@@ -15,6 +17,7 @@ from canspec.targets.python.model import PyPackage, build_package
 
 # The formatter's version is part of the output: CI installs exactly this one (.ci/setup.d/40-python.sh).
 RUFF_VERSION = "0.17.6"
+MONITOR_SOURCE = "canspec.reference.monitor"  # modules' source: copied from canspec's own package
 LINE_LENGTH = 120
 TARGET_NAME = "python"
 
@@ -44,8 +47,8 @@ def ruff_format(source: str, filename: str, package: str) -> str:
 
 def _modules(pkg: PyPackage) -> dict[str, str]:
     """Package module → its template (`.j2`) or static source, for this spec."""
-    modules = {"__init__.py": "__init__.py.j2", "_rules.py": "_rules.py.j2", "messages.py": "messages.py.j2"}
-    modules.update({"errors.py": "static/errors.py", "_runtime.py": "static/_runtime.py", "bus.py": "static/bus.py"})
+    modules = {"__init__.py": "__init__.py.j2", "_rules.py": "_rules.py.j2", "messages.py": "messages.py.j2", "supervision.py": "supervision.py.j2"}
+    modules.update({"errors.py": "static/errors.py", "_runtime.py": "static/_runtime.py", "bus.py": "static/bus.py", "monitor.py": MONITOR_SOURCE})
     if pkg.enums:
         modules["enums.py"] = "enums.py.j2"
     if pkg.is_j1939:
@@ -57,7 +60,10 @@ def _modules(pkg: PyPackage) -> dict[str, str]:
 
 def static_source(spec: ir.Spec, name: str) -> str:
     """A static source file as shipped: the generated header, then the file verbatim."""
-    text = (resources.templates_dir() / "python" / name).read_text(encoding="utf-8")
+    if name == MONITOR_SOURCE:  # canspec's own receive monitor, the one implementation of it
+        text = (importlib.resources.files("canspec.reference") / "monitor.py").read_text(encoding="utf-8")
+    else:
+        text = (resources.templates_dir() / "python" / name).read_text(encoding="utf-8")
     return "".join(f"# {line}\n" for line in header_lines(spec, TARGET_NAME)) + "\n" + text
 
 

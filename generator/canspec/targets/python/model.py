@@ -20,9 +20,10 @@ MAX_TUPLE_LOOKUP_BITS = 8
 # imports): message and enum classes never take one.
 PACKAGE_NAMES = frozenset(
     {
-        "annotations", "enums", "errors", "j1939", "messages", "multiframe", "bus", "PROTOCOL", "VERSION", "DOCUMENT", "BITRATE", "SPEC_SHA256",
-        "Error", "DecodeError", "EncodeError", "ChecksumError", "FrameLengthError", "RangeError", "RawRangeError", "UnknownFrameError",
-        "UnknownSignalError", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode", "encode_raw", "Callable",
+        "annotations", "enums", "errors", "j1939", "messages", "multiframe", "bus", "monitor", "supervision", "PROTOCOL", "VERSION", "DOCUMENT",
+        "BITRATE", "SPEC_SHA256", "Error", "DecodeError", "EncodeError", "ChecksumError", "FrameLengthError", "RangeError", "RawRangeError",
+        "UnknownFrameError", "UnknownSignalError", "TextError", "TextIndexError", "InconsistentTextError", "InvalidTextError", "new_monitor", "TEXT_ASSEMBLERS",
+        "FaultTable", "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode", "encode_raw", "Callable",
         "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum", "_new", "_from_bytes",
         "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
     }
@@ -34,13 +35,15 @@ MODULE_DOCS = {
     "errors": "what decode and encode raise",
     "j1939": "29-bit ID helpers",
     "multiframe": "texts spread over several frames, e.g. the VIN",
+    "monitor": "the receive monitor: timeouts, counters, checksums, states, fault codes",
+    "supervision": "the monitor configured for this protocol (`new_monitor`)",
     "bus": "python-can integration; needs python-can",
 }
 # Constants of every message class: special-value constants never take one.
 CLASS_CONSTANTS = frozenset(
     {
         "NAME", "FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "PDU_FORMAT", "PDU_SPECIFIC", "SOURCE_ADDRESS",
-        "DESTINATION_ADDRESS", "FINGERPRINT", "SIGNALS", "COUNTER_MODULO",
+        "DESTINATION_ADDRESS", "FINGERPRINT", "SIGNALS", "COUNTER_MODULO", "COUNTER_START", "COUNTER_LENGTH", "CHECKSUM_BYTE", "CHECKSUM_COVER",
     }
 )
 
@@ -74,6 +77,9 @@ class PyMultiFrame:
     total_bytes: int  # frames × bytes per frame
     last_index: int
     padding_lit: str  # the padding byte as a bytes literal
+    chunk_mask: str  # hex literal: the payload's text bits
+    text_func: str  # the module's helper: chunks → text
+    key_attrs: tuple[str, ...]  # attributes every frame of one text shares (MultiFrame.key_signals)
 
 
 @dataclass(frozen=True)
@@ -94,6 +100,11 @@ class PyMessage:
     checksum: code.PyChecksum | None
     counter: PySignal | None
     counter_modulo: int
+    counter_start: int
+    counter_length: int
+    checksum_byte: int
+    checksum_cover: str  # hex literal of ir.Checksum.cover_mask ("" without a checksum)
+    rule_args: tuple[str, ...]  # supervision.py: the monitor's MessageRule(...) arguments, from the class
     multiframe: PyMultiFrame | None
     decode_func: str
     encode_func: str
@@ -128,9 +139,11 @@ class PyPackage:
     has_signals: bool  # some message has a data signal (slow-path descriptors)
     has_values: bool  # some message has a signal encode takes from the caller (not only a checksum)
     has_checksums: bool
+    has_counters: bool
     has_multiframe: bool
     tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
     dict_lookups: bool  # some through a dict (`_member`)
+    fault_tables: tuple[ir.FaultTable, ...]
 
 
 def titled(title: str, zh: str) -> str:
@@ -191,6 +204,7 @@ class _Builder:
         return PyMultiFrame(
             by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, f"0x{m.padding:02X}", m.encoding,
             split, join, self.module.take(f"{self.classes[msg.name]}TextAssembler"), m.frames * m.bytes_per_frame, m.frames - 1, repr(bytes([m.padding])),
+            f"0x{(1 << (8 * m.bytes_per_frame)) - 1:X}", self.module.take(f"_{msg.name}_text"), tuple(by_name[k].attr for k in m.key_signals),
         )
 
     def message(self, msg: ir.Message) -> PyMessage:
@@ -209,11 +223,23 @@ class _Builder:
             desc=py_doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
             fingerprint=f"0x{msg.fingerprint:08X}", signals=signals, checksum=checksum,
             counter=by_name[msg.counter.signal] if msg.counter is not None else None, counter_modulo=msg.counter.modulo if msg.counter is not None else 0,
+            counter_start=msg.counter.start if msg.counter is not None else 0, counter_length=msg.counter.length if msg.counter is not None else 0,
+            checksum_byte=msg.checksum.byte if msg.checksum is not None else 0,
+            checksum_cover=f"0x{msg.checksum.cover_mask:X}" if msg.checksum is not None else "", rule_args=_rule_args(cls, msg),
             multiframe=self.multiframe(msg, by_name), decode_func=funcs["decode"], encode_func=funcs["encode"], pack_func=pack_func,
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
             frame_checks=code.frame_checks(frame), encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
             checksum_ok_lines=code.checksum_ok(frame),
         )
+
+
+def _rule_args(cls: str, msg: ir.Message) -> tuple[str, ...]:
+    return (
+        f"{cls}.NAME", f"{cls}.FRAME_ID", f"{cls}.IS_EXTENDED", f"{cls}.DLC",
+        f"{cls}.CYCLE_MS * timeout_cycles" if msg.cycle_ms is not None else "None",
+        f"CounterRule({cls}.COUNTER_START, {cls}.COUNTER_LENGTH)" if msg.counter is not None else "None",
+        f"ChecksumRule({cls}.CHECKSUM_BYTE, {cls}.CHECKSUM_COVER)" if msg.checksum is not None else "None",
+    )
 
 
 def _modules_doc(present: dict[str, bool]) -> tuple[str, ...]:
@@ -235,6 +261,6 @@ def build_package(spec: ir.Spec) -> PyPackage:
         enums=b.enums, used_enums=tuple(sorted({lk.enum for lk in lookups})), lookups=lookups, messages=messages, example=example,
         modules=tuple(sorted(m for m in MODULE_DOCS if m != "bus" and present[m])), modules_doc=_modules_doc(present),
         has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
-        has_checksums=can.has_checksums, has_multiframe=can.has_multiframe,
-        tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups),
+        has_checksums=can.has_checksums, has_counters=can.has_counters, has_multiframe=can.has_multiframe,
+        tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups), fault_tables=can.fault_tables,
     )

@@ -1,6 +1,6 @@
 """Rust bindings: a `no_std` Cargo crate named after the CAN protocol (`rust/`).
 
-The spec-independent modules (`codec`, `j1939`) are real Rust files under
+The spec-independent modules (`codec`, `j1939`, `monitor`) are real Rust files under
 templates/rust/static/, copied with the generated header; the constants they read come from
 the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory,
 so the committed files are exactly what `make gen` writes. The view model is `model.py`.
@@ -14,6 +14,7 @@ from canspec.render.formatters import rustfmt
 from canspec.targets import Target
 from canspec.targets.rust.check import problems
 from canspec.targets.rust.model import RustCrate, build_crate
+from canspec.targets.rust.monitor import build_supervision
 from canspec.targets.rust.tests_view import build_tests
 
 TARGET_NAME = "rust"
@@ -23,10 +24,13 @@ TEMPLATES = {
     "src/constants.rs": "rust/constants.rs.j2",
     "src/messages.rs": "rust/messages.rs.j2",
     "src/values.rs": "rust/values.rs.j2",
+    "src/supervision.rs": "rust/supervision.rs.j2",
+    "tests/sequences.rs": "rust/tests/sequences.rs.j2",
+    "tests/monitor.rs": "rust/tests/monitor.rs.j2",
     "tests/vectors.rs": "rust/tests/vectors.rs.j2",
     "tests/properties.rs": "rust/tests/properties.rs.j2",
 }
-STATIC = ("src/codec.rs", "src/j1939.rs")
+STATIC = ("src/codec.rs", "src/j1939.rs", "src/monitor.rs")
 
 
 def _wanted(rel: str, crate: RustCrate) -> bool:
@@ -44,7 +48,10 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
         return {}
     crate = build_crate(spec.can)
     tests = build_tests(crate)
-    sources = {rel: render(template, spec, TARGET_NAME, can=spec.can, crate=crate, tests=tests) for rel, template in TEMPLATES.items() if _wanted(rel, crate)}
+    sup = build_supervision(spec.can, crate)
+    sources = {
+        rel: render(template, spec, TARGET_NAME, can=spec.can, crate=crate, tests=tests, sup=sup) for rel, template in TEMPLATES.items() if _wanted(rel, crate)
+    }
     sources.update({rel: _static(rel, spec) for rel in STATIC if _wanted(rel, crate)})
     return {f"rust/{rel}": (rustfmt(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from canspec import ir
 from canspec.ir import j1939
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
+from canspec.reference import textframes
 from canspec.render.literals import double_repr, grouped_int, hex_byte, rust_string
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
@@ -86,6 +87,11 @@ class RustText:
     chunk_to_raw: str  # `word` ([u8; 8]) as the payload's raw value
     raw_to_chunk: str  # `frame`'s payload as bytes
     text_pattern: str  # proptest: a Rust string literal of the regex of a text that round-trips
+    keys: tuple[RustField, ...]  # fields every frame of one text shares (MultiFrame.key_signals)
+    other_key: RustField | None  # tests: a key field with another valid raw value, other_raw
+    other_raw: str
+    sample_a: str  # tests: two texts that round-trip
+    sample_b: str
 
 
 @dataclass(frozen=True)
@@ -200,6 +206,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
 
 SEEN_TYPES = ((32, "u32"), (64, "u64"), (128, "u128"))
 MAX_TEXT_FRAMES = SEEN_TYPES[-1][0]
+SAMPLE_TEXTS = ("LSKG5GC13KA123456", "COCKPIT0000000042")
 
 
 def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | None:
@@ -222,12 +229,16 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     pad = m.padding
     ranges = [(lo, hi) for lo, hi in ((0x20, pad - 1), (pad + 1, 0x7E)) if lo <= hi] if 0x20 <= pad <= 0x7E else [(0x20, 0x7E)]
     pattern = "[" + "".join(f"\\x{{{lo:02X}}}-\\x{{{hi:02X}}}" for lo, hi in ranges) + f"]{{0,{m.text_length}}}"
+    found = textframes.other_key(msg)
+    other = (next(f for f in fields if f.sig.name == found[0]), grouped_int(found[1])) if found is not None else (None, "")
     return RustText(
         index=index, payload=payload, text_length=m.text_length, frames=m.frames, bytes_per_frame=m.bytes_per_frame, total=m.frames * m.bytes_per_frame,
         padding=hex_byte(pad), assembler=f"{pascal(msg.name)}Text", seen_type=next(t for n, t in SEEN_TYPES if m.frames <= n), all_seen=grouped_int((1 << m.frames) - 1),
         index_store=cast("index", "usize", index.raw_type), index_of=index_of,
         error_index=f"frame.{index.names.raw_getter}()" if index.raw_type == "u8" else "u8::try_from(index).unwrap_or(u8::MAX)",
         chunk_to_raw=cast(word, "u64", payload.raw_type), raw_to_chunk=to_chunk, text_pattern=rust_string(pattern),
+        keys=tuple(f for f in fields if f.sig.name in m.key_signals), other_key=other[0], other_raw=other[1],
+        sample_a=textframes.sample_text(m, SAMPLE_TEXTS[0]), sample_b=textframes.sample_text(m, SAMPLE_TEXTS[1]),
     )
 
 

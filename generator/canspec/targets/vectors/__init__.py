@@ -1,4 +1,6 @@
-"""Shared test vectors (`vectors/can.json`): the one file every language's round-trip tests read.
+"""Shared test vectors (`vectors/can.json`): the one file every language's round-trip tests read;
+and the sequence vectors (`vectors/sequences.json`, sequences.py and texts.py) for the receive
+monitors and multi-frame text reassembly.
 
 Per message: the all-zero frame, the minimum and maximum of every signal, every allowed
 value-table entry and special value, rounding ties, and 50 seeded pseudo-random cases.
@@ -20,10 +22,22 @@ from canspec import ir
 from canspec.ir.encoding import fits_runtime, to_raw_exact, to_raw_runtime
 from canspec.reference import codec
 from canspec.targets import Target
+from canspec.targets.vectors import sequences, texts
 
 RANDOM_CASES = 50
 VECTOR_FORMAT = 1
 SAMPLE_VIN = "LKLA6G1H8LA000205"
+MONITOR_RULES = (
+    "Each sequence runs on a fresh monitor of every message (timeout = timeout_cycles x cycle, its params). Steps: start "
+    "(supervise the messages' timeouts from t), frame (received at t: its faults, state, counter delta, checksum, recovery "
+    "and the fault codes after it), check (the messages that time out at t). Times are ms modulo 2^32. "
+    "The rules: generator/canspec/reference/monitor.py."
+)
+TEXT_RULES = (
+    "Frames of one multi-frame message fed in order to a fresh reassembly: result ok/length/checksum/index/inconsistent, "
+    "text: the text when complete and valid, null while incomplete, false when complete but invalid. "
+    "The rules: generator/canspec/reference/textframes.py."
+)
 
 
 def base_raw(sig: ir.Signal) -> int:
@@ -176,11 +190,32 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
     }
 
 
+def build_sequences(spec: ir.Spec) -> dict[str, Any]:
+    assert spec.can is not None
+    return {
+        "format": VECTOR_FORMAT,
+        "spec": spec.name,
+        "version": spec.version,
+        "sha256": spec.sha256,
+        "generated_by": f"canspec {spec.generator_version}",
+        "rules": {
+            "monitor": MONITOR_RULES,
+            "timeout_cycles": ir.MONITOR_TIMEOUT_CYCLES,
+            "texts": TEXT_RULES,
+        },
+        "monitor": sequences.monitor_sequences(spec.can),
+        "texts": texts.all_text_sequences(spec.can),
+    }
+
+
+def _json(data: dict[str, Any]) -> bytes:
+    return (json.dumps(data, indent=1, sort_keys=True, ensure_ascii=False) + "\n").encode("utf-8")
+
+
 def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
-    text = json.dumps(build_vectors(spec), indent=1, sort_keys=True, ensure_ascii=False) + "\n"
-    return {"vectors/can.json": text.encode("utf-8")}
+    return {"vectors/can.json": _json(build_vectors(spec)), "vectors/sequences.json": _json(build_sequences(spec))}
 
 
 TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2)

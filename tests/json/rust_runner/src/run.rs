@@ -4,7 +4,8 @@
 // of valid messages.
 //
 // `RUNNER VECTORS` prints one JSON result per case (for tests/json/); `RUNNER --check VECTORS`
-// compares them with the vectors' expectations itself and ends with `N passed, N failed`.
+// compares them with the vectors' expectations itself and ends with `N passed, N failed`;
+// `RUNNER --text FILE` reads each line of FILE as JSON text (Message::from_json_str).
 
 use bindings::{Message, Party};
 use serde_json::{json, Value};
@@ -47,6 +48,13 @@ fn run(case: &Value) -> Value {
             result["error"] = json!(e.to_string());
         }
     }
+    // the text reader agrees with the value reader on the case's text
+    let text = Message::from_json_str(&v.to_string());
+    result["text"] = json!(match (&text, Message::from_value(v)) {
+        (Ok(a), Ok(b)) => a == &b,
+        (Err(a), Err(b)) => a == &b,
+        _ => false,
+    });
     result["as_received"] = json!(Message::from_value_to(v, receiver).ok().map(|m| m.name()));
     result["as_any"] = json!(Message::from_value(v).ok().map(|m| m.name()));
     result
@@ -67,6 +75,9 @@ fn mismatch(case: &Value, got: &Value) -> Option<String> {
     } else if got["field"] != case["field"] || got["rule"] != case["rule"] {
         why.push(format!("fault {}/{} (expected {}/{})", got["field"], got["rule"], case["field"], case["rule"]));
     }
+    if got["text"] != json!(true) {
+        why.push("the text reader disagrees with the value reader".to_owned());
+    }
     for key in ["as_received", "as_any"] {
         if got[key] != case[key] {
             why.push(format!("{key} {} (expected {})", got[key], case[key]));
@@ -75,8 +86,30 @@ fn mismatch(case: &Value, got: &Value) -> Option<String> {
     (!why.is_empty()).then(|| format!("{}: {}", case["id"], why.join("; ")))
 }
 
+/// `--text FILE`: each line a JSON text, read by `Message::from_json_str`; one result per line.
+fn texts(path: &str) -> ExitCode {
+    let Ok(all) = std::fs::read_to_string(path) else {
+        eprintln!("json-vectors-runner: cannot read {path}");
+        return ExitCode::from(2);
+    };
+    let results: Vec<Value> = all
+        .lines()
+        .map(|line| match Message::from_json_str(line) {
+            Ok(m) => json!({"valid": true, "message": m.name()}),
+            Err(e) => json!({"valid": false, "field": e.field, "rule": e.code.as_str()}),
+        })
+        .collect();
+    println!("{}", Value::Array(results));
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [flag, path] = args.as_slice() {
+        if flag == "--text" {
+            return texts(path);
+        }
+    }
     let check = args.iter().any(|a| a == "--check");
     let Some(path) = args.iter().find(|a| !a.starts_with("--")) else {
         eprintln!("usage: json-vectors-runner [--check] VECTORS_JSON");

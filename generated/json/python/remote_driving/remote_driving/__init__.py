@@ -28,6 +28,7 @@ from .messages import (
     StatusGear,
     ValidationError,
     is_reply_to,
+    loads,
     parse,
 )
 
@@ -57,5 +58,6 @@ __all__ = [
     "StatusGear",
     "ValidationError",
     "is_reply_to",
+    "loads",
     "parse",
 ]

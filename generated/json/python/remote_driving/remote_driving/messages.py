@@ -6,12 +6,14 @@ Every message is a frozen dataclass that validates itself on construction: `from
 reads a decoded JSON value (`json.loads`), `to_json()` gives it back. A value that breaks the
 protocol raises `ValidationError` naming the message, the field (JSON key), the value and the
 rule; nothing else is ever raised for bad input. `parse(obj, receiver=None)` tells the messages
-apart (see `parse`). Standard library only.
+apart (see `parse`); `loads(text, receiver=None)` reads JSON text, refusing what `json.loads`
+lets through (NaN, Infinity, a key given twice). Standard library only.
 """
 
 from __future__ import annotations
 
 import enum
+import json
 import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -24,7 +26,7 @@ class ValidationError(ValueError):
     """A JSON value that breaks the protocol.
 
     `message`: the message it was read as; `field`: the JSON key at fault ("" when the value
-    is not a JSON object); `value`: the offending value; `code`: one of object, required, unexpected, type, type_range, enum, range, length, cmd;
+    is not a JSON object); `value`: the offending value; `code`: one of object, required, unexpected, type, type_range, enum, range, length, cmd, json, duplicate;
     `rule`: the rule broken, in words.
     """
 
@@ -1197,6 +1199,45 @@ def parse(obj: Any, receiver: str | None = None) -> Message:
     if receiver is not None:
         raise ValueError(f"unknown receiver {receiver!r}: one of {RECEIVERS}")
     return _read_any(obj)
+
+
+class _NotFinite(float):
+    """NaN or Infinity in the text, or a number beyond every double: not JSON (numbers are finite)."""
+
+
+def _float(text: str) -> float:
+    value = float(text)
+    return value if math.isfinite(value) else _NotFinite(value)
+
+
+def _object_pairs(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    obj: dict[str, Any] = {}
+    for key, value in pairs:
+        if isinstance(value, _NotFinite):
+            raise ValidationError("message", key, float(value), "json", "is not JSON (numbers are finite)")
+        if key in obj:
+            raise ValidationError("message", key, value, "duplicate", "appears twice in one object")
+        obj[key] = value
+    return obj
+
+
+def loads(text: str | bytes, receiver: str | None = None) -> Message:
+    """Read a message from JSON text: `parse(json.loads(text), receiver)`, but refusing what
+    `json.loads` accepts and JSON does not allow: NaN and Infinity, and numbers beyond every
+    double such as 1e400 (numbers are finite), and a key given twice in an object (`json.loads`
+    keeps the last).
+    Raises ValidationError: code `json` for text that is not JSON (naming the key of a number
+    that is not finite), `duplicate` (naming the key) for a key given twice, else as `parse`.
+    """
+    try:
+        obj = json.loads(text, parse_float=_float, parse_constant=_NotFinite, object_pairs_hook=_object_pairs)
+    except ValidationError:
+        raise
+    except (ValueError, TypeError) as exc:
+        raise ValidationError("message", "", text, "json", f"is not JSON text ({exc})") from None
+    if isinstance(obj, _NotFinite):
+        raise ValidationError("message", "", float(obj), "json", "is not JSON (numbers are finite)")
+    return parse(obj, receiver)
 
 
 def is_reply_to(reply: Any, request: Any) -> bool:

@@ -45,6 +45,10 @@ pub enum ErrorCode {
     Length,
     /// `cmd`
     Cmd,
+    /// `json`
+    Json,
+    /// `duplicate`
+    Duplicate,
 }
 
 impl ErrorCode {
@@ -61,6 +65,8 @@ impl ErrorCode {
             Self::Range => "range",
             Self::Length => "length",
             Self::Cmd => "cmd",
+            Self::Json => "json",
+            Self::Duplicate => "duplicate",
         }
     }
 }
@@ -1675,6 +1681,25 @@ impl Message {
     /// A [`ValidationError`] naming the first field that breaks the protocol.
     pub fn from_value(v: &Value) -> Result<Self, ValidationError> {
         read_any(v)
+    }
+
+    /// Read a message from JSON text, as [`Message::from_value`]; a key given twice in an
+    /// object is refused (`serde_json::from_str` keeps the last), and so are NaN and Infinity
+    /// (not JSON; numbers are finite).
+    ///
+    /// # Errors
+    /// A [`ValidationError`]: code `json` for text that is not JSON, `duplicate` (naming the
+    /// key) for a key given twice, else as [`Message::from_value`].
+    pub fn from_json_str(text: &str) -> Result<Self, ValidationError> {
+        read_any(&rt::parse_text(text)?)
+    }
+
+    /// Read a message sent to `receiver` from JSON text, as [`Message::from_json_str`].
+    ///
+    /// # Errors
+    /// As [`Message::from_json_str`] and [`Message::from_value_to`].
+    pub fn from_json_str_to(text: &str, receiver: Party) -> Result<Self, ValidationError> {
+        Self::from_value_to(&rt::parse_text(text)?, receiver)
     }
 
     /// Read a message sent to `receiver`: only what that party receives is accepted.

@@ -8,7 +8,10 @@
 #![allow(dead_code)]
 
 use super::{ErrorCode, ValidationError};
-use serde_json::{Map, Value};
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde_json::{Map, Number, Value};
+use std::cell::RefCell;
+use std::fmt;
 
 pub(crate) fn err(
     message: &'static str,
@@ -167,5 +170,124 @@ pub(crate) fn documented(
         Ok(())
     } else {
         Err(err(message, key, v, ErrorCode::Range, rule))
+    }
+}
+
+/// JSON text as a `Value`, refusing what `serde_json::from_str` lets through: a key given twice
+/// in an object (it keeps the last). NaN and Infinity are no JSON: refused as text that is not
+/// JSON, naming the key they stand at.
+pub(crate) fn parse_text(text: &str) -> Result<Value, ValidationError> {
+    let fault = RefCell::new(None);
+    let mut de = serde_json::Deserializer::from_str(text);
+    let parsed = Strict(&fault)
+        .deserialize(&mut de)
+        .and_then(|v| de.end().map(|()| v));
+    match (parsed, fault.into_inner()) {
+        (Ok(v), _) => Ok(v),
+        (Err(_), Some(Fault::Duplicate(key, value))) => Err(err(
+            "message",
+            &key,
+            &value,
+            ErrorCode::Duplicate,
+            "appears twice in one object",
+        )),
+        (Err(e), at) => {
+            let key = match at {
+                Some(Fault::Syntax(key)) => key,
+                _ => String::new(),
+            };
+            Err(err(
+                "message",
+                &key,
+                &Value::String(e.to_string()),
+                ErrorCode::Json,
+                "(the text is not JSON; numbers are finite)",
+            ))
+        }
+    }
+}
+
+/// Where reading the text failed first: a key given twice (with its second value), or the key
+/// whose value is not JSON.
+enum Fault {
+    Duplicate(String, Value),
+    Syntax(String),
+}
+
+/// Builds a `Value` like serde_json's own, recording the innermost fault.
+struct Strict<'a>(&'a RefCell<Option<Fault>>);
+
+impl<'de> DeserializeSeed<'de> for Strict<'_> {
+    type Value = Value;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Value, D::Error> {
+        deserializer.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Strict<'_> {
+    type Value = Value;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_unit<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+
+    fn visit_bool<E>(self, v: bool) -> Result<Value, E> {
+        Ok(Value::Bool(v))
+    }
+
+    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
+        Ok(Value::Number(v.into()))
+    }
+
+    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
+        Ok(Value::Number(v.into()))
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Value, E> {
+        Number::from_f64(v)
+            .map(Value::Number)
+            .ok_or_else(|| E::custom("a number that is not finite"))
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<Value, E> {
+        Ok(Value::String(v.to_owned()))
+    }
+
+    fn visit_string<E>(self, v: String) -> Result<Value, E> {
+        Ok(Value::String(v))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let mut out = Vec::new();
+        while let Some(v) = seq.next_element_seed(Strict(self.0))? {
+            out.push(v);
+        }
+        Ok(Value::Array(out))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let mut out = Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            let value = match map.next_value_seed(Strict(self.0)) {
+                Ok(value) => value,
+                Err(e) => {
+                    self.0.borrow_mut().get_or_insert(Fault::Syntax(key));
+                    return Err(e);
+                }
+            };
+            if out.contains_key(&key) {
+                self.0
+                    .borrow_mut()
+                    .get_or_insert(Fault::Duplicate(key, value));
+                return Err(de::Error::custom("a key given twice"));
+            }
+            out.insert(key, value);
+        }
+        Ok(Value::Object(out))
     }
 }
