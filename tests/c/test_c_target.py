@@ -164,6 +164,10 @@ def test_mock_firmware_project_generates_and_builds(tmp_path):
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     assert (fw / "gen" / "c" / "kaiwo_gateway.h").is_file()
     assert "firmware ok" in proc.stdout
+    # AUTOCAR's headers: a message between other nodes (RC → Wire_Car_ECU) is absent, its own are there
+    messages = (fw / "gen" / "c" / "kaiwo_gateway_messages.h").read_text(encoding="utf-8")
+    assert "kaiwo_gateway_autocar_eps_command_t" in messages and "kaiwo_gateway_eps_state_t" in messages
+    assert "kaiwo_gateway_tele_control_command_1_t" not in messages
     proc = cbuild.run(["make", "-C", str(fw), "check-gen"], env={**__import__("os").environ, **env})
     assert proc.returncode == 0, proc.stderr
 

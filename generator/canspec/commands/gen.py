@@ -1,4 +1,4 @@
-"""`canspec gen [SPEC] [-o DIR] [--target NAME...] [--check]`."""
+"""`canspec gen [SPEC] [-o DIR] [--target NAME...] [--node NAME] [--check]`."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from pathlib import Path
 
 from canspec.commands.common import compile_or_report
 from canspec.generate import GenerationError, generate
+from canspec.ir.nodeview import for_node, node_names
 from canspec.render import writer
 from canspec.targets import registry
 
@@ -23,9 +24,15 @@ def run(args: argparse.Namespace) -> int:
     if compiled.spec is None:
         print("canspec gen: nothing written (fix the errors above)", file=sys.stderr)
         return 1
+    spec = compiled.spec
+    if args.node is not None:
+        if args.node not in node_names(spec):
+            print(f"canspec gen: --node {args.node}: no such node (nodes: {', '.join(node_names(spec)) or 'none: the spec has no CAN protocol'})", file=sys.stderr)
+            return 2
+        spec = for_node(spec, args.node)
     out = Path(args.output)
     try:
-        outputs = generate(compiled.spec, names)
+        outputs = generate(spec, names)
     except GenerationError as exc:
         print(f"canspec gen: {exc}; nothing written", file=sys.stderr)
         return 1
@@ -60,6 +67,7 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("spec", nargs="?", default=None, help="spec bundle, directory or file (default: the shipped spec)")
     p.add_argument("-o", "--output", default="generated", help="output directory (default: ./generated)")
     p.add_argument("-t", "--target", action="append", help="target to generate (repeatable; default: all)")
+    p.add_argument("--node", metavar="NAME", help="only the messages this node sends or receives (an ECU's headers: --target c --node NAME)")
     p.add_argument("--check", action="store_true", help="write nothing; list stale or missing files and exit 1 if any")
     p.add_argument("--strict", action="store_true", help="treat spec warnings as errors")
     p.add_argument("-q", "--quiet", action="store_true")

@@ -461,6 +461,7 @@ class Spec:
     changelog: Changelog | None
     generator_version: str
     errata_md: str | None = None  # text of ERRATA.md beside the bundle, if any (rendered by the docs)
+    node: str | None = None  # set in one node's view (ir/nodeview.py): only its messages
 
     @property
     def short_hash(self) -> str:
