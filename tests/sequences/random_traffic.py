@@ -4,7 +4,8 @@ the model on traffic no one wrote by hand.
 
 Monitor sequences interleave the frames of a few messages with drops, repeats, counter jumps and
 stale counters, corrupted checksums, wrong lengths, unknown IDs (and IDs of the other format),
-timing jitter and times landing exactly around the timeout, timeout checks, and tick wrap-around.
+timing jitter and times landing exactly around the timeout, timeout checks, (re)starts of the
+supervision, and tick wrap-around.
 Text sequences interleave the frames of several senders' texts (valid, too long, with control
 characters) with drops, repeats, short frames, bad indexes and corrupted checksums.
 
@@ -97,9 +98,12 @@ class MonitorRun:
         rng = self.rng
         msg = rng.choice(self.messages)
         self.advance(msg)
-        kind = rng.choices(["ok", "drop", "repeat", "corrupt", "length", "unknown", "check"], [12, 2, 1, 2, 1, 1, 3])[0]
+        kind = rng.choices(["ok", "drop", "repeat", "corrupt", "length", "unknown", "check", "start"], [12, 2, 1, 2, 1, 1, 3, 1])[0]
         if kind == "check":
             self.check()
+            return kind
+        if kind == "start":
+            self.start()
             return kind
         if kind == "unknown":
             self.send(*self.unknown_id(), rng.randbytes(rng.randint(0, 8)))
