@@ -200,11 +200,11 @@ def text_sequence(msg, rng: random.Random, index: int) -> dict[str, Any]:
     steps, kinds = [], []
     for i in order:
         data = pool[i]
-        # No over-long text frames: Rust's `decode` reads the first DLC bytes of a longer buffer by
-        # design (README: "short frames" are its length error); the monitor sequences have them.
-        kind = rng.choices(["ok", "drop", "twice", "short", "index", "corrupt"], [14, 2, 2, 1, 1, 1])[0]
+        kind = rng.choices(["ok", "drop", "twice", "short", "long", "index", "corrupt"], [14, 2, 2, 1, 1, 1, 1])[0]
         if kind == "short":
             data = data[: rng.randrange(len(data))] if data else b"\x00"
+        elif kind == "long":  # a padded frame: no part of a text in any language
+            data = data + bytes(rng.randint(1, 4))
         elif kind == "index":
             data = _bad_index(rng, msg, data) or data
         elif kind == "corrupt" and msg.checksum is not None:

@@ -13105,6 +13105,20 @@ impl DeviceIdText {
         }
     }
 
+    /// Take one received frame's bytes, as C's `_rx_feed` does: exactly [`DeviceId::DLC`]
+    /// bytes ([`Error::Length`] otherwise: a padded or truncated frame is no part of a text),
+    /// then [`DeviceId::decode`] and [`Self::push`].
+    pub fn push_frame(&mut self, data: &[u8]) -> Result<Option<crate::Text<17>>, Error> {
+        if data.len() != DeviceId::DLC {
+            return Err(Error::Length {
+                frame_id: DeviceId::FRAME_ID,
+                expected: DeviceId::DLC,
+                actual: data.len(),
+            });
+        }
+        self.push(&DeviceId::decode(data)?)
+    }
+
     /// Whether every frame of one text has arrived.
     pub const fn is_complete(&self) -> bool {
         self.seen == Self::ALL

@@ -158,10 +158,8 @@ fn run_text(seq: &Value) -> Vec<String> {
         "device_id" => {
             let mut assembler = DeviceIdText::new();
             for (i, step) in steps.iter().enumerate() {
-                let result = text_result(
-                    DeviceId::decode(&hex(step["data"].as_str().expect("data")))
-                        .and_then(|frame| assembler.push(&frame)),
-                );
+                let result =
+                    text_result(assembler.push_frame(&hex(step["data"].as_str().expect("data"))));
                 let text = if assembler.is_complete() {
                     assembler.text().map_or(json!(false), |t| json!(t.as_str()))
                 } else {
