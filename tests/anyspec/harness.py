@@ -2,7 +2,7 @@
 to its own toolchain and its own vectors. Batch-shaped for speed: every spec is written
 first, the per-spec work (check, gen, C, Python, cantools/canmatrix, JSON) runs in a process
 pool, and the Rust crates (one cargo workspace, one target directory) and the TypeScript
-declarations (one tsc program) are checked together at the end.
+declarations and readers (one tsc program) are checked together at the end.
 
 Entry points: `run_batch(...)` (pytest, `make test-any-spec`), `run_one(...)` (reproduce or
 shrink one spec). See tests/anyspec/README.md.
@@ -585,7 +585,7 @@ def stage_typescript(results: list[SpecResult], root: Path) -> float:
         r.checked.append("typescript")
         doc = json.loads(vec.read_text(encoding="utf-8"))
         for d in decls:
-            files.append(d)
+            files += [d, d.with_name(d.name.removesuffix(".d.ts") + ".reader.ts")]  # the reader pulls in canspec-json.ts
             owners[r.sid] = r
             proto = next((p for p in doc["protocols"] if p["protocol"] == d.name.removesuffix(".d.ts")), None)
             if proto is None:

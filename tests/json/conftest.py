@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from json_support import CARGO_TARGET, HERE, NODE_MODULES, PROTOCOL, PY_BINDINGS, RUNNER, SCHEMAS, VECTORS, require_tool, run
+from json_support import CARGO_TARGET, HERE, NODE_MODULES, PROTOCOL, PY_BINDINGS, RUNNER, SCHEMAS, TS_DIR, VECTORS, require_tool, run, ts_runners
 
 
 @pytest.fixture(scope="session")
@@ -63,4 +63,16 @@ def rust_runner() -> Path:
 @pytest.fixture(scope="session")
 def rust_results(rust_runner: Path) -> dict[str, dict[str, Any]]:
     proc = run([str(rust_runner), str(VECTORS)], "Rust JSON vectors runner")
+    return {r["id"]: r for r in json.loads(proc.stdout)}
+
+
+@pytest.fixture(scope="session")
+def ts_runner(tmp_path_factory: pytest.TempPathFactory) -> list[str]:
+    """The command running ts_runner.ts over the shipped protocol's generated TypeScript reader."""
+    return ts_runners({PROTOCOL: (TS_DIR, PROTOCOL)}, tmp_path_factory.mktemp("ts_reader"))[PROTOCOL]
+
+
+@pytest.fixture(scope="session")
+def ts_results(ts_runner: list[str]) -> dict[str, dict[str, Any]]:
+    proc = run([*ts_runner, str(VECTORS)], "TypeScript reader runner")
     return {r["id"]: r for r in json.loads(proc.stdout)}

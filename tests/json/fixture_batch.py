@@ -1,7 +1,8 @@
 """The JSON targets of every valid spec fixture holding a JSON protocol, generated into one
 directory and checked in batches: one ajv run, one ruff and one mypy run over every Python
 package, one cargo workspace (shared target dir, offline) for every Rust crate and its vector
-runner, one tsc program for every TypeScript declaration (used by test_json_fixtures.py)."""
+runner, one tsc program for every TypeScript declaration and reader, and one for the readers'
+vector runners (used by test_json_fixtures.py)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from typing import Any
 
 from canspec.generate import generate
 from canspec.pipeline import compile_spec
-from json_support import BUILD, HERE, NODE_MODULES, ROOT, require_tool, run
+from json_support import BUILD, HERE, NODE_MODULES, ROOT, require_tool, run, ts_runners
 
 VALID = ROOT / "tests" / "fixtures" / "valid"
 JSON_TARGETS = ["jsonschema", "json_bindings", "json_vectors"]
@@ -143,6 +144,11 @@ def typescript(outputs: list[Output], root: Path) -> None:
             src = root / "ts" / f"{o.unit(p)}.ts"
             src.parent.mkdir(parents=True, exist_ok=True)
             src.write_text("".join(lines), encoding="utf-8")
-            sources += [decl, src]
+            sources += [decl, decl.with_name(f"{p}.reader.ts"), src]
     opts = ["--noEmit", "--strict", "--noUnusedLocals", "false", "--target", "es2020", "--module", "es2020", "--moduleResolution", "node"]
-    run([node, str(tsc), *opts, *map(str, sources)], "tsc --strict (JSON fixture declarations)")
+    run([node, str(tsc), *opts, *map(str, sources)], "tsc --strict (JSON fixture declarations and readers)")
+
+
+def typescript_readers(outputs: list[Output], root: Path) -> dict[str, list[str]]:
+    """unit → the command running ts_runner.ts over that protocol's TypeScript reader."""
+    return ts_runners({o.unit(p): (o.out / "json" / "typescript", p) for o in outputs for p in o.protocols}, root)

@@ -21,6 +21,7 @@ PROTOCOL = "remote_driving"
 PY_BINDINGS = GENERATED / "json" / "python" / PROTOCOL
 RUST_CRATE = GENERATED / "json" / "rust" / PROTOCOL
 TS_DECL = GENERATED / "json" / "typescript" / f"{PROTOCOL}.d.ts"
+TS_DIR = GENERATED / "json" / "typescript"
 BUILD = ROOT / "build"
 NODE_MODULES = BUILD / "json-node" / "node_modules"
 CARGO_TARGET = BUILD / "json-rust"
@@ -54,3 +55,24 @@ def fields_at_fault(v: Any, instance: Any) -> set[str]:
         else:
             out.add(str(e.absolute_path[0]) if e.absolute_path else "")
     return out
+
+
+def ts_runners(units: dict[str, tuple[Path, str]], root: Path) -> dict[str, list[str]]:
+    """unit → (generated json/typescript dir, protocol): each unit's TypeScript (declarations,
+    reader, runtime) copied with ts_runner.ts (importing that protocol's reader) into its own
+    folder, all compiled in one `tsc --strict` program to CommonJS. Returns unit → node command."""
+    node = require_tool("node")
+    tsc = NODE_MODULES / "typescript" / "bin" / "tsc"
+    assert tsc.is_file(), f"typescript is not installed in {NODE_MODULES}: run `make setup`"
+    runner = (HERE / "ts_runner.ts").read_text(encoding="utf-8")
+    sources = []
+    for unit, (ts_dir, protocol) in units.items():
+        folder = root / "src" / unit
+        folder.mkdir(parents=True)
+        for f in [ts_dir / f"{protocol}.d.ts", ts_dir / f"{protocol}.reader.ts", ts_dir / "canspec-json.ts"]:
+            shutil.copy(f, folder / f.name)
+        (folder / "ts_runner.ts").write_text(runner.replace(PROTOCOL, protocol), encoding="utf-8")
+        sources += sorted(folder.glob("*.ts"))
+    opts = ["--strict", "--noUnusedLocals", "--noUnusedParameters", "--target", "es2020", "--module", "commonjs"]
+    run([node, str(tsc), *opts, "--rootDir", str(root / "src"), "--outDir", str(root / "js"), *map(str, sources)], "tsc --strict (TypeScript readers)")
+    return {unit: [node, str(root / "js" / unit / "ts_runner.js")] for unit in units}

@@ -1,11 +1,13 @@
 """Validators and bindings from other ecosystems on the same vectors: ajv (npm, draft 2020-12,
 strict schema mode) on the generated schemas, the generated Rust crate (built with cargo, lint
-with clippy -D warnings), and the TypeScript declarations under `tsc --strict`."""
+with clippy -D warnings), the TypeScript declarations under `tsc --strict`, and the TypeScript
+reader (compiled with tsc, run with node)."""
 
 from __future__ import annotations
 
 import json
 import os
+import random
 import subprocess
 
 import pytest
@@ -50,8 +52,24 @@ def test_rust_bindings_agree_with_every_vector(cases, rust_results):
     assert bad == [], bad[:20]
 
 
-# JSON texts that json.loads / serde_json::from_str mishandle, with what both bindings' text
-# readers must say (valid, message) or (invalid, field, code): NaN and Infinity are no JSON
+def test_typescript_reader_agrees_with_every_vector(cases, ts_results):
+    bad = []
+    for c in cases:
+        r = ts_results[c["id"]]
+        if r["valid"] != c["valid"]:
+            bad.append((c["id"], "valid", r))
+        elif not c["valid"] and (r["field"], r["rule"]) != (c["field"], c["rule"]):
+            bad.append((c["id"], "fault", r, c["field"], c["rule"]))
+        if (r["as_received"], r["as_any"]) != (c["as_received"], c["as_any"]):
+            bad.append((c["id"], "dispatch", r["as_received"], r["as_any"]))
+        if not r["text"]:
+            bad.append((c["id"], "the text reader disagrees with the value reader"))
+    assert len(ts_results) == len(cases)
+    assert bad == [], bad[:20]
+
+
+# JSON texts that json.loads / serde_json::from_str / JSON.parse mishandle, with what every
+# binding's text reader must say (valid, message) or (invalid, field, code): NaN and Infinity are no JSON
 # (erratum J11: numbers are finite), a key given twice is no message.
 CONTROL = '"ts": 1, "bn": 2, "tr": 0, "st": 0, "g": "N", "m": 3, "vts": 0'
 TEXTS = [
@@ -67,9 +85,9 @@ TEXTS = [
 ]
 
 
-def _text_results_python(rd):
+def _text_results_python(rd, texts: list[str]) -> list[dict]:
     out = []
-    for text, *_ in TEXTS:
+    for text in texts:
         try:
             out.append({"valid": True, "message": rd.loads(text).NAME})
         except rd.ValidationError as e:
@@ -77,13 +95,57 @@ def _text_results_python(rd):
     return out
 
 
-def test_text_readers_refuse_nan_infinity_and_duplicate_keys(rust_runner, rd, tmp_path):
+def _text_results_ts(ts_runner, texts: list[str], path) -> list[dict]:
+    path.write_text("".join(t + "\n" for t in texts), encoding="utf-8")
+    return json.loads(run([*ts_runner, "--text", str(path)], "TypeScript JSON text reader").stdout)
+
+
+def test_text_readers_refuse_nan_infinity_and_duplicate_keys(rust_runner, ts_runner, rd, tmp_path):
     want = [{"valid": True, "message": t[2]} if t[1] else {"valid": False, "field": t[2], "rule": t[3]} for t in TEXTS]
-    assert _text_results_python(rd) == want
+    texts = [t[0] for t in TEXTS]
+    assert _text_results_python(rd, texts) == want
     lines = tmp_path / "texts.txt"
-    lines.write_text("".join(t[0] + "\n" for t in TEXTS), encoding="utf-8")
+    lines.write_text("".join(t + "\n" for t in texts), encoding="utf-8")
     rust = json.loads(run([str(rust_runner), "--text", str(lines)], "Rust JSON text reader").stdout)
     assert rust == want
+    assert _text_results_ts(ts_runner, texts, tmp_path / "texts_ts.txt") == want
+
+
+# Text-level mutations (what a value mutation cannot write): numbers beyond every double, NaN,
+# keys given twice (also inside nested objects and arrays), cut-short and damaged text.
+ODD_TOKENS = ["1e400", "-1e400", "1E+999", "1.5e308", "1e-400", "NaN", "Infinity", "-Infinity", "-0", "2.0", "1" + "0" * 400, "[1e400]",
+              '{"a": 1e400}', '{"a": 1, "a": 2}', '[{"b": NaN}]', "true", "null", '"N"', '"\\u0041"', "01", "1.", ".5", "+1", "tru"]
+
+
+def _mutate_text(rng: random.Random, text: str) -> str:
+    op = rng.random()
+    if op < 0.35:  # a member's value replaced by an odd token
+        obj = json.loads(text)
+        key = rng.choice(list(obj))
+        member = json.dumps(key, ensure_ascii=False) + ": " + json.dumps(obj[key], ensure_ascii=False)
+        return text.replace(member, json.dumps(key) + ": " + rng.choice(ODD_TOKENS), 1)
+    if op < 0.6:  # a key given again, before or after the rest
+        key = rng.choice(list(json.loads(text)))
+        member = json.dumps(key) + ": " + rng.choice([*ODD_TOKENS[:8], "0", "1", '"N"'])
+        return "{" + member + ", " + text[1:] if rng.random() < 0.5 else text[:-1] + ", " + member + "}"
+    if op < 0.8:  # cut short, or a character removed
+        at = rng.randrange(len(text))
+        return text[:at] if rng.random() < 0.5 else text[:at] + text[at + 1 :]
+    at = rng.randrange(len(text) + 1)  # a character inserted
+    return text[:at] + rng.choice([" ", "\t", ",", ":", "{", "}", "[", "]", '"', "\\", "x", "\u00e9"]) + text[at:]
+
+
+def test_text_readers_agree_on_random_text_mutations(cases, rd, ts_runner, tmp_path):
+    """The Python and TypeScript text readers: the same verdict, message, field and code."""
+    rng = random.Random(20261201)
+    valid = [json.dumps(c["json"], ensure_ascii=False) for c in cases if c["valid"] and isinstance(c["json"], dict) and c["json"]]
+    texts = [_mutate_text(rng, rng.choice(valid)) for _ in range(1500)]
+    py = _text_results_python(rd, texts)
+    ts = _text_results_ts(ts_runner, texts, tmp_path / "mutations.txt")
+    bad = [(t, p, s) for t, p, s in zip(texts, py, ts, strict=True) if p != s]
+    assert bad == [], bad[:10]
+    codes = {p.get("rule") for p in py}
+    assert {"json", "duplicate", None} <= codes, codes  # the mutations reach both refusals and valid messages
 
 
 def test_rust_runner_check_mode(rust_runner, cases):

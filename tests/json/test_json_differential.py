@@ -1,8 +1,8 @@
 """Differential fuzzing over seeded random mutations of the vector cases: the Python bindings,
-Python jsonschema, ajv and the Rust bindings must give the same verdict on every message, the
-Rust and Python bindings the same field and rule at fault. The mutations (dropped keys, keys
-set to odd values, added keys) are written as a vectors-format file that the ajv script and
-the Rust runner read like the real vectors."""
+Python jsonschema, ajv, the Rust bindings and the TypeScript reader must give the same verdict
+on every message, the bindings the same field and rule at fault. The mutations (dropped keys,
+keys set to odd values, added keys) are written as a vectors-format file that the ajv script
+and the Rust and TypeScript runners read like the real vectors."""
 
 from __future__ import annotations
 
@@ -63,11 +63,12 @@ def python_verdicts(rd, c: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def test_four_implementations_agree_on_random_mutations(rd, cases, schemas, rust_runner, tmp_path):
+def test_five_implementations_agree_on_random_mutations(rd, cases, schemas, rust_runner, ts_runner, tmp_path):
     fuzz = fuzz_cases(cases)
     path = tmp_path / "fuzz.json"
     path.write_text(json.dumps({"format": 1, "protocols": [{"protocol": "remote_driving", "cases": fuzz}]}), encoding="utf-8")
     rust = {r["id"]: r for r in json.loads(run([str(rust_runner), str(path)], "Rust runner (fuzz)").stdout)}
+    ts = {r["id"]: r for r in json.loads(run([*ts_runner, str(path)], "TypeScript runner (fuzz)").stdout)}
     node = require_tool("node")
     env = {**os.environ, "NODE_PATH": str(NODE_MODULES)}
     ajv = {r["id"]: r for r in json.loads(run([node, str(HERE / "node" / "ajv_check.cjs"), str(SCHEMAS), str(path)], "ajv (fuzz)", env=env).stdout)}
@@ -91,5 +92,8 @@ def test_four_implementations_agree_on_random_mutations(rd, cases, schemas, rust
             bad.append((c["json"], "any", py["as_any"], r["as_any"], a["any"], whole))
         if (py["as_received"], py["as_any"]) != (r["as_received"], r["as_any"]):
             bad.append((c["json"], "dispatch", py, r))
+        t = ts[c["id"]]
+        if {k: t.get(k) for k in py} != py or not t["text"]:
+            bad.append((c["json"], "TypeScript", py, t))
     assert bad == [], bad[:10]
     assert 50 < valid_count < COUNT - 500  # the mutations reach both verdicts

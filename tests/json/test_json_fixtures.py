@@ -2,13 +2,16 @@
 protocol (tests/fixtures/valid/), the JSON Schemas agree with the spec's own vectors under
 Python jsonschema and ajv; the Python bindings pass ruff, mypy --strict and their vector runner;
 the Rust bindings pass clippy -D warnings and their vector runner; the TypeScript declarations
-compile under tsc --strict with every valid case typed as its message. Batched (fixture_batch.py)."""
+and reader compile under tsc --strict with every valid case typed as its message, and the reader
+gives every vector's verdict, fault and dispatch. Batched (fixture_batch.py)."""
 
 from __future__ import annotations
 
+import json
+
 import jsonschema
 import pytest
-from fixture_batch import Output, ajv, generate_all, python_lint, python_runner, rust_workspace, typescript
+from fixture_batch import Output, ajv, generate_all, python_lint, python_runner, rust_workspace, typescript, typescript_readers
 from json_support import fields_at_fault, run
 
 # What the fixtures must exercise between them (the features this test exists for).
@@ -90,3 +93,20 @@ def test_rust_bindings_pass_clippy_and_run_their_vectors(outputs, tmp_path):
 
 def test_typescript_declarations_pass_tsc_strict(outputs, tmp_path):
     typescript(outputs, tmp_path)
+
+
+def test_typescript_readers_run_their_vectors(outputs, tmp_path):
+    runners = typescript_readers(outputs, tmp_path)
+    bad = []
+    for o in outputs:
+        for protocol, cases in o.cases.items():
+            proc = run([*runners[o.unit(protocol)], str(o.vectors)], f"TypeScript reader runner ({o.unit(protocol)})")
+            results = {r["id"]: r for r in json.loads(proc.stdout)}
+            assert len(results) == len(cases), o.unit(protocol)
+            for c in cases:
+                r = results[c["id"]]
+                want = {"valid": c["valid"], **({} if c["valid"] else {"field": c["field"], "rule": c["rule"]})}
+                got = {k: r.get(k) for k in want}
+                if got != want or (r["as_received"], r["as_any"]) != (c["as_received"], c["as_any"]) or not r["text"]:
+                    bad.append((o.unit(protocol), c["id"], r, want, c["as_received"], c["as_any"]))
+    assert bad == [], bad[:20]

@@ -5,7 +5,8 @@
  * Types of the JSON protocol `remote_driving` 1.0.0 (车端程序与自动驾驶通信协议), for web consoles.
  *
  * They describe the JSON on the wire (keys as sent). Ranges, precision and sentinels are in
- * the comments; validate untrusted input against the JSON Schemas in generated/jsonschema/
+ * the comments; read untrusted text with `loads` of `remote_driving.reader.ts` (a strict parse, then
+ * the protocol's checks), or validate it against the JSON Schemas in generated/jsonschema/
  * (`to_<receiver>.schema.json`, `protocol.schema.json`). Integers stay within ±(2^53 - 1)
  * (Number.MAX_SAFE_INTEGER), so `number` holds them exactly.
  */
