@@ -8,7 +8,7 @@
 
 use kaiwo_gateway::monitor::{Fault, FrameEvent, Monitor, State};
 use kaiwo_gateway::supervision::{monitor_rules, ProtocolMonitor, FAULT_TABLES, TIMEOUT_CYCLES};
-use kaiwo_gateway::{DeviceId, DeviceIdText, Error};
+use kaiwo_gateway::{DeviceIdText, Error};
 use serde_json::{json, Value};
 
 fn sequences_path() -> std::path::PathBuf {
