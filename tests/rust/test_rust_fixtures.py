@@ -8,14 +8,14 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 from canspec.pipeline import compile_spec
 from canspec.targets import registry
-from repo_paths import GENERATED, ROOT
+from repo_paths import ROOT
+from rust_workspace import add_member, write_workspace
 
 FIXTURES = ROOT / "tests" / "fixtures" / "valid"
 TARGET_DIR = ROOT / "build" / "rust" / "target"
@@ -28,28 +28,14 @@ def _crate(path: Path, root: Path) -> str | None:
     compiled = compile_spec(path)
     assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
     files = {**registry()["rust"].render(compiled.spec), **registry()["vectors"].render(compiled.spec)}
-    if not files:
-        return None
-    for rel, data in files.items():
-        out = root / path.stem / rel
-        out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_bytes(data)
-    toml = root / path.stem / "rust" / "Cargo.toml"
-    text = toml.read_text(encoding="utf-8")
-    lib = re.search(r'^name = "([^"]+)"', text, re.MULTILINE)
-    assert lib, text
-    # One workspace holds every fixture's crate: unique package names, each library keeps its name.
-    text = text.replace(lib.group(0), f'name = "fixture-{path.stem.replace("_", "-")}"', 1) + f'\n[lib]\nname = "{lib.group(1)}"\npath = "src/lib.rs"\n'
-    toml.write_text(text, encoding="utf-8")
-    return f"{path.stem}/rust"
+    return add_member(files, root, path.stem, "fixture") if files else None
 
 
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[str]]:
     root = tmp_path_factory.mktemp("rust_fixtures")
     members = [m for p in sorted(FIXTURES.glob("*.yaml")) if (m := _crate(p, root)) is not None]
-    (root / "Cargo.toml").write_text('[workspace]\nresolver = "2"\nmembers = [\n' + "".join(f'    "{m}",\n' for m in members) + "]\n", encoding="utf-8")
-    shutil.copy(GENERATED / "rust" / "Cargo.lock", root / "Cargo.lock")  # the shipped crate's pins
+    write_workspace(root, members)
     return root, members
 
 

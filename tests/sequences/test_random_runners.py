@@ -13,7 +13,6 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 from collections import Counter
@@ -22,7 +21,8 @@ from pathlib import Path
 import pytest
 from canspec.pipeline import compile_spec
 from canspec.targets import registry
-from repo_paths import GENERATED, ROOT, SPEC
+from repo_paths import ROOT, SPEC
+from rust_workspace import add_member, write_workspace
 
 from sequences import random_traffic
 
@@ -45,20 +45,6 @@ C_LINE = re.compile(r"c sequences: (\d+) monitor sequences \(\d+ steps\), (\d+) 
 FAILED_ID = re.compile(r"^  (?:sequence|monitor|text) (\d+)", re.MULTILINE)  # a runner's first mismatch
 
 
-def _write_crate(files: dict[str, bytes], root: Path, name: str) -> str:
-    """The crate under `root/name/rust`, renamed for the workspace (its library keeps its name)."""
-    for rel, data in files.items():
-        (root / name / rel).parent.mkdir(parents=True, exist_ok=True)
-        (root / name / rel).write_bytes(data)
-    toml = root / name / "rust" / "Cargo.toml"
-    text = toml.read_text(encoding="utf-8")
-    lib = re.search(r'^name = "([^"]+)"', text, re.MULTILINE)
-    assert lib, text
-    text = text.replace(lib.group(0), f'name = "random-{name.replace("_", "-")}"', 1) + f'\n[lib]\nname = "{lib.group(1)}"\npath = "src/lib.rs"\n'
-    toml.write_text(text, encoding="utf-8")
-    return f"{name}/rust"
-
-
 @pytest.fixture(scope="module")
 def traffic(tmp_path_factory) -> Path:
     """Per spec under the root: its C headers, its crate and `vectors/sequences.json` of random
@@ -68,12 +54,11 @@ def traffic(tmp_path_factory) -> Path:
     for name, (path, monitor, texts) in SPECS.items():
         compiled = compile_spec(path)
         assert compiled.spec is not None and compiled.spec.can is not None, "\n".join(p.format() for p in compiled.problems)
-        members.append(_write_crate({**registry()["rust"].render(compiled.spec), **registry()["c"].render(compiled.spec)}, root, name))
+        members.append(add_member({**registry()["rust"].render(compiled.spec), **registry()["c"].render(compiled.spec)}, root, name, "random"))
         doc = random_traffic.build(compiled.spec.can, SEED, monitor, texts)
         (root / name / "vectors").mkdir()
         (root / name / "vectors" / "sequences.json").write_text(json.dumps(doc, indent=1), encoding="utf-8")
-    (root / "Cargo.toml").write_text('[workspace]\nresolver = "2"\nmembers = [\n' + "".join(f'    "{m}",\n' for m in members) + "]\n", encoding="utf-8")
-    shutil.copy(GENERATED / "rust" / "Cargo.lock", root / "Cargo.lock")  # the shipped crate's pins
+    write_workspace(root, members)
     return root
 
 

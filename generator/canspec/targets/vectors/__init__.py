@@ -169,15 +169,16 @@ def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
     return out
 
 
+def _about(spec: ir.Spec) -> dict[str, Any]:
+    """What every vectors file says about itself: its format and the spec it comes from."""
+    return {"format": VECTOR_FORMAT, "spec": spec.name, "version": spec.version, "sha256": spec.sha256, "generated_by": f"canspec {spec.generator_version}"}
+
+
 def build_vectors(spec: ir.Spec) -> dict[str, Any]:
     assert spec.can is not None
     cases = [c for m in spec.can.messages for c in message_cases(m)]
     return {
-        "format": VECTOR_FORMAT,
-        "spec": spec.name,
-        "version": spec.version,
-        "sha256": spec.sha256,
-        "generated_by": f"canspec {spec.generator_version}",
+        **_about(spec),
         "rules": {
             "physical_to_raw": "q = (physical - offset) / factor in doubles; raw = sign(q) * (|q| >= 2^52 ? |q| : floor(|q| + 0.5 + " + ir.TIE_EPSILON_TEXT + ")) (round half away from zero)",
             "range": "physical outside the documented range, or a raw value that does not fit, is an error unless the raw value is a special value",
@@ -193,11 +194,7 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
 def build_sequences(spec: ir.Spec) -> dict[str, Any]:
     assert spec.can is not None
     return {
-        "format": VECTOR_FORMAT,
-        "spec": spec.name,
-        "version": spec.version,
-        "sha256": spec.sha256,
-        "generated_by": f"canspec {spec.generator_version}",
+        **_about(spec),
         "rules": {
             "monitor": MONITOR_RULES,
             "timeout_cycles": ir.MONITOR_TIMEOUT_CYCLES,
