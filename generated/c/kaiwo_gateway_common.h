@@ -54,97 +54,25 @@ static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
     return rem >= d - rem ? q + 1u : q;
 }
 
+/* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):
+ * then the frame of a message without fields is zeroed by memset, which compilers turn into word
+ * stores; elsewhere (Cortex-M0/M0+, where memset is a call) byte by byte. Pack and unpack are
+ * otherwise the same code on every core. Define KAIWO_GATEWAY_UNALIGNED_WORDS to 0 or 1 to
+ * override the choice. */
+#ifndef KAIWO_GATEWAY_UNALIGNED_WORDS
+#if defined(__ARM_FEATURE_UNALIGNED) || defined(__x86_64__) || defined(__i386__) ||                \
+    defined(__aarch64__)
+#define KAIWO_GATEWAY_UNALIGNED_WORDS 1
+#else
+#define KAIWO_GATEWAY_UNALIGNED_WORDS 0
+#endif
+#endif
+
 /** num / den rounded half away from zero, in integers only (den > 0). */
 static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
     const uint64_t a = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
     const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
     return num < 0 ? (int64_t)(0u - q) : (int64_t)q; /* INT64_MIN / 1 included */
-}
-
-/* On little-endian hosts pack/unpack copy whole 64-bit words between frames and structs (one
- * load or store per 8 bytes, checked against each struct's layout at compile time); elsewhere
- * they use byte-wise code that is correct on any host. Define KAIWO_GATEWAY_LE_WORDS to 0 to
- * force the byte-wise code. */
-#ifndef KAIWO_GATEWAY_LE_WORDS
-#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) &&                                 \
-    __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define KAIWO_GATEWAY_LE_WORDS 1
-#else
-#define KAIWO_GATEWAY_LE_WORDS 0
-#endif
-#endif
-
-#if KAIWO_GATEWAY_LE_WORDS
-/* n (1..8) bytes at p as the low bytes of a word, and back: in pieces of 8 or 4, 2, 1 bytes,
- * the same pieces both ways, so a load after a store of the same bytes is forwarded from it
- * (one wide load spanning several narrower stores would stall). */
-static inline uint64_t kaiwo_gateway_le_load(const void *p, size_t n) {
-    const unsigned char *b = (const unsigned char *)p;
-    uint64_t w = 0u;
-    size_t at = 0u;
-    if (n == 8u) {
-        memcpy(&w, b, 8u);
-        return w;
-    }
-    if ((n & 4u) != 0u) {
-        uint32_t x;
-        memcpy(&x, b, 4u);
-        w = x;
-        at = 4u;
-    }
-    if ((n & 2u) != 0u) {
-        uint16_t x;
-        memcpy(&x, b + at, 2u);
-        w |= (uint64_t)x << (8u * at);
-        at += 2u;
-    }
-    if ((n & 1u) != 0u) {
-        w |= (uint64_t)b[at] << (8u * at);
-    }
-    return w;
-}
-
-static inline void kaiwo_gateway_le_store(void *p, uint64_t w, size_t n) {
-    unsigned char *b = (unsigned char *)p;
-    size_t at = 0u;
-    if (n == 8u) {
-        memcpy(b, &w, 8u);
-        return;
-    }
-    if ((n & 4u) != 0u) {
-        const uint32_t x = (uint32_t)w;
-        memcpy(b, &x, 4u);
-        at = 4u;
-    }
-    if ((n & 2u) != 0u) {
-        const uint16_t x = (uint16_t)(w >> (8u * at));
-        memcpy(b + at, &x, 2u);
-        at += 2u;
-    }
-    if ((n & 1u) != 0u) {
-        b[at] = (unsigned char)(w >> (8u * at));
-    }
-}
-#endif
-
-/** XOR of the four bytes of a word. */
-static inline uint8_t kaiwo_gateway_xor_fold32(uint32_t w) {
-    w ^= w >> 16;
-    w ^= w >> 8;
-    return (uint8_t)w;
-}
-
-/** XOR of the eight bytes of a little-endian frame word. */
-static inline uint8_t kaiwo_gateway_xor_fold(uint64_t w) {
-    return kaiwo_gateway_xor_fold32((uint32_t)(w ^ (w >> 32)));
-}
-
-/** Whether the XOR of the eight bytes of a word is 0 (a frame whose XOR checksum byte is right):
- * the last fold step is a compare of two bytes. */
-static inline bool kaiwo_gateway_xor_is_zero(uint64_t w) {
-    const uint32_t x = (uint32_t)w ^ (uint32_t)(w >> 32);
-    const uint32_t y = x ^ (x >> 16);
-    return (uint8_t)y == (uint8_t)(y >> 8);
 }
 
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */

@@ -59,52 +59,24 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_autocar_eps_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_autocar_eps_command_layout_check
-    [(offsetof(kaiwo_gateway_autocar_eps_command_t, eps_ctrl_mode) == 0u &&
-      offsetof(kaiwo_gateway_autocar_eps_command_t, counter) == 1u &&
-      offsetof(kaiwo_gateway_autocar_eps_command_t, max_angular_speed) == 2u &&
-      offsetof(kaiwo_gateway_autocar_eps_command_t, steering_angle_cmd) == 4u &&
-      offsetof(kaiwo_gateway_autocar_eps_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_autocar_eps_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_autocar_eps_command_t *src) {
     if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
-#endif
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
-    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -113,32 +85,36 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *dst,
                                          const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->eps_ctrl_mode = (uint8_t)r0;
-        dst->counter = (uint8_t)(r0 >> 8);
-        dst->max_angular_speed = (uint8_t)(r0 >> 16);
-        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    dst->eps_ctrl_mode = (uint8_t)b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->counter = (uint8_t)b1;
+    b2 = src[2];
+    x ^= b2;
+    dst->max_angular_speed = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    b4 = src[4];
+    x ^= b4;
+    dst->steering_angle_cmd = (uint16_t)(b3 | (b4 << 8u));
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A autocar_eps_command with every raw field 0. */
@@ -349,90 +325,62 @@ typedef struct {
         eps_fault_level; /**< EPS 故障级别; bits 48..49; values: kaiwo_gateway_eps_fault_level_t */
     uint8_t counter;     /**< 心跳值; bits 56..63; counter */
 } kaiwo_gateway_eps_state_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_eps_state_layout_check
-    [(offsetof(kaiwo_gateway_eps_state_t, eps_ctrl_state) == 0u &&
-      offsetof(kaiwo_gateway_eps_state_t, steering_torque) == 1u &&
-      offsetof(kaiwo_gateway_eps_state_t, eps_output_torque) == 2u &&
-      offsetof(kaiwo_gateway_eps_state_t, steering_angle) == 4u &&
-      offsetof(kaiwo_gateway_eps_state_t, controller_temp) == 6u &&
-      offsetof(kaiwo_gateway_eps_state_t, eps_fault_level) == 7u &&
-      offsetof(kaiwo_gateway_eps_state_t, counter) == 8u &&
-      sizeof(kaiwo_gateway_eps_state_t) == 10u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_state_t *src) {
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->eps_ctrl_state | ((uint64_t)src->steering_torque << 8) |
-             ((uint64_t)src->eps_output_torque << 16) | ((uint64_t)src->steering_angle << 32) |
-             ((uint64_t)src->controller_temp << 48) | ((uint64_t)src->eps_fault_level << 56);
-#endif
-        if (((p0 & UINT64_C(0xFCC0000000000000))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0x33FFFFF00000000)) >> 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_EPS_STATE_DLC);
-        dst[7] = src->counter;
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = src->counter;
-#endif
+    dst[0] = (uint8_t)src->eps_ctrl_state;
+    dst[1] = (uint8_t)src->steering_torque;
+    dst[2] = (uint8_t)src->eps_output_torque;
+    dst[3] = (uint8_t)src->steering_angle;
+    dst[4] = (uint8_t)(src->steering_angle >> 8u);
+    if ((src->controller_temp > 63u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[5] = (uint8_t)src->controller_temp;
+    if ((src->eps_fault_level > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)src->eps_fault_level;
+    dst[7] = (uint8_t)src->counter;
     return KAIWO_GATEWAY_OK;
 }
 
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_EPS_STATE_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0x33FFFFF000000)) << 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->eps_ctrl_state = (uint8_t)r0;
-        dst->steering_torque = (uint8_t)(r0 >> 8);
-        dst->eps_output_torque = (uint8_t)(r0 >> 16);
-        dst->steering_angle = (uint16_t)(r0 >> 32);
-        dst->controller_temp = (uint8_t)(r0 >> 48);
-        dst->eps_fault_level = (uint8_t)(r0 >> 56);
-#endif
-        dst->counter = (uint8_t)(v >> 56);
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->eps_ctrl_state = (uint8_t)b0;
+    b1 = src[1];
+    dst->steering_torque = (uint8_t)b1;
+    b2 = src[2];
+    dst->eps_output_torque = (uint8_t)b2;
+    b3 = src[3];
+    b4 = src[4];
+    dst->steering_angle = (uint16_t)(b3 | (b4 << 8u));
+    b5 = src[5];
+    dst->controller_temp = (uint8_t)(b5 & 0x3Fu);
+    b6 = src[6];
+    dst->eps_fault_level = (uint8_t)(b6 & 0x3u);
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A eps_state with every raw field 0. */
@@ -763,57 +711,34 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_autocar_speed_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_autocar_speed_command_layout_check
-    [(offsetof(kaiwo_gateway_autocar_speed_command_t, accel_cmd) == 0u &&
-      offsetof(kaiwo_gateway_autocar_speed_command_t, epb_cmd) == 2u &&
-      offsetof(kaiwo_gateway_autocar_speed_command_t, gear_cmd) == 3u &&
-      offsetof(kaiwo_gateway_autocar_speed_command_t, counter) == 4u &&
-      offsetof(kaiwo_gateway_autocar_speed_command_t, emergency_brake_cmd) == 5u &&
-      offsetof(kaiwo_gateway_autocar_speed_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_autocar_speed_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
-             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
-#endif
-        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
-            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -822,34 +747,35 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t *dst,
                                            const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->accel_cmd = (uint16_t)r0;
-        dst->epb_cmd = (uint8_t)(r0 >> 16);
-        dst->gear_cmd = (uint8_t)(r0 >> 24);
-        dst->counter = (uint8_t)(r0 >> 32);
-        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->accel_cmd = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    x ^= b2;
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[4];
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A autocar_speed_command with every raw field 0. */
@@ -1113,67 +1039,30 @@ typedef struct {
     uint8_t current_accel;     /**< 当前加速度 [m/s²]; bits 48..55 */
     uint8_t checksum;          /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_driving_state_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_driving_state_layout_check
-    [(offsetof(kaiwo_gateway_driving_state_t, epb_state) == 0u &&
-      offsetof(kaiwo_gateway_driving_state_t, gear_state) == 1u &&
-      offsetof(kaiwo_gateway_driving_state_t, emergency_brake_state) == 2u &&
-      offsetof(kaiwo_gateway_driving_state_t, uss_brake_state) == 3u &&
-      offsetof(kaiwo_gateway_driving_state_t, motor_speed) == 4u &&
-      offsetof(kaiwo_gateway_driving_state_t, motor_torque) == 6u &&
-      offsetof(kaiwo_gateway_driving_state_t, motor_speed_ratio) == 8u &&
-      offsetof(kaiwo_gateway_driving_state_t, current_accel) == 9u &&
-      offsetof(kaiwo_gateway_driving_state_t, checksum) == 10u &&
-      sizeof(kaiwo_gateway_driving_state_t) == 12u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_driving_state_t *src) {
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 4u);
-#else
-        p0 = (uint64_t)src->epb_state | ((uint64_t)src->gear_state << 8) |
-             ((uint64_t)src->emergency_brake_state << 16) | ((uint64_t)src->uss_brake_state << 24) |
-             ((uint64_t)src->motor_speed << 32) | ((uint64_t)src->motor_torque << 48);
-        p1 = (uint64_t)src->motor_speed_ratio | ((uint64_t)src->current_accel << 8) |
-             ((uint64_t)src->checksum << 16);
-#endif
-        if (((p0 & UINT64_C(0xFEFEF0FC))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 &= UINT64_C(0xFFFFFF);
-        w = ((p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0xF00)) >> 6) |
-             ((p0 & UINT64_C(0x10000)) >> 10) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-             ((p0 >> 32) << 8) | (p1 << 40)) &
-            UINT64_C(0xFFFFFFFFFFFFFF);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_DRIVING_STATE_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->emergency_brake_state | src->uss_brake_state) > 1u) || (src->epb_state > 3u) ||
+        (src->gear_state > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->epb_state | ((uint32_t)src->gear_state << 2u) |
+                       ((uint32_t)src->emergency_brake_state << 6u) |
+                       ((uint32_t)src->uss_brake_state << 7u));
+    dst[1] = (uint8_t)src->motor_speed;
+    dst[2] = (uint8_t)(src->motor_speed >> 8u);
+    dst[3] = (uint8_t)src->motor_torque;
+    dst[4] = (uint8_t)(src->motor_torque >> 8u);
+    dst[5] = (uint8_t)src->motor_speed_ratio;
+    dst[6] = (uint8_t)src->current_accel;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1182,40 +1071,44 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uint8_t *src,
                                    size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_DRIVING_STATE_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3)) | ((v & UINT64_C(0x3C)) << 6) | ((v & UINT64_C(0x40)) << 10) |
-             ((v & UINT64_C(0x80)) << 17) | ((v >> 8) << 32);
-        r1 = (v >> 40);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 4u);
-#else
-        dst->epb_state = (uint8_t)r0;
-        dst->gear_state = (uint8_t)(r0 >> 8);
-        dst->emergency_brake_state = (uint8_t)(r0 >> 16);
-        dst->uss_brake_state = (uint8_t)(r0 >> 24);
-        dst->motor_speed = (uint16_t)(r0 >> 32);
-        dst->motor_torque = (uint16_t)(r0 >> 48);
-        dst->motor_speed_ratio = (uint8_t)r1;
-        dst->current_accel = (uint8_t)(r1 >> 8);
-        dst->checksum = (uint8_t)(r1 >> 16);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    dst->epb_state = (uint8_t)(b0 & 0x3u);
+    dst->gear_state = (uint8_t)((b0 >> 2u) & 0xFu);
+    dst->emergency_brake_state = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->uss_brake_state = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    x ^= b1;
+    b2 = src[2];
+    x ^= b2;
+    dst->motor_speed = (uint16_t)(b1 | (b2 << 8u));
+    b3 = src[3];
+    x ^= b3;
+    b4 = src[4];
+    x ^= b4;
+    dst->motor_torque = (uint16_t)(b3 | (b4 << 8u));
+    b5 = src[5];
+    x ^= b5;
+    dst->motor_speed_ratio = (uint8_t)b5;
+    b6 = src[6];
+    x ^= b6;
+    dst->current_accel = (uint8_t)b6;
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A driving_state with every raw field 0. */
@@ -1751,107 +1644,56 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_autocar_control_command_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_autocar_control_command_1_layout_check
-    [(offsetof(kaiwo_gateway_autocar_control_command_1_t, drive_mode_cmd) == 0u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, door_cmd) == 1u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, horn_cmd) == 2u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, drl_cmd) == 3u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, left_turn_cmd) == 4u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, right_turn_cmd) == 5u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, hazard_cmd) == 6u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, position_light_cmd) == 7u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, headlight_cmd) == 8u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, rear_fog_cmd) == 9u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, left_fog_cmd) == 10u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, right_fog_cmd) == 11u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, dome_light_cmd) == 12u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, ambient_light_cmd) == 13u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, drive_mode_reset) == 14u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_state) == 15u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_reliability) == 16u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, system_fault_level) == 17u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, lock_cmd) == 18u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, ac_cmd) == 19u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, ac_set_temp) == 20u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_a) == 21u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_b) == 22u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, protocol_version_c) == 23u &&
-      offsetof(kaiwo_gateway_autocar_control_command_1_t, counter) == 24u &&
-      sizeof(kaiwo_gateway_autocar_control_command_1_t) == 25u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_1_t *src) {
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p1g;
-        uint64_t p2;
-        uint64_t p2g;
-        uint64_t p3;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
-        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
-#else
-        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
-             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
-             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
-             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
-        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
-             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
-             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
-             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
-        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
-             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
-             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
-             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
-        p3 = (uint64_t)src->counter;
-#endif
-        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
-             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
-        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
-        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
-        p1 &= UINT64_C(0x1030303030303);
-        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
-        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
-        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
-        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
-              (p2 & UINT64_C(0xF00000000000000));
-        p2 &= UINT64_C(0xF000007030303);
-        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
-        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
-        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
-        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2u) |
+                       ((uint32_t)src->horn_cmd << 4u) | ((uint32_t)src->drl_cmd << 6u));
+    if (((src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2u) |
+                  ((uint32_t)src->hazard_cmd << 4u) | ((uint32_t)src->position_light_cmd << 6u));
+    if (((src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)(src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2u) |
+                       ((uint32_t)src->left_fog_cmd << 4u) | ((uint32_t)src->right_fog_cmd << 6u));
+    if ((src->drive_mode_reset > 1u) || ((src->dome_light_cmd | src->ambient_light_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)(src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2u) |
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    if (((src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->system_state | ((uint32_t)src->system_reliability << 2u) |
+                       ((uint32_t)src->system_fault_level << 4u) | ((uint32_t)src->lock_cmd << 6u));
+    if ((src->ac_cmd > 7u) || (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->ac_cmd | ((uint32_t)src->ac_set_temp << 3u));
+    if (((src->protocol_version_a | src->protocol_version_b) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)(src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4u));
+    if (((src->protocol_version_c | src->counter) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1859,73 +1701,51 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_command_1_t *dst,
                                                const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-        uint64_t r3;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x1FFF);
-        r2 = (v >> 34) & UINT64_C(0x3C01FF);
-        r3 = (v >> 60);
-        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
-        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
-        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
-        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
-        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
-        r1 |= ((v & UINT64_C(0x300000000)) << 24);
-        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
-        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
-        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
-        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
-              (v & UINT64_C(0xF00000000000000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
-#else
-        dst->drive_mode_cmd = (uint8_t)r0;
-        dst->door_cmd = (uint8_t)(r0 >> 8);
-        dst->horn_cmd = (uint8_t)(r0 >> 16);
-        dst->drl_cmd = (uint8_t)(r0 >> 24);
-        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
-        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
-        dst->hazard_cmd = (uint8_t)(r0 >> 48);
-        dst->position_light_cmd = (uint8_t)(r0 >> 56);
-        dst->headlight_cmd = (uint8_t)r1;
-        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
-        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
-        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
-        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
-        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
-        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
-        dst->system_state = (uint8_t)(r1 >> 56);
-        dst->system_reliability = (uint8_t)r2;
-        dst->system_fault_level = (uint8_t)(r2 >> 8);
-        dst->lock_cmd = (uint8_t)(r2 >> 16);
-        dst->ac_cmd = (uint8_t)(r2 >> 24);
-        dst->ac_set_temp = (uint8_t)(r2 >> 32);
-        dst->protocol_version_a = (uint8_t)(r2 >> 40);
-        dst->protocol_version_b = (uint8_t)(r2 >> 48);
-        dst->protocol_version_c = (uint8_t)(r2 >> 56);
-        dst->counter = (uint8_t)r3;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A autocar_control_command_1 with every raw field 0. */
@@ -3178,95 +2998,49 @@ typedef struct {
     uint16_t odometer; /**< 总里程 [km]; bits 40..55 */
     uint8_t counter;   /**< 心跳值; bits 56..63; counter */
 } kaiwo_gateway_vehicle_state_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_vehicle_state_1_layout_check
-    [(offsetof(kaiwo_gateway_vehicle_state_1_t, drive_mode_state) == 0u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, door_state) == 1u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, drl_state) == 2u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, left_turn_state) == 3u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, right_turn_state) == 4u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, hazard_state) == 5u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, position_light_state) == 6u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, headlight_state) == 7u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, rear_fog_state) == 8u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, left_fog_state) == 9u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, right_fog_state) == 10u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, dome_light_state) == 11u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, ambient_light_state) == 12u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, door_button_state) == 13u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, vehicle_speed) == 14u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, soc) == 15u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, system_power_cmd) == 16u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, charge_state) == 17u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, charge_connection) == 18u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, vehicle_fault_level) == 19u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, odometer) == 20u &&
-      offsetof(kaiwo_gateway_vehicle_state_1_t, counter) == 22u &&
-      sizeof(kaiwo_gateway_vehicle_state_1_t) == 24u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_1_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p0g;
-        uint64_t p1;
-        uint64_t p2;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
-#else
-        p0 = (uint64_t)src->drive_mode_state | ((uint64_t)src->door_state << 8) |
-             ((uint64_t)src->drl_state << 16) | ((uint64_t)src->left_turn_state << 24) |
-             ((uint64_t)src->right_turn_state << 32) | ((uint64_t)src->hazard_state << 40) |
-             ((uint64_t)src->position_light_state << 48) | ((uint64_t)src->headlight_state << 56);
-        p1 = (uint64_t)src->rear_fog_state | ((uint64_t)src->left_fog_state << 8) |
-             ((uint64_t)src->right_fog_state << 16) | ((uint64_t)src->dome_light_state << 24) |
-             ((uint64_t)src->ambient_light_state << 32) | ((uint64_t)src->door_button_state << 40) |
-             ((uint64_t)src->vehicle_speed << 48) | ((uint64_t)src->soc << 56);
-        p2 = (uint64_t)src->system_power_cmd | ((uint64_t)src->charge_state << 8) |
-             ((uint64_t)src->charge_connection << 16) | ((uint64_t)src->vehicle_fault_level << 24) |
-             ((uint64_t)src->odometer << 32) | ((uint64_t)src->counter << 48);
-#endif
-        if (((p0 & UINT64_C(0xFCFEFEFEFEFEFEFC)) | (p1 & UINT64_C(0xFEFEFEFEFEFE)) |
-             (p2 & UINT64_C(0xFCFCFCFC))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p0g = (p0 & UINT64_C(0x3)) | ((p0 & UINT64_C(0x100)) >> 6);
-        p0 &= UINT64_C(0x301010101010000);
-        p0 = ((p0 * UINT64_C(0x810204081)) >> 35) & UINT64_C(0x7F0000);
-        p1 = (p1 & UINT64_C(0xFFFF000100010001)) | ((p1 >> 7) & UINT64_C(0x200020002));
-        p1 = (p1 & UINT64_C(0x300000003)) | ((p1 >> 14) & UINT64_C(0x3FFFC0000000C));
-        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x3FFFFF);
-        p2 &= UINT64_C(0xFFFFFFFFFFFFFF);
-        p2 = (p2 & UINT64_C(0xFFFFFF00030003)) | ((p2 >> 6) & UINT64_C(0xC000C));
-        p2 = (p2 & UINT64_C(0xFFFFFF0000000F)) | ((p2 >> 12) & UINT64_C(0xF0));
-        p2 = (p2 | (p2 >> 24)) & UINT64_C(0xFFFFFFFF);
-        w = (p0 >> 13) | p0g | (p1 << 10) | (p2 << 32);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->door_state | src->drl_state | src->left_turn_state | src->right_turn_state |
+          src->hazard_state | src->position_light_state) > 1u) ||
+        (src->drive_mode_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] =
+        (uint8_t)(src->drive_mode_state | ((uint32_t)src->door_state << 2u) |
+                  ((uint32_t)src->drl_state << 3u) | ((uint32_t)src->left_turn_state << 4u) |
+                  ((uint32_t)src->right_turn_state << 5u) | ((uint32_t)src->hazard_state << 6u) |
+                  ((uint32_t)src->position_light_state << 7u));
+    if (((src->rear_fog_state | src->left_fog_state | src->right_fog_state | src->dome_light_state |
+          src->ambient_light_state | src->door_button_state) > 1u) ||
+        (src->headlight_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->headlight_state | ((uint32_t)src->rear_fog_state << 2u) |
+                  ((uint32_t)src->left_fog_state << 3u) | ((uint32_t)src->right_fog_state << 4u) |
+                  ((uint32_t)src->dome_light_state << 5u) |
+                  ((uint32_t)src->ambient_light_state << 6u) |
+                  ((uint32_t)src->door_button_state << 7u));
+    dst[2] = (uint8_t)src->vehicle_speed;
+    dst[3] = (uint8_t)src->soc;
+    if (((src->system_power_cmd | src->charge_state | src->charge_connection |
+          src->vehicle_fault_level) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->system_power_cmd | ((uint32_t)src->charge_state << 2u) |
+                       ((uint32_t)src->charge_connection << 4u) |
+                       ((uint32_t)src->vehicle_fault_level << 6u));
+    dst[5] = (uint8_t)src->odometer;
+    dst[6] = (uint8_t)(src->odometer >> 8u);
+    dst[7] = (uint8_t)src->counter;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -3274,63 +3048,48 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const uint8_t *src,
                                      size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v << 13) & UINT64_C(0x7F0000);
-        r1 = (v >> 10) & UINT64_C(0x3FFFFF);
-        r2 = (v >> 32);
-        r0 = (r0 * UINT64_C(0x810204081)) & UINT64_C(0x301010101010000);
-        r0 |= (v & UINT64_C(0x3)) | ((v & UINT64_C(0x4)) << 6);
-        r1 = (r1 | (r1 << 28)) & UINT64_C(0x3FFFF0000000F);
-        r1 = (r1 & UINT64_C(0x300000003)) | ((r1 << 14) & UINT64_C(0xFFFF000000030000));
-        r1 = (r1 & UINT64_C(0xFFFF000100010001)) | ((r1 << 7) & UINT64_C(0x10001000100));
-        r2 = (r2 | (r2 << 24)) & UINT64_C(0xFFFFFF000000FF);
-        r2 = (r2 & UINT64_C(0xFFFFFF0000000F)) | ((r2 << 12) & UINT64_C(0xF0000));
-        r2 = (r2 & UINT64_C(0xFFFFFF00030003)) | ((r2 << 6) & UINT64_C(0x3000300));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
-#else
-        dst->drive_mode_state = (uint8_t)r0;
-        dst->door_state = (uint8_t)(r0 >> 8);
-        dst->drl_state = (uint8_t)(r0 >> 16);
-        dst->left_turn_state = (uint8_t)(r0 >> 24);
-        dst->right_turn_state = (uint8_t)(r0 >> 32);
-        dst->hazard_state = (uint8_t)(r0 >> 40);
-        dst->position_light_state = (uint8_t)(r0 >> 48);
-        dst->headlight_state = (uint8_t)(r0 >> 56);
-        dst->rear_fog_state = (uint8_t)r1;
-        dst->left_fog_state = (uint8_t)(r1 >> 8);
-        dst->right_fog_state = (uint8_t)(r1 >> 16);
-        dst->dome_light_state = (uint8_t)(r1 >> 24);
-        dst->ambient_light_state = (uint8_t)(r1 >> 32);
-        dst->door_button_state = (uint8_t)(r1 >> 40);
-        dst->vehicle_speed = (uint8_t)(r1 >> 48);
-        dst->soc = (uint8_t)(r1 >> 56);
-        dst->system_power_cmd = (uint8_t)r2;
-        dst->charge_state = (uint8_t)(r2 >> 8);
-        dst->charge_connection = (uint8_t)(r2 >> 16);
-        dst->vehicle_fault_level = (uint8_t)(r2 >> 24);
-        dst->odometer = (uint16_t)(r2 >> 32);
-        dst->counter = (uint8_t)(r2 >> 48);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->drive_mode_state = (uint8_t)(b0 & 0x3u);
+    dst->door_state = (uint8_t)((b0 >> 2u) & 0x1u);
+    dst->drl_state = (uint8_t)((b0 >> 3u) & 0x1u);
+    dst->left_turn_state = (uint8_t)((b0 >> 4u) & 0x1u);
+    dst->right_turn_state = (uint8_t)((b0 >> 5u) & 0x1u);
+    dst->hazard_state = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->position_light_state = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->headlight_state = (uint8_t)(b1 & 0x3u);
+    dst->rear_fog_state = (uint8_t)((b1 >> 2u) & 0x1u);
+    dst->left_fog_state = (uint8_t)((b1 >> 3u) & 0x1u);
+    dst->right_fog_state = (uint8_t)((b1 >> 4u) & 0x1u);
+    dst->dome_light_state = (uint8_t)((b1 >> 5u) & 0x1u);
+    dst->ambient_light_state = (uint8_t)((b1 >> 6u) & 0x1u);
+    dst->door_button_state = (uint8_t)(b1 >> 7u);
+    b2 = src[2];
+    dst->vehicle_speed = (uint8_t)b2;
+    b3 = src[3];
+    dst->soc = (uint8_t)b3;
+    b4 = src[4];
+    dst->system_power_cmd = (uint8_t)(b4 & 0x3u);
+    dst->charge_state = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->charge_connection = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->vehicle_fault_level = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    b6 = src[6];
+    dst->odometer = (uint16_t)(b5 | (b6 << 8u));
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A vehicle_state_1 with every raw field 0. */
@@ -4346,69 +4105,41 @@ typedef struct {
     uint16_t cargo_roll;          /**< 货箱侧倾角 [deg]; bits 46..55 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_autocar_control_command_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_autocar_control_command_2_layout_check
-    [(offsetof(kaiwo_gateway_autocar_control_command_2_t, downhill_regen_enable) == 0u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_lift) == 1u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_lift_speed) == 2u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, pto_enable) == 3u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, downhill_regen_speed) == 4u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, chassis_pitch) == 6u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, chassis_roll) == 8u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_pitch) == 10u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, cargo_roll) == 12u &&
-      offsetof(kaiwo_gateway_autocar_control_command_2_t, counter) == 14u &&
-      sizeof(kaiwo_gateway_autocar_control_command_2_t) == 16u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_2_t *src) {
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-#else
-        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24) |
-             ((uint64_t)src->downhill_regen_speed << 32) | ((uint64_t)src->chassis_pitch << 48);
-        p1 = (uint64_t)src->chassis_roll | ((uint64_t)src->cargo_pitch << 16) |
-             ((uint64_t)src->cargo_roll << 32) | ((uint64_t)src->counter << 48);
-#endif
-        if (((p0 & UINT64_C(0xFC000000FEF0FCFE)) | (p1 & UINT64_C(0xFC00FC00FC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 &= UINT64_C(0xFFFFFFFFFFFFFF);
-        p1 = (p1 & UINT64_C(0x3FF000003FF)) | ((p1 >> 6) & UINT64_C(0x3FC00000FFC00));
-        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0x3FFFF00000));
-        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17) |
-            ((p0 & UINT64_C(0xFF00000000)) >> 24) | ((p0 & UINT64_C(0x3FF000000000000)) >> 32) |
-            (p1 << 26);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->downhill_regen_enable | src->pto_enable) > 1u) || (src->cargo_lift > 3u) ||
+        (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1u) |
+                       ((uint32_t)src->cargo_lift_speed << 3u) | ((uint32_t)src->pto_enable << 7u));
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    if ((src->chassis_pitch > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)src->chassis_pitch;
+    if ((src->chassis_roll > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)((src->chassis_pitch >> 8u) | ((uint32_t)src->chassis_roll << 2u));
+    if ((src->cargo_pitch > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)((src->chassis_roll >> 6u) | ((uint32_t)src->cargo_pitch << 4u));
+    if ((src->cargo_roll > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)((src->cargo_pitch >> 4u) | ((uint32_t)src->cargo_roll << 6u));
+    dst[6] = (uint8_t)(src->cargo_roll >> 2u);
+    dst[7] = (uint8_t)src->counter;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4416,44 +4147,36 @@ kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_command_2_t *dst,
                                                const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
-             ((v & UINT64_C(0x80)) << 17) | ((v & UINT64_C(0xFF00)) << 24) |
-             ((v & UINT64_C(0x3FF0000)) << 32);
-        r1 = (v >> 26);
-        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0x3FFFF00000000));
-        r1 = (r1 & UINT64_C(0x3FF000003FF)) | ((r1 << 6) & UINT64_C(0xFF000003FF0000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-#else
-        dst->downhill_regen_enable = (uint8_t)r0;
-        dst->cargo_lift = (uint8_t)(r0 >> 8);
-        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
-        dst->pto_enable = (uint8_t)(r0 >> 24);
-        dst->downhill_regen_speed = (uint8_t)(r0 >> 32);
-        dst->chassis_pitch = (uint16_t)(r0 >> 48);
-        dst->chassis_roll = (uint16_t)r1;
-        dst->cargo_pitch = (uint16_t)(r1 >> 16);
-        dst->cargo_roll = (uint16_t)(r1 >> 32);
-        dst->counter = (uint8_t)(r1 >> 48);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    b2 = src[2];
+    b3 = src[3];
+    dst->chassis_pitch = (uint16_t)(b2 | ((b3 & 0x3u) << 8u));
+    b4 = src[4];
+    dst->chassis_roll = (uint16_t)((b3 >> 2u) | ((b4 & 0xFu) << 6u));
+    b5 = src[5];
+    dst->cargo_pitch = (uint16_t)((b4 >> 4u) | ((b5 & 0x3Fu) << 4u));
+    b6 = src[6];
+    dst->cargo_roll = (uint16_t)((b5 >> 6u) | (b6 << 2u));
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A autocar_control_command_2 with every raw field 0. */
@@ -4931,50 +4654,24 @@ typedef struct {
     uint16_t battery_charge_energy;    /**< 电池组累计充电电量 [kWh]; bits 32..47 */
     uint16_t battery_discharge_energy; /**< 电池组累计放电电量 [kWh]; bits 48..63 */
 } kaiwo_gateway_vehicle_state_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_vehicle_state_2_layout_check
-    [(offsetof(kaiwo_gateway_vehicle_state_2_t, battery_voltage) == 0u &&
-      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_current) == 2u &&
-      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_charge_energy) == 4u &&
-      offsetof(kaiwo_gateway_vehicle_state_2_t, battery_discharge_energy) == 6u &&
-      sizeof(kaiwo_gateway_vehicle_state_2_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_2_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->battery_voltage | ((uint64_t)src->battery_current << 16) |
-             ((uint64_t)src->battery_charge_energy << 32) |
-             ((uint64_t)src->battery_discharge_energy << 48);
-#endif
-        w = p0;
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_2_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
-    }
+    dst[0] = (uint8_t)src->battery_voltage;
+    dst[1] = (uint8_t)(src->battery_voltage >> 8u);
+    dst[2] = (uint8_t)src->battery_current;
+    dst[3] = (uint8_t)(src->battery_current >> 8u);
+    dst[4] = (uint8_t)src->battery_charge_energy;
+    dst[5] = (uint8_t)(src->battery_charge_energy >> 8u);
+    dst[6] = (uint8_t)src->battery_discharge_energy;
+    dst[7] = (uint8_t)(src->battery_discharge_energy >> 8u);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4982,31 +4679,30 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const uint8_t *src,
                                      size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = v;
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->battery_voltage = (uint16_t)r0;
-        dst->battery_current = (uint16_t)(r0 >> 16);
-        dst->battery_charge_energy = (uint16_t)(r0 >> 32);
-        dst->battery_discharge_energy = (uint16_t)(r0 >> 48);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    b1 = src[1];
+    dst->battery_voltage = (uint16_t)(b0 | (b1 << 8u));
+    b2 = src[2];
+    b3 = src[3];
+    dst->battery_current = (uint16_t)(b2 | (b3 << 8u));
+    b4 = src[4];
+    b5 = src[5];
+    dst->battery_charge_energy = (uint16_t)(b4 | (b5 << 8u));
+    b6 = src[6];
+    b7 = src[7];
+    dst->battery_discharge_energy = (uint16_t)(b6 | (b7 << 8u));
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A vehicle_state_2 with every raw field 0. */
@@ -5250,55 +4946,30 @@ typedef struct {
     uint8_t motor_temp;            /**< 电机温度 [°C]; bits 40..47 */
     uint8_t motor_controller_temp; /**< 电控温度 [°C]; bits 48..55 */
 } kaiwo_gateway_vehicle_state_3_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_vehicle_state_3_layout_check
-    [(offsetof(kaiwo_gateway_vehicle_state_3_t, battery_max_temp) == 0u &&
-      offsetof(kaiwo_gateway_vehicle_state_3_t, battery_min_temp) == 1u &&
-      offsetof(kaiwo_gateway_vehicle_state_3_t, max_cell_voltage) == 2u &&
-      offsetof(kaiwo_gateway_vehicle_state_3_t, min_cell_voltage) == 4u &&
-      offsetof(kaiwo_gateway_vehicle_state_3_t, motor_temp) == 6u &&
-      offsetof(kaiwo_gateway_vehicle_state_3_t, motor_controller_temp) == 7u &&
-      sizeof(kaiwo_gateway_vehicle_state_3_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_3_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->battery_max_temp | ((uint64_t)src->battery_min_temp << 8) |
-             ((uint64_t)src->max_cell_voltage << 16) | ((uint64_t)src->min_cell_voltage << 32) |
-             ((uint64_t)src->motor_temp << 48) | ((uint64_t)src->motor_controller_temp << 56);
-#endif
-        if (((p0 & UINT64_C(0xF000F0000000))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0xFFFFFFF)) | ((p0 & UINT64_C(0xFFF00000000)) >> 4) | ((p0 >> 48) << 40);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_3_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    dst[0] = (uint8_t)src->battery_max_temp;
+    dst[1] = (uint8_t)src->battery_min_temp;
+    if ((src->max_cell_voltage > 4095u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[2] = (uint8_t)src->max_cell_voltage;
+    if ((src->min_cell_voltage > 4095u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)((src->max_cell_voltage >> 8u) | ((uint32_t)src->min_cell_voltage << 4u));
+    dst[4] = (uint8_t)(src->min_cell_voltage >> 4u);
+    dst[5] = (uint8_t)src->motor_temp;
+    dst[6] = (uint8_t)src->motor_controller_temp;
+    dst[7] = 0u;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -5306,33 +4977,30 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const uint8_t *src,
                                      size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_3_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0xFFFFFFF)) | ((v & UINT64_C(0xFFF0000000)) << 4) | ((v >> 40) << 48);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->battery_max_temp = (uint8_t)r0;
-        dst->battery_min_temp = (uint8_t)(r0 >> 8);
-        dst->max_cell_voltage = (uint16_t)(r0 >> 16);
-        dst->min_cell_voltage = (uint16_t)(r0 >> 32);
-        dst->motor_temp = (uint8_t)(r0 >> 48);
-        dst->motor_controller_temp = (uint8_t)(r0 >> 56);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->battery_max_temp = (uint8_t)b0;
+    b1 = src[1];
+    dst->battery_min_temp = (uint8_t)b1;
+    b2 = src[2];
+    b3 = src[3];
+    dst->max_cell_voltage = (uint16_t)(b2 | ((b3 & 0xFu) << 8u));
+    b4 = src[4];
+    dst->min_cell_voltage = (uint16_t)((b3 >> 4u) | (b4 << 4u));
+    b5 = src[5];
+    dst->motor_temp = (uint8_t)b5;
+    b6 = src[6];
+    dst->motor_controller_temp = (uint8_t)b6;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A vehicle_state_3 with every raw field 0. */
@@ -5703,74 +5371,40 @@ typedef struct {
     uint8_t pto_state;      /**< 取力状态; bits 45..45; values: kaiwo_gateway_pto_state_t */
     uint16_t battery_power; /**< 电池功率 [kW]; bits 48..63 */
 } kaiwo_gateway_vehicle_state_4_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_vehicle_state_4_layout_check
-    [(offsetof(kaiwo_gateway_vehicle_state_4_t, outside_temp) == 0u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, inside_temp) == 1u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, ac_state) == 2u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, vehicle_power_state) == 3u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, hill_hold_state) == 4u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, regen_brake_state) == 5u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, remaining_range) == 6u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, manual_takeover_state) == 8u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, remote_driving_allowed) == 9u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, ac_set_temp) == 10u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, pto_state) == 11u &&
-      offsetof(kaiwo_gateway_vehicle_state_4_t, battery_power) == 12u &&
-      sizeof(kaiwo_gateway_vehicle_state_4_t) == 14u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_4_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p1g;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
-#else
-        p0 = (uint64_t)src->outside_temp | ((uint64_t)src->inside_temp << 8) |
-             ((uint64_t)src->ac_state << 16) | ((uint64_t)src->vehicle_power_state << 24) |
-             ((uint64_t)src->hill_hold_state << 32) | ((uint64_t)src->regen_brake_state << 40) |
-             ((uint64_t)src->remaining_range << 48);
-        p1 = (uint64_t)src->manual_takeover_state | ((uint64_t)src->remote_driving_allowed << 8) |
-             ((uint64_t)src->ac_set_temp << 16) | ((uint64_t)src->pto_state << 24) |
-             ((uint64_t)src->battery_power << 32);
-#endif
-        if (((p0 & UINT64_C(0xF000FEFEFCF00000)) | (p1 & UINT64_C(0xFEE0FEFE))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1g = ((p1 & UINT64_C(0x100)) << 31) | ((p1 & UINT64_C(0x1000000)) << 21) |
-              ((p1 >> 32) << 48);
-        p1 &= UINT64_C(0x1F0001);
-        p1 = ((p1 * UINT64_C(0x1001)) >> 12) & UINT64_C(0x1F1);
-        w = (p0 & UINT64_C(0xFFFFF)) | ((p0 & UINT64_C(0x3000000)) >> 4) |
-            ((p0 & UINT64_C(0x100000000)) >> 10) | ((p0 & UINT64_C(0x10000000000)) >> 17) |
-            ((p0 & UINT64_C(0xFFF000000000000)) >> 24) | (p1 << 36) | p1g;
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_STATE_4_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    dst[0] = (uint8_t)src->outside_temp;
+    dst[1] = (uint8_t)src->inside_temp;
+    if (((src->hill_hold_state | src->regen_brake_state) > 1u) || (src->vehicle_power_state > 3u) ||
+        (src->ac_state > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[2] = (uint8_t)(src->ac_state | ((uint32_t)src->vehicle_power_state << 4u) |
+                       ((uint32_t)src->hill_hold_state << 6u) |
+                       ((uint32_t)src->regen_brake_state << 7u));
+    if ((src->remaining_range > 4095u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->remaining_range;
+    if (((src->manual_takeover_state | src->remote_driving_allowed) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)((src->remaining_range >> 8u) | ((uint32_t)src->manual_takeover_state << 4u) |
+                       ((uint32_t)src->remote_driving_allowed << 7u));
+    if ((src->pto_state > 1u) || (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->ac_set_temp | ((uint32_t)src->pto_state << 5u));
+    dst[6] = (uint8_t)src->battery_power;
+    dst[7] = (uint8_t)(src->battery_power >> 8u);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -5778,47 +5412,38 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const uint8_t *src,
                                      size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_STATE_4_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0xFFFFF)) | ((v & UINT64_C(0x300000)) << 4) |
-             ((v & UINT64_C(0x400000)) << 10) | ((v & UINT64_C(0x800000)) << 17) |
-             ((v & UINT64_C(0xFFF000000)) << 24);
-        r1 = (v >> 36) & UINT64_C(0x1F1);
-        r1 = (r1 * UINT64_C(0x1001)) & UINT64_C(0x1F0001);
-        r1 |= ((v & UINT64_C(0x8000000000)) >> 31) | ((v & UINT64_C(0x200000000000)) >> 21) |
-              ((v >> 48) << 32);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
-#else
-        dst->outside_temp = (uint8_t)r0;
-        dst->inside_temp = (uint8_t)(r0 >> 8);
-        dst->ac_state = (uint8_t)(r0 >> 16);
-        dst->vehicle_power_state = (uint8_t)(r0 >> 24);
-        dst->hill_hold_state = (uint8_t)(r0 >> 32);
-        dst->regen_brake_state = (uint8_t)(r0 >> 40);
-        dst->remaining_range = (uint16_t)(r0 >> 48);
-        dst->manual_takeover_state = (uint8_t)r1;
-        dst->remote_driving_allowed = (uint8_t)(r1 >> 8);
-        dst->ac_set_temp = (uint8_t)(r1 >> 16);
-        dst->pto_state = (uint8_t)(r1 >> 24);
-        dst->battery_power = (uint16_t)(r1 >> 32);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->outside_temp = (uint8_t)b0;
+    b1 = src[1];
+    dst->inside_temp = (uint8_t)b1;
+    b2 = src[2];
+    dst->ac_state = (uint8_t)(b2 & 0xFu);
+    dst->vehicle_power_state = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->hill_hold_state = (uint8_t)((b2 >> 6u) & 0x1u);
+    dst->regen_brake_state = (uint8_t)(b2 >> 7u);
+    b3 = src[3];
+    b4 = src[4];
+    dst->remaining_range = (uint16_t)(b3 | ((b4 & 0xFu) << 8u));
+    dst->manual_takeover_state = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->remote_driving_allowed = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->ac_set_temp = (uint8_t)(b5 & 0x1Fu);
+    dst->pto_state = (uint8_t)((b5 >> 5u) & 0x1u);
+    b6 = src[6];
+    b7 = src[7];
+    dst->battery_power = (uint16_t)(b6 | (b7 << 8u));
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A vehicle_state_4 with every raw field 0. */
@@ -6573,114 +6198,65 @@ typedef struct {
     uint8_t
         remote_entry_fault; /**< 无法进入远程驾驶系统故障状态; bits 44..47; values: kaiwo_gateway_remote_entry_fault_t */
 } kaiwo_gateway_vehicle_fault_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_vehicle_fault_layout_check
-    [(offsetof(kaiwo_gateway_vehicle_fault_t, insulation_fault_level) == 0u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, dc_fault) == 1u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, soc_low) == 2u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, cell_undervoltage) == 3u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, brake_boost_pressure_fault) == 4u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, vacuum_pump_fault) == 5u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, vehicle_system_fault) == 6u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, battery_overheat) == 7u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, motor_overheat) == 8u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, traction_battery_fault) == 9u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, motor_fault) == 10u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, battery_comm_fault) == 11u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, motor_comm_fault) == 12u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, eps_fault) == 13u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, ac_fault) == 14u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, aux_battery_fault) == 15u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, epb_fault) == 16u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, brake_by_wire_fault) == 17u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, key_not_detected) == 18u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, tire_pressure_low) == 19u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, body_motor_fault) == 20u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, body_motor_overheat) == 21u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, battery_system_fault_level) == 22u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, motor_system_fault_level) == 23u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, unmanned_entry_fault) == 24u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_a) == 25u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_b) == 26u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, protocol_version_c) == 27u &&
-      offsetof(kaiwo_gateway_vehicle_fault_t, remote_entry_fault) == 28u &&
-      sizeof(kaiwo_gateway_vehicle_fault_t) == 29u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_vehicle_fault_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p0g;
-        uint64_t p1;
-        uint64_t p1g;
-        uint64_t p2;
-        uint64_t p2g;
-        uint64_t p3;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
-        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 5u);
-#else
-        p0 = (uint64_t)src->insulation_fault_level | ((uint64_t)src->dc_fault << 8) |
-             ((uint64_t)src->soc_low << 16) | ((uint64_t)src->cell_undervoltage << 24) |
-             ((uint64_t)src->brake_boost_pressure_fault << 32) |
-             ((uint64_t)src->vacuum_pump_fault << 40) |
-             ((uint64_t)src->vehicle_system_fault << 48) | ((uint64_t)src->battery_overheat << 56);
-        p1 = (uint64_t)src->motor_overheat | ((uint64_t)src->traction_battery_fault << 8) |
-             ((uint64_t)src->motor_fault << 16) | ((uint64_t)src->battery_comm_fault << 24) |
-             ((uint64_t)src->motor_comm_fault << 32) | ((uint64_t)src->eps_fault << 40) |
-             ((uint64_t)src->ac_fault << 48) | ((uint64_t)src->aux_battery_fault << 56);
-        p2 = (uint64_t)src->epb_fault | ((uint64_t)src->brake_by_wire_fault << 8) |
-             ((uint64_t)src->key_not_detected << 16) | ((uint64_t)src->tire_pressure_low << 24) |
-             ((uint64_t)src->body_motor_fault << 32) | ((uint64_t)src->body_motor_overheat << 40) |
-             ((uint64_t)src->battery_system_fault_level << 48) |
-             ((uint64_t)src->motor_system_fault_level << 56);
-        p3 = (uint64_t)src->unmanned_entry_fault | ((uint64_t)src->protocol_version_a << 8) |
-             ((uint64_t)src->protocol_version_b << 16) | ((uint64_t)src->protocol_version_c << 24) |
-             ((uint64_t)src->remote_entry_fault << 32);
-#endif
-        if (((p0 & UINT64_C(0xFEFEFEFEFEFEFEFC)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
-             (p2 & UINT64_C(0xFCFCFEFEFEFEFEFE)) | (p3 & UINT64_C(0xF0F0F0F0F0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p0g = (p0 & UINT64_C(0x3));
-        p0 &= UINT64_C(0x101010101010100);
-        p0 = ((p0 * UINT64_C(0x40810204081)) >> 42) & UINT64_C(0x7F00);
-        p1g = ((p1 & UINT64_C(0x1)) << 9);
-        p1 &= UINT64_C(0x101010101010100);
-        p1 = ((p1 * UINT64_C(0x40810204081)) >> 42) & UINT64_C(0x7F00);
-        p2g = ((p2 & UINT64_C(0x3000000000000)) >> 24) | ((p2 & UINT64_C(0x300000000000000)) >> 30);
-        p2 &= UINT64_C(0x10101010101);
-        p2 = ((p2 * UINT64_C(0x810204081)) >> 35) & UINT64_C(0x3F);
-        p3 = (p3 | (p3 >> 4)) & UINT64_C(0xF00FF00FF);
-        p3 = (p3 | (p3 >> 8)) & UINT64_C(0xF0000FFFF);
-        p3 = (p3 | (p3 >> 16)) & UINT64_C(0xFFFFF);
-        w = (p0 >> 6) | p0g | (p1 << 2) | p1g | (p2 << 17) | p2g | (p3 << 28);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->dc_fault | src->soc_low | src->cell_undervoltage | src->brake_boost_pressure_fault |
+          src->vacuum_pump_fault | src->vehicle_system_fault) > 1u) ||
+        (src->insulation_fault_level > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->insulation_fault_level | ((uint32_t)src->dc_fault << 2u) |
+                       ((uint32_t)src->soc_low << 3u) | ((uint32_t)src->cell_undervoltage << 4u) |
+                       ((uint32_t)src->brake_boost_pressure_fault << 5u) |
+                       ((uint32_t)src->vacuum_pump_fault << 6u) |
+                       ((uint32_t)src->vehicle_system_fault << 7u));
+    if (((src->battery_overheat | src->motor_overheat | src->traction_battery_fault |
+          src->motor_fault | src->battery_comm_fault | src->motor_comm_fault | src->eps_fault |
+          src->ac_fault) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->battery_overheat | ((uint32_t)src->motor_overheat << 1u) |
+                  ((uint32_t)src->traction_battery_fault << 2u) |
+                  ((uint32_t)src->motor_fault << 3u) | ((uint32_t)src->battery_comm_fault << 4u) |
+                  ((uint32_t)src->motor_comm_fault << 5u) | ((uint32_t)src->eps_fault << 6u) |
+                  ((uint32_t)src->ac_fault << 7u));
+    if (((src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
+          src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
+          src->body_motor_overheat) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)(src->aux_battery_fault | ((uint32_t)src->epb_fault << 1u) |
+                       ((uint32_t)src->brake_by_wire_fault << 2u) |
+                       ((uint32_t)src->key_not_detected << 3u) |
+                       ((uint32_t)src->tire_pressure_low << 4u) |
+                       ((uint32_t)src->body_motor_fault << 5u) |
+                       ((uint32_t)src->body_motor_overheat << 6u));
+    if (((src->battery_system_fault_level | src->motor_system_fault_level) > 3u) ||
+        (src->unmanned_entry_fault > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)(src->battery_system_fault_level |
+                       ((uint32_t)src->motor_system_fault_level << 2u) |
+                       ((uint32_t)src->unmanned_entry_fault << 4u));
+    if (((src->protocol_version_a | src->protocol_version_b) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4u));
+    if (((src->protocol_version_c | src->remote_entry_fault) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->remote_entry_fault << 4u));
+    dst[6] = 0u;
+    dst[7] = 0u;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -6688,74 +6264,51 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uint8_t *src,
                                    size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-        uint64_t r3;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_VEHICLE_FAULT_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v << 6) & UINT64_C(0x7F00);
-        r1 = (v >> 2) & UINT64_C(0x7F00);
-        r2 = (v >> 17) & UINT64_C(0x3F);
-        r3 = (v >> 28) & UINT64_C(0xFFFFF);
-        r0 = (r0 * UINT64_C(0x40810204081)) & UINT64_C(0x101010101010100);
-        r0 |= (v & UINT64_C(0x3));
-        r1 = (r1 * UINT64_C(0x40810204081)) & UINT64_C(0x101010101010100);
-        r1 |= ((v & UINT64_C(0x200)) >> 9);
-        r2 = (r2 * UINT64_C(0x810204081)) & UINT64_C(0x10101010101);
-        r2 |= ((v & UINT64_C(0x3000000)) << 24) | ((v & UINT64_C(0xC000000)) << 30);
-        r3 = (r3 | (r3 << 16)) & UINT64_C(0xF0000FFFF);
-        r3 = (r3 | (r3 << 8)) & UINT64_C(0xF00FF00FF);
-        r3 = (r3 | (r3 << 4)) & UINT64_C(0xF0F0F0F0F);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 5u);
-#else
-        dst->insulation_fault_level = (uint8_t)r0;
-        dst->dc_fault = (uint8_t)(r0 >> 8);
-        dst->soc_low = (uint8_t)(r0 >> 16);
-        dst->cell_undervoltage = (uint8_t)(r0 >> 24);
-        dst->brake_boost_pressure_fault = (uint8_t)(r0 >> 32);
-        dst->vacuum_pump_fault = (uint8_t)(r0 >> 40);
-        dst->vehicle_system_fault = (uint8_t)(r0 >> 48);
-        dst->battery_overheat = (uint8_t)(r0 >> 56);
-        dst->motor_overheat = (uint8_t)r1;
-        dst->traction_battery_fault = (uint8_t)(r1 >> 8);
-        dst->motor_fault = (uint8_t)(r1 >> 16);
-        dst->battery_comm_fault = (uint8_t)(r1 >> 24);
-        dst->motor_comm_fault = (uint8_t)(r1 >> 32);
-        dst->eps_fault = (uint8_t)(r1 >> 40);
-        dst->ac_fault = (uint8_t)(r1 >> 48);
-        dst->aux_battery_fault = (uint8_t)(r1 >> 56);
-        dst->epb_fault = (uint8_t)r2;
-        dst->brake_by_wire_fault = (uint8_t)(r2 >> 8);
-        dst->key_not_detected = (uint8_t)(r2 >> 16);
-        dst->tire_pressure_low = (uint8_t)(r2 >> 24);
-        dst->body_motor_fault = (uint8_t)(r2 >> 32);
-        dst->body_motor_overheat = (uint8_t)(r2 >> 40);
-        dst->battery_system_fault_level = (uint8_t)(r2 >> 48);
-        dst->motor_system_fault_level = (uint8_t)(r2 >> 56);
-        dst->unmanned_entry_fault = (uint8_t)r3;
-        dst->protocol_version_a = (uint8_t)(r3 >> 8);
-        dst->protocol_version_b = (uint8_t)(r3 >> 16);
-        dst->protocol_version_c = (uint8_t)(r3 >> 24);
-        dst->remote_entry_fault = (uint8_t)(r3 >> 32);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->insulation_fault_level = (uint8_t)(b0 & 0x3u);
+    dst->dc_fault = (uint8_t)((b0 >> 2u) & 0x1u);
+    dst->soc_low = (uint8_t)((b0 >> 3u) & 0x1u);
+    dst->cell_undervoltage = (uint8_t)((b0 >> 4u) & 0x1u);
+    dst->brake_boost_pressure_fault = (uint8_t)((b0 >> 5u) & 0x1u);
+    dst->vacuum_pump_fault = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->vehicle_system_fault = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->battery_overheat = (uint8_t)(b1 & 0x1u);
+    dst->motor_overheat = (uint8_t)((b1 >> 1u) & 0x1u);
+    dst->traction_battery_fault = (uint8_t)((b1 >> 2u) & 0x1u);
+    dst->motor_fault = (uint8_t)((b1 >> 3u) & 0x1u);
+    dst->battery_comm_fault = (uint8_t)((b1 >> 4u) & 0x1u);
+    dst->motor_comm_fault = (uint8_t)((b1 >> 5u) & 0x1u);
+    dst->eps_fault = (uint8_t)((b1 >> 6u) & 0x1u);
+    dst->ac_fault = (uint8_t)(b1 >> 7u);
+    b2 = src[2];
+    dst->aux_battery_fault = (uint8_t)(b2 & 0x1u);
+    dst->epb_fault = (uint8_t)((b2 >> 1u) & 0x1u);
+    dst->brake_by_wire_fault = (uint8_t)((b2 >> 2u) & 0x1u);
+    dst->key_not_detected = (uint8_t)((b2 >> 3u) & 0x1u);
+    dst->tire_pressure_low = (uint8_t)((b2 >> 4u) & 0x1u);
+    dst->body_motor_fault = (uint8_t)((b2 >> 5u) & 0x1u);
+    dst->body_motor_overheat = (uint8_t)((b2 >> 6u) & 0x1u);
+    b3 = src[3];
+    dst->battery_system_fault_level = (uint8_t)(b3 & 0x3u);
+    dst->motor_system_fault_level = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->unmanned_entry_fault = (uint8_t)(b3 >> 4u);
+    b4 = src[4];
+    dst->protocol_version_a = (uint8_t)(b4 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b4 >> 4u);
+    b5 = src[5];
+    dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
+    dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A vehicle_fault with every raw field 0. */
@@ -8065,15 +7618,27 @@ typedef struct {
 } kaiwo_gateway_vehicle_state_5_t;
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_5_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_5_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_5_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    (void)src;
-    memset(dst, 0, KAIWO_GATEWAY_VEHICLE_STATE_5_DLC);
+    (void)src; /* no fields: every byte is 0 */
+#if KAIWO_GATEWAY_UNALIGNED_WORDS
+    (void)memset(dst, 0, KAIWO_GATEWAY_VEHICLE_STATE_5_DLC);
+#else
+    dst[0] = 0u;
+    dst[1] = 0u;
+    dst[2] = 0u;
+    dst[3] = 0u;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = 0u;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8136,52 +7701,24 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_rgate_eps_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rgate_eps_command_layout_check
-    [(offsetof(kaiwo_gateway_rgate_eps_command_t, eps_ctrl_mode) == 0u &&
-      offsetof(kaiwo_gateway_rgate_eps_command_t, counter) == 1u &&
-      offsetof(kaiwo_gateway_rgate_eps_command_t, max_angular_speed) == 2u &&
-      offsetof(kaiwo_gateway_rgate_eps_command_t, steering_angle_cmd) == 4u &&
-      offsetof(kaiwo_gateway_rgate_eps_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_rgate_eps_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
                                      const kaiwo_gateway_rgate_eps_command_t *src) {
     if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
-#endif
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
-    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8190,32 +7727,36 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, const uint8_t *src,
                                        size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->eps_ctrl_mode = (uint8_t)r0;
-        dst->counter = (uint8_t)(r0 >> 8);
-        dst->max_angular_speed = (uint8_t)(r0 >> 16);
-        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    dst->eps_ctrl_mode = (uint8_t)b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->counter = (uint8_t)b1;
+    b2 = src[2];
+    x ^= b2;
+    dst->max_angular_speed = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    b4 = src[4];
+    x ^= b4;
+    dst->steering_angle_cmd = (uint16_t)(b3 | (b4 << 8u));
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A rgate_eps_command with every raw field 0. */
@@ -8415,57 +7956,34 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_rgate_speed_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rgate_speed_command_layout_check
-    [(offsetof(kaiwo_gateway_rgate_speed_command_t, accel_cmd) == 0u &&
-      offsetof(kaiwo_gateway_rgate_speed_command_t, epb_cmd) == 2u &&
-      offsetof(kaiwo_gateway_rgate_speed_command_t, gear_cmd) == 3u &&
-      offsetof(kaiwo_gateway_rgate_speed_command_t, counter) == 4u &&
-      offsetof(kaiwo_gateway_rgate_speed_command_t, emergency_brake_cmd) == 5u &&
-      offsetof(kaiwo_gateway_rgate_speed_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_rgate_speed_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->accel_cmd | ((uint64_t)src->epb_cmd << 16) |
-             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
-#endif
-        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
-            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8474,34 +7992,35 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *dst,
                                          const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->accel_cmd = (uint16_t)r0;
-        dst->epb_cmd = (uint8_t)(r0 >> 16);
-        dst->gear_cmd = (uint8_t)(r0 >> 24);
-        dst->counter = (uint8_t)(r0 >> 32);
-        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->accel_cmd = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    x ^= b2;
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[4];
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A rgate_speed_command with every raw field 0. */
@@ -8862,107 +8381,56 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_rgate_control_command_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rgate_control_command_1_layout_check
-    [(offsetof(kaiwo_gateway_rgate_control_command_1_t, drive_mode_cmd) == 0u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, door_cmd) == 1u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, horn_cmd) == 2u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, drl_cmd) == 3u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, left_turn_cmd) == 4u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, right_turn_cmd) == 5u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, hazard_cmd) == 6u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, position_light_cmd) == 7u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, headlight_cmd) == 8u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, rear_fog_cmd) == 9u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, left_fog_cmd) == 10u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, right_fog_cmd) == 11u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, dome_light_cmd) == 12u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, ambient_light_cmd) == 13u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, drive_mode_reset) == 14u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_state) == 15u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_reliability) == 16u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, system_fault_level) == 17u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, lock_cmd) == 18u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, ac_cmd) == 19u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, ac_set_temp) == 20u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_a) == 21u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_b) == 22u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, protocol_version_c) == 23u &&
-      offsetof(kaiwo_gateway_rgate_control_command_1_t, counter) == 24u &&
-      sizeof(kaiwo_gateway_rgate_control_command_1_t) == 25u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_1_t *src) {
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p1g;
-        uint64_t p2;
-        uint64_t p2g;
-        uint64_t p3;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
-        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
-#else
-        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
-             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
-             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
-             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
-        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
-             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
-             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
-             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
-        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
-             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
-             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
-             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
-        p3 = (uint64_t)src->counter;
-#endif
-        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
-             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
-        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
-        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
-        p1 &= UINT64_C(0x1030303030303);
-        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
-        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
-        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
-        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
-              (p2 & UINT64_C(0xF00000000000000));
-        p2 &= UINT64_C(0xF000007030303);
-        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
-        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
-        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
-        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2u) |
+                       ((uint32_t)src->horn_cmd << 4u) | ((uint32_t)src->drl_cmd << 6u));
+    if (((src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2u) |
+                  ((uint32_t)src->hazard_cmd << 4u) | ((uint32_t)src->position_light_cmd << 6u));
+    if (((src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)(src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2u) |
+                       ((uint32_t)src->left_fog_cmd << 4u) | ((uint32_t)src->right_fog_cmd << 6u));
+    if ((src->drive_mode_reset > 1u) || ((src->dome_light_cmd | src->ambient_light_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)(src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2u) |
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    if (((src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->system_state | ((uint32_t)src->system_reliability << 2u) |
+                       ((uint32_t)src->system_fault_level << 4u) | ((uint32_t)src->lock_cmd << 6u));
+    if ((src->ac_cmd > 7u) || (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->ac_cmd | ((uint32_t)src->ac_set_temp << 3u));
+    if (((src->protocol_version_a | src->protocol_version_b) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)(src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4u));
+    if (((src->protocol_version_c | src->counter) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8970,73 +8438,51 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command_1_t *dst,
                                              const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-        uint64_t r3;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x1FFF);
-        r2 = (v >> 34) & UINT64_C(0x3C01FF);
-        r3 = (v >> 60);
-        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
-        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
-        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
-        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
-        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
-        r1 |= ((v & UINT64_C(0x300000000)) << 24);
-        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
-        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
-        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
-        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
-              (v & UINT64_C(0xF00000000000000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
-#else
-        dst->drive_mode_cmd = (uint8_t)r0;
-        dst->door_cmd = (uint8_t)(r0 >> 8);
-        dst->horn_cmd = (uint8_t)(r0 >> 16);
-        dst->drl_cmd = (uint8_t)(r0 >> 24);
-        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
-        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
-        dst->hazard_cmd = (uint8_t)(r0 >> 48);
-        dst->position_light_cmd = (uint8_t)(r0 >> 56);
-        dst->headlight_cmd = (uint8_t)r1;
-        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
-        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
-        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
-        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
-        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
-        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
-        dst->system_state = (uint8_t)(r1 >> 56);
-        dst->system_reliability = (uint8_t)r2;
-        dst->system_fault_level = (uint8_t)(r2 >> 8);
-        dst->lock_cmd = (uint8_t)(r2 >> 16);
-        dst->ac_cmd = (uint8_t)(r2 >> 24);
-        dst->ac_set_temp = (uint8_t)(r2 >> 32);
-        dst->protocol_version_a = (uint8_t)(r2 >> 40);
-        dst->protocol_version_b = (uint8_t)(r2 >> 48);
-        dst->protocol_version_c = (uint8_t)(r2 >> 56);
-        dst->counter = (uint8_t)r3;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A rgate_control_command_1 with every raw field 0. */
@@ -10175,57 +9621,29 @@ typedef struct {
     uint8_t downhill_regen_speed; /**< 下坡制动回收速度 [km/h]; bits 8..15 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_rgate_control_command_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rgate_control_command_2_layout_check
-    [(offsetof(kaiwo_gateway_rgate_control_command_2_t, downhill_regen_enable) == 0u &&
-      offsetof(kaiwo_gateway_rgate_control_command_2_t, cargo_lift) == 1u &&
-      offsetof(kaiwo_gateway_rgate_control_command_2_t, cargo_lift_speed) == 2u &&
-      offsetof(kaiwo_gateway_rgate_control_command_2_t, pto_enable) == 3u &&
-      offsetof(kaiwo_gateway_rgate_control_command_2_t, downhill_regen_speed) == 4u &&
-      offsetof(kaiwo_gateway_rgate_control_command_2_t, counter) == 5u &&
-      sizeof(kaiwo_gateway_rgate_control_command_2_t) == 6u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_2_t *src) {
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
-#else
-        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
-#endif
-        if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
-        dst[1] = src->downhill_regen_speed;
-        dst[7] = src->counter;
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = src->downhill_regen_speed;
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = src->counter;
-#endif
+    if (((src->downhill_regen_enable | src->pto_enable) > 1u) || (src->cargo_lift > 3u) ||
+        (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1u) |
+                       ((uint32_t)src->cargo_lift_speed << 3u) | ((uint32_t)src->pto_enable << 7u));
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    dst[2] = 0u;
+    dst[3] = 0u;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)src->counter;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10233,34 +9651,22 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command_2_t *dst,
                                              const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
-             ((v & UINT64_C(0x80)) << 17);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
-#else
-        dst->downhill_regen_enable = (uint8_t)r0;
-        dst->cargo_lift = (uint8_t)(r0 >> 8);
-        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
-        dst->pto_enable = (uint8_t)(r0 >> 24);
-#endif
-        dst->downhill_regen_speed = (uint8_t)(v >> 8);
-        dst->counter = (uint8_t)(v >> 56);
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A rgate_control_command_2 with every raw field 0. */
@@ -10542,86 +9948,62 @@ typedef struct {
     uint8_t id_frame_index; /**< ID 序号; bits 6..7; values: kaiwo_gateway_id_frame_index_t */
     uint64_t id_chars;      /**< ID; bits 8..63 */
 } kaiwo_gateway_device_id_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char
-    kaiwo_gateway_device_id_layout_check[(offsetof(kaiwo_gateway_device_id_t, device_type) == 0u &&
-                                          offsetof(kaiwo_gateway_device_id_t, id_frame_index) ==
-                                              1u &&
-                                          offsetof(kaiwo_gateway_device_id_t, id_chars) == 8u &&
-                                          sizeof(kaiwo_gateway_device_id_t) == 16u)
-                                             ? 1
-                                             : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_device_id_t *src) {
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-#else
-        p0 = (uint64_t)src->device_type | ((uint64_t)src->id_frame_index << 8);
-        p1 = (uint64_t)src->id_chars;
-#endif
-        if (((p0 & UINT64_C(0xFCC0)) | (p1 & UINT64_C(0xFF00000000000000))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x3F)) | ((p0 & UINT64_C(0x300)) >> 2) | (p1 << 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_DEVICE_ID_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->id_frame_index > 3u) || (src->device_type > 63u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->device_type | ((uint32_t)src->id_frame_index << 6u));
+    if ((src->id_chars > UINT64_C(72057594037927935))) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)(uint32_t)src->id_chars;
+    dst[2] = (uint8_t)((uint32_t)src->id_chars >> 8u);
+    dst[3] = (uint8_t)((uint32_t)src->id_chars >> 16u);
+    dst[4] = (uint8_t)((uint32_t)src->id_chars >> 24u);
+    dst[5] = (uint8_t)((uint32_t)(src->id_chars >> 32u));
+    dst[6] = (uint8_t)(((uint32_t)(src->id_chars >> 32u)) >> 8u);
+    dst[7] = (uint8_t)(((uint32_t)(src->id_chars >> 32u)) >> 16u);
     return KAIWO_GATEWAY_OK;
 }
 
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    uint32_t lo;
+    uint32_t hi;
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_DEVICE_ID_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3F)) | ((v & UINT64_C(0xC0)) << 2);
-        r1 = (v >> 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-#else
-        dst->device_type = (uint8_t)r0;
-        dst->id_frame_index = (uint8_t)(r0 >> 8);
-        dst->id_chars = (uint64_t)r1;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->device_type = (uint8_t)(b0 & 0x3Fu);
+    dst->id_frame_index = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    b2 = src[2];
+    b3 = src[3];
+    b4 = src[4];
+    b5 = src[5];
+    b6 = src[6];
+    b7 = src[7];
+    lo = (b1 | (b2 << 8u) | (b3 << 16u) | (b4 << 24u));
+    hi = (b5 | (b6 << 8u) | (b7 << 16u));
+    dst->id_chars = (uint64_t)(((uint64_t)hi << 32u) | (uint64_t)lo);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A device_id with every raw field 0. */
@@ -10809,64 +10191,45 @@ typedef struct {
     uint16_t sensor_6_distance; /**< 传感器 6 距离 [cm]; bits 50..59 */
     uint8_t counter;            /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_front_sensor_distance_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_front_sensor_distance_1_layout_check
-    [(offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_1_distance) == 0u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_2_distance) == 2u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_3_distance) == 4u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_4_distance) == 6u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_5_distance) == 8u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, sensor_6_distance) == 10u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_1_t, counter) == 12u &&
-      sizeof(kaiwo_gateway_front_sensor_distance_1_t) == 14u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_1_t *src) {
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
-#else
-        p0 = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 16) |
-             ((uint64_t)src->sensor_3_distance << 32) | ((uint64_t)src->sensor_4_distance << 48);
-        p1 = (uint64_t)src->sensor_5_distance | ((uint64_t)src->sensor_6_distance << 16) |
-             ((uint64_t)src->counter << 32);
-#endif
-        if (((p0 & UINT64_C(0xFC00FC00FC00FC00)) | (p1 & UINT64_C(0xF0FC00FC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 &= UINT64_C(0xFFFFFFFFFF);
-        p1 = (p1 & UINT64_C(0xF000003FF)) | ((p1 >> 6) & UINT64_C(0xFFC00));
-        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0xF00000));
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
-            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3FF000000000000)) >> 18) |
-            (p1 << 40);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->sensor_1_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->sensor_1_distance;
+    if ((src->sensor_2_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->sensor_1_distance >> 8u) | ((uint32_t)src->sensor_2_distance << 2u));
+    if ((src->sensor_3_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)((src->sensor_2_distance >> 6u) | ((uint32_t)src->sensor_3_distance << 4u));
+    if ((src->sensor_4_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)((src->sensor_3_distance >> 4u) | ((uint32_t)src->sensor_4_distance << 6u));
+    dst[4] = (uint8_t)(src->sensor_4_distance >> 2u);
+    if ((src->sensor_5_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)src->sensor_5_distance;
+    if ((src->sensor_6_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)((src->sensor_5_distance >> 8u) | ((uint32_t)src->sensor_6_distance << 2u));
+    if ((src->counter > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)((src->sensor_6_distance >> 6u) | ((uint32_t)src->counter << 4u));
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10874,40 +10237,33 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance_1_t *dst,
                                              const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
-             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0xFFC0000000)) << 18);
-        r1 = (v >> 40);
-        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0xF00000000));
-        r1 = (r1 & UINT64_C(0xF000003FF)) | ((r1 << 6) & UINT64_C(0x3FF0000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
-#else
-        dst->sensor_1_distance = (uint16_t)r0;
-        dst->sensor_2_distance = (uint16_t)(r0 >> 16);
-        dst->sensor_3_distance = (uint16_t)(r0 >> 32);
-        dst->sensor_4_distance = (uint16_t)(r0 >> 48);
-        dst->sensor_5_distance = (uint16_t)r1;
-        dst->sensor_6_distance = (uint16_t)(r1 >> 16);
-        dst->counter = (uint8_t)(r1 >> 32);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    b1 = src[1];
+    dst->sensor_1_distance = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    b2 = src[2];
+    dst->sensor_2_distance = (uint16_t)((b1 >> 2u) | ((b2 & 0xFu) << 6u));
+    b3 = src[3];
+    dst->sensor_3_distance = (uint16_t)((b2 >> 4u) | ((b3 & 0x3Fu) << 4u));
+    b4 = src[4];
+    dst->sensor_4_distance = (uint16_t)((b3 >> 6u) | (b4 << 2u));
+    b5 = src[5];
+    b6 = src[6];
+    dst->sensor_5_distance = (uint16_t)(b5 | ((b6 & 0x3u) << 8u));
+    b7 = src[7];
+    dst->sensor_6_distance = (uint16_t)((b6 >> 2u) | ((b7 & 0xFu) << 6u));
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A front_sensor_distance_1 with every raw field 0. */
@@ -11329,79 +10685,49 @@ typedef struct {
         sensor_9_fault; /**< 传感器 9 故障状态; bits 42..42; values: kaiwo_gateway_sensor_fault_t */
     uint8_t counter; /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_front_sensor_distance_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_front_sensor_distance_2_layout_check
-    [(offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_7_distance) == 0u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_8_distance) == 2u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_9_distance) == 4u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, uss_system_state) == 6u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_1_fault) == 7u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_2_fault) == 8u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_3_fault) == 9u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_4_fault) == 10u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_5_fault) == 11u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_6_fault) == 12u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_7_fault) == 13u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_8_fault) == 14u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, sensor_9_fault) == 15u &&
-      offsetof(kaiwo_gateway_front_sensor_distance_2_t, counter) == 16u &&
-      sizeof(kaiwo_gateway_front_sensor_distance_2_t) == 18u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_2_t *src) {
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p2;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 2u);
-#else
-        p0 = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 16) |
-             ((uint64_t)src->sensor_9_distance << 32) | ((uint64_t)src->uss_system_state << 48) |
-             ((uint64_t)src->sensor_1_fault << 56);
-        p1 = (uint64_t)src->sensor_2_fault | ((uint64_t)src->sensor_3_fault << 8) |
-             ((uint64_t)src->sensor_4_fault << 16) | ((uint64_t)src->sensor_5_fault << 24) |
-             ((uint64_t)src->sensor_6_fault << 32) | ((uint64_t)src->sensor_7_fault << 40) |
-             ((uint64_t)src->sensor_8_fault << 48) | ((uint64_t)src->sensor_9_fault << 56);
-        p2 = (uint64_t)src->counter;
-#endif
-        if (((p0 & UINT64_C(0xFEFCFC00FC00FC00)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
-             (p2 & UINT64_C(0xF0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
-        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
-        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
-        p2 &= UINT64_C(0xFF);
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
-            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3000000000000)) >> 16) |
-            ((p0 & UINT64_C(0x100000000000000)) >> 22) | (p1 << 35) | (p2 << 60);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->sensor_7_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->sensor_7_distance;
+    if ((src->sensor_8_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->sensor_7_distance >> 8u) | ((uint32_t)src->sensor_8_distance << 2u));
+    if ((src->sensor_9_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)((src->sensor_8_distance >> 6u) | ((uint32_t)src->sensor_9_distance << 4u));
+    dst[3] = (uint8_t)(src->sensor_9_distance >> 4u);
+    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
+        (src->uss_system_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] =
+        (uint8_t)(src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2u) |
+                  ((uint32_t)src->sensor_2_fault << 3u) | ((uint32_t)src->sensor_3_fault << 4u) |
+                  ((uint32_t)src->sensor_4_fault << 5u) | ((uint32_t)src->sensor_5_fault << 6u) |
+                  ((uint32_t)src->sensor_6_fault << 7u));
+    if (((src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1u) |
+                       ((uint32_t)src->sensor_9_fault << 2u));
+    dst[6] = 0u;
+    if ((src->counter > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)((uint32_t)src->counter << 4u);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -11409,52 +10735,38 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance_2_t *dst,
                                              const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
-             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0x300000000)) << 16) |
-             ((v & UINT64_C(0x400000000)) << 22);
-        r1 = (v >> 35) & UINT64_C(0xFF);
-        r2 = (v >> 60);
-        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
-        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
-        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 2u);
-#else
-        dst->sensor_7_distance = (uint16_t)r0;
-        dst->sensor_8_distance = (uint16_t)(r0 >> 16);
-        dst->sensor_9_distance = (uint16_t)(r0 >> 32);
-        dst->uss_system_state = (uint8_t)(r0 >> 48);
-        dst->sensor_1_fault = (uint8_t)(r0 >> 56);
-        dst->sensor_2_fault = (uint8_t)r1;
-        dst->sensor_3_fault = (uint8_t)(r1 >> 8);
-        dst->sensor_4_fault = (uint8_t)(r1 >> 16);
-        dst->sensor_5_fault = (uint8_t)(r1 >> 24);
-        dst->sensor_6_fault = (uint8_t)(r1 >> 32);
-        dst->sensor_7_fault = (uint8_t)(r1 >> 40);
-        dst->sensor_8_fault = (uint8_t)(r1 >> 48);
-        dst->sensor_9_fault = (uint8_t)(r1 >> 56);
-        dst->counter = (uint8_t)r2;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    b1 = src[1];
+    dst->sensor_7_distance = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    b2 = src[2];
+    dst->sensor_8_distance = (uint16_t)((b1 >> 2u) | ((b2 & 0xFu) << 6u));
+    b3 = src[3];
+    dst->sensor_9_distance = (uint16_t)((b2 >> 4u) | ((b3 & 0x3Fu) << 4u));
+    b4 = src[4];
+    dst->uss_system_state = (uint8_t)(b4 & 0x3u);
+    dst->sensor_1_fault = (uint8_t)((b4 >> 2u) & 0x1u);
+    dst->sensor_2_fault = (uint8_t)((b4 >> 3u) & 0x1u);
+    dst->sensor_3_fault = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->sensor_4_fault = (uint8_t)((b4 >> 5u) & 0x1u);
+    dst->sensor_5_fault = (uint8_t)((b4 >> 6u) & 0x1u);
+    dst->sensor_6_fault = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->sensor_7_fault = (uint8_t)(b5 & 0x1u);
+    dst->sensor_8_fault = (uint8_t)((b5 >> 1u) & 0x1u);
+    dst->sensor_9_fault = (uint8_t)((b5 >> 2u) & 0x1u);
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A front_sensor_distance_2 with every raw field 0. */
@@ -12127,64 +11439,45 @@ typedef struct {
     uint16_t sensor_6_distance; /**< 传感器 6 距离 [cm]; bits 50..59 */
     uint8_t counter;            /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_rear_sensor_distance_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rear_sensor_distance_1_layout_check
-    [(offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_1_distance) == 0u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_2_distance) == 2u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_3_distance) == 4u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_4_distance) == 6u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_5_distance) == 8u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, sensor_6_distance) == 10u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_1_t, counter) == 12u &&
-      sizeof(kaiwo_gateway_rear_sensor_distance_1_t) == 14u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_1_t *src) {
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 6u);
-#else
-        p0 = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 16) |
-             ((uint64_t)src->sensor_3_distance << 32) | ((uint64_t)src->sensor_4_distance << 48);
-        p1 = (uint64_t)src->sensor_5_distance | ((uint64_t)src->sensor_6_distance << 16) |
-             ((uint64_t)src->counter << 32);
-#endif
-        if (((p0 & UINT64_C(0xFC00FC00FC00FC00)) | (p1 & UINT64_C(0xF0FC00FC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 &= UINT64_C(0xFFFFFFFFFF);
-        p1 = (p1 & UINT64_C(0xF000003FF)) | ((p1 >> 6) & UINT64_C(0xFFC00));
-        p1 = (p1 & UINT64_C(0xFFFFF)) | ((p1 >> 12) & UINT64_C(0xF00000));
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
-            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3FF000000000000)) >> 18) |
-            (p1 << 40);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->sensor_1_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->sensor_1_distance;
+    if ((src->sensor_2_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->sensor_1_distance >> 8u) | ((uint32_t)src->sensor_2_distance << 2u));
+    if ((src->sensor_3_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)((src->sensor_2_distance >> 6u) | ((uint32_t)src->sensor_3_distance << 4u));
+    if ((src->sensor_4_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)((src->sensor_3_distance >> 4u) | ((uint32_t)src->sensor_4_distance << 6u));
+    dst[4] = (uint8_t)(src->sensor_4_distance >> 2u);
+    if ((src->sensor_5_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)src->sensor_5_distance;
+    if ((src->sensor_6_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)((src->sensor_5_distance >> 8u) | ((uint32_t)src->sensor_6_distance << 2u));
+    if ((src->counter > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)((src->sensor_6_distance >> 6u) | ((uint32_t)src->counter << 4u));
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12192,40 +11485,33 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1_t *dst,
                                             const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
-             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0xFFC0000000)) << 18);
-        r1 = (v >> 40);
-        r1 = (r1 & UINT64_C(0xFFFFF)) | ((r1 << 12) & UINT64_C(0xF00000000));
-        r1 = (r1 & UINT64_C(0xF000003FF)) | ((r1 << 6) & UINT64_C(0x3FF0000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 6u);
-#else
-        dst->sensor_1_distance = (uint16_t)r0;
-        dst->sensor_2_distance = (uint16_t)(r0 >> 16);
-        dst->sensor_3_distance = (uint16_t)(r0 >> 32);
-        dst->sensor_4_distance = (uint16_t)(r0 >> 48);
-        dst->sensor_5_distance = (uint16_t)r1;
-        dst->sensor_6_distance = (uint16_t)(r1 >> 16);
-        dst->counter = (uint8_t)(r1 >> 32);
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    b1 = src[1];
+    dst->sensor_1_distance = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    b2 = src[2];
+    dst->sensor_2_distance = (uint16_t)((b1 >> 2u) | ((b2 & 0xFu) << 6u));
+    b3 = src[3];
+    dst->sensor_3_distance = (uint16_t)((b2 >> 4u) | ((b3 & 0x3Fu) << 4u));
+    b4 = src[4];
+    dst->sensor_4_distance = (uint16_t)((b3 >> 6u) | (b4 << 2u));
+    b5 = src[5];
+    b6 = src[6];
+    dst->sensor_5_distance = (uint16_t)(b5 | ((b6 & 0x3u) << 8u));
+    b7 = src[7];
+    dst->sensor_6_distance = (uint16_t)((b6 >> 2u) | ((b7 & 0xFu) << 6u));
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A rear_sensor_distance_1 with every raw field 0. */
@@ -12644,79 +11930,49 @@ typedef struct {
         sensor_9_fault; /**< 传感器 9 故障状态; bits 42..42; values: kaiwo_gateway_sensor_fault_t */
     uint8_t counter; /**< 心跳; bits 60..63; counter */
 } kaiwo_gateway_rear_sensor_distance_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_rear_sensor_distance_2_layout_check
-    [(offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_7_distance) == 0u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_8_distance) == 2u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_9_distance) == 4u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, uss_system_state) == 6u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_1_fault) == 7u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_2_fault) == 8u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_3_fault) == 9u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_4_fault) == 10u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_5_fault) == 11u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_6_fault) == 12u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_7_fault) == 13u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_8_fault) == 14u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, sensor_9_fault) == 15u &&
-      offsetof(kaiwo_gateway_rear_sensor_distance_2_t, counter) == 16u &&
-      sizeof(kaiwo_gateway_rear_sensor_distance_2_t) == 18u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_2_t *src) {
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p2;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 2u);
-#else
-        p0 = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 16) |
-             ((uint64_t)src->sensor_9_distance << 32) | ((uint64_t)src->uss_system_state << 48) |
-             ((uint64_t)src->sensor_1_fault << 56);
-        p1 = (uint64_t)src->sensor_2_fault | ((uint64_t)src->sensor_3_fault << 8) |
-             ((uint64_t)src->sensor_4_fault << 16) | ((uint64_t)src->sensor_5_fault << 24) |
-             ((uint64_t)src->sensor_6_fault << 32) | ((uint64_t)src->sensor_7_fault << 40) |
-             ((uint64_t)src->sensor_8_fault << 48) | ((uint64_t)src->sensor_9_fault << 56);
-        p2 = (uint64_t)src->counter;
-#endif
-        if (((p0 & UINT64_C(0xFEFCFC00FC00FC00)) | (p1 & UINT64_C(0xFEFEFEFEFEFEFEFE)) |
-             (p2 & UINT64_C(0xF0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p1 = (p1 | (p1 >> 28)) & UINT64_C(0x11111111);
-        p1 = (p1 | (p1 >> 14)) & UINT64_C(0x5555);
-        p1 = (p1 | (p1 >> 7)) & UINT64_C(0xFF);
-        p2 &= UINT64_C(0xFF);
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x3FF0000)) >> 6) |
-            ((p0 & UINT64_C(0x3FF00000000)) >> 12) | ((p0 & UINT64_C(0x3000000000000)) >> 16) |
-            ((p0 & UINT64_C(0x100000000000000)) >> 22) | (p1 << 35) | (p2 << 60);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->sensor_7_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->sensor_7_distance;
+    if ((src->sensor_8_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->sensor_7_distance >> 8u) | ((uint32_t)src->sensor_8_distance << 2u));
+    if ((src->sensor_9_distance > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)((src->sensor_8_distance >> 6u) | ((uint32_t)src->sensor_9_distance << 4u));
+    dst[3] = (uint8_t)(src->sensor_9_distance >> 4u);
+    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
+        (src->uss_system_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] =
+        (uint8_t)(src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2u) |
+                  ((uint32_t)src->sensor_2_fault << 3u) | ((uint32_t)src->sensor_3_fault << 4u) |
+                  ((uint32_t)src->sensor_4_fault << 5u) | ((uint32_t)src->sensor_5_fault << 6u) |
+                  ((uint32_t)src->sensor_6_fault << 7u));
+    if (((src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->sensor_7_fault | ((uint32_t)src->sensor_8_fault << 1u) |
+                       ((uint32_t)src->sensor_9_fault << 2u));
+    dst[6] = 0u;
+    if ((src->counter > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)((uint32_t)src->counter << 4u);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12724,52 +11980,38 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2_t *dst,
                                             const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xFFC00)) << 6) |
-             ((v & UINT64_C(0x3FF00000)) << 12) | ((v & UINT64_C(0x300000000)) << 16) |
-             ((v & UINT64_C(0x400000000)) << 22);
-        r1 = (v >> 35) & UINT64_C(0xFF);
-        r2 = (v >> 60);
-        r1 = (r1 | (r1 << 7)) & UINT64_C(0x5555);
-        r1 = (r1 | (r1 << 14)) & UINT64_C(0x11111111);
-        r1 = (r1 | (r1 << 28)) & UINT64_C(0x101010101010101);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 2u);
-#else
-        dst->sensor_7_distance = (uint16_t)r0;
-        dst->sensor_8_distance = (uint16_t)(r0 >> 16);
-        dst->sensor_9_distance = (uint16_t)(r0 >> 32);
-        dst->uss_system_state = (uint8_t)(r0 >> 48);
-        dst->sensor_1_fault = (uint8_t)(r0 >> 56);
-        dst->sensor_2_fault = (uint8_t)r1;
-        dst->sensor_3_fault = (uint8_t)(r1 >> 8);
-        dst->sensor_4_fault = (uint8_t)(r1 >> 16);
-        dst->sensor_5_fault = (uint8_t)(r1 >> 24);
-        dst->sensor_6_fault = (uint8_t)(r1 >> 32);
-        dst->sensor_7_fault = (uint8_t)(r1 >> 40);
-        dst->sensor_8_fault = (uint8_t)(r1 >> 48);
-        dst->sensor_9_fault = (uint8_t)(r1 >> 56);
-        dst->counter = (uint8_t)r2;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    b1 = src[1];
+    dst->sensor_7_distance = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    b2 = src[2];
+    dst->sensor_8_distance = (uint16_t)((b1 >> 2u) | ((b2 & 0xFu) << 6u));
+    b3 = src[3];
+    dst->sensor_9_distance = (uint16_t)((b2 >> 4u) | ((b3 & 0x3Fu) << 4u));
+    b4 = src[4];
+    dst->uss_system_state = (uint8_t)(b4 & 0x3u);
+    dst->sensor_1_fault = (uint8_t)((b4 >> 2u) & 0x1u);
+    dst->sensor_2_fault = (uint8_t)((b4 >> 3u) & 0x1u);
+    dst->sensor_3_fault = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->sensor_4_fault = (uint8_t)((b4 >> 5u) & 0x1u);
+    dst->sensor_5_fault = (uint8_t)((b4 >> 6u) & 0x1u);
+    dst->sensor_6_fault = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->sensor_7_fault = (uint8_t)(b5 & 0x1u);
+    dst->sensor_8_fault = (uint8_t)((b5 >> 1u) & 0x1u);
+    dst->sensor_9_fault = (uint8_t)((b5 >> 2u) & 0x1u);
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A rear_sensor_distance_2 with every raw field 0. */
@@ -13422,52 +12664,24 @@ typedef struct {
     uint16_t steering_angle_cmd; /**< 方向盘角度指令 [deg]; bits 24..39 */
     uint8_t checksum;            /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_tele_eps_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_tele_eps_command_layout_check
-    [(offsetof(kaiwo_gateway_tele_eps_command_t, eps_ctrl_mode) == 0u &&
-      offsetof(kaiwo_gateway_tele_eps_command_t, counter) == 1u &&
-      offsetof(kaiwo_gateway_tele_eps_command_t, max_angular_speed) == 2u &&
-      offsetof(kaiwo_gateway_tele_eps_command_t, steering_angle_cmd) == 4u &&
-      offsetof(kaiwo_gateway_tele_eps_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_tele_eps_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_tele_eps_command_t *src) {
     if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->eps_ctrl_mode | ((uint64_t)src->counter << 8) |
-             ((uint64_t)src->max_angular_speed << 16) | ((uint64_t)src->steering_angle_cmd << 32) |
-             ((uint64_t)src->checksum << 48);
-#endif
-        w = (p0 & UINT64_C(0xFFFFFF)) | ((p0 & UINT64_C(0xFFFF00000000)) >> 8);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold(w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
-    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -13476,32 +12690,36 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, const uint8_t *src,
                                       size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0xFFFFFF)) | ((v & UINT64_C(0xFFFF000000)) << 8);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->eps_ctrl_mode = (uint8_t)r0;
-        dst->counter = (uint8_t)(r0 >> 8);
-        dst->max_angular_speed = (uint8_t)(r0 >> 16);
-        dst->steering_angle_cmd = (uint16_t)(r0 >> 32);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    dst->eps_ctrl_mode = (uint8_t)b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->counter = (uint8_t)b1;
+    b2 = src[2];
+    x ^= b2;
+    dst->max_angular_speed = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    b4 = src[4];
+    x ^= b4;
+    dst->steering_angle_cmd = (uint16_t)(b3 | (b4 << 8u));
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A tele_eps_command with every raw field 0. */
@@ -13700,57 +12918,34 @@ typedef struct {
         emergency_brake_cmd; /**< 紧急制动指令; bits 24..24; values: kaiwo_gateway_emergency_brake_cmd_t */
     uint8_t checksum; /**< 异或校验; bits 56..63; checksum */
 } kaiwo_gateway_tele_speed_command_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_tele_speed_command_layout_check
-    [(offsetof(kaiwo_gateway_tele_speed_command_t, throttle_brake_cmd) == 0u &&
-      offsetof(kaiwo_gateway_tele_speed_command_t, epb_cmd) == 2u &&
-      offsetof(kaiwo_gateway_tele_speed_command_t, gear_cmd) == 3u &&
-      offsetof(kaiwo_gateway_tele_speed_command_t, counter) == 4u &&
-      offsetof(kaiwo_gateway_tele_speed_command_t, emergency_brake_cmd) == 5u &&
-      offsetof(kaiwo_gateway_tele_speed_command_t, checksum) == 6u &&
-      sizeof(kaiwo_gateway_tele_speed_command_t) == 8u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-#else
-        p0 = (uint64_t)src->throttle_brake_cmd | ((uint64_t)src->epb_cmd << 16) |
-             ((uint64_t)src->gear_cmd << 24) | ((uint64_t)src->counter << 32) |
-             ((uint64_t)src->emergency_brake_cmd << 40) | ((uint64_t)src->checksum << 48);
-#endif
-        if (((p0 & UINT64_C(0xFE00F0FCFC00))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x3FF)) | ((p0 & UINT64_C(0x30000)) >> 6) |
-            ((p0 & UINT64_C(0xF000000)) >> 12) | ((p0 & UINT64_C(0x1FF00000000)) >> 16);
-        w |= ((uint64_t)kaiwo_gateway_xor_fold32((uint32_t)w) << 56);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if ((src->throttle_brake_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)src->throttle_brake_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->throttle_brake_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
     return KAIWO_GATEWAY_OK;
 }
 
@@ -13759,34 +12954,35 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst, const uint8_t *src,
                                         size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint32_t x;
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = ((v >> 56) << 48) | (v & UINT64_C(0x3FF)) | ((v & UINT64_C(0xC00)) << 6) |
-             ((v & UINT64_C(0xF000)) << 12) | ((v & UINT64_C(0x1FF0000)) << 16);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-#else
-        dst->throttle_brake_cmd = (uint16_t)r0;
-        dst->epb_cmd = (uint8_t)(r0 >> 16);
-        dst->gear_cmd = (uint8_t)(r0 >> 24);
-        dst->counter = (uint8_t)(r0 >> 32);
-        dst->emergency_brake_cmd = (uint8_t)(r0 >> 40);
-        dst->checksum = (uint8_t)(r0 >> 48);
-#endif
-        return kaiwo_gateway_xor_is_zero(v) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-    }
+    b0 = src[0];
+    x = b0;
+    b1 = src[1];
+    x ^= b1;
+    dst->throttle_brake_cmd = (uint16_t)(b0 | ((b1 & 0x3u) << 8u));
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    x ^= b2;
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    x ^= b3;
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    x ^= src[4];
+    x ^= src[5];
+    x ^= src[6];
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
 }
 
 /** A tele_speed_command with every raw field 0. */
@@ -14148,107 +13344,56 @@ typedef struct {
     uint8_t protocol_version_c; /**< 协议版本号 C; bits 56..59 */
     uint8_t counter;            /**< 心跳值; bits 60..63; counter */
 } kaiwo_gateway_tele_control_command_1_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_tele_control_command_1_layout_check
-    [(offsetof(kaiwo_gateway_tele_control_command_1_t, drive_mode_cmd) == 0u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, door_cmd) == 1u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, horn_cmd) == 2u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, drl_cmd) == 3u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, left_turn_cmd) == 4u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, right_turn_cmd) == 5u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, hazard_cmd) == 6u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, position_light_cmd) == 7u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, headlight_cmd) == 8u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, rear_fog_cmd) == 9u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, left_fog_cmd) == 10u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, right_fog_cmd) == 11u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, dome_light_cmd) == 12u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, ambient_light_cmd) == 13u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, drive_mode_reset) == 14u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, system_state) == 15u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, system_reliability) == 16u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, system_fault_level) == 17u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, lock_cmd) == 18u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, ac_cmd) == 19u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, ac_set_temp) == 20u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_a) == 21u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_b) == 22u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, protocol_version_c) == 23u &&
-      offsetof(kaiwo_gateway_tele_control_command_1_t, counter) == 24u &&
-      sizeof(kaiwo_gateway_tele_control_command_1_t) == 25u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_1_t *src) {
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t p1;
-        uint64_t p1g;
-        uint64_t p2;
-        uint64_t p2g;
-        uint64_t p3;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 8u);
-        p1 = kaiwo_gateway_le_load((const unsigned char *)src + 8, 8u);
-        p2 = kaiwo_gateway_le_load((const unsigned char *)src + 16, 8u);
-        p3 = kaiwo_gateway_le_load((const unsigned char *)src + 24, 1u);
-#else
-        p0 = (uint64_t)src->drive_mode_cmd | ((uint64_t)src->door_cmd << 8) |
-             ((uint64_t)src->horn_cmd << 16) | ((uint64_t)src->drl_cmd << 24) |
-             ((uint64_t)src->left_turn_cmd << 32) | ((uint64_t)src->right_turn_cmd << 40) |
-             ((uint64_t)src->hazard_cmd << 48) | ((uint64_t)src->position_light_cmd << 56);
-        p1 = (uint64_t)src->headlight_cmd | ((uint64_t)src->rear_fog_cmd << 8) |
-             ((uint64_t)src->left_fog_cmd << 16) | ((uint64_t)src->right_fog_cmd << 24) |
-             ((uint64_t)src->dome_light_cmd << 32) | ((uint64_t)src->ambient_light_cmd << 40) |
-             ((uint64_t)src->drive_mode_reset << 48) | ((uint64_t)src->system_state << 56);
-        p2 = (uint64_t)src->system_reliability | ((uint64_t)src->system_fault_level << 8) |
-             ((uint64_t)src->lock_cmd << 16) | ((uint64_t)src->ac_cmd << 24) |
-             ((uint64_t)src->ac_set_temp << 32) | ((uint64_t)src->protocol_version_a << 40) |
-             ((uint64_t)src->protocol_version_b << 48) | ((uint64_t)src->protocol_version_c << 56);
-        p3 = (uint64_t)src->counter;
-#endif
-        if (((p0 & UINT64_C(0xFCFCFCFCFCFCFCFC)) | (p1 & UINT64_C(0xFCFEFCFCFCFCFCFC)) |
-             (p2 & UINT64_C(0xF0F0F0E0F8FCFCFC)) | (p3 & UINT64_C(0xF0))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        p0 = (p0 | (p0 >> 6)) & UINT64_C(0xF000F000F000F);
-        p0 = (p0 | (p0 >> 12)) & UINT64_C(0xFF000000FF);
-        p0 = (p0 | (p0 >> 24)) & UINT64_C(0xFFFF);
-        p1g = ((p1 & UINT64_C(0x300000000000000)) >> 24);
-        p1 &= UINT64_C(0x1030303030303);
-        p1 = (p1 | (p1 >> 6)) & UINT64_C(0x1000F000F000F);
-        p1 = (p1 | (p1 >> 12)) & UINT64_C(0x1F000000FF);
-        p1 = (p1 | (p1 >> 24)) & UINT64_C(0x1FFF);
-        p2g = ((p2 & UINT64_C(0x1F00000000)) << 11) | ((p2 & UINT64_C(0xF0000000000)) << 8) |
-              (p2 & UINT64_C(0xF00000000000000));
-        p2 &= UINT64_C(0xF000007030303);
-        p2 = (p2 | (p2 >> 6)) & UINT64_C(0x3C00001F000F);
-        p2 = (p2 | (p2 >> 12)) & UINT64_C(0x3C00000001FF);
-        p2 = (p2 | (p2 >> 24)) & UINT64_C(0x3C01FF);
-        w = p0 | (p1 << 16) | p1g | (p2 << 34) | p2g | (p3 << 60);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC);
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = (uint8_t)(w >> 8);
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = (uint8_t)(w >> 56);
-#endif
+    if (((src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->drive_mode_cmd | ((uint32_t)src->door_cmd << 2u) |
+                       ((uint32_t)src->horn_cmd << 4u) | ((uint32_t)src->drl_cmd << 6u));
+    if (((src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd | ((uint32_t)src->right_turn_cmd << 2u) |
+                  ((uint32_t)src->hazard_cmd << 4u) | ((uint32_t)src->position_light_cmd << 6u));
+    if (((src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)(src->headlight_cmd | ((uint32_t)src->rear_fog_cmd << 2u) |
+                       ((uint32_t)src->left_fog_cmd << 4u) | ((uint32_t)src->right_fog_cmd << 6u));
+    if ((src->drive_mode_reset > 1u) || ((src->dome_light_cmd | src->ambient_light_cmd) > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)(src->dome_light_cmd | ((uint32_t)src->ambient_light_cmd << 2u) |
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    if (((src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd) >
+         3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->system_state | ((uint32_t)src->system_reliability << 2u) |
+                       ((uint32_t)src->system_fault_level << 4u) | ((uint32_t)src->lock_cmd << 6u));
+    if ((src->ac_cmd > 7u) || (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->ac_cmd | ((uint32_t)src->ac_set_temp << 3u));
+    if (((src->protocol_version_a | src->protocol_version_b) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[6] = (uint8_t)(src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4u));
+    if (((src->protocol_version_c | src->counter) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
     return KAIWO_GATEWAY_OK;
 }
 
@@ -14256,73 +13401,51 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1_t *dst,
                                             const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-        uint64_t r1;
-        uint64_t r2;
-        uint64_t r3;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = v & UINT64_C(0xFFFF);
-        r1 = (v >> 16) & UINT64_C(0x1FFF);
-        r2 = (v >> 34) & UINT64_C(0x3C01FF);
-        r3 = (v >> 60);
-        r0 = (r0 | (r0 << 24)) & UINT64_C(0xFF000000FF);
-        r0 = (r0 | (r0 << 12)) & UINT64_C(0xF000F000F000F);
-        r0 = (r0 | (r0 << 6)) & UINT64_C(0x303030303030303);
-        r1 = (r1 | (r1 << 24)) & UINT64_C(0x1F000000FF);
-        r1 = (r1 | (r1 << 12)) & UINT64_C(0x1000F000F000F);
-        r1 = (r1 | (r1 << 6)) & UINT64_C(0x1030303030303);
-        r1 |= ((v & UINT64_C(0x300000000)) << 24);
-        r2 = (r2 | (r2 << 24)) & UINT64_C(0x3C00000001FF);
-        r2 = (r2 | (r2 << 12)) & UINT64_C(0x3C00001F000F);
-        r2 = (r2 | (r2 << 6)) & UINT64_C(0xF000007030303);
-        r2 |= ((v & UINT64_C(0xF80000000000)) >> 11) | ((v & UINT64_C(0xF000000000000)) >> 8) |
-              (v & UINT64_C(0xF00000000000000));
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 8, r1, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 16, r2, 8u);
-        kaiwo_gateway_le_store((unsigned char *)dst + 24, r3, 1u);
-#else
-        dst->drive_mode_cmd = (uint8_t)r0;
-        dst->door_cmd = (uint8_t)(r0 >> 8);
-        dst->horn_cmd = (uint8_t)(r0 >> 16);
-        dst->drl_cmd = (uint8_t)(r0 >> 24);
-        dst->left_turn_cmd = (uint8_t)(r0 >> 32);
-        dst->right_turn_cmd = (uint8_t)(r0 >> 40);
-        dst->hazard_cmd = (uint8_t)(r0 >> 48);
-        dst->position_light_cmd = (uint8_t)(r0 >> 56);
-        dst->headlight_cmd = (uint8_t)r1;
-        dst->rear_fog_cmd = (uint8_t)(r1 >> 8);
-        dst->left_fog_cmd = (uint8_t)(r1 >> 16);
-        dst->right_fog_cmd = (uint8_t)(r1 >> 24);
-        dst->dome_light_cmd = (uint8_t)(r1 >> 32);
-        dst->ambient_light_cmd = (uint8_t)(r1 >> 40);
-        dst->drive_mode_reset = (uint8_t)(r1 >> 48);
-        dst->system_state = (uint8_t)(r1 >> 56);
-        dst->system_reliability = (uint8_t)r2;
-        dst->system_fault_level = (uint8_t)(r2 >> 8);
-        dst->lock_cmd = (uint8_t)(r2 >> 16);
-        dst->ac_cmd = (uint8_t)(r2 >> 24);
-        dst->ac_set_temp = (uint8_t)(r2 >> 32);
-        dst->protocol_version_a = (uint8_t)(r2 >> 40);
-        dst->protocol_version_b = (uint8_t)(r2 >> 48);
-        dst->protocol_version_c = (uint8_t)(r2 >> 56);
-        dst->counter = (uint8_t)r3;
-#endif
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A tele_control_command_1 with every raw field 0. */
@@ -15458,57 +14581,29 @@ typedef struct {
     uint8_t downhill_regen_speed; /**< 下坡制动回收速度 [km/h]; bits 8..15 */
     uint8_t counter;              /**< 心跳; bits 56..63; counter */
 } kaiwo_gateway_tele_control_command_2_t;
-#if KAIWO_GATEWAY_LE_WORDS
-/* The word path copies this layout: compilation fails here if the ABI lays it out otherwise. */
-typedef char kaiwo_gateway_tele_control_command_2_layout_check
-    [(offsetof(kaiwo_gateway_tele_control_command_2_t, downhill_regen_enable) == 0u &&
-      offsetof(kaiwo_gateway_tele_control_command_2_t, cargo_lift) == 1u &&
-      offsetof(kaiwo_gateway_tele_control_command_2_t, cargo_lift_speed) == 2u &&
-      offsetof(kaiwo_gateway_tele_control_command_2_t, pto_enable) == 3u &&
-      offsetof(kaiwo_gateway_tele_control_command_2_t, downhill_regen_speed) == 4u &&
-      offsetof(kaiwo_gateway_tele_control_command_2_t, counter) == 5u &&
-      sizeof(kaiwo_gateway_tele_control_command_2_t) == 6u)
-         ? 1
-         : -1];
-#endif
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
- * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8, KAIWO_GATEWAY_ERR_RANGE if a field does not fit its bits. */
+ * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
+ * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_2_t *src) {
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        uint64_t p0;
-        uint64_t w;
-#if KAIWO_GATEWAY_LE_WORDS
-        p0 = kaiwo_gateway_le_load((const unsigned char *)src + 0, 4u);
-#else
-        p0 = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 8) |
-             ((uint64_t)src->cargo_lift_speed << 16) | ((uint64_t)src->pto_enable << 24);
-#endif
-        if (((p0 & UINT64_C(0xFEF0FCFE))) != 0u) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-        w = (p0 & UINT64_C(0x1)) | ((p0 & UINT64_C(0x300)) >> 7) |
-            ((p0 & UINT64_C(0xF0000)) >> 13) | ((p0 & UINT64_C(0x1000000)) >> 17);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store(dst, w, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
-        dst[1] = src->downhill_regen_speed;
-        dst[7] = src->counter;
-#else
-        dst[0] = (uint8_t)w;
-        dst[1] = src->downhill_regen_speed;
-        dst[2] = (uint8_t)(w >> 16);
-        dst[3] = (uint8_t)(w >> 24);
-        dst[4] = (uint8_t)(w >> 32);
-        dst[5] = (uint8_t)(w >> 40);
-        dst[6] = (uint8_t)(w >> 48);
-        dst[7] = src->counter;
-#endif
+    if (((src->downhill_regen_enable | src->pto_enable) > 1u) || (src->cargo_lift > 3u) ||
+        (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
+    dst[0] = (uint8_t)(src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1u) |
+                       ((uint32_t)src->cargo_lift_speed << 3u) | ((uint32_t)src->pto_enable << 7u));
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    dst[2] = 0u;
+    dst[3] = 0u;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)src->counter;
     return KAIWO_GATEWAY_OK;
 }
 
@@ -15516,34 +14611,22 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2_t *dst,
                                             const uint8_t *src, size_t size) {
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b7;
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    {
-        /* One read of the frame into a local (stores to *dst may alias src). */
-        uint64_t v;
-        uint64_t r0;
-#if KAIWO_GATEWAY_LE_WORDS
-        v = kaiwo_gateway_le_load(src, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC);
-#else
-        v = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
-            ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
-            ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
-#endif
-        r0 = (v & UINT64_C(0x1)) | ((v & UINT64_C(0x6)) << 7) | ((v & UINT64_C(0x78)) << 13) |
-             ((v & UINT64_C(0x80)) << 17);
-#if KAIWO_GATEWAY_LE_WORDS
-        kaiwo_gateway_le_store((unsigned char *)dst + 0, r0, 4u);
-#else
-        dst->downhill_regen_enable = (uint8_t)r0;
-        dst->cargo_lift = (uint8_t)(r0 >> 8);
-        dst->cargo_lift_speed = (uint8_t)(r0 >> 16);
-        dst->pto_enable = (uint8_t)(r0 >> 24);
-#endif
-        dst->downhill_regen_speed = (uint8_t)(v >> 8);
-        dst->counter = (uint8_t)(v >> 56);
-        return KAIWO_GATEWAY_OK;
-    }
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
 }
 
 /** A tele_control_command_2 with every raw field 0. */

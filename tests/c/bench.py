@@ -71,10 +71,42 @@ def byte_mask(indices: tuple[int, ...]) -> str:
     return f"UINT64_C(0x{sum(0xFF << (8 * b) for b in indices):016X})"
 
 
+def range_checks(spec: Path, dbc: Path, access: str = "s->") -> dict[str, str]:
+    """message → the condition a cantools user adds to refuse a field that does not fit its bits
+    (cantools' pack silently drops the excess bits; canspec's refuses with ERR_RANGE): the same
+    form as canspec's, one compare per width of the unsigned fields narrower than their type."""
+    import cantools
+    from cantools.database.can.c_source import camel_to_snake_case
+
+    can = compile_spec(spec).spec.can  # type: ignore[union-attr]
+    db = cantools.database.load_file(str(dbc), strict=False)
+    out = {}
+    for m in can.messages:
+        members = {}
+        for sig in db.get_message_by_frame_id(m.frame_id).signals:
+            attr = (sig.dbc.attributes if sig.dbc is not None else {}).get("SpecSignalName")
+            members[attr.value if attr is not None else sig.name] = camel_to_snake_case(sig.name)
+        groups: dict[tuple[int, int], list[str]] = {}
+        terms = []
+        for s in m.data_signals:
+            if s.role == "checksum" or s.length == s.storage_bits:
+                continue
+            field = f"{access}{members[s.name]}"
+            if s.signed:
+                terms += [f"({field} < {s.raw_type_min})", f"({field} > {s.raw_type_max})"]
+            else:
+                groups.setdefault((s.length, s.storage_bits), []).append(field)
+        terms = [f"(({' | '.join(f)}) > {(1 << n) - 1}u)" for (n, _), f in sorted(groups.items())] + terms
+        if terms:
+            out[m.name] = " || ".join(terms)
+    return out
+
+
 def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str,
-            fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None) -> str:
+            fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None, ranges: dict[str, str] | None = None) -> str:
     """`xor`: for each message that carries a checksum, (checksum byte, covered bytes): the
-    loop verifies it before unpack and fills it after pack (for a library that does neither)."""
+    loop verifies it before unpack and fills it after pack; `ranges`: the check before pack
+    that a field fits its bits (for a library that does neither)."""
     out = [include, "#include <stdint.h>", "#include <stddef.h>", XOR_HELPERS if xor else ""]
     for n in names:
         rows = ",\n    ".join(c_bytes(h) for h in frames[n])
@@ -97,7 +129,14 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
         # The decoded struct is consumed and the struct to send is produced elsewhere in a real
         # ECU: the barriers keep the compiler from fusing unpack into pack.
         out.append("        __asm__ volatile(\"\" : : \"r\"(&s) : \"memory\");")
-        out.append(f"        acc += (uint64_t){fn}{n}_pack({pack_args});")
+        if ranges and n in ranges:
+            out.append(f"        if ({ranges[n]}) {{")
+            out.append("            acc += 1000u;")
+            out.append("        } else {")
+            out.append(f"            acc += (uint64_t){fn}{n}_pack({pack_args});")
+            out.append("        }")
+        else:
+            out.append(f"        acc += (uint64_t){fn}{n}_pack({pack_args});")
         if xor and n in xor:
             byte, covers = xor[n]
             # Byte-wise: a word load right after cantools' byte stores would stall on store
@@ -225,10 +264,10 @@ def instruction_counts(exe: Path, mode: str, names: list[str]) -> None:
     print(f"[{mode}] messages where canspec executes at most as many instructions: {fewer} of {len(names)}")
 
 
-XMODE = "like for like (cantools + the XOR check)"
+XMODE = "like for like (cantools + the XOR check + the field range check)"
 
 
-def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tuple[int, tuple[int, ...]]], iters: int) -> dict[str, str]:
+def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tuple[int, tuple[int, ...]]], iters: int, ranges: dict[str, str]) -> dict[str, str]:
     main_c = (MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names)))
               .replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS)))
     return {
@@ -240,8 +279,8 @@ def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tupl
         "bench_main.c": main_c,
         # Like for like: cantools with the check a user adds where a message has one (canspec's
         # side of these runs is the same code as above).
-        "xbench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8", xor=xor),
-        "xcall_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8", xor=xor),
+        "xbench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8", xor=xor, ranges=ranges),
+        "xcall_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8", xor=xor, ranges=ranges),
     }
 
 
@@ -298,7 +337,8 @@ def main(argv: list[str]) -> int:
         print(f"bench-c: {inputs}", file=sys.stderr)
         return 1
     names, frames, xor = inputs
-    for name, text in _sources(names, frames, xor, iters).items():
+    ranges = range_checks(cbuild.ROOT / "spec", cbuild.ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc", access="s.")
+    for name, text in _sources(names, frames, xor, iters, ranges).items():
         (build / name).write_text(text)
     exes, size_a, size_b = _objects(build, ct)
     print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")

@@ -127,6 +127,6 @@ def test_fixture_api(tmp_path, fixture, main, words):
     src = tmp_path / "main.c"
     src.write_text(main, encoding="utf-8")
     exe = tmp_path / "api"
-    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-D{prefix.upper()}_LE_WORDS={words}"], [headers])
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-D{prefix.upper()}_UNALIGNED_WORDS={words}"], [headers])
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0 and "api ok" in proc.stdout, (proc.returncode, proc.stdout, proc.stderr)

@@ -33,12 +33,15 @@ def test_signal_plans(spec):
     assert angle.fixed.decode_expr == "(int32_t)raw * 10 - 108000"
     assert angle.fixed.rounded == "kaiwo_gateway_div_round((int64_t)value + 108000, 10)"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
-    assert eps.checksum.byte == 7 and eps.checksum.ok == "kaiwo_gateway_xor_is_zero(v)"
-    # the struct is one 8-byte word: fields at byte offsets 0, 1, 2, (pad), 4..5, 6
-    assert [r.offset for r in eps.unpack_runs] == [0] and eps.unpack_runs[0].nbytes == 8
-    assert "offsetof(kaiwo_gateway_autocar_eps_command_t, steering_angle_cmd) == 4u" in eps.layout_check
-    # reserved bytes 5..6 stay 0: only the checksum byte is added to the packed data bits
-    assert "0xFFFFFF" in eps.frame_word and eps.checksum.pack.endswith("<< 56)")
+    # the document's table: steering angle in bytes 3 (low) and 4 (high), bytes 5..6 reserved,
+    # byte 7 the XOR of bytes 0..6
+    pack = eps.codec.pack
+    assert "dst[3] = (uint8_t)src->steering_angle_cmd;" in pack and "dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);" in pack
+    assert "dst[5] = 0u;" in pack and "dst[6] = 0u;" in pack
+    assert pack[-1] == "dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);"
+    assert "dst->steering_angle_cmd = (uint16_t)(b3 | (b4 << 8u));" in eps.codec.unpack
+    # every byte read once, each folded into the XOR the checksum check needs
+    assert [line for line in eps.codec.unpack if line.startswith("x ")] == ["x = b0;", "x ^= b1;", "x ^= b2;", "x ^= b3;", "x ^= b4;", "x ^= b7;", "x ^= src[5];", "x ^= src[6];"]
     cmd1 = by["autocar_control_command_1"]
     assert cmd1.counter is not None and cmd1.counter_mask == "0xFu"
     chars = next(s for s in by["device_id"].signals if s.sig.name == "id_chars")
@@ -64,17 +67,13 @@ def test_fault_code_mapping(spec):
     assert len(codes["remote_entry_fault"]) == 6  # the three EPS and three speed commands carry the XOR checksum
 
 
-def test_trailing_byte_fields_are_copied_as_bytes(spec):
-    """Whole-byte fields at the struct's end whose frame byte differs from their struct offset
-    are copied byte by byte, when the planner's word cost says moving them costs more."""
-    by = _by_name(cmodel.build_model(spec))
-    cc2 = by["rgate_control_command_2"]  # ..., downhill_regen_speed (frame byte 1), counter (byte 7)
-    assert [(b.field, b.byte) for b in cc2.byte_fields] == [("downhill_regen_speed", 1), ("counter", 7)]
-    assert cc2.pack_byte_stores == cc2.byte_fields
-    assert all(f.name not in ("downhill_regen_speed", "counter") for r in cc2.unpack_runs for f in r.run.fields)
-    assert cc2.unpack_runs[-1].nbytes == 4  # the four sub-byte fields: one 4-byte store / load
-    eps = by["autocar_eps_command"]  # the checksum (struct byte 6) lies inside the 8-byte word
-    assert eps.byte_fields == ()  # access: a byte store there would stall pack's word load
-    assert eps.unpack_runs[-1].nbytes == 8
-    ds = by["driving_state"]  # its checksum moves with the two bytes before it: stays in the word
-    assert ds.byte_fields == ()
+def test_sub_byte_fields_are_checked_then_placed(spec):
+    """Fields narrower than their C type are checked per width before their byte is written
+    (one compare per width); each byte is the OR of its fields' pieces, shift and mask in view."""
+    cc2 = _by_name(cmodel.build_model(spec))["rgate_control_command_2"]
+    pack = cc2.codec.pack
+    assert pack[0].startswith("if (") and pack[0].endswith("{") and pack[1] == "return KAIWO_GATEWAY_ERR_RANGE;"
+    assert any(line.startswith("dst[7] = ") and "src->counter" in line for line in pack)
+    dist = _by_name(cmodel.build_model(spec))["front_sensor_distance_1"]  # 10-bit distances: sensor 2 at bits 10..19
+    assert "dst->sensor_2_distance = (uint16_t)((b1 >> 2u) | ((b2 & 0xFu) << 6u));" in dist.codec.unpack
+    assert "dst[1] = (uint8_t)((src->sensor_1_distance >> 8u) | ((uint32_t)src->sensor_2_distance << 2u));" in dist.codec.pack

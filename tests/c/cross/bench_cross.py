@@ -5,9 +5,11 @@ libgcc / libc helpers the code calls. x86-64 stays in tests/c/bench.py (callgrin
 
 Dynamic instructions: every library is compiled into its own translation units with the core's
 flags plus -ffunction-sections -fno-ipa-icf (canspec's static inline pack/unpack behind extern
-wrappers, as bench.py's call mode; cantools' .c as it ships; "cantools+XOR": extern wrappers in
-the user's translation unit that check the XOR checksum before cantools' unpack and fill it after
-its pack, byte-wise, on the messages that carry one, as canspec does). A harness function per (library,
+wrappers, as bench.py's call mode; cantools' .c as it ships; "cantools+user" (like for like):
+extern wrappers in the user's translation unit that add what canspec does and cantools does not
+-- check the XOR checksum before cantools' unpack and fill it after its pack, byte-wise, on the
+messages that carry one, and refuse a field that does not fit its bits before cantools' pack,
+which would drop the excess bits silently (range_checks: the same compares as canspec's)). A harness function per (library,
 message, pack|unpack) calls the function on the same 16 frames per message (bench.py's
 frames_for: the shared vectors, cycled). The ELF runs once under
 `qemu-arm -singlestep -d exec,nochain`, which logs every executed instruction's address; an
@@ -47,7 +49,7 @@ sys.path.insert(0, str(HERE.parent))
 sys.path.insert(0, str(HERE))
 import cbuild  # noqa: E402
 import cross  # noqa: E402
-from bench import FRAMES_PER_MESSAGE, c_bytes, frames_for  # noqa: E402
+from bench import FRAMES_PER_MESSAGE, c_bytes, frames_for, range_checks  # noqa: E402
 
 ROOT = cbuild.ROOT
 DEFAULT_CONFIGS = "cortex-m0plus:-Os,cortex-m0plus:-O2,cortex-m4:-Os,cortex-m4:-O2"
@@ -73,6 +75,7 @@ class Inputs:
     names: list[str] = field(default_factory=list)
     frames: dict[str, list[str]] = field(default_factory=dict)
     xor: dict[str, tuple[int, tuple[int, ...]]] = field(default_factory=dict)
+    ranges: dict[str, str] = field(default_factory=dict)  # message → a cantools user's range check
     functions: list[str] = field(default_factory=list)  # every static inline function of the headers
 
 
@@ -110,24 +113,32 @@ def src_canspec_wrappers(inp: Inputs) -> str:
 
 
 def src_cantools_xor(inp: Inputs) -> str:
-    """What a cantools user adds on a checksum message: verify before unpack, fill after pack."""
+    """What a cantools user adds for canspec's guarantees: on a checksum message, verify before
+    unpack and fill after pack; on a message with fields narrower than their C type, refuse an
+    out-of-range field before pack (range_checks)."""
     out = [f'#include "{inp.db}.h"']
-    for n, (byte, covers) in inp.xor.items():
-        if n not in inp.names:
-            continue
+    for n in inp.names:
         t = f"struct {inp.db}_{n}_t"
-        out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
-        out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
-        # Byte-wise (bench.py's 64-bit word fold is an x86 choice: no unaligned word loads on M0+).
-        out.append(f"    if (z < 8u || (uint8_t)({' ^ '.join(f'd[{b}]' for b in (*covers, byte))}) != 0u) return -2;")
-        out.append(f"    return {inp.db}_{n}_unpack(s, d, z);")
-        out.append("}")
-        out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
-        out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
-        out.append(f"    const int st = {inp.db}_{n}_pack(d, s, z);")
-        out.append(f"    if (st >= 0) d[{byte}] = (uint8_t)({' ^ '.join(f'd[{b}]' for b in covers)});")
-        out.append("    return st;")
-        out.append("}")
+        if n in inp.xor:
+            byte, covers = inp.xor[n]
+            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
+            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
+            # Byte-wise (bench.py's 64-bit word fold is an x86 choice: no unaligned word loads on M0+).
+            out.append(f"    if (z < 8u || (uint8_t)({' ^ '.join(f'd[{b}]' for b in (*covers, byte))}) != 0u) return -2;")
+            out.append(f"    return {inp.db}_{n}_unpack(s, d, z);")
+            out.append("}")
+        if n in inp.xor or n in inp.ranges:
+            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
+            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
+            out.append("    int st;")
+            if n in inp.ranges:
+                out.append(f"    if ({inp.ranges[n]}) return -3;")
+            out.append(f"    st = {inp.db}_{n}_pack(d, s, z);")
+            if n in inp.xor:
+                byte, covers = inp.xor[n]
+                out.append(f"    if (st >= 0) d[{byte}] = (uint8_t)({' ^ '.join(f'd[{b}]' for b in covers)});")
+            out.append("    return st;")
+            out.append("}")
     return "\n".join(out) + "\n"
 
 
@@ -148,9 +159,10 @@ def src_harness(inp: Inputs, lib: str) -> str:
         for n in inp.names:
             if lib == "cantools_xor" and n in inp.xor:
                 out.append(f"int cx_{n}_unpack({typ(n)} *s, const uint8_t *d, size_t z);")
+            if lib == "cantools_xor" and (n in inp.xor or n in inp.ranges):
                 out.append(f"int cx_{n}_pack(uint8_t *d, const {typ(n)} *s, size_t z);")
         call_u = lambda n: f"{fn(n) if n in inp.xor else f'{inp.db}_{n}'}_unpack(&S_{n}[i], F_{n}[i], 8)"  # noqa: E731
-        call_p = lambda n: f"{fn(n) if n in inp.xor else f'{inp.db}_{n}'}_pack(O_{n}[i], &S_{n}[i], 8)"  # noqa: E731
+        call_p = lambda n: f"{fn(n) if n in inp.xor or n in inp.ranges else f'{inp.db}_{n}'}_pack(O_{n}[i], &S_{n}[i], 8)"  # noqa: E731
     out += ["#include <stdint.h>", "#include <stddef.h>", f"#define NF {FRAMES_PER_MESSAGE}"]
     runs = []
     for n in inp.names:
@@ -537,6 +549,7 @@ def load_inputs(headers: Path, dbc: Path, vectors: Path, spec: Path) -> Inputs:
     inp.names = list(dict.fromkeys(c["message"] for c in doc["cases"]))
     inp.frames = {n: frames_for(doc["cases"], n) for n in inp.names}
     inp.xor = checksum_layout(spec)
+    inp.ranges = range_checks(spec, dbc)
     inp.functions = header_functions(headers)
     return inp
 
@@ -554,7 +567,7 @@ def report(inp: Inputs, results: list[ConfigResult]) -> str:
         if r.error:
             out.append(f"FAILED: {r.error}")
             continue
-        out.append(f"{'message':<28} {'canspec':>8} {'(unpack':>8} {'pack)':>6} {'cantools':>9} {'ratio':>6} {'cantools+XOR':>13} {'ratio':>6}")
+        out.append(f"{'message':<28} {'canspec':>8} {'(unpack':>8} {'pack)':>6} {'cantools':>9} {'ratio':>6} {'cantools+user':>13} {'ratio':>6}")
         tot = {lib: 0.0 for lib in LIBS}
         worst: tuple[float, str] = (1e9, "-")
         for n in inp.names:
@@ -570,8 +583,8 @@ def report(inp: Inputs, results: list[ConfigResult]) -> str:
                    f"{tot['cantools_xor']:13.1f} {tot['cantools_xor'] / tot['canspec']:5.2f}x")
         fewer = sum(r.counts[("canspec", n, "unpack")] + r.counts[("canspec", n, "pack")]
                     <= r.counts[("cantools_xor", n, "unpack")] + r.counts[("cantools_xor", n, "pack")] for n in inp.names)
-        out.append(f"worst message (like for like): {worst[1]} {worst[0]:.2f}x; canspec executes at most as many instructions as cantools+XOR on {fewer} of {len(inp.names)}"
-                   f"  (* = XOR checksum message; {r.check})")
+        out.append(f"worst message (like for like): {worst[1]} {worst[0]:.2f}x; canspec executes at most as many instructions as cantools+user on {fewer} of {len(inp.names)}"
+                   f"  (* = XOR checksum message; cantools+user = cantools + the XOR fill/check + the field range check a user adds for canspec's guarantees; {r.check})")
         for lib in LIBS:
             out.append(f"helpers executed by {lib}: {', '.join(sorted(r.traced_helpers[lib])) or 'none'}")
     for core, by_opt in sizes_by_core.items():

@@ -1,0 +1,202 @@
+"""Pack and unpack of one message as C statements, byte by byte.
+
+Every signal is Intel (little-endian): the IR gives each signal's share of each frame byte (its
+segments: value bits [value_shift, value_shift + width) at byte bits [byte_shift, ...)). The C
+follows those segments literally, so a reviewer reads each field's byte, shift and mask next to
+its name, and every core runs it well: only 32-bit arithmetic (a 64-bit field is two 32-bit
+halves), no unaligned access, no helper calls, the same arithmetic on either byte order.
+
+Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits 0, no memset,
+no read-modify-write), after one check that every field fits its bits. Unpack reads each frame
+byte once into a local when its first field needs it (stores to *dst may alias src, so reading
+it again later would cost a load each time), and folds it into the XOR the checksum needs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from canspec import ir
+from canspec.render.literals import c_hex, c_int, c_uint
+from canspec.targets.c.signals import CSignal
+
+
+@dataclass(frozen=True)
+class CCodec:
+    pack: tuple[str, ...]  # statements writing dst[0 .. dlc-1], returning `err` if a field does not fit
+    unpack_locals: tuple[str, ...]
+    unpack: tuple[str, ...]  # statements filling *dst from src (and, with a checksum, x)
+
+
+def paren(expr: str) -> str:
+    """`expr` as an operand: parenthesised unless it is a name or already one parenthesis."""
+    if expr.replace("_", "").replace("->", "").replace("[", "").replace("]", "").isalnum() or expr.startswith("(uint32_t)src->") and " " not in expr:
+        return expr
+    if expr.startswith("(") and _closing(expr) == len(expr) - 1:
+        return expr
+    return f"({expr})"
+
+
+def _closing(expr: str) -> int:
+    depth = 0
+    for i, ch in enumerate(expr):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0:
+            return i
+    return -1
+
+
+def shr(expr: str, n: int) -> str:
+    return expr if n == 0 else f"({paren(expr)} >> {n}u)"
+
+
+def shl(expr: str, n: int) -> str:
+    return expr if n == 0 else f"({paren(expr)} << {n}u)"
+
+
+def masked(expr: str, width: int) -> str:
+    return f"({paren(expr)} & {c_hex((1 << width) - 1)})"
+
+
+def ored(terms: list[str]) -> str:
+    return terms[0] if len(terms) == 1 else "(" + " | ".join(terms) + ")"
+
+
+# ---- pack ------------------------------------------------------------------------------------
+
+def _halves(s: CSignal, wide: bool) -> tuple[str, str]:
+    """The field's value: its low 32 bits (the field itself where it is unsigned and `wide` is
+    not asked for) and, for 64-bit fields, its high 32 bits (as uint32_t)."""
+    field, bits = f"src->{s.field}", s.sig.storage_bits
+    low = field if bits == 32 and not s.sig.signed or not (wide or s.sig.signed or bits == 64) else f"(uint32_t){field}"
+    return low, (f"(uint32_t)({field} >> 32u)" if bits == 64 else "")
+
+
+def _piece(s: CSignal, seg: ir.Segment) -> str:
+    """Pack: the segment's value bits, placed at its bits of the byte (bits above the byte are
+    cut by the store). Only a signed field's top piece needs a mask: below the top the field
+    goes on into the next byte, and an unsigned field is checked to fit its bits. A left shift
+    works on a uint32_t (never on a promoted int)."""
+    lo, hi = _halves(s, seg.byte_shift > 0)
+    vs = seg.value_shift
+    if vs >= 32:
+        e = shr(hi, vs - 32)
+    elif hi and vs + seg.width > 32:
+        e = f"({shr(lo, vs)} | ({paren(hi)} << {32 - vs}u))"
+    else:
+        e = shr(lo, vs)
+    top = vs + seg.width == s.length
+    if s.sig.signed and top and seg.byte_shift + seg.width < 8:
+        e = masked(e, seg.width)
+    return shl(e, seg.byte_shift)
+
+
+def _range_check(sigs: tuple[CSignal, ...]) -> str:
+    """One compare per width of the unsigned fields narrower than their type (their OR exceeds
+    the width's maximum exactly when one of them does), two per signed such field."""
+    groups: dict[tuple[int, int], list[str]] = {}
+    signed = []
+    for s in sigs:
+        bits, field = s.sig.storage_bits, f"src->{s.field}"
+        if s.length == bits:
+            continue
+        if s.sig.signed:
+            signed += [f"({field} < {c_int(s.sig.raw_type_min, bits)})", f"({field} > {c_int(s.sig.raw_type_max, bits)})"]
+        else:
+            groups.setdefault((s.length, bits), []).append(field)
+    terms = [f"({ored(fields)} > {c_uint((1 << n) - 1, bits)})" for (n, bits), fields in sorted(groups.items())]
+    return " || ".join(terms + signed)
+
+
+def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> tuple[str, ...]:
+    """Each byte stored as soon as it is computed, after the check of the fields that start in
+    it (checking every field first would keep them all in registers: they spill on small
+    cores). On ERR_RANGE the bytes before the field's are written."""
+    pieces: dict[int, list[str]] = {}
+    starting: dict[int, list[CSignal]] = {}
+    for s in sigs:
+        starting.setdefault(s.sig.segments[0].byte, []).append(s)
+        for seg in s.sig.segments:
+            pieces.setdefault(seg.byte, []).append(_piece(s, seg))
+    out = []
+    for k in range(dlc):
+        check = _range_check(tuple(starting.get(k, ())))
+        if check:
+            out += [f"if ({check}) {{", f"return {err};", "}"]
+        if k == checksum:
+            others = [f"dst[{b}]" for b in range(dlc) if b != k]
+            out.append(f"dst[{k}] = (uint8_t)({' ^ '.join(others)});" if len(others) > 1 else f"dst[{k}] = {others[0]};" if others else f"dst[{k}] = 0u;")
+        elif k in pieces:
+            out.append(f"dst[{k}] = (uint8_t){paren(ored(pieces[k]))};")
+        else:
+            out.append(f"dst[{k}] = 0u;")
+    return tuple(out)
+
+
+# ---- unpack ----------------------------------------------------------------------------------
+
+def _bits(seg: ir.Segment) -> str:
+    """Unpack: the segment's bits of its byte local, at bit 0 (uint32_t)."""
+    e = shr(f"b{seg.byte}", seg.byte_shift)
+    return e if seg.byte_shift + seg.width == 8 else masked(e, seg.width)
+
+
+def _assemble(s: CSignal) -> tuple[list[str], str]:
+    """(statements, expression): the field's raw bits, uint32_t (fields up to 32 bits) or
+    uint64_t from the halves `lo` and `hi`."""
+    if s.sig.storage_bits < 64:
+        return [], ored([shl(_bits(seg), seg.value_shift) for seg in s.sig.segments])
+    low, high = [], []
+    for seg in s.sig.segments:
+        vs, e = seg.value_shift, _bits(seg)
+        if vs >= 32:
+            high.append(shl(e, vs - 32))
+            continue
+        low.append(shl(e, vs))
+        if vs + seg.width > 32:
+            high.append(shr(e, 32 - vs))
+    stmts = [f"lo = {ored(low)};", f"hi = {ored(high)};"]
+    return stmts, "(((uint64_t)hi << 32u) | (uint64_t)lo)"
+
+
+def _store(s: CSignal) -> list[str]:
+    stmts, bits = _assemble(s)
+    field, n, t = f"dst->{s.field}", s.length, s.type
+    if not s.sig.signed:
+        return [*stmts, f"{field} = ({t}){paren(bits)};"]
+    if n == 64:
+        return [*stmts, f"t64 = {bits};", f"{field} = (t64 <= (uint64_t)INT64_MAX) ? (int64_t)t64 : (-(int64_t)(~t64) - 1);"]
+    sign = 1 << (n - 1)
+    if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
+        return [*stmts, f"t = {bits} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
+    wide = "t64" if n > 32 else "t"
+    return [*stmts, f"{wide} = {bits} ^ {c_hex(sign, 64 if n > 32 else 32)};", f"{field} = ({t})((int64_t){wide} - {c_int(sign, 64)});"]
+
+
+def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    held: list[int] = []  # frame bytes read into locals, in the order read
+    body: list[str] = []
+    for s in sigs:
+        for k in sorted({seg.byte for seg in s.sig.segments} - set(held)):
+            body.append(f"b{k} = src[{k}];")
+            if checksum:
+                body.append(f"x {'^=' if held else '='} b{k};")
+            held.append(k)
+        body += _store(s)
+    if checksum:  # the bytes no field reads (reserved) are covered too
+        rest = [k for k in range(dlc) if k not in held]
+        body += [f"x {'^=' if held or i else '='} src[{k}];" for i, k in enumerate(rest)]
+    local = [f"uint32_t b{k};" for k in sorted(held)]
+    local += ["uint32_t x;"] if checksum else []
+    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs) else []
+    local += ["uint32_t t;"] if any(s.sig.signed and s.length <= 32 for s in sigs) else []
+    local += ["uint64_t t64;"] if any(s.sig.signed and s.length > 32 for s in sigs) else []
+    return tuple(local), tuple(body)
+
+
+def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
+    """`sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
+    ck = msg.checksum.byte if msg.checksum is not None else None
+    packed = tuple(s for s in sigs if s.sig.role != "checksum")
+    locals_, unpack = _unpack(sigs, msg.dlc, ck is not None)
+    return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack)
