@@ -62,7 +62,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_autocar_eps_command_t *src) {
@@ -328,7 +328,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_state_t *src) {
     if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
@@ -714,7 +714,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
@@ -1042,7 +1042,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_driving_state_t *src) {
@@ -1647,7 +1647,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_1_t *src) {
@@ -3001,26 +3001,21 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_1_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((src->door_state | src->drl_state | src->left_turn_state | src->right_turn_state |
-          src->hazard_state | src->position_light_state) > 1u) ||
-        (src->drive_mode_state > 3u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     dst[0] =
         (uint8_t)(src->drive_mode_state | ((uint32_t)src->door_state << 2u) |
                   ((uint32_t)src->drl_state << 3u) | ((uint32_t)src->left_turn_state << 4u) |
                   ((uint32_t)src->right_turn_state << 5u) | ((uint32_t)src->hazard_state << 6u) |
                   ((uint32_t)src->position_light_state << 7u));
-    if (((src->rear_fog_state | src->left_fog_state | src->right_fog_state | src->dome_light_state |
-          src->ambient_light_state | src->door_button_state) > 1u) ||
-        (src->headlight_state > 3u)) {
+    if (((src->door_state | src->drl_state | src->left_turn_state | src->right_turn_state |
+          src->hazard_state | src->position_light_state) > 1u) ||
+        (src->drive_mode_state > 3u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[1] =
@@ -3029,6 +3024,11 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                   ((uint32_t)src->dome_light_state << 5u) |
                   ((uint32_t)src->ambient_light_state << 6u) |
                   ((uint32_t)src->door_button_state << 7u));
+    if (((src->rear_fog_state | src->left_fog_state | src->right_fog_state | src->dome_light_state |
+          src->ambient_light_state | src->door_button_state) > 1u) ||
+        (src->headlight_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     dst[2] = (uint8_t)src->vehicle_speed;
     dst[3] = (uint8_t)src->soc;
     if (((src->system_power_cmd | src->charge_state | src->charge_connection |
@@ -4108,7 +4108,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_2_t *src) {
@@ -4657,7 +4657,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_2_t *src) {
@@ -4949,7 +4949,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_3_t *src) {
@@ -5374,7 +5374,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_4_t *src) {
@@ -6201,26 +6201,21 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_vehicle_fault_t *src) {
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    if (((src->dc_fault | src->soc_low | src->cell_undervoltage | src->brake_boost_pressure_fault |
-          src->vacuum_pump_fault | src->vehicle_system_fault) > 1u) ||
-        (src->insulation_fault_level > 3u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     dst[0] = (uint8_t)(src->insulation_fault_level | ((uint32_t)src->dc_fault << 2u) |
                        ((uint32_t)src->soc_low << 3u) | ((uint32_t)src->cell_undervoltage << 4u) |
                        ((uint32_t)src->brake_boost_pressure_fault << 5u) |
                        ((uint32_t)src->vacuum_pump_fault << 6u) |
                        ((uint32_t)src->vehicle_system_fault << 7u));
-    if (((src->battery_overheat | src->motor_overheat | src->traction_battery_fault |
-          src->motor_fault | src->battery_comm_fault | src->motor_comm_fault | src->eps_fault |
-          src->ac_fault) > 1u)) {
+    if (((src->dc_fault | src->soc_low | src->cell_undervoltage | src->brake_boost_pressure_fault |
+          src->vacuum_pump_fault | src->vehicle_system_fault) > 1u) ||
+        (src->insulation_fault_level > 3u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[1] =
@@ -6229,9 +6224,9 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                   ((uint32_t)src->motor_fault << 3u) | ((uint32_t)src->battery_comm_fault << 4u) |
                   ((uint32_t)src->motor_comm_fault << 5u) | ((uint32_t)src->eps_fault << 6u) |
                   ((uint32_t)src->ac_fault << 7u));
-    if (((src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
-          src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
-          src->body_motor_overheat) > 1u)) {
+    if (((src->battery_overheat | src->motor_overheat | src->traction_battery_fault |
+          src->motor_fault | src->battery_comm_fault | src->motor_comm_fault | src->eps_fault |
+          src->ac_fault) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[2] = (uint8_t)(src->aux_battery_fault | ((uint32_t)src->epb_fault << 1u) |
@@ -6240,6 +6235,11 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                        ((uint32_t)src->tire_pressure_low << 4u) |
                        ((uint32_t)src->body_motor_fault << 5u) |
                        ((uint32_t)src->body_motor_overheat << 6u));
+    if (((src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
+          src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
+          src->body_motor_overheat) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     if (((src->battery_system_fault_level | src->motor_system_fault_level) > 3u) ||
         (src->unmanned_entry_fault > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
@@ -7619,7 +7619,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_5_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_5_t *src) {
@@ -7704,7 +7704,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
                                      const kaiwo_gateway_rgate_eps_command_t *src) {
@@ -7959,7 +7959,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
@@ -8384,7 +8384,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_1_t *src) {
@@ -9624,7 +9624,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_2_t *src) {
@@ -9951,7 +9951,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_device_id_t *src) {
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
@@ -10194,7 +10194,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_1_t *src) {
@@ -10688,7 +10688,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_2_t *src) {
@@ -10708,16 +10708,16 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
     }
     dst[2] = (uint8_t)((src->sensor_8_distance >> 6u) | ((uint32_t)src->sensor_9_distance << 4u));
     dst[3] = (uint8_t)(src->sensor_9_distance >> 4u);
-    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
-          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
-        (src->uss_system_state > 3u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     dst[4] =
         (uint8_t)(src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2u) |
                   ((uint32_t)src->sensor_2_fault << 3u) | ((uint32_t)src->sensor_3_fault << 4u) |
                   ((uint32_t)src->sensor_4_fault << 5u) | ((uint32_t)src->sensor_5_fault << 6u) |
                   ((uint32_t)src->sensor_6_fault << 7u));
+    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
+        (src->uss_system_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     if (((src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11442,7 +11442,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_1_t *src) {
@@ -11933,7 +11933,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_2_t *src) {
@@ -11953,16 +11953,16 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
     }
     dst[2] = (uint8_t)((src->sensor_8_distance >> 6u) | ((uint32_t)src->sensor_9_distance << 4u));
     dst[3] = (uint8_t)(src->sensor_9_distance >> 4u);
-    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
-          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
-        (src->uss_system_state > 3u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     dst[4] =
         (uint8_t)(src->uss_system_state | ((uint32_t)src->sensor_1_fault << 2u) |
                   ((uint32_t)src->sensor_2_fault << 3u) | ((uint32_t)src->sensor_3_fault << 4u) |
                   ((uint32_t)src->sensor_4_fault << 5u) | ((uint32_t)src->sensor_5_fault << 6u) |
                   ((uint32_t)src->sensor_6_fault << 7u));
+    if (((src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+          src->sensor_5_fault | src->sensor_6_fault) > 1u) ||
+        (src->uss_system_state > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     if (((src->sensor_7_fault | src->sensor_8_fault | src->sensor_9_fault) > 1u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12667,7 +12667,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_tele_eps_command_t *src) {
@@ -12921,7 +12921,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0, checksum computed (src->checksum is ignored).
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
@@ -13347,7 +13347,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_1_t *src) {
@@ -14584,7 +14584,7 @@ typedef struct {
 
 /** Pack raw values into dst[0..7]: reserved bits 0.
  * Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8 (nothing written), KAIWO_GATEWAY_ERR_RANGE if a field does not
- * fit its bits (dst[] then holds the bytes before that field's; do not send it). */
+ * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_2_t *src) {

@@ -478,6 +478,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         images = {}
         for name, objs_ in {"canspec": [objs["canspec_wrappers"], objs["stub_main"]],
                             "cantools": [out / "cantools.o", objs["stub_main"]],
+                            "cantools_xor": [out / "cantools.o", objs["cantools_xor"], objs["stub_main"]],
                             "cantools_nofp": [out / "cantools_nofp.o", objs["stub_main"]],
                             "api": [objs["canspec_api"], objs["stub_main_api"]]}.items():
             link(core, objs_, out / f"size_{name}.elf", build)
@@ -486,6 +487,9 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         groups = {
             "canspec pack+unpack": ("canspec", [f"x_{n}_{ph}" for n in inp.names for ph in PHASES]),
             "cantools pack+unpack": ("cantools", [f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
+            # like for like: the user's XOR and range-check wrappers with the cantools functions they call
+            "cantools+user pack+unpack": ("cantools_xor", [f"cx_{n}_{ph}" if f"cx_{n}_{ph}" in images["cantools_xor"].sizes else f"{inp.db}_{n}_{ph}"
+                                                           for n in inp.names for ph in PHASES]),
             "canspec double encode+decode": ("api", [f for f in images["api"].sizes if re.fullmatch(api["double"], f)]),
             "cantools double encode+decode": ("cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_(encode|decode)", f)]),
             "cantools is_in_range+is_in_phys_range": ("cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_(phys_)?range", f)]),

@@ -108,10 +108,15 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
     return " || ".join(terms + signed)
 
 
+HELD_FIELDS = 4  # checked fields a byte's check may keep in registers for the byte (Cortex-M0+: 8 low registers)
+
+
 def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> tuple[str, ...]:
-    """Each byte stored as soon as it is computed, after the check of the fields that start in
-    it (checking every field first would keep them all in registers: they spill on small
-    cores). On ERR_RANGE the bytes before the field's are written."""
+    """Each byte stored as soon as it is computed (holding them all would spill on small cores),
+    with the check of the checked fields that start in it: before the byte where it checks at
+    most HELD_FIELDS of them (the values stay in registers for the byte), after it otherwise
+    (the fields are read again: a store to dst may alias src; cheaper than spilling them). On
+    ERR_RANGE the frame's bytes are unspecified."""
     pieces: dict[int, list[str]] = {}
     starting: dict[int, list[CSignal]] = {}
     for s in sigs:
@@ -120,9 +125,10 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
             pieces.setdefault(seg.byte, []).append(_piece(s, seg))
     out = []
     for k in range(dlc):
-        check = _range_check(tuple(starting.get(k, ())))
-        if check:
-            out += [f"if ({check}) {{", f"return {err};", "}"]
+        checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)
+        check = [f"if ({_range_check(checked)}) {{", f"return {err};", "}"] if checked else []
+        before = len(checked) <= HELD_FIELDS
+        out += check if before else []
         if k == checksum:
             others = [f"dst[{b}]" for b in range(dlc) if b != k]
             out.append(f"dst[{k}] = (uint8_t)({' ^ '.join(others)});" if len(others) > 1 else f"dst[{k}] = {others[0]};" if others else f"dst[{k}] = 0u;")
@@ -130,6 +136,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
             out.append(f"dst[{k}] = (uint8_t){paren(ored(pieces[k]))};")
         else:
             out.append(f"dst[{k}] = 0u;")
+        out += [] if before else check
     return tuple(out)
 
 
