@@ -165,11 +165,11 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -186,13 +186,10 @@ static inline int32_t kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -209,12 +206,12 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -233,12 +230,12 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -259,12 +256,12 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -274,7 +271,7 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -282,11 +279,11 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -459,11 +456,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_ctrl_state_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -480,13 +477,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_ctrl_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -504,12 +498,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -12.8000000001 && value <= 12.7000000001) || r < INT64_C(0) ||
-        r > INT64_C(255)) {
+    if (!((value >= -12.8000000001) && (value <= 12.7000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -518,7 +512,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
 
 /** steering_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 1280;
+    return ((int32_t)raw * 10) - 1280;
 }
 
 /** steering_torque: physical × 100 → raw, integers only, same rounding and range rules as
@@ -526,11 +520,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1290) || value >= 1280) {
+    if ((value <= (-1290)) || (value >= 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 1280, 10);
-    if (value < (-1280) || value > 1270 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -550,12 +544,12 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -38.4000000003 && value <= 38.1000000003) || r < INT64_C(0) ||
-        r > INT64_C(255)) {
+    if (!((value >= -38.4000000003) && (value <= 38.1000000003)) || (r < INT64_C(0)) ||
+        (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -564,7 +558,7 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
 
 /** eps_output_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 30 - 3840;
+    return ((int32_t)raw * 30) - 3840;
 }
 
 /** eps_output_torque: physical × 100 → raw, integers only, same rounding and range rules as
@@ -572,11 +566,11 @@ static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3870) || value >= 3840) {
+    if ((value <= (-3870)) || (value >= 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3840, 30);
-    if (value < (-3840) || value > 3810 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -596,12 +590,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -610,7 +604,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
 
 /** steering_angle: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle: physical × 100 → raw, integers only, same rounding and range rules as
@@ -618,11 +612,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -641,11 +635,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 64.0)) {
+    if (!((q > -1.0) && (q < 64.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 126.0) || r < INT64_C(0) || r > INT64_C(63)) {
+    if (!((value >= 0.0) && (value <= 126.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -662,11 +656,11 @@ static inline int32_t kaiwo_gateway_eps_state_controller_temp_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 128) {
+    if ((value <= (-2)) || (value >= 128)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 126 || r < INT64_C(0) || r > INT64_C(63)) {
+    if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -685,11 +679,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_fault_level_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -706,13 +700,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_fault_level_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -877,12 +868,12 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
-        r > INT64_C(630)) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(630))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -891,7 +882,7 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
 
 /** accel_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 900;
+    return ((int32_t)raw * 2) - 900;
 }
 
 /** accel_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -899,11 +890,11 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-902) || value >= 1148) {
+    if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
-    if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
+    if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -922,11 +913,11 @@ kaiwo_gateway_autocar_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -943,13 +934,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_epb_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -966,11 +954,11 @@ kaiwo_gateway_autocar_speed_command_gear_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -987,11 +975,11 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_gear_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1010,11 +998,11 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1032,13 +1020,10 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1237,11 +1222,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_epb_state_encod
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1258,13 +1243,10 @@ static inline int32_t kaiwo_gateway_driving_state_epb_state_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_epb_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1281,11 +1263,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_gear_state_enco
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1302,11 +1284,11 @@ static inline int32_t kaiwo_gateway_driving_state_gear_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_gear_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1325,11 +1307,11 @@ kaiwo_gateway_driving_state_emergency_brake_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1346,13 +1328,10 @@ static inline int32_t kaiwo_gateway_driving_state_emergency_brake_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_emergency_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1369,11 +1348,11 @@ kaiwo_gateway_driving_state_uss_brake_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1390,13 +1369,10 @@ static inline int32_t kaiwo_gateway_driving_state_uss_brake_state_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_uss_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1413,11 +1389,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -15000.0 && value <= 15000.0) || r < INT64_C(0) || r > INT64_C(30000)) {
+    if (!((value >= -15000.0) && (value <= 15000.0)) || (r < INT64_C(0)) || (r > INT64_C(30000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1426,7 +1402,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
 
 /** motor_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 150000;
+    return ((int32_t)raw * 10) - 150000;
 }
 
 /** motor_speed: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1434,11 +1410,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint1
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150010) || value >= 505360) {
+    if ((value <= (-150010)) || (value >= 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 150000, 10);
-    if (value < (-150000) || value > 150000 || r < INT64_C(0) || r > INT64_C(30000)) {
+    if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1457,11 +1433,11 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -5000.0 && value <= 5000.0) || r < INT64_C(0) || r > INT64_C(10000)) {
+    if (!((value >= -5000.0) && (value <= 5000.0)) || (r < INT64_C(0)) || (r > INT64_C(10000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1470,7 +1446,7 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
 
 /** motor_torque: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 50000;
+    return ((int32_t)raw * 10) - 50000;
 }
 
 /** motor_torque: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1478,11 +1454,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-50010) || value >= 605360) {
+    if ((value <= (-50010)) || (value >= 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 50000, 10);
-    if (value < (-50000) || value > 50000 || r < INT64_C(0) || r > INT64_C(10000)) {
+    if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1501,12 +1477,12 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 255)) {
-        if (!(value >= 1.0 && value <= 254.0) || r < INT64_C(0) || r > INT64_C(253)) {
+        if (!((value >= 1.0) && (value <= 254.0)) || (r < INT64_C(0)) || (r > INT64_C(253))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1516,7 +1492,7 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
 
 /** motor_speed_ratio: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 + 10;
+    return ((int32_t)raw * 10) + 10;
 }
 
 /** motor_speed_ratio: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1524,12 +1500,12 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 0 || value >= 2570) {
+    if ((value <= 0) || (value >= 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 10, 10);
     if (!(r == 255)) {
-        if (value < 10 || value > 2540 || r < INT64_C(0) || r > INT64_C(253)) {
+        if ((value < 10) || (value > 2540)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1550,12 +1526,12 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000005 && value <= 3.60000000005) || r < INT64_C(0) ||
-        r > INT64_C(252)) {
+    if (!((value >= -9.00000000005) && (value <= 3.60000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(252))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1564,7 +1540,7 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
 
 /** current_accel: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 9000;
+    return ((int32_t)raw * 50) - 9000;
 }
 
 /** current_accel: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -1572,11 +1548,11 @@ static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-9050) || value >= 3800) {
+    if ((value <= (-9050)) || (value >= 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 9000, 50);
-    if (value < (-9000) || value > 3600 || r < INT64_C(0) || r > INT64_C(252)) {
+    if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1953,11 +1929,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1975,11 +1951,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1998,11 +1974,11 @@ kaiwo_gateway_autocar_control_command_1_door_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2019,11 +1995,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_door_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2042,11 +2018,11 @@ kaiwo_gateway_autocar_control_command_1_horn_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2063,11 +2039,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_horn_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2086,11 +2062,11 @@ kaiwo_gateway_autocar_control_command_1_drl_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2107,11 +2083,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_drl_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2130,11 +2106,11 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2152,11 +2128,11 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2175,11 +2151,11 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2197,11 +2173,11 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2220,11 +2196,11 @@ kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2241,11 +2217,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_hazard_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2265,11 +2241,11 @@ kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2288,11 +2264,11 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2311,11 +2287,11 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2333,13 +2309,10 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2356,11 +2329,11 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2378,11 +2351,11 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2401,11 +2374,11 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2423,11 +2396,11 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2446,11 +2419,11 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2468,11 +2441,11 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2491,11 +2464,11 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2513,11 +2486,11 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2536,11 +2509,11 @@ kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode(double value, u
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2559,11 +2532,11 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2582,11 +2555,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2604,13 +2577,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2627,11 +2597,11 @@ kaiwo_gateway_autocar_control_command_1_system_state_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2649,13 +2619,10 @@ kaiwo_gateway_autocar_control_command_1_system_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2673,11 +2640,11 @@ kaiwo_gateway_autocar_control_command_1_system_reliability_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2696,13 +2663,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_reliability_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2720,11 +2684,11 @@ kaiwo_gateway_autocar_control_command_1_system_fault_level_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2743,13 +2707,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_fault_level_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2766,11 +2727,11 @@ kaiwo_gateway_autocar_control_command_1_lock_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2787,13 +2748,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_lock_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2810,11 +2768,11 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2831,11 +2789,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_ac_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2855,11 +2813,12 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2869,7 +2828,7 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -2877,11 +2836,11 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2901,11 +2860,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2924,13 +2883,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2948,11 +2904,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2971,13 +2927,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2995,11 +2948,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3018,13 +2971,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3357,11 +3307,11 @@ kaiwo_gateway_vehicle_state_1_drive_mode_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3378,13 +3328,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drive_mode_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drive_mode_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3401,11 +3348,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_door_state_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3422,13 +3369,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_state_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3445,11 +3389,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_drl_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3466,13 +3410,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drl_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3489,11 +3430,11 @@ kaiwo_gateway_vehicle_state_1_left_turn_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3510,13 +3451,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_turn_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3533,11 +3471,11 @@ kaiwo_gateway_vehicle_state_1_right_turn_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3554,13 +3492,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_turn_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3577,11 +3512,11 @@ kaiwo_gateway_vehicle_state_1_hazard_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3598,13 +3533,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_hazard_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_hazard_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3621,11 +3553,11 @@ kaiwo_gateway_vehicle_state_1_position_light_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3642,13 +3574,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_position_light_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_position_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3665,11 +3594,11 @@ kaiwo_gateway_vehicle_state_1_headlight_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3686,13 +3615,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_headlight_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_headlight_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3709,11 +3635,11 @@ kaiwo_gateway_vehicle_state_1_rear_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3730,13 +3656,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_rear_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_rear_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3753,11 +3676,11 @@ kaiwo_gateway_vehicle_state_1_left_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3774,13 +3697,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3797,11 +3717,11 @@ kaiwo_gateway_vehicle_state_1_right_fog_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3818,13 +3738,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_fog_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3841,11 +3758,11 @@ kaiwo_gateway_vehicle_state_1_dome_light_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3862,13 +3779,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_dome_light_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_dome_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3885,11 +3799,11 @@ kaiwo_gateway_vehicle_state_1_ambient_light_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3906,13 +3820,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_ambient_light_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_ambient_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3929,11 +3840,11 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3950,13 +3861,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_button_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_button_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3973,11 +3881,11 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -50.0 && value <= 200.0) || r < INT64_C(0) || r > INT64_C(250)) {
+    if (!((value >= -50.0) && (value <= 200.0)) || (r < INT64_C(0)) || (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3986,7 +3894,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
 
 /** vehicle_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 500;
+    return ((int32_t)raw * 10) - 500;
 }
 
 /** vehicle_speed: physical × 10 → raw, integers only, same rounding and range rules as
@@ -3994,11 +3902,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-510) || value >= 2060) {
+    if ((value <= (-510)) || (value >= 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 500, 10);
-    if (value < (-500) || value > 2000 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4017,12 +3925,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(do
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4039,11 +3947,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_soc_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fixed(int32_t value,
                                                                                     uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
-    if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4062,11 +3970,11 @@ kaiwo_gateway_vehicle_state_1_system_power_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4083,11 +3991,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_system_power_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_system_power_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4106,11 +4014,11 @@ kaiwo_gateway_vehicle_state_1_charge_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4127,13 +4035,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4150,11 +4055,11 @@ kaiwo_gateway_vehicle_state_1_charge_connection_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4171,11 +4076,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_connection_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_connection_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4194,11 +4099,11 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4215,13 +4120,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_fault_level_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4238,11 +4140,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 120000.0) || r < INT64_C(0) || r > INT64_C(60000)) {
+    if (!((value >= 0.0) && (value <= 120000.0)) || (r < INT64_C(0)) || (r > INT64_C(60000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4259,11 +4161,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_odometer_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 131072) {
+    if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 120000 || r < INT64_C(0) || r > INT64_C(60000)) {
+    if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4483,11 +4385,11 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode(double valu
         (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
         KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4506,13 +4408,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                            uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4529,11 +4428,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4550,13 +4449,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_cargo_lift_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4573,11 +4469,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4595,11 +4491,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4618,11 +4514,11 @@ kaiwo_gateway_autocar_control_command_2_pto_enable_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4639,13 +4535,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_pto_enable_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4663,13 +4556,13 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode(double value
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4689,12 +4582,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                           uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4715,12 +4608,12 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -25.00000000005 && value <= 25.00000000005) || r < INT64_C(0) ||
-        r > INT64_C(1000)) {
+    if (!((value >= -25.00000000005) && (value <= 25.00000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4730,7 +4623,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
 /** chassis_pitch: raw → physical × 1000, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 50 - 25000;
+    return ((int32_t)raw * 50) - 25000;
 }
 
 /** chassis_pitch: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -4738,11 +4631,11 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-25050) || value >= 26200) {
+    if ((value <= (-25050)) || (value >= 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 25000, 50);
-    if (value < (-25000) || value > 25000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4762,12 +4655,12 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(800)) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(800))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4777,7 +4670,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
 /** chassis_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 4000;
+    return ((int32_t)raw * 10) - 4000;
 }
 
 /** chassis_roll: physical × 100 → raw, integers only, same rounding and range rules as
@@ -4785,11 +4678,11 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-4010) || value >= 6240) {
+    if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
-    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
+    if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4809,12 +4702,12 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(650)) {
+    if (!((value >= -30.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(650))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4824,7 +4717,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
 /** cargo_pitch: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 300;
+    return ((int32_t)raw * 2) - 300;
 }
 
 /** cargo_pitch: physical × 10 → raw, integers only, same rounding and range rules as
@@ -4832,11 +4725,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-302) || value >= 1748) {
+    if ((value <= (-302)) || (value >= 1748)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 300, 2);
-    if (value < (-300) || value > 1000 || r < INT64_C(0) || r > INT64_C(650)) {
+    if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4856,12 +4749,12 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(800)) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(800))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4871,7 +4764,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
 /** cargo_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 4000;
+    return ((int32_t)raw * 10) - 4000;
 }
 
 /** cargo_roll: physical × 100 → raw, integers only, same rounding and range rules as
@@ -4879,11 +4772,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-4010) || value >= 6240) {
+    if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
-    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
+    if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5028,12 +4921,12 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000002 && value <= 800.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000002) && (value <= 800.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5050,11 +4943,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_voltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 131072) {
+    if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 8000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5074,12 +4967,12 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -500.00000000002 && value <= 800.00000000002) || r < INT64_C(0) ||
-        r > INT64_C(65000)) {
+    if (!((value >= -500.00000000002) && (value <= 800.00000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(65000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5088,7 +4981,7 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
 
 /** battery_current: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 50000;
+    return ((int32_t)raw * 2) - 50000;
 }
 
 /** battery_current: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5096,11 +4989,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-50002) || value >= 81072) {
+    if ((value <= (-50002)) || (value >= 81072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 50000, 2);
-    if (value < (-50000) || value > 80000 || r < INT64_C(0) || r > INT64_C(65000)) {
+    if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5119,11 +5012,11 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5141,13 +5034,10 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 65536) {
+    if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5164,11 +5054,11 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5186,13 +5076,10 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 65536) {
+    if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5354,11 +5241,11 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5367,7 +5254,7 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
 
 /** battery_max_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** battery_max_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5375,11 +5262,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5398,11 +5285,11 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5411,7 +5298,7 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
 
 /** battery_min_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** battery_min_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5419,11 +5306,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5442,12 +5329,12 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5464,11 +5351,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150) || value >= 614400) {
+    if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 150);
-    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5487,12 +5374,12 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5509,11 +5396,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150) || value >= 614400) {
+    if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 150);
-    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5532,11 +5419,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5545,7 +5432,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
 
 /** motor_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** motor_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5553,11 +5440,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5576,11 +5463,11 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5590,7 +5477,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
 /** motor_controller_temp: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** motor_controller_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5598,11 +5485,11 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5841,12 +5728,12 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5855,7 +5742,7 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
 
 /** outside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 3000;
+    return ((int32_t)raw * 50) - 3000;
 }
 
 /** outside_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5863,11 +5750,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3050) || value >= 9800) {
+    if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
-    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5887,12 +5774,12 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5901,7 +5788,7 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
 
 /** inside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 3000;
+    return ((int32_t)raw * 50) - 3000;
 }
 
 /** inside_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5909,11 +5796,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3050) || value >= 9800) {
+    if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
-    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5932,11 +5819,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_ac_state_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5953,11 +5840,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5976,11 +5863,11 @@ kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5997,13 +5884,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_vehicle_power_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6020,11 +5904,11 @@ kaiwo_gateway_vehicle_state_4_hill_hold_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6041,13 +5925,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_hill_hold_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_hill_hold_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6064,11 +5945,11 @@ kaiwo_gateway_vehicle_state_4_regen_brake_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6085,13 +5966,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_regen_brake_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_regen_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6108,11 +5986,11 @@ kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1000.0) || r < INT64_C(0) || r > INT64_C(1000)) {
+    if (!((value >= 0.0) && (value <= 1000.0)) || (r < INT64_C(0)) || (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6129,11 +6007,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_remaining_range_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4096) {
+    if ((value <= (-1)) || (value >= 4096)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if (value > 1000) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6152,11 +6030,11 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6174,13 +6052,10 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6197,11 +6072,11 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6219,13 +6094,10 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6243,11 +6115,12 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6256,7 +6129,7 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -6264,11 +6137,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6287,11 +6160,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_pto_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6308,13 +6181,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_pto_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6332,12 +6202,12 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -325.00000000001 && value <= 325.00000000001) || r < INT64_C(0) ||
-        r > INT64_C(65000)) {
+    if (!((value >= -325.00000000001) && (value <= 325.00000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(65000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6346,7 +6216,7 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
 
 /** battery_power: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 325000;
+    return ((int32_t)raw * 10) - 325000;
 }
 
 /** battery_power: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -6354,11 +6224,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-325010) || value >= 330360) {
+    if ((value <= (-325010)) || (value >= 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 325000, 10);
-    if (value < (-325000) || value > 325000 || r < INT64_C(0) || r > INT64_C(65000)) {
+    if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6777,11 +6647,11 @@ kaiwo_gateway_vehicle_fault_insulation_fault_level_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6798,13 +6668,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_insulation_fault_level_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_insulation_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6821,11 +6688,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_dc_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6842,13 +6709,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_dc_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_dc_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6865,11 +6729,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_soc_low_encode(
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6886,13 +6750,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_soc_low_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_soc_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6909,11 +6770,11 @@ kaiwo_gateway_vehicle_fault_cell_undervoltage_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6930,13 +6791,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_cell_undervoltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_cell_undervoltage_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6953,11 +6811,11 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6975,13 +6833,10 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6998,11 +6853,11 @@ kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7019,13 +6874,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vacuum_pump_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7042,11 +6894,11 @@ kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7063,13 +6915,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vehicle_system_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7086,11 +6935,11 @@ kaiwo_gateway_vehicle_fault_battery_overheat_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7107,13 +6956,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_overheat_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7130,11 +6976,11 @@ kaiwo_gateway_vehicle_fault_motor_overheat_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7151,13 +6997,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_overheat_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7174,11 +7017,11 @@ kaiwo_gateway_vehicle_fault_traction_battery_fault_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7195,13 +7038,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_traction_battery_fault_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_traction_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7218,11 +7058,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_motor_fault_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7239,13 +7079,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_fault_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7262,11 +7099,11 @@ kaiwo_gateway_vehicle_fault_battery_comm_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7283,13 +7120,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_comm_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7306,11 +7140,11 @@ kaiwo_gateway_vehicle_fault_motor_comm_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7327,13 +7161,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_comm_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7350,11 +7181,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_eps_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7371,13 +7202,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_eps_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_eps_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7394,11 +7222,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_ac_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7415,13 +7243,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_ac_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_ac_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7438,11 +7263,11 @@ kaiwo_gateway_vehicle_fault_aux_battery_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7459,13 +7284,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_aux_battery_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_aux_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7482,11 +7304,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_epb_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7503,13 +7325,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_epb_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_epb_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7526,11 +7345,11 @@ kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7547,13 +7366,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_brake_by_wire_fault_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7570,11 +7386,11 @@ kaiwo_gateway_vehicle_fault_key_not_detected_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7591,13 +7407,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_key_not_detected_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_key_not_detected_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7614,11 +7427,11 @@ kaiwo_gateway_vehicle_fault_tire_pressure_low_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7635,13 +7448,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_tire_pressure_low_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_tire_pressure_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7658,11 +7468,11 @@ kaiwo_gateway_vehicle_fault_body_motor_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7679,13 +7489,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7702,11 +7509,11 @@ kaiwo_gateway_vehicle_fault_body_motor_overheat_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7723,13 +7530,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_overheat_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7746,11 +7550,11 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7768,13 +7572,10 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7791,11 +7592,11 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7813,13 +7614,10 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7836,11 +7634,11 @@ kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7857,13 +7655,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_unmanned_entry_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7880,11 +7675,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_a_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7901,13 +7696,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_a_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7924,11 +7716,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_b_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7945,13 +7737,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_b_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7968,11 +7757,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_c_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7989,13 +7778,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_c_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8012,11 +7798,11 @@ kaiwo_gateway_vehicle_fault_remote_entry_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8033,13 +7819,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_remote_entry_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_remote_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8242,11 +8025,11 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8263,13 +8046,10 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8286,12 +8066,12 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -8309,12 +8089,12 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_max_angular_speed_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -8335,12 +8115,12 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8350,7 +8130,7 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -8358,11 +8138,11 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8529,12 +8309,12 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
-        r > INT64_C(630)) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(630))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8543,7 +8323,7 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
 
 /** accel_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 900;
+    return ((int32_t)raw * 2) - 900;
 }
 
 /** accel_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -8551,11 +8331,11 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-902) || value >= 1148) {
+    if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
-    if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
+    if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8574,11 +8354,11 @@ kaiwo_gateway_rgate_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8595,13 +8375,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_epb_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8618,11 +8395,11 @@ kaiwo_gateway_rgate_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8639,11 +8416,11 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_gear_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8662,11 +8439,11 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8684,13 +8461,10 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9064,11 +8838,11 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9086,13 +8860,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9109,11 +8880,11 @@ kaiwo_gateway_rgate_control_command_1_door_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9130,11 +8901,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_door_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9153,11 +8924,11 @@ kaiwo_gateway_rgate_control_command_1_horn_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9174,11 +8945,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_horn_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9197,11 +8968,11 @@ kaiwo_gateway_rgate_control_command_1_drl_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9218,11 +8989,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_drl_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9241,11 +9012,11 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9263,11 +9034,11 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9286,11 +9057,11 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9308,11 +9079,11 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9331,11 +9102,11 @@ kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9352,11 +9123,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_hazard_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9375,11 +9146,11 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9397,11 +9168,11 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9420,11 +9191,11 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9442,13 +9213,10 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9465,11 +9233,11 @@ kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9486,11 +9254,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9509,11 +9277,11 @@ kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9530,11 +9298,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_left_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9553,11 +9321,11 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9575,11 +9343,11 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9598,11 +9366,11 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9620,11 +9388,11 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9643,11 +9411,11 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9665,11 +9433,11 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9688,11 +9456,11 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9710,13 +9478,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9733,11 +9498,11 @@ kaiwo_gateway_rgate_control_command_1_system_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9754,13 +9519,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_system_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9777,11 +9539,11 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9799,13 +9561,10 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9822,11 +9581,11 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9844,13 +9603,10 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9867,11 +9623,11 @@ kaiwo_gateway_rgate_control_command_1_lock_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9888,13 +9644,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_lock_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9911,11 +9664,11 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9932,11 +9685,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9956,11 +9709,12 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9969,7 +9723,7 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -9977,11 +9731,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10000,11 +9754,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10022,13 +9776,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10045,11 +9796,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10067,13 +9818,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10090,11 +9838,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10112,13 +9860,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10289,11 +10034,11 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode(double value,
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10312,13 +10057,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                          uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10335,11 +10077,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10356,13 +10098,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_cargo_lift_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10379,11 +10118,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10401,11 +10140,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10424,11 +10163,11 @@ kaiwo_gateway_rgate_control_command_2_pto_enable_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10445,13 +10184,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_pto_enable_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10469,13 +10205,13 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10495,12 +10231,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10643,11 +10379,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 64.0)) {
+    if (!((q > -1.0) && (q < 64.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 63.0) || r < INT64_C(0) || r > INT64_C(63)) {
+    if (!((value >= 0.0) && (value <= 63.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10664,13 +10400,10 @@ static inline int32_t kaiwo_gateway_device_id_device_type_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_device_type_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 64) {
+    if ((value <= (-1)) || (value >= 64)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 63 || r < INT64_C(0) || r > INT64_C(63)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10687,11 +10420,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_frame_index_enco
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10708,13 +10441,10 @@ static inline int32_t kaiwo_gateway_device_id_id_frame_index_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10731,14 +10461,10 @@ static inline int64_t kaiwo_gateway_device_id_id_chars_decode_fixed(uint64_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_chars_encode_fixed(int64_t value,
                                                                                    uint64_t *raw) {
     int64_t r;
-    if (value <= INT64_C(-1) || value >= INT64_C(72057594037927936)) {
+    if ((value <= INT64_C(-1)) || (value >= INT64_C(72057594037927936))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < INT64_C(0) || value > INT64_C(72057594037927935) || r < INT64_C(0) ||
-        r > INT64_C(72057594037927935)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint64_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10935,12 +10661,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10959,12 +10685,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10984,12 +10710,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11008,12 +10734,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11033,12 +10759,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11057,12 +10783,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11082,12 +10808,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11106,12 +10832,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11131,12 +10857,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11155,12 +10881,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11180,12 +10906,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11204,12 +10930,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11482,12 +11208,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11506,12 +11232,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11531,12 +11257,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11555,12 +11281,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11580,12 +11306,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11604,12 +11330,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11629,11 +11355,11 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11651,11 +11377,11 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11674,11 +11400,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11696,13 +11422,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11719,11 +11442,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11741,13 +11464,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11764,11 +11484,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11786,13 +11506,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11809,11 +11526,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11831,13 +11548,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11854,11 +11568,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11876,13 +11590,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11899,11 +11610,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11921,13 +11632,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11944,11 +11652,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11966,13 +11674,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11989,11 +11694,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12011,13 +11716,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12034,11 +11736,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12056,13 +11758,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12253,12 +11952,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12277,12 +11976,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12302,12 +12001,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12326,12 +12025,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12351,12 +12050,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12375,12 +12074,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12400,12 +12099,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12424,12 +12123,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12449,12 +12148,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12473,12 +12172,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12498,12 +12197,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12522,12 +12221,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12797,12 +12496,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12821,12 +12520,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12846,12 +12545,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12870,12 +12569,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12895,12 +12594,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12919,12 +12618,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12944,11 +12643,11 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12966,11 +12665,11 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12989,11 +12688,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13011,13 +12710,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13034,11 +12730,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13056,13 +12752,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13079,11 +12772,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13101,13 +12794,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13124,11 +12814,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13146,13 +12836,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13169,11 +12856,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13191,13 +12878,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13214,11 +12898,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13236,13 +12920,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13259,11 +12940,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13281,13 +12962,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13304,11 +12982,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13326,13 +13004,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13349,11 +13024,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13371,13 +13046,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13528,11 +13200,11 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13549,13 +13221,10 @@ static inline int32_t kaiwo_gateway_tele_eps_command_eps_ctrl_mode_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13572,12 +13241,12 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13595,12 +13264,12 @@ static inline int32_t kaiwo_gateway_tele_eps_command_max_angular_speed_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -13621,12 +13290,12 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13635,7 +13304,7 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
 
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -13643,11 +13312,11 @@ static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13814,12 +13483,12 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -100.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(1000)) {
+    if (!((value >= -100.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13829,7 +13498,7 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
 /** throttle_brake_cmd: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 1000;
+    return ((int32_t)raw * 2) - 1000;
 }
 
 /** throttle_brake_cmd: physical × 10 → raw, integers only, same rounding and range rules as
@@ -13837,11 +13506,11 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1002) || value >= 1048) {
+    if ((value <= (-1002)) || (value >= 1048)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 1000, 2);
-    if (value < (-1000) || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13860,11 +13529,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_tele_speed_command_epb_cmd_en
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13881,13 +13550,10 @@ static inline int32_t kaiwo_gateway_tele_speed_command_epb_cmd_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13904,11 +13570,11 @@ kaiwo_gateway_tele_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13925,11 +13591,11 @@ static inline int32_t kaiwo_gateway_tele_speed_command_gear_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13948,11 +13614,11 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13970,13 +13636,10 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14350,11 +14013,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14372,11 +14035,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14395,11 +14058,11 @@ kaiwo_gateway_tele_control_command_1_door_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14416,11 +14079,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_door_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14439,11 +14102,11 @@ kaiwo_gateway_tele_control_command_1_horn_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14460,11 +14123,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_horn_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14483,11 +14146,11 @@ kaiwo_gateway_tele_control_command_1_drl_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14504,11 +14167,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_drl_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14527,11 +14190,11 @@ kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14548,11 +14211,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_turn_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14571,11 +14234,11 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14593,11 +14256,11 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14616,11 +14279,11 @@ kaiwo_gateway_tele_control_command_1_hazard_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14637,11 +14300,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_hazard_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14660,11 +14323,11 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14682,11 +14345,11 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14705,11 +14368,11 @@ kaiwo_gateway_tele_control_command_1_headlight_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14726,13 +14389,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_headlight_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14749,11 +14409,11 @@ kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14770,11 +14430,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_rear_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14793,11 +14453,11 @@ kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14814,11 +14474,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14837,11 +14497,11 @@ kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14858,11 +14518,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_right_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14881,11 +14541,11 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14903,11 +14563,11 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14926,11 +14586,11 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14948,11 +14608,11 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14971,11 +14631,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14993,13 +14653,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15016,11 +14673,11 @@ kaiwo_gateway_tele_control_command_1_system_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15037,13 +14694,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_system_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15060,11 +14714,11 @@ kaiwo_gateway_tele_control_command_1_system_reliability_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15082,13 +14736,10 @@ kaiwo_gateway_tele_control_command_1_system_reliability_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15105,11 +14756,11 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15127,13 +14778,10 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15150,11 +14798,11 @@ kaiwo_gateway_tele_control_command_1_lock_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15171,13 +14819,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_lock_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15194,11 +14839,11 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15215,11 +14860,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15239,11 +14884,12 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15252,7 +14898,7 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -15260,11 +14906,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15283,11 +14929,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15305,13 +14951,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15328,11 +14971,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15350,13 +14993,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15373,11 +15013,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15395,13 +15035,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15572,11 +15209,11 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15595,13 +15232,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15618,11 +15252,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15639,13 +15273,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_cargo_lift_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15662,11 +15293,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15684,11 +15315,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15707,11 +15338,11 @@ kaiwo_gateway_tele_control_command_2_pto_enable_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -15728,13 +15359,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_pto_enable_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -15751,13 +15379,13 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode(double value, u
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -15777,12 +15405,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }

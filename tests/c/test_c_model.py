@@ -30,7 +30,7 @@ def test_signal_plans(spec):
     angle = next(s for s in eps.signals if s.sig.name == "steering_angle_cmd")
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
     assert angle.fixed.scale == 100 and angle.fixed.type == "int32_t"
-    assert angle.fixed.decode_expr == "(int32_t)raw * 10 - 108000"
+    assert angle.fixed.decode_expr == "((int32_t)raw * 10) - 108000"
     assert angle.fixed.rounded == "kaiwo_gateway_div_round((int64_t)value + 108000, 10)"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
     assert eps.checksum.byte == 7 and eps.checksum.ok == "kaiwo_gateway_xor_is_zero(v)"
