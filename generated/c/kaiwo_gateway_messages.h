@@ -144,7 +144,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
 /** A autocar_eps_command with every raw field 0. */
 static inline kaiwo_gateway_autocar_eps_command_t kaiwo_gateway_autocar_eps_command_init(void) {
     kaiwo_gateway_autocar_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -435,7 +435,7 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
 /** A eps_state with every raw field 0. */
 static inline kaiwo_gateway_eps_state_t kaiwo_gateway_eps_state_init(void) {
     kaiwo_gateway_eps_state_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -846,7 +846,7 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
 /** A autocar_speed_command with every raw field 0. */
 static inline kaiwo_gateway_autocar_speed_command_t kaiwo_gateway_autocar_speed_command_init(void) {
     kaiwo_gateway_autocar_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -1206,7 +1206,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
 /** A driving_state with every raw field 0. */
 static inline kaiwo_gateway_driving_state_t kaiwo_gateway_driving_state_init(void) {
     kaiwo_gateway_driving_state_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -1908,7 +1908,7 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
 static inline kaiwo_gateway_autocar_control_command_1_t
 kaiwo_gateway_autocar_control_command_1_init(void) {
     kaiwo_gateway_autocar_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -3286,7 +3286,7 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
 /** A vehicle_state_1 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_1_t kaiwo_gateway_vehicle_state_1_init(void) {
     kaiwo_gateway_vehicle_state_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -4362,7 +4362,7 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
 static inline kaiwo_gateway_autocar_control_command_2_t
 kaiwo_gateway_autocar_control_command_2_init(void) {
     kaiwo_gateway_autocar_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -4905,7 +4905,7 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
 /** A vehicle_state_2 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_2_t kaiwo_gateway_vehicle_state_2_init(void) {
     kaiwo_gateway_vehicle_state_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -5225,7 +5225,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
 /** A vehicle_state_3 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_3_t kaiwo_gateway_vehicle_state_3_init(void) {
     kaiwo_gateway_vehicle_state_3_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -5711,7 +5711,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
 /** A vehicle_state_4 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_4_t kaiwo_gateway_vehicle_state_4_init(void) {
     kaiwo_gateway_vehicle_state_4_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -6631,7 +6631,7 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
 /** A vehicle_fault with every raw field 0. */
 static inline kaiwo_gateway_vehicle_fault_t kaiwo_gateway_vehicle_fault_init(void) {
     kaiwo_gateway_vehicle_fault_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -7875,7 +7875,7 @@ kaiwo_gateway_vehicle_state_5_unpack(kaiwo_gateway_vehicle_state_5_t *dst, const
 /** A vehicle_state_5 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_5_t kaiwo_gateway_vehicle_state_5_init(void) {
     kaiwo_gateway_vehicle_state_5_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -8004,7 +8004,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
 /** A rgate_eps_command with every raw field 0. */
 static inline kaiwo_gateway_rgate_eps_command_t kaiwo_gateway_rgate_eps_command_init(void) {
     kaiwo_gateway_rgate_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -8287,7 +8287,7 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
 /** A rgate_speed_command with every raw field 0. */
 static inline kaiwo_gateway_rgate_speed_command_t kaiwo_gateway_rgate_speed_command_init(void) {
     kaiwo_gateway_rgate_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -8817,7 +8817,7 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
 static inline kaiwo_gateway_rgate_control_command_1_t
 kaiwo_gateway_rgate_control_command_1_init(void) {
     kaiwo_gateway_rgate_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10012,7 +10012,7 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
 static inline kaiwo_gateway_rgate_control_command_2_t
 kaiwo_gateway_rgate_control_command_2_init(void) {
     kaiwo_gateway_rgate_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10363,7 +10363,7 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
 /** A device_id with every raw field 0. */
 static inline kaiwo_gateway_device_id_t kaiwo_gateway_device_id_init(void) {
     kaiwo_gateway_device_id_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10640,7 +10640,7 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
 static inline kaiwo_gateway_front_sensor_distance_1_t
 kaiwo_gateway_front_sensor_distance_1_init(void) {
     kaiwo_gateway_front_sensor_distance_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -11187,7 +11187,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
 static inline kaiwo_gateway_front_sensor_distance_2_t
 kaiwo_gateway_front_sensor_distance_2_init(void) {
     kaiwo_gateway_front_sensor_distance_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -11931,7 +11931,7 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
 static inline kaiwo_gateway_rear_sensor_distance_1_t
 kaiwo_gateway_rear_sensor_distance_1_init(void) {
     kaiwo_gateway_rear_sensor_distance_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -12475,7 +12475,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
 static inline kaiwo_gateway_rear_sensor_distance_2_t
 kaiwo_gateway_rear_sensor_distance_2_init(void) {
     kaiwo_gateway_rear_sensor_distance_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -13179,7 +13179,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
 /** A tele_eps_command with every raw field 0. */
 static inline kaiwo_gateway_tele_eps_command_t kaiwo_gateway_tele_eps_command_init(void) {
     kaiwo_gateway_tele_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -13461,7 +13461,7 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
 /** A tele_speed_command with every raw field 0. */
 static inline kaiwo_gateway_tele_speed_command_t kaiwo_gateway_tele_speed_command_init(void) {
     kaiwo_gateway_tele_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -13992,7 +13992,7 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
 static inline kaiwo_gateway_tele_control_command_1_t
 kaiwo_gateway_tele_control_command_1_init(void) {
     kaiwo_gateway_tele_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -15187,7 +15187,7 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
 static inline kaiwo_gateway_tele_control_command_2_t
 kaiwo_gateway_tele_control_command_2_init(void) {
     kaiwo_gateway_tele_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
