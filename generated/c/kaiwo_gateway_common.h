@@ -38,20 +38,22 @@ typedef enum {
  * absorbs the representation error of decimal inputs (-8.99 / 0.02). 0 <= a < 2^64; callers
  * check the raw range first. */
 static inline uint64_t kaiwo_gateway_round_abs(double a) {
-    return a >= 4503599627370496.0 ? (uint64_t)a : (uint64_t)((a + 0.5) + 1e-9);
+    const double up = (a + 0.5) + 1e-9;
+    return (a >= 4503599627370496.0) ? (uint64_t)a : (uint64_t)up;
 }
 
 /** Physical → raw rounding: q rounded half away from zero (kaiwo_gateway_round_abs), -2^63 <= q < 2^63. */
 static inline int64_t kaiwo_gateway_round_half_away(double q) {
-    const uint64_t r = kaiwo_gateway_round_abs(q < 0.0 ? -q : q);
-    return q < 0.0 ? (int64_t)(0u - r) : (int64_t)r;
+    const uint64_t r = kaiwo_gateway_round_abs((q < 0.0) ? -q : q);
+    const uint64_t neg = 0u - r; /* -r modulo 2^64 */
+    return (q < 0.0) ? (int64_t)neg : (int64_t)r;
 }
 
 /** a / d rounded half away from zero, in integers only (d > 0). */
 static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
     const uint64_t q = a / d;
     const uint64_t rem = a % d;
-    return rem >= d - rem ? q + 1u : q;
+    return (rem < (d - rem)) ? q : (q + 1u);
 }
 
 /* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):
@@ -70,9 +72,10 @@ static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
 
 /** num / den rounded half away from zero, in integers only (den > 0). */
 static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
-    const uint64_t a = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
     const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
-    return num < 0 ? (int64_t)(0u - q) : (int64_t)q; /* INT64_MIN / 1 included */
+    const uint64_t neg = 0u - q; /* -q modulo 2^64: INT64_MIN / 1 included */
+    return (num < 0) ? (int64_t)neg : (int64_t)q;
 }
 
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */
@@ -110,7 +113,7 @@ static inline uint32_t kaiwo_gateway_j1939_compose(uint8_t priority, uint32_t pg
     if (((p >> 8) & 0xFFu) < KAIWO_GATEWAY_J1939_PDU2_MIN_PF) {
         p = (p & 0x3FF00u) | da;
     }
-    return ((uint32_t)(priority & 0x7u) << 26) | (p << 8) | sa;
+    return (((uint32_t)priority & 0x7u) << 26) | (p << 8) | sa;
 }
 
 #ifdef __cplusplus

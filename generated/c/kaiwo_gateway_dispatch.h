@@ -198,7 +198,7 @@ static inline const kaiwo_gateway_msg_info_t *kaiwo_gateway_msg_info(kaiwo_gatew
          KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PRIORITY, KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_SA,
          0xB0u, 256u, 56u, false},
     };
-    if ((int)msg < 0 || (int)msg >= (int)KAIWO_GATEWAY_MSG_COUNT) {
+    if (((int)msg < 0) || ((int)msg >= (int)KAIWO_GATEWAY_MSG_COUNT)) {
         return NULL;
     }
     return &table[(int)msg];
@@ -315,7 +315,7 @@ static inline size_t kaiwo_gateway_lookup_pgn(uint32_t pgn, kaiwo_gateway_msg_t 
     int i;
     for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
         const kaiwo_gateway_msg_info_t *info = kaiwo_gateway_msg_info((kaiwo_gateway_msg_t)i);
-        if (info != NULL && info->pgn == pgn) {
+        if ((info != NULL) && (info->pgn == pgn)) {
             if (found < capacity) {
                 matches[found] = (kaiwo_gateway_msg_t)i;
             }

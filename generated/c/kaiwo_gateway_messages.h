@@ -120,7 +120,7 @@ kaiwo_gateway_autocar_eps_command_unpack(kaiwo_gateway_autocar_eps_command_t *ds
 /** A autocar_eps_command with every raw field 0. */
 static inline kaiwo_gateway_autocar_eps_command_t kaiwo_gateway_autocar_eps_command_init(void) {
     kaiwo_gateway_autocar_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -141,11 +141,11 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -162,13 +162,10 @@ static inline int32_t kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -185,12 +182,12 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -209,12 +206,12 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -235,12 +232,12 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -250,7 +247,7 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -258,11 +255,11 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -386,7 +383,7 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
 /** A eps_state with every raw field 0. */
 static inline kaiwo_gateway_eps_state_t kaiwo_gateway_eps_state_init(void) {
     kaiwo_gateway_eps_state_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -407,11 +404,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_ctrl_state_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -428,13 +425,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_ctrl_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -452,12 +446,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -12.8000000001 && value <= 12.7000000001) || r < INT64_C(0) ||
-        r > INT64_C(255)) {
+    if (!((value >= -12.8000000001) && (value <= 12.7000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -466,7 +460,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
 
 /** steering_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 1280;
+    return ((int32_t)raw * 10) - 1280;
 }
 
 /** steering_torque: physical × 100 → raw, integers only, same rounding and range rules as
@@ -474,11 +468,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1290) || value >= 1280) {
+    if ((value <= (-1290)) || (value >= 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 1280, 10);
-    if (value < (-1280) || value > 1270 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -498,12 +492,12 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -38.4000000003 && value <= 38.1000000003) || r < INT64_C(0) ||
-        r > INT64_C(255)) {
+    if (!((value >= -38.4000000003) && (value <= 38.1000000003)) || (r < INT64_C(0)) ||
+        (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -512,7 +506,7 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
 
 /** eps_output_torque: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 30 - 3840;
+    return ((int32_t)raw * 30) - 3840;
 }
 
 /** eps_output_torque: physical × 100 → raw, integers only, same rounding and range rules as
@@ -520,11 +514,11 @@ static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3870) || value >= 3840) {
+    if ((value <= (-3870)) || (value >= 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3840, 30);
-    if (value < (-3840) || value > 3810 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -544,12 +538,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -558,7 +552,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
 
 /** steering_angle: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle: physical × 100 → raw, integers only, same rounding and range rules as
@@ -566,11 +560,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -589,11 +583,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 64.0)) {
+    if (!((q > -1.0) && (q < 64.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 126.0) || r < INT64_C(0) || r > INT64_C(63)) {
+    if (!((value >= 0.0) && (value <= 126.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -610,11 +604,11 @@ static inline int32_t kaiwo_gateway_eps_state_controller_temp_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 128) {
+    if ((value <= (-2)) || (value >= 128)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 126 || r < INT64_C(0) || r > INT64_C(63)) {
+    if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -633,11 +627,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_fault_level_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -654,13 +648,10 @@ static inline int32_t kaiwo_gateway_eps_state_eps_fault_level_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -781,7 +772,7 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
 /** A autocar_speed_command with every raw field 0. */
 static inline kaiwo_gateway_autocar_speed_command_t kaiwo_gateway_autocar_speed_command_init(void) {
     kaiwo_gateway_autocar_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -803,12 +794,12 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
-        r > INT64_C(630)) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(630))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -817,7 +808,7 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
 
 /** accel_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 900;
+    return ((int32_t)raw * 2) - 900;
 }
 
 /** accel_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -825,11 +816,11 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-902) || value >= 1148) {
+    if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
-    if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
+    if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -848,11 +839,11 @@ kaiwo_gateway_autocar_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -869,13 +860,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_epb_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -892,11 +880,11 @@ kaiwo_gateway_autocar_speed_command_gear_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -913,11 +901,11 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_gear_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -936,11 +924,11 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -958,13 +946,10 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1114,7 +1099,7 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
 /** A driving_state with every raw field 0. */
 static inline kaiwo_gateway_driving_state_t kaiwo_gateway_driving_state_init(void) {
     kaiwo_gateway_driving_state_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -1130,11 +1115,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_epb_state_encod
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1151,13 +1136,10 @@ static inline int32_t kaiwo_gateway_driving_state_epb_state_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_epb_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1174,11 +1156,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_gear_state_enco
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1195,11 +1177,11 @@ static inline int32_t kaiwo_gateway_driving_state_gear_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_gear_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1218,11 +1200,11 @@ kaiwo_gateway_driving_state_emergency_brake_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1239,13 +1221,10 @@ static inline int32_t kaiwo_gateway_driving_state_emergency_brake_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_emergency_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1262,11 +1241,11 @@ kaiwo_gateway_driving_state_uss_brake_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1283,13 +1262,10 @@ static inline int32_t kaiwo_gateway_driving_state_uss_brake_state_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_uss_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1306,11 +1282,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -15000.0 && value <= 15000.0) || r < INT64_C(0) || r > INT64_C(30000)) {
+    if (!((value >= -15000.0) && (value <= 15000.0)) || (r < INT64_C(0)) || (r > INT64_C(30000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1319,7 +1295,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
 
 /** motor_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 150000;
+    return ((int32_t)raw * 10) - 150000;
 }
 
 /** motor_speed: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1327,11 +1303,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint1
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150010) || value >= 505360) {
+    if ((value <= (-150010)) || (value >= 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 150000, 10);
-    if (value < (-150000) || value > 150000 || r < INT64_C(0) || r > INT64_C(30000)) {
+    if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1350,11 +1326,11 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -5000.0 && value <= 5000.0) || r < INT64_C(0) || r > INT64_C(10000)) {
+    if (!((value >= -5000.0) && (value <= 5000.0)) || (r < INT64_C(0)) || (r > INT64_C(10000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1363,7 +1339,7 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
 
 /** motor_torque: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 50000;
+    return ((int32_t)raw * 10) - 50000;
 }
 
 /** motor_torque: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1371,11 +1347,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-50010) || value >= 605360) {
+    if ((value <= (-50010)) || (value >= 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 50000, 10);
-    if (value < (-50000) || value > 50000 || r < INT64_C(0) || r > INT64_C(10000)) {
+    if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -1394,12 +1370,12 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 255)) {
-        if (!(value >= 1.0 && value <= 254.0) || r < INT64_C(0) || r > INT64_C(253)) {
+        if (!((value >= 1.0) && (value <= 254.0)) || (r < INT64_C(0)) || (r > INT64_C(253))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1409,7 +1385,7 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw)
 
 /** motor_speed_ratio: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 + 10;
+    return ((int32_t)raw * 10) + 10;
 }
 
 /** motor_speed_ratio: physical × 10 → raw, integers only, same rounding and range rules as
@@ -1417,12 +1393,12 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_ratio_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 0 || value >= 2570) {
+    if ((value <= 0) || (value >= 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 10, 10);
     if (!(r == 255)) {
-        if (value < 10 || value > 2540 || r < INT64_C(0) || r > INT64_C(253)) {
+        if ((value < 10) || (value > 2540)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -1443,12 +1419,12 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000005 && value <= 3.60000000005) || r < INT64_C(0) ||
-        r > INT64_C(252)) {
+    if (!((value >= -9.00000000005) && (value <= 3.60000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(252))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1457,7 +1433,7 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
 
 /** current_accel: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 9000;
+    return ((int32_t)raw * 50) - 9000;
 }
 
 /** current_accel: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -1465,11 +1441,11 @@ static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-9050) || value >= 3800) {
+    if ((value <= (-9050)) || (value >= 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 9000, 50);
-    if (value < (-9000) || value > 3600 || r < INT64_C(0) || r > INT64_C(252)) {
+    if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1752,7 +1728,7 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
 static inline kaiwo_gateway_autocar_control_command_1_t
 kaiwo_gateway_autocar_control_command_1_init(void) {
     kaiwo_gateway_autocar_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -1773,11 +1749,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1795,11 +1771,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1818,11 +1794,11 @@ kaiwo_gateway_autocar_control_command_1_door_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1839,11 +1815,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_door_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1862,11 +1838,11 @@ kaiwo_gateway_autocar_control_command_1_horn_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1883,11 +1859,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_horn_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1906,11 +1882,11 @@ kaiwo_gateway_autocar_control_command_1_drl_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1927,11 +1903,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_drl_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1950,11 +1926,11 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1972,11 +1948,11 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -1995,11 +1971,11 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2017,11 +1993,11 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2040,11 +2016,11 @@ kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2061,11 +2037,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_hazard_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2085,11 +2061,11 @@ kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2108,11 +2084,11 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2131,11 +2107,11 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2153,13 +2129,10 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2176,11 +2149,11 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2198,11 +2171,11 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2221,11 +2194,11 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2243,11 +2216,11 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2266,11 +2239,11 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2288,11 +2261,11 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2311,11 +2284,11 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2333,11 +2306,11 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2356,11 +2329,11 @@ kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode(double value, u
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2379,11 +2352,11 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2402,11 +2375,11 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2424,13 +2397,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2447,11 +2417,11 @@ kaiwo_gateway_autocar_control_command_1_system_state_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2469,13 +2439,10 @@ kaiwo_gateway_autocar_control_command_1_system_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2493,11 +2460,11 @@ kaiwo_gateway_autocar_control_command_1_system_reliability_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2516,13 +2483,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_reliability_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2540,11 +2504,11 @@ kaiwo_gateway_autocar_control_command_1_system_fault_level_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2563,13 +2527,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_system_fault_level_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2586,11 +2547,11 @@ kaiwo_gateway_autocar_control_command_1_lock_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2607,13 +2568,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_lock_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2630,11 +2588,11 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2651,11 +2609,11 @@ static inline int32_t kaiwo_gateway_autocar_control_command_1_ac_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2675,11 +2633,12 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2689,7 +2648,7 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -2697,11 +2656,11 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2721,11 +2680,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2744,13 +2703,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2768,11 +2724,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2791,13 +2747,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2815,11 +2768,11 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -2838,13 +2791,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3095,7 +3045,7 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
 /** A vehicle_state_1 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_1_t kaiwo_gateway_vehicle_state_1_init(void) {
     kaiwo_gateway_vehicle_state_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -3116,11 +3066,11 @@ kaiwo_gateway_vehicle_state_1_drive_mode_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3137,13 +3087,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drive_mode_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drive_mode_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3160,11 +3107,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_door_state_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3181,13 +3128,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_state_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3204,11 +3148,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_drl_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3225,13 +3169,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_drl_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drl_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3248,11 +3189,11 @@ kaiwo_gateway_vehicle_state_1_left_turn_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3269,13 +3210,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_turn_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3292,11 +3230,11 @@ kaiwo_gateway_vehicle_state_1_right_turn_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3313,13 +3251,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_turn_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_turn_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3336,11 +3271,11 @@ kaiwo_gateway_vehicle_state_1_hazard_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3357,13 +3292,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_hazard_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_hazard_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3380,11 +3312,11 @@ kaiwo_gateway_vehicle_state_1_position_light_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3401,13 +3333,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_position_light_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_position_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3424,11 +3353,11 @@ kaiwo_gateway_vehicle_state_1_headlight_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3445,13 +3374,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_headlight_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_headlight_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3468,11 +3394,11 @@ kaiwo_gateway_vehicle_state_1_rear_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3489,13 +3415,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_rear_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_rear_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3512,11 +3435,11 @@ kaiwo_gateway_vehicle_state_1_left_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3533,13 +3456,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_left_fog_state_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3556,11 +3476,11 @@ kaiwo_gateway_vehicle_state_1_right_fog_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3577,13 +3497,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_right_fog_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_fog_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3600,11 +3517,11 @@ kaiwo_gateway_vehicle_state_1_dome_light_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3621,13 +3538,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_dome_light_state_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_dome_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3644,11 +3558,11 @@ kaiwo_gateway_vehicle_state_1_ambient_light_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3665,13 +3579,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_ambient_light_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_ambient_light_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3688,11 +3599,11 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3709,13 +3620,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_door_button_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_button_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3732,11 +3640,11 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -50.0 && value <= 200.0) || r < INT64_C(0) || r > INT64_C(250)) {
+    if (!((value >= -50.0) && (value <= 200.0)) || (r < INT64_C(0)) || (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3745,7 +3653,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
 
 /** vehicle_speed: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 500;
+    return ((int32_t)raw * 10) - 500;
 }
 
 /** vehicle_speed: physical × 10 → raw, integers only, same rounding and range rules as
@@ -3753,11 +3661,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-510) || value >= 2060) {
+    if ((value <= (-510)) || (value >= 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 500, 10);
-    if (value < (-500) || value > 2000 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3776,12 +3684,12 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(do
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3798,11 +3706,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_soc_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fixed(int32_t value,
                                                                                     uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
-    if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3821,11 +3729,11 @@ kaiwo_gateway_vehicle_state_1_system_power_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3842,11 +3750,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_system_power_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_system_power_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3865,11 +3773,11 @@ kaiwo_gateway_vehicle_state_1_charge_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3886,13 +3794,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_state_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3909,11 +3814,11 @@ kaiwo_gateway_vehicle_state_1_charge_connection_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3930,11 +3835,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_connection_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_connection_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
+    if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3953,11 +3858,11 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -3974,13 +3879,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_fault_level_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3997,11 +3899,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 120000.0) || r < INT64_C(0) || r > INT64_C(60000)) {
+    if (!((value >= 0.0) && (value <= 120000.0)) || (r < INT64_C(0)) || (r > INT64_C(60000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4018,11 +3920,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_odometer_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 131072) {
+    if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 120000 || r < INT64_C(0) || r > INT64_C(60000)) {
+    if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4183,7 +4085,7 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
 static inline kaiwo_gateway_autocar_control_command_2_t
 kaiwo_gateway_autocar_control_command_2_init(void) {
     kaiwo_gateway_autocar_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -4206,11 +4108,11 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode(double valu
         (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
         KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4229,13 +4131,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                            uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4252,11 +4151,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4273,13 +4172,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_cargo_lift_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4296,11 +4192,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4318,11 +4214,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4341,11 +4237,11 @@ kaiwo_gateway_autocar_control_command_2_pto_enable_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -4362,13 +4258,10 @@ static inline int32_t kaiwo_gateway_autocar_control_command_2_pto_enable_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4386,13 +4279,13 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode(double value
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4412,12 +4305,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                           uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -4438,12 +4331,12 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -25.00000000005 && value <= 25.00000000005) || r < INT64_C(0) ||
-        r > INT64_C(1000)) {
+    if (!((value >= -25.00000000005) && (value <= 25.00000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4453,7 +4346,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
 /** chassis_pitch: raw → physical × 1000, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 50 - 25000;
+    return ((int32_t)raw * 50) - 25000;
 }
 
 /** chassis_pitch: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -4461,11 +4354,11 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_decode_fixed(uint16_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-25050) || value >= 26200) {
+    if ((value <= (-25050)) || (value >= 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 25000, 50);
-    if (value < (-25000) || value > 25000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4485,12 +4378,12 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(800)) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(800))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4500,7 +4393,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
 /** chassis_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 4000;
+    return ((int32_t)raw * 10) - 4000;
 }
 
 /** chassis_roll: physical × 100 → raw, integers only, same rounding and range rules as
@@ -4508,11 +4401,11 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-4010) || value >= 6240) {
+    if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
-    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
+    if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4532,12 +4425,12 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(650)) {
+    if (!((value >= -30.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(650))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4547,7 +4440,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
 /** cargo_pitch: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 300;
+    return ((int32_t)raw * 2) - 300;
 }
 
 /** cargo_pitch: physical × 10 → raw, integers only, same rounding and range rules as
@@ -4555,11 +4448,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-302) || value >= 1748) {
+    if ((value <= (-302)) || (value >= 1748)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 300, 2);
-    if (value < (-300) || value > 1000 || r < INT64_C(0) || r > INT64_C(650)) {
+    if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4579,12 +4472,12 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0000000001 && value <= 40.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(800)) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(800))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4594,7 +4487,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
 /** cargo_roll: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 4000;
+    return ((int32_t)raw * 10) - 4000;
 }
 
 /** cargo_roll: physical × 100 → raw, integers only, same rounding and range rules as
@@ -4602,11 +4495,11 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-4010) || value >= 6240) {
+    if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
-    if (value < (-4000) || value > 4000 || r < INT64_C(0) || r > INT64_C(800)) {
+    if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4708,7 +4601,7 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
 /** A vehicle_state_2 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_2_t kaiwo_gateway_vehicle_state_2_init(void) {
     kaiwo_gateway_vehicle_state_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -4724,12 +4617,12 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000002 && value <= 800.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000002) && (value <= 800.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4746,11 +4639,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_voltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 131072) {
+    if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
-    if (value < 0 || value > 8000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4770,12 +4663,12 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -500.00000000002 && value <= 800.00000000002) || r < INT64_C(0) ||
-        r > INT64_C(65000)) {
+    if (!((value >= -500.00000000002) && (value <= 800.00000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(65000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4784,7 +4677,7 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
 
 /** battery_current: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 50000;
+    return ((int32_t)raw * 2) - 50000;
 }
 
 /** battery_current: physical × 100 → raw, integers only, same rounding and range rules as
@@ -4792,11 +4685,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-50002) || value >= 81072) {
+    if ((value <= (-50002)) || (value >= 81072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 50000, 2);
-    if (value < (-50000) || value > 80000 || r < INT64_C(0) || r > INT64_C(65000)) {
+    if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4815,11 +4708,11 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4837,13 +4730,10 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 65536) {
+    if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4860,11 +4750,11 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 65535.0) || r < INT64_C(0) || r > INT64_C(65535)) {
+    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -4882,13 +4772,10 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 65536) {
+    if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 65535 || r < INT64_C(0) || r > INT64_C(65535)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5006,7 +4893,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
 /** A vehicle_state_3 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_3_t kaiwo_gateway_vehicle_state_3_init(void) {
     kaiwo_gateway_vehicle_state_3_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -5022,11 +4909,11 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5035,7 +4922,7 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
 
 /** battery_max_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** battery_max_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5043,11 +4930,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5066,11 +4953,11 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5079,7 +4966,7 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
 
 /** battery_min_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** battery_min_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5087,11 +4974,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5110,12 +4997,12 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5132,11 +5019,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150) || value >= 614400) {
+    if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 150);
-    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5155,12 +5042,12 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -0.0000000000015 && value <= 6.0000000000015) || r < INT64_C(0) ||
-        r > INT64_C(4000)) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
+        (r > INT64_C(4000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5177,11 +5064,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-150) || value >= 614400) {
+    if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 150);
-    if (value < 0 || value > 600000 || r < INT64_C(0) || r > INT64_C(4000)) {
+    if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5200,11 +5087,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5213,7 +5100,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
 
 /** motor_temp: raw → physical × 10, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** motor_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5221,11 +5108,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5244,11 +5131,11 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -40.0 && value <= 215.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5258,7 +5145,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
 /** motor_controller_temp: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 10 - 400;
+    return ((int32_t)raw * 10) - 400;
 }
 
 /** motor_controller_temp: physical × 10 → raw, integers only, same rounding and range rules as
@@ -5266,11 +5153,11 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-410) || value >= 2160) {
+    if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
-    if (value < (-400) || value > 2150 || r < INT64_C(0) || r > INT64_C(255)) {
+    if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5449,7 +5336,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
 /** A vehicle_state_4 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_4_t kaiwo_gateway_vehicle_state_4_init(void) {
     kaiwo_gateway_vehicle_state_4_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -5466,12 +5353,12 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5480,7 +5367,7 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
 
 /** outside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 3000;
+    return ((int32_t)raw * 50) - 3000;
 }
 
 /** outside_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5488,11 +5375,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3050) || value >= 9800) {
+    if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
-    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5512,12 +5399,12 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -30.0000000005 && value <= 95.0000000005) || r < INT64_C(0) ||
-        r > INT64_C(250)) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(250))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5526,7 +5413,7 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
 
 /** inside_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 - 3000;
+    return ((int32_t)raw * 50) - 3000;
 }
 
 /** inside_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5534,11 +5421,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-3050) || value >= 9800) {
+    if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
-    if (value < (-3000) || value > 9500 || r < INT64_C(0) || r > INT64_C(250)) {
+    if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5557,11 +5444,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_ac_state_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5578,11 +5465,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5601,11 +5488,11 @@ kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5622,13 +5509,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_vehicle_power_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5645,11 +5529,11 @@ kaiwo_gateway_vehicle_state_4_hill_hold_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5666,13 +5550,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_hill_hold_state_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_hill_hold_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5689,11 +5570,11 @@ kaiwo_gateway_vehicle_state_4_regen_brake_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5710,13 +5591,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_regen_brake_state_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_regen_brake_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5733,11 +5611,11 @@ kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4096.0)) {
+    if (!((q > -1.0) && (q < 4096.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1000.0) || r < INT64_C(0) || r > INT64_C(1000)) {
+    if (!((value >= 0.0) && (value <= 1000.0)) || (r < INT64_C(0)) || (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5754,11 +5632,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_remaining_range_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4096) {
+    if ((value <= (-1)) || (value >= 4096)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if (value > 1000) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5777,11 +5655,11 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5799,13 +5677,10 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5822,11 +5697,11 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5844,13 +5719,10 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5868,11 +5740,12 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5881,7 +5754,7 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -5889,11 +5762,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5912,11 +5785,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_pto_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -5933,13 +5806,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_pto_state_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5957,12 +5827,12 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -325.00000000001 && value <= 325.00000000001) || r < INT64_C(0) ||
-        r > INT64_C(65000)) {
+    if (!((value >= -325.00000000001) && (value <= 325.00000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(65000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -5971,7 +5841,7 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
 
 /** battery_power: raw → physical × 1000, integers only. */
 static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 325000;
+    return ((int32_t)raw * 10) - 325000;
 }
 
 /** battery_power: physical × 1000 → raw, integers only, same rounding and range rules as
@@ -5979,11 +5849,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-325010) || value >= 330360) {
+    if ((value <= (-325010)) || (value >= 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 325000, 10);
-    if (value < (-325000) || value > 325000 || r < INT64_C(0) || r > INT64_C(65000)) {
+    if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -6314,7 +6184,7 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
 /** A vehicle_fault with every raw field 0. */
 static inline kaiwo_gateway_vehicle_fault_t kaiwo_gateway_vehicle_fault_init(void) {
     kaiwo_gateway_vehicle_fault_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -6330,11 +6200,11 @@ kaiwo_gateway_vehicle_fault_insulation_fault_level_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6351,13 +6221,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_insulation_fault_level_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_insulation_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6374,11 +6241,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_dc_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6395,13 +6262,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_dc_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_dc_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6418,11 +6282,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_soc_low_encode(
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6439,13 +6303,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_soc_low_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_soc_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6462,11 +6323,11 @@ kaiwo_gateway_vehicle_fault_cell_undervoltage_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6483,13 +6344,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_cell_undervoltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_cell_undervoltage_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6506,11 +6364,11 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6528,13 +6386,10 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6551,11 +6406,11 @@ kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6572,13 +6427,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vacuum_pump_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6595,11 +6447,11 @@ kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6616,13 +6468,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_vehicle_system_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6639,11 +6488,11 @@ kaiwo_gateway_vehicle_fault_battery_overheat_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6660,13 +6509,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_overheat_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6683,11 +6529,11 @@ kaiwo_gateway_vehicle_fault_motor_overheat_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6704,13 +6550,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_overheat_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6727,11 +6570,11 @@ kaiwo_gateway_vehicle_fault_traction_battery_fault_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6748,13 +6591,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_traction_battery_fault_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_traction_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6771,11 +6611,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_motor_fault_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6792,13 +6632,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_fault_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6815,11 +6652,11 @@ kaiwo_gateway_vehicle_fault_battery_comm_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6836,13 +6673,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_battery_comm_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6859,11 +6693,11 @@ kaiwo_gateway_vehicle_fault_motor_comm_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6880,13 +6714,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_motor_comm_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_comm_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6903,11 +6734,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_eps_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6924,13 +6755,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_eps_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_eps_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6947,11 +6775,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_ac_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -6968,13 +6796,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_ac_fault_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_ac_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6991,11 +6816,11 @@ kaiwo_gateway_vehicle_fault_aux_battery_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7012,13 +6837,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_aux_battery_fault_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_aux_battery_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7035,11 +6857,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_epb_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7056,13 +6878,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_epb_fault_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_epb_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7079,11 +6898,11 @@ kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7100,13 +6919,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_brake_by_wire_fault_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7123,11 +6939,11 @@ kaiwo_gateway_vehicle_fault_key_not_detected_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7144,13 +6960,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_key_not_detected_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_key_not_detected_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7167,11 +6980,11 @@ kaiwo_gateway_vehicle_fault_tire_pressure_low_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7188,13 +7001,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_tire_pressure_low_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_tire_pressure_low_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7211,11 +7021,11 @@ kaiwo_gateway_vehicle_fault_body_motor_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7232,13 +7042,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_fault_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7255,11 +7062,11 @@ kaiwo_gateway_vehicle_fault_body_motor_overheat_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7276,13 +7083,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_body_motor_overheat_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_overheat_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7299,11 +7103,11 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7321,13 +7125,10 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7344,11 +7145,11 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7366,13 +7167,10 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7389,11 +7187,11 @@ kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7410,13 +7208,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_unmanned_entry_fault_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7433,11 +7228,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_a_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7454,13 +7249,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_a_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7477,11 +7269,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_b_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7498,13 +7290,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_b_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7521,11 +7310,11 @@ kaiwo_gateway_vehicle_fault_protocol_version_c_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7542,13 +7331,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_protocol_version_c_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7565,11 +7351,11 @@ kaiwo_gateway_vehicle_fault_remote_entry_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7586,13 +7372,10 @@ static inline int32_t kaiwo_gateway_vehicle_fault_remote_entry_fault_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_remote_entry_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7657,7 +7440,7 @@ kaiwo_gateway_vehicle_state_5_unpack(kaiwo_gateway_vehicle_state_5_t *dst, const
 /** A vehicle_state_5 with every raw field 0. */
 static inline kaiwo_gateway_vehicle_state_5_t kaiwo_gateway_vehicle_state_5_init(void) {
     kaiwo_gateway_vehicle_state_5_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -7762,7 +7545,7 @@ kaiwo_gateway_rgate_eps_command_unpack(kaiwo_gateway_rgate_eps_command_t *dst, c
 /** A rgate_eps_command with every raw field 0. */
 static inline kaiwo_gateway_rgate_eps_command_t kaiwo_gateway_rgate_eps_command_init(void) {
     kaiwo_gateway_rgate_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -7783,11 +7566,11 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -7804,13 +7587,10 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7827,12 +7607,12 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -7850,12 +7630,12 @@ static inline int32_t kaiwo_gateway_rgate_eps_command_max_angular_speed_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -7876,12 +7656,12 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -7891,7 +7671,7 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -7899,11 +7679,11 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8026,7 +7806,7 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
 /** A rgate_speed_command with every raw field 0. */
 static inline kaiwo_gateway_rgate_speed_command_t kaiwo_gateway_rgate_speed_command_init(void) {
     kaiwo_gateway_rgate_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -8048,12 +7828,12 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -9.00000000002 && value <= 3.60000000002) || r < INT64_C(0) ||
-        r > INT64_C(630)) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(630))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8062,7 +7842,7 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
 
 /** accel_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 900;
+    return ((int32_t)raw * 2) - 900;
 }
 
 /** accel_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -8070,11 +7850,11 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-902) || value >= 1148) {
+    if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
-    if (value < (-900) || value > 360 || r < INT64_C(0) || r > INT64_C(630)) {
+    if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -8093,11 +7873,11 @@ kaiwo_gateway_rgate_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8114,13 +7894,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_epb_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8137,11 +7914,11 @@ kaiwo_gateway_rgate_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8158,11 +7935,11 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_gear_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8181,11 +7958,11 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8203,13 +7980,10 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8489,7 +8263,7 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
 static inline kaiwo_gateway_rgate_control_command_1_t
 kaiwo_gateway_rgate_control_command_1_init(void) {
     kaiwo_gateway_rgate_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -8510,11 +8284,11 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8532,13 +8306,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8555,11 +8326,11 @@ kaiwo_gateway_rgate_control_command_1_door_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8576,11 +8347,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_door_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8599,11 +8370,11 @@ kaiwo_gateway_rgate_control_command_1_horn_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8620,11 +8391,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_horn_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8643,11 +8414,11 @@ kaiwo_gateway_rgate_control_command_1_drl_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8664,11 +8435,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_drl_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8687,11 +8458,11 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8709,11 +8480,11 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8732,11 +8503,11 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8754,11 +8525,11 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8777,11 +8548,11 @@ kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8798,11 +8569,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_hazard_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8821,11 +8592,11 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8843,11 +8614,11 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8866,11 +8637,11 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8888,13 +8659,10 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8911,11 +8679,11 @@ kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8932,11 +8700,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8955,11 +8723,11 @@ kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8976,11 +8744,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_left_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -8999,11 +8767,11 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9021,11 +8789,11 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9044,11 +8812,11 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9066,11 +8834,11 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9089,11 +8857,11 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9111,11 +8879,11 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9134,11 +8902,11 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9156,13 +8924,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9179,11 +8944,11 @@ kaiwo_gateway_rgate_control_command_1_system_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9200,13 +8965,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_system_state_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9223,11 +8985,11 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9245,13 +9007,10 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9268,11 +9027,11 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9290,13 +9049,10 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9313,11 +9069,11 @@ kaiwo_gateway_rgate_control_command_1_lock_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9334,13 +9090,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_lock_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9357,11 +9110,11 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9378,11 +9131,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9402,11 +9155,12 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9415,7 +9169,7 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -9423,11 +9177,11 @@ static inline int32_t kaiwo_gateway_rgate_control_command_1_ac_set_temp_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9446,11 +9200,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9468,13 +9222,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9491,11 +9242,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9513,13 +9264,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9536,11 +9284,11 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9558,13 +9306,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_decode_fixed(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9673,7 +9418,7 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
 static inline kaiwo_gateway_rgate_control_command_2_t
 kaiwo_gateway_rgate_control_command_2_init(void) {
     kaiwo_gateway_rgate_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -9695,11 +9440,11 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode(double value,
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9718,13 +9463,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                          uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9741,11 +9483,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9762,13 +9504,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_cargo_lift_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9785,11 +9524,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9807,11 +9546,11 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9830,11 +9569,11 @@ kaiwo_gateway_rgate_control_command_2_pto_enable_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -9851,13 +9590,10 @@ static inline int32_t kaiwo_gateway_rgate_control_command_2_pto_enable_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9875,13 +9611,13 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -9901,12 +9637,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10009,7 +9745,7 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
 /** A device_id with every raw field 0. */
 static inline kaiwo_gateway_device_id_t kaiwo_gateway_device_id_init(void) {
     kaiwo_gateway_device_id_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10025,11 +9761,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 64.0)) {
+    if (!((q > -1.0) && (q < 64.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 63.0) || r < INT64_C(0) || r > INT64_C(63)) {
+    if (!((value >= 0.0) && (value <= 63.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10046,13 +9782,10 @@ static inline int32_t kaiwo_gateway_device_id_device_type_decode_fixed(uint8_t r
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_device_type_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 64) {
+    if ((value <= (-1)) || (value >= 64)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 63 || r < INT64_C(0) || r > INT64_C(63)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10069,11 +9802,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_frame_index_enco
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10090,13 +9823,10 @@ static inline int32_t kaiwo_gateway_device_id_id_frame_index_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10113,14 +9843,10 @@ static inline int64_t kaiwo_gateway_device_id_id_chars_decode_fixed(uint64_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_chars_encode_fixed(int64_t value,
                                                                                    uint64_t *raw) {
     int64_t r;
-    if (value <= INT64_C(-1) || value >= INT64_C(72057594037927936)) {
+    if ((value <= INT64_C(-1)) || (value >= INT64_C(72057594037927936))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < INT64_C(0) || value > INT64_C(72057594037927935) || r < INT64_C(0) ||
-        r > INT64_C(72057594037927935)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint64_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10270,7 +9996,7 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
 static inline kaiwo_gateway_front_sensor_distance_1_t
 kaiwo_gateway_front_sensor_distance_1_init(void) {
     kaiwo_gateway_front_sensor_distance_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10291,12 +10017,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10315,12 +10041,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10340,12 +10066,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10364,12 +10090,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10389,12 +10115,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10413,12 +10139,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10438,12 +10164,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10462,12 +10188,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10487,12 +10213,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10511,12 +10237,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10536,12 +10262,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10560,12 +10286,12 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10773,7 +10499,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
 static inline kaiwo_gateway_front_sensor_distance_2_t
 kaiwo_gateway_front_sensor_distance_2_init(void) {
     kaiwo_gateway_front_sensor_distance_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -10794,12 +10520,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10818,12 +10544,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10843,12 +10569,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10867,12 +10593,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10892,12 +10618,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10916,12 +10642,12 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -10941,11 +10667,11 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10963,11 +10689,11 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -10986,11 +10712,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11008,13 +10734,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11031,11 +10754,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11053,13 +10776,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11076,11 +10796,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11098,13 +10818,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11121,11 +10838,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11143,13 +10860,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11166,11 +10880,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11188,13 +10902,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11211,11 +10922,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11233,13 +10944,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11256,11 +10964,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11278,13 +10986,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11301,11 +11006,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11323,13 +11028,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11346,11 +11048,11 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -11368,13 +11070,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11518,7 +11217,7 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
 static inline kaiwo_gateway_rear_sensor_distance_1_t
 kaiwo_gateway_rear_sensor_distance_1_init(void) {
     kaiwo_gateway_rear_sensor_distance_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -11539,12 +11238,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11563,12 +11262,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11588,12 +11287,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11612,12 +11311,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11637,12 +11336,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11661,12 +11360,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11686,12 +11385,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11710,12 +11409,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11735,12 +11434,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11759,12 +11458,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11784,12 +11483,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -11808,12 +11507,12 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12018,7 +11717,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
 static inline kaiwo_gateway_rear_sensor_distance_2_t
 kaiwo_gateway_rear_sensor_distance_2_init(void) {
     kaiwo_gateway_rear_sensor_distance_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -12039,12 +11738,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12063,12 +11762,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12088,12 +11787,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12112,12 +11811,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12137,12 +11836,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 1023)) {
-        if (!(value >= 0.0 && value <= 500.0) || r < INT64_C(0) || r > INT64_C(500)) {
+        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12161,12 +11860,12 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_decode_fixed(uint16_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 1024) {
+    if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
     if (!(r == 1023)) {
-        if (value < 0 || value > 500 || r < INT64_C(0) || r > INT64_C(500)) {
+        if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12186,11 +11885,11 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12208,11 +11907,11 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12231,11 +11930,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12253,13 +11952,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12276,11 +11972,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12298,13 +11994,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12321,11 +12014,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12343,13 +12036,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12366,11 +12056,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12388,13 +12078,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12411,11 +12098,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12433,13 +12120,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12456,11 +12140,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12478,13 +12162,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12501,11 +12182,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12523,13 +12204,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12546,11 +12224,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12568,13 +12246,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12591,11 +12266,11 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12613,13 +12288,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12725,7 +12397,7 @@ kaiwo_gateway_tele_eps_command_unpack(kaiwo_gateway_tele_eps_command_t *dst, con
 /** A tele_eps_command with every raw field 0. */
 static inline kaiwo_gateway_tele_eps_command_t kaiwo_gateway_tele_eps_command_init(void) {
     kaiwo_gateway_tele_eps_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -12746,11 +12418,11 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 255.0) || r < INT64_C(0) || r > INT64_C(255)) {
+    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -12767,13 +12439,10 @@ static inline int32_t kaiwo_gateway_tele_eps_command_eps_ctrl_mode_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 256) {
+    if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 255 || r < INT64_C(0) || r > INT64_C(255)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12790,12 +12459,12 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= 0.0 && value <= 512.0) || r < INT64_C(0) || r > INT64_C(255)) {
+        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12813,12 +12482,12 @@ static inline int32_t kaiwo_gateway_tele_eps_command_max_angular_speed_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-2) || value >= 512) {
+    if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 2);
     if (!(r == 0)) {
-        if (value < 0 || value > 512 || r < INT64_C(0) || r > INT64_C(255)) {
+        if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -12839,12 +12508,12 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 65536.0)) {
+    if (!((q > -1.0) && (q < 65536.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -1080.0000000001 && value <= 1080.0000000001) || r < INT64_C(0) ||
-        r > INT64_C(21600)) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
+        (r > INT64_C(21600))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -12853,7 +12522,7 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
 
 /** steering_angle_cmd: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 10 - 108000;
+    return ((int32_t)raw * 10) - 108000;
 }
 
 /** steering_angle_cmd: physical × 100 → raw, integers only, same rounding and range rules as
@@ -12861,11 +12530,11 @@ static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-108010) || value >= 547360) {
+    if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
-    if (value < (-108000) || value > 108000 || r < INT64_C(0) || r > INT64_C(21600)) {
+    if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -12988,7 +12657,7 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
 /** A tele_speed_command with every raw field 0. */
 static inline kaiwo_gateway_tele_speed_command_t kaiwo_gateway_tele_speed_command_init(void) {
     kaiwo_gateway_tele_speed_command_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -13010,12 +12679,12 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 1024.0)) {
+    if (!((q > -1.0) && (q < 1024.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= -100.0000000002 && value <= 100.0000000002) || r < INT64_C(0) ||
-        r > INT64_C(1000)) {
+    if (!((value >= -100.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
+        (r > INT64_C(1000))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13025,7 +12694,7 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
 /** throttle_brake_cmd: raw → physical × 10, integers only. */
 static inline int32_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
-    return (int32_t)raw * 2 - 1000;
+    return ((int32_t)raw * 2) - 1000;
 }
 
 /** throttle_brake_cmd: physical × 10 → raw, integers only, same rounding and range rules as
@@ -13033,11 +12702,11 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if (value <= (-1002) || value >= 1048) {
+    if ((value <= (-1002)) || (value >= 1048)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value + 1000, 2);
-    if (value < (-1000) || value > 1000 || r < INT64_C(0) || r > INT64_C(1000)) {
+    if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint16_t)r;
@@ -13056,11 +12725,11 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_tele_speed_command_epb_cmd_en
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13077,13 +12746,10 @@ static inline int32_t kaiwo_gateway_tele_speed_command_epb_cmd_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13100,11 +12766,11 @@ kaiwo_gateway_tele_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13121,11 +12787,11 @@ static inline int32_t kaiwo_gateway_tele_speed_command_gear_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13144,11 +12810,11 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13166,13 +12832,10 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13452,7 +13115,7 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
 static inline kaiwo_gateway_tele_control_command_1_t
 kaiwo_gateway_tele_control_command_1_init(void) {
     kaiwo_gateway_tele_control_command_1_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -13473,11 +13136,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13495,11 +13158,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13518,11 +13181,11 @@ kaiwo_gateway_tele_control_command_1_door_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13539,11 +13202,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_door_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13562,11 +13225,11 @@ kaiwo_gateway_tele_control_command_1_horn_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13583,11 +13246,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_horn_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13606,11 +13269,11 @@ kaiwo_gateway_tele_control_command_1_drl_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13627,11 +13290,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_drl_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13650,11 +13313,11 @@ kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13671,11 +13334,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_turn_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13694,11 +13357,11 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13716,11 +13379,11 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13739,11 +13402,11 @@ kaiwo_gateway_tele_control_command_1_hazard_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13760,11 +13423,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_hazard_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13783,11 +13446,11 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13805,11 +13468,11 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13828,11 +13491,11 @@ kaiwo_gateway_tele_control_command_1_headlight_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13849,13 +13512,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_headlight_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_headlight_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13872,11 +13532,11 @@ kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13893,11 +13553,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_rear_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13916,11 +13576,11 @@ kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13937,11 +13597,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_left_fog_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13960,11 +13620,11 @@ kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -13981,11 +13641,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_right_fog_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14004,11 +13664,11 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14026,11 +13686,11 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14049,11 +13709,11 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 2.0) || r < INT64_C(0) || r > INT64_C(2)) {
+    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14071,11 +13731,11 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 2 || r < INT64_C(0) || r > INT64_C(2)) {
+    if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14094,11 +13754,11 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14116,13 +13776,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14139,11 +13796,11 @@ kaiwo_gateway_tele_control_command_1_system_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14160,13 +13817,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_system_state_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14183,11 +13837,11 @@ kaiwo_gateway_tele_control_command_1_system_reliability_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14205,13 +13859,10 @@ kaiwo_gateway_tele_control_command_1_system_reliability_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_reliability_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14228,11 +13879,11 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14250,13 +13901,10 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_system_fault_level_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14273,11 +13921,11 @@ kaiwo_gateway_tele_control_command_1_lock_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14294,13 +13942,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_lock_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14317,11 +13962,11 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 8.0)) {
+    if (!((q > -1.0) && (q < 8.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14338,11 +13983,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 8) {
+    if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
+    if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14362,11 +14007,12 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 32.0)) {
+    if (!((q > -1.0) && (q < 32.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 15.9999999995 && value <= 30.0000000005) || r < INT64_C(0) || r > INT64_C(28)) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
+        (r > INT64_C(28))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14375,7 +14021,7 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
 
 /** ac_set_temp: raw → physical × 100, integers only. */
 static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fixed(uint8_t raw) {
-    return (int32_t)raw * 50 + 1600;
+    return ((int32_t)raw * 50) + 1600;
 }
 
 /** ac_set_temp: physical × 100 → raw, integers only, same rounding and range rules as
@@ -14383,11 +14029,11 @@ static inline int32_t kaiwo_gateway_tele_control_command_1_ac_set_temp_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= 1550 || value >= 3200) {
+    if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
-    if (value < 1600 || value > 3000 || r < INT64_C(0) || r > INT64_C(28)) {
+    if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14406,11 +14052,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14428,13 +14074,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_a_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14451,11 +14094,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14473,13 +14116,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_b_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14496,11 +14136,11 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 15.0) || r < INT64_C(0) || r > INT64_C(15)) {
+    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14518,13 +14158,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_protocol_version_c_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 15 || r < INT64_C(0) || r > INT64_C(15)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14633,7 +14270,7 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
 static inline kaiwo_gateway_tele_control_command_2_t
 kaiwo_gateway_tele_control_command_2_init(void) {
     kaiwo_gateway_tele_control_command_2_t out;
-    memset(&out, 0, sizeof out);
+    (void)memset(&out, 0, sizeof out);
     return out;
 }
 
@@ -14655,11 +14292,11 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14678,13 +14315,10 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode_fixed(int32_t value,
                                                                         uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14701,11 +14335,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 4.0)) {
+    if (!((q > -1.0) && (q < 4.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 3.0) || r < INT64_C(0) || r > INT64_C(3)) {
+    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14722,13 +14356,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_cargo_lift_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 4) {
+    if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 3 || r < INT64_C(0) || r > INT64_C(3)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14745,11 +14376,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 16.0)) {
+    if (!((q > -1.0) && (q < 16.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 10.0) || r < INT64_C(0) || r > INT64_C(10)) {
+    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14767,11 +14398,11 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 16) {
+    if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 10 || r < INT64_C(0) || r > INT64_C(10)) {
+    if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14790,11 +14421,11 @@ kaiwo_gateway_tele_control_command_2_pto_enable_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 2.0)) {
+    if (!((q > -1.0) && (q < 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!(value >= 0.0 && value <= 1.0) || r < INT64_C(0) || r > INT64_C(1)) {
+    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
@@ -14811,13 +14442,10 @@ static inline int32_t kaiwo_gateway_tele_control_command_2_pto_enable_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pto_enable_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if (value <= (-1) || value >= 2) {
+    if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = (int64_t)value;
-    if (value < 0 || value > 1 || r < INT64_C(0) || r > INT64_C(1)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14834,13 +14462,13 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode(double value, u
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_SPEED_FACTOR;
     int64_t r;
-    if (!(q > -1.0 && q < 256.0)) {
+    if (!((q > -1.0) && (q < 256.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
     if (!(r == 0)) {
-        if (!(value >= -0.0000000005 && value <= 125.0000000005) || r < INT64_C(0) ||
-            r > INT64_C(250)) {
+        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
+            (r > INT64_C(250))) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
@@ -14860,12 +14488,12 @@ static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t value,
                                                                        uint8_t *raw) {
     int64_t r;
-    if (value <= (-50) || value >= 12800) {
+    if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_div_round((int64_t)value, 50);
     if (!(r == 0)) {
-        if (value < 0 || value > 12500 || r < INT64_C(0) || r > INT64_C(250)) {
+        if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }

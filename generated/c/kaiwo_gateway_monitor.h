@@ -82,11 +82,11 @@ typedef struct {
  * _monitor_expect) with the default timeout, tolerance and VALID_AFTER. */
 static inline void kaiwo_gateway_monitor_init(kaiwo_gateway_monitor_t *mon) {
     int i;
-    memset(mon, 0, sizeof *mon);
+    (void)memset(mon, 0, sizeof *mon);
     for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
         const kaiwo_gateway_msg_info_t *info = kaiwo_gateway_msg_info((kaiwo_gateway_msg_t)i);
         mon->msgs[i].timeout_ms =
-            info != NULL ? (uint32_t)info->cycle_ms * KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES : 0u;
+            (info != NULL) ? ((uint32_t)info->cycle_ms * KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES) : 0u;
     }
     mon->counter_tolerance = KAIWO_GATEWAY_MONITOR_COUNTER_TOLERANCE;
     mon->valid_after = KAIWO_GATEWAY_MONITOR_VALID_AFTER;
@@ -103,14 +103,14 @@ static inline void kaiwo_gateway_monitor_expect(kaiwo_gateway_monitor_t *mon,
     }
     mon->msgs[(int)msg].timeout_ms =
         (uint32_t)info->cycle_ms *
-        (timeout_cycles != 0u ? timeout_cycles : KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES);
+        ((timeout_cycles != 0u) ? timeout_cycles : KAIWO_GATEWAY_MONITOR_TIMEOUT_CYCLES);
     mon->msgs[(int)msg].last_ms = now_ms;
     mon->msgs[(int)msg].armed = true;
     mon->msgs[(int)msg].timed_out = false;
 }
 
 static inline uint32_t kaiwo_gateway_monitor_count_up(uint32_t count, uint32_t n) {
-    return count > UINT32_MAX - n ? UINT32_MAX : count + n;
+    return (count > (UINT32_MAX - n)) ? UINT32_MAX : (count + n);
 }
 
 static inline void kaiwo_gateway_monitor_invalidate(kaiwo_gateway_rx_state_t *st) {
@@ -120,8 +120,8 @@ static inline void kaiwo_gateway_monitor_invalidate(kaiwo_gateway_rx_state_t *st
 
 /* Times the message out when more than timeout_ms passed since its reference time. */
 static inline bool kaiwo_gateway_monitor_expire(kaiwo_gateway_rx_state_t *st, uint32_t now_ms) {
-    if (st->timeout_ms == 0u || !st->armed || st->timed_out ||
-        (uint32_t)(now_ms - st->last_ms) <= st->timeout_ms) {
+    if ((st->timeout_ms == 0u) || !st->armed || st->timed_out ||
+        ((uint32_t)(now_ms - st->last_ms) <= st->timeout_ms)) {
         return false;
     }
     st->timed_out = true;
@@ -138,23 +138,23 @@ static inline uint32_t kaiwo_gateway_monitor_counter_fault(kaiwo_gateway_monitor
     const uint32_t at = info->counter_start / 8u;
     uint32_t word = data[at];
     uint8_t counter;
-    uint32_t delta;
     if (info->counter_modulo == 0u) {
         return 0u;
     }
-    if (at + 1u < info->dlc) {
+    if ((at + 1u) < info->dlc) {
         word |= (uint32_t)data[at + 1u] << 8;
     }
     counter = (uint8_t)((word >> (info->counter_start % 8u)) & (info->counter_modulo - 1u));
     if (st->counter_valid) {
-        delta = ((uint32_t)counter + (uint32_t)info->counter_modulo - (uint32_t)st->last_counter) %
-                (uint32_t)info->counter_modulo;
+        const uint32_t delta =
+            ((uint32_t)counter + (uint32_t)info->counter_modulo - (uint32_t)st->last_counter) %
+            (uint32_t)info->counter_modulo;
         if (delta == 0u) {
             st->counter_repeats = kaiwo_gateway_monitor_count_up(st->counter_repeats, 1u);
             return KAIWO_GATEWAY_RX_COUNTER_REPEAT;
         }
         if (!st->timed_out) { /* after a timeout the sequence restarts */
-            if (delta > 1u + (uint32_t)mon->counter_tolerance) {
+            if (delta > (1u + (uint32_t)mon->counter_tolerance)) {
                 st->counter_jumps = kaiwo_gateway_monitor_count_up(st->counter_jumps, 1u);
                 st->last_counter = counter;
                 return KAIWO_GATEWAY_RX_COUNTER_JUMP;
@@ -233,8 +233,10 @@ static inline uint32_t kaiwo_gateway_monitor_on_frame(kaiwo_gateway_monitor_t *m
         st->state = KAIWO_GATEWAY_RX_VALID;
     } else if (st->state == KAIWO_GATEWAY_RX_NO_DATA) {
         st->state = KAIWO_GATEWAY_RX_INIT;
+    } else {
+        /* the state stays until VALID_AFTER good frames in a row */
     }
-    if (before == KAIWO_GATEWAY_RX_INVALID && st->state == KAIWO_GATEWAY_RX_VALID) {
+    if ((before == KAIWO_GATEWAY_RX_INVALID) && (st->state == KAIWO_GATEWAY_RX_VALID)) {
         events |= KAIWO_GATEWAY_RX_RECOVERED;
     }
     return events;
@@ -256,14 +258,14 @@ static inline uint32_t kaiwo_gateway_monitor_check(kaiwo_gateway_monitor_t *mon,
 /** Whether a supervised message is currently timed out. */
 static inline bool kaiwo_gateway_monitor_timed_out(const kaiwo_gateway_monitor_t *mon,
                                                    kaiwo_gateway_msg_t msg) {
-    return kaiwo_gateway_msg_info(msg) != NULL && mon->msgs[(int)msg].timed_out;
+    return (kaiwo_gateway_msg_info(msg) != NULL) && mon->msgs[(int)msg].timed_out;
 }
 
 /** A message's receive state (KAIWO_GATEWAY_RX_NO_DATA for KAIWO_GATEWAY_MSG_NONE). */
 static inline uint8_t kaiwo_gateway_monitor_state(const kaiwo_gateway_monitor_t *mon,
                                                   kaiwo_gateway_msg_t msg) {
-    return kaiwo_gateway_msg_info(msg) != NULL ? mon->msgs[(int)msg].state
-                                               : KAIWO_GATEWAY_RX_NO_DATA;
+    return (kaiwo_gateway_msg_info(msg) != NULL) ? mon->msgs[(int)msg].state
+                                                 : KAIWO_GATEWAY_RX_NO_DATA;
 }
 
 /** The monitor's state as a `remote_entry_fault` fault code: the lowest active code among the
@@ -271,42 +273,23 @@ static inline uint8_t kaiwo_gateway_monitor_state(const kaiwo_gateway_monitor_t 
  * KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_NO_FAULT when none is active. */
 static inline kaiwo_gateway_remote_entry_fault_t
 kaiwo_gateway_monitor_remote_entry_fault(const kaiwo_gateway_monitor_t *mon) {
-    int best = -1;
-    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
+    int i;
+    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_RGATE_EPS_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_TELE_EPS_COMMAND].checksum_failed) {
+        return KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
     }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
+    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_SPEED_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_RGATE_SPEED_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND].checksum_failed) {
+        return KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
     }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_RGATE_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_RGATE_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_TELE_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
-    }
-    if (best < 0 || (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_MESSAGE_TIMEOUT < best) {
-        int i;
-        for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
-            if (mon->msgs[i].timed_out) {
-                best = (int)KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_MESSAGE_TIMEOUT;
-                break;
-            }
+    for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
+        if (mon->msgs[i].timed_out) {
+            return KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_MESSAGE_TIMEOUT;
         }
     }
-    return best < 0 ? KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_NO_FAULT
-                    : (kaiwo_gateway_remote_entry_fault_t)best;
+    return KAIWO_GATEWAY_REMOTE_ENTRY_FAULT_NO_FAULT;
 }
 
 /** The monitor's state as a `unmanned_entry_fault` fault code: the lowest active code among the
@@ -314,42 +297,23 @@ kaiwo_gateway_monitor_remote_entry_fault(const kaiwo_gateway_monitor_t *mon) {
  * KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_NO_FAULT when none is active. */
 static inline kaiwo_gateway_unmanned_entry_fault_t
 kaiwo_gateway_monitor_unmanned_entry_fault(const kaiwo_gateway_monitor_t *mon) {
-    int best = -1;
-    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
+    int i;
+    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_RGATE_EPS_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_TELE_EPS_COMMAND].checksum_failed) {
+        return KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
     }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
+    if (mon->msgs[KAIWO_GATEWAY_MSG_AUTOCAR_SPEED_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_RGATE_SPEED_COMMAND].checksum_failed ||
+        mon->msgs[KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND].checksum_failed) {
+        return KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
     }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_RGATE_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_RGATE_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_TELE_EPS_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_EPS_COMMAND_XOR_ERROR;
-    }
-    if (mon->msgs[KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND].checksum_failed &&
-        (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR < best)) {
-        best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_SPEED_COMMAND_XOR_ERROR;
-    }
-    if (best < 0 || (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_MESSAGE_TIMEOUT < best) {
-        int i;
-        for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
-            if (mon->msgs[i].timed_out) {
-                best = (int)KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_MESSAGE_TIMEOUT;
-                break;
-            }
+    for (i = 0; i < (int)KAIWO_GATEWAY_MSG_COUNT; i++) {
+        if (mon->msgs[i].timed_out) {
+            return KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_MESSAGE_TIMEOUT;
         }
     }
-    return best < 0 ? KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_NO_FAULT
-                    : (kaiwo_gateway_unmanned_entry_fault_t)best;
+    return KAIWO_GATEWAY_UNMANNED_ENTRY_FAULT_NO_FAULT;
 }
 
 #ifdef __cplusplus

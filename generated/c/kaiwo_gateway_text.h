@@ -39,17 +39,20 @@ kaiwo_gateway_device_id_text_split(const char *text, size_t len,
     }
     for (i = 0; i < len; i++) {
         const uint8_t ch = (uint8_t)text[i];
-        if (ch < 0x20u || ch > 0x7Eu) {
+        if ((ch < 0x20u) || (ch > 0x7Eu)) {
             return KAIWO_GATEWAY_ERR_RANGE;
         }
     }
     for (i = 0; i < KAIWO_GATEWAY_DEVICE_ID_TEXT_FRAMES; i++) {
-        uint64_t chunk = 0;
-        for (j = 0; j < KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME; j++) {
-            const size_t at = i * KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME + j;
-            const uint64_t byte =
-                at < len ? (uint8_t)text[at] : KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING;
-            chunk |= byte << (8u * j);
+        uint64_t chunk = 0u;
+        /* the frame's last character first: shifted up, it ends in the top byte */
+        for (j = KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME; j > 0u; j--) {
+            const size_t at = (i * KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME) + (j - 1u);
+            uint8_t byte = KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING;
+            if (at < len) {
+                byte = (uint8_t)text[at];
+            }
+            chunk = (chunk << 8) | byte;
         }
         f.id_frame_index = (uint8_t)i;
         f.id_chars = (uint64_t)chunk;
@@ -70,7 +73,7 @@ typedef struct {
 } kaiwo_gateway_device_id_text_rx_t;
 
 static inline void kaiwo_gateway_device_id_text_rx_init(kaiwo_gateway_device_id_text_rx_t *rx) {
-    memset(rx, 0, sizeof *rx);
+    (void)memset(rx, 0, sizeof *rx);
 }
 
 /** True when every frame has arrived. */
@@ -96,7 +99,7 @@ kaiwo_gateway_device_id_text_rx_feed(kaiwo_gateway_device_id_text_rx_t *rx, cons
     uint8_t bit;
     size_t at;
     size_t j;
-    bool any = false;
+    bool any;
     kaiwo_gateway_status_t result;
     if (size != KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -112,21 +115,21 @@ kaiwo_gateway_device_id_text_rx_feed(kaiwo_gateway_device_id_text_rx_t *rx, cons
     for (j = 0; j < KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME; j++) {
         chunk[j] = (uint8_t)(f.id_chars >> (8u * j));
     }
-    for (j = 0; j < sizeof rx->received; j++) {
-        any = any || rx->received[j] != 0u;
+    any = (rx->received[0] != 0u);
+    for (j = 1u; j < sizeof rx->received; j++) {
+        any = any || (rx->received[j] != 0u);
     }
     bit = (uint8_t)(1u << (at % 8u));
-    if (any && (f.device_type != rx->first.device_type ||
-                ((rx->received[at / 8u] & bit) != 0u &&
-                 memcmp(rx->chunk[at], chunk, sizeof chunk) != 0))) {
-        memset(rx->received, 0, sizeof rx->received);
-        any = false;
+    if (any && ((f.device_type != rx->first.device_type) ||
+                (((rx->received[at / 8u] & bit) != 0u) &&
+                 (memcmp(rx->chunk[at], chunk, sizeof chunk) != 0)))) {
+        (void)memset(rx->received, 0, sizeof rx->received);
         result = KAIWO_GATEWAY_ERR_INCONSISTENT;
     }
-    if (!any) {
+    if (!any || (result != KAIWO_GATEWAY_OK)) { /* the first frame, or the first after a restart */
         rx->first = f;
     }
-    memcpy(rx->chunk[at], chunk, sizeof chunk);
+    (void)memcpy(rx->chunk[at], chunk, sizeof chunk);
     rx->received[at / 8u] = (uint8_t)(rx->received[at / 8u] | bit);
     return result;
 }
@@ -137,31 +140,31 @@ kaiwo_gateway_device_id_text_rx_feed(kaiwo_gateway_device_id_text_rx_t *rx, cons
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_text_rx_get(const kaiwo_gateway_device_id_text_rx_t *rx, char *out,
                                     size_t capacity) {
-    size_t len = 0;
+    size_t len = 0u;
     size_t i;
-    bool ended = false;
     if (!kaiwo_gateway_device_id_text_rx_complete(rx)) {
         return KAIWO_GATEWAY_ERR_INCOMPLETE;
     }
-    for (i = 0;
-         i < KAIWO_GATEWAY_DEVICE_ID_TEXT_FRAMES * KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME;
+    /* the text ends at the first padding byte or after 17 characters; only padding follows */
+    while ((len < KAIWO_GATEWAY_DEVICE_ID_TEXT_LENGTH) &&
+           (rx->chunk[len / KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME]
+                     [len % KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME] !=
+            KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING)) {
+        len++;
+    }
+    for (i = 0u;
+         i < (KAIWO_GATEWAY_DEVICE_ID_TEXT_FRAMES * KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME);
          i++) {
         const uint8_t ch = rx->chunk[i / KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME]
                                     [i % KAIWO_GATEWAY_DEVICE_ID_TEXT_BYTES_PER_FRAME];
-        if (ch == KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING ||
-            i >= KAIWO_GATEWAY_DEVICE_ID_TEXT_LENGTH) {
-            ended = ended || ch == KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING;
-            if (ch != KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING) {
-                return KAIWO_GATEWAY_ERR_INCONSISTENT;
-            }
-            continue;
-        }
-        if (ended || ch < 0x20u || ch > 0x7Eu) {
+        if ((i < len) && ((ch < 0x20u) || (ch > 0x7Eu))) {
             return KAIWO_GATEWAY_ERR_INCONSISTENT;
         }
-        len++;
+        if ((i >= len) && (ch != KAIWO_GATEWAY_DEVICE_ID_TEXT_PADDING)) {
+            return KAIWO_GATEWAY_ERR_INCONSISTENT;
+        }
     }
-    if (capacity < len + 1u) {
+    if (capacity < (len + 1u)) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     for (i = 0; i < len; i++) {

@@ -30,7 +30,7 @@ def test_signal_plans(spec):
     angle = next(s for s in eps.signals if s.sig.name == "steering_angle_cmd")
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
     assert angle.fixed.scale == 100 and angle.fixed.type == "int32_t"
-    assert angle.fixed.decode_expr == "(int32_t)raw * 10 - 108000"
+    assert angle.fixed.decode_expr == "((int32_t)raw * 10) - 108000"
     assert angle.fixed.rounded == "kaiwo_gateway_div_round((int64_t)value + 108000, 10)"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
     # the document's table: steering angle in bytes 3 (low) and 4 (high), bytes 5..6 reserved,
@@ -60,11 +60,14 @@ def test_fault_code_mapping(spec):
     model = cmodel.build_model(spec)
     tables = {ft.enum.table: ft for ft in model.fault_tables}
     assert set(tables) == {"unmanned_entry_fault", "remote_entry_fault"}
-    assert tables["unmanned_entry_fault"].timeout_const.endswith("MESSAGE_TIMEOUT")
-    codes = {t: dict(ft.checksum) for t, ft in tables.items()}
+    codes = {t: {index: step.code for step in ft.steps for index in step.messages} for t, ft in tables.items()}
     assert codes["unmanned_entry_fault"]["KAIWO_GATEWAY_MSG_AUTOCAR_EPS_COMMAND"].endswith("EPS_COMMAND_XOR_ERROR")
     assert codes["remote_entry_fault"]["KAIWO_GATEWAY_MSG_TELE_SPEED_COMMAND"].endswith("SPEED_COMMAND_XOR_ERROR")
     assert len(codes["remote_entry_fault"]) == 6  # the three EPS and three speed commands carry the XOR checksum
+    # reported lowest code first: the document's codes 5, 6 (EPS, speed command XOR error), 7 (timeout)
+    steps = tables["remote_entry_fault"].steps
+    assert [s.code.rsplit("_FAULT_", 1)[1] for s in steps] == ["EPS_COMMAND_XOR_ERROR", "SPEED_COMMAND_XOR_ERROR", "MESSAGE_TIMEOUT"]
+    assert len(steps[0].messages) == 3 and steps[2].messages == ()
 
 
 def test_sub_byte_fields_are_checked_then_placed(spec):

@@ -43,14 +43,22 @@ class CEnum:
 
 
 @dataclass(frozen=True)
+class CFaultStep:
+    """One active code the monitor can report: a checksum failure of any of `messages` (their
+    index consts), or with no messages a timeout of any message."""
+
+    code: str
+    messages: tuple[str, ...]
+
+
+@dataclass(frozen=True)
 class CFaultTable:
     """A value table of receive-fault codes (e.g. unmanned_entry_fault) the monitor maps onto."""
 
     enum: CEnum
     fn: str
-    timeout_const: str
     none_const: str
-    checksum: tuple[tuple[str, str], ...]  # (message index const, code const) per checksum failure code
+    steps: tuple[CFaultStep, ...]  # lowest code first: the first active one is reported
 
 
 @dataclass(frozen=True)
@@ -127,8 +135,12 @@ def _fault_tables(names: CNames, can: ir.CanProtocol, enums: dict[str, CEnum], m
         ce = enums[t.table]
         if not ce.is_enum:
             continue
-        checksum = tuple((index[name], ce.const_of(code) or "") for name, code in t.checksum)
-        out.append(CFaultTable(ce, names.fn("monitor", names.table(t.table)), ce.const_of(t.timeout) or "", ce.const_of(t.none) or "", checksum))
+        by_code: dict[int, list[str]] = {}
+        for name, code in t.checksum:
+            by_code.setdefault(code, []).append(index[name])
+        steps = [(code, tuple(msgs)) for code, msgs in by_code.items()] + [(t.timeout, ())]
+        ordered = tuple(CFaultStep(ce.const_of(code) or "", msgs) for code, msgs in sorted(steps, key=lambda step: step[0]))
+        out.append(CFaultTable(ce, names.fn("monitor", names.table(t.table)), ce.const_of(t.none) or "", ordered))
     return tuple(out)
 
 

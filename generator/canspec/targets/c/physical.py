@@ -8,13 +8,18 @@ field's raw type widened by one step, so the rounding never leaves its integer t
 The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
 factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
 gives within its tie guarantee (tested against the vectors). Every comparison whose outcome the
-operand's type already decides is left out (compilers warn about it).
+operand's type, or an earlier check, already decides is left out (compilers warn about it, and
+MISRA C:2012 rule 14.3 forbids it): after the fixed encode's first check the value lies in a
+known interval, and r, rounded monotonically from it, in one computed exactly here.
+
+Conditions of more than one comparison parenthesise each (MISRA C:2012 rule 12.1).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from math import floor
 
 from canspec import ir
 from canspec.render.literals import c_int, c_uint, float_lit
@@ -30,14 +35,28 @@ def int_lit(value: int, bits: int, signed: bool) -> str:
 
 
 def _bound_terms(var: str, lo: int | None, hi: int | None, type_lo: int, type_hi: int, lit) -> list[str]:  # type: ignore[no-untyped-def]
-    """C terms true when `var` (of a type holding [type_lo, type_hi]) is below lo or above hi;
-    a bound the type already keeps is left out."""
+    """C terms true when `var` (known to lie in [type_lo, type_hi]) is below lo or above hi;
+    a bound that interval already keeps is left out."""
     out = []
     if lo is not None and lo > type_lo:
         out.append(f"{var} < {lit(lo)}")
     if hi is not None and hi < type_hi:
         out.append(f"{var} > {lit(hi)}")
     return out
+
+
+def any_of(terms: list[str]) -> str:
+    """C condition true when any term is ("" for none); each comparison in parentheses where
+    there are several (a `!(...)` term is one operand already)."""
+    if len(terms) == 1:
+        return terms[0]
+    return " || ".join(t if t.startswith("!(") else f"({t})" for t in terms)
+
+
+def round_half_away(num: Fraction) -> int:
+    """num rounded half away from zero, exactly as the C `div_round` / `div_round_u` do."""
+    whole = floor(abs(num) + Fraction(1, 2))
+    return whole if num >= 0 else -whole
 
 
 @dataclass(frozen=True)
@@ -73,12 +92,30 @@ class CFixed:
     ranges: CRanges
 
 
-def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str]) -> CRanges:
+def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str], r_reach: tuple[int, int] | None) -> CRanges:
+    """`r_reach`: the interval r lies in wherever the value terms are false; None where they
+    are always true (r is never compared)."""
     lit = (lambda v: c_int(v, 64)) if r_signed else (lambda v: c_uint(v, 64))
-    type_lo, type_hi = (-(2**63), 2**63 - 1) if r_signed else (0, U64_MAX)
-    specials = " || ".join(f"r == {c_int(sp.raw) if r_signed else c_uint(sp.raw)}" for sp in sig.specials)
-    terms = value_terms + _bound_terms("r", sig.raw_min, sig.raw_max, type_lo, type_hi, lit)
-    return CRanges(specials, " || ".join(terms))
+    specials = any_of([f"r == {c_int(sp.raw) if r_signed else c_uint(sp.raw)}" for sp in sig.specials])
+    r_terms = _bound_terms("r", sig.raw_min, sig.raw_max, *r_reach, lit) if r_reach else []
+    return CRanges(specials, any_of(value_terms + r_terms))
+
+
+def _r_type_range(r_signed: bool) -> tuple[int, int]:
+    return (-(2**63), 2**63 - 1) if r_signed else (0, U64_MAX)
+
+
+def _fixed_ranges(sig: ir.Signal, r_signed: bool, scale: int, scaling: tuple[int, int], reach: tuple[int, int], lit) -> CRanges:  # type: ignore[no-untyped-def]
+    """The fixed encode's range checks, given that `value` lies in `reach` after the first
+    check: only the terms that can be true there. Where the value terms are false, value lies
+    in their narrowed interval, and r = (value - fo) / ff rounded, monotonic in value, between
+    the roundings of its ends."""
+    ff, fo = scaling
+    fmin, fmax = int(sig.check_min * scale), int(sig.check_max * scale)
+    value_terms = _bound_terms("value", fmin, fmax, *reach, lit)
+    lo, hi = max(reach[0], fmin), min(reach[1], fmax)
+    ends = sorted(round_half_away(Fraction(v - fo, ff)) for v in (lo, hi))
+    return _ranges(sig, r_signed, value_terms, (ends[0], ends[1]) if lo <= hi else None)
 
 
 def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
@@ -98,12 +135,12 @@ def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
     # q's bounds are the raw type widened by one step; where that is not a double, the type's own
     # bound (a power of two) is, and no double lies between the two.
     low = f"q > {float_lit(sig.raw_type_min - 1)}" if sig.raw_type_min - 1 >= -DOUBLE_EXACT else f"q >= {float_lit(sig.raw_type_min)}"
-    accept = [f"!(value >= {float_lit(sig.accept_min)} && value <= {float_lit(sig.accept_max)})"]
+    accept = [f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"]
     return CDouble(
-        decode_pre=pre, decode_expr=expr, q_ok=f"{low} && q < {float_lit(sig.raw_type_max + 1)}",
+        decode_pre=pre, decode_expr=expr, q_ok=f"({low}) && (q < {float_lit(sig.raw_type_max + 1)})",
         r_type="uint64_t" if wide_unsigned else "int64_t",
-        rounded=f"{names.fn('round_abs')}(q < 0.0 ? -q : q)" if wide_unsigned else f"{names.fn('round_half_away')}(q)",
-        wide_unsigned=wide_unsigned, exact=exact, ranges=_ranges(sig, not wide_unsigned, accept),
+        rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)" if wide_unsigned else f"{names.fn('round_half_away')}(q)",
+        wide_unsigned=wide_unsigned, exact=exact, ranges=_ranges(sig, not wide_unsigned, accept, _r_type_range(not wide_unsigned)),
     )
 
 
@@ -161,19 +198,21 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     if ff != 1:
         expr += f" * {lit(ff)}"
     if fo:
-        expr += f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}"
+        expr = (f"({expr})" if ff != 1 else expr) + (f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}")
     outside = [f"value <= {lit(bounds[0])}"] if bounds[0] >= lo else []
     outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
+    # what passes that check: the open interval (bounds) within the type
+    reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
     # ±(value - fo), so that the divisor |ff| is positive
     value, offset = ("(int64_t)value", lit(abs(fo)))
     if ff > 0:
         num = value if not fo else f"{value} - {offset}" if fo > 0 else f"{value} + {offset}"
     else:
         num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
-    value_terms = _bound_terms("value", int(sig.check_min * scale), int(sig.check_max * scale), lo, hi, lit)
     return CFixed(
-        scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=" || ".join(outside),
-        rounded=num if abs(ff) == 1 else f"{names.fn('div_round')}({num}, {lit(abs(ff))})", r_type="int64_t", ranges=_ranges(sig, True, value_terms),
+        scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
+        rounded=num if abs(ff) == 1 else f"{names.fn('div_round')}({num}, {lit(abs(ff))})", r_type="int64_t",
+        ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit),
     )
 
 
@@ -181,8 +220,8 @@ def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: i
     """A wide unsigned field without offset: physical × scale = raw × ff, as a uint64_t."""
     lit = lambda v: c_uint(v, 64)
     expr = "(uint64_t)raw" if ff == 1 else f"(uint64_t)raw * {lit(ff)}"
-    value_terms = _bound_terms("value", int(sig.check_min * scale), int(sig.check_max * scale), 0, U64_MAX, lit)
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=f"value >= {lit(above)}" if above <= U64_MAX else "",
-        rounded="value" if ff == 1 else f"{names.fn('div_round_u')}(value, {lit(ff)})", r_type="uint64_t", ranges=_ranges(sig, False, value_terms),
+        rounded="value" if ff == 1 else f"{names.fn('div_round_u')}(value, {lit(ff)})", r_type="uint64_t",
+        ranges=_fixed_ranges(sig, False, scale, (ff, 0), (0, min(above - 1, U64_MAX)), lit),
     )
