@@ -17,7 +17,7 @@ fuzz-c:  ## libFuzzer (ASan+UBSan) on the C unpack, dispatch, VIN and monitor, F
 
 # C on other machines and firmware-grade measurements (tests/c/cross/).
 ROUNDTRIP_TARGETS += roundtrip-c-cross
-MISRA_DEVIATIONS ?= tests/c/cross/misra_deviations.md
+MISRA_DEVIATIONS ?= generated/c/MISRA.md
 .PHONY: roundtrip-c-cross bench-c-cross misra-c
 
 roundtrip-c-cross:  ## C vector runner on $(VECTORS): x86-64, big-endian ppc, Cortex-M0+/M4 (qemu), every compile-time strategy

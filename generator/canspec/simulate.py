@@ -36,10 +36,6 @@ class SimulationError(ValueError):
     pass
 
 
-def base_raw(sig: ir.Signal) -> int:
-    """A message's raw values at start: 0 where the range allows it, else the nearest allowed."""
-    return min(max(0, sig.raw_min), sig.raw_max)
-
 
 @dataclass
 class _Sent:
@@ -71,7 +67,7 @@ class RestBus:
             raise SimulationError(f"no message {', '.join(sorted(unknown))}")
         chosen = [m for m in can.messages if m.sender == node or m.name in extra]
         self.can, self.node, self.bus, self.clock = can, node, bus, clock
-        self._sent = {m.name: _Sent(m, {s.name: base_raw(s) for s in m.data_signals if s.role != "checksum"}) for m in chosen}
+        self._sent = {m.name: _Sent(m, {s.name: s.base_raw for s in m.data_signals if s.role != "checksum"}) for m in chosen}
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None

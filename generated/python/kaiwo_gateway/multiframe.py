@@ -23,7 +23,8 @@ __all__ = [
 
 def split_device_id_text(text: str, template: DeviceId | None = None) -> list[DeviceId]:
     """The 3 DeviceId messages carrying `text` (ascii, at most 17 characters,
-    7 per frame, padded with 0x00); other fields come from `template`."""
+    7 per frame, padded with 0x00); other fields come from `template`, or
+    without one are raw 0 where their range allows it, else the nearest raw value it allows."""
     try:
         data = text.encode("ascii")
     except UnicodeEncodeError:
@@ -33,7 +34,7 @@ def split_device_id_text(text: str, template: DeviceId | None = None) -> list[De
     if not all(0x20 <= b <= 0x7E and b != 0x00 for b in data):
         raise ValueError(f"device_id: text {text!r} is not printable ASCII without the padding byte 0x00")
     data = data.ljust(21, b"\x00")
-    base = template if template is not None else DeviceId()
+    base = template if template is not None else DeviceId.from_raw({})
     return [
         dataclasses.replace(
             base,

@@ -149,6 +149,12 @@ class Signal:
     def last_bit(self) -> int:
         return self.start + self.length - 1
 
+    @property
+    def base_raw(self) -> int:
+        """The raw value a field holds when nothing sets it (the other fields of a split text, of
+        a vector, of a simulated message): 0 where the range allows it, else the nearest allowed."""
+        return min(max(0, self.raw_min), self.raw_max)
+
     def raw_allowed(self, raw: int) -> bool:
         """Whether a physical encode may produce this raw value."""
         return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)

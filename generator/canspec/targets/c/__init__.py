@@ -17,6 +17,7 @@ from canspec.targets.c.names import HEADERS
 
 CLANG_FORMAT = "clang-format"
 STYLE_FILE = ".clang-format"
+MISRA_RECORD = "MISRA.md"  # the deviation record firmware teams file with the headers
 def clang_format(text: str, name: str) -> str:
     style = resources.templates_dir() / "c" / STYLE_FILE
     return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")
@@ -31,6 +32,7 @@ def render_c(spec: ir.Spec) -> dict[str, bytes]:
         formatted = dict(zip(rendered, pool.map(clang_format, rendered.values(), rendered)))
     out = {f"c/{name}": text.encode("utf-8") for name, text in formatted.items()}
     out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
+    out[f"c/{MISRA_RECORD}"] = render("c/MISRA.md.j2", spec, "c", c=model).encode("utf-8")
     return out
 
 

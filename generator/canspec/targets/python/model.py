@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from canspec import ir
 from canspec.ir.names import pascal, snake
-from canspec.render.literals import py_doc
+from canspec.render.literals import py_doc, py_string
 from canspec.targets.python import code
 from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
@@ -80,6 +80,7 @@ class PyMultiFrame:
     chunk_mask: str  # hex literal: the payload's text bits
     text_func: str  # the module's helper: chunks → text
     key_attrs: tuple[str, ...]  # attributes every frame of one text shares (MultiFrame.key_signals)
+    base: str  # dict literal: the raw values of the other fields without a template (Signal.base_raw, where not 0)
 
 
 @dataclass(frozen=True)
@@ -205,6 +206,7 @@ class _Builder:
             by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, f"0x{m.padding:02X}", m.encoding,
             split, join, self.module.take(f"{self.classes[msg.name]}TextAssembler"), m.frames * m.bytes_per_frame, m.frames - 1, repr(bytes([m.padding])),
             f"0x{(1 << (8 * m.bytes_per_frame)) - 1:X}", self.module.take(f"_{msg.name}_text"), tuple(by_name[k].attr for k in m.key_signals),
+            "{" + ", ".join(f"{py_string(s.name)}: {s.base_raw}" for s in msg.data_signals if s.role != "checksum" and s.base_raw) + "}",
         )
 
     def message(self, msg: ir.Message) -> PyMessage:

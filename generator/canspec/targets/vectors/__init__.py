@@ -40,10 +40,6 @@ TEXT_RULES = (
 )
 
 
-def base_raw(sig: ir.Signal) -> int:
-    """A valid raw value to hold a signal at while another one varies: 0 when allowed."""
-    return min(max(0, sig.raw_min), sig.raw_max)
-
 
 Scales = tuple[tuple[str, int, int, int], ...]
 
@@ -118,7 +114,7 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
 def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
     sigs = [s for s in msg.data_signals if s.role != "checksum"]
     case = functools.partial(_case, msg, scales=_scales(msg))
-    base = {s.name: base_raw(s) for s in sigs}
+    base = {s.name: s.base_raw for s in sigs}
     cases = []
     zero = {s.name: 0 for s in sigs}
     if all(s.raw_allowed(0) for s in sigs):
@@ -163,7 +159,7 @@ def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
                 chunk = text[i * mf.bytes_per_frame:(i + 1) * mf.bytes_per_frame].ljust(mf.bytes_per_frame, bytes([mf.padding]))
                 raw = {mf.index_signal: i, mf.payload_signal: int.from_bytes(chunk, "little")}
                 for s in msg.data_signals:
-                    raw.setdefault(s.name, base_raw(s))
+                    raw.setdefault(s.name, s.base_raw)
                 frames.append(codec.pack(msg, raw).hex().upper())
             out.append({"message": msg.name, "frame_id": msg.frame_id, "text": vin, "frames": frames})
     return out

@@ -27,12 +27,9 @@ STATS = ("frames", "accepted", "length_errors", "checksum_errors", "counter_repe
 TICK_WRAP = 1 << 32
 
 
-def base_raw(sig: ir.Signal) -> int:
-    return min(max(0, sig.raw_min), sig.raw_max)
-
 
 def frame(msg: ir.Message, counter: int = 0, **raw: int) -> bytes:
-    values = {s.name: base_raw(s) for s in msg.data_signals if s.role != "checksum"}
+    values = {s.name: s.base_raw for s in msg.data_signals if s.role != "checksum"}
     if msg.counter is not None:
         values[msg.counter.signal] = counter % msg.counter.modulo
     values.update(raw)

@@ -17,7 +17,6 @@ from typing import Any
 from canspec import ir
 from canspec.reference import codec
 from canspec.reference import textframes as tf
-from canspec.targets.vectors.sequences import base_raw
 
 SAMPLE = "LSKG5GC13KA123456"
 OTHER = "ZZZZZZZ13KA654321"
@@ -30,7 +29,7 @@ def frames_of(msg: ir.Message, text: bytes, **keys: int) -> list[bytes]:
     data = text.ljust(mf.frames * mf.bytes_per_frame, bytes([mf.padding]))
     out = []
     for i in range(mf.frames):
-        raw = {s.name: base_raw(s) for s in msg.data_signals if s.role != "checksum"}
+        raw = {s.name: s.base_raw for s in msg.data_signals if s.role != "checksum"}
         raw.update(keys)
         raw[mf.index_signal] = i
         payload = int.from_bytes(data[i * mf.bytes_per_frame : (i + 1) * mf.bytes_per_frame], "little")
