@@ -56,6 +56,27 @@ static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
     return (rem < (d - rem)) ? q : (q + 1u);
 }
 
+/** num / den rounded half away from zero, in integers only (den > 0). */
+static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
+    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
+    const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
+    const uint64_t neg = 0u - q; /* -q modulo 2^64: INT64_MIN / 1 included */
+    return (num < 0) ? (int64_t)neg : (int64_t)q;
+}
+
+/** num / den rounded half away from zero in 32-bit integers (den > 1, the result then within
+ * int32_t): the integer path's division where its numbers fit, so that cores with a divide
+ * instruction (Cortex-M3/M4) need no libgcc helper. */
+static inline int32_t kaiwo_gateway_div_round32(int32_t num, int32_t den) {
+    const uint32_t a = (num < 0) ? (0u - (uint32_t)num) : (uint32_t)num;
+    const uint32_t d = (uint32_t)den;
+    const uint32_t q = a / d;
+    const uint32_t rem = a % d;
+    const uint32_t r = (rem < (d - rem)) ? q : (q + 1u);
+    const uint32_t neg = 0u - r; /* -r modulo 2^32 */
+    return (num < 0) ? (int32_t)neg : (int32_t)r;
+}
+
 /* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):
  * then the frame of a message without fields is zeroed by memset, which compilers turn into word
  * stores; elsewhere (Cortex-M0/M0+, where memset is a call) byte by byte. Pack and unpack are
@@ -69,14 +90,6 @@ static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
 #define KAIWO_GATEWAY_UNALIGNED_WORDS 0
 #endif
 #endif
-
-/** num / den rounded half away from zero, in integers only (den > 0). */
-static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
-    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
-    const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
-    const uint64_t neg = 0u - q; /* -q modulo 2^64: INT64_MIN / 1 included */
-    return (num < 0) ? (int64_t)neg : (int64_t)q;
-}
 
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */
 #define KAIWO_GATEWAY_J1939_PDU2_MIN_PF    240u

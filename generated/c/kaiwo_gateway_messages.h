@@ -165,7 +165,7 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -209,7 +209,7 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, 
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -258,7 +258,7 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value,
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
+    r = kaiwo_gateway_div_round32(value + 108000, 10);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -428,7 +428,7 @@ kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw)
     if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -471,7 +471,7 @@ kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1290)) || (value >= 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 1280, 10);
+    r = kaiwo_gateway_div_round32(value + 1280, 10);
     if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -517,7 +517,7 @@ kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3870)) || (value >= 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 3840, 30);
+    r = kaiwo_gateway_div_round32(value + 3840, 30);
     if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -563,7 +563,7 @@ kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
+    r = kaiwo_gateway_div_round32(value + 108000, 10);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -607,7 +607,7 @@ kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-2)) || (value >= 128)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -651,7 +651,7 @@ kaiwo_gateway_eps_state_eps_fault_level_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -819,7 +819,7 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
+    r = kaiwo_gateway_div_round32(value + 900, 2);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -863,7 +863,7 @@ kaiwo_gateway_autocar_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -904,7 +904,7 @@ kaiwo_gateway_autocar_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -949,7 +949,7 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1139,7 +1139,7 @@ kaiwo_gateway_driving_state_epb_state_encode_fixed(int32_t value, uint8_t *raw) 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1180,7 +1180,7 @@ kaiwo_gateway_driving_state_gear_state_encode_fixed(int32_t value, uint8_t *raw)
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1224,7 +1224,7 @@ kaiwo_gateway_driving_state_emergency_brake_state_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1265,7 +1265,7 @@ kaiwo_gateway_driving_state_uss_brake_state_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1306,7 +1306,7 @@ kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *ra
     if ((value <= (-150010)) || (value >= 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 150000, 10);
+    r = kaiwo_gateway_div_round32(value + 150000, 10);
     if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1350,7 +1350,7 @@ kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *r
     if ((value <= (-50010)) || (value >= 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 50000, 10);
+    r = kaiwo_gateway_div_round32(value + 50000, 10);
     if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1396,7 +1396,7 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_
     if ((value <= 0) || (value >= 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 10, 10);
+    r = kaiwo_gateway_div_round32(value - 10, 10);
     if (!(r == 255)) {
         if ((value < 10) || (value > 2540)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -1444,7 +1444,7 @@ kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-9050)) || (value >= 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 9000, 50);
+    r = kaiwo_gateway_div_round32(value + 9000, 50);
     if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1774,7 +1774,7 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1818,7 +1818,7 @@ kaiwo_gateway_autocar_control_command_1_door_cmd_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1862,7 +1862,7 @@ kaiwo_gateway_autocar_control_command_1_horn_cmd_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1906,7 +1906,7 @@ kaiwo_gateway_autocar_control_command_1_drl_cmd_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1951,7 +1951,7 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1996,7 +1996,7 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2040,7 +2040,7 @@ kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2087,7 +2087,7 @@ kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2132,7 +2132,7 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2174,7 +2174,7 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2219,7 +2219,7 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2264,7 +2264,7 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2309,7 +2309,7 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2355,7 +2355,7 @@ kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode_fixed(int32_t v
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2400,7 +2400,7 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2442,7 +2442,7 @@ kaiwo_gateway_autocar_control_command_1_system_state_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2486,7 +2486,7 @@ kaiwo_gateway_autocar_control_command_1_system_reliability_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2530,7 +2530,7 @@ kaiwo_gateway_autocar_control_command_1_system_fault_level_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2571,7 +2571,7 @@ kaiwo_gateway_autocar_control_command_1_lock_cmd_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2612,7 +2612,7 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2659,7 +2659,7 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, 
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    r = kaiwo_gateway_div_round32(value - 1600, 50);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2706,7 +2706,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2750,7 +2750,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2794,7 +2794,7 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3090,7 +3090,7 @@ kaiwo_gateway_vehicle_state_1_drive_mode_state_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3131,7 +3131,7 @@ kaiwo_gateway_vehicle_state_1_door_state_encode_fixed(int32_t value, uint8_t *ra
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3172,7 +3172,7 @@ kaiwo_gateway_vehicle_state_1_drl_state_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3213,7 +3213,7 @@ kaiwo_gateway_vehicle_state_1_left_turn_state_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3254,7 +3254,7 @@ kaiwo_gateway_vehicle_state_1_right_turn_state_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3295,7 +3295,7 @@ kaiwo_gateway_vehicle_state_1_hazard_state_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3336,7 +3336,7 @@ kaiwo_gateway_vehicle_state_1_position_light_state_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3377,7 +3377,7 @@ kaiwo_gateway_vehicle_state_1_headlight_state_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3418,7 +3418,7 @@ kaiwo_gateway_vehicle_state_1_rear_fog_state_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3459,7 +3459,7 @@ kaiwo_gateway_vehicle_state_1_left_fog_state_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3500,7 +3500,7 @@ kaiwo_gateway_vehicle_state_1_right_fog_state_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3541,7 +3541,7 @@ kaiwo_gateway_vehicle_state_1_dome_light_state_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3582,7 +3582,7 @@ kaiwo_gateway_vehicle_state_1_ambient_light_state_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3623,7 +3623,7 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3664,7 +3664,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-510)) || (value >= 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 500, 10);
+    r = kaiwo_gateway_div_round32(value + 500, 10);
     if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3709,7 +3709,7 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fi
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 50);
+    r = kaiwo_gateway_div_round32(value, 50);
     if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3753,7 +3753,7 @@ kaiwo_gateway_vehicle_state_1_system_power_cmd_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3797,7 +3797,7 @@ kaiwo_gateway_vehicle_state_1_charge_state_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3838,7 +3838,7 @@ kaiwo_gateway_vehicle_state_1_charge_connection_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 1) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3882,7 +3882,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3923,7 +3923,7 @@ kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4134,7 +4134,7 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode_fixed(int32
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4175,7 +4175,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4217,7 +4217,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4261,7 +4261,7 @@ kaiwo_gateway_autocar_control_command_2_pto_enable_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4308,7 +4308,7 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 50);
+    r = kaiwo_gateway_div_round32(value, 50);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -4357,7 +4357,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value
     if ((value <= (-25050)) || (value >= 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 25000, 50);
+    r = kaiwo_gateway_div_round32(value + 25000, 50);
     if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4404,7 +4404,7 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value,
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
+    r = kaiwo_gateway_div_round32(value + 4000, 10);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4451,7 +4451,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, 
     if ((value <= (-302)) || (value >= 1748)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 300, 2);
+    r = kaiwo_gateway_div_round32(value + 300, 2);
     if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4498,7 +4498,7 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, u
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 4000, 10);
+    r = kaiwo_gateway_div_round32(value + 4000, 10);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4642,7 +4642,7 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4688,7 +4688,7 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16
     if ((value <= (-50002)) || (value >= 81072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 50000, 2);
+    r = kaiwo_gateway_div_round32(value + 50000, 2);
     if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4733,7 +4733,7 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4775,7 +4775,7 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 65536)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4933,7 +4933,7 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
+    r = kaiwo_gateway_div_round32(value + 400, 10);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4977,7 +4977,7 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
+    r = kaiwo_gateway_div_round32(value + 400, 10);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5022,7 +5022,7 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 150);
+    r = kaiwo_gateway_div_round32(value, 150);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5067,7 +5067,7 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 150);
+    r = kaiwo_gateway_div_round32(value, 150);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5111,7 +5111,7 @@ kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *ra
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
+    r = kaiwo_gateway_div_round32(value + 400, 10);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5156,7 +5156,7 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 400, 10);
+    r = kaiwo_gateway_div_round32(value + 400, 10);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5378,7 +5378,7 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
+    r = kaiwo_gateway_div_round32(value + 3000, 50);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5424,7 +5424,7 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 3000, 50);
+    r = kaiwo_gateway_div_round32(value + 3000, 50);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5468,7 +5468,7 @@ kaiwo_gateway_vehicle_state_4_ac_state_encode_fixed(int32_t value, uint8_t *raw)
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5512,7 +5512,7 @@ kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5553,7 +5553,7 @@ kaiwo_gateway_vehicle_state_4_hill_hold_state_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5594,7 +5594,7 @@ kaiwo_gateway_vehicle_state_4_regen_brake_state_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5635,7 +5635,7 @@ kaiwo_gateway_vehicle_state_4_remaining_range_encode_fixed(int32_t value, uint16
     if ((value <= (-1)) || (value >= 4096)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 1000) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5680,7 +5680,7 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5722,7 +5722,7 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5765,7 +5765,7 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    r = kaiwo_gateway_div_round32(value - 1600, 50);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5809,7 +5809,7 @@ kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5852,7 +5852,7 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t
     if ((value <= (-325010)) || (value >= 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 325000, 10);
+    r = kaiwo_gateway_div_round32(value + 325000, 10);
     if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -6224,7 +6224,7 @@ kaiwo_gateway_vehicle_fault_insulation_fault_level_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6265,7 +6265,7 @@ kaiwo_gateway_vehicle_fault_dc_fault_encode_fixed(int32_t value, uint8_t *raw) {
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6306,7 +6306,7 @@ kaiwo_gateway_vehicle_fault_soc_low_encode_fixed(int32_t value, uint8_t *raw) {
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6347,7 +6347,7 @@ kaiwo_gateway_vehicle_fault_cell_undervoltage_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6389,7 +6389,7 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6430,7 +6430,7 @@ kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6471,7 +6471,7 @@ kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6512,7 +6512,7 @@ kaiwo_gateway_vehicle_fault_battery_overheat_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6553,7 +6553,7 @@ kaiwo_gateway_vehicle_fault_motor_overheat_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6594,7 +6594,7 @@ kaiwo_gateway_vehicle_fault_traction_battery_fault_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6635,7 +6635,7 @@ kaiwo_gateway_vehicle_fault_motor_fault_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6676,7 +6676,7 @@ kaiwo_gateway_vehicle_fault_battery_comm_fault_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6717,7 +6717,7 @@ kaiwo_gateway_vehicle_fault_motor_comm_fault_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6758,7 +6758,7 @@ kaiwo_gateway_vehicle_fault_eps_fault_encode_fixed(int32_t value, uint8_t *raw) 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6799,7 +6799,7 @@ kaiwo_gateway_vehicle_fault_ac_fault_encode_fixed(int32_t value, uint8_t *raw) {
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6840,7 +6840,7 @@ kaiwo_gateway_vehicle_fault_aux_battery_fault_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6881,7 +6881,7 @@ kaiwo_gateway_vehicle_fault_epb_fault_encode_fixed(int32_t value, uint8_t *raw) 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6922,7 +6922,7 @@ kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6963,7 +6963,7 @@ kaiwo_gateway_vehicle_fault_key_not_detected_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7004,7 +7004,7 @@ kaiwo_gateway_vehicle_fault_tire_pressure_low_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7045,7 +7045,7 @@ kaiwo_gateway_vehicle_fault_body_motor_fault_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7086,7 +7086,7 @@ kaiwo_gateway_vehicle_fault_body_motor_overheat_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7128,7 +7128,7 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7170,7 +7170,7 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7211,7 +7211,7 @@ kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7252,7 +7252,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_a_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7293,7 +7293,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_b_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7334,7 +7334,7 @@ kaiwo_gateway_vehicle_fault_protocol_version_c_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7375,7 +7375,7 @@ kaiwo_gateway_vehicle_fault_remote_entry_fault_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7590,7 +7590,7 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7633,7 +7633,7 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, ui
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -7682,7 +7682,7 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, u
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
+    r = kaiwo_gateway_div_round32(value + 108000, 10);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7853,7 +7853,7 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 900, 2);
+    r = kaiwo_gateway_div_round32(value + 900, 2);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7897,7 +7897,7 @@ kaiwo_gateway_rgate_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7938,7 +7938,7 @@ kaiwo_gateway_rgate_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7983,7 +7983,7 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8309,7 +8309,7 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8350,7 +8350,7 @@ kaiwo_gateway_rgate_control_command_1_door_cmd_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8394,7 +8394,7 @@ kaiwo_gateway_rgate_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8438,7 +8438,7 @@ kaiwo_gateway_rgate_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8483,7 +8483,7 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8528,7 +8528,7 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8572,7 +8572,7 @@ kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8617,7 +8617,7 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8662,7 +8662,7 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8703,7 +8703,7 @@ kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8747,7 +8747,7 @@ kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8792,7 +8792,7 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8837,7 +8837,7 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8882,7 +8882,7 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8927,7 +8927,7 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8968,7 +8968,7 @@ kaiwo_gateway_rgate_control_command_1_system_state_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9010,7 +9010,7 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9052,7 +9052,7 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9093,7 +9093,7 @@ kaiwo_gateway_rgate_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9134,7 +9134,7 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9180,7 +9180,7 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, ui
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    r = kaiwo_gateway_div_round32(value - 1600, 50);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9225,7 +9225,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9267,7 +9267,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9309,7 +9309,7 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode_fixed(int32_t va
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9466,7 +9466,7 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode_fixed(int32_t
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9507,7 +9507,7 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9549,7 +9549,7 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9593,7 +9593,7 @@ kaiwo_gateway_rgate_control_command_2_pto_enable_encode_fixed(int32_t value, uin
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9640,7 +9640,7 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t 
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 50);
+    r = kaiwo_gateway_div_round32(value, 50);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -9785,7 +9785,7 @@ kaiwo_gateway_device_id_device_type_encode_fixed(int32_t value, uint8_t *raw) {
     if ((value <= (-1)) || (value >= 64)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9826,7 +9826,7 @@ kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw)
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10044,7 +10044,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10093,7 +10093,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10142,7 +10142,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10191,7 +10191,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10240,7 +10240,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10289,7 +10289,7 @@ kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10547,7 +10547,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10596,7 +10596,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10645,7 +10645,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -10692,7 +10692,7 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -10737,7 +10737,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10779,7 +10779,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10821,7 +10821,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10863,7 +10863,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10905,7 +10905,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10947,7 +10947,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10989,7 +10989,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11031,7 +11031,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11073,7 +11073,7 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11265,7 +11265,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11314,7 +11314,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11363,7 +11363,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11412,7 +11412,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11461,7 +11461,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11510,7 +11510,7 @@ kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11765,7 +11765,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11814,7 +11814,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11863,7 +11863,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 1024)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (!(r == 1023)) {
         if (value > 500) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11910,7 +11910,7 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -11955,7 +11955,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11997,7 +11997,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12039,7 +12039,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12081,7 +12081,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12123,7 +12123,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12165,7 +12165,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12207,7 +12207,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12249,7 +12249,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12291,7 +12291,7 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12442,7 +12442,7 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 256)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12485,7 +12485,7 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uin
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 2);
+    r = kaiwo_gateway_div_round32(value, 2);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -12533,7 +12533,7 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, ui
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 108000, 10);
+    r = kaiwo_gateway_div_round32(value + 108000, 10);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12705,7 +12705,7 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1002)) || (value >= 1048)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value + 1000, 2);
+    r = kaiwo_gateway_div_round32(value + 1000, 2);
     if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12749,7 +12749,7 @@ kaiwo_gateway_tele_speed_command_epb_cmd_encode_fixed(int32_t value, uint8_t *ra
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12790,7 +12790,7 @@ kaiwo_gateway_tele_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12835,7 +12835,7 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode_fixed(int32_t value,
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13161,7 +13161,7 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13205,7 +13205,7 @@ kaiwo_gateway_tele_control_command_1_door_cmd_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13249,7 +13249,7 @@ kaiwo_gateway_tele_control_command_1_horn_cmd_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13293,7 +13293,7 @@ kaiwo_gateway_tele_control_command_1_drl_cmd_encode_fixed(int32_t value, uint8_t
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13337,7 +13337,7 @@ kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13382,7 +13382,7 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13426,7 +13426,7 @@ kaiwo_gateway_tele_control_command_1_hazard_cmd_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13471,7 +13471,7 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13515,7 +13515,7 @@ kaiwo_gateway_tele_control_command_1_headlight_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13556,7 +13556,7 @@ kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13600,7 +13600,7 @@ kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13644,7 +13644,7 @@ kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode_fixed(int32_t value, u
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13689,7 +13689,7 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13734,7 +13734,7 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode_fixed(int32_t valu
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 2) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13779,7 +13779,7 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13820,7 +13820,7 @@ kaiwo_gateway_tele_control_command_1_system_state_encode_fixed(int32_t value, ui
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13862,7 +13862,7 @@ kaiwo_gateway_tele_control_command_1_system_reliability_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13904,7 +13904,7 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13945,7 +13945,7 @@ kaiwo_gateway_tele_control_command_1_lock_cmd_encode_fixed(int32_t value, uint8_
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13986,7 +13986,7 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-1)) || (value >= 8)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 3) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14032,7 +14032,7 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uin
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value - 1600, 50);
+    r = kaiwo_gateway_div_round32(value - 1600, 50);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14077,7 +14077,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14119,7 +14119,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14161,7 +14161,7 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode_fixed(int32_t val
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14318,7 +14318,7 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode_fixed(int32_t 
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14359,7 +14359,7 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 4)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14401,7 +14401,7 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode_fixed(int32_t value
     if ((value <= (-1)) || (value >= 16)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     if (value > 10) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -14445,7 +14445,7 @@ kaiwo_gateway_tele_control_command_2_pto_enable_encode_fixed(int32_t value, uint
     if ((value <= (-1)) || (value >= 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = (int64_t)value;
+    r = value;
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14491,7 +14491,7 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t v
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round((int64_t)value, 50);
+    r = kaiwo_gateway_div_round32(value, 50);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;

@@ -70,7 +70,7 @@ def _py(cond: str) -> str:
     out = out.replace("INT64_MIN", str(-(2**63))).replace("(int64_t)", "").replace("(uint64_t)", "")
     out = re.sub(r"\b(\d+)u\b", r"\1", out)
     out = out.replace("||", " or ").replace("&&", " and ").replace("!(", " not (")
-    return out.replace("p_div_round_u(", "div_round(").replace("p_div_round(", "div_round(")
+    return out.replace("p_div_round_u(", "div_round(").replace("p_div_round32(", "div_round(").replace("p_div_round(", "div_round(")
 
 
 def _fn(cond: str):  # type: ignore[no-untyped-def]

@@ -33,7 +33,7 @@ HEADERS = (
 )
 # The names the runtime declares whatever the spec holds (common.h, dispatch.h, monitor.h).
 RUNTIME_FUNCTIONS = (
-    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round",
+    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "div_round32",
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
     "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out", "monitor_state",

@@ -184,10 +184,10 @@ def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
     return None
 
 
-def _difference_fits(ff: int, fo: int, vlo: int, vhi: int) -> bool:
-    """Whether ±(value - fo), the numerator of the rounding, fits an int64_t for every input."""
+def _difference_fits(ff: int, fo: int, vlo: int, vhi: int, bits: int = 64) -> bool:
+    """Whether ±(value - fo), the numerator of the rounding, fits an int<bits>_t for every input."""
     ends = (vlo - fo, vhi - fo) if ff > 0 else (fo - vhi, fo - vlo)
-    return all(-(2**63) <= v <= 2**63 - 1 for v in ends)
+    return all(-(2 ** (bits - 1)) <= v <= 2 ** (bits - 1) - 1 for v in ends)
 
 
 def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int, int], ctype: str, bounds: tuple[int, int], trange: tuple[int, int]) -> CFixed:
@@ -203,15 +203,17 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
     # what passes that check: the open interval (bounds) within the type
     reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
-    # ±(value - fo), so that the divisor |ff| is positive
-    value, offset = ("(int64_t)value", lit(abs(fo)))
+    # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits (Cortex-M3/M4
+    # divide in one instruction, where a 64-bit division calls libgcc's __aeabi_ldivmod)
+    narrow = ctype == "int32_t" and _difference_fits(ff, fo, *reach, bits=32)
+    value, offset = ("value" if narrow else "(int64_t)value", lit(abs(fo)))
     if ff > 0:
         num = value if not fo else f"{value} - {offset}" if fo > 0 else f"{value} + {offset}"
     else:
         num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
-        rounded=num if abs(ff) == 1 else f"{names.fn('div_round')}({num}, {lit(abs(ff))})", r_type="int64_t",
+        rounded=num if abs(ff) == 1 else f"{names.fn('div_round32' if narrow else 'div_round')}({num}, {lit(abs(ff))})", r_type="int64_t",
         ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit),
     )
 
