@@ -56,7 +56,9 @@ def physical_to_raw(value: object, s: SignalSpec) -> int:
     a = abs(q)
     r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
     raw = -r if q < 0 else r
-    if raw in s.specials or (s.lo <= x <= s.hi and s.raw_min <= raw <= s.raw_max):
+    # a double against the bounds as doubles, as C and the reference rule compare (an integer
+    # bound beyond 2^53 is not exact in a double: its nearest double is the bound)
+    if raw in s.specials or (float(s.lo) <= x <= float(s.hi) and s.raw_min <= raw <= s.raw_max):
         return raw
     raise RangeError(s.message, s.signal, value, s.allowed)
 
