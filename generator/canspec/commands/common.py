@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from canspec.pipeline import Compiled, compile_spec
 from canspec.spec.problems import Problem
+
+if TYPE_CHECKING:  # the pipeline (YAML, jsonschema, every target) is imported only to compile
+    from canspec.pipeline import Compiled
 
 
 def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignore[no-untyped-def]
@@ -16,6 +19,8 @@ def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignor
 
 
 def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False, targets: list[str] | None = None) -> Compiled:
+    from canspec.pipeline import compile_spec
+
     compiled = compile_spec(spec, targets)
     shown = compiled.errors if quiet_warnings else compiled.problems
     print_problems(shown)
