@@ -28,7 +28,7 @@ def add_input_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def load_protocol(command: str, spec: str | None) -> ir.CanProtocol | None:
-    compiled = compile_or_report(spec, quiet_warnings=True, targets=[])  # decoding needs no target's refusals
+    compiled = compile_or_report(spec, quiet_warnings=True, targets=[], cached=True)  # decoding needs no target's refusals
     if compiled.spec is None:
         print(f"canspec {command}: the spec has errors (see above)", file=sys.stderr)
         return None
