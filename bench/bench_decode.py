@@ -4,7 +4,8 @@ process; CPU is the fair measure on a shared machine) and peak memory (max RSS) 
 
   text     canspec decode LOG > /dev/null           vs  python -m cantools decode --single-line  (target ≥5×)
   parquet  canspec decode --format parquet -o DIR   vs  bench/reference_parquet.py (cantools
-                                                        decode_message per frame → pandas → Parquet)  (target ≥20×)
+                                                        decode_message per frame → pandas → Parquet,
+                                                        + the checksum check per frame)  (target ≥20×)
   mf4      canspec decode --format parquet bus.mf4  vs  asammdf MDF.extract_bus_logging with the generated DBC
                                                         + saving, + the checksum check a user adds (vectorised)
   every format: canspec decode --format parquet (candump, .gz, screen forms, ASC, BLF, TRC, MF4)
@@ -12,9 +13,11 @@ process; CPU is the fair measure on a shared machine) and peak memory (max RSS) 
 
     python3 bench/bench_decode.py [--frames N] [--memory-frames M] [--cache DIR] [--only text,parquet,mf4,formats]
 
-canspec's tables flag each checksum frame (`checksum_ok`); neither peer checks checksums, so each
-peer's script does that work too, as its user would write it (said in the output). The logs are
-written once per N into --cache (python-can's writers take a while)."""
+canspec's tables flag each checksum frame (`checksum_ok`); neither Parquet peer checks checksums, so
+each one's script does that work too, as its user would write it (said in the output). canspec runs
+with its compiled-spec cache warm (a folder of the run's own), as in a user's every run after the
+first; the MF4 comparison shows a first run too. The logs are written once per N into --cache
+(python-can's writers take a while)."""
 
 from __future__ import annotations
 
@@ -137,9 +140,9 @@ def main() -> int:
         out = Path(tmp)
         log = paths["candump"]
         warm_spec_cache(log, out / "spec-cache")
-        print("canspec's compiled-spec cache is warm, as in a user's every run after the first (MF4: the first run too)\n")
+        print("canspec's compiled-spec cache is warm, as in a user's every run after the first (MF4: the first run too)")
         if "text" in args.only:
-            print("text output (candump -L log → /dev/null)        canspec                               peer")
+            print("\ntext output (candump -L log → /dev/null)        canspec                               peer")
             row("canspec decode  vs  python -m cantools decode", measure([*CANSPEC, str(log)]),
                 measure([sys.executable, "-m", "cantools", "decode", "--single-line", str(DBC)], stdin=log), 5)
         if "parquet" in args.only:
