@@ -33,9 +33,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT / "tests" / "logs"), str(ROOT / "generator")]
-from logsynth import FORMATS, STEP, T0, frames_from_cases, vector_cases, write
-
 from canspec.pipeline import compile_spec
+from logsynth import FORMATS, STEP, T0, frames_from_cases, vector_cases, write
 
 DBC = ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
 ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generator"))
