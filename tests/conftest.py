@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -18,6 +21,9 @@ os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [_GENERATOR, os.environ.
 # fill the disk (about 10 GB over a full run with them, a fraction of that without).
 os.environ.setdefault("CARGO_INCREMENTAL", "0")
 os.environ.setdefault("CARGO_PROFILE_DEV_DEBUG", "0")
+# The commands' compiled-spec cache goes to a folder of this run's own, never the user's home.
+os.environ["CANSPEC_CACHE_DIR"] = tempfile.mkdtemp(prefix="canspec-test-cache-")
+atexit.register(shutil.rmtree, os.environ["CANSPEC_CACHE_DIR"], True)
 from canspec.pipeline import compile_spec
 from repo_paths import GENERATED, ROOT, SPEC  # noqa: F401
 

@@ -9,19 +9,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from canspec import ir
-from canspec.ir.build import build
-from canspec.reference.jsonvalue import message_problems
-from canspec.spec.loader import load
 from canspec.spec.problems import Problem, SpecError, error
-from canspec.spec.resolve import resolve
-from canspec.spec.validate import validate
-from canspec.targets import target_problems
 
 
 @dataclass
 class Compiled:
     spec: ir.Spec | None
     problems: list[Problem]
+    files: tuple[Path, ...] = ()  # every file the compile read or looked for (the compiled-spec cache checks them)
 
     @property
     def errors(self) -> list[Problem]:
@@ -33,6 +28,8 @@ class Compiled:
 
 
 def _example_problems(spec: ir.Spec, res: object) -> list[Problem]:
+    from canspec.reference.jsonvalue import message_problems
+
     out = []
     for proto, doc in zip(spec.json, res.json):  # type: ignore[attr-defined]
         for msg, raw in zip(proto.messages, doc.data["messages"]):
@@ -65,6 +62,13 @@ def compile_spec(path: Path | str | None = None, targets: Iterable[str] | None =
 
 
 def _compile(path: Path | str | None, targets: Iterable[str] | None) -> Compiled:
+    # the stages are imported here: a cached compile (spec_cache) needs none of them
+    from canspec.ir.build import build
+    from canspec.spec.loader import load
+    from canspec.spec.resolve import resolve
+    from canspec.spec.validate import validate
+    from canspec.targets import target_problems
+
     try:
         loaded = load(path)
     except SpecError as exc:
@@ -78,4 +82,4 @@ def _compile(path: Path | str | None, targets: Iterable[str] | None) -> Compiled
     problems += target_problems(spec, targets)
     if any(p.severity == "error" for p in problems):
         return Compiled(None, problems)
-    return Compiled(spec, problems)
+    return Compiled(spec, problems, tuple(loaded.files))

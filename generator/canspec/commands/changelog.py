@@ -38,7 +38,7 @@ def _labels(lang: str, title: str, title_zh: str, version: str, has_errata: bool
 
 
 def run(args: argparse.Namespace) -> int:
-    compiled = compile_or_report(args.spec, quiet_warnings=True)
+    compiled = compile_or_report(args.spec, quiet_warnings=True, cached=True)
     if compiled.spec is None:
         print("canspec changelog: the spec has errors (see above)", file=sys.stderr)
         return 1

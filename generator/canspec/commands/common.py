@@ -7,6 +7,7 @@ from pathlib import Path
 
 from canspec.pipeline import Compiled, compile_spec
 from canspec.spec.problems import Problem
+from canspec.spec_cache import compile_cached
 
 
 def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignore[no-untyped-def]
@@ -15,8 +16,11 @@ def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignor
         print(p.format(), file=stream)
 
 
-def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False, targets: list[str] | None = None) -> Compiled:
-    compiled = compile_spec(spec, targets)
+def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False, targets: list[str] | None = None,
+                      cached: bool = False) -> Compiled:
+    """The compiled spec, its problems printed. `cached`: through the compiled-spec cache (for
+    commands that only read the spec; gen and check always compile)."""
+    compiled = (compile_cached if cached else compile_spec)(spec, targets)
     shown = compiled.errors if quiet_warnings else compiled.problems
     print_problems(shown)
     if strict and compiled.warnings and compiled.spec is not None:

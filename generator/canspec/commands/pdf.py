@@ -14,7 +14,7 @@ from canspec.pdf.render import RendererMissing, write_pdf
 
 
 def run(args: argparse.Namespace) -> int:
-    compiled = compile_or_report(args.spec, quiet_warnings=True)
+    compiled = compile_or_report(args.spec, quiet_warnings=True, cached=True)
     if compiled.spec is None:
         print("canspec pdf: the spec has errors (see above)", file=sys.stderr)
         return 1

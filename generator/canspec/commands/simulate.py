@@ -96,7 +96,7 @@ def _read_commands(sim: RestBus) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    compiled = compile_or_report(args.spec, quiet_warnings=True)
+    compiled = compile_or_report(args.spec, quiet_warnings=True, cached=True)
     if compiled.spec is None or compiled.spec.can is None:
         print("canspec simulate: the spec has no CAN protocol" if compiled.spec is not None else "canspec simulate: the spec has errors", file=sys.stderr)
         return 1

@@ -288,5 +288,5 @@ def build(loaded: LoadedSpec, res: Resolved) -> ir.Spec:
 
 
 def _errata_text(loaded: LoadedSpec) -> str | None:
-    path = loaded.root / "ERRATA.md"
+    path = loaded.errata_path
     return path.read_text(encoding="utf-8").replace("\r\n", "\n") if path.is_file() else None

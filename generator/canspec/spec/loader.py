@@ -35,9 +35,14 @@ class LoadedSpec:
     documents: list[Document] = field(default_factory=list)
     sha256: str = ""
     bundle_name: str | None = None
+    files: list[Path] = field(default_factory=list)  # every file a compile reads, or looks for: the spec files, schemas, ERRATA.md
 
     def of_kind(self, kind: str) -> list[Document]:
         return [d for d in self.documents if d.kind == kind]
+
+    @property
+    def errata_path(self) -> Path:
+        return self.root / "ERRATA.md"
 
 
 def display_name(path: Path) -> str:
@@ -204,4 +209,5 @@ def _load(path: Path) -> LoadedSpec:
         digest.update(p.read_bytes().replace(b"\r\n", b"\n"))
         digest.update(b"\0")
     loaded.sha256 = digest.hexdigest()
+    loaded.files = [*hashed, *map(resources.spec_schema_path, SUPPORTED_SCHEMA_VERSIONS), loaded.errata_path]
     return loaded
