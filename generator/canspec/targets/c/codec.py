@@ -68,8 +68,8 @@ def _halves(s: CSignal, wide: bool) -> tuple[str, str]:
     """The field's value: its low 32 bits (the field itself where it is unsigned and `wide` is
     not asked for) and, for 64-bit fields, its high 32 bits (as uint32_t)."""
     field, bits = f"src->{s.field}", s.sig.storage_bits
-    low = field if bits == 32 and not s.sig.signed or not (wide or s.sig.signed or bits == 64) else f"(uint32_t){field}"
-    return low, (f"(uint32_t)({field} >> 32u)" if bits == 64 else "")
+    cast = s.sig.signed or bits == 64 or (wide and bits < 32)  # two's complement bits / the low half / no int promotion
+    return (f"(uint32_t){field}" if cast else field), (f"(uint32_t)({field} >> 32u)" if bits == 64 else "")
 
 
 def _piece(s: CSignal, seg: ir.Segment) -> str:
