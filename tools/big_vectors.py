@@ -37,7 +37,7 @@ from canspec import ir
 from canspec.ir.encoding import to_raw_exact, to_raw_runtime
 from canspec.pipeline import compile_spec
 from canspec.reference import codec
-from canspec.targets.vectors import base_raw, build_vectors, case_record
+from canspec.targets.vectors import build_vectors, case_record
 
 
 class Encoder(Protocol):
@@ -120,7 +120,7 @@ class CaseMaker:
                 if sig.raw_type_min <= v <= sig.raw_type_max and not sig.raw_allowed(v)
             ]
             if outside:
-                raw = {s.name: base_raw(s) for s in sigs}
+                raw = {s.name: s.base_raw for s in sigs}
                 raw[sig.name] = rng.choice(outside)
                 return self.case(msg, raw, "raw_only", note=f"{sig.name}={raw[sig.name]} outside the documented range")
         return self.case(msg, {s.name: _random_raw(s, rng) for s in sigs}, "random")
