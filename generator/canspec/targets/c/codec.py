@@ -7,13 +7,14 @@ its name, and every core runs it well: only 32-bit arithmetic (a 64-bit field is
 halves), no unaligned access, no helper calls, the same arithmetic on either byte order.
 
 Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits 0, no memset,
-no read-modify-write), after one check that every field fits its bits. Unpack reads each frame
+no read-modify-write), with the check that the fields starting in it fit their bits. Unpack reads each frame
 byte once into a local when its first field needs it (stores to *dst may alias src, so reading
 it again later would cost a load each time), and folds it into the XOR the checksum needs.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from canspec import ir
@@ -28,9 +29,13 @@ class CCodec:
     unpack: tuple[str, ...]  # statements filling *dst from src (and, with a checksum, x)
 
 
+_OPERAND = re.compile(r"(\(uint32_t\))?\w+(\[\d+\]|->\w+)?")  # b3, src[5], src->f, (uint32_t)src->f
+
+
 def paren(expr: str) -> str:
-    """`expr` as an operand: parenthesised unless it is a name or already one parenthesis."""
-    if expr.replace("_", "").replace("->", "").replace("[", "").replace("]", "").isalnum() or expr.startswith("(uint32_t)src->") and " " not in expr:
+    """`expr` as an operand: parenthesised unless it is a name, an access, a cast of one, or
+    already one parenthesis."""
+    if _OPERAND.fullmatch(expr):
         return expr
     if expr.startswith("(") and _closing(expr) == len(expr) - 1:
         return expr
