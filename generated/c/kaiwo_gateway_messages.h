@@ -141,13 +141,10 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= 0.0) && (value <= 255.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -232,14 +229,10 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(21600))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -404,13 +397,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_ctrl_state_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= 0.0) && (value <= 255.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -446,14 +436,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -12.8000000001) && (value <= 12.7000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -12.8000000001) && (value <= 12.7000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -492,14 +478,10 @@ kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -38.4000000003) && (value <= 38.1000000003))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -38.4000000003) && (value <= 38.1000000003)) || (r < INT64_C(0)) ||
-        (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -538,14 +520,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_enco
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(21600))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -583,13 +561,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 64.0))) {
+    if (!((value >= 0.0) && (value <= 126.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 126.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -627,13 +602,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_fault_level_enc
     const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -794,14 +766,10 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(630))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -839,13 +807,10 @@ kaiwo_gateway_autocar_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -880,13 +845,10 @@ kaiwo_gateway_autocar_speed_command_gear_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -924,13 +886,10 @@ kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1115,13 +1074,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_epb_state_encod
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1156,13 +1112,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_gear_state_enco
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1200,13 +1153,10 @@ kaiwo_gateway_driving_state_emergency_brake_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1241,13 +1191,10 @@ kaiwo_gateway_driving_state_uss_brake_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1282,13 +1229,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_enc
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -15000.0) && (value <= 15000.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -15000.0) && (value <= 15000.0)) || (r < INT64_C(0)) || (r > INT64_C(30000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1326,13 +1270,10 @@ kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -5000.0) && (value <= 5000.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -5000.0) && (value <= 5000.0)) || (r < INT64_C(0)) || (r > INT64_C(10000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1419,14 +1360,10 @@ kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET) /
                      KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -9.00000000005) && (value <= 3.60000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -9.00000000005) && (value <= 3.60000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(252))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1749,13 +1686,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1794,13 +1728,10 @@ kaiwo_gateway_autocar_control_command_1_door_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1838,13 +1769,10 @@ kaiwo_gateway_autocar_control_command_1_horn_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1882,13 +1810,10 @@ kaiwo_gateway_autocar_control_command_1_drl_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1926,13 +1851,10 @@ kaiwo_gateway_autocar_control_command_1_left_turn_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1971,13 +1893,10 @@ kaiwo_gateway_autocar_control_command_1_right_turn_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2016,13 +1935,10 @@ kaiwo_gateway_autocar_control_command_1_hazard_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2061,13 +1977,10 @@ kaiwo_gateway_autocar_control_command_1_position_light_cmd_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2107,13 +2020,10 @@ kaiwo_gateway_autocar_control_command_1_headlight_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2149,13 +2059,10 @@ kaiwo_gateway_autocar_control_command_1_rear_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2194,13 +2101,10 @@ kaiwo_gateway_autocar_control_command_1_left_fog_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2239,13 +2143,10 @@ kaiwo_gateway_autocar_control_command_1_right_fog_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2284,13 +2185,10 @@ kaiwo_gateway_autocar_control_command_1_dome_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2329,13 +2227,10 @@ kaiwo_gateway_autocar_control_command_1_ambient_light_cmd_encode(double value, u
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2375,13 +2270,10 @@ kaiwo_gateway_autocar_control_command_1_drive_mode_reset_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2417,13 +2309,10 @@ kaiwo_gateway_autocar_control_command_1_system_state_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2460,13 +2349,10 @@ kaiwo_gateway_autocar_control_command_1_system_reliability_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2504,13 +2390,10 @@ kaiwo_gateway_autocar_control_command_1_system_fault_level_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2547,13 +2430,10 @@ kaiwo_gateway_autocar_control_command_1_lock_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2588,13 +2468,10 @@ kaiwo_gateway_autocar_control_command_1_ac_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 8.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2633,14 +2510,10 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 32.0))) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(28))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2680,13 +2553,10 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_a_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2724,13 +2594,10 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_b_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2768,13 +2635,10 @@ kaiwo_gateway_autocar_control_command_1_protocol_version_c_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3066,13 +2930,10 @@ kaiwo_gateway_vehicle_state_1_drive_mode_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3107,13 +2968,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_door_state_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3148,13 +3006,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_drl_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3189,13 +3044,10 @@ kaiwo_gateway_vehicle_state_1_left_turn_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3230,13 +3082,10 @@ kaiwo_gateway_vehicle_state_1_right_turn_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3271,13 +3120,10 @@ kaiwo_gateway_vehicle_state_1_hazard_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3312,13 +3158,10 @@ kaiwo_gateway_vehicle_state_1_position_light_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3353,13 +3196,10 @@ kaiwo_gateway_vehicle_state_1_headlight_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3394,13 +3234,10 @@ kaiwo_gateway_vehicle_state_1_rear_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3435,13 +3272,10 @@ kaiwo_gateway_vehicle_state_1_left_fog_state_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3476,13 +3310,10 @@ kaiwo_gateway_vehicle_state_1_right_fog_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3517,13 +3348,10 @@ kaiwo_gateway_vehicle_state_1_dome_light_state_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3558,13 +3386,10 @@ kaiwo_gateway_vehicle_state_1_ambient_light_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3599,13 +3424,10 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3640,13 +3462,10 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -50.0) && (value <= 200.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -50.0) && (value <= 200.0)) || (r < INT64_C(0)) || (r > INT64_C(250))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3684,14 +3503,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(do
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -0.0000000005) && (value <= 125.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(250))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3729,13 +3544,10 @@ kaiwo_gateway_vehicle_state_1_system_power_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3773,13 +3585,10 @@ kaiwo_gateway_vehicle_state_1_charge_state_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3814,13 +3623,10 @@ kaiwo_gateway_vehicle_state_1_charge_connection_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3858,13 +3664,10 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3899,13 +3702,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= 0.0) && (value <= 120000.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 120000.0)) || (r < INT64_C(0)) || (r > INT64_C(60000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4108,13 +3908,10 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_enable_encode(double valu
         (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
         KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4151,13 +3948,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4192,13 +3986,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_lift_speed_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 10.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4237,13 +4028,10 @@ kaiwo_gateway_autocar_control_command_2_pto_enable_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4331,14 +4119,10 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode(double value, uint1
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_PITCH_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -25.00000000005) && (value <= 25.00000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -25.00000000005) && (value <= 25.00000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(1000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4378,14 +4162,10 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode(double value, uint16
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CHASSIS_ROLL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(800))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4425,14 +4205,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_PITCH_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -30.0000000002) && (value <= 100.0000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -30.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(650))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4472,14 +4248,10 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_OFFSET) /
                      KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_CARGO_ROLL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -40.0000000001) && (value <= 40.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0000000001) && (value <= 40.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(800))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4617,14 +4389,10 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -0.0000000002) && (value <= 800.0000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -0.0000000002) && (value <= 800.0000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(4000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4663,14 +4431,10 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -500.00000000002) && (value <= 800.00000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -500.00000000002) && (value <= 800.00000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(65000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4708,13 +4472,10 @@ kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= 0.0) && (value <= 65535.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4750,13 +4511,10 @@ kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= 0.0) && (value <= 65535.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 65535.0)) || (r < INT64_C(0)) || (r > INT64_C(65535))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4909,13 +4667,10 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -40.0) && (value <= 215.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4953,13 +4708,10 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -40.0) && (value <= 215.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4997,14 +4749,10 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4096.0))) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
-        (r > INT64_C(4000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5042,14 +4790,10 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4096.0))) {
+    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015)) || (r < INT64_C(0)) ||
-        (r > INT64_C(4000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5087,13 +4831,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_en
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -40.0) && (value <= 215.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5131,13 +4872,10 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -40.0) && (value <= 215.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -40.0) && (value <= 215.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5353,14 +5091,10 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(250))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5399,14 +5133,10 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= -30.0000000005) && (value <= 95.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -30.0000000005) && (value <= 95.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(250))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5444,13 +5174,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_ac_state_enco
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5488,13 +5215,10 @@ kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5529,13 +5253,10 @@ kaiwo_gateway_vehicle_state_4_hill_hold_state_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5570,13 +5291,10 @@ kaiwo_gateway_vehicle_state_4_regen_brake_state_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5611,13 +5329,10 @@ kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4096.0))) {
+    if (!((value >= 0.0) && (value <= 1000.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1000.0)) || (r < INT64_C(0)) || (r > INT64_C(1000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5655,13 +5370,10 @@ kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5697,13 +5409,10 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5740,14 +5449,10 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 32.0))) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(28))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5785,13 +5490,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_pto_state_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5827,14 +5529,10 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -325.00000000001) && (value <= 325.00000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -325.00000000001) && (value <= 325.00000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(65000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6200,13 +5898,10 @@ kaiwo_gateway_vehicle_fault_insulation_fault_level_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6241,13 +5936,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_dc_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6282,13 +5974,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_soc_low_encode(
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6323,13 +6012,10 @@ kaiwo_gateway_vehicle_fault_cell_undervoltage_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6364,13 +6050,10 @@ kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6406,13 +6089,10 @@ kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6447,13 +6127,10 @@ kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6488,13 +6165,10 @@ kaiwo_gateway_vehicle_fault_battery_overheat_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6529,13 +6203,10 @@ kaiwo_gateway_vehicle_fault_motor_overheat_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6570,13 +6241,10 @@ kaiwo_gateway_vehicle_fault_traction_battery_fault_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6611,13 +6279,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_motor_fault_enc
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6652,13 +6317,10 @@ kaiwo_gateway_vehicle_fault_battery_comm_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6693,13 +6355,10 @@ kaiwo_gateway_vehicle_fault_motor_comm_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6734,13 +6393,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_eps_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6775,13 +6431,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_ac_fault_encode
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6816,13 +6469,10 @@ kaiwo_gateway_vehicle_fault_aux_battery_fault_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6857,13 +6507,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_epb_fault_encod
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6898,13 +6545,10 @@ kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6939,13 +6583,10 @@ kaiwo_gateway_vehicle_fault_key_not_detected_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6980,13 +6621,10 @@ kaiwo_gateway_vehicle_fault_tire_pressure_low_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7021,13 +6659,10 @@ kaiwo_gateway_vehicle_fault_body_motor_fault_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7062,13 +6697,10 @@ kaiwo_gateway_vehicle_fault_body_motor_overheat_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7103,13 +6735,10 @@ kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7145,13 +6774,10 @@ kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7187,13 +6813,10 @@ kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7228,13 +6851,10 @@ kaiwo_gateway_vehicle_fault_protocol_version_a_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7269,13 +6889,10 @@ kaiwo_gateway_vehicle_fault_protocol_version_b_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7310,13 +6927,10 @@ kaiwo_gateway_vehicle_fault_protocol_version_c_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7351,13 +6965,10 @@ kaiwo_gateway_vehicle_fault_remote_entry_fault_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_OFFSET) /
                      KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7566,13 +7177,10 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= 0.0) && (value <= 255.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7656,14 +7264,10 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t
     const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(21600))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7828,14 +7432,10 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -9.00000000002) && (value <= 3.60000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -9.00000000002) && (value <= 3.60000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(630))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7873,13 +7473,10 @@ kaiwo_gateway_rgate_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7914,13 +7511,10 @@ kaiwo_gateway_rgate_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7958,13 +7552,10 @@ kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8284,13 +7875,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8326,13 +7914,10 @@ kaiwo_gateway_rgate_control_command_1_door_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8370,13 +7955,10 @@ kaiwo_gateway_rgate_control_command_1_horn_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8414,13 +7996,10 @@ kaiwo_gateway_rgate_control_command_1_drl_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8458,13 +8037,10 @@ kaiwo_gateway_rgate_control_command_1_left_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8503,13 +8079,10 @@ kaiwo_gateway_rgate_control_command_1_right_turn_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8548,13 +8121,10 @@ kaiwo_gateway_rgate_control_command_1_hazard_cmd_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8592,13 +8162,10 @@ kaiwo_gateway_rgate_control_command_1_position_light_cmd_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8637,13 +8204,10 @@ kaiwo_gateway_rgate_control_command_1_headlight_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8679,13 +8243,10 @@ kaiwo_gateway_rgate_control_command_1_rear_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8723,13 +8284,10 @@ kaiwo_gateway_rgate_control_command_1_left_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8767,13 +8325,10 @@ kaiwo_gateway_rgate_control_command_1_right_fog_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8812,13 +8367,10 @@ kaiwo_gateway_rgate_control_command_1_dome_light_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8857,13 +8409,10 @@ kaiwo_gateway_rgate_control_command_1_ambient_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8902,13 +8451,10 @@ kaiwo_gateway_rgate_control_command_1_drive_mode_reset_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8944,13 +8490,10 @@ kaiwo_gateway_rgate_control_command_1_system_state_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8985,13 +8528,10 @@ kaiwo_gateway_rgate_control_command_1_system_reliability_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9027,13 +8567,10 @@ kaiwo_gateway_rgate_control_command_1_system_fault_level_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9069,13 +8606,10 @@ kaiwo_gateway_rgate_control_command_1_lock_cmd_encode(double value, uint8_t *raw
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9110,13 +8644,10 @@ kaiwo_gateway_rgate_control_command_1_ac_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 8.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9155,14 +8686,10 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 32.0))) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(28))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9200,13 +8727,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_a_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9242,13 +8766,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_b_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9284,13 +8805,10 @@ kaiwo_gateway_rgate_control_command_1_protocol_version_c_encode(double value, ui
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9440,13 +8958,10 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_enable_encode(double value,
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9483,13 +8998,10 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9524,13 +9036,10 @@ kaiwo_gateway_rgate_control_command_2_cargo_lift_speed_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 10.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9569,13 +9078,10 @@ kaiwo_gateway_rgate_control_command_2_pto_enable_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9761,13 +9267,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 64.0))) {
+    if (!((value >= 0.0) && (value <= 63.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 63.0)) || (r < INT64_C(0)) || (r > INT64_C(63))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9802,13 +9305,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_frame_index_enco
     const double q = (value - KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_OFFSET) /
                      KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10667,13 +10167,10 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10712,13 +10209,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10754,13 +10248,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10796,13 +10287,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10838,13 +10326,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10880,13 +10365,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10922,13 +10404,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10964,13 +10443,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11006,13 +10482,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11048,13 +10521,10 @@ kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11885,13 +11355,10 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11930,13 +11397,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11972,13 +11436,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12014,13 +11475,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12056,13 +11514,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12098,13 +11553,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12140,13 +11592,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12182,13 +11631,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12224,13 +11670,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12266,13 +11709,10 @@ kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
                      KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12418,13 +11858,10 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    if (!((value >= 0.0) && (value <= 255.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 255.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12508,14 +11945,10 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t 
     const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 65536.0))) {
+    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001)) || (r < INT64_C(0)) ||
-        (r > INT64_C(21600))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12679,14 +12112,10 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
+    if (!((value >= -100.0000000002) && (value <= 100.0000000002))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= -100.0000000002) && (value <= 100.0000000002)) || (r < INT64_C(0)) ||
-        (r > INT64_C(1000))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12725,13 +12154,10 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_tele_speed_command_epb_cmd_en
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12766,13 +12192,10 @@ kaiwo_gateway_tele_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12810,13 +12233,10 @@ kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode(double value, uint8_
     const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13136,13 +12556,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13181,13 +12598,10 @@ kaiwo_gateway_tele_control_command_1_door_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOOR_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13225,13 +12639,10 @@ kaiwo_gateway_tele_control_command_1_horn_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HORN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13269,13 +12680,10 @@ kaiwo_gateway_tele_control_command_1_drl_cmd_encode(double value, uint8_t *raw) 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRL_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13313,13 +12721,10 @@ kaiwo_gateway_tele_control_command_1_left_turn_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13357,13 +12762,10 @@ kaiwo_gateway_tele_control_command_1_right_turn_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_TURN_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13402,13 +12804,10 @@ kaiwo_gateway_tele_control_command_1_hazard_cmd_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HAZARD_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13446,13 +12845,10 @@ kaiwo_gateway_tele_control_command_1_position_light_cmd_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_POSITION_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13491,13 +12887,10 @@ kaiwo_gateway_tele_control_command_1_headlight_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_HEADLIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13532,13 +12925,10 @@ kaiwo_gateway_tele_control_command_1_rear_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_REAR_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13576,13 +12966,10 @@ kaiwo_gateway_tele_control_command_1_left_fog_cmd_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LEFT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13620,13 +13007,10 @@ kaiwo_gateway_tele_control_command_1_right_fog_cmd_encode(double value, uint8_t 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_RIGHT_FOG_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13664,13 +13048,10 @@ kaiwo_gateway_tele_control_command_1_dome_light_cmd_encode(double value, uint8_t
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DOME_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13709,13 +13090,10 @@ kaiwo_gateway_tele_control_command_1_ambient_light_cmd_encode(double value, uint
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AMBIENT_LIGHT_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 2.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 2.0)) || (r < INT64_C(0)) || (r > INT64_C(2))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13754,13 +13132,10 @@ kaiwo_gateway_tele_control_command_1_drive_mode_reset_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DRIVE_MODE_RESET_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13796,13 +13171,10 @@ kaiwo_gateway_tele_control_command_1_system_state_encode(double value, uint8_t *
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_STATE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13837,13 +13209,10 @@ kaiwo_gateway_tele_control_command_1_system_reliability_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_RELIABILITY_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13879,13 +13248,10 @@ kaiwo_gateway_tele_control_command_1_system_fault_level_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_SYSTEM_FAULT_LEVEL_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13921,13 +13287,10 @@ kaiwo_gateway_tele_control_command_1_lock_cmd_encode(double value, uint8_t *raw)
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_LOCK_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13962,13 +13325,10 @@ kaiwo_gateway_tele_control_command_1_ac_cmd_encode(double value, uint8_t *raw) {
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_CMD_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 8.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14007,14 +13367,10 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode(double value, uint8_t *r
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_AC_SET_TEMP_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 32.0))) {
+    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005)) || (r < INT64_C(0)) ||
-        (r > INT64_C(28))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14052,13 +13408,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_a_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_A_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14094,13 +13447,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_b_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_B_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14136,13 +13486,10 @@ kaiwo_gateway_tele_control_command_1_protocol_version_c_encode(double value, uin
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_PROTOCOL_VERSION_C_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 15.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 15.0)) || (r < INT64_C(0)) || (r > INT64_C(15))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14292,13 +13639,10 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_enable_encode(double value, 
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DOWNHILL_REGEN_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14335,13 +13679,10 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 4.0))) {
+    if (!((value >= 0.0) && (value <= 3.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 3.0)) || (r < INT64_C(0)) || (r > INT64_C(3))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14376,13 +13717,10 @@ kaiwo_gateway_tele_control_command_2_cargo_lift_speed_encode(double value, uint8
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_CARGO_LIFT_SPEED_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 16.0))) {
+    if (!((value >= 0.0) && (value <= 10.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 10.0)) || (r < INT64_C(0)) || (r > INT64_C(10))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -14421,13 +13759,10 @@ kaiwo_gateway_tele_control_command_2_pto_enable_encode(double value, uint8_t *ra
     const double q = (value - KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_OFFSET) /
                      KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_PTO_ENABLE_FACTOR;
     int64_t r;
-    if (!((q > -1.0) && (q < 2.0))) {
+    if (!((value >= 0.0) && (value <= 1.0))) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = kaiwo_gateway_round_half_away(q);
-    if (!((value >= 0.0) && (value <= 1.0)) || (r < INT64_C(0)) || (r > INT64_C(1))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }

@@ -22,6 +22,7 @@ from fractions import Fraction
 from math import floor
 
 from canspec import ir
+from canspec.ir.encoding import to_raw_runtime
 from canspec.render.literals import c_int, c_uint, float_lit
 from canspec.targets.c.names import CNames
 
@@ -72,7 +73,9 @@ class CRanges:
 class CDouble:
     decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
     decode_expr: str  # double from `raw` (and `scaled`)
-    q_ok: str  # condition on q: its rounding stays inside the raw type widened by one step
+    refuse: str  # encode's first check (true: ERR_RANGE): q's rounding would leave the raw type
+    # widened by one step; or, where no special value can lie outside the range, the value
+    # outside the accepted range (which keeps q inside that window too, and is checked once)
     r_type: str
     rounded: str  # r from q, by the shared rule
     wide_unsigned: bool  # r is a uint64_t holding |q| rounded: a negative q must round to 0
@@ -135,13 +138,24 @@ def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
     # q's bounds are the raw type widened by one step; where that is not a double, the type's own
     # bound (a power of two) is, and no double lies between the two.
     low = f"q > {float_lit(sig.raw_type_min - 1)}" if sig.raw_type_min - 1 >= -DOUBLE_EXACT else f"q >= {float_lit(sig.raw_type_min)}"
-    accept = [f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"]
+    accept = f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"
+    first = exact and not sig.specials and not wide_unsigned
     return CDouble(
-        decode_pre=pre, decode_expr=expr, q_ok=f"({low}) && (q < {float_lit(sig.raw_type_max + 1)})",
+        decode_pre=pre, decode_expr=expr, refuse=accept if first else f"!(({low}) && (q < {float_lit(sig.raw_type_max + 1)}))",
         r_type="uint64_t" if wide_unsigned else "int64_t",
         rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)" if wide_unsigned else f"{names.fn('round_half_away')}(q)",
-        wide_unsigned=wide_unsigned, exact=exact, ranges=_ranges(sig, not wide_unsigned, accept, _r_type_range(not wide_unsigned)),
+        wide_unsigned=wide_unsigned, exact=exact,
+        ranges=_ranges(sig, True, [], _accepted_reach(sig)) if first else _ranges(sig, not wide_unsigned, [accept], _r_type_range(not wide_unsigned)),
     )
+
+
+def _accepted_reach(sig: ir.Signal) -> tuple[int, int]:
+    """The raw values the double rule gives inside the accepted range: its results at the two
+    ends, step for step as the C computes them (the rule is monotonic in the value)."""
+    factor, offset = float(sig.factor), float(sig.offset)
+    ends = (to_raw_runtime(float(v), factor, offset) for v in (sig.accept_min, sig.accept_max))
+    lo, hi = sorted(ends)
+    return lo, hi
 
 
 def fixed_scale(sig: ir.Signal) -> int:
