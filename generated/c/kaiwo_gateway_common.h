@@ -79,15 +79,28 @@ static inline int32_t kaiwo_gateway_div_round32(int32_t num, int32_t den) {
 
 /* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):
  * then the frame of a message without fields is zeroed by memset, which compilers turn into word
- * stores; elsewhere (Cortex-M0/M0+, where memset is a call) byte by byte. Pack and unpack are
- * otherwise the same code on every core. Define KAIWO_GATEWAY_UNALIGNED_WORDS to 0 or 1 to
- * override the choice. */
+ * stores; elsewhere (Cortex-M0/M0+, where memset is a call) byte by byte. Define
+ * KAIWO_GATEWAY_UNALIGNED_WORDS to 0 or 1 to override the choice. */
 #ifndef KAIWO_GATEWAY_UNALIGNED_WORDS
 #if defined(__ARM_FEATURE_UNALIGNED) || defined(__x86_64__) || defined(__i386__) ||                \
     defined(__aarch64__)
 #define KAIWO_GATEWAY_UNALIGNED_WORDS 1
 #else
 #define KAIWO_GATEWAY_UNALIGNED_WORDS 0
+#endif
+#endif
+
+/* Whether the core also has 64-bit registers (x86-64, AArch64): then a message's pack and unpack
+ * take the forms the generator estimated cheaper there, where they differ from the byte form every
+ * other core runs: the frame as one uint64_t (byte k is its bits 8k..8k+7, built and taken apart
+ * byte by byte, which compilers turn into one load or store), the range check once per message.
+ * Both forms are plain C on any core and byte order. Define KAIWO_GATEWAY_WORD64 to 0 or 1 to
+ * override the choice. */
+#ifndef KAIWO_GATEWAY_WORD64
+#if (defined(__x86_64__) || defined(__aarch64__)) && KAIWO_GATEWAY_UNALIGNED_WORDS
+#define KAIWO_GATEWAY_WORD64 1
+#else
+#define KAIWO_GATEWAY_WORD64 0
 #endif
 #endif
 

@@ -681,6 +681,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
+#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -702,6 +703,29 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -710,6 +734,35 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t *dst,
                                            const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint64_t w;
+    uint64_t x;
+    if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->accel_cmd = (uint16_t)(w & UINT64_C(0x3FF));
+    b1 = src[1];
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    dst->checksum = (uint8_t)b7;
+    x = w ^ (w >> 32u);
+    x ^= x >> 16u;
+    x ^= x >> 8u;
+    x &= 0xFFu;
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -739,6 +792,7 @@ kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t
     x ^= src[5];
     x ^= src[6];
     return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#endif
 }
 
 /** A autocar_speed_command with every raw field 0. */
@@ -990,6 +1044,26 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_driving_state_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->epb_state + ((uint32_t)src->gear_state << 2u) +
+                       ((uint32_t)src->emergency_brake_state << 6u) +
+                       ((uint32_t)src->uss_brake_state << 7u));
+    ored1 = src->emergency_brake_state | src->uss_brake_state;
+    dst[1] = (uint8_t)src->motor_speed;
+    dst[2] = (uint8_t)(src->motor_speed >> 8u);
+    dst[3] = (uint8_t)src->motor_torque;
+    dst[4] = (uint8_t)(src->motor_torque >> 8u);
+    dst[5] = (uint8_t)src->motor_speed_ratio;
+    dst[6] = (uint8_t)src->current_accel;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+    if ((ored1 > 1u) || (src->epb_state > 3u) || (src->gear_state > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -1007,6 +1081,7 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)src->motor_speed_ratio;
     dst[6] = (uint8_t)src->current_accel;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1015,6 +1090,7 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uint8_t *src,
                                    size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -1053,6 +1129,46 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
     x ^= b7;
     dst->checksum = (uint8_t)b7;
     return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    uint32_t x;
+    if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    x = b0;
+    dst->epb_state = (uint8_t)(b0 & 0x3u);
+    dst->gear_state = (uint8_t)((b0 >> 2u) & 0xFu);
+    dst->emergency_brake_state = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->uss_brake_state = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    x ^= b1;
+    b2 = src[2];
+    x ^= b2;
+    dst->motor_speed = (uint16_t)(b1 | (b2 << 8u));
+    b3 = src[3];
+    x ^= b3;
+    b4 = src[4];
+    x ^= b4;
+    dst->motor_torque = (uint16_t)(b3 | (b4 << 8u));
+    b5 = src[5];
+    x ^= b5;
+    dst->motor_speed_ratio = (uint8_t)b5;
+    b6 = src[6];
+    x ^= b6;
+    dst->current_accel = (uint8_t)b6;
+    b7 = src[7];
+    x ^= b7;
+    dst->checksum = (uint8_t)b7;
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#endif
 }
 
 /** A driving_state with every raw field 0. */
@@ -1564,6 +1680,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored2;
+    uint8_t ored4;
+    if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->drive_mode_cmd + ((uint32_t)src->door_cmd << 2u) +
+                       ((uint32_t)src->horn_cmd << 4u) + ((uint32_t)src->drl_cmd << 6u));
+    ored2 = src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd;
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd + ((uint32_t)src->right_turn_cmd << 2u) +
+                  ((uint32_t)src->hazard_cmd << 4u) + ((uint32_t)src->position_light_cmd << 6u));
+    ored2 |= src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd;
+    dst[2] = (uint8_t)(src->headlight_cmd + ((uint32_t)src->rear_fog_cmd << 2u) +
+                       ((uint32_t)src->left_fog_cmd << 4u) + ((uint32_t)src->right_fog_cmd << 6u));
+    ored2 |= src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd;
+    dst[3] = (uint8_t)(src->dome_light_cmd + ((uint32_t)src->ambient_light_cmd << 2u) +
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    ored2 |= src->dome_light_cmd | src->ambient_light_cmd;
+    dst[4] = (uint8_t)(src->system_state + ((uint32_t)src->system_reliability << 2u) +
+                       ((uint32_t)src->system_fault_level << 4u) + ((uint32_t)src->lock_cmd << 6u));
+    ored2 |= src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd;
+    dst[5] = (uint8_t)(src->ac_cmd + ((uint32_t)src->ac_set_temp << 3u));
+    dst[6] = (uint8_t)(src->protocol_version_a + ((uint32_t)src->protocol_version_b << 4u));
+    ored4 = src->protocol_version_a | src->protocol_version_b;
+    dst[7] = (uint8_t)(src->protocol_version_c + ((uint32_t)src->counter << 4u));
+    ored4 |= src->protocol_version_c | src->counter;
+    if ((src->drive_mode_reset > 1u) || (ored2 > 3u) || (src->ac_cmd > 7u) || (ored4 > 15u) ||
+        (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -1607,6 +1755,7 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1614,6 +1763,7 @@ kaiwo_gateway_autocar_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_command_1_t *dst,
                                                const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -1659,6 +1809,53 @@ kaiwo_gateway_autocar_control_command_1_unpack(kaiwo_gateway_autocar_control_com
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A autocar_control_command_1 with every raw field 0. */
@@ -2819,6 +3016,43 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    uint8_t ored2;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] =
+        (uint8_t)(src->drive_mode_state + ((uint32_t)src->door_state << 2u) +
+                  ((uint32_t)src->drl_state << 3u) + ((uint32_t)src->left_turn_state << 4u) +
+                  ((uint32_t)src->right_turn_state << 5u) + ((uint32_t)src->hazard_state << 6u) +
+                  ((uint32_t)src->position_light_state << 7u));
+    ored2 = src->drive_mode_state;
+    ored1 = src->door_state | src->drl_state | src->left_turn_state | src->right_turn_state |
+            src->hazard_state | src->position_light_state;
+    dst[1] =
+        (uint8_t)(src->headlight_state + ((uint32_t)src->rear_fog_state << 2u) +
+                  ((uint32_t)src->left_fog_state << 3u) + ((uint32_t)src->right_fog_state << 4u) +
+                  ((uint32_t)src->dome_light_state << 5u) +
+                  ((uint32_t)src->ambient_light_state << 6u) +
+                  ((uint32_t)src->door_button_state << 7u));
+    ored2 |= src->headlight_state;
+    ored1 |= src->rear_fog_state | src->left_fog_state | src->right_fog_state |
+             src->dome_light_state | src->ambient_light_state | src->door_button_state;
+    dst[2] = (uint8_t)src->vehicle_speed;
+    dst[3] = (uint8_t)src->soc;
+    dst[4] = (uint8_t)(src->system_power_cmd + ((uint32_t)src->charge_state << 2u) +
+                       ((uint32_t)src->charge_connection << 4u) +
+                       ((uint32_t)src->vehicle_fault_level << 6u));
+    ored2 |= src->system_power_cmd | src->charge_state | src->charge_connection |
+             src->vehicle_fault_level;
+    dst[5] = (uint8_t)src->odometer;
+    dst[6] = (uint8_t)(src->odometer >> 8u);
+    dst[7] = (uint8_t)src->counter;
+    if ((ored1 > 1u) || (ored2 > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -2855,6 +3089,7 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)src->odometer;
     dst[6] = (uint8_t)(src->odometer >> 8u);
     dst[7] = (uint8_t)src->counter;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -2862,6 +3097,7 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -2904,6 +3140,50 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->drive_mode_state = (uint8_t)(b0 & 0x3u);
+    dst->door_state = (uint8_t)((b0 >> 2u) & 0x1u);
+    dst->drl_state = (uint8_t)((b0 >> 3u) & 0x1u);
+    dst->left_turn_state = (uint8_t)((b0 >> 4u) & 0x1u);
+    dst->right_turn_state = (uint8_t)((b0 >> 5u) & 0x1u);
+    dst->hazard_state = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->position_light_state = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->headlight_state = (uint8_t)(b1 & 0x3u);
+    dst->rear_fog_state = (uint8_t)((b1 >> 2u) & 0x1u);
+    dst->left_fog_state = (uint8_t)((b1 >> 3u) & 0x1u);
+    dst->right_fog_state = (uint8_t)((b1 >> 4u) & 0x1u);
+    dst->dome_light_state = (uint8_t)((b1 >> 5u) & 0x1u);
+    dst->ambient_light_state = (uint8_t)((b1 >> 6u) & 0x1u);
+    dst->door_button_state = (uint8_t)(b1 >> 7u);
+    b2 = src[2];
+    dst->vehicle_speed = (uint8_t)b2;
+    b3 = src[3];
+    dst->soc = (uint8_t)b3;
+    b4 = src[4];
+    dst->system_power_cmd = (uint8_t)(b4 & 0x3u);
+    dst->charge_state = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->charge_connection = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->vehicle_fault_level = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    b6 = src[6];
+    dst->odometer = (uint16_t)(b5 | (b6 << 8u));
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_state_1 with every raw field 0. */
@@ -3814,6 +4094,33 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
                                              const kaiwo_gateway_autocar_control_command_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    uint16_t ored10;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->downhill_regen_enable | ((uint64_t)src->cargo_lift << 1u) |
+        ((uint64_t)src->cargo_lift_speed << 3u) | ((uint64_t)src->pto_enable << 7u) |
+        ((uint64_t)src->downhill_regen_speed << 8u) | ((uint64_t)src->chassis_pitch << 16u) |
+        ((uint64_t)src->chassis_roll << 26u) | ((uint64_t)src->cargo_pitch << 36u) |
+        ((uint64_t)src->cargo_roll << 46u) | ((uint64_t)src->counter << 56u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    ored1 = src->downhill_regen_enable | src->pto_enable;
+    ored10 = src->chassis_pitch | src->chassis_roll | src->cargo_pitch | src->cargo_roll;
+    if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u) ||
+        (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -3842,6 +4149,7 @@ kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)((src->cargo_pitch >> 4u) | ((uint32_t)src->cargo_roll << 6u));
     dst[6] = (uint8_t)(src->cargo_roll >> 2u);
     dst[7] = (uint8_t)src->counter;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -3849,6 +4157,32 @@ kaiwo_gateway_autocar_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_command_2_t *dst,
                                                const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_AUTOCAR_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    dst->chassis_pitch = (uint16_t)((w >> 16u) & UINT64_C(0x3FF));
+    dst->chassis_roll = (uint16_t)((w >> 26u) & UINT64_C(0x3FF));
+    dst->cargo_pitch = (uint16_t)((w >> 36u) & UINT64_C(0x3FF));
+    dst->cargo_roll = (uint16_t)((w >> 46u) & UINT64_C(0x3FF));
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -3879,6 +4213,7 @@ kaiwo_gateway_autocar_control_command_2_unpack(kaiwo_gateway_autocar_control_com
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A autocar_control_command_2 with every raw field 0. */
@@ -4326,6 +4661,23 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->battery_voltage | ((uint64_t)src->battery_current << 16u) |
+        ((uint64_t)src->battery_charge_energy << 32u) |
+        ((uint64_t)src->battery_discharge_energy << 48u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+#else
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -4337,6 +4689,7 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)(src->battery_charge_energy >> 8u);
     dst[6] = (uint8_t)src->battery_discharge_energy;
     dst[7] = (uint8_t)(src->battery_discharge_energy >> 8u);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4344,6 +4697,20 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->battery_voltage = (uint16_t)w;
+    dst->battery_current = (uint16_t)(w >> 16u);
+    dst->battery_charge_energy = (uint16_t)(w >> 32u);
+    dst->battery_discharge_energy = (uint16_t)(w >> 48u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -4368,6 +4735,7 @@ kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const
     b7 = src[7];
     dst->battery_discharge_energy = (uint16_t)(b6 | (b7 << 8u));
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_state_2 with every raw field 0. */
@@ -4598,6 +4966,25 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_3_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint16_t ored12;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->battery_max_temp;
+    dst[1] = (uint8_t)src->battery_min_temp;
+    dst[2] = (uint8_t)src->max_cell_voltage;
+    ored12 = src->max_cell_voltage;
+    dst[3] = (uint8_t)((src->max_cell_voltage >> 8u) + ((uint32_t)src->min_cell_voltage << 4u));
+    ored12 |= src->min_cell_voltage;
+    dst[4] = (uint8_t)(src->min_cell_voltage >> 4u);
+    dst[5] = (uint8_t)src->motor_temp;
+    dst[6] = (uint8_t)src->motor_controller_temp;
+    dst[7] = 0u;
+    if ((ored12 > 4095u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -4615,6 +5002,7 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)src->motor_temp;
     dst[6] = (uint8_t)src->motor_controller_temp;
     dst[7] = 0u;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -4622,6 +5010,30 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b5;
+    uint32_t b6;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    b0 = src[0];
+    dst->battery_max_temp = (uint8_t)b0;
+    b1 = src[1];
+    dst->battery_min_temp = (uint8_t)b1;
+    dst->max_cell_voltage = (uint16_t)((w >> 16u) & UINT64_C(0xFFF));
+    dst->min_cell_voltage = (uint16_t)((w >> 28u) & UINT64_C(0xFFF));
+    b5 = src[5];
+    dst->motor_temp = (uint8_t)b5;
+    b6 = src[6];
+    dst->motor_controller_temp = (uint8_t)b6;
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -4646,6 +5058,7 @@ kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const
     b6 = src[6];
     dst->motor_controller_temp = (uint8_t)b6;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_state_3 with every raw field 0. */
@@ -5003,6 +5416,30 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_4_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->outside_temp;
+    dst[1] = (uint8_t)src->inside_temp;
+    dst[2] = (uint8_t)(src->ac_state + ((uint32_t)src->vehicle_power_state << 4u) +
+                       ((uint32_t)src->hill_hold_state << 6u) +
+                       ((uint32_t)src->regen_brake_state << 7u));
+    ored1 = src->hill_hold_state | src->regen_brake_state;
+    dst[3] = (uint8_t)src->remaining_range;
+    dst[4] = (uint8_t)((src->remaining_range >> 8u) + ((uint32_t)src->manual_takeover_state << 4u) +
+                       ((uint32_t)src->remote_driving_allowed << 7u));
+    ored1 |= src->manual_takeover_state | src->remote_driving_allowed;
+    dst[5] = (uint8_t)(src->ac_set_temp + ((uint32_t)src->pto_state << 5u));
+    ored1 |= src->pto_state;
+    dst[6] = (uint8_t)src->battery_power;
+    dst[7] = (uint8_t)(src->battery_power >> 8u);
+    if ((ored1 > 1u) || (src->vehicle_power_state > 3u) || (src->ac_state > 15u) ||
+        (src->ac_set_temp > 31u) || (src->remaining_range > 4095u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -5030,6 +5467,7 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)(src->ac_set_temp | ((uint32_t)src->pto_state << 5u));
     dst[6] = (uint8_t)src->battery_power;
     dst[7] = (uint8_t)(src->battery_power >> 8u);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -5037,6 +5475,42 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    b0 = src[0];
+    dst->outside_temp = (uint8_t)b0;
+    b1 = src[1];
+    dst->inside_temp = (uint8_t)b1;
+    b2 = src[2];
+    dst->ac_state = (uint8_t)(b2 & 0xFu);
+    dst->vehicle_power_state = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->hill_hold_state = (uint8_t)((b2 >> 6u) & 0x1u);
+    dst->regen_brake_state = (uint8_t)(b2 >> 7u);
+    dst->remaining_range = (uint16_t)((w >> 24u) & UINT64_C(0xFFF));
+    b4 = src[4];
+    dst->manual_takeover_state = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->remote_driving_allowed = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->ac_set_temp = (uint8_t)(b5 & 0x1Fu);
+    dst->pto_state = (uint8_t)((b5 >> 5u) & 0x1u);
+    b6 = src[6];
+    b7 = src[7];
+    dst->battery_power = (uint16_t)(b6 | (b7 << 8u));
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -5069,6 +5543,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
     b7 = src[7];
     dst->battery_power = (uint16_t)(b6 | (b7 << 8u));
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_state_4 with every raw field 0. */
@@ -5773,6 +6248,54 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_vehicle_fault_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    uint8_t ored2;
+    uint8_t ored4;
+    if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->insulation_fault_level + ((uint32_t)src->dc_fault << 2u) +
+                       ((uint32_t)src->soc_low << 3u) + ((uint32_t)src->cell_undervoltage << 4u) +
+                       ((uint32_t)src->brake_boost_pressure_fault << 5u) +
+                       ((uint32_t)src->vacuum_pump_fault << 6u) +
+                       ((uint32_t)src->vehicle_system_fault << 7u));
+    ored2 = src->insulation_fault_level;
+    ored1 = src->dc_fault | src->soc_low | src->cell_undervoltage |
+            src->brake_boost_pressure_fault | src->vacuum_pump_fault | src->vehicle_system_fault;
+    dst[1] =
+        (uint8_t)(src->battery_overheat + ((uint32_t)src->motor_overheat << 1u) +
+                  ((uint32_t)src->traction_battery_fault << 2u) +
+                  ((uint32_t)src->motor_fault << 3u) + ((uint32_t)src->battery_comm_fault << 4u) +
+                  ((uint32_t)src->motor_comm_fault << 5u) + ((uint32_t)src->eps_fault << 6u) +
+                  ((uint32_t)src->ac_fault << 7u));
+    ored1 |= src->battery_overheat | src->motor_overheat | src->traction_battery_fault |
+             src->motor_fault | src->battery_comm_fault | src->motor_comm_fault | src->eps_fault |
+             src->ac_fault;
+    dst[2] = (uint8_t)(src->aux_battery_fault + ((uint32_t)src->epb_fault << 1u) +
+                       ((uint32_t)src->brake_by_wire_fault << 2u) +
+                       ((uint32_t)src->key_not_detected << 3u) +
+                       ((uint32_t)src->tire_pressure_low << 4u) +
+                       ((uint32_t)src->body_motor_fault << 5u) +
+                       ((uint32_t)src->body_motor_overheat << 6u));
+    ored1 |= src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
+             src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
+             src->body_motor_overheat;
+    dst[3] = (uint8_t)(src->battery_system_fault_level +
+                       ((uint32_t)src->motor_system_fault_level << 2u) +
+                       ((uint32_t)src->unmanned_entry_fault << 4u));
+    ored2 |= src->battery_system_fault_level | src->motor_system_fault_level;
+    ored4 = src->unmanned_entry_fault;
+    dst[4] = (uint8_t)(src->protocol_version_a + ((uint32_t)src->protocol_version_b << 4u));
+    ored4 |= src->protocol_version_a | src->protocol_version_b;
+    dst[5] = (uint8_t)(src->protocol_version_c + ((uint32_t)src->remote_entry_fault << 4u));
+    ored4 |= src->protocol_version_c | src->remote_entry_fault;
+    dst[6] = 0u;
+    dst[7] = 0u;
+    if ((ored1 > 1u) || (ored2 > 3u) || (ored4 > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -5825,6 +6348,7 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->remote_entry_fault << 4u));
     dst[6] = 0u;
     dst[7] = 0u;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -5832,6 +6356,7 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uint8_t *src,
                                    size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -5877,6 +6402,53 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
     dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
     dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->insulation_fault_level = (uint8_t)(b0 & 0x3u);
+    dst->dc_fault = (uint8_t)((b0 >> 2u) & 0x1u);
+    dst->soc_low = (uint8_t)((b0 >> 3u) & 0x1u);
+    dst->cell_undervoltage = (uint8_t)((b0 >> 4u) & 0x1u);
+    dst->brake_boost_pressure_fault = (uint8_t)((b0 >> 5u) & 0x1u);
+    dst->vacuum_pump_fault = (uint8_t)((b0 >> 6u) & 0x1u);
+    dst->vehicle_system_fault = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->battery_overheat = (uint8_t)(b1 & 0x1u);
+    dst->motor_overheat = (uint8_t)((b1 >> 1u) & 0x1u);
+    dst->traction_battery_fault = (uint8_t)((b1 >> 2u) & 0x1u);
+    dst->motor_fault = (uint8_t)((b1 >> 3u) & 0x1u);
+    dst->battery_comm_fault = (uint8_t)((b1 >> 4u) & 0x1u);
+    dst->motor_comm_fault = (uint8_t)((b1 >> 5u) & 0x1u);
+    dst->eps_fault = (uint8_t)((b1 >> 6u) & 0x1u);
+    dst->ac_fault = (uint8_t)(b1 >> 7u);
+    b2 = src[2];
+    dst->aux_battery_fault = (uint8_t)(b2 & 0x1u);
+    dst->epb_fault = (uint8_t)((b2 >> 1u) & 0x1u);
+    dst->brake_by_wire_fault = (uint8_t)((b2 >> 2u) & 0x1u);
+    dst->key_not_detected = (uint8_t)((b2 >> 3u) & 0x1u);
+    dst->tire_pressure_low = (uint8_t)((b2 >> 4u) & 0x1u);
+    dst->body_motor_fault = (uint8_t)((b2 >> 5u) & 0x1u);
+    dst->body_motor_overheat = (uint8_t)((b2 >> 6u) & 0x1u);
+    b3 = src[3];
+    dst->battery_system_fault_level = (uint8_t)(b3 & 0x3u);
+    dst->motor_system_fault_level = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->unmanned_entry_fault = (uint8_t)(b3 >> 4u);
+    b4 = src[4];
+    dst->protocol_version_a = (uint8_t)(b4 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b4 >> 4u);
+    b5 = src[5];
+    dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
+    dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_fault with every raw field 0. */
@@ -7347,6 +7919,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
+#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -7368,6 +7941,29 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -7376,6 +7972,35 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *dst,
                                          const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint64_t w;
+    uint64_t x;
+    if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->accel_cmd = (uint16_t)(w & UINT64_C(0x3FF));
+    b1 = src[1];
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    dst->checksum = (uint8_t)b7;
+    x = w ^ (w >> 32u);
+    x ^= x >> 16u;
+    x ^= x >> 8u;
+    x &= 0xFFu;
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -7405,6 +8030,7 @@ kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *ds
     x ^= src[5];
     x ^= src[6];
     return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#endif
 }
 
 /** A rgate_speed_command with every raw field 0. */
@@ -7753,6 +8379,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored2;
+    uint8_t ored4;
+    if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->drive_mode_cmd + ((uint32_t)src->door_cmd << 2u) +
+                       ((uint32_t)src->horn_cmd << 4u) + ((uint32_t)src->drl_cmd << 6u));
+    ored2 = src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd;
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd + ((uint32_t)src->right_turn_cmd << 2u) +
+                  ((uint32_t)src->hazard_cmd << 4u) + ((uint32_t)src->position_light_cmd << 6u));
+    ored2 |= src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd;
+    dst[2] = (uint8_t)(src->headlight_cmd + ((uint32_t)src->rear_fog_cmd << 2u) +
+                       ((uint32_t)src->left_fog_cmd << 4u) + ((uint32_t)src->right_fog_cmd << 6u));
+    ored2 |= src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd;
+    dst[3] = (uint8_t)(src->dome_light_cmd + ((uint32_t)src->ambient_light_cmd << 2u) +
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    ored2 |= src->dome_light_cmd | src->ambient_light_cmd;
+    dst[4] = (uint8_t)(src->system_state + ((uint32_t)src->system_reliability << 2u) +
+                       ((uint32_t)src->system_fault_level << 4u) + ((uint32_t)src->lock_cmd << 6u));
+    ored2 |= src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd;
+    dst[5] = (uint8_t)(src->ac_cmd + ((uint32_t)src->ac_set_temp << 3u));
+    dst[6] = (uint8_t)(src->protocol_version_a + ((uint32_t)src->protocol_version_b << 4u));
+    ored4 = src->protocol_version_a | src->protocol_version_b;
+    dst[7] = (uint8_t)(src->protocol_version_c + ((uint32_t)src->counter << 4u));
+    ored4 |= src->protocol_version_c | src->counter;
+    if ((src->drive_mode_reset > 1u) || (ored2 > 3u) || (src->ac_cmd > 7u) || (ored4 > 15u) ||
+        (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -7796,6 +8454,7 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -7803,6 +8462,7 @@ kaiwo_gateway_rgate_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command_1_t *dst,
                                              const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -7848,6 +8508,53 @@ kaiwo_gateway_rgate_control_command_1_unpack(kaiwo_gateway_rgate_control_command
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rgate_control_command_1 with every raw field 0. */
@@ -8891,6 +9598,25 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_rgate_control_command_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->downhill_regen_enable + ((uint32_t)src->cargo_lift << 1u) +
+                       ((uint32_t)src->cargo_lift_speed << 3u) + ((uint32_t)src->pto_enable << 7u));
+    ored1 = src->downhill_regen_enable | src->pto_enable;
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    dst[2] = 0u;
+    dst[3] = 0u;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)src->counter;
+    if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -8907,6 +9633,7 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)src->counter;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8914,6 +9641,7 @@ kaiwo_gateway_rgate_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command_2_t *dst,
                                              const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -8930,6 +9658,24 @@ kaiwo_gateway_rgate_control_command_2_unpack(kaiwo_gateway_rgate_control_command
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_RGATE_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rgate_control_command_2 with every raw field 0. */
@@ -9196,6 +9942,26 @@ typedef struct {
  * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_device_id_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->device_type | ((uint64_t)src->id_frame_index << 6u) |
+        ((uint64_t)src->id_chars << 8u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    if ((src->id_frame_index > 3u) || (src->device_type > 63u) ||
+        (src->id_chars > UINT64_C(72057594037927935))) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -9213,12 +9979,28 @@ kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_devi
     dst[5] = (uint8_t)((uint32_t)(src->id_chars >> 32u));
     dst[6] = (uint8_t)(((uint32_t)(src->id_chars >> 32u)) >> 8u);
     dst[7] = (uint8_t)(((uint32_t)(src->id_chars >> 32u)) >> 16u);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b0;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    b0 = src[0];
+    dst->device_type = (uint8_t)(b0 & 0x3Fu);
+    dst->id_frame_index = (uint8_t)(b0 >> 6u);
+    dst->id_chars = (uint64_t)((w >> 8u) & UINT64_C(0xFFFFFFFFFFFFFF));
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -9246,6 +10028,7 @@ kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *sr
     hi = (b5 | (b6 << 8u) | (b7 << 16u));
     dst->id_chars = (uint64_t)(((uint64_t)hi << 32u) | (uint64_t)lo);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A device_id with every raw field 0. */
@@ -9424,6 +10207,30 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint16_t ored10;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 10u) |
+        ((uint64_t)src->sensor_3_distance << 20u) | ((uint64_t)src->sensor_4_distance << 30u) |
+        ((uint64_t)src->sensor_5_distance << 40u) | ((uint64_t)src->sensor_6_distance << 50u) |
+        ((uint64_t)src->counter << 60u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
+    if ((src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -9456,6 +10263,7 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)((src->sensor_6_distance >> 6u) | ((uint32_t)src->counter << 4u));
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -9463,6 +10271,25 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance_1_t *dst,
                                              const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->sensor_1_distance = (uint16_t)(w & UINT64_C(0x3FF));
+    dst->sensor_2_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
+    dst->sensor_3_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));
+    dst->sensor_4_distance = (uint16_t)((w >> 30u) & UINT64_C(0x3FF));
+    dst->sensor_5_distance = (uint16_t)((w >> 40u) & UINT64_C(0x3FF));
+    dst->sensor_6_distance = (uint16_t)((w >> 50u) & UINT64_C(0x3FF));
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -9490,6 +10317,7 @@ kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance
     dst->sensor_6_distance = (uint16_t)((b6 >> 2u) | ((b7 & 0xFu) << 6u));
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A front_sensor_distance_1 with every raw field 0. */
@@ -9918,6 +10746,36 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    uint16_t ored10;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 10u) |
+        ((uint64_t)src->sensor_9_distance << 20u) | ((uint64_t)src->uss_system_state << 32u) |
+        ((uint64_t)src->sensor_1_fault << 34u) | ((uint64_t)src->sensor_2_fault << 35u) |
+        ((uint64_t)src->sensor_3_fault << 36u) | ((uint64_t)src->sensor_4_fault << 37u) |
+        ((uint64_t)src->sensor_5_fault << 38u) | ((uint64_t)src->sensor_6_fault << 39u) |
+        ((uint64_t)src->sensor_7_fault << 40u) | ((uint64_t)src->sensor_8_fault << 41u) |
+        ((uint64_t)src->sensor_9_fault << 42u) | ((uint64_t)src->counter << 60u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    ored10 = src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance;
+    ored1 = src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+            src->sensor_5_fault | src->sensor_6_fault | src->sensor_7_fault | src->sensor_8_fault |
+            src->sensor_9_fault;
+    if ((ored1 > 1u) || (src->uss_system_state > 3u) || (src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -9954,6 +10812,7 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)((uint32_t)src->counter << 4u);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -9961,6 +10820,36 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance_2_t *dst,
                                              const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->sensor_7_distance = (uint16_t)(w & UINT64_C(0x3FF));
+    dst->sensor_8_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
+    dst->sensor_9_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));
+    b4 = src[4];
+    dst->uss_system_state = (uint8_t)(b4 & 0x3u);
+    dst->sensor_1_fault = (uint8_t)((b4 >> 2u) & 0x1u);
+    dst->sensor_2_fault = (uint8_t)((b4 >> 3u) & 0x1u);
+    dst->sensor_3_fault = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->sensor_4_fault = (uint8_t)((b4 >> 5u) & 0x1u);
+    dst->sensor_5_fault = (uint8_t)((b4 >> 6u) & 0x1u);
+    dst->sensor_6_fault = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->sensor_7_fault = (uint8_t)(b5 & 0x1u);
+    dst->sensor_8_fault = (uint8_t)((b5 >> 1u) & 0x1u);
+    dst->sensor_9_fault = (uint8_t)((b5 >> 2u) & 0x1u);
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -9993,6 +10882,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
     b7 = src[7];
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A front_sensor_distance_2 with every raw field 0. */
@@ -10615,6 +11505,30 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint16_t ored10;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 10u) |
+        ((uint64_t)src->sensor_3_distance << 20u) | ((uint64_t)src->sensor_4_distance << 30u) |
+        ((uint64_t)src->sensor_5_distance << 40u) | ((uint64_t)src->sensor_6_distance << 50u) |
+        ((uint64_t)src->counter << 60u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
+    if ((src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -10647,6 +11561,7 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)((src->sensor_6_distance >> 6u) | ((uint32_t)src->counter << 4u));
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -10654,6 +11569,25 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1_t *dst,
                                             const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->sensor_1_distance = (uint16_t)(w & UINT64_C(0x3FF));
+    dst->sensor_2_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
+    dst->sensor_3_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));
+    dst->sensor_4_distance = (uint16_t)((w >> 30u) & UINT64_C(0x3FF));
+    dst->sensor_5_distance = (uint16_t)((w >> 40u) & UINT64_C(0x3FF));
+    dst->sensor_6_distance = (uint16_t)((w >> 50u) & UINT64_C(0x3FF));
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -10681,6 +11615,7 @@ kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1
     dst->sensor_6_distance = (uint16_t)((b6 >> 2u) | ((b7 & 0xFu) << 6u));
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rear_sensor_distance_1 with every raw field 0. */
@@ -11106,6 +12041,36 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    uint16_t ored10;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src->sensor_7_distance | ((uint64_t)src->sensor_8_distance << 10u) |
+        ((uint64_t)src->sensor_9_distance << 20u) | ((uint64_t)src->uss_system_state << 32u) |
+        ((uint64_t)src->sensor_1_fault << 34u) | ((uint64_t)src->sensor_2_fault << 35u) |
+        ((uint64_t)src->sensor_3_fault << 36u) | ((uint64_t)src->sensor_4_fault << 37u) |
+        ((uint64_t)src->sensor_5_fault << 38u) | ((uint64_t)src->sensor_6_fault << 39u) |
+        ((uint64_t)src->sensor_7_fault << 40u) | ((uint64_t)src->sensor_8_fault << 41u) |
+        ((uint64_t)src->sensor_9_fault << 42u) | ((uint64_t)src->counter << 60u);
+    dst[0] = (uint8_t)w;
+    dst[1] = (uint8_t)(w >> 8u);
+    dst[2] = (uint8_t)(w >> 16u);
+    dst[3] = (uint8_t)(w >> 24u);
+    dst[4] = (uint8_t)(w >> 32u);
+    dst[5] = (uint8_t)(w >> 40u);
+    dst[6] = (uint8_t)(w >> 48u);
+    dst[7] = (uint8_t)(w >> 56u);
+    ored10 = src->sensor_7_distance | src->sensor_8_distance | src->sensor_9_distance;
+    ored1 = src->sensor_1_fault | src->sensor_2_fault | src->sensor_3_fault | src->sensor_4_fault |
+            src->sensor_5_fault | src->sensor_6_fault | src->sensor_7_fault | src->sensor_8_fault |
+            src->sensor_9_fault;
+    if ((ored1 > 1u) || (src->uss_system_state > 3u) || (src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -11142,6 +12107,7 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)((uint32_t)src->counter << 4u);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -11149,6 +12115,36 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2_t *dst,
                                             const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b7;
+    uint64_t w;
+    if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->sensor_7_distance = (uint16_t)(w & UINT64_C(0x3FF));
+    dst->sensor_8_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
+    dst->sensor_9_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));
+    b4 = src[4];
+    dst->uss_system_state = (uint8_t)(b4 & 0x3u);
+    dst->sensor_1_fault = (uint8_t)((b4 >> 2u) & 0x1u);
+    dst->sensor_2_fault = (uint8_t)((b4 >> 3u) & 0x1u);
+    dst->sensor_3_fault = (uint8_t)((b4 >> 4u) & 0x1u);
+    dst->sensor_4_fault = (uint8_t)((b4 >> 5u) & 0x1u);
+    dst->sensor_5_fault = (uint8_t)((b4 >> 6u) & 0x1u);
+    dst->sensor_6_fault = (uint8_t)(b4 >> 7u);
+    b5 = src[5];
+    dst->sensor_7_fault = (uint8_t)(b5 & 0x1u);
+    dst->sensor_8_fault = (uint8_t)((b5 >> 1u) & 0x1u);
+    dst->sensor_9_fault = (uint8_t)((b5 >> 2u) & 0x1u);
+    b7 = src[7];
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -11181,6 +12177,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
     b7 = src[7];
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rear_sensor_distance_2 with every raw field 0. */
@@ -12027,6 +13024,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
+#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -12048,6 +13046,29 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->throttle_brake_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->throttle_brake_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->throttle_brake_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12056,6 +13077,35 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst, const uint8_t *src,
                                         size_t size) {
+#if KAIWO_GATEWAY_WORD64
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b7;
+    uint64_t w;
+    uint64_t x;
+    if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
+        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
+        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    dst->throttle_brake_cmd = (uint16_t)(w & UINT64_C(0x3FF));
+    b1 = src[1];
+    dst->epb_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->gear_cmd = (uint8_t)(b1 >> 4u);
+    b2 = src[2];
+    dst->counter = (uint8_t)b2;
+    b3 = src[3];
+    dst->emergency_brake_cmd = (uint8_t)(b3 & 0x1u);
+    b7 = src[7];
+    dst->checksum = (uint8_t)b7;
+    x = w ^ (w >> 32u);
+    x ^= x >> 16u;
+    x ^= x >> 8u;
+    x &= 0xFFu;
+    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -12085,6 +13135,7 @@ kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst,
     x ^= src[5];
     x ^= src[6];
     return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
+#endif
 }
 
 /** A tele_speed_command with every raw field 0. */
@@ -12434,6 +13485,38 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_1_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored2;
+    uint8_t ored4;
+    if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->drive_mode_cmd + ((uint32_t)src->door_cmd << 2u) +
+                       ((uint32_t)src->horn_cmd << 4u) + ((uint32_t)src->drl_cmd << 6u));
+    ored2 = src->drive_mode_cmd | src->door_cmd | src->horn_cmd | src->drl_cmd;
+    dst[1] =
+        (uint8_t)(src->left_turn_cmd + ((uint32_t)src->right_turn_cmd << 2u) +
+                  ((uint32_t)src->hazard_cmd << 4u) + ((uint32_t)src->position_light_cmd << 6u));
+    ored2 |= src->left_turn_cmd | src->right_turn_cmd | src->hazard_cmd | src->position_light_cmd;
+    dst[2] = (uint8_t)(src->headlight_cmd + ((uint32_t)src->rear_fog_cmd << 2u) +
+                       ((uint32_t)src->left_fog_cmd << 4u) + ((uint32_t)src->right_fog_cmd << 6u));
+    ored2 |= src->headlight_cmd | src->rear_fog_cmd | src->left_fog_cmd | src->right_fog_cmd;
+    dst[3] = (uint8_t)(src->dome_light_cmd + ((uint32_t)src->ambient_light_cmd << 2u) +
+                       ((uint32_t)src->drive_mode_reset << 4u));
+    ored2 |= src->dome_light_cmd | src->ambient_light_cmd;
+    dst[4] = (uint8_t)(src->system_state + ((uint32_t)src->system_reliability << 2u) +
+                       ((uint32_t)src->system_fault_level << 4u) + ((uint32_t)src->lock_cmd << 6u));
+    ored2 |= src->system_state | src->system_reliability | src->system_fault_level | src->lock_cmd;
+    dst[5] = (uint8_t)(src->ac_cmd + ((uint32_t)src->ac_set_temp << 3u));
+    dst[6] = (uint8_t)(src->protocol_version_a + ((uint32_t)src->protocol_version_b << 4u));
+    ored4 = src->protocol_version_a | src->protocol_version_b;
+    dst[7] = (uint8_t)(src->protocol_version_c + ((uint32_t)src->counter << 4u));
+    ored4 |= src->protocol_version_c | src->counter;
+    if ((src->drive_mode_reset > 1u) || (ored2 > 3u) || (src->ac_cmd > 7u) || (ored4 > 15u) ||
+        (src->ac_set_temp > 31u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -12477,6 +13560,7 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[7] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->counter << 4u));
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12484,6 +13568,7 @@ kaiwo_gateway_tele_control_command_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1_t *dst,
                                             const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -12529,6 +13614,53 @@ kaiwo_gateway_tele_control_command_1_unpack(kaiwo_gateway_tele_control_command_1
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b2;
+    uint32_t b3;
+    uint32_t b4;
+    uint32_t b5;
+    uint32_t b6;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
+    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)(b0 >> 6u);
+    b1 = src[1];
+    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
+    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
+    b2 = src[2];
+    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
+    b3 = src[3];
+    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
+    b4 = src[4];
+    dst->system_state = (uint8_t)(b4 & 0x3u);
+    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)(b4 >> 6u);
+    b5 = src[5];
+    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
+    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
+    b6 = src[6];
+    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
+    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
+    b7 = src[7];
+    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
+    dst->counter = (uint8_t)(b7 >> 4u);
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A tele_control_command_1 with every raw field 0. */
@@ -13572,6 +14704,25 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_tele_control_command_2_t *src) {
+#if KAIWO_GATEWAY_WORD64
+    uint8_t ored1;
+    if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->downhill_regen_enable + ((uint32_t)src->cargo_lift << 1u) +
+                       ((uint32_t)src->cargo_lift_speed << 3u) + ((uint32_t)src->pto_enable << 7u));
+    ored1 = src->downhill_regen_enable | src->pto_enable;
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    dst[2] = 0u;
+    dst[3] = 0u;
+    dst[4] = 0u;
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)src->counter;
+    if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+#else
     if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -13588,6 +14739,7 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)src->counter;
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -13595,6 +14747,7 @@ kaiwo_gateway_tele_control_command_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2_t *dst,
                                             const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -13611,6 +14764,24 @@ kaiwo_gateway_tele_control_command_2_unpack(kaiwo_gateway_tele_control_command_2
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#else
+    uint32_t b0;
+    uint32_t b1;
+    uint32_t b7;
+    if (size < KAIWO_GATEWAY_TELE_CONTROL_COMMAND_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    b0 = src[0];
+    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
+    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)(b0 >> 7u);
+    b1 = src[1];
+    dst->downhill_regen_speed = (uint8_t)b1;
+    b7 = src[7];
+    dst->counter = (uint8_t)b7;
+    return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A tele_control_command_2 with every raw field 0. */

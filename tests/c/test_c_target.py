@@ -197,6 +197,16 @@ int main(void) {
     s.controller_temp = 31;
     if (kaiwo_gateway_eps_state_pack(f, 8, &s) != KAIWO_GATEWAY_OK || f[5] != 0x1Fu) return 4;
     if (kaiwo_gateway_eps_state_unpack(&t, f, 8) != KAIWO_GATEWAY_OK || t.controller_temp != 31) return 5;
+    kaiwo_gateway_front_sensor_distance_1_t d = kaiwo_gateway_front_sensor_distance_1_init(), e;
+    d.sensor_2_distance = -3; /* 10 bits at 10, across bytes 1 and 2: 0x3FD */
+    d.sensor_3_distance = 0x155u;
+    if (kaiwo_gateway_front_sensor_distance_1_pack(f, 8, &d) != KAIWO_GATEWAY_OK || f[0] != 0u || f[1] != 0xF4u || f[2] != 0x5Fu || f[3] != 0x15u) return 6;
+    if (kaiwo_gateway_front_sensor_distance_1_unpack(&e, f, 8) != KAIWO_GATEWAY_OK || e.sensor_2_distance != -3 || e.sensor_3_distance != 0x155u) return 7;
+    d.sensor_2_distance = -513; /* does not fit 10 signed bits */
+    if (kaiwo_gateway_front_sensor_distance_1_pack(f, 8, &d) != KAIWO_GATEWAY_ERR_RANGE) return 8;
+    d.sensor_2_distance = 511;
+    if (kaiwo_gateway_front_sensor_distance_1_pack(f, 8, &d) != KAIWO_GATEWAY_OK || f[1] != 0xFCu || f[2] != 0x57u) return 9;
+    if (kaiwo_gateway_front_sensor_distance_1_unpack(&e, f, 8) != KAIWO_GATEWAY_OK || e.sensor_2_distance != 511) return 10;
     puts("signed ok");
     return 0;
 }
@@ -205,14 +215,18 @@ int main(void) {
 
 @pytest.mark.parametrize("words", ["1", "0"])
 def test_signed_fields_pack_and_unpack(spec, tmp_path, words):
-    """No signal of this document is signed: a spec variant with a 6-bit signed field checks the
-    sign extension and the signed range check, on both code paths."""
+    """No signal of this document is signed: a spec variant with a 6-bit signed field inside a
+    byte and a 10-bit one across bytes (read and written through the frame word under
+    KAIWO_GATEWAY_WORD64) checks the sign extension and the signed range check, on both code
+    paths."""
     import dataclasses
 
-    can = spec.can
-    i, msg = next((i, m) for i, m in enumerate(can.messages) if m.name == "eps_state")
-    sigs = tuple(_signed(s, -32, 31) if s.name == "controller_temp" else s for s in msg.signals)
-    variant = dataclasses.replace(spec, can=dataclasses.replace(can, messages=(*can.messages[:i], dataclasses.replace(msg, signals=sigs), *can.messages[i + 1:])))
+    signed = {("eps_state", "controller_temp"): (-32, 31), ("front_sensor_distance_1", "sensor_2_distance"): (-512, 511)}
+    messages = tuple(
+        dataclasses.replace(m, signals=tuple(_signed(s, *signed[(m.name, s.name)]) if (m.name, s.name) in signed else s for s in m.signals))
+        for m in spec.can.messages
+    )
+    variant = dataclasses.replace(spec, can=dataclasses.replace(spec.can, messages=messages))
     out = tmp_path / "c"
     out.mkdir()
     for rel, data in c_target.render_c(variant).items():

@@ -10,6 +10,9 @@ Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits
 no read-modify-write), with the check that the fields starting in it fit their bits. Unpack reads each frame
 byte once into a local when its first field needs it (stores to *dst may alias src, so reading
 it again later would cost a load each time), and folds it into the XOR the checksum needs.
+
+Cores with 64-bit registers (x86-64, AArch64: <PREFIX>_WORD64) run codec64.py's forms where the
+generator estimates them cheaper there.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ class CCodec:
     pack: tuple[str, ...]  # statements writing dst[0 .. dlc-1], returning `err` if a field does not fit
     unpack_locals: tuple[str, ...]
     unpack: tuple[str, ...]  # statements filling *dst from src (and, with a checksum, x)
+    pack_locals: tuple[str, ...] = ()  # codec64.py's forms declare some
 
 
 _OPERAND = re.compile(r"(\(uint32_t\))?\w+(\[\d+\]|->\w+)?")  # b3, src[5], src->f, (uint32_t)src->f
@@ -77,7 +81,7 @@ def _halves(s: CSignal, wide: bool) -> tuple[str, str]:
     return (f"(uint32_t){field}" if cast else field), (f"(uint32_t)({field} >> 32u)" if bits == 64 else "")
 
 
-def _piece(s: CSignal, seg: ir.Segment) -> str:
+def piece(s: CSignal, seg: ir.Segment) -> str:
     """Pack: the segment's value bits, placed at its bits of the byte (bits above the byte are
     cut by the store). Only a signed field's top piece needs a mask: below the top the field
     goes on into the next byte, and an unsigned field is checked to fit its bits. A left shift
@@ -127,7 +131,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
     for s in sigs:
         starting.setdefault(s.sig.segments[0].byte, []).append(s)
         for seg in s.sig.segments:
-            pieces.setdefault(seg.byte, []).append(_piece(s, seg))
+            pieces.setdefault(seg.byte, []).append(piece(s, seg))
     out = []
     for k in range(dlc):
         checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)
@@ -171,7 +175,7 @@ def _assemble(s: CSignal) -> tuple[list[str], str]:
     return stmts, "(((uint64_t)hi << 32u) | (uint64_t)lo)"
 
 
-def _store(s: CSignal) -> list[str]:
+def store(s: CSignal) -> list[str]:
     stmts, bits = _assemble(s)
     field, n, t = f"dst->{s.field}", s.length, s.type
     if not s.sig.signed:
@@ -194,7 +198,7 @@ def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[
             if checksum:
                 body.append(f"x {'^=' if held else '='} b{k};")
             held.append(k)
-        body += _store(s)
+        body += store(s)
     if checksum:  # the bytes no field reads (reserved) are covered too
         rest = [k for k in range(dlc) if k not in held]
         body += [f"x {'^=' if held or i else '='} src[{k}];" for i, k in enumerate(rest)]

@@ -13,6 +13,7 @@ from canspec import ir
 from canspec.ir.names import snake
 from canspec.render.literals import c_hex, c_uint, hex32, hex_byte
 from canspec.targets.c.codec import CCodec, build_codec
+from canspec.targets.c.codec64 import build_codec64
 from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal, build_signal
 
@@ -48,7 +49,8 @@ class CMessage:
     counter_start: str  # msg_info_t.counter_start: its first bit in the frame
     j1939: CJ1939 | None
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
-    codec: CCodec
+    codec: CCodec  # the byte form: every core
+    codec64: CCodec | None  # under <PREFIX>_WORD64 (x86-64, AArch64), where it differs
     counter: CSignal | None
     counter_mask: str
     comment: str
@@ -66,13 +68,15 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     sigs = tuple(build_signal(names, msg, s, enum_types) for s in msg.data_signals)
     counter = next((s for s in sigs if msg.counter and s.sig.name == msg.counter.signal), None)
     base = names.message(msg.name)
+    err = names.const("err_range")
+    codec = build_codec(msg, sigs, err)
     return CMessage(
         msg=msg, name=snake(msg.name), macro=names.const(base), fn=names.fn(base),
         type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.name),
         frame_id=f"{msg.id_text}u", fingerprint=f"{hex32(msg.fingerprint)}u", dlc=c_uint(msg.dlc), cycle_ms=c_uint(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
         info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else c_uint(0),
         counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0), counter_start=c_uint(msg.counter.start if msg.counter else 0),
-        signals=sigs, codec=build_codec(msg, sigs, names.const("err_range")),
+        signals=sigs, codec=codec, codec64=build_codec64(msg, sigs, err, codec),
         counter=counter, counter_mask=c_hex(msg.counter.modulo - 1) if msg.counter else "",
         comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,
     )

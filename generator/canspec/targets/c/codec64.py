@@ -1,0 +1,231 @@
+"""Pack and unpack of one message for the cores with 64-bit registers and unaligned loads and
+stores (x86-64, AArch64): the headers' <PREFIX>_WORD64 strategy, where it differs from the byte
+form of codec.py, which every other core runs.
+
+The byte form pays there for what small cores need: a branch per byte's range check (so that
+few fields are held in registers at once) and, for a field that crosses bytes, a reload, shifts
+and an OR per byte it touches (a store to dst may alias src). Per message the generator picks
+(by the instruction estimates below, x86-64 gcc -O2; tests/c/bench.py measures them):
+
+- pack, frame word: each field placed at its start bit in a uint64_t `w` (the frame read as a
+  little-endian integer: byte k is bits 8k..8k+7), the checksum byte the XOR fold of the others,
+  then the bytes stored from `w` (compilers merge the byte stores into one word store, as they
+  merge the byte loads of unpack's `w` into one load: the C itself is byte order independent);
+- pack, byte sum: each byte once as the sum of its fields' pieces (disjoint bits once the fields
+  fit, so the sum is their OR; x86 folds a shift by 1-3 and an add into one `lea`);
+- otherwise the byte form's pack.
+Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
+fields of a bit count shared by several are OR'd into `ored<n>` byte by byte, read again after the
+byte's store (a memory operand on x86), a lone field compared in the check itself.
+
+Unpack reads a field that crosses bytes off byte boundaries (and every 64-bit field) from `w` by
+its start bit and mask, every field from `w` where all of them cross bytes, the others from their
+byte as codec.py does; with `w` loaded the XOR checksum is folded from it.
+"""
+
+from __future__ import annotations
+
+from canspec import ir
+from canspec.render.literals import c_hex, c_int, c_uint
+from canspec.targets.c.codec import CCodec, paren, piece, shl, shr, store
+from canspec.targets.c.signals import CSignal
+
+FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
+FOLD_COST = 14  # x86-64 instructions to fold the word and merge the checksum byte into it
+MARGIN = 2  # the word form where its estimate is at least this much lower (near ties go either way)
+
+
+def _ored(sigs: tuple[CSignal, ...]) -> dict[int, list[str]]:
+    """The unsigned fields narrower than their type, by bit count (their OR exceeds the count's
+    maximum exactly when one of them does)."""
+    out: dict[int, list[str]] = {}
+    for s in sigs:
+        if not s.sig.signed and s.length != s.sig.storage_bits:
+            out.setdefault(s.length, []).append(f"src->{s.field}")
+    return out
+
+
+def _shared(sigs: tuple[CSignal, ...]) -> set[int]:
+    """The bit counts of two or more checked fields: OR'd into a local `ored<n>` as the bytes go."""
+    return {n for n, fields in _ored(sigs).items() if len(fields) > 1}
+
+
+def _check(sigs: tuple[CSignal, ...], err: str) -> list[str]:
+    """The message's one range check: per bit count the OR of its fields (`ored<n>`, or the one
+    field) against the count's maximum, two compares per signed field narrower than its type."""
+    shared = _shared(sigs)
+    terms = [f"({f'ored{n}' if n in shared else f[0]} > {c_uint((1 << n) - 1)})" for n, f in sorted(_ored(sigs).items())]
+    for s in sigs:
+        if s.sig.signed and s.length != s.sig.storage_bits:
+            bits, field = s.sig.storage_bits, f"src->{s.field}"
+            terms += [f"({field} < {c_int(s.sig.raw_type_min, bits)})", f"({field} > {c_int(s.sig.raw_type_max, bits)})"]
+    return [f"if ({' || '.join(terms)}) {{", f"return {err};", "}"] if terms else []
+
+
+def _check_locals(sigs: tuple[CSignal, ...]) -> list[str]:
+    """`ored<n>` in the type of the n-bit fields."""
+    types = {s.length: s.type for s in sigs}
+    return [f"{types[n]} ored{n};" for n in sorted(_shared(sigs))]
+
+
+def _accumulate(sigs: tuple[CSignal, ...], shared: set[int], seen: set[int]) -> list[str]:
+    """`ored<n> |= ...` for these fields of the shared bit counts (`=` for a count's first)."""
+    out = []
+    for n, fields in _ored(sigs).items():
+        if n in shared:
+            out.append(f"ored{n} {'|=' if n in seen else '='} {' | '.join(fields)};")
+            seen.add(n)
+    return out
+
+
+def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
+    pieces: dict[int, list[str]] = {}
+    starting: dict[int, list[CSignal]] = {}
+    for s in sigs:
+        starting.setdefault(s.sig.segments[0].byte, []).append(s)
+        for seg in s.sig.segments:
+            pieces.setdefault(seg.byte, []).append(piece(s, seg))
+    out: list[str] = []
+    seen: set[int] = set()
+    shared = _shared(sigs)
+    for k in range(dlc):
+        if k == checksum:
+            others = [f"dst[{b}]" for b in range(dlc) if b != k]
+            out.append(f"dst[{k}] = (uint8_t)({' ^ '.join(others)});" if len(others) > 1 else f"dst[{k}] = {others[0]};")
+        elif k in pieces:
+            terms = pieces[k]
+            out.append(f"dst[{k}] = (uint8_t){paren(terms[0] if len(terms) == 1 else '(' + ' + '.join(terms) + ')')};")
+        else:
+            out.append(f"dst[{k}] = 0u;")
+        out += _accumulate(tuple(starting.get(k, ())), shared, seen)
+    return out + _check(sigs, err)
+
+
+def _placed(s: CSignal) -> str:
+    """The field's bits at their place in the frame word (a signed field cut to its bits)."""
+    v = f"(uint64_t)src->{s.field}"
+    if s.sig.signed and s.length < 64:
+        v = f"({v} & {c_hex(s.sig.mask, 64)})"
+    return v if s.start == 0 else f"({v} << {s.start}u)"
+
+
+def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
+    out = ["w = " + " | ".join(_placed(s) for s in sigs) + ";"]
+    if checksum is not None:
+        out += [*FOLD, f"w |= (x & 0xFFu) << {8 * checksum}u;"]
+    out += [f"dst[{k}] = (uint8_t){shr('w', 8 * k)};" for k in range(dlc)]
+    return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
+
+
+def _cost_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> int:
+    """Estimated x86-64 instructions of the byte sum form without the range check: per piece a
+    load, a shift of the value and one into the byte (none into bits 1-3 after the first piece:
+    `lea`), an add; a store per byte; the checksum an XOR per other byte."""
+    cost = dlc + (dlc - 1 if checksum is not None else 0)
+    for s in sigs:
+        for seg in s.sig.segments:
+            cost += 2 + (seg.value_shift > 0) + (seg.byte_shift > 3 or (seg.byte_shift > 0 and seg.value_shift > 0))
+    return cost - len({seg.byte for s in sigs for seg in s.sig.segments})  # the first piece of a byte adds nothing
+
+
+def _cost_word(sigs: tuple[CSignal, ...], checksum: int | None) -> int:
+    """Per field a load, a shift (but at bit 0), an OR (but the first), a mask (signed fields);
+    one store; the checksum's fold."""
+    cost = sum(2 + (s.start > 0) + (s.sig.signed and s.length < 64) for s in sigs)
+    return cost + (FOLD_COST if checksum is not None else 0)
+
+
+# ---- unpack ----------------------------------------------------------------------------------
+
+def word_fields(sigs: tuple[CSignal, ...]) -> tuple[CSignal, ...]:
+    """The fields unpack reads from the frame word: the 64-bit ones and those that cross bytes off
+    byte boundaries; all of them where every field crosses bytes (the compiler then merges their
+    stores too). A byte-aligned field of whole bytes among others is read from its bytes, whose
+    reads the compiler merges into one load itself."""
+    crossing = [s for s in sigs if len(s.sig.segments) > 1]
+    if sigs and len(crossing) == len(sigs):
+        return tuple(sigs)
+    return tuple(s for s in sigs if s.sig.storage_bits == 64 or (s in crossing and (s.start % 8 or s.length % 8)))
+
+
+def _word_store(s: CSignal) -> list[str]:
+    field, n, t = f"dst->{s.field}", s.length, s.type
+    at = "w" if s.start == 0 else f"(w >> {s.start}u)"
+    bits = at if n == s.sig.storage_bits else f"({at} & {c_hex(s.sig.mask, 64)})"
+    if not s.sig.signed:
+        return [f"{field} = ({t}){bits};"]
+    if n == 64:
+        return [f"{field} = (w <= (uint64_t)INT64_MAX) ? (int64_t)w : (-(int64_t)(~w) - 1);"]
+    sign = 1 << (n - 1)
+    if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
+        return [f"t = (uint32_t){paren(bits)} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
+    return [f"t64 = {bits} ^ {c_hex(sign, 64)};", f"{field} = ({t})((int64_t)t64 - {c_int(sign, 64)});"]
+
+
+def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+    """None where no field is read from the word (the byte form of codec.py then)."""
+    words = word_fields(sigs)
+    if not words:
+        return None
+    held: list[int] = []
+    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", 8 * k) for k in range(dlc)) + ";"]
+    for s in sigs:
+        if s in words:
+            body += _word_store(s)
+            continue
+        for k in sorted({seg.byte for seg in s.sig.segments} - set(held)):
+            body.append(f"b{k} = src[{k}];")
+            held.append(k)
+        body += store(s)
+    if checksum:
+        body += [*FOLD, "x &= 0xFFu;"]
+    local = [f"uint32_t b{k};" for k in sorted(held)]
+    local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
+    local += ["uint32_t t;"] if any(s.sig.signed and s.length < 32 for s in sigs) else []
+    local += ["uint64_t t64;"] if any(s.sig.signed and 32 <= s.length < 64 for s in sigs) else []
+    return tuple(local), tuple(body)
+
+
+def _struct_run(fields: tuple[CSignal, ...]) -> bool:
+    """Whether a field that fills its type is followed, in the struct (no padding between) and in
+    the frame, by the next field, while not every field fills its type. The frame word's OR of
+    the two would then be one wider load of the struct to the compiler (gcc merges it), which
+    stalls on the separate stores that wrote the fields (unpack's, when every field fills its
+    type, are merged alike)."""
+    if all(f.length == f.sig.storage_bits for f in fields):
+        return False
+    offset = 0
+    ends: dict[int, int] = {}  # struct offset just past a field that fills its type -> its frame end bit
+    for f in fields:
+        size = f.sig.storage_bits // 8
+        offset += -offset % size  # natural alignment
+        if ends.get(offset) == f.start:
+            return True
+        offset += size
+        if f.length == f.sig.storage_bits:
+            ends[offset] = f.start + f.length
+    return False
+
+
+def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fields: tuple[CSignal, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """(locals, statements): the frame word where its estimate is lower (and no struct run), the
+    byte sum form where fields share a bit count (their one check saves a branch per byte), else
+    the byte form."""
+    ck = msg.checksum.byte if msg.checksum is not None else None
+    locals_ = _check_locals(sigs)
+    if sigs and _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields):
+        return (*locals_, "uint64_t w;", *(["uint64_t x;"] if ck is not None else [])), tuple(_pack_word(sigs, msg.dlc, ck, err))
+    if _shared(sigs):
+        return tuple(locals_), tuple(_pack_bytes(sigs, msg.dlc, ck, err))
+    return bytewise.pack_locals, bytewise.pack
+
+
+def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
+    """The message's pack/unpack under <PREFIX>_WORD64, or None where it is the byte form.
+    `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
+    if not msg.dlc:
+        return None
+    pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
+    unpack_locals, unpack = _unpack(sigs, msg.dlc, msg.checksum is not None) or (bytewise.unpack_locals, bytewise.unpack)
+    out = CCodec(pack, unpack_locals, unpack, pack_locals)
+    return None if out == bytewise else out
