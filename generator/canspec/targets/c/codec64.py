@@ -151,7 +151,8 @@ def word_fields(sigs: tuple[CSignal, ...]) -> tuple[CSignal, ...]:
 def _word_store(s: CSignal) -> list[str]:
     field, n, t = f"dst->{s.field}", s.length, s.type
     at = "w" if s.start == 0 else f"(w >> {s.start}u)"
-    bits = at if n == s.sig.storage_bits else f"({at} & {c_hex(s.sig.mask, 64)})"
+    exact = n == 64 or (n == s.sig.storage_bits and not s.sig.signed)  # the store's conversion cuts the rest
+    bits = at if exact else f"({at} & {c_hex(s.sig.mask, 64)})"
     if not s.sig.signed:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
