@@ -118,8 +118,8 @@ def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
     taken = {name for name, _ in runtime}
     bases: dict[tuple[str, str], str] = {}
     for msg in can.messages:
-        meets = _may_meet(plain, msg.name, taken) and any(name in taken for name, _ in _message_names(plain, msg, msg.name))
-        bases["message", msg.name] = f"{msg.name}_{MESSAGE_SUFFIX}" if meets else msg.name
+        meets = _may_meet(plain, msg.c_name, taken) and any(name in taken for name, _ in _message_names(plain, msg, msg.c_name))
+        bases["message", msg.name] = f"{msg.c_name}_{MESSAGE_SUFFIX}" if meets else msg.c_name
     names = CNames(plain.prefix, plain.macro, bases)
     found = runtime + [item for msg in can.messages for item in _message_names(names, msg, names.message(msg.name))]
     taken |= {name for name, _ in found}
@@ -165,14 +165,14 @@ def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str,
         yield from ((f"{const}_TEXT_{w}", origin) for w in TEXT_MACROS)
     for sig in msg.data_signals:
         where: Origin = (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
-        sig_fn, sig_const = f"{fn}_{_snake(sig.name)}", f"{const}_{_upper_snake(sig.name)}"
+        sig_fn, sig_const = f"{fn}_{_snake(sig.c_name)}", f"{const}_{_upper_snake(sig.c_name)}"
         if sig.role == "data":  # counters and checksums have no physical functions
             yield from ((f"{sig_fn}_{w}", where) for w in SIGNAL_FUNCTIONS)
             yield from ((f"{sig_const}_{w}", where) for w in SIGNAL_MACROS)
-        yield from ((n.special(base, sig.name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
+        yield from ((n.special(base, sig.c_name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
 
 
 def members(msg: ir.Message) -> Iterator[tuple[str, Origin]]:
     """The message struct's fields, which share one scope."""
     for sig in msg.data_signals:
-        yield CNames.member(sig.name), (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
+        yield CNames.member(sig.c_name), (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
