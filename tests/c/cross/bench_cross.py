@@ -76,18 +76,24 @@ class Inputs:
     frames: dict[str, list[str]] = field(default_factory=dict)
     xor: dict[str, tuple[int, tuple[int, ...]]] = field(default_factory=dict)
     ranges: dict[str, str] = field(default_factory=dict)  # message → a cantools user's range check
+    c_base: dict[str, str] = field(default_factory=dict)  # message → its C name in canspec's headers (a spec `c_name`)
     functions: list[str] = field(default_factory=list)  # every static inline function of the headers
 
 
-def checksum_layout(spec: Path) -> dict[str, tuple[int, tuple[int, ...]]]:
-    """message → (checksum byte, bytes it covers), from the spec the headers came from."""
+def checksum_layout(spec: Path) -> tuple[dict[str, tuple[int, tuple[int, ...]]], dict[str, str]]:
+    """message → (checksum byte, bytes it covers), and message → its C name, from the spec the
+    headers came from."""
     sys.path.insert(0, str(ROOT / "generator"))
     from canspec.pipeline import compile_spec
+    from canspec.targets.c.names import CNames
 
     compiled = compile_spec(spec)
     if compiled.spec is None or compiled.spec.can is None:
         raise ValueError(f"{spec}: the spec does not compile")
-    return {m.name: (m.checksum.byte, tuple(m.checksum.covers)) for m in compiled.spec.can.messages if m.checksum is not None}
+    can = compiled.spec.can
+    names = CNames.of(can)
+    return ({m.name: (m.checksum.byte, tuple(m.checksum.covers)) for m in can.messages if m.checksum is not None},
+            {m.name: names.message(m.name) for m in can.messages})
 
 
 def header_functions(headers: Path) -> list[str]:
@@ -105,10 +111,11 @@ def src_canspec_wrappers(inp: Inputs) -> str:
     p = inp.prefix
     out = [f'#include "{p}.h"']
     for n in inp.names:
-        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {p}_{n}_t *s);")
-        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {p}_{n}_t *s) {{ return {p}_{n}_pack(d, z, s); }}")
-        out.append(f"{p}_status_t x_{n}_unpack({p}_{n}_t *s, const uint8_t *d, size_t z);")
-        out.append(f"{p}_status_t x_{n}_unpack({p}_{n}_t *s, const uint8_t *d, size_t z) {{ return {p}_{n}_unpack(s, d, z); }}")
+        c = f"{p}_{inp.c_base[n]}"
+        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {c}_t *s);")
+        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {c}_t *s) {{ return {c}_pack(d, z, s); }}")
+        out.append(f"{p}_status_t x_{n}_unpack({c}_t *s, const uint8_t *d, size_t z);")
+        out.append(f"{p}_status_t x_{n}_unpack({c}_t *s, const uint8_t *d, size_t z) {{ return {c}_unpack(s, d, z); }}")
     return "\n".join(out) + "\n"
 
 
@@ -146,7 +153,7 @@ def src_harness(inp: Inputs, lib: str) -> str:
     """run_<lib>_<msg>_<phase>(): the 16 frames through one function; results kept for main."""
     if lib == "canspec":
         out = [f'#include "{inp.prefix}.h"']
-        typ = lambda n: f"{inp.prefix}_{n}_t"  # noqa: E731
+        typ = lambda n: f"{inp.prefix}_{inp.c_base[n]}_t"  # noqa: E731
         for n in inp.names:
             out.append(f"{inp.prefix}_status_t x_{n}_pack(uint8_t *d, size_t z, const {typ(n)} *s);")
             out.append(f"{inp.prefix}_status_t x_{n}_unpack({typ(n)} *s, const uint8_t *d, size_t z);")
@@ -447,10 +454,11 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
     # The two libraries' umbrella headers may share a name: each translation unit sees one.
     inc = {"canspec": [inp.headers], "cantools": [ct]}
     p = re.escape(inp.prefix)
-    msgs = "|".join(map(re.escape, inp.names))
+    msgs = "|".join(map(re.escape, inp.names))  # cantools' names: the spec's
+    cmsgs = "|".join(re.escape(inp.c_base[n]) for n in inp.names)  # canspec's
     api = {
-        "double": rf"{p}_({msgs})_\w+_(encode|decode)",
-        "fixed": rf"{p}_({msgs})_\w+_(encode|decode)_fixed",
+        "double": rf"{p}_({cmsgs})_\w+_(encode|decode)",
+        "fixed": rf"{p}_({cmsgs})_\w+_(encode|decode)_fixed",
         "monitor": rf"{p}_monitor_(on_frame|check)",
     }
     try:
@@ -528,7 +536,7 @@ def write_sources(inp: Inputs, build: Path) -> tuple[Path, Path]:
     if missing:
         raise RuntimeError(f"cantools output lacks {missing}")
     p = re.escape(inp.prefix)
-    msgs = "|".join(map(re.escape, inp.names))
+    cmsgs = "|".join(re.escape(inp.c_base[n]) for n in inp.names)
     sources = {
         "canspec_wrappers.c": src_canspec_wrappers(inp),
         "cantools_xor.c": src_cantools_xor(inp),
@@ -536,7 +544,7 @@ def write_sources(inp: Inputs, build: Path) -> tuple[Path, Path]:
         "harness_cantools.c": src_harness(inp, "cantools"),
         "harness_cantools_xor.c": src_harness(inp, "cantools_xor"),
         "bench_main.c": src_main(inp),
-        "canspec_api.c": src_api(inp, {"api": rf"{p}_({msgs})_\w+_(encode|decode)(_fixed)?", "monitor": rf"{p}_monitor_(on_frame|check)"}),
+        "canspec_api.c": src_api(inp, {"api": rf"{p}_({cmsgs})_\w+_(encode|decode)(_fixed)?", "monitor": rf"{p}_monitor_(on_frame|check)"}),
         "stub_main.c": STUB_MAIN,
         "stub_main_api.c": STUB_MAIN_API,
     }
@@ -552,7 +560,7 @@ def load_inputs(headers: Path, dbc: Path, vectors: Path, spec: Path) -> Inputs:
     doc = json.loads(vectors.read_text(encoding="utf-8"))
     inp.names = list(dict.fromkeys(c["message"] for c in doc["cases"]))
     inp.frames = {n: frames_for(doc["cases"], n) for n in inp.names}
-    inp.xor = checksum_layout(spec)
+    inp.xor, inp.c_base = checksum_layout(spec)
     inp.ranges = range_checks(spec, dbc)
     inp.functions = header_functions(headers)
     return inp
