@@ -119,27 +119,29 @@ def src_canspec_wrappers(inp: Inputs) -> str:
     return "\n".join(out) + "\n"
 
 
-def src_cantools_xor(inp: Inputs) -> str:
+def src_cantools_xor(inp: Inputs, stem: str = "cx", with_ranges: bool = True) -> str:
     """What a cantools user adds for canspec's guarantees: on a checksum message, verify before
     unpack and fill after pack; on a message with fields narrower than their C type, refuse an
-    out-of-range field before pack (range_checks)."""
+    out-of-range field before pack (range_checks). `with_ranges=False`: the XOR alone (the
+    issue's "cantools (+XOR)" size)."""
+    ranges = inp.ranges if with_ranges else {}
     out = [f'#include "{inp.db}.h"']
     for n in inp.names:
         t = f"struct {inp.db}_{n}_t"
         if n in inp.xor:
             byte, covers = inp.xor[n]
-            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
-            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
+            out.append(f"int {stem}_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
+            out.append(f"int {stem}_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
             # Byte-wise (bench.py's 64-bit word fold is an x86 choice: no unaligned word loads on M0+).
             out.append(f"    if (z < 8u || (uint8_t)({' ^ '.join(f'd[{b}]' for b in (*covers, byte))}) != 0u) return -2;")
             out.append(f"    return {inp.db}_{n}_unpack(s, d, z);")
             out.append("}")
-        if n in inp.xor or n in inp.ranges:
-            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
-            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
+        if n in inp.xor or n in ranges:
+            out.append(f"int {stem}_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
+            out.append(f"int {stem}_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
             out.append("    int st;")
-            if n in inp.ranges:
-                out.append(f"    if ({inp.ranges[n]}) return -3;")
+            if n in ranges:
+                out.append(f"    if ({ranges[n]}) return -3;")
             out.append(f"    st = {inp.db}_{n}_pack(d, s, z);")
             if n in inp.xor:
                 byte, covers = inp.xor[n]
@@ -463,7 +465,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
     }
     try:
         objs = {}
-        for name in ("canspec_wrappers", "cantools_xor", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api", "stub_main", "stub_main_api"):
+        for name in ("canspec_wrappers", "cantools_xor", "cantools_xoronly", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api", "stub_main", "stub_main_api"):
             compile_obj(core, opt, build / f"{name}.c", out / f"{name}.o", inc["cantools" if "cantools" in name else "canspec"])
             objs[name] = out / f"{name}.o"
         compile_obj(core, opt, ct / f"{inp.db}.c", out / "cantools.o", [ct])
@@ -487,6 +489,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         for name, objs_ in {"canspec": [objs["canspec_wrappers"], objs["stub_main"]],
                             "cantools": [out / "cantools.o", objs["stub_main"]],
                             "cantools_xor": [out / "cantools.o", objs["cantools_xor"], objs["stub_main"]],
+                            "cantools_xoronly": [out / "cantools.o", objs["cantools_xoronly"], objs["stub_main"]],
                             "cantools_nofp": [out / "cantools_nofp.o", objs["stub_main"]],
                             "api": [objs["canspec_api"], objs["stub_main_api"]]}.items():
             link(core, objs_, out / f"size_{name}.elf", build)
@@ -495,6 +498,8 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         groups = {
             "canspec pack+unpack": ("canspec", [f"x_{n}_{ph}" for n in inp.names for ph in PHASES]),
             "cantools pack+unpack": ("cantools", [f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
+            "cantools+XOR pack+unpack": ("cantools_xoronly", [f"cxo_{n}_{ph}" if f"cxo_{n}_{ph}" in images["cantools_xoronly"].sizes else f"{inp.db}_{n}_{ph}"
+                                                              for n in inp.names for ph in PHASES]),
             # like for like: the user's XOR and range-check wrappers with the cantools functions they call
             "cantools+user pack+unpack": ("cantools_xor", [f"cx_{n}_{ph}" if f"cx_{n}_{ph}" in images["cantools_xor"].sizes else f"{inp.db}_{n}_{ph}"
                                                            for n in inp.names for ph in PHASES]),
@@ -540,6 +545,7 @@ def write_sources(inp: Inputs, build: Path) -> tuple[Path, Path]:
     sources = {
         "canspec_wrappers.c": src_canspec_wrappers(inp),
         "cantools_xor.c": src_cantools_xor(inp),
+        "cantools_xoronly.c": src_cantools_xor(inp, "cxo", with_ranges=False),
         "harness_canspec.c": src_harness(inp, "canspec"),
         "harness_cantools.c": src_harness(inp, "cantools"),
         "harness_cantools_xor.c": src_harness(inp, "cantools_xor"),
