@@ -206,7 +206,8 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, 
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -251,7 +252,8 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value,
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -457,7 +459,8 @@ kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1290)) || (value >= 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 1280, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 1280, 5u, 0x667u, 14u);
     if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -499,7 +502,8 @@ kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3870)) || (value >= 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3840, 30);
+    /* divide by 30: (|num| + 15) * 0x2223 >> 18, exact up to 7694 */
+    r = kaiwo_gateway_div_round_mul(value + 3840, 15u, 0x2223u, 18u);
     if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -541,7 +545,8 @@ kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -582,7 +587,8 @@ kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-2)) || (value >= 128)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 128 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -787,7 +793,8 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 900, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1250,7 +1257,8 @@ kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *ra
     if ((value <= (-150010)) || (value >= 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 150000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 150000, 5u, 0x1999999Au, 0u);
     if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1291,7 +1299,8 @@ kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *r
     if ((value <= (-50010)) || (value >= 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 50000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 50000, 5u, 0x1999999Au, 0u);
     if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1337,7 +1346,8 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_
     if ((value <= 0) || (value >= 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 10, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value - 10, 5u, 0x667u, 14u);
     if (!(r == 255)) {
         if ((value < 10) || (value > 2540)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -1381,7 +1391,8 @@ kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-9050)) || (value >= 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 9000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 9000, 25u, 0x147Bu, 18u);
     if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2532,7 +2543,8 @@ kaiwo_gateway_autocar_control_command_1_ac_set_temp_encode_fixed(int32_t value, 
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3483,7 +3495,8 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-510)) || (value >= 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 500, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 500, 5u, 0x667u, 14u);
     if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3524,7 +3537,8 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fi
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3723,7 +3737,8 @@ kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4096,7 +4111,8 @@ kaiwo_gateway_autocar_control_command_2_downhill_regen_speed_encode_fixed(int32_
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -4141,7 +4157,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_pitch_encode_fixed(int32_t value
     if ((value <= (-25050)) || (value >= 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 25000, 50);
+    /* divide by 50: (|num| + 25) * 0x51EB852 >> (32 + 0), exact up to 51224 */
+    r = kaiwo_gateway_div_round_mulhi(value + 25000, 25u, 0x51EB852u, 0u);
     if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4184,7 +4201,8 @@ kaiwo_gateway_autocar_control_command_2_chassis_roll_encode_fixed(int32_t value,
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 4000, 10);
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4227,7 +4245,8 @@ kaiwo_gateway_autocar_control_command_2_cargo_pitch_encode_fixed(int32_t value, 
     if ((value <= (-302)) || (value >= 1748)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 300, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 300, 1u, 0x1u, 1u);
     if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4270,7 +4289,8 @@ kaiwo_gateway_autocar_control_command_2_cargo_roll_encode_fixed(int32_t value, u
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 4000, 10);
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4410,7 +4430,8 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4452,7 +4473,8 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16
     if ((value <= (-50002)) || (value >= 81072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 50000, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value + 50000, 1u, 0x1u, 1u);
     if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4688,7 +4710,8 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4729,7 +4752,8 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4770,7 +4794,8 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 150);
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4811,7 +4836,8 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 150);
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4852,7 +4878,8 @@ kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *ra
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4894,7 +4921,8 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5112,7 +5140,8 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5154,7 +5183,8 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5470,7 +5500,8 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5550,7 +5581,8 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t
     if ((value <= (-325010)) || (value >= 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 325000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 325000, 5u, 0x1999999Au, 0u);
     if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7241,7 +7273,8 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, ui
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -7286,7 +7319,8 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, u
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7453,7 +7487,8 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 900, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8707,7 +8742,8 @@ kaiwo_gateway_rgate_control_command_1_ac_set_temp_encode_fixed(int32_t value, ui
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9146,7 +9182,8 @@ kaiwo_gateway_rgate_control_command_2_downhill_regen_speed_encode_fixed(int32_t 
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11922,7 +11959,8 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uin
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11966,7 +12004,8 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, ui
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12134,7 +12173,8 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1002)) || (value >= 1048)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 1000, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 1000, 1u, 0x1u, 1u);
     if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13388,7 +13428,8 @@ kaiwo_gateway_tele_control_command_1_ac_set_temp_encode_fixed(int32_t value, uin
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13826,7 +13867,8 @@ kaiwo_gateway_tele_control_command_2_downhill_regen_speed_encode_fixed(int32_t v
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
