@@ -64,14 +64,65 @@ static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
     return (num < 0) ? (int64_t)neg : (int64_t)q;
 }
 
-/** num / den rounded half away from zero in 32-bit integers (den > 1, the result then within
- * int32_t): the integer path's division where its numbers fit, so that cores with a divide
- * instruction (Cortex-M3/M4) need no libgcc helper. */
-static inline int32_t kaiwo_gateway_div_round32(int32_t num, int32_t den) {
+/* Whether the core multiplies 32 x 32 -> 64 bits in one instruction (UMULL, x86 MUL). Thumb-1
+ * cores (Cortex-M0/M0+/M23) do not: there a 64-bit product calls libgcc's __aeabi_lmul, so
+ * kaiwo_gateway_mul_hi32 multiplies 16-bit halves. Define KAIWO_GATEWAY_LONG_MULTIPLY to 0 or 1
+ * to override the choice. */
+#ifndef KAIWO_GATEWAY_LONG_MULTIPLY
+#if defined(__thumb__) && !defined(__thumb2__)
+#define KAIWO_GATEWAY_LONG_MULTIPLY 0
+#else
+#define KAIWO_GATEWAY_LONG_MULTIPLY 1
+#endif
+#endif
+
+/** The high 32 bits of the 64-bit product a x m. */
+static inline uint32_t kaiwo_gateway_mul_hi32(uint32_t a, uint32_t m) {
+#if KAIWO_GATEWAY_LONG_MULTIPLY
+    return (uint32_t)(((uint64_t)a * m) >> 32u);
+#else
+    /* a x m = a1 m1 2^32 + (a1 m0 + a0 m1) 2^16 + a0 m0 with 16-bit halves; each partial sum
+     * below stays under 2^32, and carries the low sums' overflow up */
+    const uint32_t a0 = a & 0xFFFFu;
+    const uint32_t a1 = a >> 16u;
+    const uint32_t m0 = m & 0xFFFFu;
+    const uint32_t m1 = m >> 16u;
+    const uint32_t mid = (a1 * m0) + ((a0 * m0) >> 16u);
+    const uint32_t mid2 = (a0 * m1) + (mid & 0xFFFFu);
+    return (a1 * m1) + (mid >> 16u) + (mid2 >> 16u);
+#endif
+}
+
+/* The integer path divides by its per-signal constant d > 1 as a multiply (no divide
+ * instruction on Cortex-M0/M0+, where `/` calls libgcc): num / d rounded half away from zero is
+ * floor((|num| + half) / d), half = floor(d / 2), and floor(n / d) = (n x m) >> shift for every n
+ * the signal can give; the generator computes m and shift and proves that range (divide.py). */
+
+/** num / d rounded half away from zero, where every (|num| + half) x m fits 32 bits. */
+static inline int32_t kaiwo_gateway_div_round_mul(int32_t num, uint32_t half, uint32_t m,
+                                                  uint32_t shift) {
+    const uint32_t a = ((num < 0) ? (0u - (uint32_t)num) : (uint32_t)num) + half;
+    const uint32_t r = (a * m) >> shift;
+    const uint32_t neg = 0u - r; /* -r modulo 2^32 */
+    return (num < 0) ? (int32_t)neg : (int32_t)r;
+}
+
+/** num / d rounded half away from zero: the high word of (|num| + half) x m, shifted. */
+static inline int32_t kaiwo_gateway_div_round_mulhi(int32_t num, uint32_t half, uint32_t m,
+                                                    uint32_t shift) {
+    const uint32_t a = ((num < 0) ? (0u - (uint32_t)num) : (uint32_t)num) + half;
+    const uint32_t r = kaiwo_gateway_mul_hi32(a, m) >> shift;
+    const uint32_t neg = 0u - r; /* -r modulo 2^32 */
+    return (num < 0) ? (int32_t)neg : (int32_t)r;
+}
+
+/** num / d rounded half away from zero where no multiply is exact up to |num| + half (a divisor
+ * near 2^31): the quotient of |num| by the high word of |num| x m, rounded by its remainder. */
+static inline int32_t kaiwo_gateway_div_round_mulrem(int32_t num, uint32_t d, uint32_t m,
+                                                     uint32_t shift) {
     const uint32_t a = (num < 0) ? (0u - (uint32_t)num) : (uint32_t)num;
-    const uint32_t d = (uint32_t)den;
-    const uint32_t q = a / d;
-    const uint32_t rem = a % d;
+    const uint32_t q = kaiwo_gateway_mul_hi32(a, m) >> shift;
+    const uint32_t rem = a - (q * d);
     const uint32_t r = (rem < (d - rem)) ? q : (q + 1u);
     const uint32_t neg = 0u - r; /* -r modulo 2^32 */
     return (num < 0) ? (int32_t)neg : (int32_t)r;

@@ -206,7 +206,8 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, 
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -251,7 +252,8 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value,
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -457,7 +459,8 @@ kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-1290)) || (value >= 1280)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 1280, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 1280, 5u, 0x667u, 14u);
     if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -499,7 +502,8 @@ kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3870)) || (value >= 3840)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3840, 30);
+    /* divide by 30: (|num| + 15) * 0x2223 >> 18, exact up to 7694 */
+    r = kaiwo_gateway_div_round_mul(value + 3840, 15u, 0x2223u, 18u);
     if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -541,7 +545,8 @@ kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -582,7 +587,8 @@ kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw
     if ((value <= (-2)) || (value >= 128)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 128 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -787,7 +793,8 @@ kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 900, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1250,7 +1257,8 @@ kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *ra
     if ((value <= (-150010)) || (value >= 505360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 150000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 150000, 5u, 0x1999999Au, 0u);
     if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1291,7 +1299,8 @@ kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *r
     if ((value <= (-50010)) || (value >= 605360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 50000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 50000, 5u, 0x1999999Au, 0u);
     if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -1337,7 +1346,8 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_
     if ((value <= 0) || (value >= 2570)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 10, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value - 10, 5u, 0x667u, 14u);
     if (!(r == 255)) {
         if ((value < 10) || (value > 2540)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -1381,7 +1391,8 @@ kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-9050)) || (value >= 3800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 9000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 9000, 25u, 0x147Bu, 18u);
     if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -2512,7 +2523,8 @@ kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3457,7 +3469,8 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t 
     if ((value <= (-510)) || (value >= 2060)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 500, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 500, 5u, 0x667u, 14u);
     if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3498,7 +3511,8 @@ static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fi
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -3697,7 +3711,8 @@ kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4062,7 +4077,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_speed_encode_fixed(int32_t value
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -4106,7 +4122,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_encode_fixed(int32_t value, uint1
     if ((value <= (-25050)) || (value >= 26200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 25000, 50);
+    /* divide by 50: (|num| + 25) * 0x51EB852 >> (32 + 0), exact up to 51224 */
+    r = kaiwo_gateway_div_round_mulhi(value + 25000, 25u, 0x51EB852u, 0u);
     if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4148,7 +4165,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_encode_fixed(int32_t value, uint16
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 4000, 10);
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4190,7 +4208,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_encode_fixed(int32_t value, uint16_
     if ((value <= (-302)) || (value >= 1748)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 300, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 300, 1u, 0x1u, 1u);
     if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4232,7 +4251,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_encode_fixed(int32_t value, uint16_t
     if ((value <= (-4010)) || (value >= 6240)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 4000, 10);
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4372,7 +4392,8 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16
     if ((value <= (-2)) || (value >= 131072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4414,7 +4435,8 @@ kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16
     if ((value <= (-50002)) || (value >= 81072)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 50000, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
+    r = kaiwo_gateway_div_round_mul(value + 50000, 1u, 0x1u, 1u);
     if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4650,7 +4672,8 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4691,7 +4714,8 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4732,7 +4756,8 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 150);
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4773,7 +4798,8 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint1
     if ((value <= (-150)) || (value >= 614400)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 150);
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4814,7 +4840,8 @@ kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *ra
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -4856,7 +4883,8 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, 
     if ((value <= (-410)) || (value >= 2160)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 400, 10);
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5074,7 +5102,8 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5116,7 +5145,8 @@ kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= (-3050)) || (value >= 9800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 3000, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5432,7 +5462,8 @@ kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -5512,7 +5543,8 @@ kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t
     if ((value <= (-325010)) || (value >= 330360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 325000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 325000, 5u, 0x1999999Au, 0u);
     if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7203,7 +7235,8 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, ui
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -7248,7 +7281,8 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, u
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -7415,7 +7449,8 @@ kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t
     if ((value <= (-902)) || (value >= 1148)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 900, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -8657,7 +8692,8 @@ kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -9086,7 +9122,8 @@ kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_speed_encode_fixed(int32_t value, 
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11862,7 +11899,8 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uin
     if ((value <= (-2)) || (value >= 512)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 512 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if (!(r == 0)) {
         if ((value < 0) || (r > INT64_C(255))) {
             return KAIWO_GATEWAY_ERR_RANGE;
@@ -11906,7 +11944,8 @@ kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, ui
     if ((value <= (-108010)) || (value >= 547360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 108000, 10);
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -12074,7 +12113,8 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, 
     if ((value <= (-1002)) || (value >= 1048)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value + 1000, 2);
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
+    r = kaiwo_gateway_div_round_mul(value + 1000, 1u, 0x1u, 1u);
     if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13319,7 +13359,8 @@ kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *r
     if ((value <= 1550) || (value >= 3200)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value - 1600, 50);
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
@@ -13747,7 +13788,8 @@ kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_speed_encode_fixed(int32_t value, u
     if ((value <= (-50)) || (value >= 12800)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_div_round32(value, 50);
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if (!(r == 0)) {
         if ((value < 0) || (value > 12500)) {
             return KAIWO_GATEWAY_ERR_RANGE;

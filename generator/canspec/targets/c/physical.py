@@ -7,7 +7,9 @@ field's raw type widened by one step, so the rounding never leaves its integer t
 
 The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
 factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
-gives within its tie guarantee (tested against the vectors). Every comparison whose outcome the
+gives within its tie guarantee (tested against the vectors). Where its numbers fit 32 bits it
+divides by |ff| as a multiply (divide.py), exact for every numerator that interval allows: no
+division, so no libgcc helper on cores without a divide instruction. Every comparison whose outcome the
 operand's type, or an earlier check, already decides is left out (compilers warn about it, and
 MISRA C:2012 rule 14.3 forbids it): after the fixed encode's first check the value lies in a
 known interval, and r, rounded monotonically from it, in one computed exactly here.
@@ -24,6 +26,7 @@ from math import floor
 from canspec import ir
 from canspec.ir.encoding import to_raw_runtime
 from canspec.render.literals import c_int, c_uint, float_lit
+from canspec.targets.c import divide
 from canspec.targets.c.names import CNames
 
 INT_TYPES = ((32, "int32_t", -(2**31), 2**31 - 1), (64, "int64_t", -(2**63), 2**63 - 1))
@@ -93,6 +96,7 @@ class CFixed:
     rounded: str  # r from `value`: (value - fo) / ff rounded half away from zero
     r_type: str
     ranges: CRanges
+    note: str = ""  # comment beside `rounded`: the divisor and the multiply that divides by it
 
 
 def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str], r_reach: tuple[int, int] | None) -> CRanges:
@@ -217,18 +221,23 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
     # what passes that check: the open interval (bounds) within the type
     reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
-    # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits (Cortex-M3/M4
-    # divide in one instruction, where a 64-bit division calls libgcc's __aeabi_ldivmod)
+    # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits, divided by a
+    # multiply (divide.py: no division, hence no libgcc helper, on any core)
     narrow = ctype == "int32_t" and _difference_fits(ff, fo, *reach, bits=32)
     value, offset = ("value" if narrow else "(int64_t)value", lit(abs(fo)))
     if ff > 0:
         num = value if not fo else f"{value} - {offset}" if fo > 0 else f"{value} + {offset}"
     else:
         num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
+    rounded, note = num, ""
+    if abs(ff) != 1 and narrow:
+        mg = divide.rounding(abs(ff), max(abs(v - fo) for v in reach))
+        rounded, note = divide.call({k: names.fn(f"div_round_{k}") for k in ("mul", "mulhi", "mulrem")}, num, mg), divide.note(mg)
+    elif abs(ff) != 1:
+        rounded = f"{names.fn('div_round')}({num}, {lit(abs(ff))})"
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
-        rounded=num if abs(ff) == 1 else f"{names.fn('div_round32' if narrow else 'div_round')}({num}, {lit(abs(ff))})", r_type="int64_t",
-        ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit),
+        rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note,
     )
 
 
