@@ -146,9 +146,10 @@ static inline uint32_t kaiwo_gateway_monitor_counter_fault(kaiwo_gateway_monitor
     }
     counter = (uint8_t)((word >> (info->counter_start % 8u)) & (info->counter_modulo - 1u));
     if (st->counter_valid) {
+        /* counter_modulo is 2^bits (a counter spans its field): a mask, not a division (no helper on M0+) */
         const uint32_t delta =
-            ((uint32_t)counter + (uint32_t)info->counter_modulo - (uint32_t)st->last_counter) %
-            (uint32_t)info->counter_modulo;
+            ((uint32_t)counter + (uint32_t)info->counter_modulo - (uint32_t)st->last_counter) &
+            ((uint32_t)info->counter_modulo - 1u);
         if (delta == 0u) {
             st->counter_repeats = kaiwo_gateway_monitor_count_up(st->counter_repeats, 1u);
             return KAIWO_GATEWAY_RX_COUNTER_REPEAT;
