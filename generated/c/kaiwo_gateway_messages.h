@@ -19,6 +19,88 @@
 extern "C" {
 #endif
 
+/** A signal's double encode: its scaling, and the range it accepts (the documented one widened by
+ * the rounding's tie tolerance). */
+typedef struct {
+    double offset;
+    double factor;
+    double min;
+    double max;
+} kaiwo_gateway_phys_t;
+
+/* The double encode's steps, shared by the signals' encoders: each encoder is a call with its
+ * descriptor, and an image holds the rounding once. GCC and clang would inline them into every
+ * encoder at -O2 (they count a soft-float operation as one instruction), so where they are the
+ * compiler the steps are kept out of line; define KAIWO_GATEWAY_PHYS_NOINLINE (empty: the
+ * compiler's choice) to override. */
+#ifndef KAIWO_GATEWAY_PHYS_NOINLINE
+#if defined(__GNUC__)
+#define KAIWO_GATEWAY_PHYS_NOINLINE __attribute__((noinline))
+#else
+#define KAIWO_GATEWAY_PHYS_NOINLINE
+#endif
+#endif
+
+/** q = (value - offset) / factor, an offset of 0 and a factor of 1 skipped (x - 0 and x / 1 are x
+ * exactly): soft-float cores spend most of an encode dividing. */
+static inline double kaiwo_gateway_phys_q(double value, const kaiwo_gateway_phys_t *p) {
+    double q = value;
+    if (p->offset != 0.0) {
+        q -= p->offset;
+    }
+    if (p->factor != 1.0) {
+        q /= p->factor;
+    }
+    return q;
+}
+
+/** q rounded half away from zero into *r; false (r untouched) where q is NaN or outside the
+ * rounding's domain [-2^63, 2^63). */
+static KAIWO_GATEWAY_PHYS_NOINLINE bool
+kaiwo_gateway_phys_round(double value, const kaiwo_gateway_phys_t *p, int64_t *r) {
+    const double q = kaiwo_gateway_phys_q(value, p);
+    if (!((q >= -9223372036854775808.0) && (q < 9223372036854775808.0))) {
+        return false;
+    }
+    *r = kaiwo_gateway_round_half_away(q);
+    return true;
+}
+
+/** The value inside p's accepted range (not NaN), and q rounded half away from zero into *r; false
+ * (r untouched) otherwise. For a p whose accepted range keeps q inside the rounding's domain. */
+static KAIWO_GATEWAY_PHYS_NOINLINE bool
+kaiwo_gateway_phys_encode(double value, const kaiwo_gateway_phys_t *p, int64_t *r) {
+    if (!((value >= p->min) && (value <= p->max))) {
+        return false;
+    }
+    *r = kaiwo_gateway_round_half_away(kaiwo_gateway_phys_q(value, p));
+    return true;
+}
+
+/** kaiwo_gateway_phys_encode() into a uint16_t field whose raw range the accepted range keeps r in:
+ * KAIWO_GATEWAY_ERR_RANGE (raw untouched) where that fails. */
+static KAIWO_GATEWAY_PHYS_NOINLINE kaiwo_gateway_status_t
+kaiwo_gateway_phys_encode_u16(double value, const kaiwo_gateway_phys_t *p, uint16_t *raw) {
+    int64_t r = 0;
+    if (!kaiwo_gateway_phys_encode(value, p, &r)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    *raw = (uint16_t)r;
+    return KAIWO_GATEWAY_OK;
+}
+
+/** kaiwo_gateway_phys_encode() into a uint8_t field whose raw range the accepted range keeps r in:
+ * KAIWO_GATEWAY_ERR_RANGE (raw untouched) where that fails. */
+static KAIWO_GATEWAY_PHYS_NOINLINE kaiwo_gateway_status_t
+kaiwo_gateway_phys_encode_u8(double value, const kaiwo_gateway_phys_t *p, uint8_t *raw) {
+    int64_t r = 0;
+    if (!kaiwo_gateway_phys_encode(value, p, &r)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    *raw = (uint8_t)r;
+    return KAIWO_GATEWAY_OK;
+}
+
 /* ---------------------------------------------------------------------------------------------
  * autocar_eps_command: AUTOCAR EPS Command / 智能控制器 EPS 命令 (section 3.1)
  * AUTOCAR -> Wire_Car_ECU, every 20 ms
@@ -134,19 +216,16 @@ static inline double kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_decode(uint
     return (double)raw;
 }
 
-/** eps_ctrl_mode: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 255.0] or not encodable. */
+/** The double encode of eps_ctrl_mode and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys = {
+    0.0, 1.0, 0.0, 255.0};
+
+/** eps_ctrl_mode: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 255.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 255.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value,
+                                        &kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys, raw);
 }
 
 /** eps_ctrl_mode: raw → physical × 1, integers only. */
@@ -172,21 +251,27 @@ static inline double kaiwo_gateway_autocar_eps_command_max_angular_speed_decode(
     return (double)raw * 2.0;
 }
 
-/** max_angular_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
+/** The double encode of max_angular_speed and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_max_angular_speed_phys = {
+    0.0, 2.0, 0.0, 512.0};
+
+/** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_max_angular_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                 &r) &&
+        (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
+    }
+    if (!kaiwo_gateway_phys_encode(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                   &r)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
+    if (r > INT64_C(255)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
@@ -223,19 +308,16 @@ static inline double kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode
     return scaled - 1080.0;
 }
 
-/** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
+/** The double encode of steering_angle_cmd and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys = {
+    -1080.0, 0.1, -1080.0000000001, 1080.0000000001};
+
+/** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -1080.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys, raw);
 }
 
 /** steering_angle_cmd: raw → physical × 100, integers only. */
@@ -392,19 +474,12 @@ static inline double kaiwo_gateway_eps_state_eps_ctrl_state_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** eps_ctrl_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 255.0] or not encodable. */
+/** eps_ctrl_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 255.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_ctrl_state_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_EPS_CTRL_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 255.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value,
+                                        &kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys, raw);
 }
 
 /** eps_ctrl_state: raw → physical × 1, integers only. */
@@ -431,19 +506,13 @@ static inline double kaiwo_gateway_eps_state_steering_torque_decode(uint8_t raw)
     return scaled - 12.8;
 }
 
-/** steering_torque: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-12.8, 12.7] or not encodable. */
+/** steering_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -12.8). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-12.8, 12.7] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FACTOR;
-    int64_t r;
-    if (!((value >= -12.8000000001) && (value <= 12.7000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_steering_torque_phys = {
+        -12.8, 0.1, -12.8000000001, 12.7000000001};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_steering_torque_phys, raw);
 }
 
 /** steering_torque: raw → physical × 100, integers only. */
@@ -474,19 +543,14 @@ static inline double kaiwo_gateway_eps_state_eps_output_torque_decode(uint8_t ra
     return scaled - 38.4;
 }
 
-/** eps_output_torque: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-38.4, 38.1] or not encodable. */
+/** eps_output_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.3,
+ * offset -38.4). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-38.4, 38.1] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR;
-    int64_t r;
-    if (!((value >= -38.4000000003) && (value <= 38.1000000003))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_eps_output_torque_phys = {
+        -38.4, 0.3, -38.4000000003, 38.1000000003};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_output_torque_phys,
+                                        raw);
 }
 
 /** eps_output_torque: raw → physical × 100, integers only. */
@@ -517,19 +581,12 @@ static inline double kaiwo_gateway_eps_state_steering_angle_decode(uint16_t raw)
     return scaled - 1080.0;
 }
 
-/** steering_angle: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
+/** steering_angle: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -1080.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_angle_encode(double value,
                                                                                    uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR;
-    int64_t r;
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys, raw);
 }
 
 /** steering_angle: raw → physical × 100, integers only. */
@@ -559,19 +616,13 @@ static inline double kaiwo_gateway_eps_state_controller_temp_decode(uint8_t raw)
     return (double)raw * 2.0;
 }
 
-/** controller_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 126.0] or not encodable. */
+/** controller_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 126.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 126.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_controller_temp_phys = {0.0, 2.0, 0.0,
+                                                                                      126.0};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_controller_temp_phys, raw);
 }
 
 /** controller_temp: raw → physical × 1, integers only. */
@@ -601,19 +652,15 @@ static inline double kaiwo_gateway_eps_state_eps_fault_level_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** eps_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** The double encode of eps_fault_level and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_eps_fault_level_phys = {0.0, 1.0, 0.0,
+                                                                                  3.0};
+
+/** eps_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_eps_fault_level_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_EPS_STATE_EPS_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** eps_fault_level: raw → physical × 1, integers only. */
@@ -765,19 +812,16 @@ static inline double kaiwo_gateway_autocar_speed_command_accel_cmd_decode(uint16
     return scaled - 9.0;
 }
 
-/** accel_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-9.0, 3.6] or not encodable. */
+/** The double encode of accel_cmd and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_accel_cmd_phys = {
+    -9.0, 0.02, -9.00000000002, 3.60000000002};
+
+/** accel_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
+ * offset -9.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-9.0, 3.6] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_accel_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -9.00000000002) && (value <= 3.60000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_speed_command_accel_cmd_phys,
+                                         raw);
 }
 
 /** accel_cmd: raw → physical × 100, integers only. */
@@ -807,19 +851,11 @@ static inline double kaiwo_gateway_autocar_speed_command_epb_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** epb_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** epb_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EPB_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** epb_cmd: raw → physical × 1, integers only. */
@@ -845,19 +881,16 @@ static inline double kaiwo_gateway_autocar_speed_command_gear_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** gear_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** The double encode of gear_cmd and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_gear_cmd_phys = {0.0, 1.0,
+                                                                                       0.0, 2.0};
+
+/** gear_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_GEAR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** gear_cmd: raw → physical × 1, integers only. */
@@ -886,19 +919,16 @@ static inline double kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_dec
     return (double)raw;
 }
 
-/** emergency_brake_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** The double encode of emergency_brake_cmd and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys = {
+    0.0, 1.0, 0.0, 1.0};
+
+/** emergency_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** emergency_brake_cmd: raw → physical × 1, integers only. */
@@ -1074,19 +1104,11 @@ static inline double kaiwo_gateway_driving_state_epb_state_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** epb_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** epb_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_epb_state_encode(double value,
                                                                                   uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_EPB_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** epb_state: raw → physical × 1, integers only. */
@@ -1112,19 +1134,11 @@ static inline double kaiwo_gateway_driving_state_gear_state_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** gear_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** gear_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_gear_state_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_GEAR_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** gear_state: raw → physical × 1, integers only. */
@@ -1153,19 +1167,12 @@ static inline double kaiwo_gateway_driving_state_emergency_brake_state_decode(ui
     return (double)raw;
 }
 
-/** emergency_brake_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** emergency_brake_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_emergency_brake_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_EMERGENCY_BRAKE_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** emergency_brake_state: raw → physical × 1, integers only. */
@@ -1191,19 +1198,12 @@ static inline double kaiwo_gateway_driving_state_uss_brake_state_decode(uint8_t 
     return (double)raw;
 }
 
-/** uss_brake_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** uss_brake_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_uss_brake_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_USS_BRAKE_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** uss_brake_state: raw → physical × 1, integers only. */
@@ -1229,19 +1229,13 @@ static inline double kaiwo_gateway_driving_state_motor_speed_decode(uint16_t raw
     return (double)raw - 15000.0;
 }
 
-/** motor_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-15000.0, 15000.0] or not encodable. */
+/** motor_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -15000.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-15000.0, 15000.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_encode(double value,
                                                                                     uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_FACTOR;
-    int64_t r;
-    if (!((value >= -15000.0) && (value <= 15000.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_speed_phys = {
+        -15000.0, 1.0, -15000.0, 15000.0};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_driving_state_motor_speed_phys, raw);
 }
 
 /** motor_speed: raw → physical × 10, integers only. */
@@ -1271,19 +1265,14 @@ static inline double kaiwo_gateway_driving_state_motor_torque_decode(uint16_t ra
     return (double)raw - 5000.0;
 }
 
-/** motor_torque: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-5000.0, 5000.0] or not encodable. */
+/** motor_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -5000.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-5000.0, 5000.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_FACTOR;
-    int64_t r;
-    if (!((value >= -5000.0) && (value <= 5000.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_torque_phys = {
+        -5000.0, 1.0, -5000.0, 5000.0};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_driving_state_motor_torque_phys,
+                                         raw);
 }
 
 /** motor_torque: raw → physical × 10, integers only. */
@@ -1313,24 +1302,20 @@ static inline double kaiwo_gateway_driving_state_motor_speed_ratio_decode(uint8_
     return (double)raw + 1.0;
 }
 
-/** motor_speed_ratio: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [1.0, 254.0] or not encodable, unless it encodes a special value. */
+/** motor_speed_ratio: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 1.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [1.0, 254.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_speed_ratio_phys = {
+        1.0, 1.0, 1.0, 254.0};
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_driving_state_motor_speed_ratio_phys, &r) &&
+        (r == 255)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 255)) {
-        if (!((value >= 1.0) && (value <= 254.0)) || (r < INT64_C(0)) || (r > INT64_C(253))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_driving_state_motor_speed_ratio_phys,
+                                        raw);
 }
 
 /** motor_speed_ratio: raw → physical × 10, integers only. */
@@ -1363,19 +1348,14 @@ static inline double kaiwo_gateway_driving_state_current_accel_decode(uint8_t ra
     return scaled - 9.0;
 }
 
-/** current_accel: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-9.0, 3.6] or not encodable. */
+/** current_accel: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.05,
+ * offset -9.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-9.0, 3.6] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET) /
-                     KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR;
-    int64_t r;
-    if (!((value >= -9.00000000005) && (value <= 3.60000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_current_accel_phys = {
+        -9.0, 0.05, -9.00000000005, 3.60000000005};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_driving_state_current_accel_phys,
+                                        raw);
 }
 
 /** current_accel: raw → physical × 1000, integers only. */
@@ -1689,19 +1669,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_cmd_decode(uint
     return (double)raw;
 }
 
-/** drive_mode_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** drive_mode_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRIVE_MODE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRIVE_MODE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** drive_mode_cmd: raw → physical × 1, integers only. */
@@ -1730,19 +1703,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_door_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** door_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** door_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_door_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DOOR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DOOR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** door_cmd: raw → physical × 1, integers only. */
@@ -1771,19 +1737,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_horn_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** horn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** horn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_horn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HORN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HORN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** horn_cmd: raw → physical × 1, integers only. */
@@ -1812,19 +1771,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_drl_cmd_decode(uint8_t raw
     return (double)raw;
 }
 
-/** drl_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** drl_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_autocar_ctrl_cmd_1_drl_cmd_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRL_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRL_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** drl_cmd: raw → physical × 1, integers only. */
@@ -1853,19 +1805,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_left_turn_cmd_decode(uint8
     return (double)raw;
 }
 
-/** left_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_left_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LEFT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LEFT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_turn_cmd: raw → physical × 1, integers only. */
@@ -1894,19 +1839,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_right_turn_cmd_decode(uint
     return (double)raw;
 }
 
-/** right_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_right_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_RIGHT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_RIGHT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_turn_cmd: raw → physical × 1, integers only. */
@@ -1935,19 +1873,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_hazard_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** hazard_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** hazard_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_hazard_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HAZARD_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HAZARD_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** hazard_cmd: raw → physical × 1, integers only. */
@@ -1976,19 +1907,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_position_light_cmd_decode(
     return (double)raw;
 }
 
-/** position_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** position_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_position_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_POSITION_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_POSITION_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** position_light_cmd: raw → physical × 1, integers only. */
@@ -2018,19 +1942,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_headlight_cmd_decode(uint8
     return (double)raw;
 }
 
-/** headlight_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** headlight_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_headlight_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HEADLIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_HEADLIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** headlight_cmd: raw → physical × 1, integers only. */
@@ -2056,19 +1972,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_rear_fog_cmd_decode(uint8_
     return (double)raw;
 }
 
-/** rear_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** rear_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_rear_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_REAR_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_REAR_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** rear_fog_cmd: raw → physical × 1, integers only. */
@@ -2097,19 +2006,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_left_fog_cmd_decode(uint8_
     return (double)raw;
 }
 
-/** left_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_left_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LEFT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LEFT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_fog_cmd: raw → physical × 1, integers only. */
@@ -2138,19 +2040,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_right_fog_cmd_decode(uint8
     return (double)raw;
 }
 
-/** right_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_right_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_RIGHT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_RIGHT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_fog_cmd: raw → physical × 1, integers only. */
@@ -2179,19 +2074,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_dome_light_cmd_decode(uint
     return (double)raw;
 }
 
-/** dome_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** dome_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_dome_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DOME_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DOME_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** dome_light_cmd: raw → physical × 1, integers only. */
@@ -2220,19 +2108,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_ambient_light_cmd_decode(u
     return (double)raw;
 }
 
-/** ambient_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** ambient_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_ambient_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AMBIENT_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AMBIENT_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** ambient_light_cmd: raw → physical × 1, integers only. */
@@ -2261,19 +2142,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_reset_decode(ui
     return (double)raw;
 }
 
-/** drive_mode_reset: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** drive_mode_reset: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_reset_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRIVE_MODE_RESET_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DRIVE_MODE_RESET_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** drive_mode_reset: raw → physical × 1, integers only. */
@@ -2299,19 +2173,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_system_state_decode(uint8_
     return (double)raw;
 }
 
-/** system_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_system_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_STATE_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_state: raw → physical × 1, integers only. */
@@ -2337,19 +2203,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_system_reliability_decode(
     return (double)raw;
 }
 
-/** system_reliability: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_reliability: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_system_reliability_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_RELIABILITY_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_RELIABILITY_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_reliability: raw → physical × 1, integers only. */
@@ -2376,19 +2234,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_system_fault_level_decode(
     return (double)raw;
 }
 
-/** system_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_system_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_fault_level: raw → physical × 1, integers only. */
@@ -2415,19 +2265,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_lock_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** lock_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** lock_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_lock_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LOCK_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_LOCK_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** lock_cmd: raw → physical × 1, integers only. */
@@ -2453,19 +2295,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_ac_cmd_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** ac_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** ac_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_autocar_ctrl_cmd_1_ac_cmd_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_CMD_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** ac_cmd: raw → physical × 1, integers only. */
@@ -2495,19 +2329,16 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_decode(uint8_t
     return scaled + 16.0;
 }
 
-/** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [16.0, 30.0] or not encodable. */
+/** The double encode of ac_set_temp and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys = {
+    16.0, 0.5, 15.9999999995, 30.0000000005};
+
+/** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 16.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [16.0, 30.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_SET_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys,
+                                        raw);
 }
 
 /** ac_set_temp: raw → physical × 100, integers only. */
@@ -2537,19 +2368,16 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_decode(
     return (double)raw;
 }
 
-/** protocol_version_a: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** The double encode of protocol_version_a and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys = {
+    0.0, 1.0, 0.0, 15.0};
+
+/** protocol_version_a: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_A_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_A_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_a: raw → physical × 1, integers only. */
@@ -2576,19 +2404,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_b_decode(
     return (double)raw;
 }
 
-/** protocol_version_b: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_b: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_b_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_B_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_B_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_b: raw → physical × 1, integers only. */
@@ -2615,19 +2436,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_c_decode(
     return (double)raw;
 }
 
-/** protocol_version_c: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_c: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_c_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_C_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_PROTOCOL_VERSION_C_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_c: raw → physical × 1, integers only. */
@@ -2909,19 +2723,11 @@ static inline double kaiwo_gateway_vehicle_state_1_drive_mode_state_decode(uint8
     return (double)raw;
 }
 
-/** drive_mode_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** drive_mode_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_drive_mode_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_DRIVE_MODE_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** drive_mode_state: raw → physical × 1, integers only. */
@@ -2947,19 +2753,12 @@ static inline double kaiwo_gateway_vehicle_state_1_door_state_decode(uint8_t raw
     return (double)raw;
 }
 
-/** door_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** door_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_door_state_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** door_state: raw → physical × 1, integers only. */
@@ -2985,19 +2784,12 @@ static inline double kaiwo_gateway_vehicle_state_1_drl_state_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** drl_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** drl_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_drl_state_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_DRL_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** drl_state: raw → physical × 1, integers only. */
@@ -3023,19 +2815,12 @@ static inline double kaiwo_gateway_vehicle_state_1_left_turn_state_decode(uint8_
     return (double)raw;
 }
 
-/** left_turn_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** left_turn_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_turn_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_TURN_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** left_turn_state: raw → physical × 1, integers only. */
@@ -3061,19 +2846,12 @@ static inline double kaiwo_gateway_vehicle_state_1_right_turn_state_decode(uint8
     return (double)raw;
 }
 
-/** right_turn_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** right_turn_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_turn_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_TURN_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** right_turn_state: raw → physical × 1, integers only. */
@@ -3099,19 +2877,12 @@ static inline double kaiwo_gateway_vehicle_state_1_hazard_state_decode(uint8_t r
     return (double)raw;
 }
 
-/** hazard_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** hazard_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_hazard_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_HAZARD_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** hazard_state: raw → physical × 1, integers only. */
@@ -3137,19 +2908,12 @@ static inline double kaiwo_gateway_vehicle_state_1_position_light_state_decode(u
     return (double)raw;
 }
 
-/** position_light_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** position_light_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_position_light_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_POSITION_LIGHT_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** position_light_state: raw → physical × 1, integers only. */
@@ -3175,19 +2939,11 @@ static inline double kaiwo_gateway_vehicle_state_1_headlight_state_decode(uint8_
     return (double)raw;
 }
 
-/** headlight_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** headlight_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_headlight_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_HEADLIGHT_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** headlight_state: raw → physical × 1, integers only. */
@@ -3213,19 +2969,12 @@ static inline double kaiwo_gateway_vehicle_state_1_rear_fog_state_decode(uint8_t
     return (double)raw;
 }
 
-/** rear_fog_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** rear_fog_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_rear_fog_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_REAR_FOG_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** rear_fog_state: raw → physical × 1, integers only. */
@@ -3251,19 +3000,12 @@ static inline double kaiwo_gateway_vehicle_state_1_left_fog_state_decode(uint8_t
     return (double)raw;
 }
 
-/** left_fog_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** left_fog_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_left_fog_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_LEFT_FOG_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** left_fog_state: raw → physical × 1, integers only. */
@@ -3289,19 +3031,12 @@ static inline double kaiwo_gateway_vehicle_state_1_right_fog_state_decode(uint8_
     return (double)raw;
 }
 
-/** right_fog_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** right_fog_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_right_fog_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_RIGHT_FOG_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** right_fog_state: raw → physical × 1, integers only. */
@@ -3327,19 +3062,12 @@ static inline double kaiwo_gateway_vehicle_state_1_dome_light_state_decode(uint8
     return (double)raw;
 }
 
-/** dome_light_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** dome_light_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_dome_light_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_DOME_LIGHT_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** dome_light_state: raw → physical × 1, integers only. */
@@ -3365,19 +3093,12 @@ static inline double kaiwo_gateway_vehicle_state_1_ambient_light_state_decode(ui
     return (double)raw;
 }
 
-/** ambient_light_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** ambient_light_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_ambient_light_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_AMBIENT_LIGHT_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** ambient_light_state: raw → physical × 1, integers only. */
@@ -3403,19 +3124,12 @@ static inline double kaiwo_gateway_vehicle_state_1_door_button_state_decode(uint
     return (double)raw;
 }
 
-/** door_button_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** door_button_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_door_button_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_DOOR_BUTTON_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** door_button_state: raw → physical × 1, integers only. */
@@ -3441,19 +3155,14 @@ static inline double kaiwo_gateway_vehicle_state_1_vehicle_speed_decode(uint8_t 
     return (double)raw - 50.0;
 }
 
-/** vehicle_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-50.0, 200.0] or not encodable. */
+/** vehicle_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -50.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-50.0, 200.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_FACTOR;
-    int64_t r;
-    if (!((value >= -50.0) && (value <= 200.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_vehicle_speed_phys = {
+        -50.0, 1.0, -50.0, 200.0};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_vehicle_speed_phys,
+                                        raw);
 }
 
 /** vehicle_speed: raw → physical × 10, integers only. */
@@ -3483,19 +3192,15 @@ static inline double kaiwo_gateway_vehicle_state_1_soc_decode(uint8_t raw) {
     return (double)raw * 0.5;
 }
 
-/** soc: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 125.0] or not encodable. */
+/** The double encode of soc and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_soc_phys = {0.0, 0.5, -0.0000000005,
+                                                                            125.0000000005};
+
+/** soc: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 125.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode(double value,
                                                                               uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR;
-    int64_t r;
-    if (!((value >= -0.0000000005) && (value <= 125.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_soc_phys, raw);
 }
 
 /** soc: raw → physical × 100, integers only. */
@@ -3525,19 +3230,12 @@ static inline double kaiwo_gateway_vehicle_state_1_system_power_cmd_decode(uint8
     return (double)raw;
 }
 
-/** system_power_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** system_power_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_system_power_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_SYSTEM_POWER_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** system_power_cmd: raw → physical × 1, integers only. */
@@ -3566,19 +3264,11 @@ static inline double kaiwo_gateway_vehicle_state_1_charge_state_decode(uint8_t r
     return (double)raw;
 }
 
-/** charge_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** charge_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** charge_state: raw → physical × 1, integers only. */
@@ -3604,19 +3294,12 @@ static inline double kaiwo_gateway_vehicle_state_1_charge_connection_decode(uint
     return (double)raw;
 }
 
-/** charge_connection: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** charge_connection: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_connection_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_CHARGE_CONNECTION_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** charge_connection: raw → physical × 1, integers only. */
@@ -3645,19 +3328,11 @@ static inline double kaiwo_gateway_vehicle_state_1_vehicle_fault_level_decode(ui
     return (double)raw;
 }
 
-/** vehicle_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** vehicle_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** vehicle_fault_level: raw → physical × 1, integers only. */
@@ -3683,19 +3358,13 @@ static inline double kaiwo_gateway_vehicle_state_1_odometer_decode(uint16_t raw)
     return (double)raw * 2.0;
 }
 
-/** odometer: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 120000.0] or not encodable. */
+/** odometer: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 120000.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_encode(double value,
                                                                                    uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 120000.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_odometer_phys = {0.0, 2.0, 0.0,
+                                                                                     120000.0};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_1_odometer_phys, raw);
 }
 
 /** odometer: raw → physical × 1, integers only. */
@@ -3886,19 +3555,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_enable_deco
     return (double)raw;
 }
 
-/** downhill_regen_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** downhill_regen_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_enable_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** downhill_regen_enable: raw → physical × 1, integers only. */
@@ -3925,19 +3587,11 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_decode(uint8_t 
     return (double)raw;
 }
 
-/** cargo_lift: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** cargo_lift: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_LIFT_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_LIFT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** cargo_lift: raw → physical × 1, integers only. */
@@ -3963,19 +3617,16 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_decode(ui
     return (double)raw;
 }
 
-/** cargo_lift_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 10.0] or not encodable. */
+/** The double encode of cargo_lift_speed and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_phys = {
+    0.0, 1.0, 0.0, 10.0};
+
+/** cargo_lift_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 10.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_LIFT_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_LIFT_SPEED_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 10.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_phys, raw);
 }
 
 /** cargo_lift_speed: raw → physical × 1, integers only. */
@@ -4004,19 +3655,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_pto_enable_decode(uint8_t 
     return (double)raw;
 }
 
-/** pto_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** pto_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_pto_enable_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_PTO_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_PTO_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** pto_enable: raw → physical × 1, integers only. */
@@ -4042,25 +3686,16 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_speed_decod
     return (double)raw * 0.5;
 }
 
-/** downhill_regen_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
+/** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_vehicle_state_1_soc_phys, &r) && (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
-            (r > INT64_C(250))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_soc_phys, raw);
 }
 
 /** downhill_regen_speed: raw → physical × 100, integers only. */
@@ -4094,19 +3729,14 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_decode(uint1
     return scaled - 25.0;
 }
 
-/** chassis_pitch: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-25.0, 25.0] or not encodable. */
+/** chassis_pitch: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.05,
+ * offset -25.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-25.0, 25.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_PITCH_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_PITCH_FACTOR;
-    int64_t r;
-    if (!((value >= -25.00000000005) && (value <= 25.00000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_phys = {
+        -25.0, 0.05, -25.00000000005, 25.00000000005};
+    return kaiwo_gateway_phys_encode_u16(value,
+                                         &kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_phys, raw);
 }
 
 /** chassis_pitch: raw → physical × 1000, integers only. */
@@ -4137,19 +3767,16 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_decode(uint16
     return scaled - 40.0;
 }
 
-/** chassis_roll: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 40.0] or not encodable. */
+/** The double encode of chassis_roll and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_phys = {
+    -40.0, 0.1, -40.0000000001, 40.0000000001};
+
+/** chassis_roll: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 40.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_ROLL_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_ROLL_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0000000001) && (value <= 40.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_phys,
+                                         raw);
 }
 
 /** chassis_roll: raw → physical × 100, integers only. */
@@ -4180,19 +3807,14 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_decode(uint16_
     return scaled - 30.0;
 }
 
-/** cargo_pitch: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-30.0, 100.0] or not encodable. */
+/** cargo_pitch: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
+ * offset -30.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-30.0, 100.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_PITCH_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_PITCH_FACTOR;
-    int64_t r;
-    if (!((value >= -30.0000000002) && (value <= 100.0000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_phys = {
+        -30.0, 0.2, -30.0000000002, 100.0000000002};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_phys,
+                                         raw);
 }
 
 /** cargo_pitch: raw → physical × 10, integers only. */
@@ -4223,19 +3845,12 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_decode(uint16_t
     return scaled - 40.0;
 }
 
-/** cargo_roll: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 40.0] or not encodable. */
+/** cargo_roll: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 40.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_ROLL_OFFSET) /
-                     KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_ROLL_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0000000001) && (value <= 40.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_phys,
+                                         raw);
 }
 
 /** cargo_roll: raw → physical × 100, integers only. */
@@ -4364,19 +3979,14 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_voltage_decode(uint16
     return (double)raw * 0.2;
 }
 
-/** battery_voltage: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 800.0] or not encodable. */
+/** battery_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 800.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_FACTOR;
-    int64_t r;
-    if (!((value >= -0.0000000002) && (value <= 800.0000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_voltage_phys = {
+        0.0, 0.2, -0.0000000002, 800.0000000002};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_2_battery_voltage_phys,
+                                         raw);
 }
 
 /** battery_voltage: raw → physical × 10, integers only. */
@@ -4407,19 +4017,14 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_current_decode(uint16
     return scaled - 500.0;
 }
 
-/** battery_current: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-500.0, 800.0] or not encodable. */
+/** battery_current: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
+ * offset -500.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-500.0, 800.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_FACTOR;
-    int64_t r;
-    if (!((value >= -500.00000000002) && (value <= 800.00000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_current_phys = {
+        -500.0, 0.02, -500.00000000002, 800.00000000002};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_2_battery_current_phys,
+                                         raw);
 }
 
 /** battery_current: raw → physical × 100, integers only. */
@@ -4449,19 +4054,16 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_charge_energy_decode(
     return (double)raw;
 }
 
-/** battery_charge_energy: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 65535.0] or not encodable. */
+/** The double encode of battery_charge_energy and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_charge_energy_phys = {
+    0.0, 1.0, 0.0, 65535.0};
+
+/** battery_charge_energy: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 65535.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_charge_energy_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CHARGE_ENERGY_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 65535.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_vehicle_state_2_battery_charge_energy_phys, raw);
 }
 
 /** battery_charge_energy: raw → physical × 1, integers only. */
@@ -4488,19 +4090,12 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_discharge_energy_deco
     return (double)raw;
 }
 
-/** battery_discharge_energy: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 65535.0] or not encodable. */
+/** battery_discharge_energy: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 65535.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_discharge_energy_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_DISCHARGE_ENERGY_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 65535.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_vehicle_state_2_battery_charge_energy_phys, raw);
 }
 
 /** battery_discharge_energy: raw → physical × 1, integers only. */
@@ -4644,19 +4239,16 @@ static inline double kaiwo_gateway_vehicle_state_3_battery_max_temp_decode(uint8
     return (double)raw - 40.0;
 }
 
-/** battery_max_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 215.0] or not encodable. */
+/** The double encode of battery_max_temp and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_3_battery_max_temp_phys = {
+    -40.0, 1.0, -40.0, 215.0};
+
+/** battery_max_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 215.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0) && (value <= 215.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_3_battery_max_temp_phys,
+                                        raw);
 }
 
 /** battery_max_temp: raw → physical × 10, integers only. */
@@ -4686,19 +4278,12 @@ static inline double kaiwo_gateway_vehicle_state_3_battery_min_temp_decode(uint8
     return (double)raw - 40.0;
 }
 
-/** battery_min_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 215.0] or not encodable. */
+/** battery_min_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 215.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0) && (value <= 215.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_3_battery_max_temp_phys,
+                                        raw);
 }
 
 /** battery_min_temp: raw → physical × 10, integers only. */
@@ -4728,19 +4313,16 @@ static inline double kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode(uint1
     return (double)raw * 0.0015;
 }
 
-/** max_cell_voltage: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 6.0] or not encodable. */
+/** The double encode of max_cell_voltage and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_phys = {
+    0.0, 0.0015, -0.0000000000015, 6.0000000000015};
+
+/** max_cell_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.0015,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 6.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR;
-    int64_t r;
-    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value,
+                                         &kaiwo_gateway_vehicle_state_3_max_cell_voltage_phys, raw);
 }
 
 /** max_cell_voltage: raw → physical × 100000, integers only. */
@@ -4770,19 +4352,12 @@ static inline double kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode(uint1
     return (double)raw * 0.0015;
 }
 
-/** min_cell_voltage: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 6.0] or not encodable. */
+/** min_cell_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.0015,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 6.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR;
-    int64_t r;
-    if (!((value >= -0.0000000000015) && (value <= 6.0000000000015))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value,
+                                         &kaiwo_gateway_vehicle_state_3_max_cell_voltage_phys, raw);
 }
 
 /** min_cell_voltage: raw → physical × 100000, integers only. */
@@ -4812,19 +4387,12 @@ static inline double kaiwo_gateway_vehicle_state_3_motor_temp_decode(uint8_t raw
     return (double)raw - 40.0;
 }
 
-/** motor_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 215.0] or not encodable. */
+/** motor_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 215.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_3_motor_temp_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0) && (value <= 215.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_3_battery_max_temp_phys,
+                                        raw);
 }
 
 /** motor_temp: raw → physical × 10, integers only. */
@@ -4854,19 +4422,12 @@ static inline double kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode(
     return (double)raw - 40.0;
 }
 
-/** motor_controller_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-40.0, 215.0] or not encodable. */
+/** motor_controller_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 215.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -40.0) && (value <= 215.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_3_battery_max_temp_phys,
+                                        raw);
 }
 
 /** motor_controller_temp: raw → physical × 10, integers only. */
@@ -5074,19 +4635,16 @@ static inline double kaiwo_gateway_vehicle_state_4_outside_temp_decode(uint8_t r
     return scaled - 30.0;
 }
 
-/** outside_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-30.0, 95.0] or not encodable. */
+/** The double encode of outside_temp and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_outside_temp_phys = {
+    -30.0, 0.5, -30.0000000005, 95.0000000005};
+
+/** outside_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset -30.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-30.0, 95.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -30.0000000005) && (value <= 95.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_4_outside_temp_phys,
+                                        raw);
 }
 
 /** outside_temp: raw → physical × 100, integers only. */
@@ -5117,19 +4675,12 @@ static inline double kaiwo_gateway_vehicle_state_4_inside_temp_decode(uint8_t ra
     return scaled - 30.0;
 }
 
-/** inside_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-30.0, 95.0] or not encodable. */
+/** inside_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset -30.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-30.0, 95.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= -30.0000000005) && (value <= 95.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_4_outside_temp_phys,
+                                        raw);
 }
 
 /** inside_temp: raw → physical × 100, integers only. */
@@ -5159,19 +4710,11 @@ static inline double kaiwo_gateway_vehicle_state_4_ac_state_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** ac_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** ac_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_ac_state_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_AC_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** ac_state: raw → physical × 1, integers only. */
@@ -5200,19 +4743,11 @@ static inline double kaiwo_gateway_vehicle_state_4_vehicle_power_state_decode(ui
     return (double)raw;
 }
 
-/** vehicle_power_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** vehicle_power_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_vehicle_power_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_VEHICLE_POWER_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** vehicle_power_state: raw → physical × 1, integers only. */
@@ -5238,19 +4773,12 @@ static inline double kaiwo_gateway_vehicle_state_4_hill_hold_state_decode(uint8_
     return (double)raw;
 }
 
-/** hill_hold_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** hill_hold_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_hill_hold_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_HILL_HOLD_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** hill_hold_state: raw → physical × 1, integers only. */
@@ -5276,19 +4804,12 @@ static inline double kaiwo_gateway_vehicle_state_4_regen_brake_state_decode(uint
     return (double)raw;
 }
 
-/** regen_brake_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** regen_brake_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_regen_brake_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_REGEN_BRAKE_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** regen_brake_state: raw → physical × 1, integers only. */
@@ -5314,19 +4835,14 @@ static inline double kaiwo_gateway_vehicle_state_4_remaining_range_decode(uint16
     return (double)raw;
 }
 
-/** remaining_range: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1000.0] or not encodable. */
+/** remaining_range: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1000.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_REMAINING_RANGE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1000.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_remaining_range_phys = {
+        0.0, 1.0, 0.0, 1000.0};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_4_remaining_range_phys,
+                                         raw);
 }
 
 /** remaining_range: raw → physical × 1, integers only. */
@@ -5355,19 +4871,12 @@ static inline double kaiwo_gateway_vehicle_state_4_manual_takeover_state_decode(
     return (double)raw;
 }
 
-/** manual_takeover_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** manual_takeover_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_manual_takeover_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_MANUAL_TAKEOVER_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** manual_takeover_state: raw → physical × 1, integers only. */
@@ -5394,19 +4903,12 @@ static inline double kaiwo_gateway_vehicle_state_4_remote_driving_allowed_decode
     return (double)raw;
 }
 
-/** remote_driving_allowed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** remote_driving_allowed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_REMOTE_DRIVING_ALLOWED_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** remote_driving_allowed: raw → physical × 1, integers only. */
@@ -5434,19 +4936,12 @@ static inline double kaiwo_gateway_vehicle_state_4_ac_set_temp_decode(uint8_t ra
     return scaled + 16.0;
 }
 
-/** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [16.0, 30.0] or not encodable. */
+/** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 16.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [16.0, 30.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys,
+                                        raw);
 }
 
 /** ac_set_temp: raw → physical × 100, integers only. */
@@ -5476,19 +4971,12 @@ static inline double kaiwo_gateway_vehicle_state_4_pto_state_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** pto_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** pto_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_4_pto_state_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_PTO_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** pto_state: raw → physical × 1, integers only. */
@@ -5515,19 +5003,14 @@ static inline double kaiwo_gateway_vehicle_state_4_battery_power_decode(uint16_t
     return scaled - 325.0;
 }
 
-/** battery_power: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-325.0, 325.0] or not encodable. */
+/** battery_power: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.01,
+ * offset -325.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-325.0, 325.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FACTOR;
-    int64_t r;
-    if (!((value >= -325.00000000001) && (value <= 325.00000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_battery_power_phys = {
+        -325.0, 0.01, -325.00000000001, 325.00000000001};
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_4_battery_power_phys,
+                                         raw);
 }
 
 /** battery_power: raw → physical × 1000, integers only. */
@@ -5885,19 +5368,11 @@ static inline double kaiwo_gateway_vehicle_fault_insulation_fault_level_decode(u
     return (double)raw;
 }
 
-/** insulation_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** insulation_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_insulation_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_INSULATION_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** insulation_fault_level: raw → physical × 1, integers only. */
@@ -5923,19 +5398,12 @@ static inline double kaiwo_gateway_vehicle_fault_dc_fault_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** dc_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** dc_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_dc_fault_encode(double value,
                                                                                  uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_DC_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** dc_fault: raw → physical × 1, integers only. */
@@ -5961,19 +5429,12 @@ static inline double kaiwo_gateway_vehicle_fault_soc_low_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** soc_low: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** soc_low: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_soc_low_encode(double value,
                                                                                 uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_SOC_LOW_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** soc_low: raw → physical × 1, integers only. */
@@ -5999,19 +5460,12 @@ static inline double kaiwo_gateway_vehicle_fault_cell_undervoltage_decode(uint8_
     return (double)raw;
 }
 
-/** cell_undervoltage: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** cell_undervoltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_cell_undervoltage_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_CELL_UNDERVOLTAGE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** cell_undervoltage: raw → physical × 1, integers only. */
@@ -6037,19 +5491,12 @@ static inline double kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_deco
     return (double)raw;
 }
 
-/** brake_boost_pressure_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** brake_boost_pressure_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_boost_pressure_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BOOST_PRESSURE_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** brake_boost_pressure_fault: raw → physical × 1, integers only. */
@@ -6076,19 +5523,12 @@ static inline double kaiwo_gateway_vehicle_fault_vacuum_pump_fault_decode(uint8_
     return (double)raw;
 }
 
-/** vacuum_pump_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** vacuum_pump_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vacuum_pump_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_VACUUM_PUMP_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** vacuum_pump_fault: raw → physical × 1, integers only. */
@@ -6114,19 +5554,12 @@ static inline double kaiwo_gateway_vehicle_fault_vehicle_system_fault_decode(uin
     return (double)raw;
 }
 
-/** vehicle_system_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** vehicle_system_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_vehicle_system_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_VEHICLE_SYSTEM_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** vehicle_system_fault: raw → physical × 1, integers only. */
@@ -6152,19 +5585,12 @@ static inline double kaiwo_gateway_vehicle_fault_battery_overheat_decode(uint8_t
     return (double)raw;
 }
 
-/** battery_overheat: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** battery_overheat: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_overheat_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_OVERHEAT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** battery_overheat: raw → physical × 1, integers only. */
@@ -6190,19 +5616,12 @@ static inline double kaiwo_gateway_vehicle_fault_motor_overheat_decode(uint8_t r
     return (double)raw;
 }
 
-/** motor_overheat: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** motor_overheat: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_overheat_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_OVERHEAT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** motor_overheat: raw → physical × 1, integers only. */
@@ -6228,19 +5647,12 @@ static inline double kaiwo_gateway_vehicle_fault_traction_battery_fault_decode(u
     return (double)raw;
 }
 
-/** traction_battery_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** traction_battery_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_traction_battery_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_TRACTION_BATTERY_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** traction_battery_fault: raw → physical × 1, integers only. */
@@ -6266,19 +5678,12 @@ static inline double kaiwo_gateway_vehicle_fault_motor_fault_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** motor_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** motor_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_motor_fault_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** motor_fault: raw → physical × 1, integers only. */
@@ -6304,19 +5709,12 @@ static inline double kaiwo_gateway_vehicle_fault_battery_comm_fault_decode(uint8
     return (double)raw;
 }
 
-/** battery_comm_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** battery_comm_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_comm_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_COMM_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** battery_comm_fault: raw → physical × 1, integers only. */
@@ -6342,19 +5740,12 @@ static inline double kaiwo_gateway_vehicle_fault_motor_comm_fault_decode(uint8_t
     return (double)raw;
 }
 
-/** motor_comm_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** motor_comm_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_comm_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_COMM_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** motor_comm_fault: raw → physical × 1, integers only. */
@@ -6380,19 +5771,12 @@ static inline double kaiwo_gateway_vehicle_fault_eps_fault_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** eps_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** eps_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_eps_fault_encode(double value,
                                                                                   uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_EPS_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** eps_fault: raw → physical × 1, integers only. */
@@ -6418,19 +5802,12 @@ static inline double kaiwo_gateway_vehicle_fault_ac_fault_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** ac_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** ac_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_ac_fault_encode(double value,
                                                                                  uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_AC_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** ac_fault: raw → physical × 1, integers only. */
@@ -6456,19 +5833,12 @@ static inline double kaiwo_gateway_vehicle_fault_aux_battery_fault_decode(uint8_
     return (double)raw;
 }
 
-/** aux_battery_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** aux_battery_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_aux_battery_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_AUX_BATTERY_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** aux_battery_fault: raw → physical × 1, integers only. */
@@ -6494,19 +5864,12 @@ static inline double kaiwo_gateway_vehicle_fault_epb_fault_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** epb_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** epb_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_fault_epb_fault_encode(double value,
                                                                                   uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_EPB_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** epb_fault: raw → physical × 1, integers only. */
@@ -6532,19 +5895,12 @@ static inline double kaiwo_gateway_vehicle_fault_brake_by_wire_fault_decode(uint
     return (double)raw;
 }
 
-/** brake_by_wire_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** brake_by_wire_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_brake_by_wire_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BRAKE_BY_WIRE_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** brake_by_wire_fault: raw → physical × 1, integers only. */
@@ -6570,19 +5926,12 @@ static inline double kaiwo_gateway_vehicle_fault_key_not_detected_decode(uint8_t
     return (double)raw;
 }
 
-/** key_not_detected: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** key_not_detected: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_key_not_detected_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_KEY_NOT_DETECTED_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** key_not_detected: raw → physical × 1, integers only. */
@@ -6608,19 +5957,12 @@ static inline double kaiwo_gateway_vehicle_fault_tire_pressure_low_decode(uint8_
     return (double)raw;
 }
 
-/** tire_pressure_low: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** tire_pressure_low: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_tire_pressure_low_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_TIRE_PRESSURE_LOW_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** tire_pressure_low: raw → physical × 1, integers only. */
@@ -6646,19 +5988,12 @@ static inline double kaiwo_gateway_vehicle_fault_body_motor_fault_decode(uint8_t
     return (double)raw;
 }
 
-/** body_motor_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** body_motor_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** body_motor_fault: raw → physical × 1, integers only. */
@@ -6684,19 +6019,12 @@ static inline double kaiwo_gateway_vehicle_fault_body_motor_overheat_decode(uint
     return (double)raw;
 }
 
-/** body_motor_overheat: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** body_motor_overheat: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_body_motor_overheat_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BODY_MOTOR_OVERHEAT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** body_motor_overheat: raw → physical × 1, integers only. */
@@ -6722,19 +6050,11 @@ static inline double kaiwo_gateway_vehicle_fault_battery_system_fault_level_deco
     return (double)raw;
 }
 
-/** battery_system_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** battery_system_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_battery_system_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_BATTERY_SYSTEM_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** battery_system_fault_level: raw → physical × 1, integers only. */
@@ -6761,19 +6081,11 @@ static inline double kaiwo_gateway_vehicle_fault_motor_system_fault_level_decode
     return (double)raw;
 }
 
-/** motor_system_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** motor_system_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_motor_system_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_MOTOR_SYSTEM_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** motor_system_fault_level: raw → physical × 1, integers only. */
@@ -6800,19 +6112,12 @@ static inline double kaiwo_gateway_vehicle_fault_unmanned_entry_fault_decode(uin
     return (double)raw;
 }
 
-/** unmanned_entry_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** unmanned_entry_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unmanned_entry_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_UNMANNED_ENTRY_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** unmanned_entry_fault: raw → physical × 1, integers only. */
@@ -6838,19 +6143,12 @@ static inline double kaiwo_gateway_vehicle_fault_protocol_version_a_decode(uint8
     return (double)raw;
 }
 
-/** protocol_version_a: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_a: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_a_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_A_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_a: raw → physical × 1, integers only. */
@@ -6876,19 +6174,12 @@ static inline double kaiwo_gateway_vehicle_fault_protocol_version_b_decode(uint8
     return (double)raw;
 }
 
-/** protocol_version_b: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_b: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_b_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_B_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_b: raw → physical × 1, integers only. */
@@ -6914,19 +6205,12 @@ static inline double kaiwo_gateway_vehicle_fault_protocol_version_c_decode(uint8
     return (double)raw;
 }
 
-/** protocol_version_c: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_c: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_protocol_version_c_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_PROTOCOL_VERSION_C_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_c: raw → physical × 1, integers only. */
@@ -6952,19 +6236,12 @@ static inline double kaiwo_gateway_vehicle_fault_remote_entry_fault_decode(uint8
     return (double)raw;
 }
 
-/** remote_entry_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** remote_entry_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_remote_entry_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_VEHICLE_FAULT_REMOTE_ENTRY_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** remote_entry_fault: raw → physical × 1, integers only. */
@@ -7164,19 +6441,12 @@ static inline double kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_decode(uint8_
     return (double)raw;
 }
 
-/** eps_ctrl_mode: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 255.0] or not encodable. */
+/** eps_ctrl_mode: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 255.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 255.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value,
+                                        &kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys, raw);
 }
 
 /** eps_ctrl_mode: raw → physical × 1, integers only. */
@@ -7202,21 +6472,23 @@ static inline double kaiwo_gateway_rgate_eps_command_max_angular_speed_decode(ui
     return (double)raw * 2.0;
 }
 
-/** max_angular_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
+/** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_max_angular_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                 &r) &&
+        (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
+    }
+    if (!kaiwo_gateway_phys_encode(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                   &r)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
+    if (r > INT64_C(255)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
@@ -7252,19 +6524,12 @@ static inline double kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode(u
     return scaled - 1080.0;
 }
 
-/** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
+/** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -1080.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys, raw);
 }
 
 /** steering_angle_cmd: raw → physical × 100, integers only. */
@@ -7421,19 +6686,12 @@ static inline double kaiwo_gateway_rgate_speed_command_accel_cmd_decode(uint16_t
     return scaled - 9.0;
 }
 
-/** accel_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-9.0, 3.6] or not encodable. */
+/** accel_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
+ * offset -9.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-9.0, 3.6] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_accel_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -9.00000000002) && (value <= 3.60000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_speed_command_accel_cmd_phys,
+                                         raw);
 }
 
 /** accel_cmd: raw → physical × 100, integers only. */
@@ -7463,19 +6721,11 @@ static inline double kaiwo_gateway_rgate_speed_command_epb_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** epb_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** epb_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_epb_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EPB_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** epb_cmd: raw → physical × 1, integers only. */
@@ -7501,19 +6751,12 @@ static inline double kaiwo_gateway_rgate_speed_command_gear_cmd_decode(uint8_t r
     return (double)raw;
 }
 
-/** gear_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** gear_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_SPEED_COMMAND_GEAR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** gear_cmd: raw → physical × 1, integers only. */
@@ -7542,19 +6785,12 @@ static inline double kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_decod
     return (double)raw;
 }
 
-/** emergency_brake_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** emergency_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_emergency_brake_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** emergency_brake_cmd: raw → physical × 1, integers only. */
@@ -7864,19 +7100,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_drive_mode_cmd_decode(uint8_
     return (double)raw;
 }
 
-/** drive_mode_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** drive_mode_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_drive_mode_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRIVE_MODE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRIVE_MODE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** drive_mode_cmd: raw → physical × 1, integers only. */
@@ -7902,19 +7130,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_door_cmd_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** door_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** door_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_rgate_ctrl_cmd_1_door_cmd_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DOOR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DOOR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** door_cmd: raw → physical × 1, integers only. */
@@ -7943,19 +7164,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_horn_cmd_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** horn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** horn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_rgate_ctrl_cmd_1_horn_cmd_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HORN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HORN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** horn_cmd: raw → physical × 1, integers only. */
@@ -7984,19 +7198,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_drl_cmd_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** drl_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** drl_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_rgate_ctrl_cmd_1_drl_cmd_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRL_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRL_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** drl_cmd: raw → physical × 1, integers only. */
@@ -8025,19 +7232,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_left_turn_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** left_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_left_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LEFT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LEFT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_turn_cmd: raw → physical × 1, integers only. */
@@ -8066,19 +7266,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_right_turn_cmd_decode(uint8_
     return (double)raw;
 }
 
-/** right_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_right_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_RIGHT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_RIGHT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_turn_cmd: raw → physical × 1, integers only. */
@@ -8107,19 +7300,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_hazard_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** hazard_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** hazard_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_hazard_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HAZARD_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HAZARD_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** hazard_cmd: raw → physical × 1, integers only. */
@@ -8148,19 +7334,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_position_light_cmd_decode(ui
     return (double)raw;
 }
 
-/** position_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** position_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_position_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_POSITION_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_POSITION_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** position_light_cmd: raw → physical × 1, integers only. */
@@ -8189,19 +7368,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_headlight_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** headlight_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** headlight_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_headlight_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HEADLIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_HEADLIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** headlight_cmd: raw → physical × 1, integers only. */
@@ -8227,19 +7398,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_rear_fog_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** rear_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** rear_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_rear_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_REAR_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_REAR_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** rear_fog_cmd: raw → physical × 1, integers only. */
@@ -8268,19 +7432,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_left_fog_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** left_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_left_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LEFT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LEFT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_fog_cmd: raw → physical × 1, integers only. */
@@ -8309,19 +7466,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_right_fog_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** right_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_right_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_RIGHT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_RIGHT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_fog_cmd: raw → physical × 1, integers only. */
@@ -8350,19 +7500,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_dome_light_cmd_decode(uint8_
     return (double)raw;
 }
 
-/** dome_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** dome_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_dome_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DOME_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DOME_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** dome_light_cmd: raw → physical × 1, integers only. */
@@ -8391,19 +7534,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_ambient_light_cmd_decode(uin
     return (double)raw;
 }
 
-/** ambient_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** ambient_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_ambient_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AMBIENT_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AMBIENT_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** ambient_light_cmd: raw → physical × 1, integers only. */
@@ -8432,19 +7568,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_drive_mode_reset_decode(uint
     return (double)raw;
 }
 
-/** drive_mode_reset: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** drive_mode_reset: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_drive_mode_reset_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRIVE_MODE_RESET_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DRIVE_MODE_RESET_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** drive_mode_reset: raw → physical × 1, integers only. */
@@ -8470,19 +7599,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_system_state_decode(uint8_t 
     return (double)raw;
 }
 
-/** system_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_system_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_STATE_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_state: raw → physical × 1, integers only. */
@@ -8508,19 +7629,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_system_reliability_decode(ui
     return (double)raw;
 }
 
-/** system_reliability: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_reliability: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_system_reliability_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_RELIABILITY_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_RELIABILITY_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_reliability: raw → physical × 1, integers only. */
@@ -8546,19 +7659,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_system_fault_level_decode(ui
     return (double)raw;
 }
 
-/** system_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_system_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_fault_level: raw → physical × 1, integers only. */
@@ -8584,19 +7689,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_lock_cmd_decode(uint8_t raw)
     return (double)raw;
 }
 
-/** lock_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** lock_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_rgate_ctrl_cmd_1_lock_cmd_encode(double value,
                                                                                     uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LOCK_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_LOCK_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** lock_cmd: raw → physical × 1, integers only. */
@@ -8622,19 +7719,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_ac_cmd_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** ac_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** ac_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_rgate_ctrl_cmd_1_ac_cmd_encode(double value,
                                                                                   uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_CMD_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** ac_cmd: raw → physical × 1, integers only. */
@@ -8664,19 +7753,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_decode(uint8_t r
     return scaled + 16.0;
 }
 
-/** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [16.0, 30.0] or not encodable. */
+/** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 16.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [16.0, 30.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_SET_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys,
+                                        raw);
 }
 
 /** ac_set_temp: raw → physical × 100, integers only. */
@@ -8706,19 +7788,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_a_decode(ui
     return (double)raw;
 }
 
-/** protocol_version_a: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_a: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_a_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_A_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_A_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_a: raw → physical × 1, integers only. */
@@ -8744,19 +7819,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_b_decode(ui
     return (double)raw;
 }
 
-/** protocol_version_b: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_b: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_b_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_B_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_B_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_b: raw → physical × 1, integers only. */
@@ -8782,19 +7850,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_c_decode(ui
     return (double)raw;
 }
 
-/** protocol_version_c: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_c: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_protocol_version_c_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_C_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_1_PROTOCOL_VERSION_C_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_c: raw → physical × 1, integers only. */
@@ -8931,19 +7992,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_enable_decode
     return (double)raw;
 }
 
-/** downhill_regen_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** downhill_regen_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_enable_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** downhill_regen_enable: raw → physical × 1, integers only. */
@@ -8970,19 +8024,11 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_decode(uint8_t ra
     return (double)raw;
 }
 
-/** cargo_lift: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** cargo_lift: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_2_CARGO_LIFT_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_2_CARGO_LIFT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** cargo_lift: raw → physical × 1, integers only. */
@@ -9008,19 +8054,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_speed_decode(uint
     return (double)raw;
 }
 
-/** cargo_lift_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 10.0] or not encodable. */
+/** cargo_lift_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 10.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_2_CARGO_LIFT_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_2_CARGO_LIFT_SPEED_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 10.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_phys, raw);
 }
 
 /** cargo_lift_speed: raw → physical × 1, integers only. */
@@ -9049,19 +8088,12 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_2_pto_enable_decode(uint8_t ra
     return (double)raw;
 }
 
-/** pto_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** pto_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_pto_enable_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_2_PTO_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_2_PTO_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** pto_enable: raw → physical × 1, integers only. */
@@ -9087,25 +8119,16 @@ static inline double kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_speed_decode(
     return (double)raw * 0.5;
 }
 
-/** downhill_regen_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
+/** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_vehicle_state_1_soc_phys, &r) && (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
-            (r > INT64_C(250))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_soc_phys, raw);
 }
 
 /** downhill_regen_speed: raw → physical × 100, integers only. */
@@ -9237,19 +8260,13 @@ static inline double kaiwo_gateway_device_id_device_type_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** device_type: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 63.0] or not encodable. */
+/** device_type: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 63.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(double value,
                                                                                 uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_OFFSET) /
-                     KAIWO_GATEWAY_DEVICE_ID_DEVICE_TYPE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 63.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_device_id_device_type_phys = {0.0, 1.0, 0.0,
+                                                                                  63.0};
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_device_id_device_type_phys, raw);
 }
 
 /** device_type: raw → physical × 1, integers only. */
@@ -9275,19 +8292,11 @@ static inline double kaiwo_gateway_device_id_id_frame_index_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** id_frame_index: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** id_frame_index: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_id_frame_index_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_OFFSET) /
-                     KAIWO_GATEWAY_DEVICE_ID_ID_FRAME_INDEX_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** id_frame_index: raw → physical × 1, integers only. */
@@ -9487,24 +8496,23 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_dec
     return (double)raw;
 }
 
-/** sensor_1_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** The double encode of sensor_1_distance and of the signals with the same scaling and range. */
+static const kaiwo_gateway_phys_t kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys = {
+    0.0, 1.0, 0.0, 500.0};
+
+/** sensor_1_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_1_distance: raw → physical × 1, integers only. */
@@ -9536,24 +8544,19 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_dec
     return (double)raw;
 }
 
-/** sensor_2_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_2_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_2_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_2_distance: raw → physical × 1, integers only. */
@@ -9585,24 +8588,19 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_dec
     return (double)raw;
 }
 
-/** sensor_3_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_3_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_3_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_3_distance: raw → physical × 1, integers only. */
@@ -9634,24 +8632,19 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_dec
     return (double)raw;
 }
 
-/** sensor_4_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_4_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_4_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_4_distance: raw → physical × 1, integers only. */
@@ -9683,24 +8676,19 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_dec
     return (double)raw;
 }
 
-/** sensor_5_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_5_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_5_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_5_distance: raw → physical × 1, integers only. */
@@ -9732,24 +8720,19 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_dec
     return (double)raw;
 }
 
-/** sensor_6_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_6_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_sensor_6_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_6_distance: raw → physical × 1, integers only. */
@@ -9990,24 +8973,19 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_dec
     return (double)raw;
 }
 
-/** sensor_7_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_7_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_7_distance: raw → physical × 1, integers only. */
@@ -10039,24 +9017,19 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_dec
     return (double)raw;
 }
 
-/** sensor_8_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_8_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_8_distance: raw → physical × 1, integers only. */
@@ -10088,24 +9061,19 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_dec
     return (double)raw;
 }
 
-/** sensor_9_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_9_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_9_distance: raw → physical × 1, integers only. */
@@ -10137,19 +9105,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_uss_system_state_deco
     return (double)raw;
 }
 
-/** uss_system_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** uss_system_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** uss_system_state: raw → physical × 1, integers only. */
@@ -10179,19 +9140,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_decode
     return (double)raw;
 }
 
-/** sensor_1_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_1_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_1_fault: raw → physical × 1, integers only. */
@@ -10218,19 +9172,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_decode
     return (double)raw;
 }
 
-/** sensor_2_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_2_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_2_fault: raw → physical × 1, integers only. */
@@ -10257,19 +9204,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_decode
     return (double)raw;
 }
 
-/** sensor_3_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_3_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_3_fault: raw → physical × 1, integers only. */
@@ -10296,19 +9236,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_decode
     return (double)raw;
 }
 
-/** sensor_4_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_4_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_4_fault: raw → physical × 1, integers only. */
@@ -10335,19 +9268,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_decode
     return (double)raw;
 }
 
-/** sensor_5_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_5_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_5_fault: raw → physical × 1, integers only. */
@@ -10374,19 +9300,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_decode
     return (double)raw;
 }
 
-/** sensor_6_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_6_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_6_fault: raw → physical × 1, integers only. */
@@ -10413,19 +9332,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_decode
     return (double)raw;
 }
 
-/** sensor_7_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_7_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_7_fault: raw → physical × 1, integers only. */
@@ -10452,19 +9364,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_decode
     return (double)raw;
 }
 
-/** sensor_8_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_8_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_8_fault: raw → physical × 1, integers only. */
@@ -10491,19 +9396,12 @@ static inline double kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_decode
     return (double)raw;
 }
 
-/** sensor_9_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_9_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_9_fault: raw → physical × 1, integers only. */
@@ -10678,24 +9576,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_deco
     return (double)raw;
 }
 
-/** sensor_1_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_1_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_1_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_1_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_1_distance: raw → physical × 1, integers only. */
@@ -10727,24 +9620,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_deco
     return (double)raw;
 }
 
-/** sensor_2_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_2_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_2_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_2_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_2_distance: raw → physical × 1, integers only. */
@@ -10776,24 +9664,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_deco
     return (double)raw;
 }
 
-/** sensor_3_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_3_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_3_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_3_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_3_distance: raw → physical × 1, integers only. */
@@ -10825,24 +9708,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_deco
     return (double)raw;
 }
 
-/** sensor_4_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_4_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_4_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_4_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_4_distance: raw → physical × 1, integers only. */
@@ -10874,24 +9752,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_deco
     return (double)raw;
 }
 
-/** sensor_5_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_5_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_5_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_5_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_5_distance: raw → physical × 1, integers only. */
@@ -10923,24 +9796,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_deco
     return (double)raw;
 }
 
-/** sensor_6_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_6_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_sensor_6_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_SENSOR_6_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_6_distance: raw → physical × 1, integers only. */
@@ -11178,24 +10046,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_deco
     return (double)raw;
 }
 
-/** sensor_7_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_7_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_7_distance: raw → physical × 1, integers only. */
@@ -11227,24 +10090,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_deco
     return (double)raw;
 }
 
-/** sensor_8_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_8_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_8_distance: raw → physical × 1, integers only. */
@@ -11276,24 +10134,19 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_deco
     return (double)raw;
 }
 
-/** sensor_9_distance: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
+/** sensor_9_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_distance_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_DISTANCE_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 1024.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(
+            value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, &r) &&
+        (r == 1023)) {
+        *raw = (uint16_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 1023)) {
-        if (!((value >= 0.0) && (value <= 500.0)) || (r < INT64_C(0)) || (r > INT64_C(500))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys, raw);
 }
 
 /** sensor_9_distance: raw → physical × 1, integers only. */
@@ -11325,19 +10178,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_uss_system_state_decod
     return (double)raw;
 }
 
-/** uss_system_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** uss_system_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_USS_SYSTEM_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** uss_system_state: raw → physical × 1, integers only. */
@@ -11367,19 +10213,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_decode(
     return (double)raw;
 }
 
-/** sensor_1_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_1_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_1_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_1_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_1_fault: raw → physical × 1, integers only. */
@@ -11406,19 +10245,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_decode(
     return (double)raw;
 }
 
-/** sensor_2_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_2_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_2_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_2_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_2_fault: raw → physical × 1, integers only. */
@@ -11445,19 +10277,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_decode(
     return (double)raw;
 }
 
-/** sensor_3_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_3_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_3_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_3_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_3_fault: raw → physical × 1, integers only. */
@@ -11484,19 +10309,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_decode(
     return (double)raw;
 }
 
-/** sensor_4_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_4_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_4_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_4_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_4_fault: raw → physical × 1, integers only. */
@@ -11523,19 +10341,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_decode(
     return (double)raw;
 }
 
-/** sensor_5_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_5_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_5_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_5_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_5_fault: raw → physical × 1, integers only. */
@@ -11562,19 +10373,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_decode(
     return (double)raw;
 }
 
-/** sensor_6_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_6_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_6_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_6_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_6_fault: raw → physical × 1, integers only. */
@@ -11601,19 +10405,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_decode(
     return (double)raw;
 }
 
-/** sensor_7_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_7_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_7_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_7_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_7_fault: raw → physical × 1, integers only. */
@@ -11640,19 +10437,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_decode(
     return (double)raw;
 }
 
-/** sensor_8_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_8_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_8_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_8_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_8_fault: raw → physical × 1, integers only. */
@@ -11679,19 +10469,12 @@ static inline double kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_decode(
     return (double)raw;
 }
 
-/** sensor_9_fault: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** sensor_9_fault: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_sensor_9_fault_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_OFFSET) /
-                     KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_2_SENSOR_9_FAULT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** sensor_9_fault: raw → physical × 1, integers only. */
@@ -11828,19 +10611,12 @@ static inline double kaiwo_gateway_tele_eps_command_eps_ctrl_mode_decode(uint8_t
     return (double)raw;
 }
 
-/** eps_ctrl_mode: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 255.0] or not encodable. */
+/** eps_ctrl_mode: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 255.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_OFFSET) /
-                     KAIWO_GATEWAY_TELE_EPS_COMMAND_EPS_CTRL_MODE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 255.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value,
+                                        &kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys, raw);
 }
 
 /** eps_ctrl_mode: raw → physical × 1, integers only. */
@@ -11866,21 +10642,23 @@ static inline double kaiwo_gateway_tele_eps_command_max_angular_speed_decode(uin
     return (double)raw * 2.0;
 }
 
-/** max_angular_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
+/** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_max_angular_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                 &r) &&
+        (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
+    }
+    if (!kaiwo_gateway_phys_encode(value, &kaiwo_gateway_autocar_eps_command_max_angular_speed_phys,
+                                   &r)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= 0.0) && (value <= 512.0)) || (r < INT64_C(0)) || (r > INT64_C(255))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
+    if (r > INT64_C(255)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
     }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
@@ -11916,19 +10694,12 @@ static inline double kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode(ui
     return scaled - 1080.0;
 }
 
-/** steering_angle_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
+/** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
+ * offset -1080.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -1080.0000000001) && (value <= 1080.0000000001))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys, raw);
 }
 
 /** steering_angle_cmd: raw → physical × 100, integers only. */
@@ -12084,19 +10855,14 @@ static inline double kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode(
     return scaled - 100.0;
 }
 
-/** throttle_brake_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [-100.0, 100.0] or not encodable. */
+/** throttle_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
+ * offset -100.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-100.0, 100.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= -100.0000000002) && (value <= 100.0000000002))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint16_t)r;
-    return KAIWO_GATEWAY_OK;
+    static const kaiwo_gateway_phys_t kaiwo_gateway_tele_speed_command_throttle_brake_cmd_phys = {
+        -100.0, 0.2, -100.0000000002, 100.0000000002};
+    return kaiwo_gateway_phys_encode_u16(
+        value, &kaiwo_gateway_tele_speed_command_throttle_brake_cmd_phys, raw);
 }
 
 /** throttle_brake_cmd: raw → physical × 10, integers only. */
@@ -12127,19 +10893,11 @@ static inline double kaiwo_gateway_tele_speed_command_epb_cmd_decode(uint8_t raw
     return (double)raw;
 }
 
-/** epb_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** epb_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_speed_command_epb_cmd_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_SPEED_COMMAND_EPB_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** epb_cmd: raw → physical × 1, integers only. */
@@ -12165,19 +10923,12 @@ static inline double kaiwo_gateway_tele_speed_command_gear_cmd_decode(uint8_t ra
     return (double)raw;
 }
 
-/** gear_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** gear_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_gear_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_SPEED_COMMAND_GEAR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** gear_cmd: raw → physical × 1, integers only. */
@@ -12206,19 +10957,12 @@ static inline double kaiwo_gateway_tele_speed_command_emergency_brake_cmd_decode
     return (double)raw;
 }
 
-/** emergency_brake_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** emergency_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_emergency_brake_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_SPEED_COMMAND_EMERGENCY_BRAKE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** emergency_brake_cmd: raw → physical × 1, integers only. */
@@ -12528,19 +11272,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** drive_mode_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** drive_mode_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRIVE_MODE_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRIVE_MODE_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** drive_mode_cmd: raw → physical × 1, integers only. */
@@ -12569,19 +11306,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_door_cmd_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** door_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** door_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_door_cmd_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_DOOR_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_DOOR_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** door_cmd: raw → physical × 1, integers only. */
@@ -12610,19 +11340,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_horn_cmd_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** horn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** horn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_horn_cmd_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_HORN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_HORN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** horn_cmd: raw → physical × 1, integers only. */
@@ -12651,19 +11374,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_drl_cmd_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** drl_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** drl_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_drl_cmd_encode(double value,
                                                                                   uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRL_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRL_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** drl_cmd: raw → physical × 1, integers only. */
@@ -12692,19 +11408,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_left_turn_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** left_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_left_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_LEFT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_LEFT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_turn_cmd: raw → physical × 1, integers only. */
@@ -12733,19 +11442,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_right_turn_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** right_turn_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_turn_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_right_turn_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_RIGHT_TURN_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_RIGHT_TURN_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_turn_cmd: raw → physical × 1, integers only. */
@@ -12774,19 +11476,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_hazard_cmd_decode(uint8_t raw
     return (double)raw;
 }
 
-/** hazard_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** hazard_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_hazard_cmd_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_HAZARD_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_HAZARD_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** hazard_cmd: raw → physical × 1, integers only. */
@@ -12815,19 +11510,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_position_light_cmd_decode(uin
     return (double)raw;
 }
 
-/** position_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** position_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_position_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_POSITION_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_POSITION_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** position_light_cmd: raw → physical × 1, integers only. */
@@ -12856,19 +11544,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_headlight_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** headlight_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** headlight_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_headlight_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_HEADLIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_HEADLIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** headlight_cmd: raw → physical × 1, integers only. */
@@ -12894,19 +11574,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_rear_fog_cmd_decode(uint8_t r
     return (double)raw;
 }
 
-/** rear_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** rear_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_rear_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_REAR_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_REAR_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** rear_fog_cmd: raw → physical × 1, integers only. */
@@ -12935,19 +11608,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_left_fog_cmd_decode(uint8_t r
     return (double)raw;
 }
 
-/** left_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** left_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_left_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_LEFT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_LEFT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** left_fog_cmd: raw → physical × 1, integers only. */
@@ -12976,19 +11642,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_right_fog_cmd_decode(uint8_t 
     return (double)raw;
 }
 
-/** right_fog_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** right_fog_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_right_fog_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_RIGHT_FOG_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_RIGHT_FOG_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** right_fog_cmd: raw → physical × 1, integers only. */
@@ -13017,19 +11676,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_dome_light_cmd_decode(uint8_t
     return (double)raw;
 }
 
-/** dome_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** dome_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_dome_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_DOME_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_DOME_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** dome_light_cmd: raw → physical × 1, integers only. */
@@ -13058,19 +11710,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_ambient_light_cmd_decode(uint
     return (double)raw;
 }
 
-/** ambient_light_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 2.0] or not encodable. */
+/** ambient_light_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_ambient_light_cmd_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_AMBIENT_LIGHT_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_AMBIENT_LIGHT_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 2.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_speed_command_gear_cmd_phys,
+                                        raw);
 }
 
 /** ambient_light_cmd: raw → physical × 1, integers only. */
@@ -13099,19 +11744,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_reset_decode(uint8
     return (double)raw;
 }
 
-/** drive_mode_reset: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** drive_mode_reset: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_reset_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRIVE_MODE_RESET_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_DRIVE_MODE_RESET_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** drive_mode_reset: raw → physical × 1, integers only. */
@@ -13137,19 +11775,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_system_state_decode(uint8_t r
     return (double)raw;
 }
 
-/** system_state: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_state: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_system_state_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_STATE_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_STATE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_state: raw → physical × 1, integers only. */
@@ -13175,19 +11805,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_system_reliability_decode(uin
     return (double)raw;
 }
 
-/** system_reliability: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_reliability: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_system_reliability_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_RELIABILITY_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_RELIABILITY_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_reliability: raw → physical × 1, integers only. */
@@ -13213,19 +11835,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_system_fault_level_decode(uin
     return (double)raw;
 }
 
-/** system_fault_level: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** system_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_system_fault_level_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_SYSTEM_FAULT_LEVEL_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** system_fault_level: raw → physical × 1, integers only. */
@@ -13251,19 +11865,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_lock_cmd_decode(uint8_t raw) 
     return (double)raw;
 }
 
-/** lock_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** lock_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_lock_cmd_encode(double value,
                                                                                    uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_LOCK_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_LOCK_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** lock_cmd: raw → physical × 1, integers only. */
@@ -13289,19 +11895,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_ac_cmd_decode(uint8_t raw) {
     return (double)raw;
 }
 
-/** ac_cmd: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** ac_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_1_ac_cmd_encode(double value,
                                                                                  uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_CMD_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_CMD_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** ac_cmd: raw → physical × 1, integers only. */
@@ -13331,19 +11929,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_decode(uint8_t ra
     return scaled + 16.0;
 }
 
-/** ac_set_temp: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [16.0, 30.0] or not encodable. */
+/** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 16.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [16.0, 30.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_SET_TEMP_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
-    int64_t r;
-    if (!((value >= 15.9999999995) && (value <= 30.0000000005))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys,
+                                        raw);
 }
 
 /** ac_set_temp: raw → physical × 100, integers only. */
@@ -13373,19 +11964,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_a_decode(uin
     return (double)raw;
 }
 
-/** protocol_version_a: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_a: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_a_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_A_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_A_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_a: raw → physical × 1, integers only. */
@@ -13411,19 +11995,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_b_decode(uin
     return (double)raw;
 }
 
-/** protocol_version_b: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_b: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_b_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_B_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_B_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_b: raw → physical × 1, integers only. */
@@ -13449,19 +12026,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_c_decode(uin
     return (double)raw;
 }
 
-/** protocol_version_c: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 15.0] or not encodable. */
+/** protocol_version_c: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_protocol_version_c_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_C_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_1_PROTOCOL_VERSION_C_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 15.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys, raw);
 }
 
 /** protocol_version_c: raw → physical × 1, integers only. */
@@ -13598,19 +12168,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_enable_decode(
     return (double)raw;
 }
 
-/** downhill_regen_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** downhill_regen_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_enable_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_2_DOWNHILL_REGEN_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** downhill_regen_enable: raw → physical × 1, integers only. */
@@ -13637,19 +12200,11 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_decode(uint8_t raw
     return (double)raw;
 }
 
-/** cargo_lift: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 3.0] or not encodable. */
+/** cargo_lift: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_2_CARGO_LIFT_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_2_CARGO_LIFT_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 3.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_fault_level_phys, raw);
 }
 
 /** cargo_lift: raw → physical × 1, integers only. */
@@ -13675,19 +12230,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_speed_decode(uint8
     return (double)raw;
 }
 
-/** cargo_lift_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 10.0] or not encodable. */
+/** cargo_lift_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 10.0] or not encodable. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_2_CARGO_LIFT_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_2_CARGO_LIFT_SPEED_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 10.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_phys, raw);
 }
 
 /** cargo_lift_speed: raw → physical × 1, integers only. */
@@ -13716,19 +12264,12 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_2_pto_enable_decode(uint8_t raw
     return (double)raw;
 }
 
-/** pto_enable: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 1.0] or not encodable. */
+/** pto_enable: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_tele_ctrl_cmd_2_pto_enable_encode(double value,
                                                                                      uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_2_PTO_ENABLE_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_2_PTO_ENABLE_FACTOR;
-    int64_t r;
-    if (!((value >= 0.0) && (value <= 1.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    r = kaiwo_gateway_round_half_away(q);
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(
+        value, &kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys, raw);
 }
 
 /** pto_enable: raw → physical × 1, integers only. */
@@ -13754,25 +12295,16 @@ static inline double kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_speed_decode(u
     return (double)raw * 0.5;
 }
 
-/** downhill_regen_speed: physical → raw, rounding half away from zero. KAIWO_GATEWAY_ERR_RANGE (raw untouched)
- * if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
+/** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
+ * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 125.0] or not encodable, unless it encodes a special value. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_speed_encode(double value, uint8_t *raw) {
-    const double q = (value - KAIWO_GATEWAY_TELE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_OFFSET) /
-                     KAIWO_GATEWAY_TELE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
-    int64_t r;
-    if (!((q > -1.0) && (q < 256.0))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
+    int64_t r = 0;
+    if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_vehicle_state_1_soc_phys, &r) && (r == 0)) {
+        *raw = (uint8_t)r;
+        return KAIWO_GATEWAY_OK;
     }
-    r = kaiwo_gateway_round_half_away(q);
-    if (!(r == 0)) {
-        if (!((value >= -0.0000000005) && (value <= 125.0000000005)) || (r < INT64_C(0)) ||
-            (r > INT64_C(250))) {
-            return KAIWO_GATEWAY_ERR_RANGE;
-        }
-    }
-    *raw = (uint8_t)r;
-    return KAIWO_GATEWAY_OK;
+    return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_soc_phys, raw);
 }
 
 /** downhill_regen_speed: raw → physical × 100, integers only. */

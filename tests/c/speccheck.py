@@ -27,7 +27,10 @@ MODES = (("gcc", ["-std=c99"]), ("clang", ["-std=c99"]), ("g++", ["-x", "c++", "
 
 
 # What the headers declare at file scope: macros, typedef names, enumerators, functions.
-DECLARATIONS = re.compile(r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = |^static inline [^(]*?\b(\w+)\(", re.MULTILINE)
+DECLARATIONS = re.compile(
+    r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = |^static (?:inline )?[^(=]*?\b(\w+)\(|^ *static const \w+ (\w+) =",
+    re.MULTILINE,
+)
 
 
 def generate_c(spec: ir.Spec, out: Path) -> tuple[Path, dict]:  # type: ignore[type-arg]
@@ -85,8 +88,8 @@ def undeclared(headers: Path, can: ir.CanProtocol) -> list[str]:
     """Global names in the headers that names.declared() does not list (its clash check would miss them)."""
     listed = {name for name, _ in declared(can)}
     found = {n for p in headers.glob("*.h") for m in DECLARATIONS.finditer(p.read_text(encoding="utf-8")) for n in m.groups() if n}
-    # the line after a wrapped `static inline <type>` starts with the function's name
-    found |= {m.group(1) for p in headers.glob("*.h") for m in re.finditer(r"^static inline [\w *]+\n(\w+)\(", p.read_text(encoding="utf-8"), re.MULTILINE)}
+    # the line after a wrapped `static [inline] <type>` starts with the function's name
+    found |= {m.group(1) for p in headers.glob("*.h") for m in re.finditer(r"^static [\w *]+\n(\w+)\(", p.read_text(encoding="utf-8"), re.MULTILINE)}
     return [f"the headers declare {name}, which targets/c/names.py does not list" for name in sorted(found - listed)]
 
 

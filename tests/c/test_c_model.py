@@ -53,6 +53,30 @@ def test_signal_plans(spec):
     assert dist.needs_check and [sp.raw for sp in dist.specials] == [0x3FF]
 
 
+
+def test_double_encoders_share_descriptors_and_the_rounding(spec):
+    """Every double encoder is a call into the runtime's shared steps with its descriptor; signals
+    with the same scaling and range share one (named after the first, defined at file scope), one
+    alone keeps its own in its encoder (MISRA C:2012 rule 8.9)."""
+    model = cmodel.build_model(spec)
+    by = _by_name(model)
+    angles = [s for cm in model.messages for s in cm.signals if s.sig.name == "steering_angle_cmd"]
+    first = "kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys"
+    assert len(angles) > 1 and {s.double.phys_name for s in angles} == {first} and not any(s.double.phys_local for s in angles)
+    assert [s.double.phys_defines for s in angles] == [True] + [False] * (len(angles) - 1)
+    assert angles[0].double.phys == "{-1080.0, 0.1, -1080.0000000001, 1080.0000000001}"
+    # the accepted range keeps r in the raw range: the runtime's uint16_t encoder does the rest
+    assert angles[0].double.encode_tail == f"kaiwo_gateway_phys_encode_u16(value, &{first}, raw)" and not angles[0].double.encode_test
+    torque = next(s for s in by["eps_state"].signals if s.sig.name == "steering_torque")
+    assert torque.double.phys_local and torque.double.phys_name == "kaiwo_gateway_eps_state_steering_torque_phys"
+    # factor 2 over [0, 512]: 511 rounds to 256, beyond the raw range; raw 0 is a special value
+    speed = next(s for s in by["autocar_eps_command"].signals if s.sig.name == "max_angular_speed")
+    name = "kaiwo_gateway_autocar_eps_command_max_angular_speed_phys"
+    assert speed.double.special_test == f"kaiwo_gateway_phys_round(value, &{name}, &r) && (r == 0)"
+    assert speed.double.encode_test == f"!kaiwo_gateway_phys_encode(value, &{name}, &r)" and speed.double.ranges.outside == "r > INT64_C(255)"
+    assert not speed.double.window_test and model.has_phys_round
+    assert model.phys_stores == (("kaiwo_gateway_phys_encode_u16", "uint16_t"), ("kaiwo_gateway_phys_encode_u8", "uint8_t"))
+
 def test_j1939_facts_are_the_ids(spec):
     eps = _by_name(cmodel.build_model(spec))["autocar_eps_command"]  # 0x1801B0A0: priority 6, PF 0x01 (PDU1) to 0xB0 from 0xA0
     assert (eps.j1939.priority, eps.j1939.pgn, eps.j1939.sa, eps.j1939.da) == ("6u", "0x00100u", "0xA0u", "0xB0u")

@@ -20,7 +20,9 @@ included), without the harness's loop and call set-up. The harness then checks t
 libraries returned 0 and packed the input frames back byte for byte (same work on both sides).
 
 Size: nm sizes of the functions in question plus the static helpers of the same object that they
-call (the call graph from the linked disassembly); libgcc / libc helpers are listed by name.
+call (the call graph from the linked disassembly), and the read-only data they read where it is
+not in their literal pools (canspec's double encoders' `_phys` descriptors); libgcc / libc
+helpers are listed by name.
 The physical-value API is measured on a translation unit that takes the address of each
 canspec function (so each is emitted once, out of line): the double path against cantools'
 default `_encode`/`_decode`, the integer path against what `--no-floating-point-numbers` leaves.
@@ -258,6 +260,7 @@ STUB_MAIN_API = "typedef void (*any_fn)(void);\nextern const any_fn canspec_api[
 class Image:
     """A linked ELF: function sizes, direct call edges, own stack frames."""
     sizes: dict[str, int] = field(default_factory=dict)
+    data: dict[str, int] = field(default_factory=dict)  # read-only and initialised data objects
     calls: dict[str, set[str]] = field(default_factory=dict)
     indirect: set[str] = field(default_factory=set)
     frames: dict[str, int] = field(default_factory=dict)  # from the prologue (push, sub sp)
@@ -275,6 +278,8 @@ def load_image(elf: Path) -> Image:
         parts = line.split()
         if len(parts) == 4 and parts[2] in "tTwW":
             img.sizes[parts[3]] = max(img.sizes.get(parts[3], 0), int(parts[1], 16))
+        elif len(parts) == 4 and parts[2] in "rRdD":
+            img.data[parts[3]] = int(parts[1], 16)
     dis = subprocess.run(["arm-none-eabi-objdump", "-d", "--no-show-raw-insn", str(elf)], capture_output=True, text=True, check=True).stdout
     cur = None
     count = 0
@@ -511,8 +516,14 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
             "cantools --no-floating-point-numbers is_in_phys_range (double)": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_phys_range", f)]),
             "canspec monitor on_frame+check": ("api", [f for f in images["api"].sizes if re.fullmatch(api["monitor"], f)]),
         }
+        # read-only data a group's functions read, by name: the double encoders' descriptors
+        # (file scope, or `<name>.<n>` where GCC names an encoder's own)
+        data = {"canspec double encode+decode": rf"{p}_({msgs})_\w+_phys(\.\d+)?"}
         for label, (img, roots) in groups.items():
             res.sizes[label] = group_size(images[img], roots) if roots else (0, set())
+            if label in data:
+                extra = sum(n for name, n in images[img].data.items() if re.fullmatch(data[label], name))
+                res.sizes[label] = (res.sizes[label][0] + extra, res.sizes[label][1])
         for label, img, obj, roots in (("canspec pack/unpack", "canspec", "canspec_wrappers", groups["canspec pack+unpack"][1]),
                                        ("cantools pack/unpack", "cantools", "cantools", groups["cantools pack+unpack"][1]),
                                        ("canspec monitor", "api", "canspec_api", groups["canspec monitor on_frame+check"][1])):
