@@ -20,12 +20,14 @@ extern "C" {
 #endif
 
 /** A signal's double encode: its scaling, and the range it accepts (the documented one widened by
- * the rounding's tie tolerance). */
+ * the rounding's tie tolerance). `scaled` is false for offset 0 and factor 1, where q is the value
+ * (soft-float cores spend most of an encode dividing). */
 typedef struct {
     double offset;
     double factor;
     double min;
     double max;
+    bool scaled;
 } kaiwo_gateway_phys_t;
 
 /* The double encode's steps, shared by the signals' encoders: each encoder is a call with its
@@ -41,17 +43,9 @@ typedef struct {
 #endif
 #endif
 
-/** q = (value - offset) / factor, an offset of 0 and a factor of 1 skipped (x - 0 and x / 1 are x
- * exactly): soft-float cores spend most of an encode dividing. */
+/** q = (value - offset) / factor. */
 static inline double kaiwo_gateway_phys_q(double value, const kaiwo_gateway_phys_t *p) {
-    double q = value;
-    if (p->offset != 0.0) {
-        q -= p->offset;
-    }
-    if (p->factor != 1.0) {
-        q /= p->factor;
-    }
-    return q;
+    return p->scaled ? ((value - p->offset) / p->factor) : value;
 }
 
 /** q rounded half away from zero into *r; false (r untouched) where q is NaN or outside the
@@ -218,7 +212,7 @@ static inline double kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_decode(uint
 
 /** The double encode of eps_ctrl_mode and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_phys = {
-    0.0, 1.0, 0.0, 255.0};
+    0.0, 1.0, 0.0, 255.0, false};
 
 /** eps_ctrl_mode: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 255.0] or not encodable. */
@@ -253,7 +247,7 @@ static inline double kaiwo_gateway_autocar_eps_command_max_angular_speed_decode(
 
 /** The double encode of max_angular_speed and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_max_angular_speed_phys = {
-    0.0, 2.0, 0.0, 512.0};
+    0.0, 2.0, 0.0, 512.0, true};
 
 /** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 512.0] or not encodable, unless it encodes a special value. */
@@ -310,7 +304,7 @@ static inline double kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode
 
 /** The double encode of steering_angle_cmd and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys = {
-    -1080.0, 0.1, -1080.0000000001, 1080.0000000001};
+    -1080.0, 0.1, -1080.0000000001, 1080.0000000001, true};
 
 /** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
  * offset -1080.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-1080.0, 1080.0] or not encodable. */
@@ -511,7 +505,7 @@ static inline double kaiwo_gateway_eps_state_steering_torque_decode(uint8_t raw)
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_steering_torque_encode(double value,
                                                                                     uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_steering_torque_phys = {
-        -12.8, 0.1, -12.8000000001, 12.7000000001};
+        -12.8, 0.1, -12.8000000001, 12.7000000001, true};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_steering_torque_phys, raw);
 }
 
@@ -548,7 +542,7 @@ static inline double kaiwo_gateway_eps_state_eps_output_torque_decode(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode(double value, uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_eps_output_torque_phys = {
-        -38.4, 0.3, -38.4000000003, 38.1000000003};
+        -38.4, 0.3, -38.4000000003, 38.1000000003, true};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_eps_output_torque_phys,
                                         raw);
 }
@@ -621,7 +615,7 @@ static inline double kaiwo_gateway_eps_state_controller_temp_decode(uint8_t raw)
 static inline kaiwo_gateway_status_t kaiwo_gateway_eps_state_controller_temp_encode(double value,
                                                                                     uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_controller_temp_phys = {0.0, 2.0, 0.0,
-                                                                                      126.0};
+                                                                                      126.0, true};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_eps_state_controller_temp_phys, raw);
 }
 
@@ -654,7 +648,7 @@ static inline double kaiwo_gateway_eps_state_eps_fault_level_decode(uint8_t raw)
 
 /** The double encode of eps_fault_level and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_eps_state_eps_fault_level_phys = {0.0, 1.0, 0.0,
-                                                                                  3.0};
+                                                                                  3.0, false};
 
 /** eps_fault_level: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 3.0] or not encodable. */
@@ -814,7 +808,7 @@ static inline double kaiwo_gateway_autocar_speed_command_accel_cmd_decode(uint16
 
 /** The double encode of accel_cmd and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_accel_cmd_phys = {
-    -9.0, 0.02, -9.00000000002, 3.60000000002};
+    -9.0, 0.02, -9.00000000002, 3.60000000002, true};
 
 /** accel_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
  * offset -9.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-9.0, 3.6] or not encodable. */
@@ -882,8 +876,8 @@ static inline double kaiwo_gateway_autocar_speed_command_gear_cmd_decode(uint8_t
 }
 
 /** The double encode of gear_cmd and of the signals with the same scaling and range. */
-static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_gear_cmd_phys = {0.0, 1.0,
-                                                                                       0.0, 2.0};
+static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_gear_cmd_phys = {
+    0.0, 1.0, 0.0, 2.0, false};
 
 /** gear_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 2.0] or not encodable. */
@@ -921,7 +915,7 @@ static inline double kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_dec
 
 /** The double encode of emergency_brake_cmd and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_speed_command_emergency_brake_cmd_phys = {
-    0.0, 1.0, 0.0, 1.0};
+    0.0, 1.0, 0.0, 1.0, false};
 
 /** emergency_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 1.0] or not encodable. */
@@ -1234,7 +1228,7 @@ static inline double kaiwo_gateway_driving_state_motor_speed_decode(uint16_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_driving_state_motor_speed_encode(double value,
                                                                                     uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_speed_phys = {
-        -15000.0, 1.0, -15000.0, 15000.0};
+        -15000.0, 1.0, -15000.0, 15000.0, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_driving_state_motor_speed_phys, raw);
 }
 
@@ -1270,7 +1264,7 @@ static inline double kaiwo_gateway_driving_state_motor_torque_decode(uint16_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_torque_phys = {
-        -5000.0, 1.0, -5000.0, 5000.0};
+        -5000.0, 1.0, -5000.0, 5000.0, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_driving_state_motor_torque_phys,
                                          raw);
 }
@@ -1307,7 +1301,7 @@ static inline double kaiwo_gateway_driving_state_motor_speed_ratio_decode(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_ratio_encode(double value, uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_motor_speed_ratio_phys = {
-        1.0, 1.0, 1.0, 254.0};
+        1.0, 1.0, 1.0, 254.0, true};
     int64_t r = 0;
     if (kaiwo_gateway_phys_round(value, &kaiwo_gateway_driving_state_motor_speed_ratio_phys, &r) &&
         (r == 255)) {
@@ -1353,7 +1347,7 @@ static inline double kaiwo_gateway_driving_state_current_accel_decode(uint8_t ra
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode(double value, uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_driving_state_current_accel_phys = {
-        -9.0, 0.05, -9.00000000005, 3.60000000005};
+        -9.0, 0.05, -9.00000000005, 3.60000000005, true};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_driving_state_current_accel_phys,
                                         raw);
 }
@@ -2331,7 +2325,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_decode(uint8_t
 
 /** The double encode of ac_set_temp and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_phys = {
-    16.0, 0.5, 15.9999999995, 30.0000000005};
+    16.0, 0.5, 15.9999999995, 30.0000000005, true};
 
 /** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
  * offset 16.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [16.0, 30.0] or not encodable. */
@@ -2370,7 +2364,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_decode(
 
 /** The double encode of protocol_version_a and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_1_protocol_version_a_phys = {
-    0.0, 1.0, 0.0, 15.0};
+    0.0, 1.0, 0.0, 15.0, false};
 
 /** protocol_version_a: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 15.0] or not encodable. */
@@ -3160,7 +3154,7 @@ static inline double kaiwo_gateway_vehicle_state_1_vehicle_speed_decode(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode(double value, uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_vehicle_speed_phys = {
-        -50.0, 1.0, -50.0, 200.0};
+        -50.0, 1.0, -50.0, 200.0, true};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_vehicle_state_1_vehicle_speed_phys,
                                         raw);
 }
@@ -3194,7 +3188,7 @@ static inline double kaiwo_gateway_vehicle_state_1_soc_decode(uint8_t raw) {
 
 /** The double encode of soc and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_soc_phys = {0.0, 0.5, -0.0000000005,
-                                                                            125.0000000005};
+                                                                            125.0000000005, true};
 
 /** soc: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 125.0] or not encodable. */
@@ -3362,8 +3356,8 @@ static inline double kaiwo_gateway_vehicle_state_1_odometer_decode(uint16_t raw)
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 120000.0] or not encodable. */
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_odometer_encode(double value,
                                                                                    uint16_t *raw) {
-    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_odometer_phys = {0.0, 2.0, 0.0,
-                                                                                     120000.0};
+    static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_1_odometer_phys = {
+        0.0, 2.0, 0.0, 120000.0, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_1_odometer_phys, raw);
 }
 
@@ -3619,7 +3613,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_decode(ui
 
 /** The double encode of cargo_lift_speed and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_phys = {
-    0.0, 1.0, 0.0, 10.0};
+    0.0, 1.0, 0.0, 10.0, false};
 
 /** cargo_lift_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 10.0] or not encodable. */
@@ -3734,7 +3728,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_decode(uint1
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_phys = {
-        -25.0, 0.05, -25.00000000005, 25.00000000005};
+        -25.0, 0.05, -25.00000000005, 25.00000000005, true};
     return kaiwo_gateway_phys_encode_u16(value,
                                          &kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_phys, raw);
 }
@@ -3769,7 +3763,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_decode(uint16
 
 /** The double encode of chassis_roll and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_phys = {
-    -40.0, 0.1, -40.0000000001, 40.0000000001};
+    -40.0, 0.1, -40.0000000001, 40.0000000001, true};
 
 /** chassis_roll: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
  * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 40.0] or not encodable. */
@@ -3812,7 +3806,7 @@ static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_decode(uint16_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_phys = {
-        -30.0, 0.2, -30.0000000002, 100.0000000002};
+        -30.0, 0.2, -30.0000000002, 100.0000000002, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_phys,
                                          raw);
 }
@@ -3984,7 +3978,7 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_voltage_decode(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_voltage_phys = {
-        0.0, 0.2, -0.0000000002, 800.0000000002};
+        0.0, 0.2, -0.0000000002, 800.0000000002, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_2_battery_voltage_phys,
                                          raw);
 }
@@ -4022,7 +4016,7 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_current_decode(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_current_phys = {
-        -500.0, 0.02, -500.00000000002, 800.00000000002};
+        -500.0, 0.02, -500.00000000002, 800.00000000002, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_2_battery_current_phys,
                                          raw);
 }
@@ -4056,7 +4050,7 @@ static inline double kaiwo_gateway_vehicle_state_2_battery_charge_energy_decode(
 
 /** The double encode of battery_charge_energy and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_2_battery_charge_energy_phys = {
-    0.0, 1.0, 0.0, 65535.0};
+    0.0, 1.0, 0.0, 65535.0, false};
 
 /** battery_charge_energy: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 65535.0] or not encodable. */
@@ -4241,7 +4235,7 @@ static inline double kaiwo_gateway_vehicle_state_3_battery_max_temp_decode(uint8
 
 /** The double encode of battery_max_temp and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_3_battery_max_temp_phys = {
-    -40.0, 1.0, -40.0, 215.0};
+    -40.0, 1.0, -40.0, 215.0, true};
 
 /** battery_max_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset -40.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-40.0, 215.0] or not encodable. */
@@ -4315,7 +4309,7 @@ static inline double kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode(uint1
 
 /** The double encode of max_cell_voltage and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_phys = {
-    0.0, 0.0015, -0.0000000000015, 6.0000000000015};
+    0.0, 0.0015, -0.0000000000015, 6.0000000000015, true};
 
 /** max_cell_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.0015,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 6.0] or not encodable. */
@@ -4637,7 +4631,7 @@ static inline double kaiwo_gateway_vehicle_state_4_outside_temp_decode(uint8_t r
 
 /** The double encode of outside_temp and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_outside_temp_phys = {
-    -30.0, 0.5, -30.0000000005, 95.0000000005};
+    -30.0, 0.5, -30.0000000005, 95.0000000005, true};
 
 /** outside_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
  * offset -30.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [-30.0, 95.0] or not encodable. */
@@ -4840,7 +4834,7 @@ static inline double kaiwo_gateway_vehicle_state_4_remaining_range_decode(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_remaining_range_phys = {
-        0.0, 1.0, 0.0, 1000.0};
+        0.0, 1.0, 0.0, 1000.0, false};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_4_remaining_range_phys,
                                          raw);
 }
@@ -5008,7 +5002,7 @@ static inline double kaiwo_gateway_vehicle_state_4_battery_power_decode(uint16_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_vehicle_state_4_battery_power_phys = {
-        -325.0, 0.01, -325.00000000001, 325.00000000001};
+        -325.0, 0.01, -325.00000000001, 325.00000000001, true};
     return kaiwo_gateway_phys_encode_u16(value, &kaiwo_gateway_vehicle_state_4_battery_power_phys,
                                          raw);
 }
@@ -8265,7 +8259,7 @@ static inline double kaiwo_gateway_device_id_device_type_decode(uint8_t raw) {
 static inline kaiwo_gateway_status_t kaiwo_gateway_device_id_device_type_encode(double value,
                                                                                 uint8_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_device_id_device_type_phys = {0.0, 1.0, 0.0,
-                                                                                  63.0};
+                                                                                  63.0, false};
     return kaiwo_gateway_phys_encode_u8(value, &kaiwo_gateway_device_id_device_type_phys, raw);
 }
 
@@ -8498,7 +8492,7 @@ static inline double kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_dec
 
 /** The double encode of sensor_1_distance and of the signals with the same scaling and range. */
 static const kaiwo_gateway_phys_t kaiwo_gateway_front_sensor_distance_1_sensor_1_distance_phys = {
-    0.0, 1.0, 0.0, 500.0};
+    0.0, 1.0, 0.0, 500.0, false};
 
 /** sensor_1_distance: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
  * offset 0.0). KAIWO_GATEWAY_ERR_RANGE (raw untouched) if the value is NaN, outside [0.0, 500.0] or not encodable, unless it encodes a special value. */
@@ -10860,7 +10854,7 @@ static inline double kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode(double value, uint16_t *raw) {
     static const kaiwo_gateway_phys_t kaiwo_gateway_tele_speed_command_throttle_brake_cmd_phys = {
-        -100.0, 0.2, -100.0000000002, 100.0000000002};
+        -100.0, 0.2, -100.0000000002, 100.0000000002, true};
     return kaiwo_gateway_phys_encode_u16(
         value, &kaiwo_gateway_tele_speed_command_throttle_brake_cmd_phys, raw);
 }

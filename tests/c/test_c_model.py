@@ -64,7 +64,7 @@ def test_double_encoders_share_descriptors_and_the_rounding(spec):
     first = "kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys"
     assert len(angles) > 1 and {s.double.phys_name for s in angles} == {first} and not any(s.double.phys_local for s in angles)
     assert [s.double.phys_defines for s in angles] == [True] + [False] * (len(angles) - 1)
-    assert angles[0].double.phys == "{-1080.0, 0.1, -1080.0000000001, 1080.0000000001}"
+    assert angles[0].double.phys == "{-1080.0, 0.1, -1080.0000000001, 1080.0000000001, true}"
     # the accepted range keeps r in the raw range: the runtime's uint16_t encoder does the rest
     assert angles[0].double.encode_tail == f"kaiwo_gateway_phys_encode_u16(value, &{first}, raw)" and not angles[0].double.encode_test
     torque = next(s for s in by["eps_state"].signals if s.sig.name == "steering_torque")

@@ -3,12 +3,14 @@
 The double encode is the shared rounding rule step for step (ir/encoding.py): q = (value -
 offset) / factor, then `<prefix>_round_half_away(q)` (the 2^52 branch included). All but the
 widest fields encode through the runtime's out-of-line `<prefix>_phys_*` functions with a
-`<prefix>_phys_t` (offset, factor, accepted range) per signal: each encoder is then a call and
-the raw-range compares the accepted range leaves open, so an image holds the rounding once
-however many signals it encodes, at every optimisation level. Those functions reject q outside
-[-2^63, 2^63) only; every q beyond the field's raw type rounds beyond its raw range, which the
-encoder compares. A field wider than 63 unsigned bits rounds |q| with `<prefix>_round_abs` into
-a uint64_t inline, q first held inside the raw type widened by one step.
+`<prefix>_phys_t` (offset, factor, accepted range) per signal, shared by the signals that agree
+(model.py): each encoder is a call and the raw-range compares the accepted range leaves open, so
+an image holds the rounding once however many signals it encodes, at every optimisation level.
+The range check comes first and keeps q inside the rounding's domain [-2^63, 2^63), except where
+the accepted range reaches 2^62 (`phys_round` checks q first there); every q beyond the field's
+raw type rounds beyond its raw range, which the encoder compares. A field wider than 63 unsigned
+bits rounds |q| with `<prefix>_round_abs` into a uint64_t inline, q first held inside the raw
+type widened by one step.
 
 The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
 factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
@@ -83,7 +85,7 @@ class CDouble:
     decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
     decode_expr: str  # double from `raw` (and `scaled`)
     exact: bool  # every raw value is exact in a double
-    phys: str  # initializer of its `<prefix>_phys_t`: offset, factor, accepted range ("" on the wide path)
+    phys: str  # initializer of its `<prefix>_phys_t`: offset, factor, accepted range, scaled ("" on the wide path)
     phys_name: str  # that descriptor's name: `<signal fn>_phys` (model.py: the first signal's where several share it)
     phys_local: bool  # defined in the encoder (no other signal has the same); else at file scope ...
     phys_defines: bool  # ... before this signal's encoder (the first signal that uses it)
@@ -159,7 +161,8 @@ def double_path(names: CNames, sig: ir.Signal, fn: str, force: bool) -> CDouble 
             ranges=_ranges(sig, False, [accept], _r_type_range(False)), wide_unsigned=True,
             refuse=f"!((q > -1.0) && (q < {float_lit(sig.raw_type_max + 1)}))", rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
         )
-    init = f"{{{float_lit(offset)}, {float_lit(factor)}, {float_lit(sig.accept_min)}, {float_lit(sig.accept_max)}}}"
+    scaled = "false" if sig.is_identity else "true"
+    init = f"{{{float_lit(offset)}, {float_lit(factor)}, {float_lit(sig.accept_min)}, {float_lit(sig.accept_max)}, {scaled}}}"
     return with_descriptor(names, sig, CDouble(
         decode_pre=pre, decode_expr=expr, exact=exact, phys=init, phys_name="", phys_local=True, phys_defines=False,
         window_test="", special_test="", encode_test="", encode_tail="", ranges=CRanges("", ""), wide_unsigned=False, refuse="", rounded="",
