@@ -254,9 +254,10 @@ def stage_c(ctx: Ctx) -> None:
         if m:
             macro = m.group(1)
             break
-    # the other strategy (fieldless frames zeroed byte by byte vs memset) on every 4th spec (and whenever the shrinker asks for it)
+    # the other strategy, Cortex-M0+'s (fieldless frames zeroed byte by byte vs memset, 64-bit
+    # products from 16-bit halves), on every 4th spec (and whenever the shrinker asks for it)
     other = macro is not None and (ctx.bytewise or ctx.stage_filter is not None)
-    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_UNALIGNED_WORDS=0"])] if other else [])
+    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_UNALIGNED_WORDS=0", f"-D{macro}_LONG_MULTIPLY=0"])] if other else [])
     for name, extra in variants:
         exe = work / name
         rc, out, err = sh(["gcc", "-std=gnu99", "-O1", *strict[:-1], *extra, f"-I{cdir}", f"-I{work}", str(adapters.C_RUNNER), "-o", str(exe), "-lm"])

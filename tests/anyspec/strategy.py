@@ -467,6 +467,8 @@ class Builder:
 
     def message(self, nodes: list[dict[str, Any]], layout: tuple[str, list[dict[str, Any]], int] | None = None) -> dict[str, Any]:
         m: dict[str, Any] = {"name": self.ident(MSG_WORDS, self.msg_names, 0.08, MSG_SUFFIX)}
+        if self.p(0.1):  # a C-only name, reserved like a message name so it meets no other
+            m["c_name"] = self.msg_names.take(f"{m['name']}_c")
         if self.p(0.3):
             m["title"] = self.text()
         if self.p(0.4):

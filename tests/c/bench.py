@@ -35,6 +35,7 @@ import cbuild
 
 sys.path.insert(0, str(cbuild.ROOT / "generator"))
 from canspec.pipeline import compile_spec
+from canspec.targets.c.names import CNames
 
 FRAMES_PER_MESSAGE = 16
 REPS = 61
@@ -103,16 +104,18 @@ def range_checks(spec: Path, dbc: Path, access: str = "s->") -> dict[str, str]:
 
 
 def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str,
-            fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None, ranges: dict[str, str] | None = None) -> str:
-    """`xor`: for each message that carries a checksum, (checksum byte, covered bytes): the
+            fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None, ranges: dict[str, str] | None = None,
+            c_base: dict[str, str] | None = None) -> str:
+    """`c_base`: canspec's C name of each message (a spec `c_name`), where it is not the spec's; `xor`: for each message that carries a checksum, (checksum byte, covered bytes): the
     loop verifies it before unpack and fills it after pack; `ranges`: the check before pack
     that a field fits its bits (for a library that does neither)."""
     out = [include, "#include <stdint.h>", "#include <stddef.h>", XOR_HELPERS if xor else ""]
     for n in names:
+        cb = (c_base or {}).get(n, n)
         rows = ",\n    ".join(c_bytes(h) for h in frames[n])
         out.append(f"static const uint8_t F_{n}[{FRAMES_PER_MESSAGE}][8] = {{\n    {rows}\n}};")
         out.append(f"__attribute__((noinline)) uint64_t {lib}_run_{n}(long iters) {{")
-        out.append(f"    {struct_kw}kaiwo_gateway_{n}_t s;")
+        out.append(f"    {struct_kw}kaiwo_gateway_{cb}_t s;")
         out.append("    uint8_t buf[8];")
         out.append("    uint64_t acc = 0;")
         out.append("    long i;")
@@ -122,10 +125,10 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
             out.append(f"        if (bench_xor(F_{n}[i & {FRAMES_PER_MESSAGE - 1}], {byte_mask((*covers, byte))}) != 0u) {{")
             out.append("            acc += 1000u;")
             out.append("        } else {")
-            out.append(f"            acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
+            out.append(f"            acc += (uint64_t){fn}{cb}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
             out.append("        }")
         else:
-            out.append(f"        acc += (uint64_t){fn}{n}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
+            out.append(f"        acc += (uint64_t){fn}{cb}_unpack(&s, F_{n}[i & {FRAMES_PER_MESSAGE - 1}], 8);")
         # The decoded struct is consumed and the struct to send is produced elsewhere in a real
         # ECU: the barriers keep the compiler from fusing unpack into pack.
         out.append("        __asm__ volatile(\"\" : : \"r\"(&s) : \"memory\");")
@@ -133,10 +136,10 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
             out.append(f"        if ({ranges[n]}) {{")
             out.append("            acc += 1000u;")
             out.append("        } else {")
-            out.append(f"            acc += (uint64_t){fn}{n}_pack({pack_args});")
+            out.append(f"            acc += (uint64_t){fn}{cb}_pack({pack_args});")
             out.append("        }")
         else:
-            out.append(f"        acc += (uint64_t){fn}{n}_pack({pack_args});")
+            out.append(f"        acc += (uint64_t){fn}{cb}_pack({pack_args});")
         if xor and n in xor:
             byte, covers = xor[n]
             # Byte-wise: a word load right after cantools' byte stores would stall on store
@@ -152,16 +155,16 @@ def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str
     return "\n".join(out) + "\n"
 
 
-def wrappers(names: list[str], define: bool) -> str:
+def wrappers(names: list[str], define: bool, c_base: dict[str, str]) -> str:
     """Extern copies of canspec's pack/unpack (their own translation unit: the call mode, and
     the code size), or just their declarations (the call-mode harness)."""
     out = ['#include "kaiwo_gateway.h"']
-    for n in names:
-        pack = f"kaiwo_gateway_status_t x_{n}_pack(uint8_t *d, size_t z, const kaiwo_gateway_{n}_t *s)"
-        unpack = f"kaiwo_gateway_status_t x_{n}_unpack(kaiwo_gateway_{n}_t *s, const uint8_t *d, size_t z)"
+    for cb in (c_base.get(n, n) for n in names):
+        pack = f"kaiwo_gateway_status_t x_{cb}_pack(uint8_t *d, size_t z, const kaiwo_gateway_{cb}_t *s)"
+        unpack = f"kaiwo_gateway_status_t x_{cb}_unpack(kaiwo_gateway_{cb}_t *s, const uint8_t *d, size_t z)"
         if define:
-            out.append(f"{pack} {{ return kaiwo_gateway_{n}_pack(d, z, s); }}")
-            out.append(f"{unpack} {{ return kaiwo_gateway_{n}_unpack(s, d, z); }}")
+            out.append(f"{pack} {{ return kaiwo_gateway_{cb}_pack(d, z, s); }}")
+            out.append(f"{unpack} {{ return kaiwo_gateway_{cb}_unpack(s, d, z); }}")
         else:
             out += [f"{pack};", f"{unpack};"]
     return "\n".join(out) + "\n"
@@ -267,15 +270,16 @@ def instruction_counts(exe: Path, mode: str, names: list[str]) -> None:
 XMODE = "like for like (cantools + the XOR check + the field range check)"
 
 
-def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tuple[int, tuple[int, ...]]], iters: int, ranges: dict[str, str]) -> dict[str, str]:
+def _sources(names: list[str], frames: dict[str, list[str]], xor: dict[str, tuple[int, tuple[int, ...]]], iters: int, ranges: dict[str, str],
+             c_base: dict[str, str]) -> dict[str, str]:
     main_c = (MAIN.replace("%NAMES%", ", ".join(f'"{n}"' for n in names)).replace("%N%", str(len(names)))
               .replace("%ITERS%", str(iters)).replace("%REPS%", str(REPS)))
     return {
-        "bench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s"),
+        "bench_canspec.c": harness("canspec", '#include "kaiwo_gateway.h"', names, frames, "", "buf, 8, &s", c_base=c_base),
         "bench_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.c"', names, frames, "struct ", "buf, &s, 8"),
-        "call_canspec.c": harness("canspec", wrappers(names, define=False), names, frames, "", "buf, 8, &s", fn="x_"),
+        "call_canspec.c": harness("canspec", wrappers(names, False, c_base), names, frames, "", "buf, 8, &s", fn="x_", c_base=c_base),
         "call_cantools.c": harness("cantools", '#include "cantools/kaiwo_gateway.h"', names, frames, "struct ", "buf, &s, 8"),
-        "size_canspec.c": wrappers(names, define=True),
+        "size_canspec.c": wrappers(names, True, c_base),
         "bench_main.c": main_c,
         # Like for like: cantools with the check a user adds where a message has one (canspec's
         # side of these runs is the same code as above).
@@ -308,7 +312,7 @@ def _objects(build: Path, ct: Path) -> tuple[dict[str, list[str]], str, str]:
     return exes, size_a, size_b
 
 
-def _inputs(ct: Path) -> tuple[list[str], dict[str, list[str]], dict[str, tuple[int, tuple[int, ...]]]] | str:
+def _inputs(ct: Path) -> tuple[list[str], dict[str, list[str]], dict[str, tuple[int, tuple[int, ...]]], dict[str, str]] | str:
     """Messages, their frames and checksum bytes; or what is wrong."""
     dbc = cbuild.ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
     proc = cbuild.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc), "-o", str(ct)])
@@ -324,7 +328,8 @@ def _inputs(ct: Path) -> tuple[list[str], dict[str, list[str]], dict[str, tuple[
     if compiled.spec is None or compiled.spec.can is None:
         return "the spec does not compile"
     xor = {m.name: (m.checksum.byte, m.checksum.covers) for m in compiled.spec.can.messages if m.checksum is not None}
-    return names, {n: frames_for(vectors["cases"], n) for n in names}, xor
+    c_base = {m.name: CNames.of(compiled.spec.can).message(m.name) for m in compiled.spec.can.messages}
+    return names, {n: frames_for(vectors["cases"], n) for n in names}, xor, c_base
 
 
 def main(argv: list[str]) -> int:
@@ -336,9 +341,9 @@ def main(argv: list[str]) -> int:
     if isinstance(inputs, str):
         print(f"bench-c: {inputs}", file=sys.stderr)
         return 1
-    names, frames, xor = inputs
+    names, frames, xor, c_base = inputs
     ranges = range_checks(cbuild.ROOT / "spec", cbuild.ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc", access="s.")
-    for name, text in _sources(names, frames, xor, iters, ranges).items():
+    for name, text in _sources(names, frames, xor, iters, ranges, c_base).items():
         (build / name).write_text(text)
     exes, size_a, size_b = _objects(build, ct)
     print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")

@@ -27,7 +27,10 @@ MODES = (("gcc", ["-std=c99"]), ("clang", ["-std=c99"]), ("g++", ["-x", "c++", "
 
 
 # What the headers declare at file scope: macros, typedef names, enumerators, functions.
-DECLARATIONS = re.compile(r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = |^static inline [^(]*?\b(\w+)\(", re.MULTILINE)
+DECLARATIONS = re.compile(
+    r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = |^static (?:inline )?[^(=]*?\b(\w+)\(|^ *static const \w+ (\w+) =",
+    re.MULTILINE,
+)
 
 
 def generate_c(spec: ir.Spec, out: Path) -> tuple[Path, dict]:  # type: ignore[type-arg]
@@ -62,12 +65,12 @@ def compile_matrix(headers: Path, work: Path) -> list[str]:
 
 
 def run_vectors(spec_path: Path, can: ir.CanProtocol, headers: Path, doc: dict, work: Path) -> list[str]:  # type: ignore[type-arg]
-    """The vector runner on the spec's own vectors: both strategies (UNALIGNED_WORDS 1 and 0), and under ASan and UBSan."""
+    """The vector runner on the spec's own vectors: both strategies (UNALIGNED_WORDS and LONG_MULTIPLY 1, and 0), and under ASan and UBSan."""
     lines = work / "vectors.lines.txt"
     lines.write_text(convert(doc, can), encoding="ascii")
     macro = next(p.read_text(encoding="utf-8") for p in headers.glob("*_common.h")).split("#ifndef ", 1)[1].split("_COMMON_H", 1)[0]
     failures = []
-    variants = (("runner", "gcc", cbuild.STRICT), ("runner-bytes", "gcc", [*cbuild.STRICT, f"-D{macro}_UNALIGNED_WORDS=0"]), ("runner-asan", "clang", cbuild.SANITIZE))
+    variants = (("runner", "gcc", cbuild.STRICT), ("runner-bytes", "gcc", [*cbuild.STRICT, f"-D{macro}_UNALIGNED_WORDS=0", f"-D{macro}_LONG_MULTIPLY=0"]), ("runner-asan", "clang", cbuild.SANITIZE))
     for name, cc, flags in variants:
         try:
             exe = cbuild.build_runner(work / name, cc, flags, name, spec_path, headers)
@@ -85,8 +88,8 @@ def undeclared(headers: Path, can: ir.CanProtocol) -> list[str]:
     """Global names in the headers that names.declared() does not list (its clash check would miss them)."""
     listed = {name for name, _ in declared(can)}
     found = {n for p in headers.glob("*.h") for m in DECLARATIONS.finditer(p.read_text(encoding="utf-8")) for n in m.groups() if n}
-    # the line after a wrapped `static inline <type>` starts with the function's name
-    found |= {m.group(1) for p in headers.glob("*.h") for m in re.finditer(r"^static inline [\w *]+\n(\w+)\(", p.read_text(encoding="utf-8"), re.MULTILINE)}
+    # the line after a wrapped `static [inline] <type>` starts with the function's name
+    found |= {m.group(1) for p in headers.glob("*.h") for m in re.finditer(r"^static [\w *]+\n(\w+)\(", p.read_text(encoding="utf-8"), re.MULTILINE)}
     return [f"the headers declare {name}, which targets/c/names.py does not list" for name in sorted(found - listed)]
 
 

@@ -31,9 +31,10 @@ def test_signal_plans(spec):
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
     assert angle.fixed.scale == 100 and angle.fixed.type == "int32_t"
     assert angle.fixed.decode_expr == "((int32_t)raw * 10) - 108000"
-    # |value + 108000| stays within 32 bits for every input the first check lets through: the
-    # 32-bit division (one instruction on Cortex-M3/M4, no 64-bit libgcc helper anywhere)
-    assert angle.fixed.rounded == "kaiwo_gateway_div_round32(value + 108000, 10)"
+    # |value + 108000| stays within 32 bits for every input the first check lets through (up to
+    # 655359): divided by 10 as the high word of a 32-bit multiply, no division (divide.py)
+    assert angle.fixed.rounded == "kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u)"
+    assert angle.fixed.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
     # the document's table: steering angle in bytes 3 (low) and 4 (high), bytes 5..6 reserved,
     # byte 7 the XOR of bytes 0..6
@@ -51,6 +52,30 @@ def test_signal_plans(spec):
     dist = by["front_sensor_distance_1"].signals[0]
     assert dist.needs_check and [sp.raw for sp in dist.specials] == [0x3FF]
 
+
+
+def test_double_encoders_share_descriptors_and_the_rounding(spec):
+    """Every double encoder is a call into the runtime's shared steps with its descriptor; signals
+    with the same scaling and range share one (named after the first, defined at file scope), one
+    alone keeps its own in its encoder (MISRA C:2012 rule 8.9)."""
+    model = cmodel.build_model(spec)
+    by = _by_name(model)
+    angles = [s for cm in model.messages for s in cm.signals if s.sig.name == "steering_angle_cmd"]
+    first = "kaiwo_gateway_autocar_eps_command_steering_angle_cmd_phys"
+    assert len(angles) > 1 and {s.double.phys_name for s in angles} == {first} and not any(s.double.phys_local for s in angles)
+    assert [s.double.phys_defines for s in angles] == [True] + [False] * (len(angles) - 1)
+    assert angles[0].double.phys == "{-1080.0, 0.1, -1080.0000000001, 1080.0000000001, true}"
+    # the accepted range keeps r in the raw range: the runtime's uint16_t encoder does the rest
+    assert angles[0].double.encode_tail == f"kaiwo_gateway_phys_encode_u16(value, &{first}, raw)" and not angles[0].double.encode_test
+    torque = next(s for s in by["eps_state"].signals if s.sig.name == "steering_torque")
+    assert torque.double.phys_local and torque.double.phys_name == "kaiwo_gateway_eps_state_steering_torque_phys"
+    # factor 2 over [0, 512]: 511 rounds to 256, beyond the raw range; raw 0 is a special value
+    speed = next(s for s in by["autocar_eps_command"].signals if s.sig.name == "max_angular_speed")
+    name = "kaiwo_gateway_autocar_eps_command_max_angular_speed_phys"
+    assert speed.double.special_test == f"kaiwo_gateway_phys_round(value, &{name}, &r) && (r == 0)"
+    assert speed.double.encode_test == f"!kaiwo_gateway_phys_encode(value, &{name}, &r)" and speed.double.ranges.outside == "r > INT64_C(255)"
+    assert not speed.double.window_test and model.has_phys_round
+    assert model.phys_stores == (("kaiwo_gateway_phys_encode_u16", "uint16_t"), ("kaiwo_gateway_phys_encode_u8", "uint8_t"))
 
 def test_j1939_facts_are_the_ids(spec):
     eps = _by_name(cmodel.build_model(spec))["autocar_eps_command"]  # 0x1801B0A0: priority 6, PF 0x01 (PDU1) to 0xB0 from 0xA0

@@ -93,3 +93,36 @@ def test_a_special_value_named_like_a_signal_macro_gets_a_suffix(tmp_path):
     compiled = _spec(tmp_path, ("m", ["{name: speed, start: 0, len: 8, special: {0xFF: max, 0xFE: stop}}"]))
     cm = build_model(compiled.spec).messages[0]
     assert [sp.macro for sp in cm.signals[0].specials] == ["DEMO_M_SPEED_STOP", "DEMO_M_SPEED_MAX_VALUE"]
+
+
+LONG = "a_message_named_long_enough_to_reach_it"  # `demo_<LONG>_speed_value_decode`: 63 characters
+
+
+def test_names_alike_in_63_characters_are_warned_at_the_signal(tmp_path):
+    """`…_decode` and `…_decode_fixed` agree in their first 63 characters (all C99 guarantees a
+    compiler reads): a warning at the signal, naming both names, the rule and a hint; and
+    `check --strict` refuses the spec."""
+    compiled = _spec(tmp_path, (LONG, ["{name: speed_value, start: 0, len: 8, factor: 0.5}"]))
+    assert compiled.spec is not None and not compiled.errors
+    alike = [p for p in compiled.problems if p.rule == "c-name-length"]
+    assert alike and all(p.severity == "warning" and p.loc is not None and p.loc.line == 18 for p in alike)
+    assert len(alike) == 1  # one per element, however many of its names agree
+    assert f"`demo_{LONG}_speed_value_decode_fixed`" in alike[0].message and "first 63 characters" in alike[0].message
+    assert "c_name" in alike[0].hint
+    from canspec.cli import main
+
+    assert main(["check", "--strict", "-q", str(tmp_path / "spec.yaml")]) == 1
+
+
+def test_a_c_name_renames_every_c_name_of_its_element_and_settles_the_warning(tmp_path):
+    compiled = _spec(tmp_path, (LONG, ["{name: speed_value, c_name: speed, start: 0, len: 8, factor: 0.5}"]))
+    text = (tmp_path / "spec.yaml").read_text(encoding="utf-8").replace(f"  - name: {LONG}\n", f"  - name: {LONG}\n    c_name: long_msg\n")
+    (tmp_path / "spec.yaml").write_text(text, encoding="utf-8")
+    compiled = compile_spec(tmp_path / "spec.yaml")
+    assert not [p for p in compiled.problems if p.rule == "c-name-length"]
+    cm = build_model(compiled.spec).messages[0]
+    assert (cm.type, cm.fn, cm.macro, cm.member) == ("demo_long_msg_t", "demo_long_msg", "DEMO_LONG_MSG", "long_msg")
+    (sig,) = cm.signals
+    assert (sig.field, sig.fn, sig.macro) == ("speed", "demo_long_msg_speed", "DEMO_LONG_MSG_SPEED")
+    assert "spec name speed_value" in sig.comment  # the reviewer's key into the protocol table
+    assert cm.msg.name == LONG and sig.sig.name == "speed_value"  # other targets keep the spec's names

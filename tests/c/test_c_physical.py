@@ -2,17 +2,27 @@
 checks already decide it. Each generated C condition is evaluated in Python for every input the
 first check lets through (a small field's whole domain), against the unpruned definition:
 out of range iff value < min, value > max, r < raw_min or r > raw_max, with r = (value - fo) / ff
-rounded half away from zero by exact arithmetic here."""
+rounded half away from zero by exact arithmetic here. The 32-bit rounding divides by a multiply
+(divide.py): checked against integer division, in Python step for step as the C does it, and in
+C itself with both ways of taking a product's high word."""
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import re
+import sys
 from dataclasses import dataclass
 from fractions import Fraction
+from pathlib import Path
 
-from canspec.targets.c import physical
+import pytest
+from canspec.render.literals import c_int
+from canspec.targets.c import divide, physical
 from canspec.targets.c.names import CNames
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import cbuild  # noqa: E402
 
 NAMES = CNames("p", "P")
 
@@ -64,18 +74,52 @@ def _exact_round(num: int, den: int) -> int:
     return mag if (num < 0) == (den < 0) else -mag
 
 
+WORD = 2**32
+
+
+def _magnitude(num: int, half: int) -> int:
+    """`((num < 0) ? (0u - (uint32_t)num) : (uint32_t)num) + half` in uint32_t."""
+    return ((-num if num < 0 else num) + half) % WORD
+
+
+def _signed(num: int, r: int) -> int:
+    return -r if num < 0 else r
+
+
+def _c_div_round_mul(num: int, half: int, m: int, shift: int) -> int:
+    """The C `div_round_mul`, step for step in 32-bit words: the product's low word, shifted."""
+    return _signed(num, (_magnitude(num, half) * m % WORD) >> shift)
+
+
+def _c_div_round_mulhi(num: int, half: int, m: int, shift: int) -> int:
+    """The C `div_round_mulhi`: the product's high word, shifted."""
+    return _signed(num, (_magnitude(num, half) * m >> 32) >> shift)
+
+
+def _c_div_round_mulrem(num: int, d: int, m: int, shift: int) -> int:
+    """The C `div_round_mulrem`: |num| / d by the high word, rounded by the remainder."""
+    a = _magnitude(num, 0)
+    q = (a * m >> 32) >> shift
+    rem = (a - q * d) % WORD
+    return _signed(num, q if rem < (d - rem) % WORD else q + 1)
+
+
+C_FUNCTIONS = {"div_round": _c_div_round, "div_round_mul": _c_div_round_mul, "div_round_mulhi": _c_div_round_mulhi, "div_round_mulrem": _c_div_round_mulrem}
+
+
 def _py(cond: str) -> str:
     """A generated C condition or expression as Python (the literal forms the C target writes)."""
     out = re.sub(r"U?INT64_C\((-?\d+)\)", r"\1", cond)
     out = out.replace("INT64_MIN", str(-(2**63))).replace("(int64_t)", "").replace("(uint64_t)", "")
-    out = re.sub(r"\b(\d+)u\b", r"\1", out)
+    out = re.sub(r"\b(\d+|0x[0-9A-F]+)u\b", r"\1", out)
     out = out.replace("||", " or ").replace("&&", " and ").replace("!(", " not (")
-    return out.replace("p_div_round_u(", "div_round(").replace("p_div_round32(", "div_round(").replace("p_div_round(", "div_round(")
+    out = re.sub(r"\bp_div_round_(mul|mulhi|mulrem)\(", r"div_round_\1(", out)
+    return out.replace("p_div_round_u(", "div_round(").replace("p_div_round(", "div_round(")
 
 
 def _fn(cond: str):  # type: ignore[no-untyped-def]
     """A generated condition or expression as a Python function of value and r (False if empty)."""
-    return eval(f"lambda value, r=None: {_py(cond) or False}", {"div_round": _c_div_round})  # noqa: S307
+    return eval(f"lambda value, r=None: {_py(cond) or False}", dict(C_FUNCTIONS))  # noqa: S307
 
 
 TYPE_RANGES = {"int32_t": (-(2**31), 2**31 - 1), "int64_t": (-(2**63), 2**63 - 1), "uint64_t": (0, 2**64 - 1)}
@@ -152,3 +196,106 @@ def test_terms_earlier_checks_decide_are_left_out():
     # factor 2 over [0, 512]: 511 is let through and rounds (255.5) to 256, beyond the raw range
     speed = _check_agrees(Sig(8, False, Fraction(2), Fraction(0), Fraction(0), Fraction(512), 0, 255, (Special(0),)))
     assert speed.ranges.outside == "(value < 0) || (r > INT64_C(255))" and speed.ranges.specials == "r == 0"
+
+
+# The 32-bit rounding divides by a multiply (divide.py): exact against integer division.
+
+def _boundary_numerators(d: int, amax: int) -> set[int]:
+    """0..300, the top 300, and around the multiples of d and the ties (k d + d / 2) near both."""
+    out = set(range(min(amax, 300) + 1)) | set(range(max(amax - 300, 0), amax + 1))
+    for k in (1, 2, 3, amax // d - 1, amax // d, amax // d + 1):
+        for base in (k * d, k * d + d // 2, k * d + (d + 1) // 2):
+            out |= {n for n in range(base - 2, base + 3) if 0 <= n <= amax}
+    return out
+
+
+def test_magic_quotient_is_exact_on_every_numerator():
+    """floor(n / d) = (n × m) >> s on the whole range, exhaustively for small ranges and divisors."""
+    for d in range(2, 70):
+        for nmax in (d - 1, d, 257, 4099):
+            mg = divide.magic(d, nmax)
+            assert mg is not None and not mg.high, (d, nmax)  # small ranges: one 32-bit multiply
+            assert all(mg.quotient(n) == n // d for n in range(nmax + 1)), mg
+    mg = divide.magic(10, 655364)  # the steering angle: 0 .. 655364 exhaustively, the high form
+    assert (mg.m, mg.shift, mg.high) == (0x1999999A, 0, True)
+    assert all(mg.quotient(n) == n // 10 for n in range(655365))
+    # the check is no rubber stamp: the next smaller constant is wrong inside that range
+    worse = dataclasses.replace(mg, m=mg.m - 1)
+    assert any(worse.quotient(n) != n // 10 for n in range(655365))
+
+
+DIVISORS = (2, 3, 7, 10, 50, 150, 641, 1000, 65537, 1000003, 2**30 - 2, 2**30 + 1, 2**31 - 1, 2**31)
+
+
+def test_rounding_plan_is_exact_up_to_int32_magnitudes():
+    """Every divisor has a plan over |num| <= 2^31 (the proof in divide.rounding); the generated
+    call, evaluated as the C computes it, rounds half away from zero at the ends, the multiples
+    of d and every tie near them, for both signs."""
+    forms = set()
+    for d in DIVISORS:
+        for amax in {2**31, 2**31 - 1, min(3 * d + 7, 2**31), 1000, 100000}:
+            mg = divide.rounding(d, amax)
+            forms.add("mulrem" if not mg.half else "mulhi" if mg.high else "mul")
+            rounded = _fn(divide.call({k: f"p_div_round_{k}" for k in ("mul", "mulhi", "mulrem")}, "value", mg))
+            for n in _boundary_numerators(d, amax):
+                for num in {n, -n} - {2**31}:  # the numerator is an int32_t
+                    assert rounded(num) == _exact_round(num, d), (mg, num)
+    assert forms == {"mul", "mulhi", "mulrem"}
+    with pytest.raises(ValueError):
+        divide.rounding(10, 2**31 + 1)
+
+
+def test_fixed_encode_divides_by_a_multiply():
+    """Fields whose 32-bit rounding takes each form, through the fixed path's checks."""
+    # factor 0.1, offset -1080 on 16 bits: |num| up to 655359, the high word of the product
+    angle = _check_agrees(Sig(16, False, Fraction(1, 10), Fraction(-1080), Fraction(-1080), Fraction(1080), 0, 21600))
+    assert angle.rounded == "p_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u)"
+    assert angle.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364"
+    # factor -0.25 on 8 signed bits: one 32-bit multiply
+    neg = _check_agrees(Sig(8, True, Fraction(-1, 4), Fraction(1, 2), Fraction(-30), Fraction(30), -120, 127))
+    assert neg.rounded == "p_div_round_mul(500 - value, 125u, 0x8313u, 23u)"
+    # factor 2^30 - 2 on one bit: |num| + d / 2 beyond what one multiply divides exactly
+    huge = _check_agrees(Sig(1, False, Fraction(2**30 - 2), Fraction(0), Fraction(0), Fraction(2**30 - 2), 0, 1))
+    assert huge.rounded == "p_div_round_mulrem(value, 1073741822u, 0x80000005u, 29u)"
+
+
+RUNTIME_MAIN = r"""
+#include <inttypes.h>
+#include <stdio.h>
+#include "kaiwo_gateway_common.h"
+static const struct { int32_t num; uint32_t k; uint32_t m; uint32_t shift; int form; } cases[] = {
+@CASES@
+};
+int main(void) {
+    size_t i;
+    for (i = 0u; i < sizeof cases / sizeof cases[0]; i++) {
+        int32_t r = (cases[i].form == 0) ? kaiwo_gateway_div_round_mul(cases[i].num, cases[i].k, cases[i].m, cases[i].shift)
+                  : (cases[i].form == 1) ? kaiwo_gateway_div_round_mulhi(cases[i].num, cases[i].k, cases[i].m, cases[i].shift)
+                  : kaiwo_gateway_div_round_mulrem(cases[i].num, cases[i].k, cases[i].m, cases[i].shift);
+        printf("%" PRId32 "\n", r);
+    }
+    return 0;
+}
+"""
+
+
+@pytest.mark.parametrize("long_multiply", ["1", "0"])
+def test_runtime_division_functions_in_c(tmp_path, long_multiply):
+    """The C runtime's functions on the plans above, compiled (gcc, strict) with the 64-bit
+    product and with the 16-bit halves Thumb-1 cores use: the same exact results."""
+    rows, want = [], []
+    for d in DIVISORS:
+        mg = divide.rounding(d, 2**31)
+        form = 2 if not mg.half else 1 if mg.high else 0
+        k = d if not mg.half else d // 2
+        for n in sorted(_boundary_numerators(d, 2**31))[::7]:
+            for num in {n, -n} - {2**31}:
+                rows.append(f"    {{ {c_int(num)}, {k}u, {mg.m}u, {mg.shift}u, {form} }},")
+                want.append(_exact_round(num, d))
+    src = tmp_path / "main.c"
+    src.write_text(RUNTIME_MAIN.replace("@CASES@", "\n".join(rows)))
+    exe = tmp_path / "div"
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_LONG_MULTIPLY={long_multiply}"], [cbuild.HEADERS])
+    proc = cbuild.run([str(exe)])
+    assert proc.returncode == 0, proc.stderr
+    assert [int(v) for v in proc.stdout.split()] == want

@@ -51,6 +51,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     table = tables.get(sig["values"]) if sig.get("values") else None
     return ir.Signal(
         name=sig["name"],
+        c_name=sig.get("c_name", sig["name"]),
         zh=sig.get("zh", ""),
         desc=sig["desc"],
         desc_zh=sig["desc_zh"],
@@ -113,6 +114,7 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
     cycle = msg.get("cycle_ms") or None  # 0 or absent: event-driven
     return ir.Message(
         name=msg["name"],
+        c_name=msg.get("c_name", msg["name"]),
         title=msg.get("title", msg["name"]),
         zh=msg.get("zh", ""),
         desc=msg.get("desc", ""),

@@ -91,6 +91,7 @@ class Segment:
 @dataclass(frozen=True)
 class Signal:
     name: str
+    c_name: str  # the name in C identifiers: the spec's `c_name`, else `name`
     zh: str
     desc: str
     desc_zh: str
@@ -218,6 +219,7 @@ class J1939Id:
 @dataclass(frozen=True)
 class Message:
     name: str
+    c_name: str  # the name in C identifiers: the spec's `c_name`, else `name`
     title: str
     zh: str
     desc: str

@@ -20,7 +20,9 @@ included), without the harness's loop and call set-up. The harness then checks t
 libraries returned 0 and packed the input frames back byte for byte (same work on both sides).
 
 Size: nm sizes of the functions in question plus the static helpers of the same object that they
-call (the call graph from the linked disassembly); libgcc / libc helpers are listed by name.
+call (the call graph from the linked disassembly), and the read-only data they read where it is
+not in their literal pools (canspec's double encoders' `_phys` descriptors); libgcc / libc
+helpers are listed by name.
 The physical-value API is measured on a translation unit that takes the address of each
 canspec function (so each is emitted once, out of line): the double path against cantools'
 default `_encode`/`_decode`, the integer path against what `--no-floating-point-numbers` leaves.
@@ -76,18 +78,24 @@ class Inputs:
     frames: dict[str, list[str]] = field(default_factory=dict)
     xor: dict[str, tuple[int, tuple[int, ...]]] = field(default_factory=dict)
     ranges: dict[str, str] = field(default_factory=dict)  # message → a cantools user's range check
+    c_base: dict[str, str] = field(default_factory=dict)  # message → its C name in canspec's headers (a spec `c_name`)
     functions: list[str] = field(default_factory=list)  # every static inline function of the headers
 
 
-def checksum_layout(spec: Path) -> dict[str, tuple[int, tuple[int, ...]]]:
-    """message → (checksum byte, bytes it covers), from the spec the headers came from."""
+def checksum_layout(spec: Path) -> tuple[dict[str, tuple[int, tuple[int, ...]]], dict[str, str]]:
+    """message → (checksum byte, bytes it covers), and message → its C name, from the spec the
+    headers came from."""
     sys.path.insert(0, str(ROOT / "generator"))
     from canspec.pipeline import compile_spec
+    from canspec.targets.c.names import CNames
 
     compiled = compile_spec(spec)
     if compiled.spec is None or compiled.spec.can is None:
         raise ValueError(f"{spec}: the spec does not compile")
-    return {m.name: (m.checksum.byte, tuple(m.checksum.covers)) for m in compiled.spec.can.messages if m.checksum is not None}
+    can = compiled.spec.can
+    names = CNames.of(can)
+    return ({m.name: (m.checksum.byte, tuple(m.checksum.covers)) for m in can.messages if m.checksum is not None},
+            {m.name: names.message(m.name) for m in can.messages})
 
 
 def header_functions(headers: Path) -> list[str]:
@@ -105,34 +113,37 @@ def src_canspec_wrappers(inp: Inputs) -> str:
     p = inp.prefix
     out = [f'#include "{p}.h"']
     for n in inp.names:
-        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {p}_{n}_t *s);")
-        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {p}_{n}_t *s) {{ return {p}_{n}_pack(d, z, s); }}")
-        out.append(f"{p}_status_t x_{n}_unpack({p}_{n}_t *s, const uint8_t *d, size_t z);")
-        out.append(f"{p}_status_t x_{n}_unpack({p}_{n}_t *s, const uint8_t *d, size_t z) {{ return {p}_{n}_unpack(s, d, z); }}")
+        c = f"{p}_{inp.c_base[n]}"
+        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {c}_t *s);")
+        out.append(f"{p}_status_t x_{n}_pack(uint8_t *d, size_t z, const {c}_t *s) {{ return {c}_pack(d, z, s); }}")
+        out.append(f"{p}_status_t x_{n}_unpack({c}_t *s, const uint8_t *d, size_t z);")
+        out.append(f"{p}_status_t x_{n}_unpack({c}_t *s, const uint8_t *d, size_t z) {{ return {c}_unpack(s, d, z); }}")
     return "\n".join(out) + "\n"
 
 
-def src_cantools_xor(inp: Inputs) -> str:
+def src_cantools_xor(inp: Inputs, stem: str = "cx", with_ranges: bool = True) -> str:
     """What a cantools user adds for canspec's guarantees: on a checksum message, verify before
     unpack and fill after pack; on a message with fields narrower than their C type, refuse an
-    out-of-range field before pack (range_checks)."""
+    out-of-range field before pack (range_checks). `with_ranges=False`: the XOR alone (the
+    issue's "cantools (+XOR)" size)."""
+    ranges = inp.ranges if with_ranges else {}
     out = [f'#include "{inp.db}.h"']
     for n in inp.names:
         t = f"struct {inp.db}_{n}_t"
         if n in inp.xor:
             byte, covers = inp.xor[n]
-            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
-            out.append(f"int cx_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
+            out.append(f"int {stem}_{n}_unpack({t} *s, const uint8_t *d, size_t z);")
+            out.append(f"int {stem}_{n}_unpack({t} *s, const uint8_t *d, size_t z) {{")
             # Byte-wise (bench.py's 64-bit word fold is an x86 choice: no unaligned word loads on M0+).
             out.append(f"    if (z < 8u || (uint8_t)({' ^ '.join(f'd[{b}]' for b in (*covers, byte))}) != 0u) return -2;")
             out.append(f"    return {inp.db}_{n}_unpack(s, d, z);")
             out.append("}")
-        if n in inp.xor or n in inp.ranges:
-            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
-            out.append(f"int cx_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
+        if n in inp.xor or n in ranges:
+            out.append(f"int {stem}_{n}_pack(uint8_t *d, const {t} *s, size_t z);")
+            out.append(f"int {stem}_{n}_pack(uint8_t *d, const {t} *s, size_t z) {{")
             out.append("    int st;")
-            if n in inp.ranges:
-                out.append(f"    if ({inp.ranges[n]}) return -3;")
+            if n in ranges:
+                out.append(f"    if ({ranges[n]}) return -3;")
             out.append(f"    st = {inp.db}_{n}_pack(d, s, z);")
             if n in inp.xor:
                 byte, covers = inp.xor[n]
@@ -146,7 +157,7 @@ def src_harness(inp: Inputs, lib: str) -> str:
     """run_<lib>_<msg>_<phase>(): the 16 frames through one function; results kept for main."""
     if lib == "canspec":
         out = [f'#include "{inp.prefix}.h"']
-        typ = lambda n: f"{inp.prefix}_{n}_t"  # noqa: E731
+        typ = lambda n: f"{inp.prefix}_{inp.c_base[n]}_t"  # noqa: E731
         for n in inp.names:
             out.append(f"{inp.prefix}_status_t x_{n}_pack(uint8_t *d, size_t z, const {typ(n)} *s);")
             out.append(f"{inp.prefix}_status_t x_{n}_unpack({typ(n)} *s, const uint8_t *d, size_t z);")
@@ -249,6 +260,7 @@ STUB_MAIN_API = "typedef void (*any_fn)(void);\nextern const any_fn canspec_api[
 class Image:
     """A linked ELF: function sizes, direct call edges, own stack frames."""
     sizes: dict[str, int] = field(default_factory=dict)
+    data: dict[str, int] = field(default_factory=dict)  # read-only and initialised data objects
     calls: dict[str, set[str]] = field(default_factory=dict)
     indirect: set[str] = field(default_factory=set)
     frames: dict[str, int] = field(default_factory=dict)  # from the prologue (push, sub sp)
@@ -266,6 +278,8 @@ def load_image(elf: Path) -> Image:
         parts = line.split()
         if len(parts) == 4 and parts[2] in "tTwW":
             img.sizes[parts[3]] = max(img.sizes.get(parts[3], 0), int(parts[1], 16))
+        elif len(parts) == 4 and parts[2] in "rRdD":
+            img.data[parts[3]] = int(parts[1], 16)
     dis = subprocess.run(["arm-none-eabi-objdump", "-d", "--no-show-raw-insn", str(elf)], capture_output=True, text=True, check=True).stdout
     cur = None
     count = 0
@@ -447,15 +461,16 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
     # The two libraries' umbrella headers may share a name: each translation unit sees one.
     inc = {"canspec": [inp.headers], "cantools": [ct]}
     p = re.escape(inp.prefix)
-    msgs = "|".join(map(re.escape, inp.names))
+    msgs = "|".join(map(re.escape, inp.names))  # cantools' names: the spec's
+    cmsgs = "|".join(re.escape(inp.c_base[n]) for n in inp.names)  # canspec's
     api = {
-        "double": rf"{p}_({msgs})_\w+_(encode|decode)",
-        "fixed": rf"{p}_({msgs})_\w+_(encode|decode)_fixed",
+        "double": rf"{p}_({cmsgs})_\w+_(encode|decode)",
+        "fixed": rf"{p}_({cmsgs})_\w+_(encode|decode)_fixed",
         "monitor": rf"{p}_monitor_(on_frame|check)",
     }
     try:
         objs = {}
-        for name in ("canspec_wrappers", "cantools_xor", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api", "stub_main", "stub_main_api"):
+        for name in ("canspec_wrappers", "cantools_xor", "cantools_xoronly", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api", "stub_main", "stub_main_api"):
             compile_obj(core, opt, build / f"{name}.c", out / f"{name}.o", inc["cantools" if "cantools" in name else "canspec"])
             objs[name] = out / f"{name}.o"
         compile_obj(core, opt, ct / f"{inp.db}.c", out / "cantools.o", [ct])
@@ -479,6 +494,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         for name, objs_ in {"canspec": [objs["canspec_wrappers"], objs["stub_main"]],
                             "cantools": [out / "cantools.o", objs["stub_main"]],
                             "cantools_xor": [out / "cantools.o", objs["cantools_xor"], objs["stub_main"]],
+                            "cantools_xoronly": [out / "cantools.o", objs["cantools_xoronly"], objs["stub_main"]],
                             "cantools_nofp": [out / "cantools_nofp.o", objs["stub_main"]],
                             "api": [objs["canspec_api"], objs["stub_main_api"]]}.items():
             link(core, objs_, out / f"size_{name}.elf", build)
@@ -487,6 +503,8 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         groups = {
             "canspec pack+unpack": ("canspec", [f"x_{n}_{ph}" for n in inp.names for ph in PHASES]),
             "cantools pack+unpack": ("cantools", [f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
+            "cantools+XOR pack+unpack": ("cantools_xoronly", [f"cxo_{n}_{ph}" if f"cxo_{n}_{ph}" in images["cantools_xoronly"].sizes else f"{inp.db}_{n}_{ph}"
+                                                              for n in inp.names for ph in PHASES]),
             # like for like: the user's XOR and range-check wrappers with the cantools functions they call
             "cantools+user pack+unpack": ("cantools_xor", [f"cx_{n}_{ph}" if f"cx_{n}_{ph}" in images["cantools_xor"].sizes else f"{inp.db}_{n}_{ph}"
                                                            for n in inp.names for ph in PHASES]),
@@ -498,8 +516,14 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
             "cantools --no-floating-point-numbers is_in_phys_range (double)": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_phys_range", f)]),
             "canspec monitor on_frame+check": ("api", [f for f in images["api"].sizes if re.fullmatch(api["monitor"], f)]),
         }
+        # read-only data a group's functions read, by name: the double encoders' descriptors
+        # (file scope, or `<name>.<n>` where GCC names an encoder's own)
+        data = {"canspec double encode+decode": rf"{p}_({msgs})_\w+_phys(\.\d+)?"}
         for label, (img, roots) in groups.items():
             res.sizes[label] = group_size(images[img], roots) if roots else (0, set())
+            if label in data:
+                extra = sum(n for name, n in images[img].data.items() if re.fullmatch(data[label], name))
+                res.sizes[label] = (res.sizes[label][0] + extra, res.sizes[label][1])
         for label, img, obj, roots in (("canspec pack/unpack", "canspec", "canspec_wrappers", groups["canspec pack+unpack"][1]),
                                        ("cantools pack/unpack", "cantools", "cantools", groups["cantools pack+unpack"][1]),
                                        ("canspec monitor", "api", "canspec_api", groups["canspec monitor on_frame+check"][1])):
@@ -528,15 +552,16 @@ def write_sources(inp: Inputs, build: Path) -> tuple[Path, Path]:
     if missing:
         raise RuntimeError(f"cantools output lacks {missing}")
     p = re.escape(inp.prefix)
-    msgs = "|".join(map(re.escape, inp.names))
+    cmsgs = "|".join(re.escape(inp.c_base[n]) for n in inp.names)
     sources = {
         "canspec_wrappers.c": src_canspec_wrappers(inp),
         "cantools_xor.c": src_cantools_xor(inp),
+        "cantools_xoronly.c": src_cantools_xor(inp, "cxo", with_ranges=False),
         "harness_canspec.c": src_harness(inp, "canspec"),
         "harness_cantools.c": src_harness(inp, "cantools"),
         "harness_cantools_xor.c": src_harness(inp, "cantools_xor"),
         "bench_main.c": src_main(inp),
-        "canspec_api.c": src_api(inp, {"api": rf"{p}_({msgs})_\w+_(encode|decode)(_fixed)?", "monitor": rf"{p}_monitor_(on_frame|check)"}),
+        "canspec_api.c": src_api(inp, {"api": rf"{p}_({cmsgs})_\w+_(encode|decode)(_fixed)?", "monitor": rf"{p}_monitor_(on_frame|check)"}),
         "stub_main.c": STUB_MAIN,
         "stub_main_api.c": STUB_MAIN_API,
     }
@@ -552,7 +577,7 @@ def load_inputs(headers: Path, dbc: Path, vectors: Path, spec: Path) -> Inputs:
     doc = json.loads(vectors.read_text(encoding="utf-8"))
     inp.names = list(dict.fromkeys(c["message"] for c in doc["cases"]))
     inp.frames = {n: frames_for(doc["cases"], n) for n in inp.names}
-    inp.xor = checksum_layout(spec)
+    inp.xor, inp.c_base = checksum_layout(spec)
     inp.ranges = range_checks(spec, dbc)
     inp.functions = header_functions(headers)
     return inp

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -107,3 +108,25 @@ def test_bench_cross_smoke(tmp_path, capsys):
     out = capsys.readouterr().out
     assert rc == 0, out[-3000:]
     assert "bench: 0 mismatches" in out and "overall (sum)" in out and "helper-free" in out
+
+
+@pytest.mark.parametrize("core", ["cortex-m0plus", "cortex-m4"])
+@pytest.mark.parametrize("opt", ["-Os", "-O2"])
+def test_integer_path_calls_no_helper(tmp_path, core, opt):
+    """pack, unpack and the integer-only physical functions emitted out of line for the exact
+    core: the object needs no libgcc or libc routine (no __aeabi_uidivmod on Cortex-M0+, which
+    has no divide instruction, no __aeabi_lmul where it has no long multiply)."""
+    _need(cross.TARGETS[core])
+    text = "".join(h.read_text(encoding="utf-8") for h in sorted(cross.cbuild.HEADERS.glob("*_messages.h")))
+    names = re.findall(r"^static inline [^(]*?\b(\w+_(?:pack|unpack|encode_fixed|decode_fixed))\(", text, re.MULTILINE)
+    assert len(names) > 50 and any(n.endswith("_encode_fixed") for n in names)
+    umbrella = min(cross.cbuild.HEADERS.glob("*.h"), key=lambda h: len(h.name)).name
+    src = tmp_path / "api.c"
+    src.write_text(f'#include "{umbrella}"\ntypedef void (*any_fn)(void);\nextern const any_fn api[];\nconst any_fn api[] = {{\n'
+                   + "".join(f"    (any_fn){n},\n" for n in names) + "};\n")
+    obj = tmp_path / "api.o"
+    subprocess.run([cross.ARM_CC, *cross.ARM_CORES[core], opt, "-std=c99", "-c", str(src), "-o", str(obj), "-I", str(cross.cbuild.HEADERS)],
+                   check=True, capture_output=True, text=True)
+    undefined = subprocess.run(["arm-none-eabi-nm", "-u", str(obj)], check=True, capture_output=True, text=True).stdout.split()
+    helpers = [u for u in undefined if u != "U"]
+    assert helpers == [], helpers

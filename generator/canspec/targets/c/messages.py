@@ -72,7 +72,7 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     codec = build_codec(msg, sigs, err)
     return CMessage(
         msg=msg, name=snake(msg.name), macro=names.const(base), fn=names.fn(base),
-        type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.name),
+        type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.c_name),
         frame_id=f"{msg.id_text}u", fingerprint=f"{hex32(msg.fingerprint)}u", dlc=c_uint(msg.dlc), cycle_ms=c_uint(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
         info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else c_uint(0),
         counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0), counter_start=c_uint(msg.counter.start if msg.counter else 0),

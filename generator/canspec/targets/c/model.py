@@ -7,12 +7,14 @@ all — so the `templates/c/` family only loops, branches on booleans and places
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections import Counter
+from dataclasses import dataclass, replace
 
 from canspec import ir
-from canspec.render.literals import c_hex, c_int, c_uint
+from canspec.render.literals import c_hex, c_int, c_uint, float_lit
 from canspec.targets.c.messages import CMessage, build_message
 from canspec.targets.c.names import CNames
+from canspec.targets.c.physical import phys_store, with_descriptor
 from canspec.targets.c.signals import CSignal
 
 INT_MIN, INT_MAX = -(2**31), 2**31 - 1  # C enumerators are ints (at least 32 bits on every target host)
@@ -102,6 +104,11 @@ class CModel:
     msg_none: str
     status: str
     is_j1939: bool
+    has_phys: bool  # some signal encodes through the runtime's `<prefix>_phys_*` functions
+    has_phys_round: bool  # ... one with special values or with a q beyond phys_encode's domain (through `<prefix>_phys_round`)
+    phys_stores: tuple[tuple[str, str], ...]  # (function, field type): the `<prefix>_phys_encode_<type>` encoders used
+    phys_q_min: str  # the rounding's domain [min, max) as double literals
+    phys_q_max: str
     format_arg: bool  # the protocol has 11-bit IDs: lookups by ID take the frame's format too
     bitrate: str
     cycle_type: str  # of msg_info_t.cycle_ms
@@ -163,6 +170,25 @@ def _vin(names: CNames, cm: CMessage, mf: ir.MultiFrame) -> CVin:
     )
 
 
+def _share_descriptors(names: CNames, messages: tuple[CMessage, ...]) -> tuple[CMessage, ...]:
+    """Signals with the same offset, factor and accepted range share one `<prefix>_phys_t`, named
+    after the first of them and defined at file scope before its encoder; a descriptor no other
+    signal has stays in its encoder (MISRA C:2012 rule 8.9: an object one function uses is
+    defined in it)."""
+    users = Counter(s.double.phys for cm in messages for s in cm.signals if s.double is not None and s.double.phys)
+    first: dict[str, str] = {}
+
+    def shared(s: CSignal) -> CSignal:
+        d = s.double
+        if d is None or users[d.phys] < 2:
+            return s
+        defines = d.phys not in first
+        name = first.setdefault(d.phys, d.phys_name)
+        return replace(s, double=with_descriptor(names, s.sig, d, name, local=False, defines=defines))
+
+    return tuple(replace(cm, signals=tuple(map(shared, cm.signals))) for cm in messages)
+
+
 def build_model(spec: ir.Spec) -> CModel:
     can = spec.can
     if can is None:
@@ -170,14 +196,17 @@ def build_model(spec: ir.Spec) -> CModel:
     names = CNames.of(can)
     enums = {t.name: _enum(names, t) for t in can.value_tables}
     enum_types = {name: e.type for name, e in enums.items()}
-    messages = tuple(build_message(names, m, enum_types) for m in can.messages)
+    messages = _share_descriptors(names, tuple(build_message(names, m, enum_types) for m in can.messages))
     faults = _fault_tables(names, can, enums, messages)
+    phys_users = [s for cm in messages for s in cm.signals if s.double is not None and s.double.phys]
     return CModel(
         prefix=names.prefix, macro=names.macro, guard=names.const("h"), can=can, names=names, messages=messages,
         extended=tuple(cm for cm in messages if cm.msg.is_extended), standard=tuple(cm for cm in messages if not cm.msg.is_extended),
         enums=tuple(enums.values()), fault_tables=faults, vins=tuple(_vin(names, cm, cm.msg.multiframe) for cm in messages if cm.msg.multiframe is not None),
         msg_type=names.fn("msg_t"), msg_none=names.const("msg_none"), status=names.fn("status_t"),
-        is_j1939=can.bus.is_j1939, format_arg=can.has_standard,
+        is_j1939=can.bus.is_j1939, has_phys=bool(phys_users),         has_phys_round=any(s.double is not None and (s.double.window_test or s.double.special_test) for s in phys_users),
+        phys_stores=tuple(sorted({(names.fn(phys_store(s.sig)), s.type) for s in phys_users if s.double is not None and s.double.encode_tail})),
+        phys_q_min=float_lit(-(2**63)), phys_q_max=float_lit(2**63), format_arg=can.has_standard,
         bitrate=c_uint(can.bus.bitrate), cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
         state_slots=names.const("msg_count") if messages else c_uint(1), timeout_cycles=c_uint(ir.MONITOR_TIMEOUT_CYCLES),
         counter_tolerance=c_uint(ir.MONITOR_COUNTER_TOLERANCE), valid_after=c_uint(ir.MONITOR_VALID_AFTER),

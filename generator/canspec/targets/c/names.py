@@ -31,16 +31,18 @@ HEADERS = (
     ("c/monitor.h.j2", "_monitor.h"),
     ("c/umbrella.h.j2", ".h"),
 )
-# The names the runtime declares whatever the spec holds (common.h, dispatch.h, monitor.h).
+# The names the runtime declares whatever the spec holds (common.h, messages.h, dispatch.h, monitor.h).
 RUNTIME_FUNCTIONS = (
-    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "div_round32",
+    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
+    "phys_t", "phys_q", "phys_round", "phys_encode",
+    *(f"phys_encode_{s}{bits}" for s in "ui" for bits in (8, 16, 32, 64)),
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
     "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out", "monitor_state",
     "monitor_count_up", "monitor_invalidate", "monitor_expire", "monitor_counter_fault",  # the monitor's helpers
 )
 RUNTIME_MACROS = (
-    "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "UNALIGNED_WORDS", "WORD64",
+    "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "UNALIGNED_WORDS", "LONG_MULTIPLY", "PHYS_NOINLINE", "WORD64",
     "OK", "ERR_LENGTH", "ERR_CHECKSUM", "ERR_RANGE", "ERR_UNKNOWN_ID", "ERR_INDEX", "ERR_INCOMPLETE", "ERR_INCONSISTENT",
     "J1939_PDU2_MIN_PF", "J1939_GLOBAL_ADDRESS", "J1939_ID_MASK", "J1939_PRIORITY_MASK", "MSG_NONE", "MSG_COUNT",
     "MONITOR_TIMEOUT_CYCLES", "MONITOR_COUNTER_TOLERANCE", "MONITOR_VALID_AFTER", "RX_NO_DATA", "RX_INIT", "RX_VALID", "RX_INVALID",
@@ -50,7 +52,7 @@ RUNTIME_MACROS = (
 # Per message (after <prefix>_<message>_ / <PREFIX>_<MESSAGE>_), per signal, per multi-frame text.
 MESSAGE_FUNCTIONS = ("t", "pack", "unpack", "init", "counter_next")
 MESSAGE_MACROS = ("FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "SA", "DA", "FINGERPRINT")
-SIGNAL_FUNCTIONS = ("decode", "encode", "decode_fixed", "encode_fixed")
+SIGNAL_FUNCTIONS = ("decode", "encode", "decode_fixed", "encode_fixed", "phys")  # `phys`: its encoder's descriptor
 SIGNAL_MACROS = ("FACTOR", "OFFSET", "MIN", "MAX", "FIXED_SCALE")
 TEXT_FUNCTIONS = ("split", "rx_t", "rx_init", "rx_complete", "rx_feed", "rx_get")
 TEXT_MACROS = ("LENGTH", "FRAMES", "BYTES_PER_FRAME", "PADDING")
@@ -118,8 +120,8 @@ def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
     taken = {name for name, _ in runtime}
     bases: dict[tuple[str, str], str] = {}
     for msg in can.messages:
-        meets = _may_meet(plain, msg.name, taken) and any(name in taken for name, _ in _message_names(plain, msg, msg.name))
-        bases["message", msg.name] = f"{msg.name}_{MESSAGE_SUFFIX}" if meets else msg.name
+        meets = _may_meet(plain, msg.c_name, taken) and any(name in taken for name, _ in _message_names(plain, msg, msg.c_name))
+        bases["message", msg.name] = f"{msg.c_name}_{MESSAGE_SUFFIX}" if meets else msg.c_name
     names = CNames(plain.prefix, plain.macro, bases)
     found = runtime + [item for msg in can.messages for item in _message_names(names, msg, names.message(msg.name))]
     taken |= {name for name, _ in found}
@@ -165,14 +167,14 @@ def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str,
         yield from ((f"{const}_TEXT_{w}", origin) for w in TEXT_MACROS)
     for sig in msg.data_signals:
         where: Origin = (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
-        sig_fn, sig_const = f"{fn}_{_snake(sig.name)}", f"{const}_{_upper_snake(sig.name)}"
+        sig_fn, sig_const = f"{fn}_{_snake(sig.c_name)}", f"{const}_{_upper_snake(sig.c_name)}"
         if sig.role == "data":  # counters and checksums have no physical functions
             yield from ((f"{sig_fn}_{w}", where) for w in SIGNAL_FUNCTIONS)
             yield from ((f"{sig_const}_{w}", where) for w in SIGNAL_MACROS)
-        yield from ((n.special(base, sig.name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
+        yield from ((n.special(base, sig.c_name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
 
 
 def members(msg: ir.Message) -> Iterator[tuple[str, Origin]]:
     """The message struct's fields, which share one scope."""
     for sig in msg.data_signals:
-        yield CNames.member(sig.name), (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)
+        yield CNames.member(sig.c_name), (f"signal {sig.name!r} of message {msg.name!r}", sig.loc)

@@ -1,13 +1,22 @@
 """Physical ↔ raw in C: the double path and the integer-only (fixed-point) path of a signal.
 
-The double encode is the shared rounding rule step for step (ir/encoding.py): q = (x - offset) /
-factor, then `<prefix>_round_half_away(q)` (the 2^52 branch included); a field wider than 63
-unsigned bits rounds |q| with `<prefix>_round_abs` into a uint64_t. q is first held inside the
-field's raw type widened by one step, so the rounding never leaves its integer type.
+The double encode is the shared rounding rule step for step (ir/encoding.py): q = (value -
+offset) / factor, then `<prefix>_round_half_away(q)` (the 2^52 branch included). All but the
+widest fields encode through the runtime's out-of-line `<prefix>_phys_*` functions with a
+`<prefix>_phys_t` (offset, factor, accepted range) per signal, shared by the signals that agree
+(model.py): each encoder is a call and the raw-range compares the accepted range leaves open, so
+an image holds the rounding once however many signals it encodes, at every optimisation level.
+The range check comes first and keeps q inside the rounding's domain [-2^63, 2^63), except where
+the accepted range reaches 2^62 (`phys_round` checks q first there); every q beyond the field's
+raw type rounds beyond its raw range, which the encoder compares. A field wider than 63 unsigned
+bits rounds |q| with `<prefix>_round_abs` into a uint64_t inline, q first held inside the raw
+type widened by one step.
 
 The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
 factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
-gives within its tie guarantee (tested against the vectors). Every comparison whose outcome the
+gives within its tie guarantee (tested against the vectors). Where its numbers fit 32 bits it
+divides by |ff| as a multiply (divide.py), exact for every numerator that interval allows: no
+division, so no libgcc helper on cores without a divide instruction. Every comparison whose outcome the
 operand's type, or an earlier check, already decides is left out (compilers warn about it, and
 MISRA C:2012 rule 14.3 forbids it): after the fixed encode's first check the value lies in a
 known interval, and r, rounded monotonically from it, in one computed exactly here.
@@ -17,18 +26,20 @@ Conditions of more than one comparison parenthesise each (MISRA C:2012 rule 12.1
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from math import floor
 
 from canspec import ir
 from canspec.ir.encoding import to_raw_runtime
 from canspec.render.literals import c_int, c_uint, float_lit
+from canspec.targets.c import divide
 from canspec.targets.c.names import CNames
 
 INT_TYPES = ((32, "int32_t", -(2**31), 2**31 - 1), (64, "int64_t", -(2**63), 2**63 - 1))
 U64_MAX = 2**64 - 1
 DOUBLE_EXACT = 2**53  # integers up to this magnitude are exact in a double
+Q_SAFE = 2**62  # |q| below this: inside the rounding's domain [-2^63, 2^63) with every rounding error of its computation
 
 
 def int_lit(value: int, bits: int, signed: bool) -> str:
@@ -73,14 +84,20 @@ class CRanges:
 class CDouble:
     decode_pre: str  # `const double scaled = <this>;` before decode_expr, or ""
     decode_expr: str  # double from `raw` (and `scaled`)
-    refuse: str  # encode's first check (true: ERR_RANGE): q's rounding would leave the raw type
-    # widened by one step; or, where no special value can lie outside the range, the value
-    # outside the accepted range (which keeps q inside that window too, and is checked once)
-    r_type: str
-    rounded: str  # r from q, by the shared rule
-    wide_unsigned: bool  # r is a uint64_t holding |q| rounded: a negative q must round to 0
     exact: bool  # every raw value is exact in a double
-    ranges: CRanges
+    phys: str  # initializer of its `<prefix>_phys_t`: offset, factor, accepted range, scaled ("" on the wide path)
+    phys_name: str  # that descriptor's name: `<signal fn>_phys` (model.py: the first signal's where several share it)
+    phys_local: bool  # defined in the encoder (no other signal has the same); else at file scope ...
+    phys_defines: bool  # ... before this signal's encoder (the first signal that uses it)
+    window_test: str  # the shared path: true (ERR_RANGE) where q is outside the rounding's domain ("" where the accepted range keeps it inside)
+    special_test: str  # true where r rounds to a special value (OK), "" without them; then ...
+    encode_test: str  # ... the accepted range and rounding (true: ERR_RANGE), a `<prefix>_phys_encode` call, ...
+    encode_tail: str  # ... or where no compare is left after it, the rest of the encode: a `<prefix>_phys_encode_<type>` call
+    ranges: CRanges  # what is checked after the first check (the shared path: the raw range the accepted one leaves open)
+    # the wide unsigned path: a uint64_t field beyond 2^63
+    wide_unsigned: bool
+    refuse: str  # its first check (true: ERR_RANGE): q's rounding would leave the raw type widened by one step
+    rounded: str  # r = |q| rounded (a negative q must round to 0)
 
 
 @dataclass(frozen=True)
@@ -93,6 +110,7 @@ class CFixed:
     rounded: str  # r from `value`: (value - fo) / ff rounded half away from zero
     r_type: str
     ranges: CRanges
+    note: str = ""  # comment beside `rounded`: the divisor and the multiply that divides by it
 
 
 def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str], r_reach: tuple[int, int] | None) -> CRanges:
@@ -121,8 +139,9 @@ def _fixed_ranges(sig: ir.Signal, r_signed: bool, scale: int, scaling: tuple[int
     return _ranges(sig, r_signed, value_terms, (ends[0], ends[1]) if lo <= hi else None)
 
 
-def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
-    """The double path of a data signal: where its raw values are exact in a double, or `force`d."""
+def double_path(names: CNames, sig: ir.Signal, fn: str, force: bool) -> CDouble | None:
+    """The double path of a data signal (C functions `fn`_*): where its raw values are exact in a
+    double, or `force`d."""
     exact = max(-sig.raw_type_min, sig.raw_type_max) <= DOUBLE_EXACT
     if not exact and not force:
         return None
@@ -134,19 +153,45 @@ def double_path(names: CNames, sig: ir.Signal, force: bool) -> CDouble | None:
     if offset:
         sign = "+" if offset > 0 else "-"
         pre, expr = (expr, f"scaled {sign} {float_lit(abs(offset))}") if factor != 1 else ("", f"{expr} {sign} {float_lit(abs(offset))}")
-    wide_unsigned = not sig.signed and sig.raw_type_max > 2**63 - 1
-    # q's bounds are the raw type widened by one step; where that is not a double, the type's own
-    # bound (a power of two) is, and no double lies between the two.
-    low = f"q > {float_lit(sig.raw_type_min - 1)}" if sig.raw_type_min - 1 >= -DOUBLE_EXACT else f"q >= {float_lit(sig.raw_type_min)}"
     accept = f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"
-    first = exact and not sig.specials and not wide_unsigned
-    return CDouble(
-        decode_pre=pre, decode_expr=expr, refuse=accept if first else f"!(({low}) && (q < {float_lit(sig.raw_type_max + 1)}))",
-        r_type="uint64_t" if wide_unsigned else "int64_t",
-        rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)" if wide_unsigned else f"{names.fn('round_half_away')}(q)",
-        wide_unsigned=wide_unsigned, exact=exact,
-        ranges=_ranges(sig, True, [], _accepted_reach(sig)) if first else _ranges(sig, not wide_unsigned, [accept], _r_type_range(not wide_unsigned)),
-    )
+    if not sig.signed and sig.raw_type_max > 2**63 - 1:
+        # q's bounds: the raw type widened by one step, i.e. -1 and 2^64 (both doubles)
+        return CDouble(
+            decode_pre=pre, decode_expr=expr, exact=exact, phys="", phys_name="", phys_local=False, phys_defines=False, window_test="", special_test="", encode_test="", encode_tail="",
+            ranges=_ranges(sig, False, [accept], _r_type_range(False)), wide_unsigned=True,
+            refuse=f"!((q > -1.0) && (q < {float_lit(sig.raw_type_max + 1)}))", rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
+        )
+    scaled = "false" if sig.is_identity else "true"
+    init = f"{{{float_lit(offset)}, {float_lit(factor)}, {float_lit(sig.accept_min)}, {float_lit(sig.accept_max)}, {scaled}}}"
+    return with_descriptor(names, sig, CDouble(
+        decode_pre=pre, decode_expr=expr, exact=exact, phys=init, phys_name="", phys_local=True, phys_defines=False,
+        window_test="", special_test="", encode_test="", encode_tail="", ranges=CRanges("", ""), wide_unsigned=False, refuse="", rounded="",
+    ), f"{fn}_phys", local=True, defines=False)
+
+
+def phys_store(sig: ir.Signal) -> str:
+    """The runtime's shared encoder that writes the signal's field: `phys_encode_u8` for a uint8_t."""
+    return f"phys_encode_{'i' if sig.signed else 'u'}{sig.storage_bits}"
+
+
+def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local: bool, defines: bool) -> CDouble:
+    """The shared path's checks of `sig` with its descriptor named `name`: a special value is
+    accepted wherever it lies, so r is rounded first where the signal has some; any other value
+    is encoded as if it had none (rounded again: the code stays a call on every core)."""
+    # phys_encode rounds without the domain check where the accepted range keeps q well inside it
+    reach = [abs((v - sig.offset) / sig.factor) for v in (sig.accept_min, sig.accept_max)]
+    window = f"!{names.fn('phys_round')}(value, &{name}, &r)" if max(reach) >= Q_SAFE else ""
+    specials = any_of([f"r == {c_int(sp.raw)}" for sp in sig.specials])
+    special = f"{names.fn('phys_round')}(value, &{name}, &r) && ({specials})" if specials else ""
+    # the accepted range first, in the call: r then lies between the roundings of its ends
+    ranges = _ranges(sig, True, [], _accepted_reach(sig) if d.exact else _r_type_range(True))
+    test, tail = "", ""
+    if ranges.outside:
+        test = f"!{names.fn('phys_encode')}(value, &{name}, &r)"
+    else:  # nothing left to compare: the runtime's encoder for the field's type writes it
+        tail = f"{names.fn(phys_store(sig))}(value, &{name}, raw)"
+    return replace(d, phys_name=name, phys_local=local, phys_defines=defines, window_test=window, special_test=special, encode_test=test, encode_tail=tail,
+                   ranges=CRanges("", ranges.outside))
 
 
 def _accepted_reach(sig: ir.Signal) -> tuple[int, int]:
@@ -217,18 +262,23 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
     # what passes that check: the open interval (bounds) within the type
     reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
-    # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits (Cortex-M3/M4
-    # divide in one instruction, where a 64-bit division calls libgcc's __aeabi_ldivmod)
+    # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits, divided by a
+    # multiply (divide.py: no division, hence no libgcc helper, on any core)
     narrow = ctype == "int32_t" and _difference_fits(ff, fo, *reach, bits=32)
     value, offset = ("value" if narrow else "(int64_t)value", lit(abs(fo)))
     if ff > 0:
         num = value if not fo else f"{value} - {offset}" if fo > 0 else f"{value} + {offset}"
     else:
         num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
+    rounded, note = num, ""
+    if abs(ff) != 1 and narrow:
+        mg = divide.rounding(abs(ff), max(abs(v - fo) for v in reach))
+        rounded, note = divide.call({k: names.fn(f"div_round_{k}") for k in ("mul", "mulhi", "mulrem")}, num, mg), divide.note(mg)
+    elif abs(ff) != 1:
+        rounded = f"{names.fn('div_round')}({num}, {lit(abs(ff))})"
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
-        rounded=num if abs(ff) == 1 else f"{names.fn('div_round32' if narrow else 'div_round')}({num}, {lit(abs(ff))})", r_type="int64_t",
-        ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit),
+        rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note,
     )
 
 

@@ -57,20 +57,22 @@ class CSignal:
 
 def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dict[str, str]) -> CSignal:
     bits = sig.storage_bits
-    field = CNames.member(sig.name)
+    field = CNames.member(sig.c_name)
     fits_type = sig.length == bits
     range_check = ""
     if sig.signed and not fits_type:
         range_check = f"(src->{field} < {c_int(sig.raw_type_min, bits)}) | (src->{field} > {c_int(sig.raw_type_max, bits)})"
     base = names.message(msg.name)
-    macro = names.const(base, sig.name)
-    specials = tuple(CSpecial(names.special(base, sig.name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
+    macro = names.const(base, sig.c_name)
+    specials = tuple(CSpecial(names.special(base, sig.c_name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
     is_data = sig.role == "data"
     fixed = fixed_path(names, sig) if is_data else None
-    double = double_path(names, sig, force=fixed is None) if is_data else None
-    comment = " ".join(t for t in (sig.zh or sig.desc, f"[{sig.unit}]" if sig.unit else "") if t)
+    fn = names.fn(base, sig.c_name)
+    double = double_path(names, sig, fn, force=fixed is None) if is_data else None
+    renamed = f"spec name {sig.name}" if sig.c_name != sig.name else ""  # the reviewer's key into the protocol table
+    comment = " ".join(t for t in (sig.zh or sig.desc, f"[{sig.unit}]" if sig.unit else "", renamed) if t)
     return CSignal(
-        sig=sig, field=field, macro=macro, fn=names.fn(base, sig.name), type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
+        sig=sig, field=field, macro=macro, fn=fn, type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
         range_check=range_check, needs_check=not fits_type and not sig.signed, specials=specials,
         factor=float_lit(sig.factor) if sig.factor > 0 else f"({float_lit(sig.factor)})", offset=float_lit(sig.offset), check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max),
         enum_type=enum_types.get(sig.value_table.name, "") if sig.value_table else "",
