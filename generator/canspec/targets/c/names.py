@@ -33,7 +33,8 @@ HEADERS = (
 )
 # The names the runtime declares whatever the spec holds (common.h, dispatch.h, monitor.h).
 RUNTIME_FUNCTIONS = (
-    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
+    "status_t", "round_abs", "round_half_away", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
+    "mul_wide", "mul64_u", "mul64", "mul_hi64", "shr64", "div_round_u64_mulhi", "div_round_u64_mulrem", "div_round64_mulhi", "div_round64_mulrem",
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
     "rx_state_t", "monitor_t", "monitor_init", "monitor_expect", "monitor_on_frame", "monitor_check", "monitor_timed_out", "monitor_state",
