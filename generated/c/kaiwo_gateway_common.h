@@ -49,21 +49,6 @@ static inline int64_t kaiwo_gateway_round_half_away(double q) {
     return (q < 0.0) ? (int64_t)neg : (int64_t)r;
 }
 
-/** a / d rounded half away from zero, in integers only (d > 0). */
-static inline uint64_t kaiwo_gateway_div_round_u(uint64_t a, uint64_t d) {
-    const uint64_t q = a / d;
-    const uint64_t rem = a % d;
-    return (rem < (d - rem)) ? q : (q + 1u);
-}
-
-/** num / den rounded half away from zero, in integers only (den > 0). */
-static inline int64_t kaiwo_gateway_div_round(int64_t num, int64_t den) {
-    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
-    const uint64_t q = kaiwo_gateway_div_round_u(a, (uint64_t)den);
-    const uint64_t neg = 0u - q; /* -q modulo 2^64: INT64_MIN / 1 included */
-    return (num < 0) ? (int64_t)neg : (int64_t)q;
-}
-
 /* Whether the core multiplies 32 x 32 -> 64 bits in one instruction (UMULL, x86 MUL). Thumb-1
  * cores (Cortex-M0/M0+/M23) do not: there a 64-bit product calls libgcc's __aeabi_lmul, so
  * kaiwo_gateway_mul_hi32 multiplies 16-bit halves. Define KAIWO_GATEWAY_LONG_MULTIPLY to 0 or 1
@@ -126,6 +111,96 @@ static inline int32_t kaiwo_gateway_div_round_mulrem(int32_t num, uint32_t d, ui
     const uint32_t r = (rem < (d - rem)) ? q : (q + 1u);
     const uint32_t neg = 0u - r; /* -r modulo 2^32 */
     return (num < 0) ? (int32_t)neg : (int32_t)r;
+}
+
+/* The 64-bit integer path (numerators beyond 32 bits) divides the same way, by 64-bit constants:
+ * the high 64 bits of a 128-bit product, built from 32 x 32 -> 64 products, since no core has a
+ * 64-bit divide instruction and Thumb-1 cores no 64-bit multiply (libgcc's __aeabi_uldivmod,
+ * __aeabi_lmul). */
+
+/** The 64-bit product a x b: one UMULL, or 16-bit halves (kaiwo_gateway_mul_hi32). */
+static inline uint64_t kaiwo_gateway_mul_wide(uint32_t a, uint32_t b) {
+#if KAIWO_GATEWAY_LONG_MULTIPLY
+    return (uint64_t)a * b;
+#else
+    const uint32_t lo = a * b;
+    return ((uint64_t)kaiwo_gateway_mul_hi32(a, b) << 32u) | lo;
+#endif
+}
+
+/** The low 64 bits of a x b from 32-bit halves: a0 b0 + (a0 b1 + a1 b0) 2^32 modulo 2^64, where
+ * only the cross terms' low words count. */
+static inline uint64_t kaiwo_gateway_mul64_u(uint64_t a, uint64_t b) {
+    const uint32_t a0 = (uint32_t)a;
+    const uint32_t b0 = (uint32_t)b;
+    const uint32_t cross = (a0 * (uint32_t)(b >> 32u)) + ((uint32_t)(a >> 32u) * b0);
+    return kaiwo_gateway_mul_wide(a0, b0) + ((uint64_t)cross << 32u);
+}
+
+/** a x b where the product is an int64_t: its two's complement low 64 bits. */
+static inline int64_t kaiwo_gateway_mul64(int64_t a, int64_t b) {
+    const uint64_t p = kaiwo_gateway_mul64_u((uint64_t)a, (uint64_t)b);
+    return (int64_t)p;
+}
+
+/** The high 64 bits of the 128-bit product a x m: kaiwo_gateway_mul_hi32 one level up, each
+ * partial sum below 2^64. */
+static inline uint64_t kaiwo_gateway_mul_hi64(uint64_t a, uint64_t m) {
+    const uint32_t a0 = (uint32_t)a;
+    const uint32_t a1 = (uint32_t)(a >> 32u);
+    const uint32_t m0 = (uint32_t)m;
+    const uint32_t m1 = (uint32_t)(m >> 32u);
+    const uint64_t mid = kaiwo_gateway_mul_wide(a1, m0) + (kaiwo_gateway_mul_wide(a0, m0) >> 32u);
+    const uint64_t mid2 = kaiwo_gateway_mul_wide(a0, m1) + (mid & 0xFFFFFFFFu);
+    return kaiwo_gateway_mul_wide(a1, m1) + (mid >> 32u) + (mid2 >> 32u);
+}
+
+/** x >> s (s < 64) in 32-bit shifts: a variable 64-bit shift calls __aeabi_llsr on Thumb-1
+ * cores. The carried bits are hi << (32 - s), as two shifts so that s = 0 carries none. */
+static inline uint64_t kaiwo_gateway_shr64(uint64_t x, uint32_t s) {
+    const uint32_t hi = (uint32_t)(x >> 32u);
+    const uint32_t lo = (uint32_t)x;
+    uint32_t low = hi >> (s & 31u); /* s >= 32 */
+    uint32_t high = 0u;
+    if (s < 32u) {
+        low = (lo >> s) | ((hi << 1u) << (31u - s));
+        high = hi >> s;
+    }
+    return ((uint64_t)high << 32u) | low;
+}
+
+/** a / d rounded half away from zero: the high 64 bits of (a + half) x m, shifted. */
+static inline uint64_t kaiwo_gateway_div_round_u64_mulhi(uint64_t a, uint64_t half, uint64_t m,
+                                                         uint32_t shift) {
+    return kaiwo_gateway_shr64(kaiwo_gateway_mul_hi64(a + half, m), shift);
+}
+
+/** a / d rounded half away from zero for any a: floor(a / d) by the 65-bit multiplier 2^64 + m,
+ * its top bit added back without leaving 64 bits (hi <= a), then rounded by the remainder. */
+static inline uint64_t kaiwo_gateway_div_round_u64_mulrem(uint64_t a, uint64_t d, uint64_t m,
+                                                          uint32_t shift) {
+    const uint64_t hi = kaiwo_gateway_mul_hi64(a, m);
+    const uint64_t q = kaiwo_gateway_shr64(hi + ((a - hi) >> 1u), shift);
+    const uint64_t rem = a - kaiwo_gateway_mul64_u(q, d);
+    return (rem < (d - rem)) ? q : (q + 1u);
+}
+
+/** num / d rounded half away from zero: kaiwo_gateway_div_round_u64_mulhi on |num|. */
+static inline int64_t kaiwo_gateway_div_round64_mulhi(int64_t num, uint64_t half, uint64_t m,
+                                                      uint32_t shift) {
+    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
+    const uint64_t r = kaiwo_gateway_div_round_u64_mulhi(a, half, m, shift);
+    const uint64_t neg = 0u - r; /* -r modulo 2^64 */
+    return (num < 0) ? (int64_t)neg : (int64_t)r;
+}
+
+/** num / d rounded half away from zero: kaiwo_gateway_div_round_u64_mulrem on |num|. */
+static inline int64_t kaiwo_gateway_div_round64_mulrem(int64_t num, uint64_t d, uint64_t m,
+                                                       uint32_t shift) {
+    const uint64_t a = (num < 0) ? ((uint64_t)0 - (uint64_t)num) : (uint64_t)num;
+    const uint64_t r = kaiwo_gateway_div_round_u64_mulrem(a, d, m, shift);
+    const uint64_t neg = 0u - r; /* -r modulo 2^64 */
+    return (num < 0) ? (int64_t)neg : (int64_t)r;
 }
 
 /* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):

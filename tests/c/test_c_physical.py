@@ -59,14 +59,6 @@ class Sig:
         return self.factor == 1 and self.offset == 0
 
 
-def _c_div_round(num: int, den: int) -> int:
-    """The C helpers `div_round` / `div_round_u`, step for step (unsigned magnitude, remainder)."""
-    a = -num if num < 0 else num
-    q, rem = a // den, a % den
-    q = q + 1 if rem >= den - rem else q
-    return -q if num < 0 else q
-
-
 def _exact_round(num: int, den: int) -> int:
     """num / den rounded half away from zero: the nearest integer of 2|num| / 2|den|, a tie
     (an odd multiple of a half) going up in magnitude."""
@@ -104,17 +96,39 @@ def _c_div_round_mulrem(num: int, d: int, m: int, shift: int) -> int:
     return _signed(num, q if rem < (d - rem) % WORD else q + 1)
 
 
-C_FUNCTIONS = {"div_round": _c_div_round, "div_round_mul": _c_div_round_mul, "div_round_mulhi": _c_div_round_mulhi, "div_round_mulrem": _c_div_round_mulrem}
+WORD64 = 2**64
+
+
+def _c_div_round_u64_mulhi(a: int, half: int, m: int, shift: int) -> int:
+    """The C `div_round_u64_mulhi`: the high 64 bits of the 128-bit product, shifted."""
+    return ((a + half) % WORD64 * m >> 64) >> shift
+
+
+def _c_div_round_u64_mulrem(a: int, d: int, m: int, shift: int) -> int:
+    """The C `div_round_u64_mulrem`: floor(a / d) by the 65-bit multiplier, rounded by the remainder."""
+    hi = a * m >> 64
+    q = (hi + ((a - hi) >> 1)) >> shift
+    rem = (a - q * d) % WORD64
+    return q if rem < (d - rem) % WORD64 else q + 1
+
+
+def _signed64(fn):  # type: ignore[no-untyped-def]
+    """The C `div_round64_*`: the unsigned function on |num|, the sign put back."""
+    return lambda num, k, m, shift: _signed(num, fn((-num if num < 0 else num) % WORD64, k, m, shift))
+
+
+C_FUNCTIONS = {"div_round_mul": _c_div_round_mul, "div_round_mulhi": _c_div_round_mulhi, "div_round_mulrem": _c_div_round_mulrem,
+               "div_round_u64_mulhi": _c_div_round_u64_mulhi, "div_round_u64_mulrem": _c_div_round_u64_mulrem,
+               "div_round64_mulhi": _signed64(_c_div_round_u64_mulhi), "div_round64_mulrem": _signed64(_c_div_round_u64_mulrem)}
 
 
 def _py(cond: str) -> str:
     """A generated C condition or expression as Python (the literal forms the C target writes)."""
-    out = re.sub(r"U?INT64_C\((-?\d+)\)", r"\1", cond)
+    out = re.sub(r"U?INT64_C\((-?(?:0x[0-9A-F]+|\d+))\)", r"\1", cond)
     out = out.replace("INT64_MIN", str(-(2**63))).replace("(int64_t)", "").replace("(uint64_t)", "")
     out = re.sub(r"\b(\d+|0x[0-9A-F]+)u\b", r"\1", out)
     out = out.replace("||", " or ").replace("&&", " and ").replace("!(", " not (")
-    out = re.sub(r"\bp_div_round_(mul|mulhi|mulrem)\(", r"div_round_\1(", out)
-    return out.replace("p_div_round_u(", "div_round(").replace("p_div_round(", "div_round(")
+    return re.sub(r"\bp_(div_round\w+)\(", r"\1(", out)
 
 
 def _fn(cond: str):  # type: ignore[no-untyped-def]
@@ -157,7 +171,6 @@ def test_exact_rounding_reference():
     assert [physical.round_half_away(Fraction(n, 2)) for n in range(-5, 6)] == [-3, -2, -2, -1, -1, 0, 1, 1, 2, 2, 3]
     assert [_exact_round(n, 2) for n in range(-5, 6)] == [-3, -2, -2, -1, -1, 0, 1, 1, 2, 2, 3]
     assert [_exact_round(n, -2) for n in (-3, -1, 1, 3)] == [2, 1, -1, -2]
-    assert [_c_div_round(n, 4) for n in (-6, -5, -2, -1, 1, 2, 6)] == [-2, -1, -1, 0, 0, 1, 2]
 
 
 def test_pruned_conditions_agree_with_the_full_ones_on_every_input():
@@ -299,3 +312,139 @@ def test_runtime_division_functions_in_c(tmp_path, long_multiply):
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0, proc.stderr
     assert [int(v) for v in proc.stdout.split()] == want
+
+
+# The 64-bit rounding (numerators beyond 32 bits) divides by a multiply too: the high 64 bits of a
+# 128-bit product, or the 65-bit multiplier and the remainder; no 64-bit division or product.
+
+DIVISORS64 = (2, 3, 7, 10, 14, 70, 1022, 2**32 - 1, 2**32 + 1, 2**40 - 3, 2**61 - 1, 2**62 - 2, 2**62 + 3, 2**63 - 1, 2**63)
+CALL64 = {"signed": {k: f"p_div_round64_{k}" for k in ("mul", "mulhi", "mulrem")},
+          "unsigned": {k: f"p_div_round_u64_{k}" for k in ("mul", "mulhi", "mulrem")}}
+
+
+def test_rounding64_plan_is_exact_up_to_64_bit_magnitudes():
+    """Every divisor has a 64-bit plan, signed (|num| <= 2^63) and unsigned (up to 2^64 - 1): the
+    generated call, as the C computes it, rounds half away from zero around the multiples of d,
+    the ties and the ends."""
+    forms = set()
+    for d in DIVISORS64:
+        for kind, top in (("signed", 2**63), ("unsigned", 2**64 - 1)):
+            for amax in {top, top - 1, min(3 * d + 7, top), 10**6, (top // d) * d}:
+                mg = divide.rounding64(d, amax)
+                forms.add((kind, "mulrem" if not mg.half else "mulhi", mg.add))
+                rounded = _fn(divide.call(CALL64[kind], "value", mg))
+                for n in _boundary_numerators(d, amax):
+                    for num in ({n, -n} - {2**63} if kind == "signed" else {n}):
+                        assert rounded(num) == _exact_round(num, d), (mg, num)
+    assert forms == {(k, "mulhi", False) for k in CALL64} | {(k, "mulrem", True) for k in CALL64}
+    # the 65-bit multiplier where no 64-bit one is exact: every uint64_t, here 0 .. 2^16 and the top
+    mg = divide.magic(7, 2**64 - 1, half=False, low=False, bits=64, add=True)
+    assert mg is not None and divide.magic(7, 2**64 - 1, half=False, low=False, bits=64) is None
+    assert all(mg.quotient(n) == n // 7 for n in itertools.chain(range(2**16), range(2**64 - 2**16, 2**64)))
+    with pytest.raises(ValueError):
+        divide.rounding64(10, 2**64)
+
+
+def _wide(length: int, signed: bool, factor: Fraction) -> Sig:
+    """A field over its whole raw range, the documented range the physical one."""
+    tmin, tmax = (-(2 ** (length - 1)), 2 ** (length - 1) - 1) if signed else (0, 2**length - 1)
+    ends = sorted((tmin * factor, tmax * factor))
+    return Sig(length, signed, factor, Fraction(0), ends[0], ends[1], tmin, tmax)
+
+
+def test_fixed_encode_divides_64_bit_values_by_a_multiply():
+    """Fields whose rounding takes each 64-bit form, through the fixed path's checks; their decode
+    multiplies through p_mul64 / p_mul64_u (no 64-bit product in C, __aeabi_lmul on Cortex-M0+)."""
+    strain = _check_agrees(_wide(48, True, Fraction(1, 1000)))
+    assert strain.rounded == "p_div_round64_mulhi((int64_t)value, UINT64_C(5), UINT64_C(0x199999999999999A), 0u)"
+    assert strain.note == "divide by 10: (|num| + 5) * 0x199999999999999A >> (64 + 0), exact up to 1407374883553294"
+    assert strain.decode_expr == "p_mul64((int64_t)raw, INT64_C(10))"
+    huge = _check_agrees(_wide(2, True, Fraction(2**62 - 2)))
+    assert huge.rounded == "p_div_round64_mulrem((int64_t)value, UINT64_C(4611686018427387902), UINT64_C(0x9), 61u)"
+    assert huge.note == "divide by 4611686018427387902: |num| * 0x10000000000000009 >> (64 + 62), exact up to 9223372036854775808"
+    sevens = _check_agrees(_wide(57, False, Fraction(7)))
+    assert sevens.rounded == "p_div_round_u64_mulhi(value, UINT64_C(35), UINT64_C(0xEA0EA0EA0EA0EA1), 2u)"
+    assert sevens.decode_expr == "p_mul64_u((uint64_t)raw, UINT64_C(70))"
+    fourteens = _check_agrees(_wide(60, False, Fraction(14)))
+    assert fourteens.rounded == "p_div_round_u64_mulrem(value, UINT64_C(14), UINT64_C(0x2492492492492493), 3u)"
+    assert fourteens.note == "divide by 14: |num| * 0x12492492492492493 >> (64 + 4), exact up to 16140901064495857663"
+
+
+RUNTIME64_MAIN = r"""
+#include <inttypes.h>
+#include <stdio.h>
+#include "kaiwo_gateway_common.h"
+static const struct { int64_t num; uint64_t k; uint64_t m; uint32_t shift; int form; } cases[] = {
+@CASES@
+};
+static const uint64_t words[] = { @WORDS@ };
+int main(void) {
+    size_t i, j;
+    for (i = 0u; i < sizeof cases / sizeof cases[0]; i++) {
+        const uint64_t a = (uint64_t)cases[i].num;
+        switch (cases[i].form) {
+        case 0: printf("%" PRId64 "\n", kaiwo_gateway_div_round64_mulhi(cases[i].num, cases[i].k, cases[i].m, cases[i].shift)); break;
+        case 1: printf("%" PRId64 "\n", kaiwo_gateway_div_round64_mulrem(cases[i].num, cases[i].k, cases[i].m, cases[i].shift)); break;
+        case 2: printf("%" PRIu64 "\n", kaiwo_gateway_div_round_u64_mulhi(a, cases[i].k, cases[i].m, cases[i].shift)); break;
+        default: printf("%" PRIu64 "\n", kaiwo_gateway_div_round_u64_mulrem(a, cases[i].k, cases[i].m, cases[i].shift)); break;
+        }
+    }
+    for (i = 0u; i < sizeof words / sizeof words[0]; i++) {
+        for (j = 0u; j < sizeof words / sizeof words[0]; j++) {
+            printf("%" PRIu64 " %" PRIu64 " %" PRId64 " %" PRIu64 "\n", kaiwo_gateway_mul_hi64(words[i], words[j]),
+                   kaiwo_gateway_mul64_u(words[i], words[j]), kaiwo_gateway_mul64((int64_t)words[i], (int64_t)words[j]),
+                   kaiwo_gateway_shr64(words[i], (uint32_t)(j % 64u)));
+        }
+    }
+    return 0;
+}
+"""
+
+WORDS = (0, 1, 2, 3, 0xFFFF, 0x10000, 0xFFFFFFFF, 2**32, 2**32 + 1, 0x123456789ABCDEF0, 2**63 - 1, 2**63, 2**63 + 1, 2**64 - 2, 2**64 - 1,
+         0xFEDCBA9876543210, 0x00000001FFFFFFFF, 0xFFFFFFFF00000000)
+
+
+def _int64(v: int) -> int:
+    return v - 2**64 if v >= 2**63 else v
+
+
+@pytest.mark.parametrize("long_multiply", ["1", "0"])
+def test_runtime_64_bit_functions_in_c(tmp_path, long_multiply):
+    """The C runtime's 64-bit division and product functions, compiled (gcc, strict) with the
+    32 x 32 -> 64 product from one multiply and from 16-bit halves: the same exact results, the
+    products and shifts checked on words at the ends of their halves."""
+    rows, want = [], []
+    for d in DIVISORS64:
+        for kind, top in (("signed", 2**63), ("unsigned", 2**64 - 1)):
+            mg = divide.rounding64(d, top)
+            form = (0 if kind == "signed" else 2) + (not mg.half)
+            for n in sorted(_boundary_numerators(d, top))[::23]:
+                for num in ({n, -n} - {2**63} if kind == "signed" else {n}):
+                    k = d if not mg.half else d // 2
+                    rows.append(f"    {{ {c_int(_int64(num), 64)}, UINT64_C({k}), UINT64_C({mg.m}), {mg.shift}u, {form} }},")
+                    want.append(str(_exact_round(num, d)))
+    for a in WORDS:
+        for j, b in enumerate(WORDS):
+            want.append(f"{a * b >> 64} {a * b % 2**64} {_int64(a * b % 2**64)} {a >> (j % 64)}")
+    src = tmp_path / "main.c"
+    src.write_text(RUNTIME64_MAIN.replace("@CASES@", "\n".join(rows)).replace("@WORDS@", ", ".join(f"UINT64_C({w})" for w in WORDS)))
+    exe = tmp_path / "div64"
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_LONG_MULTIPLY={long_multiply}"], [cbuild.HEADERS])
+    proc = cbuild.run([str(exe)])
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.splitlines() == want
+
+
+WIDE_FIXED_POINT = Path(__file__).resolve().parent / "cross" / "wide_fixed_point.yaml"
+
+
+def test_vector_runner_on_every_64_bit_form(tmp_path):
+    """A spec whose integer path takes each 64-bit form (cross/wide_fixed_point.yaml): the vector
+    runner agrees with its vectors with either product (LONG_MULTIPLY 1 and 0) and under
+    ASan/UBSan, its headers compile warning-free (speccheck.py)."""
+    import speccheck
+
+    assert speccheck.check_spec(WIDE_FIXED_POINT, tmp_path) == []
+    text = next((tmp_path / "out" / "c").glob("*_messages.h")).read_text(encoding="utf-8")
+    for fn in ("div_round64_mulhi", "div_round64_mulrem", "div_round_u64_mulhi", "div_round_u64_mulrem", "mul64", "mul64_u"):
+        assert f"_{fn}(" in text, fn

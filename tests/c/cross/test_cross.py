@@ -110,6 +110,23 @@ def test_bench_cross_smoke(tmp_path, capsys):
     assert "bench: 0 mismatches" in out and "overall (sum)" in out and "helper-free" in out
 
 
+def _helpers(headers: Path, work: Path, core: str, opt: str) -> list[str]:
+    """The routines an object needs that takes the address of every pack, unpack and
+    integer-only physical function of the headers, built for the exact core."""
+    text = "".join(h.read_text(encoding="utf-8") for h in sorted(headers.glob("*_messages.h")))
+    names = re.findall(r"^static inline [^(]*?\b(\w+_(?:pack|unpack|encode_fixed|decode_fixed))\(", text, re.MULTILINE)
+    assert any(n.endswith("_encode_fixed") for n in names)
+    umbrella = min(headers.glob("*.h"), key=lambda h: len(h.name)).name
+    src = work / "api.c"
+    src.write_text(f'#include "{umbrella}"\ntypedef void (*any_fn)(void);\nextern const any_fn api[];\nconst any_fn api[] = {{\n'
+                   + "".join(f"    (any_fn){n},\n" for n in names) + "};\n")
+    obj = work / "api.o"
+    subprocess.run([cross.ARM_CC, *cross.ARM_CORES[core], opt, "-std=c99", "-c", str(src), "-o", str(obj), "-I", str(headers)],
+                   check=True, capture_output=True, text=True)
+    undefined = subprocess.run(["arm-none-eabi-nm", "-u", str(obj)], check=True, capture_output=True, text=True).stdout.split()
+    return [u for u in undefined if u != "U"]
+
+
 @pytest.mark.parametrize("core", ["cortex-m0plus", "cortex-m4"])
 @pytest.mark.parametrize("opt", ["-Os", "-O2"])
 def test_integer_path_calls_no_helper(tmp_path, core, opt):
@@ -117,16 +134,29 @@ def test_integer_path_calls_no_helper(tmp_path, core, opt):
     core: the object needs no libgcc or libc routine (no __aeabi_uidivmod on Cortex-M0+, which
     has no divide instruction, no __aeabi_lmul where it has no long multiply)."""
     _need(cross.TARGETS[core])
-    text = "".join(h.read_text(encoding="utf-8") for h in sorted(cross.cbuild.HEADERS.glob("*_messages.h")))
-    names = re.findall(r"^static inline [^(]*?\b(\w+_(?:pack|unpack|encode_fixed|decode_fixed))\(", text, re.MULTILINE)
-    assert len(names) > 50 and any(n.endswith("_encode_fixed") for n in names)
-    umbrella = min(cross.cbuild.HEADERS.glob("*.h"), key=lambda h: len(h.name)).name
-    src = tmp_path / "api.c"
-    src.write_text(f'#include "{umbrella}"\ntypedef void (*any_fn)(void);\nextern const any_fn api[];\nconst any_fn api[] = {{\n'
-                   + "".join(f"    (any_fn){n},\n" for n in names) + "};\n")
-    obj = tmp_path / "api.o"
-    subprocess.run([cross.ARM_CC, *cross.ARM_CORES[core], opt, "-std=c99", "-c", str(src), "-o", str(obj), "-I", str(cross.cbuild.HEADERS)],
-                   check=True, capture_output=True, text=True)
-    undefined = subprocess.run(["arm-none-eabi-nm", "-u", str(obj)], check=True, capture_output=True, text=True).stdout.split()
-    helpers = [u for u in undefined if u != "U"]
-    assert helpers == [], helpers
+    assert _helpers(cross.cbuild.HEADERS, tmp_path, core, opt) == []
+
+
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures" / "valid"
+# specs whose integer path computes in 64 bits (fields wide or scaled beyond 32 bits); the last
+# one takes every form of the 64-bit rounding division
+WIDE_SPECS = (FIXTURES / "wide_fields.yaml", FIXTURES / "wide_and_scaled_fields.yaml", FIXTURES / "py_wide_and_keywords.yaml",
+              Path(__file__).resolve().parent / "wide_fixed_point.yaml")
+
+
+@pytest.mark.parametrize("core", ["cortex-m0plus", "cortex-m4"])
+@pytest.mark.parametrize("opt", ["-Os", "-O2"])
+def test_64_bit_integer_path_calls_no_helper(tmp_path, core, opt):
+    """The same for specs whose integer-only path works in int64_t / uint64_t: no 64-bit divide
+    or multiply helper (__aeabi_ldivmod, __aeabi_uldivmod, __aeabi_lmul) nor 64-bit shift."""
+    _need(cross.TARGETS[core])
+    from canspec.pipeline import compile_spec
+    from canspec.targets import registry
+
+    for spec in WIDE_SPECS:
+        headers = tmp_path / spec.stem
+        headers.mkdir()
+        for rel, data in registry()["c"].render(compile_spec(spec).spec).items():
+            (headers / Path(rel).name).write_bytes(data)
+        assert "int64_t value" in "".join(h.read_text(encoding="utf-8") for h in headers.glob("*_messages.h")), spec.name
+        assert _helpers(headers, headers, core, opt) == [], spec.name

@@ -33,7 +33,8 @@ HEADERS = (
 )
 # The names the runtime declares whatever the spec holds (common.h, messages.h, dispatch.h, monitor.h).
 RUNTIME_FUNCTIONS = (
-    "status_t", "round_abs", "round_half_away", "div_round_u", "div_round", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
+    "status_t", "round_abs", "round_half_away", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
+    "mul_wide", "mul64_u", "mul64", "mul_hi64", "shr64", "div_round_u64_mulhi", "div_round_u64_mulrem", "div_round64_mulhi", "div_round64_mulrem",
     "phys_t", "phys_q", "phys_round", "phys_encode",
     *(f"phys_encode_{s}{bits}" for s in "ui" for bits in (8, 16, 32, 64)),
     "j1939_id_t", "j1939_decompose", "j1939_compose",

@@ -14,9 +14,10 @@ type widened by one step.
 
 The fixed encode rounds (F - fo) / ff half away from zero exactly, F = physical × 10^k, ff =
 factor × 10^k, fo = offset × 10^k: on every decimal input and tie the result the double rule
-gives within its tie guarantee (tested against the vectors). Where its numbers fit 32 bits it
-divides by |ff| as a multiply (divide.py), exact for every numerator that interval allows: no
-division, so no libgcc helper on cores without a divide instruction. Every comparison whose outcome the
+gives within its tie guarantee (tested against the vectors). It divides by |ff| as a multiply
+(divide.py), in 32-bit words where its numbers fit, else in 64-bit ones, exact for every numerator
+that interval allows, and a 64-bit decode multiplies through `<prefix>_mul64`: no division and no
+64-bit product, so no libgcc helper on Cortex-M0+ or M4. Every comparison whose outcome the
 operand's type, or an earlier check, already decides is left out (compilers warn about it, and
 MISRA C:2012 rule 14.3 forbids it): after the fixed encode's first check the value lies in a
 known interval, and r, rounded monotonically from it, in one computed exactly here.
@@ -66,7 +67,7 @@ def any_of(terms: list[str]) -> str:
 
 
 def round_half_away(num: Fraction) -> int:
-    """num rounded half away from zero, exactly as the C `div_round` / `div_round_u` do."""
+    """num rounded half away from zero, exactly as the C `div_round*` functions do."""
     whole = floor(abs(num) + Fraction(1, 2))
     return whole if num >= 0 else -whole
 
@@ -255,15 +256,15 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     lit = lambda v: c_int(v, 32 if ctype == "int32_t" else 64)
     expr = f"({ctype})raw"
     if ff != 1:
-        expr += f" * {lit(ff)}"
+        expr = f"{expr} * {lit(ff)}" if ctype == "int32_t" else f"{names.fn('mul64')}({expr}, {lit(ff)})"
     if fo:
-        expr = (f"({expr})" if ff != 1 else expr) + (f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}")
+        expr = (f"({expr})" if " * " in expr else expr) + (f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}")
     outside = [f"value <= {lit(bounds[0])}"] if bounds[0] >= lo else []
     outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
     # what passes that check: the open interval (bounds) within the type
     reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
     # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits, divided by a
-    # multiply (divide.py: no division, hence no libgcc helper, on any core)
+    # multiply in either width (divide.py: no division, hence no libgcc helper, on any core)
     narrow = ctype == "int32_t" and _difference_fits(ff, fo, *reach, bits=32)
     value, offset = ("value" if narrow else "(int64_t)value", lit(abs(fo)))
     if ff > 0:
@@ -271,11 +272,8 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     else:
         num = f"-{value}" if not fo else f"{lit(fo)} - {value}"
     rounded, note = num, ""
-    if abs(ff) != 1 and narrow:
-        mg = divide.rounding(abs(ff), max(abs(v - fo) for v in reach))
-        rounded, note = divide.call({k: names.fn(f"div_round_{k}") for k in ("mul", "mulhi", "mulrem")}, num, mg), divide.note(mg)
-    elif abs(ff) != 1:
-        rounded = f"{names.fn('div_round')}({num}, {lit(abs(ff))})"
+    if abs(ff) != 1:
+        rounded, note = _divided(names, num, abs(ff), max(abs(v - fo) for v in reach), "" if narrow else "64")
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
         rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note,
@@ -285,9 +283,17 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
 def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: int) -> CFixed:
     """A wide unsigned field without offset: physical × scale = raw × ff, as a uint64_t."""
     lit = lambda v: c_uint(v, 64)
-    expr = "(uint64_t)raw" if ff == 1 else f"(uint64_t)raw * {lit(ff)}"
+    expr = "(uint64_t)raw" if ff == 1 else f"{names.fn('mul64_u')}((uint64_t)raw, {lit(ff)})"
+    rounded, note = _divided(names, "value", ff, min(above - 1, U64_MAX), "_u64") if ff != 1 else ("value", "")
     return CFixed(
         scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=f"value >= {lit(above)}" if above <= U64_MAX else "",
-        rounded="value" if ff == 1 else f"{names.fn('div_round_u')}(value, {lit(ff)})", r_type="uint64_t",
-        ranges=_fixed_ranges(sig, False, scale, (ff, 0), (0, min(above - 1, U64_MAX)), lit),
+        rounded=rounded, r_type="uint64_t", ranges=_fixed_ranges(sig, False, scale, (ff, 0), (0, min(above - 1, U64_MAX)), lit), note=note,
     )
+
+
+def _divided(names: CNames, num: str, d: int, amax: int, width: str) -> tuple[str, str]:
+    """The call that rounds num / d (d > 1, |num| <= amax) half away from zero by a multiply,
+    and its comment: in 32-bit words (`width` ""), signed 64-bit ("64") or unsigned ("_u64")."""
+    mg = divide.rounding(d, amax) if not width else divide.rounding64(d, amax)
+    fn = {k: names.fn(f"div_round{width}_{k}") for k in ("mul", "mulhi", "mulrem")}
+    return divide.call(fn, num, mg), divide.note(mg)
