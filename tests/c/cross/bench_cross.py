@@ -52,6 +52,7 @@ sys.path.insert(0, str(HERE))
 import cbuild  # noqa: E402
 import cross  # noqa: E402
 from bench import FRAMES_PER_MESSAGE, c_bytes, frames_for, range_checks  # noqa: E402
+from fixed_user import fixed_user_source  # noqa: E402
 
 ROOT = cbuild.ROOT
 DEFAULT_CONFIGS = "cortex-m0plus:-Os,cortex-m0plus:-O2,cortex-m4:-Os,cortex-m4:-O2"
@@ -475,6 +476,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
             objs[name] = out / f"{name}.o"
         compile_obj(core, opt, ct / f"{inp.db}.c", out / "cantools.o", [ct])
         compile_obj(core, opt, ct_nofp / f"{inp.db}.c", out / "cantools_nofp.o", [ct_nofp])
+        compile_obj(core, opt, build / "cantools_fixed_user.c", out / "cantools_fixed_user.o", [ct_nofp])
         # The dynamic count.
         bench = out / "bench.elf"
         link(core, [objs["bench_main"], objs["harness_canspec"], objs["harness_cantools"], objs["harness_cantools_xor"],
@@ -496,6 +498,7 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
                             "cantools_xor": [out / "cantools.o", objs["cantools_xor"], objs["stub_main"]],
                             "cantools_xoronly": [out / "cantools.o", objs["cantools_xoronly"], objs["stub_main"]],
                             "cantools_nofp": [out / "cantools_nofp.o", objs["stub_main"]],
+                            "cantools_fixed_user": [out / "cantools_nofp.o", out / "cantools_fixed_user.o", objs["stub_main"]],
                             "api": [objs["canspec_api"], objs["stub_main_api"]]}.items():
             link(core, objs_, out / f"size_{name}.elf", build)
             images[name] = load_image(out / f"size_{name}.elf")
@@ -513,12 +516,15 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
             "cantools is_in_range+is_in_phys_range": ("cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_(phys_)?range", f)]),
             "canspec integer encode+decode_fixed": ("api", [f for f in images["api"].sizes if re.fullmatch(api["fixed"], f)]),
             "cantools --no-floating-point-numbers is_in_range": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_range", f)]),
+            # like for like: cantools converts nothing without floats; the user's conversion around its is_in_range (fixed_user.py)
+            "cantools+user integer (conversion + is_in_range)": ("cantools_fixed_user", [f for f in images["cantools_fixed_user"].sizes
+                                                                                         if re.fullmatch(r"ux_\w+_(en|de)code_fixed", f)]),
             "cantools --no-floating-point-numbers is_in_phys_range (double)": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_phys_range", f)]),
             "canspec monitor on_frame+check": ("api", [f for f in images["api"].sizes if re.fullmatch(api["monitor"], f)]),
         }
         # read-only data a group's functions read, by name: the double encoders' descriptors
         # (file scope, or `<name>.<n>` where GCC names an encoder's own)
-        data = {"canspec double encode+decode": rf"{p}_({msgs})_\w+_phys(\.\d+)?"}
+        data = {"canspec double encode+decode": rf"{p}_({cmsgs})_\w+_phys(\.\d+)?"}
         for label, (img, roots) in groups.items():
             res.sizes[label] = group_size(images[img], roots) if roots else (0, set())
             if label in data:
@@ -564,6 +570,7 @@ def write_sources(inp: Inputs, build: Path) -> tuple[Path, Path]:
         "canspec_api.c": src_api(inp, {"api": rf"{p}_({cmsgs})_\w+_(encode|decode)(_fixed)?", "monitor": rf"{p}_monitor_(on_frame|check)"}),
         "stub_main.c": STUB_MAIN,
         "stub_main_api.c": STUB_MAIN_API,
+        "cantools_fixed_user.c": fixed_user_source(inp.spec, inp.dbc)[0],
     }
     for name, text in sources.items():
         (build / name).write_text(text)
