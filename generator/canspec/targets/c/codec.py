@@ -78,7 +78,8 @@ def _halves(s: CSignal, wide: bool) -> tuple[str, str]:
     not asked for) and, for 64-bit fields, its high 32 bits (as uint32_t)."""
     field, bits = f"src->{s.field}", s.sig.storage_bits
     cast = s.sig.signed or bits == 64 or (wide and bits < 32)  # two's complement bits / the low half / no int promotion
-    return (f"(uint32_t){field}" if cast else field), (f"(uint32_t)({field} >> 32u)" if bits == 64 else "")
+    high = f"((uint64_t){field} >> 32u)" if s.sig.signed else f"({field} >> 32u)"  # no shift of a signed value (MISRA 10.1)
+    return (f"(uint32_t){field}" if cast else field), (f"(uint32_t){high}" if bits == 64 else "")
 
 
 def piece(s: CSignal, seg: ir.Segment) -> str:
@@ -175,13 +176,21 @@ def _assemble(s: CSignal) -> tuple[list[str], str]:
     return stmts, "(((uint64_t)hi << 32u) | (uint64_t)lo)"
 
 
+def negate64(bits: str, temp: str, field: str) -> str:
+    """A 64-bit two's complement value into an int64_t without an implementation-defined
+    conversion: a negative one through its complement, which an int64_t holds (cast as a
+    variable, not as a composite expression: MISRA C:2012 rule 10.8)."""
+    return (f"if ({bits} <= (uint64_t)INT64_MAX) {{ {field} = (int64_t){bits}; }} "
+            f"else {{ {temp} = ~{bits}; {field} = -(int64_t){temp} - 1; }}")
+
+
 def store(s: CSignal) -> list[str]:
     stmts, bits = _assemble(s)
     field, n, t = f"dst->{s.field}", s.length, s.type
     if not s.sig.signed:
         return [*stmts, f"{field} = ({t}){paren(bits)};"]
     if n == 64:
-        return [*stmts, f"t64 = {bits};", f"{field} = (t64 <= (uint64_t)INT64_MAX) ? (int64_t)t64 : (-(int64_t)(~t64) - 1);"]
+        return [*stmts, f"t64 = {bits};", negate64("t64", "t64", field)]
     sign = 1 << (n - 1)
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
         return [*stmts, f"t = {bits} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import c_hex, c_int, c_uint
-from canspec.targets.c.codec import CCodec, paren, piece, shl, shr, store
+from canspec.targets.c.codec import CCodec, negate64, paren, piece, shl, shr, store
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -156,7 +156,7 @@ def _word_store(s: CSignal) -> list[str]:
     if not s.sig.signed:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
-        return [f"{field} = (w <= (uint64_t)INT64_MAX) ? (int64_t)w : (-(int64_t)(~w) - 1);"]
+        return [negate64("w", "t64", field)]
     sign = 1 << (n - 1)
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
         return [f"t = (uint32_t){paren(bits)} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
@@ -183,7 +183,7 @@ def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[
     local = [f"uint32_t b{k};" for k in sorted(held)]
     local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
     local += ["uint32_t t;"] if any(s.sig.signed and s.length < 32 for s in sigs) else []
-    local += ["uint64_t t64;"] if any(s.sig.signed and 32 <= s.length < 64 for s in sigs) else []
+    local += ["uint64_t t64;"] if any(s.sig.signed and s.length >= 32 for s in sigs) else []
     return tuple(local), tuple(body)
 
 
