@@ -37,6 +37,7 @@ def _copy_message(block: str, suffix: str, index: int) -> str:
     old_id = int(_ID.search(block)[1], 16)
     new_id = (old_id & 0x1C0000FF) | pf << 16 | ps << 8
     block = _MESSAGE_START.sub(lambda m: f"  - name: {m[1]}{suffix}", block, count=1)
+    block = re.sub(r"^(    c_name: \w+)", lambda m: f"{m[1]}{suffix}", block, count=1, flags=re.MULTILINE)  # the C name too
     block = _ID.sub(f"    id: 0x{new_id:08X}", block, count=1)
     return _J1939.sub(lambda m: f"{m[1]}pf: 0x{pf:02X}, ps: 0x{ps:02X}{m[2]}", block, count=1)
 
