@@ -121,18 +121,24 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
 HELD_FIELDS = 4  # checked fields a byte's check may keep in registers for the byte (Cortex-M0+: 8 low registers)
 
 
-def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> tuple[str, ...]:
-    """Each byte stored as soon as it is computed (holding them all would spill on small cores),
-    with the check of the checked fields that start in it: before the byte where it checks at
-    most HELD_FIELDS of them (the values stay in registers for the byte), after it otherwise
-    (the fields are read again: a store to dst may alias src; cheaper than spilling them). On
-    ERR_RANGE the frame's bytes are unspecified."""
+def byte_pieces(sigs: tuple[CSignal, ...]) -> tuple[dict[int, list[str]], dict[int, list[CSignal]]]:
+    """Per frame byte: its fields' pieces (pack), and the fields that start in it."""
     pieces: dict[int, list[str]] = {}
     starting: dict[int, list[CSignal]] = {}
     for s in sigs:
         starting.setdefault(s.sig.segments[0].byte, []).append(s)
         for seg in s.sig.segments:
             pieces.setdefault(seg.byte, []).append(piece(s, seg))
+    return pieces, starting
+
+
+def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> tuple[str, ...]:
+    """Each byte stored as soon as it is computed (holding them all would spill on small cores),
+    with the check of the checked fields that start in it: before the byte where it checks at
+    most HELD_FIELDS of them (the values stay in registers for the byte), after it otherwise
+    (the fields are read again: a store to dst may alias src; cheaper than spilling them). On
+    ERR_RANGE the frame's bytes are unspecified."""
+    pieces, starting = byte_pieces(sigs)
     out = []
     for k in range(dlc):
         checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import c_hex, c_int, c_uint
-from canspec.targets.c.codec import CCodec, negate64, paren, piece, shl, shr, store
+from canspec.targets.c.codec import CCodec, byte_pieces, negate64, paren, shl, shr, store
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -79,12 +79,7 @@ def _accumulate(sigs: tuple[CSignal, ...], shared: set[int], seen: set[int]) -> 
 
 
 def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
-    pieces: dict[int, list[str]] = {}
-    starting: dict[int, list[CSignal]] = {}
-    for s in sigs:
-        starting.setdefault(s.sig.segments[0].byte, []).append(s)
-        for seg in s.sig.segments:
-            pieces.setdefault(seg.byte, []).append(piece(s, seg))
+    pieces, starting = byte_pieces(sigs)
     out: list[str] = []
     seen: set[int] = set()
     shared = _shared(sigs)
