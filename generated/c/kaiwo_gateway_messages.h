@@ -728,7 +728,6 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
-#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -750,29 +749,6 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#else
-    if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    if ((src->accel_cmd > 1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[0] = (uint8_t)src->accel_cmd;
-    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
-                       ((uint32_t)src->gear_cmd << 4u));
-    dst[2] = (uint8_t)src->counter;
-    if ((src->emergency_brake_cmd > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[3] = (uint8_t)src->emergency_brake_cmd;
-    dst[4] = 0u;
-    dst[5] = 0u;
-    dst[6] = 0u;
-    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -1121,7 +1097,6 @@ kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uint8_t *src,
                                    size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -1160,46 +1135,6 @@ kaiwo_gateway_driving_state_unpack(kaiwo_gateway_driving_state_t *dst, const uin
     x ^= b7;
     dst->checksum = (uint8_t)b7;
     return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    uint32_t b6;
-    uint32_t b7;
-    uint32_t x;
-    if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    x = b0;
-    dst->epb_state = (uint8_t)(b0 & 0x3u);
-    dst->gear_state = (uint8_t)((b0 >> 2u) & 0xFu);
-    dst->emergency_brake_state = (uint8_t)((b0 >> 6u) & 0x1u);
-    dst->uss_brake_state = (uint8_t)(b0 >> 7u);
-    b1 = src[1];
-    x ^= b1;
-    b2 = src[2];
-    x ^= b2;
-    dst->motor_speed = (uint16_t)(b1 | (b2 << 8u));
-    b3 = src[3];
-    x ^= b3;
-    b4 = src[4];
-    x ^= b4;
-    dst->motor_torque = (uint16_t)(b3 | (b4 << 8u));
-    b5 = src[5];
-    x ^= b5;
-    dst->motor_speed_ratio = (uint8_t)b5;
-    b6 = src[6];
-    x ^= b6;
-    dst->current_accel = (uint8_t)b6;
-    b7 = src[7];
-    x ^= b7;
-    dst->checksum = (uint8_t)b7;
-    return (x == 0u) ? KAIWO_GATEWAY_OK : KAIWO_GATEWAY_ERR_CHECKSUM;
-#endif
 }
 
 /** A driving_state with every raw field 0. */
@@ -1748,7 +1683,6 @@ kaiwo_gateway_autocar_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_unpack(kaiwo_gateway_autocar_ctrl_cmd_1_t *dst, const uint8_t *src,
                                         size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -1794,53 +1728,6 @@ kaiwo_gateway_autocar_ctrl_cmd_1_unpack(kaiwo_gateway_autocar_ctrl_cmd_1_t *dst,
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    uint32_t b6;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
-    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
-    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
-    dst->drl_cmd = (uint8_t)(b0 >> 6u);
-    b1 = src[1];
-    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
-    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
-    b2 = src[2];
-    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
-    b3 = src[3];
-    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
-    b4 = src[4];
-    dst->system_state = (uint8_t)(b4 & 0x3u);
-    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
-    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
-    dst->lock_cmd = (uint8_t)(b4 >> 6u);
-    b5 = src[5];
-    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
-    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
-    b6 = src[6];
-    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
-    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
-    b7 = src[7];
-    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
-    dst->counter = (uint8_t)(b7 >> 4u);
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A autocar_control_command_1 with every raw field 0. */
@@ -2891,7 +2778,6 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -2934,50 +2820,6 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    uint32_t b6;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->drive_mode_state = (uint8_t)(b0 & 0x3u);
-    dst->door_state = (uint8_t)((b0 >> 2u) & 0x1u);
-    dst->drl_state = (uint8_t)((b0 >> 3u) & 0x1u);
-    dst->left_turn_state = (uint8_t)((b0 >> 4u) & 0x1u);
-    dst->right_turn_state = (uint8_t)((b0 >> 5u) & 0x1u);
-    dst->hazard_state = (uint8_t)((b0 >> 6u) & 0x1u);
-    dst->position_light_state = (uint8_t)(b0 >> 7u);
-    b1 = src[1];
-    dst->headlight_state = (uint8_t)(b1 & 0x3u);
-    dst->rear_fog_state = (uint8_t)((b1 >> 2u) & 0x1u);
-    dst->left_fog_state = (uint8_t)((b1 >> 3u) & 0x1u);
-    dst->right_fog_state = (uint8_t)((b1 >> 4u) & 0x1u);
-    dst->dome_light_state = (uint8_t)((b1 >> 5u) & 0x1u);
-    dst->ambient_light_state = (uint8_t)((b1 >> 6u) & 0x1u);
-    dst->door_button_state = (uint8_t)(b1 >> 7u);
-    b2 = src[2];
-    dst->vehicle_speed = (uint8_t)b2;
-    b3 = src[3];
-    dst->soc = (uint8_t)b3;
-    b4 = src[4];
-    dst->system_power_cmd = (uint8_t)(b4 & 0x3u);
-    dst->charge_state = (uint8_t)((b4 >> 2u) & 0x3u);
-    dst->charge_connection = (uint8_t)((b4 >> 4u) & 0x3u);
-    dst->vehicle_fault_level = (uint8_t)(b4 >> 6u);
-    b5 = src[5];
-    b6 = src[6];
-    dst->odometer = (uint16_t)(b5 | (b6 << 8u));
-    b7 = src[7];
-    dst->counter = (uint8_t)b7;
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A vehicle_state_1 with every raw field 0. */
@@ -5827,7 +5669,6 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uint8_t *src,
                                    size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -5873,53 +5714,6 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
     dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
     dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->insulation_fault_level = (uint8_t)(b0 & 0x3u);
-    dst->dc_fault = (uint8_t)((b0 >> 2u) & 0x1u);
-    dst->soc_low = (uint8_t)((b0 >> 3u) & 0x1u);
-    dst->cell_undervoltage = (uint8_t)((b0 >> 4u) & 0x1u);
-    dst->brake_boost_pressure_fault = (uint8_t)((b0 >> 5u) & 0x1u);
-    dst->vacuum_pump_fault = (uint8_t)((b0 >> 6u) & 0x1u);
-    dst->vehicle_system_fault = (uint8_t)(b0 >> 7u);
-    b1 = src[1];
-    dst->battery_overheat = (uint8_t)(b1 & 0x1u);
-    dst->motor_overheat = (uint8_t)((b1 >> 1u) & 0x1u);
-    dst->traction_battery_fault = (uint8_t)((b1 >> 2u) & 0x1u);
-    dst->motor_fault = (uint8_t)((b1 >> 3u) & 0x1u);
-    dst->battery_comm_fault = (uint8_t)((b1 >> 4u) & 0x1u);
-    dst->motor_comm_fault = (uint8_t)((b1 >> 5u) & 0x1u);
-    dst->eps_fault = (uint8_t)((b1 >> 6u) & 0x1u);
-    dst->ac_fault = (uint8_t)(b1 >> 7u);
-    b2 = src[2];
-    dst->aux_battery_fault = (uint8_t)(b2 & 0x1u);
-    dst->epb_fault = (uint8_t)((b2 >> 1u) & 0x1u);
-    dst->brake_by_wire_fault = (uint8_t)((b2 >> 2u) & 0x1u);
-    dst->key_not_detected = (uint8_t)((b2 >> 3u) & 0x1u);
-    dst->tire_pressure_low = (uint8_t)((b2 >> 4u) & 0x1u);
-    dst->body_motor_fault = (uint8_t)((b2 >> 5u) & 0x1u);
-    dst->body_motor_overheat = (uint8_t)((b2 >> 6u) & 0x1u);
-    b3 = src[3];
-    dst->battery_system_fault_level = (uint8_t)(b3 & 0x3u);
-    dst->motor_system_fault_level = (uint8_t)((b3 >> 2u) & 0x3u);
-    dst->unmanned_entry_fault = (uint8_t)(b3 >> 4u);
-    b4 = src[4];
-    dst->protocol_version_a = (uint8_t)(b4 & 0xFu);
-    dst->protocol_version_b = (uint8_t)(b4 >> 4u);
-    b5 = src[5];
-    dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
-    dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A vehicle_fault with every raw field 0. */
@@ -7174,7 +6968,6 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
-#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -7196,29 +6989,6 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#else
-    if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    if ((src->accel_cmd > 1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[0] = (uint8_t)src->accel_cmd;
-    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
-                       ((uint32_t)src->gear_cmd << 4u));
-    dst[2] = (uint8_t)src->counter;
-    if ((src->emergency_brake_cmd > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[3] = (uint8_t)src->emergency_brake_cmd;
-    dst[4] = 0u;
-    dst[5] = 0u;
-    dst[6] = 0u;
-    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -7689,7 +7459,6 @@ kaiwo_gateway_rgate_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_unpack(kaiwo_gateway_rgate_ctrl_cmd_1_t *dst, const uint8_t *src,
                                       size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -7735,53 +7504,6 @@ kaiwo_gateway_rgate_ctrl_cmd_1_unpack(kaiwo_gateway_rgate_ctrl_cmd_1_t *dst, con
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    uint32_t b6;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
-    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
-    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
-    dst->drl_cmd = (uint8_t)(b0 >> 6u);
-    b1 = src[1];
-    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
-    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
-    b2 = src[2];
-    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
-    b3 = src[3];
-    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
-    b4 = src[4];
-    dst->system_state = (uint8_t)(b4 & 0x3u);
-    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
-    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
-    dst->lock_cmd = (uint8_t)(b4 >> 6u);
-    b5 = src[5];
-    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
-    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
-    b6 = src[6];
-    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
-    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
-    b7 = src[7];
-    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
-    dst->counter = (uint8_t)(b7 >> 4u);
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A rgate_control_command_1 with every raw field 0. */
@@ -8678,7 +8400,6 @@ kaiwo_gateway_rgate_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_unpack(kaiwo_gateway_rgate_ctrl_cmd_2_t *dst, const uint8_t *src,
                                       size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -8695,24 +8416,6 @@ kaiwo_gateway_rgate_ctrl_cmd_2_unpack(kaiwo_gateway_rgate_ctrl_cmd_2_t *dst, con
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
-    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
-    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
-    dst->pto_enable = (uint8_t)(b0 >> 7u);
-    b1 = src[1];
-    dst->downhill_regen_speed = (uint8_t)b1;
-    b7 = src[7];
-    dst->counter = (uint8_t)b7;
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A rgate_control_command_2 with every raw field 0. */
@@ -11768,7 +11471,6 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
-#if KAIWO_GATEWAY_WORD64
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -11790,29 +11492,6 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#else
-    if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    if ((src->throttle_brake_cmd > 1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[0] = (uint8_t)src->throttle_brake_cmd;
-    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[1] = (uint8_t)((src->throttle_brake_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
-                       ((uint32_t)src->gear_cmd << 4u));
-    dst[2] = (uint8_t)src->counter;
-    if ((src->emergency_brake_cmd > 1u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    dst[3] = (uint8_t)src->emergency_brake_cmd;
-    dst[4] = 0u;
-    dst[5] = 0u;
-    dst[6] = 0u;
-    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
-#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12286,7 +11965,6 @@ kaiwo_gateway_tele_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_unpack(kaiwo_gateway_tele_ctrl_cmd_1_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -12332,53 +12010,6 @@ kaiwo_gateway_tele_ctrl_cmd_1_unpack(kaiwo_gateway_tele_ctrl_cmd_1_t *dst, const
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b2;
-    uint32_t b3;
-    uint32_t b4;
-    uint32_t b5;
-    uint32_t b6;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_1_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->drive_mode_cmd = (uint8_t)(b0 & 0x3u);
-    dst->door_cmd = (uint8_t)((b0 >> 2u) & 0x3u);
-    dst->horn_cmd = (uint8_t)((b0 >> 4u) & 0x3u);
-    dst->drl_cmd = (uint8_t)(b0 >> 6u);
-    b1 = src[1];
-    dst->left_turn_cmd = (uint8_t)(b1 & 0x3u);
-    dst->right_turn_cmd = (uint8_t)((b1 >> 2u) & 0x3u);
-    dst->hazard_cmd = (uint8_t)((b1 >> 4u) & 0x3u);
-    dst->position_light_cmd = (uint8_t)(b1 >> 6u);
-    b2 = src[2];
-    dst->headlight_cmd = (uint8_t)(b2 & 0x3u);
-    dst->rear_fog_cmd = (uint8_t)((b2 >> 2u) & 0x3u);
-    dst->left_fog_cmd = (uint8_t)((b2 >> 4u) & 0x3u);
-    dst->right_fog_cmd = (uint8_t)(b2 >> 6u);
-    b3 = src[3];
-    dst->dome_light_cmd = (uint8_t)(b3 & 0x3u);
-    dst->ambient_light_cmd = (uint8_t)((b3 >> 2u) & 0x3u);
-    dst->drive_mode_reset = (uint8_t)((b3 >> 4u) & 0x1u);
-    b4 = src[4];
-    dst->system_state = (uint8_t)(b4 & 0x3u);
-    dst->system_reliability = (uint8_t)((b4 >> 2u) & 0x3u);
-    dst->system_fault_level = (uint8_t)((b4 >> 4u) & 0x3u);
-    dst->lock_cmd = (uint8_t)(b4 >> 6u);
-    b5 = src[5];
-    dst->ac_cmd = (uint8_t)(b5 & 0x7u);
-    dst->ac_set_temp = (uint8_t)(b5 >> 3u);
-    b6 = src[6];
-    dst->protocol_version_a = (uint8_t)(b6 & 0xFu);
-    dst->protocol_version_b = (uint8_t)(b6 >> 4u);
-    b7 = src[7];
-    dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
-    dst->counter = (uint8_t)(b7 >> 4u);
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A tele_control_command_1 with every raw field 0. */
@@ -13279,7 +12910,6 @@ kaiwo_gateway_tele_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_unpack(kaiwo_gateway_tele_ctrl_cmd_2_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -13296,24 +12926,6 @@ kaiwo_gateway_tele_ctrl_cmd_2_unpack(kaiwo_gateway_tele_ctrl_cmd_2_t *dst, const
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
-#else
-    uint32_t b0;
-    uint32_t b1;
-    uint32_t b7;
-    if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
-        return KAIWO_GATEWAY_ERR_LENGTH;
-    }
-    b0 = src[0];
-    dst->downhill_regen_enable = (uint8_t)(b0 & 0x1u);
-    dst->cargo_lift = (uint8_t)((b0 >> 1u) & 0x3u);
-    dst->cargo_lift_speed = (uint8_t)((b0 >> 3u) & 0xFu);
-    dst->pto_enable = (uint8_t)(b0 >> 7u);
-    b1 = src[1];
-    dst->downhill_regen_speed = (uint8_t)b1;
-    b7 = src[7];
-    dst->counter = (uint8_t)b7;
-    return KAIWO_GATEWAY_OK;
-#endif
 }
 
 /** A tele_control_command_2 with every raw field 0. */

@@ -50,7 +50,8 @@ class CMessage:
     j1939: CJ1939 | None
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
     codec: CCodec  # the byte form: every core
-    codec64: CCodec | None  # under <PREFIX>_WORD64 (x86-64, AArch64), where it differs
+    pack64: CCodec | None  # the form under <PREFIX>_WORD64 (x86-64, AArch64), where its pack differs
+    unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
     counter: CSignal | None
     counter_mask: str
     comment: str
@@ -64,19 +65,30 @@ def _j1939(msg: ir.Message) -> CJ1939 | None:
     return CJ1939(c_uint(j.priority), f"{j.pgn_text}u", f"{hex_byte(j.sa)}u", da, da or f"{hex_byte(GLOBAL_ADDRESS)}u")
 
 
+def _word64(codec: CCodec, codec64: CCodec | None) -> tuple[CCodec | None, CCodec | None]:
+    """The <PREFIX>_WORD64 form for pack, for unpack: where it differs from the byte form (a
+    function the same in both is written once, without the #if)."""
+    if codec64 is None:
+        return None, None
+    pack = (codec64.pack_locals, codec64.pack) != (codec.pack_locals, codec.pack)
+    unpack = (codec64.unpack_locals, codec64.unpack) != (codec.unpack_locals, codec.unpack)
+    return (codec64 if pack else None), (codec64 if unpack else None)
+
+
 def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) -> CMessage:
     sigs = tuple(build_signal(names, msg, s, enum_types) for s in msg.data_signals)
     counter = next((s for s in sigs if msg.counter and s.sig.name == msg.counter.signal), None)
     base = names.message(msg.name)
     err = names.const("err_range")
     codec = build_codec(msg, sigs, err)
+    pack64, unpack64 = _word64(codec, build_codec64(msg, sigs, err, codec))
     return CMessage(
         msg=msg, name=snake(msg.name), macro=names.const(base), fn=names.fn(base),
         type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.c_name),
         frame_id=f"{msg.id_text}u", fingerprint=f"{hex32(msg.fingerprint)}u", dlc=c_uint(msg.dlc), cycle_ms=c_uint(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
         info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else c_uint(0),
         counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0), counter_start=c_uint(msg.counter.start if msg.counter else 0),
-        signals=sigs, codec=codec, codec64=build_codec64(msg, sigs, err, codec),
+        signals=sigs, codec=codec, pack64=pack64, unpack64=unpack64,
         counter=counter, counter_mask=c_hex(msg.counter.modulo - 1) if msg.counter else "",
         comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,
     )
