@@ -49,21 +49,38 @@ static inline int64_t kaiwo_gateway_round_half_away(double q) {
     return (q < 0.0) ? (int64_t)neg : (int64_t)r;
 }
 
-/* Whether the core multiplies 32 x 32 -> 64 bits in one instruction (UMULL, x86 MUL). Thumb-1
- * cores (Cortex-M0/M0+/M23) do not: there a 64-bit product calls libgcc's __aeabi_lmul, so
- * kaiwo_gateway_mul_hi32 multiplies 16-bit halves. Define KAIWO_GATEWAY_LONG_MULTIPLY to 0 or 1
- * to override the choice. */
-#ifndef KAIWO_GATEWAY_LONG_MULTIPLY
-#if defined(__thumb__) && !defined(__thumb2__)
-#define KAIWO_GATEWAY_LONG_MULTIPLY 0
+/* The codec's strategy for the core the headers are compiled for, from the compiler's predefined
+ * macros; each level adds one thing the core does in one instruction to the level below:
+ *   0  bytes only, 64-bit products from 16-bit halves (Thumb-1: Cortex-M0/M0+/M23, where a
+ *      32 x 32 -> 64 multiply is a call to libgcc's __aeabi_lmul);
+ *   1  + the 32 x 32 -> 64 multiply (UMULL, mulhwu: other cores without unaligned word access);
+ *   2  + unaligned word stores (Cortex-M3/M4/M7/M33, x86): the frame of a message without fields
+ *      is zeroed by memset, which compilers turn into word stores (below, where it is a call,
+ *      byte by byte);
+ *   3  + 64-bit registers (x86-64, AArch64): a message's pack and unpack take the forms the
+ *      generator estimated cheaper there, where they differ from the byte form: the frame as one
+ *      uint64_t (byte k is its bits 8k..8k+7, built and taken apart byte by byte, which compilers
+ *      turn into one load or store), the range check once per message.
+ * Every level is plain C on any core and byte order. Define KAIWO_GATEWAY_STRATEGY to 0, 1, 2 or
+ * 3 to override the choice. */
+#ifndef KAIWO_GATEWAY_STRATEGY
+#if defined(__x86_64__) || defined(__aarch64__)
+#define KAIWO_GATEWAY_STRATEGY 3
+#elif defined(__ARM_FEATURE_UNALIGNED) || defined(__i386__)
+#define KAIWO_GATEWAY_STRATEGY 2
+#elif defined(__thumb__) && !defined(__thumb2__)
+#define KAIWO_GATEWAY_STRATEGY 0
 #else
-#define KAIWO_GATEWAY_LONG_MULTIPLY 1
+#define KAIWO_GATEWAY_STRATEGY 1
 #endif
+#endif
+#if (KAIWO_GATEWAY_STRATEGY < 0) || (KAIWO_GATEWAY_STRATEGY > 3)
+#error "KAIWO_GATEWAY_STRATEGY must be 0, 1, 2 or 3"
 #endif
 
 /** The high 32 bits of the 64-bit product a x m. */
 static inline uint32_t kaiwo_gateway_mul_hi32(uint32_t a, uint32_t m) {
-#if KAIWO_GATEWAY_LONG_MULTIPLY
+#if KAIWO_GATEWAY_STRATEGY >= 1 /* one 32 x 32 -> 64 multiply */
     return (uint32_t)(((uint64_t)a * m) >> 32u);
 #else
     /* a x m = a1 m1 2^32 + (a1 m0 + a0 m1) 2^16 + a0 m0 with 16-bit halves; each partial sum
@@ -120,7 +137,7 @@ static inline int32_t kaiwo_gateway_div_round_mulrem(int32_t num, uint32_t d, ui
 
 /** The 64-bit product a x b: one UMULL, or 16-bit halves (kaiwo_gateway_mul_hi32). */
 static inline uint64_t kaiwo_gateway_mul_wide(uint32_t a, uint32_t b) {
-#if KAIWO_GATEWAY_LONG_MULTIPLY
+#if KAIWO_GATEWAY_STRATEGY >= 1 /* one 32 x 32 -> 64 multiply */
     return (uint64_t)a * b;
 #else
     const uint32_t lo = a * b;
@@ -202,33 +219,6 @@ static inline int64_t kaiwo_gateway_div_round64_mulrem(int64_t num, uint64_t d, 
     const uint64_t neg = 0u - r; /* -r modulo 2^64 */
     return (num < 0) ? (int64_t)neg : (int64_t)r;
 }
-
-/* Whether the core stores an unaligned word in one instruction (Cortex-M3/M4/M7, x86, AArch64):
- * then the frame of a message without fields is zeroed by memset, which compilers turn into word
- * stores; elsewhere (Cortex-M0/M0+, where memset is a call) byte by byte. Define
- * KAIWO_GATEWAY_UNALIGNED_WORDS to 0 or 1 to override the choice. */
-#ifndef KAIWO_GATEWAY_UNALIGNED_WORDS
-#if defined(__ARM_FEATURE_UNALIGNED) || defined(__x86_64__) || defined(__i386__) ||                \
-    defined(__aarch64__)
-#define KAIWO_GATEWAY_UNALIGNED_WORDS 1
-#else
-#define KAIWO_GATEWAY_UNALIGNED_WORDS 0
-#endif
-#endif
-
-/* Whether the core also has 64-bit registers (x86-64, AArch64): then a message's pack and unpack
- * take the forms the generator estimated cheaper there, where they differ from the byte form every
- * other core runs: the frame as one uint64_t (byte k is its bits 8k..8k+7, built and taken apart
- * byte by byte, which compilers turn into one load or store), the range check once per message.
- * Both forms are plain C on any core and byte order. Define KAIWO_GATEWAY_WORD64 to 0 or 1 to
- * override the choice. */
-#ifndef KAIWO_GATEWAY_WORD64
-#if (defined(__x86_64__) || defined(__aarch64__)) && KAIWO_GATEWAY_UNALIGNED_WORDS
-#define KAIWO_GATEWAY_WORD64 1
-#else
-#define KAIWO_GATEWAY_WORD64 0
-#endif
-#endif
 
 /* J1939 29-bit identifier: priority(3) EDP(1) DP(1) PF(8) PS(8) SA(8). */
 #define KAIWO_GATEWAY_J1939_PDU2_MIN_PF    240u

@@ -757,7 +757,7 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_unpack(kaiwo_gateway_autocar_speed_command_t *dst,
                                            const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b1;
     uint32_t b2;
     uint32_t b3;
@@ -1051,7 +1051,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_driving_state_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     if (size < KAIWO_GATEWAY_DRIVING_STATE_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -1600,7 +1600,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_autocar_ctrl_cmd_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored2;
     uint8_t ored4;
     if (size < KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DLC) {
@@ -2697,7 +2697,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     uint8_t ored2;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
@@ -3587,7 +3587,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_autocar_ctrl_cmd_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     uint16_t ored10;
     uint64_t w;
@@ -3650,7 +3650,7 @@ kaiwo_gateway_autocar_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_unpack(kaiwo_gateway_autocar_ctrl_cmd_2_t *dst, const uint8_t *src,
                                         size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -4094,7 +4094,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -4130,7 +4130,7 @@ kaiwo_gateway_vehicle_state_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_unpack(kaiwo_gateway_vehicle_state_2_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint64_t w;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -4381,7 +4381,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_3_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint16_t ored12;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_3_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -4425,7 +4425,7 @@ kaiwo_gateway_vehicle_state_3_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_unpack(kaiwo_gateway_vehicle_state_3_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b0;
     uint32_t b1;
     uint32_t b5;
@@ -4803,7 +4803,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_vehicle_state_4_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -4862,7 +4862,7 @@ kaiwo_gateway_vehicle_state_4_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const uint8_t *src,
                                      size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -5561,7 +5561,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
                                  const kaiwo_gateway_vehicle_fault_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     uint8_t ored2;
     uint8_t ored4;
@@ -6651,8 +6651,8 @@ kaiwo_gateway_vehicle_state_5_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_5_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    (void)src; /* no fields: every byte is 0 */
-#if KAIWO_GATEWAY_UNALIGNED_WORDS
+    (void)src;                  /* no fields: every byte is 0 */
+#if KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
     (void)memset(dst, 0, KAIWO_GATEWAY_VEHICLE_STATE_5_DLC);
 #else
     dst[0] = 0u;
@@ -6997,7 +6997,7 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_unpack(kaiwo_gateway_rgate_speed_command_t *dst,
                                          const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b1;
     uint32_t b2;
     uint32_t b3;
@@ -7376,7 +7376,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_rgate_ctrl_cmd_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored2;
     uint8_t ored4;
     if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DLC) {
@@ -8357,7 +8357,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_rgate_ctrl_cmd_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -8639,7 +8639,7 @@ typedef struct {
  * fit its bits (dst[] is then unspecified: do not send it). */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_device_id_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint64_t w;
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -8683,7 +8683,7 @@ kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_devi
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_device_id_unpack(kaiwo_gateway_device_id_t *dst, const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b0;
     uint64_t w;
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
@@ -8890,7 +8890,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint16_t ored10;
     uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
@@ -8954,7 +8954,7 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_1_unpack(kaiwo_gateway_front_sensor_distance_1_t *dst,
                                              const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b7;
     uint64_t w;
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
@@ -9403,7 +9403,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                            const kaiwo_gateway_front_sensor_distance_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     uint16_t ored10;
     uint64_t w;
@@ -9477,7 +9477,7 @@ kaiwo_gateway_front_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance_2_t *dst,
                                              const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b4;
     uint32_t b5;
     uint32_t b7;
@@ -10077,7 +10077,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint16_t ored10;
     uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
@@ -10141,7 +10141,7 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_1_unpack(kaiwo_gateway_rear_sensor_distance_1_t *dst,
                                             const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b7;
     uint64_t w;
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
@@ -10583,7 +10583,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
                                           const kaiwo_gateway_rear_sensor_distance_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     uint16_t ored10;
     uint64_t w;
@@ -10657,7 +10657,7 @@ kaiwo_gateway_rear_sensor_distance_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2_t *dst,
                                             const uint8_t *src, size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b4;
     uint32_t b5;
     uint32_t b7;
@@ -11500,7 +11500,7 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_unpack(kaiwo_gateway_tele_speed_command_t *dst, const uint8_t *src,
                                         size_t size) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint32_t b1;
     uint32_t b2;
     uint32_t b3;
@@ -11882,7 +11882,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_tele_ctrl_cmd_1_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored2;
     uint8_t ored4;
     if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_1_DLC) {
@@ -12867,7 +12867,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
                                    const kaiwo_gateway_tele_ctrl_cmd_2_t *src) {
-#if KAIWO_GATEWAY_WORD64
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     uint8_t ored1;
     if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;

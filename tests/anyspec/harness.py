@@ -250,14 +250,14 @@ def stage_c(ctx: Ctx) -> None:
     lines.write_text(adapters.c_vectors_lines(doc, ctx.spec), encoding="ascii")
     macro = None
     for h in headers:
-        m = re.search(r"#ifndef\s+(\w+)_UNALIGNED_WORDS\b", (cdir / h).read_text(encoding="utf-8"))
+        m = re.search(r"#ifndef\s+(\w+)_STRATEGY\b", (cdir / h).read_text(encoding="utf-8"))
         if m:
             macro = m.group(1)
             break
     # the other strategy, Cortex-M0+'s (fieldless frames zeroed byte by byte vs memset, 64-bit
     # products from 16-bit halves), on every 4th spec (and whenever the shrinker asks for it)
     other = macro is not None and (ctx.bytewise or ctx.stage_filter is not None)
-    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_UNALIGNED_WORDS=0", f"-D{macro}_LONG_MULTIPLY=0"])] if other else [])
+    variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_STRATEGY=0"])] if other else [])
     for name, extra in variants:
         exe = work / name
         rc, out, err = sh(["gcc", "-std=gnu99", "-O1", *strict[:-1], *extra, f"-I{cdir}", f"-I{work}", str(adapters.C_RUNNER), "-o", str(exe), "-lm"])

@@ -119,14 +119,14 @@ int main(void) {
 
 
 @pytest.mark.parametrize("fixture,main", [("mixed_id_formats", MIXED), ("short_frames_and_names", SHORT), ("wide_and_scaled_fields", WIDE)])
-@pytest.mark.parametrize("words", ["1", "0"])
-def test_fixture_api(tmp_path, fixture, main, words):
+@pytest.mark.parametrize("strategy", ["3", "0"])
+def test_fixture_api(tmp_path, fixture, main, strategy):
     spec = compile_spec(VALID / f"{fixture}.yaml").spec
     headers, _ = speccheck.generate_c(spec, tmp_path / "out")
     prefix = next(headers.glob("*_common.h")).name.removesuffix("_common.h")
     src = tmp_path / "main.c"
     src.write_text(main, encoding="utf-8")
     exe = tmp_path / "api"
-    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-D{prefix.upper()}_UNALIGNED_WORDS={words}"], [headers])
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-D{prefix.upper()}_STRATEGY={strategy}"], [headers])
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0 and "api ok" in proc.stdout, (proc.returncode, proc.stdout, proc.stderr)

@@ -292,8 +292,8 @@ int main(void) {
 """
 
 
-@pytest.mark.parametrize("long_multiply", ["1", "0"])
-def test_runtime_division_functions_in_c(tmp_path, long_multiply):
+@pytest.mark.parametrize("strategy", ["1", "0"])  # one 32 x 32 -> 64 multiply, or 16-bit halves
+def test_runtime_division_functions_in_c(tmp_path, strategy):
     """The C runtime's functions on the plans above, compiled (gcc, strict) with the 64-bit
     product and with the 16-bit halves Thumb-1 cores use: the same exact results."""
     rows, want = [], []
@@ -308,7 +308,7 @@ def test_runtime_division_functions_in_c(tmp_path, long_multiply):
     src = tmp_path / "main.c"
     src.write_text(RUNTIME_MAIN.replace("@CASES@", "\n".join(rows)))
     exe = tmp_path / "div"
-    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_LONG_MULTIPLY={long_multiply}"], [cbuild.HEADERS])
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_STRATEGY={strategy}"], [cbuild.HEADERS])
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0, proc.stderr
     assert [int(v) for v in proc.stdout.split()] == want
@@ -408,8 +408,8 @@ def _int64(v: int) -> int:
     return v - 2**64 if v >= 2**63 else v
 
 
-@pytest.mark.parametrize("long_multiply", ["1", "0"])
-def test_runtime_64_bit_functions_in_c(tmp_path, long_multiply):
+@pytest.mark.parametrize("strategy", ["1", "0"])
+def test_runtime_64_bit_functions_in_c(tmp_path, strategy):
     """The C runtime's 64-bit division and product functions, compiled (gcc, strict) with the
     32 x 32 -> 64 product from one multiply and from 16-bit halves: the same exact results, the
     products and shifts checked on words at the ends of their halves."""
@@ -429,7 +429,7 @@ def test_runtime_64_bit_functions_in_c(tmp_path, long_multiply):
     src = tmp_path / "main.c"
     src.write_text(RUNTIME64_MAIN.replace("@CASES@", "\n".join(rows)).replace("@WORDS@", ", ".join(f"UINT64_C({w})" for w in WORDS)))
     exe = tmp_path / "div64"
-    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_LONG_MULTIPLY={long_multiply}"], [cbuild.HEADERS])
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_STRATEGY={strategy}"], [cbuild.HEADERS])
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines() == want
@@ -440,7 +440,7 @@ WIDE_FIXED_POINT = Path(__file__).resolve().parent / "cross" / "wide_fixed_point
 
 def test_vector_runner_on_every_64_bit_form(tmp_path):
     """A spec whose integer path takes each 64-bit form (cross/wide_fixed_point.yaml): the vector
-    runner agrees with its vectors with either product (LONG_MULTIPLY 1 and 0) and under
+    runner agrees with its vectors with either product (STRATEGY 1 and 0) and under
     ASan/UBSan, its headers compile warning-free (speccheck.py)."""
     import speccheck
 

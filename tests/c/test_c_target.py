@@ -86,7 +86,7 @@ def test_vector_runner_byte_wise_path(build, vectors, spec):
     """The strategy of cores without unaligned word stores or a long multiply (Cortex-M0+:
     fieldless frames zeroed byte by byte, 64-bit products from 16-bit halves) agrees with the
     vectors too, built on this host."""
-    exe = cbuild.build_runner(build, "gcc", [*cbuild.STRICT, "-DKAIWO_GATEWAY_UNALIGNED_WORDS=0", "-DKAIWO_GATEWAY_LONG_MULTIPLY=0"], name="runner-bytes")
+    exe = cbuild.build_runner(build, "gcc", [*cbuild.STRICT, "-DKAIWO_GATEWAY_STRATEGY=0"], name="runner-bytes")
     lines = cbuild.vectors_lines(cbuild.DEFAULT_VECTORS, build, spec.can)
     _check_runner(exe, lines, len(vectors["cases"]))
 
@@ -214,11 +214,11 @@ int main(void) {
 """
 
 
-@pytest.mark.parametrize("words", ["1", "0"])
-def test_signed_fields_pack_and_unpack(spec, tmp_path, words):
+@pytest.mark.parametrize("strategy", ["3", "0"])
+def test_signed_fields_pack_and_unpack(spec, tmp_path, strategy):
     """No signal of this document is signed: a spec variant with a 6-bit signed field inside a
     byte and a 10-bit one across bytes (read and written through the frame word under
-    KAIWO_GATEWAY_WORD64) checks the sign extension and the signed range check, on both code
+    KAIWO_GATEWAY_STRATEGY 3) checks the sign extension and the signed range check, on both code
     paths."""
     import dataclasses
 
@@ -235,6 +235,6 @@ def test_signed_fields_pack_and_unpack(spec, tmp_path, words):
     src = tmp_path / "main.c"
     src.write_text(SIGNED_MAIN)
     exe = tmp_path / "signed"
-    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_UNALIGNED_WORDS={words}"], [out])
+    cbuild.compile_c("gcc", [src], exe, ["-std=c99", "-O2", *cbuild.STRICT, f"-DKAIWO_GATEWAY_STRATEGY={strategy}"], [out])
     proc = cbuild.run([str(exe)])
     assert proc.returncode == 0 and "signed ok" in proc.stdout, (proc.returncode, proc.stdout, proc.stderr)

@@ -41,7 +41,7 @@ PPC_SYSROOT = "/usr/powerpc-linux-gnu"
 # The compile-time strategies the current headers offer: MACRO=value,value[;MACRO=...]. A value
 # marked /le is a little-endian-only fast path (not built for big-endian targets). The C rewrite
 # changes this list; CANSPEC_C_STRATEGIES overrides it without editing this file.
-DEFAULT_STRATEGIES = "KAIWO_GATEWAY_UNALIGNED_WORDS=0,1; KAIWO_GATEWAY_LONG_MULTIPLY=0,1; KAIWO_GATEWAY_WORD64=0,1"
+DEFAULT_STRATEGIES = "KAIWO_GATEWAY_STRATEGY=0,1,2,3"
 
 # The exact cores: flags shared by the runner builds and the benchmarks. Cortex-M4 without the
 # FPU's float ABI (the headers compute in double, which the M4F's single-precision FPU does not do).
@@ -131,7 +131,7 @@ def config_macros(headers: Path) -> set[str]:
     found: set[str] = set()
     for h in sorted(headers.glob("*.h")):
         for m in re.finditer(r"^\s*#\s*(if|elif|ifdef)\b(.*(?:\\\n.*)*)", h.read_text(encoding="utf-8"), re.MULTILINE):
-            for ident in re.findall(r"[A-Za-z_]\w*", m.group(2)):
+            for ident in re.findall(r"[A-Za-z_]\w*", re.sub(r"/\*.*?\*/", " ", m.group(2))):  # not a comment's words
                 if ident == "defined" or ident.startswith("__") or _GUARD.search(ident):
                     continue
                 found.add(ident)

@@ -11,7 +11,7 @@ no read-modify-write), with the check that the fields starting in it fit their b
 byte once into a local when its first field needs it (stores to *dst may alias src, so reading
 it again later would cost a load each time), and folds it into the XOR the checksum needs.
 
-Cores with 64-bit registers (x86-64, AArch64: <PREFIX>_WORD64) run codec64.py's forms where the
+Cores with 64-bit registers (x86-64, AArch64: <PREFIX>_STRATEGY 3) run codec64.py's forms where the
 generator estimates them cheaper there.
 """
 

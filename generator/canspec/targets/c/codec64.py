@@ -1,5 +1,5 @@
 """Pack and unpack of one message for the cores with 64-bit registers and unaligned loads and
-stores (x86-64, AArch64): the headers' <PREFIX>_WORD64 strategy, where it differs from the byte
+stores (x86-64, AArch64): the headers' <PREFIX>_STRATEGY 3, where it differs from the byte
 form of codec.py, which every other core runs.
 
 The byte form pays there for what small cores need: a branch per byte's range check (so that
@@ -217,7 +217,7 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
 
 
 def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
-    """The message's pack/unpack under <PREFIX>_WORD64, or None where it is the byte form.
+    """The message's pack/unpack under <PREFIX>_STRATEGY 3, or None where it is the byte form.
     `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
     if not msg.dlc:
         return None

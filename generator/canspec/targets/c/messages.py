@@ -50,7 +50,7 @@ class CMessage:
     j1939: CJ1939 | None
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
     codec: CCodec  # the byte form: every core
-    pack64: CCodec | None  # the form under <PREFIX>_WORD64 (x86-64, AArch64), where its pack differs
+    pack64: CCodec | None  # the form of <PREFIX>_STRATEGY 3 (64-bit registers), where its pack differs
     unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
     counter: CSignal | None
     counter_mask: str
@@ -66,7 +66,7 @@ def _j1939(msg: ir.Message) -> CJ1939 | None:
 
 
 def _word64(codec: CCodec, codec64: CCodec | None) -> tuple[CCodec | None, CCodec | None]:
-    """The <PREFIX>_WORD64 form for pack, for unpack: where it differs from the byte form (a
+    """The form of <PREFIX>_STRATEGY 3 for pack, for unpack: where it differs from the byte form (a
     function the same in both is written once, without the #if)."""
     if codec64 is None:
         return None, None
