@@ -236,7 +236,7 @@ def symbol_bytes(obj: Path, pattern: str) -> int:
 
 def text_size(obj: Path) -> int:
     out = subprocess.run(["size", "-A", str(obj)], capture_output=True, text=True, check=True).stdout
-    return sum(int(l.split()[1]) for l in out.splitlines() if l.startswith(".text"))
+    return sum(int(line.split()[1]) for line in out.splitlines() if line.startswith(".text"))
 
 
 CALLGRIND_ITERS = 4096

@@ -18,7 +18,6 @@ from typing import Any
 
 from canspec import ir
 from canspec.reference import codec, supervision
-from canspec.reference import textframes as tf
 from canspec.reference.monitor import FrameEvent, Monitor
 
 MESSAGES_PER_CATEGORY = 3
