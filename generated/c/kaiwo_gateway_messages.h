@@ -325,14 +325,11 @@ kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-108010)) || (value >= 547360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -519,14 +516,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_torque_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1290)) || (value >= 1280)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 1280, 5u, 0x667u, 14u);
     if ((value < (-1280)) || (value > 1270)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2555 */
+    r = kaiwo_gateway_div_round_mul(value + 1280, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -557,14 +551,11 @@ static inline int32_t kaiwo_gateway_eps_state_eps_output_torque_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-3870)) || (value >= 3840)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 30: (|num| + 15) * 0x2223 >> 18, exact up to 7694 */
-    r = kaiwo_gateway_div_round_mul(value + 3840, 15u, 0x2223u, 18u);
     if ((value < (-3840)) || (value > 3810)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 30: (|num| + 15) * 0x2223 >> 18, exact up to 7665 */
+    r = kaiwo_gateway_div_round_mul(value + 3840, 15u, 0x2223u, 18u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -593,14 +584,11 @@ static inline int32_t kaiwo_gateway_eps_state_steering_angle_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-108010)) || (value >= 547360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -629,14 +617,11 @@ static inline int32_t kaiwo_gateway_eps_state_controller_temp_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-2)) || (value >= 128)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 128 */
-    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 126)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 127 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -858,14 +843,11 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_accel_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-902)) || (value >= 1148)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
-    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 1261 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -927,13 +909,10 @@ static inline int32_t kaiwo_gateway_autocar_speed_command_gear_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1196,13 +1175,10 @@ static inline int32_t kaiwo_gateway_driving_state_gear_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_gear_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 3) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1293,14 +1269,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_speed_decode_fixed(uint1
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-150010)) || (value >= 505360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 150000, 5u, 0x1999999Au, 0u);
     if ((value < (-150000)) || (value > 150000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 300005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 150000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1330,14 +1303,11 @@ static inline int32_t kaiwo_gateway_driving_state_motor_torque_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-50010)) || (value >= 605360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 50000, 5u, 0x1999999Au, 0u);
     if ((value < (-50000)) || (value > 50000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 100005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 50000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1413,14 +1383,11 @@ static inline int32_t kaiwo_gateway_driving_state_current_accel_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_driving_state_current_accel_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-9050)) || (value >= 3800)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
-    r = kaiwo_gateway_div_round_mul(value + 9000, 25u, 0x147Bu, 18u);
     if ((value < (-9000)) || (value > 3600)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12625 */
+    r = kaiwo_gateway_div_round_mul(value + 9000, 25u, 0x147Bu, 18u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1765,13 +1732,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 1) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1799,13 +1763,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_door_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1833,13 +1794,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_horn_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1867,13 +1825,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_drl_cmd_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1901,13 +1856,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_left_turn_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1935,13 +1887,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_right_turn_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -1969,13 +1918,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_hazard_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2004,13 +1950,10 @@ kaiwo_gateway_autocar_ctrl_cmd_1_position_light_cmd_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2068,13 +2011,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_rear_fog_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2102,13 +2042,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_left_fog_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2136,13 +2073,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_right_fog_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2170,13 +2104,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_dome_light_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2204,13 +2135,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_ambient_light_cmd_decode_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2390,13 +2318,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_ac_cmd_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 8)) {
+    if ((value <= (-1)) || (value > 3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 3) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -2429,14 +2354,11 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= 1550) || (value >= 3200)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
-    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1425 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3291,14 +3213,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_vehicle_speed_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-510)) || (value >= 2060)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 500, 5u, 0x667u, 14u);
     if ((value < (-500)) || (value > 2000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2505 */
+    r = kaiwo_gateway_div_round_mul(value + 500, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3329,14 +3248,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_soc_decode_fixed(uint8_t raw
 static inline kaiwo_gateway_status_t kaiwo_gateway_vehicle_state_1_soc_encode_fixed(int32_t value,
                                                                                     uint8_t *raw) {
     int64_t r;
-    if ((value <= (-50)) || (value >= 12800)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
-    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     if ((value < 0) || (value > 12500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12525 */
+    r = kaiwo_gateway_div_round_mul(value, 25u, 0x147Bu, 18u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3364,13 +3280,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_system_power_cmd_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_system_power_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 1) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3428,13 +3341,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_charge_connection_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_charge_connection_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 1)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 1) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3493,14 +3403,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_1_odometer_decode_fixed(uint16
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_odometer_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-2)) || (value >= 131072)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
-    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 120000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 120001 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3810,13 +3717,10 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 10) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3920,14 +3824,11 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-25050)) || (value >= 26200)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x51EB852 >> (32 + 0), exact up to 51224 */
-    r = kaiwo_gateway_div_round_mulhi(value + 25000, 25u, 0x51EB852u, 0u);
     if ((value < (-25000)) || (value > 25000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x147AF >> 22, exact up to 50025 */
+    r = kaiwo_gateway_div_round_mul(value + 25000, 25u, 0x147AFu, 22u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3960,14 +3861,11 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-4010)) || (value >= 6240)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
-    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 8005 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -3998,14 +3896,11 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-302)) || (value >= 1748)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
-    r = kaiwo_gateway_div_round_mul(value + 300, 1u, 0x1u, 1u);
     if ((value < (-300)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 1301 */
+    r = kaiwo_gateway_div_round_mul(value + 300, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4034,14 +3929,11 @@ static inline int32_t kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-4010)) || (value >= 6240)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 10244 */
-    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     if ((value < (-4000)) || (value > 4000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0xCCD >> 15, exact up to 8005 */
+    r = kaiwo_gateway_div_round_mul(value + 4000, 5u, 0xCCDu, 15u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4203,14 +4095,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_voltage_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-2)) || (value >= 131072)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
-    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     if ((value < 0) || (value > 8000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 8001 */
+    r = kaiwo_gateway_div_round_mul(value, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4241,14 +4130,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_2_battery_current_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_2_battery_current_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-50002)) || (value >= 81072)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 131072 */
-    r = kaiwo_gateway_div_round_mul(value + 50000, 1u, 0x1u, 1u);
     if ((value < (-50000)) || (value > 80000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 130001 */
+    r = kaiwo_gateway_div_round_mul(value + 50000, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4510,14 +4396,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_max_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-410)) || (value >= 2160)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2555 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4545,14 +4428,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_battery_min_temp_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-410)) || (value >= 2160)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2555 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4584,14 +4464,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-150)) || (value >= 614400)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
-    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 600075 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4619,14 +4496,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-150)) || (value >= 614400)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 614474 */
-    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     if ((value < 0) || (value > 600000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 150: (|num| + 75) * 0x1B4E81C >> (32 + 0), exact up to 600075 */
+    r = kaiwo_gateway_div_round_mulhi(value, 75u, 0x1B4E81Cu, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4654,14 +4528,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_3_motor_temp_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-410)) || (value >= 2160)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2555 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4690,14 +4561,11 @@ kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode_fixed(uint8_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_3_motor_controller_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-410)) || (value >= 2160)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2564 */
-    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     if ((value < (-400)) || (value > 2150)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x667 >> 14, exact up to 2555 */
+    r = kaiwo_gateway_div_round_mul(value + 400, 5u, 0x667u, 14u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -4968,14 +4836,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_outside_temp_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-3050)) || (value >= 9800)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
-    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12525 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5004,14 +4869,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_inside_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_inside_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-3050)) || (value >= 9800)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12824 */
-    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     if ((value < (-3000)) || (value > 9500)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x147B >> 18, exact up to 12525 */
+    r = kaiwo_gateway_div_round_mul(value + 3000, 25u, 0x147Bu, 18u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5038,13 +4900,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_state_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 3) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5166,13 +5025,10 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_remaining_range_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_remaining_range_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4096)) {
+    if ((value <= (-1)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 1000) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5265,14 +5121,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_ac_set_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= 1550) || (value >= 3200)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
-    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1425 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -5334,14 +5187,11 @@ static inline int32_t kaiwo_gateway_vehicle_state_4_battery_power_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_4_battery_power_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-325010)) || (value >= 330360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 325000, 5u, 0x1999999Au, 0u);
     if ((value < (-325000)) || (value > 325000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 650005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 325000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -6903,14 +6753,11 @@ kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-108010)) || (value >= 547360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7094,14 +6941,11 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_accel_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_accel_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-902)) || (value >= 1148)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
-    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     if ((value < (-900)) || (value > 360)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 1261 */
+    r = kaiwo_gateway_div_round_mul(value + 900, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7159,13 +7003,10 @@ static inline int32_t kaiwo_gateway_rgate_speed_command_gear_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7571,13 +7412,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_door_cmd_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7605,13 +7443,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_horn_cmd_decode_fixed(uint8
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7639,13 +7474,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_drl_cmd_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7673,13 +7505,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_left_turn_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7707,13 +7536,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_right_turn_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7741,13 +7567,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_hazard_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7775,13 +7598,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_position_light_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7839,13 +7659,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_rear_fog_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7873,13 +7690,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_left_fog_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7907,13 +7721,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_right_fog_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7941,13 +7752,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_dome_light_cmd_decode_fixed
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -7975,13 +7783,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_ambient_light_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8159,13 +7964,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_ac_cmd_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 8)) {
+    if ((value <= (-1)) || (value > 3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 3) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8194,14 +7996,11 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= 1550) || (value >= 3200)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
-    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1425 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -8515,13 +8314,10 @@ static inline int32_t kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_speed_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 10) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -9711,13 +9507,10 @@ kaiwo_gateway_front_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw)
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_front_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -10891,13 +10684,10 @@ kaiwo_gateway_rear_sensor_distance_2_uss_system_state_decode_fixed(uint8_t raw) 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rear_sensor_distance_2_uss_system_state_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11406,14 +11196,11 @@ static inline int32_t kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode_f
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_steering_angle_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-108010)) || (value >= 547360)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364 */
-    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     if ((value < (-108000)) || (value > 108000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005 */
+    r = kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11600,14 +11387,11 @@ kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode_fixed(uint16_t raw) {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_throttle_brake_cmd_encode_fixed(int32_t value, uint16_t *raw) {
     int64_t r;
-    if ((value <= (-1002)) || (value >= 1048)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2048 */
-    r = kaiwo_gateway_div_round_mul(value + 1000, 1u, 0x1u, 1u);
     if ((value < (-1000)) || (value > 1000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 2: (|num| + 1) * 0x1 >> 1, exact up to 2001 */
+    r = kaiwo_gateway_div_round_mul(value + 1000, 1u, 0x1u, 1u);
     *raw = (uint16_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -11665,13 +11449,10 @@ static inline int32_t kaiwo_gateway_tele_speed_command_gear_cmd_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_gear_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12047,13 +11828,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_drive_mode_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12081,13 +11859,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_door_cmd_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_door_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12115,13 +11890,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_horn_cmd_decode_fixed(uint8_
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_horn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12149,13 +11921,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_drl_cmd_decode_fixed(uint8_t
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_drl_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12183,13 +11952,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_left_turn_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_left_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12217,13 +11983,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_right_turn_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_right_turn_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12251,13 +12014,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_hazard_cmd_decode_fixed(uint
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_hazard_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12285,13 +12045,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_position_light_cmd_decode_fi
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_position_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12349,13 +12106,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_rear_fog_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_rear_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12383,13 +12137,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_left_fog_cmd_decode_fixed(ui
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_left_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12417,13 +12168,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_right_fog_cmd_decode_fixed(u
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_right_fog_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12451,13 +12199,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_dome_light_cmd_decode_fixed(
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_dome_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12485,13 +12230,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_ambient_light_cmd_decode_fix
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_ambient_light_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 4)) {
+    if ((value <= (-1)) || (value > 2)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 2) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12669,13 +12411,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_ac_cmd_decode_fixed(uint8_t 
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 8)) {
+    if ((value <= (-1)) || (value > 3)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 3) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -12704,14 +12443,11 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_decode_fixed(uin
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= 1550) || (value >= 3200)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
-    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1624 */
-    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     if ((value < 1600) || (value > 3000)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+    /* divide by 50: (|num| + 25) * 0x51F >> 16, exact up to 1425 */
+    r = kaiwo_gateway_div_round_mul(value - 1600, 25u, 0x51Fu, 16u);
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }
@@ -13025,13 +12761,10 @@ static inline int32_t kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_speed_decode_fixe
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_cargo_lift_speed_encode_fixed(int32_t value, uint8_t *raw) {
     int64_t r;
-    if ((value <= (-1)) || (value >= 16)) {
+    if ((value <= (-1)) || (value > 10)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     r = value;
-    if (value > 10) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
     *raw = (uint8_t)r;
     return KAIWO_GATEWAY_OK;
 }

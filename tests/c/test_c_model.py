@@ -31,10 +31,12 @@ def test_signal_plans(spec):
     # factor 0.1, offset -1080: fixed point in 1/100 deg so that the tie -1079.95 is expressible
     assert angle.fixed.scale == 100 and angle.fixed.type == "int32_t"
     assert angle.fixed.decode_expr == "((int32_t)raw * 10) - 108000"
-    # |value + 108000| stays within 32 bits for every input the first check lets through (up to
-    # 655359): divided by 10 as the high word of a 32-bit multiply, no division (divide.py)
+    # the first check is the document's range [-1080, 1080] deg (no special value to let through),
+    # so |value + 108000| is at most 216000: divided by 10 as the high word of a 32-bit multiply,
+    # no division (divide.py), and no check after it
+    assert angle.fixed.outside == "(value < (-108000)) || (value > 108000)" and angle.fixed.ranges.outside == ""
     assert angle.fixed.rounded == "kaiwo_gateway_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u)"
-    assert angle.fixed.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364"
+    assert angle.fixed.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005"
     assert angle.type == "uint16_t" and not angle.needs_check  # 16 bits in uint16_t
     # the document's table: steering angle in bytes 3 (low) and 4 (high), bytes 5..6 reserved,
     # byte 7 the XOR of bytes 0..6

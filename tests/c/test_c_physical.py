@@ -125,6 +125,7 @@ C_FUNCTIONS = {"div_round_mul": _c_div_round_mul, "div_round_mulhi": _c_div_roun
 def _py(cond: str) -> str:
     """A generated C condition or expression as Python (the literal forms the C target writes)."""
     out = re.sub(r"U?INT64_C\((-?(?:0x[0-9A-F]+|\d+))\)", r"\1", cond)
+    out = re.sub(r"\(\(uint64_t\)(\w+) \+ (\d+)\)", rf"((\1 + \2) % {2**64})", out)  # wraps modulo 2^64
     out = out.replace("INT64_MIN", str(-(2**63))).replace("(int64_t)", "").replace("(uint64_t)", "")
     out = re.sub(r"\b(\d+|0x[0-9A-F]+)u\b", r"\1", out)
     out = out.replace("||", " or ").replace("&&", " and ").replace("!(", " not (")
@@ -155,7 +156,9 @@ def _check_agrees(sig: Sig) -> physical.CFixed:
     specials = {sp.raw for sp in sig.specials}
     outside, rounded, is_special, out_of_range = map(_fn, (fixed.outside, fixed.rounded, fixed.ranges.specials, fixed.ranges.outside))
     for value in _inputs(sig, fixed):
-        if outside(value):
+        if outside(value):  # refused before the rounding: rightly, by the exact rule
+            r = _exact_round(value - fo, ff)
+            assert r not in specials and (value < fmin or value > fmax or r < sig.raw_min or r > sig.raw_max), (sig, fixed.outside, value)
             continue
         r = rounded(value)
         assert r == _exact_round(value - fo, ff), (sig, value)
@@ -196,17 +199,22 @@ def test_wide_unsigned_fields_without_offset():
     fixed = _check_agrees(Sig(64, False, Fraction(1), Fraction(0), Fraction(0), Fraction(top), 0, top))
     assert fixed.type == "uint64_t" and fixed.outside == "" and fixed.ranges.outside == ""
     fixed = _check_agrees(Sig(63, False, Fraction(2), Fraction(0), Fraction(10), Fraction(2**63), 5, 2**62))
-    assert fixed.type == "uint64_t" and fixed.ranges.outside == "(value < UINT64_C(10)) || (value > UINT64_C(9223372036854775808))"
+    # no special value: the accepted range is the first check, and r lies in the raw range then
+    assert fixed.type == "uint64_t" and fixed.outside == "(value < UINT64_C(10)) || (value > UINT64_C(9223372036854775808))"
+    assert fixed.ranges.outside == ""
 
 
 def test_terms_earlier_checks_decide_are_left_out():
     # an unscaled 8-bit field over its whole range: the first check leaves nothing to compare
     byte = _check_agrees(Sig(8, False, Fraction(1), Fraction(0), Fraction(0), Fraction(255), 0, 255))
     assert (byte.outside, byte.ranges.outside) == ("(value <= (-1)) || (value >= 256)", "")
-    # factor 0.1, offset -12.8, range [-12.8, 12.7]: the range bounds the value, and r with it
+    # factor 0.1, offset -12.8, range [-12.8, 12.7]: the range, checked first, bounds the value
+    # and r with it (one check instead of the raw type's window and then the range)
     torque = _check_agrees(Sig(8, False, Fraction(1, 10), Fraction(-128, 10), Fraction(-128, 10), Fraction(127, 10), 0, 255))
-    assert torque.scale == 100 and torque.ranges.outside == "(value < (-1280)) || (value > 1270)"
-    # factor 2 over [0, 512]: 511 is let through and rounds (255.5) to 256, beyond the raw range
+    assert torque.scale == 100 and torque.outside == "(value < (-1280)) || (value > 1270)" and torque.ranges.outside == ""
+    # factor 2 over [0, 512] with a special value (a value outside the range may encode one, so the
+    # range is checked after the rounding): 511 is let through and rounds (255.5) to 256, beyond
+    # the raw range
     speed = _check_agrees(Sig(8, False, Fraction(2), Fraction(0), Fraction(0), Fraction(512), 0, 255, (Special(0),)))
     assert speed.ranges.outside == "(value < 0) || (r > INT64_C(255))" and speed.ranges.specials == "r == 0"
 
@@ -260,15 +268,18 @@ def test_rounding_plan_is_exact_up_to_int32_magnitudes():
 
 def test_fixed_encode_divides_by_a_multiply():
     """Fields whose 32-bit rounding takes each form, through the fixed path's checks."""
-    # factor 0.1, offset -1080 on 16 bits: |num| up to 655359, the high word of the product
+    # factor 0.1, offset -1080 on 16 bits, range checked first: |num| up to 216000, the high word
+    # of the product
     angle = _check_agrees(Sig(16, False, Fraction(1, 10), Fraction(-1080), Fraction(-1080), Fraction(1080), 0, 21600))
+    assert angle.outside == "(value < (-108000)) || (value > 108000)"
     assert angle.rounded == "p_div_round_mulhi(value + 108000, 5u, 0x1999999Au, 0u)"
-    assert angle.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 655364"
+    assert angle.note == "divide by 10: (|num| + 5) * 0x1999999A >> (32 + 0), exact up to 216005"
     # factor -0.25 on 8 signed bits: one 32-bit multiply
     neg = _check_agrees(Sig(8, True, Fraction(-1, 4), Fraction(1, 2), Fraction(-30), Fraction(30), -120, 127))
     assert neg.rounded == "p_div_round_mul(500 - value, 125u, 0x8313u, 23u)"
-    # factor 2^30 - 2 on one bit: |num| + d / 2 beyond what one multiply divides exactly
-    huge = _check_agrees(Sig(1, False, Fraction(2**30 - 2), Fraction(0), Fraction(0), Fraction(2**30 - 2), 0, 1))
+    # factor 2^30 - 2 on one bit with a special value (so the range is checked after the rounding,
+    # and |num| reaches the raw type's window): |num| + d / 2 beyond what one multiply divides exactly
+    huge = _check_agrees(Sig(1, False, Fraction(2**30 - 2), Fraction(0), Fraction(0), Fraction(2**30 - 2), 0, 1, (Special(1),)))
     assert huge.rounded == "p_div_round_mulrem(value, 1073741822u, 0x80000005u, 29u)"
 
 
@@ -357,17 +368,19 @@ def test_fixed_encode_divides_64_bit_values_by_a_multiply():
     multiplies through p_mul64 / p_mul64_u (no 64-bit product in C, __aeabi_lmul on Cortex-M0+)."""
     strain = _check_agrees(_wide(48, True, Fraction(1, 1000)))
     assert strain.rounded == "p_div_round64_mulhi((int64_t)value, UINT64_C(5), UINT64_C(0x199999999999999A), 0u)"
-    assert strain.note == "divide by 10: (|num| + 5) * 0x199999999999999A >> (64 + 0), exact up to 1407374883553294"
+    assert strain.note == "divide by 10: (|num| + 5) * 0x199999999999999A >> (64 + 0), exact up to 1407374883553285"
     assert strain.decode_expr == "p_mul64((int64_t)raw, INT64_C(10))"
     huge = _check_agrees(_wide(2, True, Fraction(2**62 - 2)))
+    # an accepted range wider than INT64_MAX: one unsigned compare (cppcheck misjudges two)
+    assert huge.outside == "((uint64_t)value + UINT64_C(9223372036854775804)) > UINT64_C(13835058055282163706)"
     assert huge.rounded == "p_div_round64_mulrem((int64_t)value, UINT64_C(4611686018427387902), UINT64_C(0x9), 61u)"
-    assert huge.note == "divide by 4611686018427387902: |num| * 0x10000000000000009 >> (64 + 62), exact up to 9223372036854775808"
+    assert huge.note == "divide by 4611686018427387902: |num| * 0x10000000000000009 >> (64 + 62), exact up to 9223372036854775804"
     sevens = _check_agrees(_wide(57, False, Fraction(7)))
     assert sevens.rounded == "p_div_round_u64_mulhi(value, UINT64_C(35), UINT64_C(0xEA0EA0EA0EA0EA1), 2u)"
     assert sevens.decode_expr == "p_mul64_u((uint64_t)raw, UINT64_C(70))"
     fourteens = _check_agrees(_wide(60, False, Fraction(14)))
     assert fourteens.rounded == "p_div_round_u64_mulrem(value, UINT64_C(14), UINT64_C(0x2492492492492493), 3u)"
-    assert fourteens.note == "divide by 14: |num| * 0x12492492492492493 >> (64 + 4), exact up to 16140901064495857663"
+    assert fourteens.note == "divide by 14: |num| * 0x12492492492492493 >> (64 + 4), exact up to 16140901064495857650"
 
 
 RUNTIME64_MAIN = r"""

@@ -39,6 +39,7 @@ from canspec.targets.c.names import CNames
 
 INT_TYPES = ((32, "int32_t", -(2**31), 2**31 - 1), (64, "int64_t", -(2**63), 2**63 - 1))
 U64_MAX = 2**64 - 1
+INT64_MAX = 2**63 - 1
 DOUBLE_EXACT = 2**53  # integers up to this magnitude are exact in a double
 Q_SAFE = 2**62  # |q| below this: inside the rounding's domain [-2^63, 2^63) with every rounding error of its computation
 
@@ -50,12 +51,19 @@ def int_lit(value: int, bits: int, signed: bool) -> str:
 def _bound_terms(var: str, lo: int | None, hi: int | None, type_lo: int, type_hi: int, lit) -> list[str]:  # type: ignore[no-untyped-def]
     """C terms true when `var` (known to lie in [type_lo, type_hi]) is below lo or above hi;
     a bound that interval already keeps is left out."""
-    out = []
-    if lo is not None and lo > type_lo:
-        out.append(f"{var} < {lit(lo)}")
-    if hi is not None and hi < type_hi:
-        out.append(f"{var} > {lit(hi)}")
-    return out
+    low = f"{var} < {lit(lo)}" if lo is not None and lo > type_lo else ""
+    high = f"{var} > {lit(hi)}" if hi is not None and hi < type_hi else ""
+    return _either_side(var, lo, hi, low, high)
+
+
+def _either_side(var: str, lo: int | None, hi: int | None, low: str, high: str) -> list[str]:
+    """The terms `low` (var below lo) and `high` (above hi) that are needed. Where both are, around
+    an interval wider than INT64_MAX (var an int64_t), one unsigned compare instead: the same test,
+    in the form cppcheck 2.10's value flow does not misjudge (its interval arithmetic overflows
+    there and reports the second compare as invariant, MISRA rule 14.3)."""
+    if low and high and lo is not None and hi is not None and lo < 0 and hi - lo > INT64_MAX:
+        return [f"((uint64_t){var} + {c_uint(-lo, 64)}) > {c_uint(hi - lo, 64)}"]
+    return [t for t in (low, high) if t]
 
 
 def any_of(terms: list[str]) -> str:
@@ -252,17 +260,13 @@ def _difference_fits(ff: int, fo: int, vlo: int, vhi: int, bits: int = 64) -> bo
 
 def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int, int], ctype: str, bounds: tuple[int, int], trange: tuple[int, int]) -> CFixed:
     ff, fo = scaling
-    lo, hi = trange
     lit = lambda v: c_int(v, 32 if ctype == "int32_t" else 64)
     expr = f"({ctype})raw"
     if ff != 1:
         expr = f"{expr} * {lit(ff)}" if ctype == "int32_t" else f"{names.fn('mul64')}({expr}, {lit(ff)})"
     if fo:
         expr = (f"({expr})" if " * " in expr else expr) + (f" + {lit(fo)}" if fo > 0 else f" - {lit(-fo)}")
-    outside = [f"value <= {lit(bounds[0])}"] if bounds[0] >= lo else []
-    outside += [f"value >= {lit(bounds[1])}"] if bounds[1] <= hi else []
-    # what passes that check: the open interval (bounds) within the type
-    reach = (max(bounds[0] + 1, lo), min(bounds[1] - 1, hi))
+    outside, reach = _first_check(sig, scale, bounds, trange, lit)
     # ±(value - fo), so that the divisor |ff| is positive; in 32 bits where it fits, divided by a
     # multiply in either width (divide.py: no division, hence no libgcc helper, on any core)
     narrow = ctype == "int32_t" and _difference_fits(ff, fo, *reach, bits=32)
@@ -284,11 +288,29 @@ def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: i
     """A wide unsigned field without offset: physical × scale = raw × ff, as a uint64_t."""
     lit = lambda v: c_uint(v, 64)
     expr = "(uint64_t)raw" if ff == 1 else f"{names.fn('mul64_u')}((uint64_t)raw, {lit(ff)})"
-    rounded, note = _divided(names, "value", ff, min(above - 1, U64_MAX), "_u64") if ff != 1 else ("value", "")
+    outside, reach = _first_check(sig, scale, (-1, above), (0, U64_MAX), lit)
+    rounded, note = _divided(names, "value", ff, reach[1], "_u64") if ff != 1 else ("value", "")
     return CFixed(
-        scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=f"value >= {lit(above)}" if above <= U64_MAX else "",
-        rounded=rounded, r_type="uint64_t", ranges=_fixed_ranges(sig, False, scale, (ff, 0), (0, min(above - 1, U64_MAX)), lit), note=note,
+        scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=any_of(outside),
+        rounded=rounded, r_type="uint64_t", ranges=_fixed_ranges(sig, False, scale, (ff, 0), reach, lit), note=note,
     )
+
+
+def _first_check(sig: ir.Signal, scale: int, bounds: tuple[int, int], trange: tuple[int, int], lit) -> tuple[list[str], tuple[int, int]]:  # type: ignore[no-untyped-def]
+    """The check before the rounding, and the values that pass it: the open interval `bounds`,
+    where the rounding stays within one step of the raw type, narrowed to the accepted range
+    where the signal has no special values (with them, a value outside it may still encode one;
+    without them, refusing it here leaves nothing to compare after the rounding)."""
+    lo, hi = max(bounds[0] + 1, trange[0]), min(bounds[1] - 1, trange[1])
+    low = f"value <= {lit(bounds[0])}" if bounds[0] >= trange[0] else ""
+    high = f"value >= {lit(bounds[1])}" if bounds[1] <= trange[1] else ""
+    if not sig.specials:
+        fmin, fmax = int(sig.check_min * scale), int(sig.check_max * scale)
+        if fmin > lo:
+            lo, low = fmin, f"value < {lit(fmin)}"
+        if fmax < hi:
+            hi, high = fmax, f"value > {lit(fmax)}"
+    return _either_side("value", lo, hi, low, high), (lo, hi)
 
 
 def _divided(names: CNames, num: str, d: int, amax: int, width: str) -> tuple[str, str]:
