@@ -82,6 +82,23 @@ def test_vector_runner_all_cases(build, vectors, spec):
     assert f", {len(vectors['multiframe'])} multi-frame texts" in out
 
 
+def test_strategy_outside_its_levels_is_a_compile_error(tmp_path):
+    src = tmp_path / "main.c"
+    src.write_text('#include "kaiwo_gateway.h"\nint main(void) { return 0; }\n')
+    proc = cbuild.run(["gcc", "-std=c99", "-DKAIWO_GATEWAY_STRATEGY=4", f"-I{cbuild.HEADERS}", "-fsyntax-only", str(src)])
+    assert proc.returncode != 0 and "KAIWO_GATEWAY_STRATEGY must be 0, 1, 2 or 3" in proc.stderr, proc.stderr
+
+
+def test_a_64_bit_form_is_written_only_where_it_differs():
+    """A pack or unpack whose strategy-3 form is its byte form has no #if: each #if holds two
+    different bodies."""
+    import re
+
+    text = (cbuild.HEADERS / "kaiwo_gateway_messages.h").read_text(encoding="utf-8")
+    blocks = re.findall(r"#if KAIWO_GATEWAY_STRATEGY >= 3[^\n]*\n(.*?)#else\n(.*?)#endif", text, re.DOTALL)
+    assert blocks and all(word != byte for word, byte in blocks)
+
+
 def test_vector_runner_byte_wise_path(build, vectors, spec):
     """The strategy of cores without unaligned word stores or a long multiply (Cortex-M0+:
     fieldless frames zeroed byte by byte, 64-bit products from 16-bit halves) agrees with the
