@@ -11,7 +11,7 @@ from pathlib import Path
 def run(cmd: list[str] | str, cwd: Path | None = None, env: dict[str, str] | None = None, timeout: int = 600,
         stdin: str | None = None) -> subprocess.CompletedProcess[str]:
     """`cmd` (a string: through the shell, as a CI runs a script line)."""
-    return subprocess.run(cmd, cwd=cwd, env=env, shell=isinstance(cmd, str), input=stdin, capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(cmd, check=False, cwd=cwd, env=env, shell=isinstance(cmd, str), input=stdin, capture_output=True, text=True, timeout=timeout)
 
 
 def ok(result: subprocess.CompletedProcess[str]) -> subprocess.CompletedProcess[str]:

@@ -62,11 +62,11 @@ def test_hooks_guard_the_commit(tmp_path):
 
     regenerate()
     status, out = commit("spec and its generated C")
-    assert status == 0 and re.search(r"^canspec check .*Passed$", out, re.M) and re.search(r"^canspec gen --check .*Passed$", out, re.M), out
+    assert status == 0 and re.search(r"^canspec check .*Passed$", out, re.MULTILINE) and re.search(r"^canspec gen --check .*Passed$", out, re.MULTILINE), out
 
     firmware_repo.change_spec(repo)
     status, out = commit("spec changed, headers not regenerated")
-    assert status == 1 and "stale: generated/c/kaiwo_gateway_messages.h" in out and re.search(r"^canspec check .*Passed$", out, re.M), out
+    assert status == 1 and "stale: generated/c/kaiwo_gateway_messages.h" in out and re.search(r"^canspec check .*Passed$", out, re.MULTILINE), out
     regenerate()
     assert commit("regenerated")[0] == 0
 
@@ -77,5 +77,5 @@ def test_hooks_guard_the_commit(tmp_path):
 
     firmware_repo.break_spec(repo)
     status, out = commit("a broken spec")
-    assert status == 1 and re.search(r"^canspec check .*Failed$", out, re.M) and re.search(r"spec/can/gateway\.yaml:\d+:\d+: error: .*cycle_ms", out), out
+    assert status == 1 and re.search(r"^canspec check .*Failed$", out, re.MULTILINE) and re.search(r"spec/can/gateway\.yaml:\d+:\d+: error: .*cycle_ms", out), out
     assert ok(_git(repo, "log", "--format=%s", env=env)).stdout.split("\n")[:2] == ["regenerated", "spec and its generated C"]
