@@ -35,6 +35,16 @@ FAULT_TIMEOUT_ENTRY = "message_timeout"
 FAULT_XOR_ERROR_SUFFIX = "_xor_error"
 
 
+def to_physical(raw: int | Fraction, factor: Fraction, offset: Fraction) -> Fraction:
+    """physical = raw × factor + offset, exactly: the one conversion every consumer uses (a raw
+    value of half a step, as for a tie, gives the physical value between two raw values)."""
+    return raw * factor + offset
+
+
+def runtime_quotient(physical: float, factor: float, offset: float) -> float:
+    """q = (physical - offset) / factor in IEEE doubles, in this order: the runtime rule's first step."""
+    return (physical - offset) / factor
+
 
 @dataclass(frozen=True)
 class ValueEntry:
@@ -127,6 +137,10 @@ class Signal:
     decimals: int  # decimal places that print every physical value exactly (0: integer physical values)
     is_integer: bool  # factor and offset are integers: physical values are integers
     is_identity: bool  # factor 1, offset 0
+    # The runtime rule over the accepted range (the C and Python encoders decide their checks on them):
+    accept_raw_lo: int  # the raw values it gives at the range's two ends, lower first (it is monotonic in the value)
+    accept_raw_hi: int
+    max_quotient: Fraction  # the largest |q| = |(value - offset) / factor| in the range, exactly
     since: str | None
     errata: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
@@ -160,8 +174,27 @@ class Signal:
         """Whether a physical encode may produce this raw value."""
         return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)
 
-    def physical(self, raw: int) -> Fraction:
-        return raw * self.factor + self.offset
+    def physical(self, raw: int | Fraction) -> Fraction:
+        return to_physical(raw, self.factor, self.offset)
+
+    def quotient(self, physical: Fraction) -> Fraction:
+        """(physical - offset) / factor, exactly: the raw value (a fraction between two) of a physical one."""
+        return (physical - self.offset) / self.factor
+
+    def runtime_quotient(self, physical: float) -> float:
+        """q as the generated code computes it, in doubles."""
+        return runtime_quotient(physical, float(self.factor), float(self.offset))
+
+    @property
+    def reciprocal(self) -> float:
+        """1 / factor in doubles: what a runtime may multiply by in place of dividing by the factor."""
+        return 1.0 / float(self.factor)
+
+    def runtime_physical(self, raw: int) -> float:
+        """The generated decode in doubles: raw × factor, then + offset (two roundings, never fused;
+        an identity factor or a zero offset is left out, as the generated code leaves it out)."""
+        x = float(raw) * float(self.factor) if self.factor != 1 else float(raw)
+        return x + float(self.offset) if self.offset else x
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ from typing import Any
 
 from canspec.ir import j1939
 from canspec.ir.encoding import raw_range, raw_type_range
+from canspec.ir.ids import max_id
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict, LocList
@@ -102,9 +103,8 @@ def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
     extended, j1939_bus = bus["id_format"] == "extended", bus["addressing"] == "j1939"
     for msg in can.messages:
         is_extended = msg.get("extended", extended)
-        limit = 0x1FFFFFFF if is_extended else 0x7FF
-        if not 0 <= msg["id"] <= limit:
-            yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if limit > 0x7FF else 11} bits", msg.loc_of("id"), None, "id-range")
+        if not 0 <= msg["id"] <= max_id(is_extended):
+            yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if is_extended else 11} bits", msg.loc_of("id"), None, "id-range")
             continue
         if j1939_bus and not is_extended:
             where = msg.loc_of("extended") if "extended" in msg else bus.loc_of("id_format")
