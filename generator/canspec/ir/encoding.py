@@ -103,6 +103,15 @@ def decimals(value: Fraction) -> int:
     return places
 
 
+def decimal_scaling(factor: Fraction, offset: Fraction, bounds: tuple[Fraction, Fraction], half_steps: bool) -> tuple[int, int, int]:
+    """An integer-only encode's units: (10^k, factor × 10^k, offset × 10^k) for the smallest 10^k
+    that makes every physical value, both range bounds and (`half_steps`, a scaled signal's ties)
+    every half step an integer."""
+    parts = [factor, offset, *bounds] + ([factor / 2] if half_steps else [])
+    scale = 10 ** max(decimals(v) for v in parts)
+    return scale, int(factor * scale), int(offset * scale)
+
+
 def decimal_text(value: Fraction | int) -> str:
     """Shortest exact decimal text of a value with a finite decimal expansion (0.02, -1080, 1e-3 → 0.001)."""
     value = Fraction(value)

@@ -12,6 +12,7 @@ from typing import Any
 from canspec.ir import j1939
 from canspec.ir.encoding import raw_range, raw_type_range
 from canspec.ir.ids import max_id
+from canspec.ir.model import to_physical
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict, LocList
@@ -179,7 +180,7 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                 continue
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
-            ends = sorted([tmin * factor + offset, tmax * factor + offset])
+            ends = sorted([to_physical(tmin, factor, offset), to_physical(tmax, factor, offset)])
             if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, sig["len"], sig["signed"]):
                 yield error(
                     f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
@@ -202,7 +203,7 @@ def physical_doubles(can: ResolvedCan) -> Iterator[Problem]:
             documented = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None and all(_finite(v) for v in rng) else None
             raw_min, raw_max = raw_range(sig["len"], sig["signed"], factor, offset, documented)
             for raw, where in ((raw_min, "factor"), (raw_max, "factor"), *((r, "special") for r in sig.get("special", {}))):
-                physical = raw * factor + offset
+                physical = to_physical(raw, factor, offset)
                 if raw_min <= raw_max and not _finite(physical):
                     about = format(Decimal(physical.numerator) / Decimal(physical.denominator), ".4g")
                     yield error(f"signal {sig['name']!r}: raw {raw} is the physical value {about}, beyond the range of a double",

@@ -31,7 +31,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimals, round_half_away
+from canspec.ir.encoding import decimal_scaling, round_half_away
 from canspec.render.literals import c_int, c_uint, float_lit
 from canspec.targets.c import divide
 from canspec.targets.c.names import CNames
@@ -195,16 +195,17 @@ def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local:
                    ranges=CRanges("", ranges.outside))
 
 
+def fixed_scaling(sig: ir.Signal) -> tuple[int, int, int]:
+    """(10^k, factor × 10^k, offset × 10^k) of the integer path (ir/encoding.decimal_scaling)."""
+    return decimal_scaling(sig.factor, sig.offset, (sig.check_min, sig.check_max), half_steps=not sig.is_identity)
+
+
 def fixed_scale(sig: ir.Signal) -> int:
-    """10^k: physical × 10^k is an integer for every raw value, both range bounds and (for
-    scaled signals) every half step."""
-    parts = [sig.factor, sig.offset, sig.check_min, sig.check_max] + ([] if sig.is_identity else [sig.factor / 2])
-    return 10 ** max(decimals(v) for v in parts)
+    return fixed_scaling(sig)[0]
 
 
 def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
-    scale = fixed_scale(sig)
-    ff, fo = int(sig.factor * scale), int(sig.offset * scale)
+    scale, ff, fo = fixed_scaling(sig)
     tmin, tmax = sig.raw_type_min, sig.raw_type_max
     core = [tmin, tmax, tmin * ff, tmax * ff, tmin * ff + fo, tmax * ff + fo, scale]
     # the open interval of inputs whose rounding stays within one step of the raw type
