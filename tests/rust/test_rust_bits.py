@@ -20,7 +20,7 @@ TEMPLATE = ir.Signal(
     name="x", c_name="x", zh="", desc="", desc_zh="", start=0, length=1, signed=False, factor=1, offset=0, unit="", role="data", doc_min=None, doc_max=None,  # type: ignore[arg-type]
     raw_type_min=0, raw_type_max=1, raw_min=0, raw_max=1, phys_min=0, phys_max=1, check_min=0, check_max=1, accept_min=0, accept_max=1,  # type: ignore[arg-type]
     storage_bits=8, value_table=None, specials=(), segments=(), word_mask=1, sign_bit=0, labels=(), decimals=0, is_integer=True,
-    is_identity=True, accept_raw_lo=0, accept_raw_hi=1, max_quotient=1, since=None, errata=(),  # type: ignore[arg-type]
+    is_identity=True, since=None, errata=(),
 )
 
 

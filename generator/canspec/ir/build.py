@@ -11,7 +11,7 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits
-from canspec.ir.encoding import decimal_text, decimals, raw_range, raw_type_range, to_raw_runtime
+from canspec.ir.encoding import decimal_text, decimals, raw_range, raw_type_range
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
@@ -19,7 +19,7 @@ from canspec.spec.loader import LoadedSpec
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict
 
-MAX_DECIMALS = 15  # Signal.decimals prints doubles: places beyond 15 would print their representation error
+MAX_DECIMALS = 15  # log texts print physical doubles with Signal.decimals places: a double holds no more significant digits
 
 
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
@@ -47,8 +47,6 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     check_max = doc_max if doc_max is not None else phys_max
     is_integer = factor.denominator == 1 and offset.denominator == 1
     tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
-    accept_min, accept_max = check_min - tolerance, check_max + tolerance
-    accept_raw = sorted(to_raw_runtime(float(v), float(factor), float(offset)) for v in (accept_min, accept_max))
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))
         for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
@@ -77,8 +75,8 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         phys_max=phys_max,
         check_min=check_min,
         check_max=check_max,
-        accept_min=accept_min,
-        accept_max=accept_max,
+        accept_min=check_min - tolerance,
+        accept_max=check_max + tolerance,
         storage_bits=storage_bits(length),
         value_table=table,
         specials=specials,
@@ -89,9 +87,6 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         decimals=0 if is_integer else min(MAX_DECIMALS, max(decimals(factor), decimals(offset))),
         is_integer=is_integer,
         is_identity=factor == 1 and offset == 0,
-        accept_raw_lo=accept_raw[0],
-        accept_raw_hi=accept_raw[1],
-        max_quotient=max(abs(v - offset) for v in (accept_min, accept_max)) / abs(factor),
         since=str(sig["since"]) if sig.get("since") else None,
         errata=tuple(sig.get("errata", ())),
         loc=sig.loc,

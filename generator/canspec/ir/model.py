@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 
 from canspec.spec.problems import Loc
 
@@ -137,10 +138,6 @@ class Signal:
     decimals: int  # decimal places that print every physical value exactly (0: integer physical values)
     is_integer: bool  # factor and offset are integers: physical values are integers
     is_identity: bool  # factor 1, offset 0
-    # The runtime rule over the accepted range (the C and Python encoders decide their checks on them):
-    accept_raw_lo: int  # the raw values it gives at the range's two ends, lower first (it is monotonic in the value)
-    accept_raw_hi: int
-    max_quotient: Fraction  # the largest |q| = |(value - offset) / factor| in the range, exactly
     since: str | None
     errata: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
@@ -169,6 +166,22 @@ class Signal:
         """The raw value a field holds when nothing sets it (the other fields of a split text, of
         a vector, of a simulated message): 0 where the range allows it, else the nearest allowed."""
         return min(max(0, self.raw_min), self.raw_max)
+
+    # The runtime rule over the accepted range: the C and Python encoders decide their checks on
+    # these. Properties, not fields, so that a signal derived by dataclasses.replace stays consistent.
+    @cached_property
+    def accept_raw(self) -> tuple[int, int]:
+        """The raw values the runtime rule gives at the accepted range's two ends, lower first
+        (the rule is monotonic in the value): every value in the range rounds between them."""
+        from canspec.ir.encoding import to_raw_runtime  # here: encoding imports this module
+
+        lo, hi = sorted(to_raw_runtime(float(v), float(self.factor), float(self.offset)) for v in (self.accept_min, self.accept_max))
+        return lo, hi
+
+    @cached_property
+    def max_quotient(self) -> Fraction:
+        """The largest |q| = |(value - offset) / factor| in the accepted range, exactly."""
+        return max(abs(self.quotient(v)) for v in (self.accept_min, self.accept_max))
 
     def raw_allowed(self, raw: int) -> bool:
         """Whether a physical encode may produce this raw value."""

@@ -185,7 +185,7 @@ def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local:
     specials = any_of([f"r == {c_int(sp.raw)}" for sp in sig.specials])
     special = f"{names.fn('phys_round')}(value, &{name}, &r) && ({specials})" if specials else ""
     # the accepted range first, in the call: r then lies between the roundings of its ends
-    ranges = _ranges(sig, True, [], (sig.accept_raw_lo, sig.accept_raw_hi) if d.exact else _r_type_range(True))
+    ranges = _ranges(sig, True, [], sig.accept_raw if d.exact else _r_type_range(True))
     test, tail = "", ""
     if ranges.outside:
         test = f"!{names.fn('phys_encode')}(value, &{name}, &r)"

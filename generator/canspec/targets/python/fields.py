@@ -124,7 +124,8 @@ def raw_check(sig: ir.Signal, direct: bool) -> bool:
     Rounding is monotonic, so the two ends of the range decide."""
     if direct:
         return True
-    return not sig.raw_min <= sig.accept_raw_lo <= sig.accept_raw_hi <= sig.raw_max
+    lo, hi = sig.accept_raw
+    return not sig.raw_min <= lo <= hi <= sig.raw_max
 
 
 def exact_branch(sig: ir.Signal) -> bool:
