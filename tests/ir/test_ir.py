@@ -8,9 +8,9 @@ import shutil
 from fractions import Fraction
 
 from canspec.ir import j1939
+from canspec.ir.bits import segments
 from canspec.ir.encoding import to_raw_runtime
 from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID, id_text, max_id
-from canspec.ir.bits import segments
 from canspec.pipeline import compile_spec
 from repo_paths import SPEC
 
