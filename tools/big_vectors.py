@@ -52,7 +52,7 @@ class ReferenceEncoder:
         return codec.pack(msg, raw)
 
     def physical(self, sig: ir.Signal, raw: int) -> int | float:
-        value = codec.to_physical(sig, raw)
+        value = sig.physical(raw)
         return value.numerator if value.denominator == 1 else float(value)
 
 

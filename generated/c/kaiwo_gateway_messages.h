@@ -242,7 +242,7 @@ kaiwo_gateway_autocar_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint
 
 /** max_angular_speed: raw → physical [deg/s]. */
 static inline double kaiwo_gateway_autocar_eps_command_max_angular_speed_decode(uint8_t raw) {
-    return (double)raw * 2.0;
+    return (double)raw * KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
 }
 
 /** The double encode of max_angular_speed and of the signals with the same scaling and range. */
@@ -298,8 +298,8 @@ kaiwo_gateway_autocar_eps_command_max_angular_speed_encode_fixed(int32_t value, 
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 1080.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET;
 }
 
 /** The double encode of steering_angle_cmd and of the signals with the same scaling and range. */
@@ -493,8 +493,8 @@ kaiwo_gateway_eps_state_eps_ctrl_state_encode_fixed(int32_t value, uint8_t *raw)
 
 /** steering_torque: raw → physical [Nm]. */
 static inline double kaiwo_gateway_eps_state_steering_torque_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 12.8;
+    const double scaled = (double)raw * KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_FACTOR;
+    return scaled + KAIWO_GATEWAY_EPS_STATE_STEERING_TORQUE_OFFSET;
 }
 
 /** steering_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
@@ -527,8 +527,8 @@ kaiwo_gateway_eps_state_steering_torque_encode_fixed(int32_t value, uint8_t *raw
 
 /** eps_output_torque: raw → physical [Nm]. */
 static inline double kaiwo_gateway_eps_state_eps_output_torque_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.3;
-    return scaled - 38.4;
+    const double scaled = (double)raw * KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_FACTOR;
+    return scaled + KAIWO_GATEWAY_EPS_STATE_EPS_OUTPUT_TORQUE_OFFSET;
 }
 
 /** eps_output_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.3,
@@ -562,8 +562,8 @@ kaiwo_gateway_eps_state_eps_output_torque_encode_fixed(int32_t value, uint8_t *r
 
 /** steering_angle: raw → physical [deg]. */
 static inline double kaiwo_gateway_eps_state_steering_angle_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 1080.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_FACTOR;
+    return scaled + KAIWO_GATEWAY_EPS_STATE_STEERING_ANGLE_OFFSET;
 }
 
 /** steering_angle: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
@@ -595,7 +595,7 @@ kaiwo_gateway_eps_state_steering_angle_encode_fixed(int32_t value, uint16_t *raw
 
 /** controller_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_eps_state_controller_temp_decode(uint8_t raw) {
-    return (double)raw * 2.0;
+    return (double)raw * KAIWO_GATEWAY_EPS_STATE_CONTROLLER_TEMP_FACTOR;
 }
 
 /** controller_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
@@ -817,8 +817,8 @@ static inline uint8_t kaiwo_gateway_autocar_speed_command_counter_next(uint8_t c
 
 /** accel_cmd: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_autocar_speed_command_accel_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.02;
-    return scaled - 9.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_ACCEL_CMD_OFFSET;
 }
 
 /** The double encode of accel_cmd and of the signals with the same scaling and range. */
@@ -1247,7 +1247,7 @@ kaiwo_gateway_driving_state_uss_brake_state_encode_fixed(int32_t value, uint8_t 
 
 /** motor_speed: raw → physical [rpm]. */
 static inline double kaiwo_gateway_driving_state_motor_speed_decode(uint16_t raw) {
-    return (double)raw - 15000.0;
+    return (double)raw + KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_OFFSET;
 }
 
 /** motor_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -1280,7 +1280,7 @@ kaiwo_gateway_driving_state_motor_speed_encode_fixed(int32_t value, uint16_t *ra
 
 /** motor_torque: raw → physical [Nm]. */
 static inline double kaiwo_gateway_driving_state_motor_torque_decode(uint16_t raw) {
-    return (double)raw - 5000.0;
+    return (double)raw + KAIWO_GATEWAY_DRIVING_STATE_MOTOR_TORQUE_OFFSET;
 }
 
 /** motor_torque: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -1314,7 +1314,7 @@ kaiwo_gateway_driving_state_motor_torque_encode_fixed(int32_t value, uint16_t *r
 
 /** motor_speed_ratio: raw → physical [rpm/(km/h)]. */
 static inline double kaiwo_gateway_driving_state_motor_speed_ratio_decode(uint8_t raw) {
-    return (double)raw + 1.0;
+    return (double)raw + KAIWO_GATEWAY_DRIVING_STATE_MOTOR_SPEED_RATIO_OFFSET;
 }
 
 /** motor_speed_ratio: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -1359,8 +1359,8 @@ kaiwo_gateway_driving_state_motor_speed_ratio_encode_fixed(int32_t value, uint8_
 
 /** current_accel: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_driving_state_current_accel_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.05;
-    return scaled - 9.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_FACTOR;
+    return scaled + KAIWO_GATEWAY_DRIVING_STATE_CURRENT_ACCEL_OFFSET;
 }
 
 /** current_accel: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.05,
@@ -2328,8 +2328,8 @@ kaiwo_gateway_autocar_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_1_ac_set_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled + 16.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_AC_SET_TEMP_OFFSET;
 }
 
 /** The double encode of ac_set_temp and of the signals with the same scaling and range. */
@@ -3190,7 +3190,7 @@ kaiwo_gateway_vehicle_state_1_door_button_state_encode_fixed(int32_t value, uint
 
 /** vehicle_speed: raw → physical [km/h]. */
 static inline double kaiwo_gateway_vehicle_state_1_vehicle_speed_decode(uint8_t raw) {
-    return (double)raw - 50.0;
+    return (double)raw + KAIWO_GATEWAY_VEHICLE_STATE_1_VEHICLE_SPEED_OFFSET;
 }
 
 /** vehicle_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -3224,7 +3224,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_speed_encode_fixed(int32_t value, uint8_t 
 
 /** soc: raw → physical [%]. */
 static inline double kaiwo_gateway_vehicle_state_1_soc_decode(uint8_t raw) {
-    return (double)raw * 0.5;
+    return (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_1_SOC_FACTOR;
 }
 
 /** The double encode of soc and of the signals with the same scaling and range. */
@@ -3381,7 +3381,7 @@ kaiwo_gateway_vehicle_state_1_vehicle_fault_level_encode_fixed(int32_t value, ui
 
 /** odometer: raw → physical [km]. */
 static inline double kaiwo_gateway_vehicle_state_1_odometer_decode(uint16_t raw) {
-    return (double)raw * 2.0;
+    return (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_1_ODOMETER_FACTOR;
 }
 
 /** odometer: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
@@ -3758,7 +3758,7 @@ kaiwo_gateway_autocar_ctrl_cmd_2_pto_enable_encode_fixed(int32_t value, uint8_t 
 
 /** downhill_regen_speed: raw → physical [km/h]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_speed_decode(uint8_t raw) {
-    return (double)raw * 0.5;
+    return (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
 }
 
 /** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -3800,8 +3800,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_downhill_regen_speed_encode_fixed(int32_t value
 
 /** chassis_pitch: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.05;
-    return scaled - 25.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_PITCH_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_PITCH_OFFSET;
 }
 
 /** chassis_pitch: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.05,
@@ -3835,8 +3835,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_chassis_pitch_encode_fixed(int32_t value, uint1
 
 /** chassis_roll: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 40.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_ROLL_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CHASSIS_ROLL_OFFSET;
 }
 
 /** The double encode of chassis_roll and of the signals with the same scaling and range. */
@@ -3872,8 +3872,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_chassis_roll_encode_fixed(int32_t value, uint16
 
 /** cargo_pitch: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.2;
-    return scaled - 30.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_PITCH_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_PITCH_OFFSET;
 }
 
 /** cargo_pitch: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
@@ -3907,8 +3907,8 @@ kaiwo_gateway_autocar_ctrl_cmd_2_cargo_pitch_encode_fixed(int32_t value, uint16_
 
 /** cargo_roll: raw → physical [deg]. */
 static inline double kaiwo_gateway_autocar_ctrl_cmd_2_cargo_roll_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 40.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_ROLL_FACTOR;
+    return scaled + KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_2_CARGO_ROLL_OFFSET;
 }
 
 /** cargo_roll: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
@@ -4072,7 +4072,7 @@ static inline kaiwo_gateway_vehicle_state_2_t kaiwo_gateway_vehicle_state_2_init
 
 /** battery_voltage: raw → physical [V]. */
 static inline double kaiwo_gateway_vehicle_state_2_battery_voltage_decode(uint16_t raw) {
-    return (double)raw * 0.2;
+    return (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_VOLTAGE_FACTOR;
 }
 
 /** battery_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
@@ -4106,8 +4106,8 @@ kaiwo_gateway_vehicle_state_2_battery_voltage_encode_fixed(int32_t value, uint16
 
 /** battery_current: raw → physical [A]. */
 static inline double kaiwo_gateway_vehicle_state_2_battery_current_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.02;
-    return scaled - 500.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_FACTOR;
+    return scaled + KAIWO_GATEWAY_VEHICLE_STATE_2_BATTERY_CURRENT_OFFSET;
 }
 
 /** battery_current: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
@@ -4371,7 +4371,7 @@ static inline kaiwo_gateway_vehicle_state_3_t kaiwo_gateway_vehicle_state_3_init
 
 /** battery_max_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_3_battery_max_temp_decode(uint8_t raw) {
-    return (double)raw - 40.0;
+    return (double)raw + KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MAX_TEMP_OFFSET;
 }
 
 /** The double encode of battery_max_temp and of the signals with the same scaling and range. */
@@ -4407,7 +4407,7 @@ kaiwo_gateway_vehicle_state_3_battery_max_temp_encode_fixed(int32_t value, uint8
 
 /** battery_min_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_3_battery_min_temp_decode(uint8_t raw) {
-    return (double)raw - 40.0;
+    return (double)raw + KAIWO_GATEWAY_VEHICLE_STATE_3_BATTERY_MIN_TEMP_OFFSET;
 }
 
 /** battery_min_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -4439,7 +4439,7 @@ kaiwo_gateway_vehicle_state_3_battery_min_temp_encode_fixed(int32_t value, uint8
 
 /** max_cell_voltage: raw → physical [V]. */
 static inline double kaiwo_gateway_vehicle_state_3_max_cell_voltage_decode(uint16_t raw) {
-    return (double)raw * 0.0015;
+    return (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_3_MAX_CELL_VOLTAGE_FACTOR;
 }
 
 /** The double encode of max_cell_voltage and of the signals with the same scaling and range. */
@@ -4475,7 +4475,7 @@ kaiwo_gateway_vehicle_state_3_max_cell_voltage_encode_fixed(int32_t value, uint1
 
 /** min_cell_voltage: raw → physical [V]. */
 static inline double kaiwo_gateway_vehicle_state_3_min_cell_voltage_decode(uint16_t raw) {
-    return (double)raw * 0.0015;
+    return (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_3_MIN_CELL_VOLTAGE_FACTOR;
 }
 
 /** min_cell_voltage: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.0015,
@@ -4507,7 +4507,7 @@ kaiwo_gateway_vehicle_state_3_min_cell_voltage_encode_fixed(int32_t value, uint1
 
 /** motor_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_3_motor_temp_decode(uint8_t raw) {
-    return (double)raw - 40.0;
+    return (double)raw + KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_TEMP_OFFSET;
 }
 
 /** motor_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -4539,7 +4539,7 @@ kaiwo_gateway_vehicle_state_3_motor_temp_encode_fixed(int32_t value, uint8_t *ra
 
 /** motor_controller_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_3_motor_controller_temp_decode(uint8_t raw) {
-    return (double)raw - 40.0;
+    return (double)raw + KAIWO_GATEWAY_VEHICLE_STATE_3_MOTOR_CONTROLLER_TEMP_OFFSET;
 }
 
 /** motor_controller_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 1.0,
@@ -4810,8 +4810,8 @@ static inline kaiwo_gateway_vehicle_state_4_t kaiwo_gateway_vehicle_state_4_init
 
 /** outside_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_outside_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled - 30.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_VEHICLE_STATE_4_OUTSIDE_TEMP_OFFSET;
 }
 
 /** The double encode of outside_temp and of the signals with the same scaling and range. */
@@ -4847,8 +4847,8 @@ kaiwo_gateway_vehicle_state_4_outside_temp_encode_fixed(int32_t value, uint8_t *
 
 /** inside_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_inside_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled - 30.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_VEHICLE_STATE_4_INSIDE_TEMP_OFFSET;
 }
 
 /** inside_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -5099,8 +5099,8 @@ kaiwo_gateway_vehicle_state_4_remote_driving_allowed_encode_fixed(int32_t value,
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_vehicle_state_4_ac_set_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled + 16.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_VEHICLE_STATE_4_AC_SET_TEMP_OFFSET;
 }
 
 /** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -5163,8 +5163,8 @@ kaiwo_gateway_vehicle_state_4_pto_state_encode_fixed(int32_t value, uint8_t *raw
 
 /** battery_power: raw → physical [kW]. */
 static inline double kaiwo_gateway_vehicle_state_4_battery_power_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.01;
-    return scaled - 325.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_FACTOR;
+    return scaled + KAIWO_GATEWAY_VEHICLE_STATE_4_BATTERY_POWER_OFFSET;
 }
 
 /** battery_power: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.01,
@@ -6679,7 +6679,7 @@ kaiwo_gateway_rgate_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_
 
 /** max_angular_speed: raw → physical [deg/s]. */
 static inline double kaiwo_gateway_rgate_eps_command_max_angular_speed_decode(uint8_t raw) {
-    return (double)raw * 2.0;
+    return (double)raw * KAIWO_GATEWAY_RGATE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
 }
 
 /** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
@@ -6730,8 +6730,8 @@ kaiwo_gateway_rgate_eps_command_max_angular_speed_encode_fixed(int32_t value, ui
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_rgate_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 1080.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_RGATE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET;
 }
 
 /** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
@@ -6919,8 +6919,8 @@ static inline uint8_t kaiwo_gateway_rgate_speed_command_counter_next(uint8_t cou
 
 /** accel_cmd: raw → physical [m/s²]. */
 static inline double kaiwo_gateway_rgate_speed_command_accel_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.02;
-    return scaled - 9.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_RGATE_SPEED_COMMAND_ACCEL_CMD_OFFSET;
 }
 
 /** accel_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.02,
@@ -7974,8 +7974,8 @@ kaiwo_gateway_rgate_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) 
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_rgate_ctrl_cmd_1_ac_set_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled + 16.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_RGATE_CTRL_CMD_1_AC_SET_TEMP_OFFSET;
 }
 
 /** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -8355,7 +8355,7 @@ kaiwo_gateway_rgate_ctrl_cmd_2_pto_enable_encode_fixed(int32_t value, uint8_t *r
 
 /** downhill_regen_speed: raw → physical [km/h]. */
 static inline double kaiwo_gateway_rgate_ctrl_cmd_2_downhill_regen_speed_decode(uint8_t raw) {
-    return (double)raw * 0.5;
+    return (double)raw * KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
 }
 
 /** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -11123,7 +11123,7 @@ kaiwo_gateway_tele_eps_command_eps_ctrl_mode_encode_fixed(int32_t value, uint8_t
 
 /** max_angular_speed: raw → physical [deg/s]. */
 static inline double kaiwo_gateway_tele_eps_command_max_angular_speed_decode(uint8_t raw) {
-    return (double)raw * 2.0;
+    return (double)raw * KAIWO_GATEWAY_TELE_EPS_COMMAND_MAX_ANGULAR_SPEED_FACTOR;
 }
 
 /** max_angular_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 2.0,
@@ -11174,8 +11174,8 @@ kaiwo_gateway_tele_eps_command_max_angular_speed_encode_fixed(int32_t value, uin
 
 /** steering_angle_cmd: raw → physical [deg]. */
 static inline double kaiwo_gateway_tele_eps_command_steering_angle_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.1;
-    return scaled - 1080.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_TELE_EPS_COMMAND_STEERING_ANGLE_CMD_OFFSET;
 }
 
 /** steering_angle_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.1,
@@ -11362,8 +11362,8 @@ static inline uint8_t kaiwo_gateway_tele_speed_command_counter_next(uint8_t coun
 
 /** throttle_brake_cmd: raw → physical [%]. */
 static inline double kaiwo_gateway_tele_speed_command_throttle_brake_cmd_decode(uint16_t raw) {
-    const double scaled = (double)raw * 0.2;
-    return scaled - 100.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_FACTOR;
+    return scaled + KAIWO_GATEWAY_TELE_SPEED_COMMAND_THROTTLE_BRAKE_CMD_OFFSET;
 }
 
 /** throttle_brake_cmd: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.2,
@@ -12421,8 +12421,8 @@ kaiwo_gateway_tele_ctrl_cmd_1_ac_cmd_encode_fixed(int32_t value, uint8_t *raw) {
 
 /** ac_set_temp: raw → physical [°C]. */
 static inline double kaiwo_gateway_tele_ctrl_cmd_1_ac_set_temp_decode(uint8_t raw) {
-    const double scaled = (double)raw * 0.5;
-    return scaled + 16.0;
+    const double scaled = (double)raw * KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_SET_TEMP_FACTOR;
+    return scaled + KAIWO_GATEWAY_TELE_CTRL_CMD_1_AC_SET_TEMP_OFFSET;
 }
 
 /** ac_set_temp: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,
@@ -12802,7 +12802,7 @@ kaiwo_gateway_tele_ctrl_cmd_2_pto_enable_encode_fixed(int32_t value, uint8_t *ra
 
 /** downhill_regen_speed: raw → physical [km/h]. */
 static inline double kaiwo_gateway_tele_ctrl_cmd_2_downhill_regen_speed_decode(uint8_t raw) {
-    return (double)raw * 0.5;
+    return (double)raw * KAIWO_GATEWAY_TELE_CTRL_CMD_2_DOWNHILL_REGEN_SPEED_FACTOR;
 }
 
 /** downhill_regen_speed: physical → raw, (value - offset) / factor rounded half away from zero (factor 0.5,

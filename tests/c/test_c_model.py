@@ -55,6 +55,16 @@ def test_signal_plans(spec):
     assert dist.needs_check and [sp.raw for sp in dist.specials] == [0x3FF]
 
 
+def test_double_decode_reads_the_macros_it_defines(spec):
+    """The decode multiplies by the signal's `_FACTOR` macro and adds its `_OFFSET` macro (whose
+    values are the document's 0.02 and -9: the accel_cmd row), never a second copy of them."""
+    speed = _by_name(cmodel.build_model(spec))["autocar_speed_command"]
+    accel = next(s for s in speed.signals if s.sig.name == "accel_cmd")
+    assert (accel.factor, accel.offset) == ("0.02", "-9.0")
+    assert accel.double.decode_pre == f"(double)raw * {accel.macro}_FACTOR"
+    assert accel.double.decode_expr == f"scaled + {accel.macro}_OFFSET"
+
+
 
 def test_double_encoders_share_descriptors_and_the_rounding(spec):
     """Every double encoder is a call into the runtime's shared steps with its descriptor; signals

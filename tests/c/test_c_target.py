@@ -193,7 +193,7 @@ def test_mock_firmware_project_generates_and_builds(tmp_path):
 def _signed(sig, lo: int, hi: int):
     import dataclasses
 
-    return dataclasses.replace(sig, signed=True, raw_type_min=lo, raw_type_max=hi, raw_min=lo, raw_max=hi,
+    return dataclasses.replace(sig, signed=True, sign_bit=1 << (sig.length - 1), raw_type_min=lo, raw_type_max=hi, raw_min=lo, raw_max=hi,
                                phys_min=lo, phys_max=hi, check_min=lo, check_max=hi, doc_min=None, doc_max=None,
                                value_table=None, specials=())
 

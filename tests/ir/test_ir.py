@@ -3,11 +3,14 @@ Expected values are read off the document's tables."""
 
 from __future__ import annotations
 
+import random
 import shutil
 from fractions import Fraction
 
 from canspec.ir import j1939
 from canspec.ir.bits import segments
+from canspec.ir.encoding import to_raw_runtime
+from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID, id_text, max_id
 from canspec.pipeline import compile_spec
 from repo_paths import SPEC
 
@@ -88,3 +91,25 @@ def test_names_per_language(can):
     off = can.message("vehicle_state_1").signal("door_state").value_table.by_raw(0)
     assert off.name == "off" and pascal(off.name) == "Off"  # `off` stays text, not YAML 1.1's False
     assert rust_ident("type") == "r#type" and py_ident("class") == "class_" and c_ident("default") == "default_"
+
+
+def test_accepted_range_facts_hold_for_every_value_in_it(can):
+    """Signal.accept_raw bounds the runtime rule's raw value of every double in the accepted range
+    (and is reached at its ends), and max_quotient bounds |q| there: sampled on every data signal,
+    the rule computed by ir/encoding.to_raw_runtime and q exactly, not by the properties."""
+    rng = random.Random(23)
+    for msg in can.messages:
+        for sig in msg.data_signals:
+            lo, hi = float(sig.accept_min), float(sig.accept_max)
+            xs = [lo, hi] + [rng.uniform(lo, hi) for _ in range(200)]
+            raws = [to_raw_runtime(x, float(sig.factor), float(sig.offset)) for x in xs]
+            assert min(raws) == sig.accept_raw[0] and max(raws) == sig.accept_raw[1], (msg.name, sig.name)
+            assert all(abs((Fraction(x) - sig.offset) / sig.factor) <= sig.max_quotient for x in xs if sig.accept_min <= Fraction(x) <= sig.accept_max)
+            assert sig.max_quotient in {abs((sig.accept_min - sig.offset) / sig.factor), abs((sig.accept_max - sig.offset) / sig.factor)}
+
+
+def test_id_limits_and_text():
+    assert (MAX_STANDARD_ID, MAX_EXTENDED_ID) == (2**11 - 1, 2**29 - 1)  # CAN 2.0A / 2.0B identifiers
+    assert (max_id(False), max_id(True)) == (0x7FF, 0x1FFFFFFF)
+    assert (id_text(0x123, False), id_text(0x1801B0A0, True), id_text(0x5, True)) == ("0x123", "0x1801B0A0", "0x00000005")
+    assert (j1939.ID_MASK, j1939.PRIORITY_MASK) == (0x1FFFFFFF, 0x1C000000)  # J1939-21: priority is bits 26..28

@@ -15,6 +15,8 @@ from fractions import Fraction
 from pathlib import Path
 
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
+from canspec.ir.encoding import raw_type_range
+from canspec.ir.model import to_physical
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
 
@@ -86,8 +88,7 @@ def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: 
         factor, offset, lo, hi = _frac(sig.scale), _frac(sig.offset), _frac(sig.minimum), _frac(sig.maximum)
         no_range = sig.minimum is None or sig.maximum is None
     if no_range:  # what the bits can carry
-        raw_lo, raw_hi = (-(1 << (sig.length - 1)), (1 << (sig.length - 1)) - 1) if sig.is_signed else (0, (1 << sig.length) - 1)
-        a, b = raw_lo * factor + offset, raw_hi * factor + offset
+        a, b = (to_physical(raw, factor, offset) for raw in raw_type_range(sig.length, bool(sig.is_signed)))
         lo, hi = min(a, b), max(a, b)
     return SignalModel(
         name=str(_attr(sig, SPEC_NAME_ATTRIBUTE) or sig.name), start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,

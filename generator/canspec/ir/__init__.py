@@ -38,6 +38,8 @@ from canspec.ir.model import (
     SpecialValue,
     ValueEntry,
     ValueTable,
+    runtime_quotient,
+    to_physical,
 )
 
 __all__ = [
@@ -74,4 +76,6 @@ __all__ = [
     "ChangeVersion",
     "Changelog",
     "Spec",
+    "to_physical",
+    "runtime_quotient",
 ]

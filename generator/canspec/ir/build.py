@@ -13,10 +13,13 @@ from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits
 from canspec.ir.encoding import decimal_text, decimals, raw_range, raw_type_range
 from canspec.ir.fingerprint import layout_fingerprint
+from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict
+
+MAX_DECIMALS = 15  # log texts print physical doubles with Signal.decimals places: a double holds no more significant digits
 
 
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
@@ -38,14 +41,14 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     rng = sig.get("range")
     doc_min, doc_max = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None else (None, None)
     raw_min, raw_max = raw_range(length, signed, factor, offset, (doc_min, doc_max) if rng is not None else None)
-    phys_a, phys_b = raw_min * factor + offset, raw_max * factor + offset
+    phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
     phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
     check_min = doc_min if doc_min is not None else phys_min
     check_max = doc_max if doc_max is not None else phys_max
     is_integer = factor.denominator == 1 and offset.denominator == 1
     tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
     specials = tuple(
-        ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset)
+        ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))
         for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
     )
     table = tables.get(sig["values"]) if sig.get("values") else None
@@ -81,7 +84,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         word_mask=((1 << length) - 1) << sig["start"],
         sign_bit=1 << (length - 1) if signed else 0,
         labels=_labels(table, specials),
-        decimals=0 if is_integer else max(decimals(factor), decimals(offset)),
+        decimals=0 if is_integer else min(MAX_DECIMALS, max(decimals(factor), decimals(offset))),
         is_integer=is_integer,
         is_identity=factor == 1 and offset == 0,
         since=str(sig["since"]) if sig.get("since") else None,
@@ -121,7 +124,7 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         section=str(msg.get("section", "")),
         frame_id=msg["id"],
         is_extended=extended,
-        id_text=f"0x{msg['id']:08X}" if extended else f"0x{msg['id']:03X}",
+        id_text=id_text(msg["id"], extended),
         dlc=dlc,
         cycle_ms=cycle,
         timeout_ms=cycle * ir.MONITOR_TIMEOUT_CYCLES if cycle else None,

@@ -26,7 +26,7 @@ import math
 from decimal import Decimal, localcontext
 from fractions import Fraction
 
-from canspec.ir.model import EXACT_LIMIT, TIE_EPSILON
+from canspec.ir.model import EXACT_LIMIT, TIE_EPSILON, runtime_quotient
 
 TIE_GUARANTEE = 2**21  # see above: below this the runtime rule equals the exact one on ties
 
@@ -52,7 +52,7 @@ def to_raw_exact(physical: float | str | Decimal | Fraction, factor: Fraction, o
 
 def to_raw_runtime(physical: float, factor: float, offset: float) -> int:
     """The generated code's rule, step for step (see model.TIE_EPSILON, model.EXACT_LIMIT)."""
-    q = (physical - offset) / factor
+    q = runtime_quotient(physical, factor, offset)
     a = abs(q)
     r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
     return -r if q < 0 else r
@@ -89,16 +89,27 @@ def raw_type_range(length: int, signed: bool) -> tuple[int, int]:
 
 
 def decimals(value: Fraction) -> int:
-    """Decimal places of a value with a finite decimal expansion (0.05 → 2; capped at 15)."""
-    places = 0
-    while value.denominator != 1 and places < 15:
-        value *= 10
-        places += 1
+    """Decimal places of a value with a finite decimal expansion: max(a, b) for its denominator
+    2^a 5^b (0.05 → 2, 2^-20 → 20)."""
+    den, places = value.denominator, 0
+    for p in (2, 5):
+        n = 0
+        while den % p == 0:
+            den //= p
+            n += 1
+        places = max(places, n)
+    if den != 1:
+        raise ValueError(f"{value} is not a decimal number")
     return places
 
 
-def to_physical(raw: int, factor: Fraction, offset: Fraction) -> Fraction:
-    return raw * factor + offset
+def decimal_scaling(factor: Fraction, offset: Fraction, bounds: tuple[Fraction, Fraction], half_steps: bool) -> tuple[int, int, int]:
+    """An integer-only encode's units: (10^k, factor × 10^k, offset × 10^k) for the smallest 10^k
+    that makes every physical value, both range bounds and (`half_steps`, a scaled signal's ties)
+    every half step an integer."""
+    parts = [factor, offset, *bounds] + ([factor / 2] if half_steps else [])
+    scale = 10 ** max(decimals(v) for v in parts)
+    return scale, int(factor * scale), int(offset * scale)
 
 
 def decimal_text(value: Fraction | int) -> str:

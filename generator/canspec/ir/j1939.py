@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 from canspec.ir import J1939Id
+from canspec.ir.ids import MAX_EXTENDED_ID
 
 PDU2_MIN_PF = 240  # PF >= 240: broadcast, PS is a group extension
 GLOBAL_ADDRESS = 0xFF  # the destination "every node" of a PDU1 group
+ID_MASK = MAX_EXTENDED_ID  # a J1939 identifier is a 29-bit one
+PRIORITY_SHIFT = 26
+PRIORITY_MASK = 0x7 << PRIORITY_SHIFT  # the 3 priority bits in the identifier
 
 
 def decompose(frame_id: int) -> J1939Id:
-    priority = (frame_id >> 26) & 0x7
+    priority = (frame_id & PRIORITY_MASK) >> PRIORITY_SHIFT
     edp = (frame_id >> 25) & 0x1
     dp = (frame_id >> 24) & 0x1
     pf = (frame_id >> 16) & 0xFF
@@ -25,4 +29,4 @@ def compose(priority: int, pgn: int, sa: int, da: int | None = None) -> int:
     pf = (pgn >> 8) & 0xFF
     if pf < PDU2_MIN_PF:
         pgn = (pgn & 0x3FF00) | ((da if da is not None else GLOBAL_ADDRESS) & 0xFF)
-    return ((priority & 0x7) << 26) | ((pgn & 0x3FFFF) << 8) | (sa & 0xFF)
+    return ((priority << PRIORITY_SHIFT) & PRIORITY_MASK) | ((pgn & 0x3FFFF) << 8) | (sa & 0xFF)

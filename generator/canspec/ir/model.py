@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 
 from canspec.spec.problems import Loc
 
@@ -34,6 +35,16 @@ MONITOR_VALID_AFTER = 2
 FAULT_TIMEOUT_ENTRY = "message_timeout"
 FAULT_XOR_ERROR_SUFFIX = "_xor_error"
 
+
+def to_physical(raw: int | Fraction, factor: Fraction, offset: Fraction) -> Fraction:
+    """physical = raw × factor + offset, exactly: the one conversion every consumer uses (a raw
+    value of half a step, as for a tie, gives the physical value between two raw values)."""
+    return raw * factor + offset
+
+
+def runtime_quotient(physical: float, factor: float, offset: float) -> float:
+    """q = (physical - offset) / factor in IEEE doubles, in this order: the runtime rule's first step."""
+    return (physical - offset) / factor
 
 
 @dataclass(frozen=True)
@@ -156,12 +167,47 @@ class Signal:
         a vector, of a simulated message): 0 where the range allows it, else the nearest allowed."""
         return min(max(0, self.raw_min), self.raw_max)
 
+    # The runtime rule over the accepted range: the C and Python encoders decide their checks on
+    # these. Properties, not fields, so that a signal derived by dataclasses.replace stays consistent.
+    @cached_property
+    def accept_raw(self) -> tuple[int, int]:
+        """The raw values the runtime rule gives at the accepted range's two ends, lower first
+        (the rule is monotonic in the value): every value in the range rounds between them."""
+        from canspec.ir.encoding import to_raw_runtime  # here: encoding imports this module
+
+        lo, hi = sorted(to_raw_runtime(float(v), float(self.factor), float(self.offset)) for v in (self.accept_min, self.accept_max))
+        return lo, hi
+
+    @cached_property
+    def max_quotient(self) -> Fraction:
+        """The largest |q| = |(value - offset) / factor| in the accepted range, exactly."""
+        return max(abs(self.quotient(v)) for v in (self.accept_min, self.accept_max))
+
     def raw_allowed(self, raw: int) -> bool:
         """Whether a physical encode may produce this raw value."""
         return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)
 
-    def physical(self, raw: int) -> Fraction:
-        return raw * self.factor + self.offset
+    def physical(self, raw: int | Fraction) -> Fraction:
+        return to_physical(raw, self.factor, self.offset)
+
+    def quotient(self, physical: Fraction) -> Fraction:
+        """(physical - offset) / factor, exactly: the raw value (a fraction between two) of a physical one."""
+        return (physical - self.offset) / self.factor
+
+    def runtime_quotient(self, physical: float) -> float:
+        """q as the generated code computes it, in doubles."""
+        return runtime_quotient(physical, float(self.factor), float(self.offset))
+
+    @property
+    def reciprocal(self) -> float:
+        """1 / factor in doubles: what a runtime may multiply by in place of dividing by the factor."""
+        return 1.0 / float(self.factor)
+
+    def runtime_physical(self, raw: int) -> float:
+        """The generated decode in doubles: raw × factor, then + offset (two roundings, never fused;
+        an identity factor or a zero offset is left out, as the generated code leaves it out)."""
+        x = float(raw) * float(self.factor) if self.factor != 1 else float(raw)
+        return x + float(self.offset) if self.offset else x
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from typing import IO
 
 import numpy as np
 
+from canspec.ir.ids import MAX_EXTENDED_ID
 from canspec.reference import frames as fr
 from canspec.reference.candump import DATA, ERROR, REMOTE
 
@@ -142,7 +143,7 @@ def _objects(buf: bytes, start: float, first: int) -> tuple[fr.Batch, int]:
     word = np.where(kind == DATA, word & BYTE_MASKS[np.minimum(length, 8)], np.uint64(0))
     names, codes = np.unique(channel, return_inverse=True)
     batch = fr.Batch(
-        timestamp, codes.astype(np.int32), (frame_id & np.uint64(0x1FFFFFFF)).astype(np.uint32), (frame_id & np.uint64(CAN_MSG_EXT)) > 0,
+        timestamp, codes.astype(np.int32), (frame_id & np.uint64(MAX_EXTENDED_ID)).astype(np.uint32), (frame_id & np.uint64(CAN_MSG_EXT)) > 0,
         kind, np.minimum(length, 255).astype(np.uint8), word, np.arange(first + 1, first + len(p) + 1, dtype=np.int64),
         channels=tuple(str(c) for c in names.tolist()),
     )

@@ -18,6 +18,8 @@ from __future__ import annotations
 from datetime import datetime
 from typing import NamedTuple
 
+from canspec.ir.ids import max_id
+
 MAX_DATA = 64
 ERR_FLAG = 0x20000000  # linux/can.h CAN_ERR_FLAG: candump prints it as part of an error frame's ID
 DATA, REMOTE, ERROR = 0, 1, 2  # frame kinds
@@ -49,7 +51,7 @@ def parse_id(text: str) -> tuple[int, bool, int]:
     extended = len(text) > 3
     if extended and value & ERR_FLAG and value < 2 * ERR_FLAG:
         return value & ~ERR_FLAG, True, ERROR
-    if value > (0x1FFFFFFF if extended else 0x7FF):
+    if value > max_id(extended):
         raise LineError(f"frame ID {text} does not fit {'29' if extended else '11'} bits")
     return value, extended, DATA
 

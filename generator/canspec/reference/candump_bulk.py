@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID
 from canspec.reference import frames as fr
 from canspec.reference.candump import LineError, parse_line
 
@@ -105,7 +106,7 @@ def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarr
     cells, valid = _gather(b, chan_end[rows] + 1, id_len[rows], 8, zero=False)
     frame_id, id_ok = _hex_value(cells, valid, id_len[rows])
     extended = id_len[rows] == 8
-    id_ok &= frame_id <= np.where(extended, 0x1FFFFFFF, 0x7FF)  # error frames (CAN_ERR_FLAG) take the line reader
+    id_ok &= frame_id <= np.where(extended, MAX_EXTENDED_ID, MAX_STANDARD_ID)  # error frames (CAN_ERR_FLAG) take the line reader
     cells, valid = _gather(b, hash_at[rows] + 1, data_len[rows], 16, zero=False)
     word, data_ok = _data_word(cells, valid)
     timestamp, ts_ok = _times(b, starts[rows] + 1, ts_len[rows])
@@ -152,7 +153,7 @@ def _screen(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.nda
     cells, valid = _gather(b, id_start[rows], id_len[rows], 8, zero=False)
     frame_id, good = _hex_value(cells, valid, id_len[rows])
     extended = id_len[rows] == 8
-    good &= frame_id <= np.where(extended, 0x1FFFFFFF, 0x7FF)
+    good &= frame_id <= np.where(extended, MAX_EXTENDED_ID, MAX_STANDARD_ID)
     n = digits[rows]
     pairs = data[rows][:, None] + 3 * np.arange(8)
     valid = np.arange(8) < n[:, None]

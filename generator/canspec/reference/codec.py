@@ -81,10 +81,6 @@ def to_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
     return raw
 
 
-def to_physical(sig: ir.Signal, raw: int) -> Fraction:
-    return raw * sig.factor + sig.offset
-
-
 # --- decoding many frames fast (`canspec decode`) ----------------------------------------------
 
 TABLE_BITS = 10  # unsigned fields up to this wide get the text of every raw value precomputed

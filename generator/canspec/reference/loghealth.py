@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from canspec import ir
+from canspec.ir.ids import id_text
 from canspec.reference.monitor import Fault, FrameEvent, MessageStats, Monitor
 from canspec.reference.supervision import message_rule
 
@@ -103,7 +104,7 @@ class HealthReport:
 
     def feed_unknown(self, frame_ids: np.ndarray, extended: np.ndarray) -> None:
         for fid, ext in zip(frame_ids.tolist(), extended.tolist()):
-            self.unknown[f"0x{fid:08X}" if ext else f"0x{fid:03X}"] += 1
+            self.unknown[id_text(fid, ext)] += 1
 
     def result(self, counts: dict[str, int]) -> dict[str, Any]:
         return {

@@ -17,6 +17,7 @@ from typing import IO, Any
 
 import numpy as np
 
+from canspec.ir.ids import MAX_EXTENDED_ID
 from canspec.reference import frames as fr
 from canspec.reference.candump import DATA, ERROR, REMOTE, Frame
 from canspec.reference.candump_bulk import read_chunk
@@ -259,7 +260,7 @@ def _mf4_columns(sig: Any, name: str, kind: int, start: float, first: int) -> fr
     else:
         channels, codes = np.unique(bus, return_inverse=True)
     return fr.Batch(
-        sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), s[f"{name}.ID"].astype(np.uint32) & np.uint32(0x1FFFFFFF),
+        sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), s[f"{name}.ID"].astype(np.uint32) & np.uint32(MAX_EXTENDED_ID),
         s[f"{name}.IDE"].astype(bool), np.full(n, kind, np.uint8), dlc, word,
         np.arange(first + 1, first + n + 1, dtype=np.int64), channels=tuple(str(c) for c in channels.tolist()),
     )

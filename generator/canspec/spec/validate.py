@@ -11,6 +11,8 @@ from typing import Any
 
 from canspec.ir import j1939
 from canspec.ir.encoding import raw_range, raw_type_range
+from canspec.ir.ids import max_id
+from canspec.ir.model import to_physical
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
 from canspec.spec.yamlsource import LocDict, LocList
@@ -102,9 +104,8 @@ def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
     extended, j1939_bus = bus["id_format"] == "extended", bus["addressing"] == "j1939"
     for msg in can.messages:
         is_extended = msg.get("extended", extended)
-        limit = 0x1FFFFFFF if is_extended else 0x7FF
-        if not 0 <= msg["id"] <= limit:
-            yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if limit > 0x7FF else 11} bits", msg.loc_of("id"), None, "id-range")
+        if not 0 <= msg["id"] <= max_id(is_extended):
+            yield error(f"frame ID 0x{msg['id']:X} of {msg['name']!r} does not fit {29 if is_extended else 11} bits", msg.loc_of("id"), None, "id-range")
             continue
         if j1939_bus and not is_extended:
             where = msg.loc_of("extended") if "extended" in msg else bus.loc_of("id_format")
@@ -179,7 +180,7 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                 continue
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
-            ends = sorted([tmin * factor + offset, tmax * factor + offset])
+            ends = sorted([to_physical(tmin, factor, offset), to_physical(tmax, factor, offset)])
             if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, sig["len"], sig["signed"]):
                 yield error(
                     f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
@@ -202,7 +203,7 @@ def physical_doubles(can: ResolvedCan) -> Iterator[Problem]:
             documented = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None and all(_finite(v) for v in rng) else None
             raw_min, raw_max = raw_range(sig["len"], sig["signed"], factor, offset, documented)
             for raw, where in ((raw_min, "factor"), (raw_max, "factor"), *((r, "special") for r in sig.get("special", {}))):
-                physical = raw * factor + offset
+                physical = to_physical(raw, factor, offset)
                 if raw_min <= raw_max and not _finite(physical):
                     about = format(Decimal(physical.numerator) / Decimal(physical.denominator), ".4g")
                     yield error(f"signal {sig['name']!r}: raw {raw} is the physical value {about}, beyond the range of a double",

@@ -197,7 +197,7 @@ def store(s: CSignal) -> list[str]:
         return [*stmts, f"{field} = ({t}){paren(bits)};"]
     if n == 64:
         return [*stmts, f"t64 = {bits};", negate64("t64", "t64", field)]
-    sign = 1 << (n - 1)
+    sign = s.sig.sign_bit
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
         return [*stmts, f"t = {bits} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
     wide = "t64" if n > 32 else "t"

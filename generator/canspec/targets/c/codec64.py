@@ -152,7 +152,7 @@ def _word_store(s: CSignal) -> list[str]:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
         return [negate64("w", "t64", field)]
-    sign = 1 << (n - 1)
+    sign = s.sig.sign_bit
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
         return [f"t = (uint32_t){paren(bits)} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
     return [f"t64 = {bits} ^ {c_hex(sign, 64)};", f"{field} = ({t})((int64_t)t64 - {c_int(sign, 64)});"]

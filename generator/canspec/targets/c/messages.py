@@ -10,14 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
+from canspec.ir import j1939
 from canspec.ir.names import snake
 from canspec.render.literals import c_hex, c_uint, hex32, hex_byte
 from canspec.targets.c.codec import CCodec, build_codec
 from canspec.targets.c.codec64 import build_codec64
 from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal, build_signal
-
-GLOBAL_ADDRESS = 0xFF  # J1939: the destination of a PDU2 broadcast
 
 
 @dataclass(frozen=True)
@@ -62,7 +61,7 @@ def _j1939(msg: ir.Message) -> CJ1939 | None:
     if j is None:
         return None
     da = c_hex(j.da) if j.da is not None else None
-    return CJ1939(c_uint(j.priority), f"{j.pgn_text}u", f"{hex_byte(j.sa)}u", da, da or f"{hex_byte(GLOBAL_ADDRESS)}u")
+    return CJ1939(c_uint(j.priority), f"{j.pgn_text}u", f"{hex_byte(j.sa)}u", da, da or f"{hex_byte(j1939.GLOBAL_ADDRESS)}u")
 
 
 def _word64(codec: CCodec, codec64: CCodec | None) -> tuple[CCodec | None, CCodec | None]:

@@ -11,6 +11,7 @@ from collections import Counter
 from dataclasses import dataclass, replace
 
 from canspec import ir
+from canspec.ir import j1939
 from canspec.render.literals import c_hex, c_int, c_uint, float_lit
 from canspec.targets.c.messages import CMessage, build_message
 from canspec.targets.c.names import CNames
@@ -104,6 +105,7 @@ class CModel:
     msg_none: str
     status: str
     is_j1939: bool
+    j1939: tuple[tuple[str, str], ...]  # (macro suffix, C literal): the J1939 constants of ir/j1939.py
     has_phys: bool  # some signal encodes through the runtime's `<prefix>_phys_*` functions
     has_phys_round: bool  # ... one with special values or with a q beyond phys_encode's domain (through `<prefix>_phys_round`)
     phys_stores: tuple[tuple[str, str], ...]  # (function, field type): the `<prefix>_phys_encode_<type>` encoders used
@@ -189,6 +191,12 @@ def _share_descriptors(names: CNames, messages: tuple[CMessage, ...]) -> tuple[C
     return tuple(replace(cm, signals=tuple(map(shared, cm.signals))) for cm in messages)
 
 
+
+def _j1939_constants() -> tuple[tuple[str, str], ...]:
+    return (("PDU2_MIN_PF", c_uint(j1939.PDU2_MIN_PF)), ("GLOBAL_ADDRESS", c_hex(j1939.GLOBAL_ADDRESS)), ("ID_MASK", c_hex(j1939.ID_MASK)),
+            ("PRIORITY_MASK", c_hex(j1939.PRIORITY_MASK)))
+
+
 def build_model(spec: ir.Spec) -> CModel:
     can = spec.can
     if can is None:
@@ -204,7 +212,7 @@ def build_model(spec: ir.Spec) -> CModel:
         extended=tuple(cm for cm in messages if cm.msg.is_extended), standard=tuple(cm for cm in messages if not cm.msg.is_extended),
         enums=tuple(enums.values()), fault_tables=faults, vins=tuple(_vin(names, cm, cm.msg.multiframe) for cm in messages if cm.msg.multiframe is not None),
         msg_type=names.fn("msg_t"), msg_none=names.const("msg_none"), status=names.fn("status_t"),
-        is_j1939=can.bus.is_j1939, has_phys=bool(phys_users),         has_phys_round=any(s.double is not None and (s.double.window_test or s.double.special_test) for s in phys_users),
+        is_j1939=can.bus.is_j1939, j1939=_j1939_constants(), has_phys=bool(phys_users),         has_phys_round=any(s.double is not None and (s.double.window_test or s.double.special_test) for s in phys_users),
         phys_stores=tuple(sorted({(names.fn(phys_store(s.sig)), s.type) for s in phys_users if s.double is not None and s.double.encode_tail})),
         phys_q_min=float_lit(-(2**63)), phys_q_max=float_lit(2**63), format_arg=can.has_standard,
         bitrate=c_uint(can.bus.bitrate), cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",

@@ -29,10 +29,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from fractions import Fraction
-from math import floor
 
 from canspec import ir
-from canspec.ir.encoding import to_raw_runtime
+from canspec.ir.encoding import decimal_scaling, round_half_away
 from canspec.render.literals import c_int, c_uint, float_lit
 from canspec.targets.c import divide
 from canspec.targets.c.names import CNames
@@ -72,12 +71,6 @@ def any_of(terms: list[str]) -> str:
     if len(terms) == 1:
         return terms[0]
     return " || ".join(t if t.startswith("!(") else f"({t})" for t in terms)
-
-
-def round_half_away(num: Fraction) -> int:
-    """num rounded half away from zero, exactly as the C `div_round*` functions do."""
-    whole = floor(abs(num) + Fraction(1, 2))
-    return whole if num >= 0 else -whole
 
 
 @dataclass(frozen=True)
@@ -148,20 +141,20 @@ def _fixed_ranges(sig: ir.Signal, r_signed: bool, scale: int, scaling: tuple[int
     return _ranges(sig, r_signed, value_terms, (ends[0], ends[1]) if lo <= hi else None)
 
 
-def double_path(names: CNames, sig: ir.Signal, fn: str, force: bool) -> CDouble | None:
-    """The double path of a data signal (C functions `fn`_*): where its raw values are exact in a
-    double, or `force`d."""
+def double_path(names: CNames, sig: ir.Signal, fn: str, macro: str, force: bool) -> CDouble | None:
+    """The double path of a data signal (C functions `fn`_*, macros `macro`_*): where its raw
+    values are exact in a double, or `force`d."""
     exact = max(-sig.raw_type_min, sig.raw_type_max) <= DOUBLE_EXACT
     if not exact and not force:
         return None
     factor, offset = sig.factor, sig.offset
     # Two statements: compilers may contract `raw * f + o` in one expression into an FMA (clang
-    # does when constant folding), which would round differently from the shared rule.
-    expr = "(double)raw" if factor == 1 else f"(double)raw * {float_lit(factor)}"
+    # does when constant folding), which would round differently from the shared rule. The
+    # constants are the signal's `_FACTOR` and `_OFFSET` macros (x + (-c) == x - c in IEEE).
+    expr = "(double)raw" if factor == 1 else f"(double)raw * {macro}_FACTOR"
     pre = ""
     if offset:
-        sign = "+" if offset > 0 else "-"
-        pre, expr = (expr, f"scaled {sign} {float_lit(abs(offset))}") if factor != 1 else ("", f"{expr} {sign} {float_lit(abs(offset))}")
+        pre, expr = (expr, f"scaled + {macro}_OFFSET") if factor != 1 else ("", f"{expr} + {macro}_OFFSET")
     accept = f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"
     if not sig.signed and sig.raw_type_max > 2**63 - 1:
         # q's bounds: the raw type widened by one step, i.e. -1 and 2^64 (both doubles)
@@ -188,12 +181,11 @@ def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local:
     accepted wherever it lies, so r is rounded first where the signal has some; any other value
     is encoded as if it had none (rounded again: the code stays a call on every core)."""
     # phys_encode rounds without the domain check where the accepted range keeps q well inside it
-    reach = [abs((v - sig.offset) / sig.factor) for v in (sig.accept_min, sig.accept_max)]
-    window = f"!{names.fn('phys_round')}(value, &{name}, &r)" if max(reach) >= Q_SAFE else ""
+    window = f"!{names.fn('phys_round')}(value, &{name}, &r)" if sig.max_quotient >= Q_SAFE else ""
     specials = any_of([f"r == {c_int(sp.raw)}" for sp in sig.specials])
     special = f"{names.fn('phys_round')}(value, &{name}, &r) && ({specials})" if specials else ""
     # the accepted range first, in the call: r then lies between the roundings of its ends
-    ranges = _ranges(sig, True, [], _accepted_reach(sig) if d.exact else _r_type_range(True))
+    ranges = _ranges(sig, True, [], sig.accept_raw if d.exact else _r_type_range(True))
     test, tail = "", ""
     if ranges.outside:
         test = f"!{names.fn('phys_encode')}(value, &{name}, &r)"
@@ -203,39 +195,17 @@ def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local:
                    ranges=CRanges("", ranges.outside))
 
 
-def _accepted_reach(sig: ir.Signal) -> tuple[int, int]:
-    """The raw values the double rule gives inside the accepted range: its results at the two
-    ends, step for step as the C computes them (the rule is monotonic in the value)."""
-    factor, offset = float(sig.factor), float(sig.offset)
-    ends = (to_raw_runtime(float(v), factor, offset) for v in (sig.accept_min, sig.accept_max))
-    lo, hi = sorted(ends)
-    return lo, hi
+def fixed_scaling(sig: ir.Signal) -> tuple[int, int, int]:
+    """(10^k, factor × 10^k, offset × 10^k) of the integer path (ir/encoding.decimal_scaling)."""
+    return decimal_scaling(sig.factor, sig.offset, (sig.check_min, sig.check_max), half_steps=not sig.is_identity)
 
 
 def fixed_scale(sig: ir.Signal) -> int:
-    """10^k: physical × 10^k is an integer for every raw value, both range bounds and (for
-    scaled signals) every half step."""
-    parts = [sig.factor, sig.offset, sig.check_min, sig.check_max] + ([] if sig.is_identity else [sig.factor / 2])
-    return 10 ** max(_places(v) for v in parts)
-
-
-def _places(value: Fraction) -> int:
-    """Decimal places of a decimal number: max(a, b) for its denominator 2^a 5^b."""
-    den, counts = value.denominator, []
-    for p in (2, 5):
-        n = 0
-        while den % p == 0:
-            den //= p
-            n += 1
-        counts.append(n)
-    if den != 1:
-        raise ValueError(f"{value} is not a decimal number")
-    return max(counts)
+    return fixed_scaling(sig)[0]
 
 
 def fixed_path(names: CNames, sig: ir.Signal) -> CFixed | None:
-    scale = fixed_scale(sig)
-    ff, fo = int(sig.factor * scale), int(sig.offset * scale)
+    scale, ff, fo = fixed_scaling(sig)
     tmin, tmax = sig.raw_type_min, sig.raw_type_max
     core = [tmin, tmax, tmin * ff, tmax * ff, tmin * ff + fo, tmax * ff + fo, scale]
     # the open interval of inputs whose rounding stays within one step of the raw type

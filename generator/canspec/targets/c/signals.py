@@ -68,7 +68,7 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
     is_data = sig.role == "data"
     fixed = fixed_path(names, sig) if is_data else None
     fn = names.fn(base, sig.c_name)
-    double = double_path(names, sig, fn, force=fixed is None) if is_data else None
+    double = double_path(names, sig, fn, macro, force=fixed is None) if is_data else None
     renamed = f"spec name {sig.name}" if sig.c_name != sig.name else ""  # the reviewer's key into the protocol table
     comment = " ".join(t for t in (sig.zh or sig.desc, f"[{sig.unit}]" if sig.unit else "", renamed) if t)
     return CSignal(

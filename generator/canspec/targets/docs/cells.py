@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 from canspec import ir
+from canspec.ir.encoding import round_half_away
 from canspec.render.literals import num
 from canspec.targets.docs.lang import Lang
 
@@ -27,7 +28,7 @@ def raw_hex(raw: int) -> str:
 def pct(value: Fraction, places: int = 2) -> str:
     """A share (0..1) as a percentage, rounded half up at `places` decimals: 0.34944 → 34.94 %."""
     scaled = value * 100 * 10**places
-    n = int(scaled + Fraction(1, 2)) if scaled >= 0 else -int(-scaled + Fraction(1, 2))
+    n = round_half_away(scaled)
     text = f"{abs(n) // 10**places}.{abs(n) % 10**places:0{places}d}" if places else str(abs(n))
     return ("-" if n < 0 else "") + text + " %"
 

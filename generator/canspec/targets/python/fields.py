@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimal_text, to_raw_runtime
+from canspec.ir.encoding import decimal_text
 from canspec.render.literals import double_repr, py_comment, py_doc, py_string
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 
@@ -100,7 +100,7 @@ def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
         expr = f"{_paren(expr)} * {num_lit(sig.factor, as_int)}"
     if sig.offset != 0:
         expr = _paren(expr) if sig.factor == 1 else expr
-        expr = f"{expr} + {num_lit(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {num_lit(-sig.offset, as_int)}"
+        expr = f"{expr} + {num_lit(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {num_lit(abs(sig.offset), as_int)}"
     return expr
 
 
@@ -113,7 +113,7 @@ def q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     elif off > 0:
         expr = f"{x} - {num_lit(off, direct)}"
     else:
-        expr = f"{x} + {num_lit(-off, direct)}"
+        expr = f"{x} + {num_lit(abs(off), direct)}"
     if not direct and sig.factor != 1:
         expr = f"({expr}) / {double_repr(sig.factor)}" if off != 0 else f"{expr} / {double_repr(sig.factor)}"
     return expr
@@ -124,15 +124,14 @@ def raw_check(sig: ir.Signal, direct: bool) -> bool:
     Rounding is monotonic, so the two ends of the range decide."""
     if direct:
         return True
-    ends = (to_raw_runtime(float(x), float(sig.factor), float(sig.offset)) for x in (sig.accept_min, sig.accept_max))
-    return not all(sig.raw_min <= raw <= sig.raw_max for raw in ends)
+    lo, hi = sig.accept_raw
+    return not sig.raw_min <= lo <= hi <= sig.raw_max
 
 
 def exact_branch(sig: ir.Signal) -> bool:
     """Whether a value inside the range check may give |q| >= EXACT_LIMIT (with a margin for the
     double arithmetic): only then does the generated fast path need the rule's 2^52 branch."""
-    q_max = max(abs(sig.accept_min - sig.offset), abs(sig.accept_max - sig.offset)) / abs(sig.factor)
-    return q_max >= ir.EXACT_LIMIT * Fraction(999, 1000)
+    return sig.max_quotient >= ir.EXACT_LIMIT * Fraction(999, 1000)
 
 
 def range_text(sig: ir.Signal) -> str:
@@ -177,11 +176,10 @@ def doc_line(sig: ir.Signal, enum: str | None) -> str:
 
 def default_raw(sig: ir.Signal) -> int:
     """The raw value of a new message's attribute: physical 0 when allowed, else raw 0, else the nearest allowed raw."""
-    if sig.check_min <= 0 <= sig.check_max and (-sig.offset / sig.factor).denominator == 1:
-        raw = int(-sig.offset / sig.factor)
-        if sig.raw_min <= raw <= sig.raw_max:
-            return raw
-    return min(max(0, sig.raw_min), sig.raw_max)
+    zero = sig.quotient(Fraction(0))
+    if sig.check_min <= 0 <= sig.check_max and zero.denominator == 1 and sig.raw_min <= zero <= sig.raw_max:
+        return int(zero)
+    return sig.base_raw
 
 
 def _kind(sig: ir.Signal, enum: str | None) -> str:
@@ -249,5 +247,5 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
         specials=_specials(sig, ctx.consts, as_int), allowed=py_string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), var=var, raw_var=f"r{ctx.index}", direct=direct,
         q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
-        q_nonneg=sig.factor > 0 and float(lo) - float(sig.offset) >= 0, exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
+        q_nonneg=sig.factor > 0 and float(lo) >= float(sig.offset), exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
     )

@@ -8,8 +8,6 @@ identity (clippy rejects both).
 
 from __future__ import annotations
 
-import math
-
 from canspec import ir
 from canspec.render.literals import grouped_int
 
@@ -100,11 +98,7 @@ def refused_expr(sig: ir.Signal, var: str = "value", ty: str | None = None) -> s
     """A raw `var` (of `ty`, default the storage type) a physical encode may not produce:
     neither a special value nor within the documented range (for signals set by raw value:
     integers and enums). None: never."""
-    lo = max(sig.raw_min, math.ceil((sig.check_min - sig.offset) / sig.factor))
-    hi = min(sig.raw_max, math.floor((sig.check_max - sig.offset) / sig.factor))
-    if sig.factor < 0:  # the documented range maps onto raw values in reverse
-        lo = max(sig.raw_min, math.ceil((sig.check_max - sig.offset) / sig.factor))
-        hi = min(sig.raw_max, math.floor((sig.check_min - sig.offset) / sig.factor))
+    lo, hi = sig.raw_min, sig.raw_max
     outside = outside_expr(var, *_bounds(lo, hi, ty or raw_type(sig)))
     if outside is None:
         return None

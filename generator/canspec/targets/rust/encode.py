@@ -34,7 +34,8 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
     factor and offset), holding every physical value and `raw × factor`; None if there is none."""
     if not sig.is_integer or sig.is_identity or not 0 < sig.factor < MAX_INT_FACTOR or sig.storage_bits > 32:
         return None
-    ends = [sig.raw_type_min * sig.factor + sig.offset, sig.raw_type_max * sig.factor + sig.offset, sig.raw_type_min * sig.factor, sig.raw_type_max * sig.factor]
+    # the physical values and the products raw × factor before the offset is added
+    ends = [ir.to_physical(raw, sig.factor, offset) for raw in (sig.raw_type_min, sig.raw_type_max) for offset in (sig.offset, Fraction(0))]
     lo, hi = min(ends), max(ends)
     for bits in (8, 16, 32):
         if lo >= 0 and hi < 1 << bits:
@@ -112,17 +113,17 @@ def documented_range_suffices(sig: ir.Signal, integer_path: bool) -> Shortcut:
     f, o = float(sig.factor), float(sig.offset)
     if integer_path:
         lo, hi = float(math.ceil(sig.check_min)), float(math.floor(sig.check_max))
-        q_lo, q_hi = (lo - o) / f, (hi - o) / f
+        q_lo, q_hi = sig.runtime_quotient(lo), sig.runtime_quotient(hi)
         fits = fits_runtime(q_lo, sig.raw_type_min, sig.raw_type_max) and fits_runtime(q_hi, sig.raw_type_min, sig.raw_type_max)
         if not (fits and sig.raw_min <= to_raw_runtime(lo, f, o) and to_raw_runtime(hi, f, o) <= sig.raw_max):
             return Shortcut(False)
         return Shortcut(True, q_lo, q_hi)
 
     def high_enough(x: float) -> bool:
-        return fits_runtime((x - o) / f, sig.raw_type_min, 1 << 64) and to_raw_runtime(x, f, o) >= sig.raw_min
+        return fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, 1 << 64) and to_raw_runtime(x, f, o) >= sig.raw_min
 
     def low_enough(x: float) -> bool:
-        return fits_runtime((x - o) / f, -(1 << 64), sig.raw_type_max) and to_raw_runtime(x, f, o) <= sig.raw_max
+        return fits_runtime(sig.runtime_quotient(x), -(1 << 64), sig.raw_type_max) and to_raw_runtime(x, f, o) <= sig.raw_max
 
     lo, hi = float(sig.accept_min), float(sig.accept_max)
     first = _first_true(high_enough, lo, hi)
@@ -133,7 +134,7 @@ def documented_range_suffices(sig: ir.Signal, integer_path: bool) -> Shortcut:
         last = hi
     if first is None or last is None or first > last:
         return Shortcut(False)
-    return Shortcut(True, (first - o) / f, (last - o) / f, first, last)
+    return Shortcut(True, sig.runtime_quotient(first), sig.runtime_quotient(last), first, last)
 
 
 def _power_of_two(value: Fraction) -> bool:
@@ -189,7 +190,7 @@ def float_encoding(sig: ir.Signal) -> Encoding:
     # Quotients below 2^17 and a factor that is not a power of two (whose division the
     # compiler makes a multiplication already): the reciprocal path gives the same result.
     if short.q_max < RECIPROCAL_LIMIT and not _power_of_two(Fraction(sig.factor)):
-        return Encoding("to_raw_documented_unsigned_recip", "Scale", scale, double_repr(1.0 / float(sig.factor)), "i64")
+        return Encoding("to_raw_documented_unsigned_recip", "Scale", scale, double_repr(sig.reciprocal), "i64")
     return Encoding("to_raw_documented_unsigned", "Scale", scale, "", "i64")
 
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from canspec import ir
 from canspec.ir import j1939
+from canspec.ir.ids import MAX_STANDARD_ID
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
 from canspec.reference import textframes
 from canspec.render.literals import double_repr, grouped_int, hex_byte, rust_string
@@ -23,7 +24,6 @@ from canspec.targets.rust.values import RustEnum, build_enum, enum_users
 # taking `&self`; the names are the spec's.
 CONVERSION_PREFIXES = ("to_", "from_", "into_", "as_", "is_")
 MAX_ARGUMENTS = 7  # clippy's too_many_arguments threshold
-MAX_STANDARD_ID = 0x7FF  # 11-bit identifiers
 TAKEN_CRATE_NAMES = frozenset({"std", "core", "alloc", "proc_macro", "test", "serde", "serde_json", "proptest"})
 
 
@@ -165,7 +165,7 @@ def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEn
         expr = f"-({expr})"  # x × -1.0 is -x exactly
     elif sig.factor != 1:
         expr += f" * {factor}"
-    if sig.offset and kind == "scaled_int" and -sig.offset > type_bounds(phys_type)[1]:
+    if kind == "scaled_int" and sig.offset < -type_bounds(phys_type)[1]:
         expr += f" + {grouped_int(int(sig.offset))}"  # the type's minimum: its magnitude has no literal
     elif sig.offset:
         expr += f" {'+' if sig.offset > 0 else '-'} {offset}"  # x - c == x + (-c) exactly in IEEE arithmetic

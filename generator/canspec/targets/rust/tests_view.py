@@ -24,16 +24,11 @@ class Pick:
     values: tuple[str, ...] = ()
 
 
-def _decoded(sig: ir.Signal, raw: int) -> float:
-    """The physical value the crate's getter computes, in the same IEEE steps."""
-    x = -float(raw) if sig.factor == -1 else float(raw) * float(sig.factor) if sig.factor != 1 else float(raw)
-    return x + float(sig.offset) if sig.offset else x
-
-
 def _encodes_back(sig: ir.Signal, raw: int) -> bool:
     """The shared rule (every encode path computes it) takes the decoded value back to `raw`."""
-    x, f, o = _decoded(sig, raw), float(sig.factor), float(sig.offset)
-    if not fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
+    # the crate's getter: x × -1.0 where it writes -x, the same double
+    x, f, o = sig.runtime_physical(raw), float(sig.factor), float(sig.offset)
+    if not fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
         return False
     return any(s.raw == raw for s in sig.specials) or (float(sig.accept_min) <= x <= float(sig.accept_max) and sig.raw_min <= raw <= sig.raw_max)
 
@@ -43,11 +38,11 @@ def float_pick(sig: ir.Signal) -> Pick | None:
     2^-31 steps of the raw value and within the accepted range (ir/encoding.py), so every raw
     value there round-trips. Outside it doubles may not resolve one step: sample values checked
     here step for step instead. None: no raw value round-trips."""
-    c = Fraction(sig.offset) / Fraction(sig.factor)
-    room = TIE_GUARANTEE - abs(c)
+    zero = sig.quotient(Fraction(0))  # the raw position of physical 0
+    room = TIE_GUARANTEE - abs(zero)
     if room > 0:
-        lo = max(sig.raw_min, math.floor(-c - room) + 1)
-        hi = min(sig.raw_max, math.ceil(-c + room) - 1)
+        lo = max(sig.raw_min, math.floor(zero - room) + 1)
+        hi = min(sig.raw_max, math.ceil(zero + room) - 1)
         if lo <= hi:
             return Pick(grouped_int(lo), grouped_int(hi))
     mid = (sig.raw_min + sig.raw_max) // 2

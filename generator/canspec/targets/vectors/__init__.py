@@ -46,7 +46,7 @@ Scales = tuple[tuple[str, int, int, int], ...]
 
 def _scales(msg: ir.Message) -> Scales:
     """Per data signal (name, a, b, d) with raw * factor + offset == (raw * a + b) / d in integers:
-    the same numbers as json_number(codec.to_physical(...)) (int when exact, else the correctly
+    the same numbers as json_number(sig.physical(...)) (int when exact, else the correctly
     rounded double of the quotient), without Fraction arithmetic for each of many cases."""
     return tuple(
         (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
@@ -79,7 +79,7 @@ def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int) -> bool:
     (raw = physical) in integers; scaled ones are asked, integer-scaled too: a wide one's physical
     value may be an integer no double holds, and C's and Rust's encode of it takes a double."""
     x, f, o = float(physical), float(sig.factor), float(sig.offset)
-    if not fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
+    if not fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
         return False
     return any(s.raw == raw for s in sig.specials) or float(sig.accept_min) <= x <= float(sig.accept_max)
 
@@ -101,7 +101,7 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
         return []
     out = []
     for lower in sorted({sig.raw_min, (sig.raw_min + sig.raw_max) // 2, sig.raw_max - 1}):
-        tie = Fraction(2 * lower + 1, 2) * sig.factor + sig.offset
+        tie = sig.physical(Fraction(2 * lower + 1, 2))
         x = float(tie)
         expected = to_raw_runtime(x, float(sig.factor), float(sig.offset))
         if not (sig.check_min <= tie <= sig.check_max and sig.raw_min <= expected <= sig.raw_max):

@@ -17,6 +17,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from canspec import ir
+from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID
 from canspec.reference import codec, supervision
 from canspec.reference.monitor import FrameEvent, Monitor
 
@@ -255,9 +256,9 @@ def frames_refused(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
 
 def unknown_ids(can: ir.CanProtocol) -> list[tuple[int, bool]]:
     used = {(m.frame_id, m.is_extended) for m in can.messages}
-    out = [next((i, ext) for i in range(top, 0, -1) if (i, ext) not in used) for top, ext in ((0x1FFFFFFF, True), (0x7FF, False))]
+    out = [next((i, ext) for i in range(top, 0, -1) if (i, ext) not in used) for top, ext in ((MAX_EXTENDED_ID, True), (MAX_STANDARD_ID, False))]
     msg = can.messages[0]
-    if msg.frame_id <= 0x7FF and (msg.frame_id, not msg.is_extended) not in used:
+    if msg.frame_id <= MAX_STANDARD_ID and (msg.frame_id, not msg.is_extended) not in used:
         out.append((msg.frame_id, not msg.is_extended))
     return out
 
