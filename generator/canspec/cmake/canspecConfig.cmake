@@ -13,20 +13,24 @@
 #   python, ...) to the same run; STRICT treats spec warnings as errors. A spec error fails the
 #   build with canspec's file:line message.
 #
-# CANSPEC_EXECUTABLE (cache): the command that runs canspec, a list for a launcher
-# ("python3;-m;canspec"); by default the `canspec` beside this package's Python, else on PATH.
+# CANSPEC_COMMAND (cache): the command that runs canspec, a list for a launcher
+# (-DCANSPEC_COMMAND="python3;-m;canspec"); by default the `canspec` beside this package's Python
+# (a virtual environment's bin/), else the one on PATH.
 
 cmake_minimum_required(VERSION 3.20)  # DEPFILE with the Makefile generators
 
-get_filename_component(_canspec_site "${CMAKE_CURRENT_LIST_DIR}/../.." ABSOLUTE)
-find_program(CANSPEC_EXECUTABLE canspec
-  HINTS "${_canspec_site}/../../bin" "${_canspec_site}/../bin" "${_canspec_site}/../../Scripts"
-  DOC "the canspec command (a list for a launcher: python3;-m;canspec)")
-unset(_canspec_site)
-if(NOT CANSPEC_EXECUTABLE)
-  set(canspec_FOUND FALSE)
-  set(canspec_NOT_FOUND_MESSAGE "no canspec command found: install canspec (pip install canspec) or set CANSPEC_EXECUTABLE")
-  return()
+if(NOT CANSPEC_COMMAND)
+  get_filename_component(_canspec_site "${CMAKE_CURRENT_LIST_DIR}/../.." ABSOLUTE)
+  find_program(CANSPEC_EXECUTABLE canspec
+    HINTS "${_canspec_site}/../../bin" "${_canspec_site}/../bin" "${_canspec_site}/../../Scripts"
+    DOC "the canspec command")
+  unset(_canspec_site)
+  if(NOT CANSPEC_EXECUTABLE)
+    set(canspec_FOUND FALSE)
+    set(canspec_NOT_FOUND_MESSAGE "no canspec command found: install canspec (pip install canspec) or set CANSPEC_COMMAND")
+    return()
+  endif()
+  set(CANSPEC_COMMAND "${CANSPEC_EXECUTABLE}" CACHE STRING "the command that runs canspec (a list for a launcher: python3;-m;canspec)")
 endif()
 
 function(canspec_add_protocol target)
@@ -67,7 +71,7 @@ function(canspec_add_protocol target)
   set(depfile "${CMAKE_CURRENT_BINARY_DIR}/${target}.canspec.d")
   add_custom_command(
     OUTPUT "${stamp}"
-    COMMAND ${CANSPEC_EXECUTABLE} gen "${spec}" -o "${out}" ${options} --quiet --depfile "${depfile}"
+    COMMAND ${CANSPEC_COMMAND} gen "${spec}" -o "${out}" ${options} --quiet --depfile "${depfile}"
     DEPENDS ${direct}
     DEPFILE "${depfile}"
     COMMENT "canspec: generating ${target} from ${ARG_SPEC}"
