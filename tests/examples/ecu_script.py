@@ -7,6 +7,7 @@ checks timeouts on every tick; a check step only asks for the result)."""
 
 from __future__ import annotations
 
+import itertools
 import json
 import sys
 from dataclasses import dataclass
@@ -57,7 +58,7 @@ def sequences(spec: ir.Spec, node: str, path: Path = SEQUENCES) -> list[Sequence
         starts = [i for i, s in enumerate(steps) if s["action"] == "start"]
         if starts not in ([], [0]):
             raise ValueError(f"sequence {vector['id']}: a start step after the first: the bench powers on only at the start")
-        for a, b in zip(steps, steps[1:]):
+        for a, b in itertools.pairwise(steps):
             if a["action"] == "check" and b["action"] == "frame" and a["t"] == b["t"]:
                 raise ValueError(f"sequence {vector['id']}: a check before a frame of the same millisecond: the image answers after the pass")
         boot = steps[0]["t"]

@@ -6,13 +6,13 @@ vectors say it accepted. The sequences include checksum errors, counter jumps an
 
 from __future__ import annotations
 
+import itertools
 import re
 from fractions import Fraction
 
-import pytest
-
 import ecu_image
 import ecu_script
+import pytest
 from canspec.reference import codec
 
 FAULT_TABLES = {"remote": "remote_entry_fault", "unmanned": "unmanned_entry_fault"}
@@ -71,7 +71,8 @@ def check_frame(step, fields, flags, states, msgs):
     rejected = names & {"unknown_id", "length", "checksum", "counter_repeat"}
     # a timeout the image's tick found before this frame arrived is no fault of the frame
     assert names - {"timeout", "recovered"} == set(exp["faults"]) - {"timeout"}, (step, fields)
-    assert not rejected == exp["accepted"] and ("recovered" in names) == exp["recovered"], (step, fields)
+    accepted = not rejected
+    assert accepted == exp["accepted"] and ("recovered" in names) == exp["recovered"], (step, fields)
     if exp["message"] is not None:
         assert states[int(fields["state"])] == exp["state"], (step, fields)
     assert codes(fields) == exp["codes"], (step, fields)
@@ -105,7 +106,7 @@ def check_transmissions(seq, lines, msgs, spec):
         assert all(len(d) == m.dlc and (m.checksum is None or codec.checksum_ok(m, d)) for d in frames), m.name
         if m.counter is not None:
             counters = [codec.unpack(m, d)[m.counter.signal] for d in frames]
-            assert all((b - a) % m.counter.modulo == 1 for a, b in zip(counters, counters[1:])), (m.name, counters)
+            assert all((b - a) % m.counter.modulo == 1 for a, b in itertools.pairwise(counters)), (m.name, counters)
     for t, msg, data in sent:
         accepted = [s for s in seq.vector["steps"] if s["action"] == "frame" and s["expect"]["accepted"]
                     and (s["t"] - seq.boot_t) % 2**32 <= (t - seq.boot_t) % 2**32]
