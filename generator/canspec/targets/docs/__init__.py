@@ -153,7 +153,7 @@ def _can_pages(spec: ir.Spec, can: ir.CanProtocol, lg: Lang, load: busload.BusLo
     files["busload.md"] = _page("busload.md.j2", spec, lg, can=can, load=load, frame_bits=busload.frame_bits, g=g, g_minus_1=g - 1,
                                 g_standard=busload.STUFFED_CONTROL_BITS[False], trailer=busload.UNSTUFFED_TRAILER_BITS,
                                 fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS)
-    files["firmware.md"] = _page("firmware.md.j2", spec, lg, can=can, c=CNames.of(can), example_node=_example_node(can),
+    files["firmware.md"] = _page("firmware.md.j2", spec, lg, can=can, c=CNames.plain(can), example_node=_example_node(can),
                                  node_traffic=[(n.name, *nodeview.traffic(can, n.name)) for n in can.nodes])
     return files
 
