@@ -179,6 +179,12 @@ bool board_wait_tick(void) {
     if (next.kind == 0 || !powered) {
         return false;
     }
+    if ((int32_t)(next.t - now) <= 0) { /* a line behind the clock: the script is out of order */
+        log_str("BENCH line out of time order at t=");
+        log_u32(next.t);
+        log_end();
+        return false;
+    }
     now++;
     deliver();
     return true;
