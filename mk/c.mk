@@ -6,9 +6,10 @@ BENCH_TARGETS += bench-c
 roundtrip-c:  ## C vector runner on $(VECTORS)
 	$(PYTHON) tests/c/cbuild.py $(VECTORS) build/c
 
-bench-c:  ## canspec C vs cantools generate_c_source: x86-64 ns + callgrind (call and inline modes), code size; then bench-c-cross
+bench-c:  ## canspec C vs cantools generate_c_source: x86-64 ns + callgrind (call and inline modes), code size; then bench-c-cross; the example ECU's footprint
 	$(PYTHON) tests/c/bench.py build/c-bench
 	$(MAKE) --no-print-directory bench-c-cross
+	$(PYTHON) tests/examples/ecu_bench.py --build build/ecu
 
 FUZZ_SECONDS ?= 60
 .PHONY: fuzz-c

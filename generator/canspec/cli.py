@@ -8,6 +8,7 @@ import argparse
 import importlib
 import pkgutil
 import sys
+from pathlib import Path
 
 from canspec import __version__, commands
 from canspec.commands.extras import missing_module_hint
@@ -24,11 +25,20 @@ class _Version(argparse.Action):
         parser.exit()
 
 
+class _PrintCMakeDir(argparse.Action):
+    """`canspec --cmake-dir`: where find_package(canspec CONFIG) finds canspecConfig.cmake."""
+
+    def __call__(self, parser, namespace, values, option_string=None):  # type: ignore[no-untyped-def]
+        print(Path(__file__).resolve().parent / "cmake")
+        parser.exit()
+
+
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The parser of every command, or with `command` of that one only: the command modules'
     imports cost 0.2 s, paid at every start otherwise. Help and usage errors get every command."""
     parser = argparse.ArgumentParser(prog="canspec", description="Generate DBC, C, Python, Rust, JSON Schema and docs from one protocol spec.")
     parser.add_argument("--version", action=_Version, nargs=0, help="print the version and the spec schema versions it reads, then exit")
+    parser.add_argument("--cmake-dir", action=_PrintCMakeDir, nargs=0, help="print the directory of canspec's CMake package (canspec_DIR) and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     names = sorted(info.name for info in pkgutil.iter_modules(commands.__path__))

@@ -1,4 +1,4 @@
-"""`canspec gen [SPEC] [-o DIR] [--target NAME...] [--node NAME] [--check]`."""
+"""`canspec gen [SPEC] [-o DIR] [--target NAME...] [--node NAME] [--check] [--depfile FILE]`."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from canspec import depfile
 from canspec.commands.common import compile_or_report
 from canspec.generate import GenerationError, generate
 from canspec.ir.nodeview import for_node, node_names
@@ -54,6 +55,8 @@ def run(args: argparse.Namespace) -> int:
         out.mkdir(parents=True, exist_ok=True)
         writer.clean_stale_temporaries(out)
         writer.apply(out, plan)
+        if args.depfile is not None:
+            depfile.write(Path(args.depfile), out / writer.MANIFEST, compiled.files)
     except OSError as exc:
         print(f"canspec gen: cannot write {exc.filename or out}: {exc.strerror}; previous files left unchanged", file=sys.stderr)
         return 1
@@ -69,6 +72,7 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("-t", "--target", action="append", help="target to generate (repeatable; default: all)")
     p.add_argument("--node", metavar="NAME", help="only the messages this node sends or receives (an ECU's headers: --target c --node NAME)")
     p.add_argument("--check", action="store_true", help="write nothing; list stale or missing files and exit 1 if any")
+    p.add_argument("--depfile", metavar="FILE", help="also write a Makefile rule: the output's manifest depends on every file the spec read (for CMake/Ninja/Make)")
     p.add_argument("--strict", action="store_true", help="treat spec warnings as errors")
     p.add_argument("-q", "--quiet", action="store_true")
     p.set_defaults(func=run)

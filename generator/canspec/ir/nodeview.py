@@ -19,6 +19,15 @@ def involves(msg: Message, node: str) -> bool:
     return msg.sender in (node, "ALL") or node in msg.receivers
 
 
+def traffic(can: CanProtocol, node: str) -> tuple[int, int, int]:
+    """(messages in the node's view, messages it sends, messages it receives); a message every
+    node sends counts as both."""
+    kept = sum(involves(m, node) for m in can.messages)
+    sends = sum(m.sender in (node, "ALL") for m in can.messages)
+    receives = sum(node in m.receivers and m.sender != node for m in can.messages)
+    return kept, sends, receives
+
+
 def for_node(spec: Spec, node: str) -> Spec:
     """The spec as `node` sees it. `node` must be one of `node_names(spec)`."""
     if node not in node_names(spec):

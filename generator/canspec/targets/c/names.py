@@ -84,6 +84,11 @@ class CNames:
     def of(cls, can: ir.CanProtocol) -> CNames:
         return named(can)[0]
 
+    @classmethod
+    def plain(cls, can: ir.CanProtocol) -> CNames:
+        """The protocol's prefixes alone (what every C name starts with), no name checked."""
+        return cls(snake(can.name), upper_snake(can.name))
+
     def fn(self, *words: str) -> str:
         return "_".join([self.prefix, *map(_snake, words)])
 
@@ -116,7 +121,7 @@ class CNames:
 def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
     """The protocol's C names, and every global name the headers declare (some only where the
     spec uses the feature) with the element it comes from."""
-    plain = CNames(snake(can.name), upper_snake(can.name))
+    plain = CNames.plain(can)
     runtime = plain.runtime()
     taken = {name for name, _ in runtime}
     bases: dict[tuple[str, str], str] = {}

@@ -14,9 +14,11 @@ from typing import Any
 import yaml
 
 from canspec import ir
+from canspec.ir import nodeview
 from canspec.reference import busload
 from canspec.render.environment import header_lines, render
 from canspec.targets import Target
+from canspec.targets.c.names import CNames
 from canspec.targets.docs import cells, jsonpage, svg
 from canspec.targets.docs.errata import embed_markdown, errata_links, errata_refs, errata_row_ids, erratum_anchor, json_page, message_page
 from canspec.targets.docs.lang import Lang, lang
@@ -90,6 +92,7 @@ def nav(spec: ir.Spec, lg: Lang) -> dict[str, Any]:
         pages.append({lg.zh_en("报文", "Messages"): [{f"{m.id_text} {m.zh if lg.zh and m.zh else m.title}": message_page(m)} for m in spec.can.messages]})
         pages.append({lg.zh_en("值表", "Value tables"): "value_tables.md"})
         pages.append({lg.zh_en("总线负载", "Bus load"): "busload.md"})
+        pages.append({lg.zh_en("在固件中使用", "Use it in your firmware"): "firmware.md"})
     for proto in spec.json:
         pages.append({f"JSON: {proto.title_zh if lg.zh and proto.title_zh else proto.title}": json_page(proto)})
     pages.append({lg.zh_en("勘误", "Errata"): "errata.md"})
@@ -150,7 +153,16 @@ def _can_pages(spec: ir.Spec, can: ir.CanProtocol, lg: Lang, load: busload.BusLo
     files["busload.md"] = _page("busload.md.j2", spec, lg, can=can, load=load, frame_bits=busload.frame_bits, g=g, g_minus_1=g - 1,
                                 g_standard=busload.STUFFED_CONTROL_BITS[False], trailer=busload.UNSTUFFED_TRAILER_BITS,
                                 fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS)
+    files["firmware.md"] = _page("firmware.md.j2", spec, lg, can=can, c=CNames.plain(can), example_node=_example_node(can),
+                                 node_traffic=[(n.name, *nodeview.traffic(can, n.name)) for n in can.nodes])
     return files
+
+
+def _example_node(can: ir.CanProtocol) -> str | None:
+    """The node the firmware page's commands name: the one receiving most, as an ECU under command does."""
+    if not can.nodes:
+        return None
+    return max(can.nodes, key=lambda n: nodeview.traffic(can, n.name)[2]).name
 
 
 def render_docs(spec: ir.Spec) -> dict[str, bytes]:
