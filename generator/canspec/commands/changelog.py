@@ -12,7 +12,6 @@ from canspec.commands.common import compile_or_report
 from canspec.diff.changelog import LANGUAGES, rows
 from canspec.render.environment import render
 
-
 _TEXT = {  # (zh, en)
     "heading": ("变更记录表", "Change record"),
     "version": ("版本号", "Version"),

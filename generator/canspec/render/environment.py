@@ -5,13 +5,14 @@ to ship a static source file with that header."""
 from __future__ import annotations
 
 from functools import lru_cache
+from pathlib import PurePosixPath
 from typing import Any, Callable
 
 import jinja2
 
 from canspec import ir, resources
 from canspec.ir.names import pascal
-from canspec.render.literals import C, PYTHON, RUST, dbc_string, hex_byte, md_cell, num, toml_string
+from canspec.render.literals import PYTHON, RUST, C, dbc_string, hex_byte, md_cell, num, toml_string
 
 # The filters each template folder sees, and only those (nunavut's per-language filters): a C
 # template cannot reach a Rust literal by mistake, and tests/render/test_filters.py checks that
@@ -56,3 +57,18 @@ def header_lines(spec: ir.Spec, target: str) -> list[str]:
 def render(template: str, spec: ir.Spec, target: str, **context: Any) -> str:
     env = environment(template.split("/", 1)[0])
     return env.get_template(template).render(spec=spec, header=header_lines(spec, target), ir=ir, **context)
+
+
+# The line comment a static file's header is written in, by the file's suffix.
+LINE_COMMENT = {".py": "#", ".typed": "#", ".rs": "//", ".ts": "//"}
+
+
+def with_header(spec: ir.Spec, target: str, name: str, text: str) -> str:
+    """A static source file as shipped: the generated header in the comment syntax of `name`, a blank line, the text verbatim."""
+    comment = LINE_COMMENT[PurePosixPath(name).suffix]
+    return "".join(f"{comment} {line}\n" for line in header_lines(spec, target)) + "\n" + text
+
+
+def static_file(spec: ir.Spec, target: str, template: str) -> str:
+    """A real source file under templates/ (`rust/static/codec.rs`), shipped with the generated header."""
+    return with_header(spec, target, template, (resources.templates_dir() / template).read_text(encoding="utf-8"))

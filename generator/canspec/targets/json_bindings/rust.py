@@ -4,10 +4,10 @@ literals, identifiers and signatures are computed here."""
 
 from __future__ import annotations
 
-from canspec import ir, resources
+from canspec import ir
 from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import Branch, FieldRule, MessageModel, Pair, Plan, ProtocolModel
-from canspec.render.environment import header_lines, render
+from canspec.render.environment import render, static_file
 from canspec.render.formatters import rustfmt
 from canspec.render.literals import RUST
 from canspec.targets.json_bindings import names, text
@@ -102,12 +102,6 @@ def rust_crate_name(protocol: ir.JsonProtocol) -> str:
     return protocol.name.replace("_", "-") + "-json"
 
 
-def runtime(spec: ir.Spec) -> str:
-    """rt.rs: the checks, a real source file under templates/, with the generated header."""
-    body = (resources.templates_dir() / "json_rust" / "rt.rs").read_text(encoding="utf-8")
-    return "".join(f"// {line}\n" for line in header_lines(spec, "json_rust")) + "\n" + body
-
-
 def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/rust/{pm.protocol.name}"
     receivers = {p.receiver for p in pm.receiver_plans}
@@ -125,6 +119,6 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     cargo = render("json_rust/Cargo.toml.j2", spec, "json_rust", p=pm.protocol, crate=rust_crate_name(pm.protocol))
     return {
         f"{base}/src/lib.rs": rustfmt(lib, f"{base}/src/lib.rs").encode(),
-        f"{base}/src/rt.rs": runtime(spec).encode(),
+        f"{base}/src/rt.rs": static_file(spec, "json_rust", "json_rust/rt.rs").encode(),
         f"{base}/Cargo.toml": cargo.encode(),
     }

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import textwrap
 
-from canspec import ir, resources
+from canspec import ir
 from canspec.ir.json_fields import Branch, FieldRule, Plan, ProtocolModel
-from canspec.render.environment import header_lines, render
+from canspec.render.environment import render, static_file
 from canspec.render.literals import TYPESCRIPT
 from canspec.targets.json_bindings import text
 
@@ -90,12 +90,6 @@ def read_union(pm: ProtocolModel) -> str:
     return "".join(f"\n  | {{ readonly name: {TYPESCRIPT.value(mm.name)}; readonly value: T.{mm.type_name} }}" for mm in pm.messages)
 
 
-def runtime(spec: ir.Spec) -> str:
-    """canspec-json.ts: the strict text reader and the checks, a real source file under templates/."""
-    body = (resources.templates_dir() / "json_ts" / "canspec-json.ts").read_text(encoding="utf-8")
-    return "".join(f"// {line}\n" for line in header_lines(spec, "json_ts")) + "\n" + body
-
-
 def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     types = {
         "message_types": union([mm.type_name for mm in pm.messages]),
@@ -111,5 +105,5 @@ def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     return {
         f"json/typescript/{pm.protocol.name}.d.ts": body.encode(),
         f"json/typescript/{pm.protocol.name}.reader.ts": reader.encode(),
-        "json/typescript/canspec-json.ts": runtime(spec).encode(),
+        "json/typescript/canspec-json.ts": static_file(spec, "json_ts", "json_ts/canspec-json.ts").encode(),
     }
