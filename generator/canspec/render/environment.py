@@ -18,7 +18,7 @@ from canspec.render.literals import PYTHON, RUST, C, dbc_string, hex_byte, md_ce
 # template cannot reach a Rust literal by mistake, and tests/render/test_filters.py checks that
 # every filter listed here is used by a template of its folder. Nothing is added at run time.
 FILTERS: dict[str, dict[str, Callable[..., str]]] = {
-    "c": {"num": num, "c_string": C.string, "c_comment": C.comment},
+    "c": {"c_string": C.string, "c_comment": C.comment},
     "dbc": {"num": num, "dbc_string": dbc_string},
     "docs": {"num": num, "hex_byte": hex_byte},
     "python": {"hex": PYTHON.hex, "py_string": PYTHON.string, "toml_string": toml_string},

@@ -200,12 +200,12 @@ class RustLiterals(Literals):
         return hex_text(value, digits)
 
     def value(self, value: bool | float | str) -> str:
-        """A JSON scalar: "N", 3, -1.5, true (an f64 where the value is a float)."""
+        """A JSON scalar: "N", 3, -1.5, true (an f64 where the value is a float; an integer in decimal, as the spec writes it)."""
         if isinstance(value, str):
             return self.string(value)
         if isinstance(value, bool):
             return "true" if value else "false"
-        return self.double(value) if isinstance(value, float) else self.integer(value)
+        return self.double(value) if isinstance(value, float) else str(value)
 
 
 class TypeScriptLiterals(Literals):
