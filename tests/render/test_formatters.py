@@ -47,7 +47,8 @@ def test_cli_without_clang_format_is_one_line_and_exit_1(tmp_path):
     empty = tmp_path / "bin"
     empty.mkdir()
     env = {**CANSPEC_ENV, "PATH": str(empty)}  # no clang-format (nor anything else) on PATH
-    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", "-t", "c", "-o", str(tmp_path / "out")], env=env, capture_output=True, text=True, check=False)
+    cmd = [sys.executable, "-m", "canspec", "gen", "-t", "c", "-o", str(tmp_path / "out")]
+    proc = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     assert proc.returncode == 1
     assert "clang-format not found" in proc.stderr and "apt-get install clang-format" in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
     assert not (tmp_path / "out" / "c").exists()

@@ -54,7 +54,9 @@ class Formatter:
 
 
 FORMATTERS = {
-    "clang-format": Formatter("clang-format", f"pip install clang-format=={CLANG_FORMAT_VERSION}, or apt-get install clang-format", lambda: shutil.which("clang-format")),
+    "clang-format": Formatter(
+        "clang-format", f"pip install clang-format=={CLANG_FORMAT_VERSION}, or apt-get install clang-format", lambda: shutil.which("clang-format")
+    ),
     "ruff": Formatter("ruff", f"pip install ruff=={RUFF_VERSION}", _ruff_binary),
     "rustfmt": Formatter("rustfmt", "rustup component add rustfmt", lambda: shutil.which("rustfmt")),
 }

@@ -100,8 +100,8 @@ def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     body = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=TYPESCRIPT.value, doc=text.field_doc,
                   ts_doc=text.ts_doc, paren=text.paren, heading=text.heading, echo_clause=text.echo_clause, reply_chain=reply_chain(pm),
                   receiver_types=lambda plan: receiver_types(pm, plan), **types)
-    reader = render("json_ts/reader.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_lit=TYPESCRIPT.value, ts_list=ts_list, field_props=field_props, branch=branch,
-                    plan_const=plan_const, plan_doc=plan_doc, read_union=read_union(pm), receivers=[plan.receiver for plan in pm.receiver_plans])
+    reader = render("json_ts/reader.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_lit=TYPESCRIPT.value, ts_list=ts_list, field_props=field_props,
+                    branch=branch, plan_const=plan_const, plan_doc=plan_doc, read_union=read_union(pm), receivers=[plan.receiver for plan in pm.receiver_plans])
     return {
         f"json/typescript/{pm.protocol.name}.d.ts": body.encode(),
         f"json/typescript/{pm.protocol.name}.reader.ts": reader.encode(),

@@ -165,7 +165,8 @@ def int_encoding(sig: ir.Signal) -> Encoding:
 
 
 def float_encoding(sig: ir.Signal) -> Encoding:
-    scale = {"factor": RUST.double(sig.factor), "offset": RUST.double(sig.offset), "check_min": RUST.double(sig.accept_min), "check_max": RUST.double(sig.accept_max)}
+    scale = {"factor": RUST.double(sig.factor), "offset": RUST.double(sig.offset)}
+    scale.update(check_min=RUST.double(sig.accept_min), check_max=RUST.double(sig.accept_max))
     if is_wide_unsigned(sig):
         return Encoding("to_raw_u64", "ScaleU64", {**scale, "raw_min": RUST.integer(sig.raw_min), "raw_max": RUST.integer(sig.raw_max)}, _specials(sig), "u64")
     scale.update(_raw_bounds(sig))
