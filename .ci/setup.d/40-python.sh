@@ -2,7 +2,7 @@
 # Python target: the formatter the generator runs (pinned: its version is part of the output),
 # the type checker and hatchling the tests run, python-can for the bus integration test.
 set -euo pipefail
-RUFF_VERSION=0.17.6   # keep equal to RUFF_VERSION in generator/canspec/targets/python.py
+RUFF_VERSION=0.17.6   # keep equal to RUFF_VERSION in generator/canspec/render/formatters.py
 want=("ruff==$RUFF_VERSION" "mypy>=1.8" "hypothesis>=6.90" "python-can>=4.3" "hatchling>=1.18")
 missing=()
 for spec in "${want[@]}"; do

@@ -17,7 +17,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-from canspec.render.literals import c_int
+from canspec.render.literals import C
 from canspec.targets.c import divide, physical
 from canspec.targets.c.names import CNames
 
@@ -314,7 +314,7 @@ def test_runtime_division_functions_in_c(tmp_path, strategy):
         k = d if not mg.half else d // 2
         for n in sorted(_boundary_numerators(d, 2**31))[::7]:
             for num in {n, -n} - {2**31}:
-                rows.append(f"    {{ {c_int(num)}, {k}u, {mg.m}u, {mg.shift}u, {form} }},")
+                rows.append(f"    {{ {C.integer(num)}, {k}u, {mg.m}u, {mg.shift}u, {form} }},")
                 want.append(_exact_round(num, d))
     src = tmp_path / "main.c"
     src.write_text(RUNTIME_MAIN.replace("@CASES@", "\n".join(rows)))
@@ -434,7 +434,7 @@ def test_runtime_64_bit_functions_in_c(tmp_path, strategy):
             for n in sorted(_boundary_numerators(d, top))[::23]:
                 for num in ({n, -n} - {2**63} if kind == "signed" else {n}):
                     k = d if not mg.half else d // 2
-                    rows.append(f"    {{ {c_int(_int64(num), 64)}, UINT64_C({k}), UINT64_C({mg.m}), {mg.shift}u, {form} }},")
+                    rows.append(f"    {{ {C.integer(_int64(num), 64)}, UINT64_C({k}), UINT64_C({mg.m}), {mg.shift}u, {form} }},")
                     want.append(str(_exact_round(num, d)))
     for a in WORDS:
         for j, b in enumerate(WORDS):

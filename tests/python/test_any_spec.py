@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 from canspec.pipeline import compile_spec
+from canspec.render import formatters
 from canspec.targets import python as target
 from canspec.targets.vectors import render_vectors
 
@@ -64,7 +65,7 @@ def test_fixtures_cover_what_the_target_must_handle():
 
 
 def test_ruff_check_and_format(packages):
-    ruff = target.ruff_binary()
+    ruff = formatters.FORMATTERS["ruff"].executable()
     dists = [str(pkg.parent) for pkg, _ in packages.values()]
     for dist in dists:  # each with its own pyproject.toml's [tool.ruff.lint] rules
         proc = run([ruff, "check", "--no-cache", "."], cwd=dist)

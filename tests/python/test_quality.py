@@ -3,12 +3,14 @@ every file headed, up to date with the spec, installable; the vector runner work
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import subprocess
 import sys
 import zipfile
 
 import pytest
+from canspec.render import formatters
 from canspec.targets import python as target
 
 from python import pkgpath, vector_runner
@@ -28,7 +30,7 @@ def test_mypy_strict_clean():
 
 
 def test_ruff_check_clean_and_formatted():
-    ruff = target.ruff_binary()
+    ruff = formatters.FORMATTERS["ruff"].executable()
     proc = run([ruff, "check", "--no-cache", "."], cwd=PKG)  # the package's own [tool.ruff.lint] rules
     assert proc.returncode == 0, proc.stdout + proc.stderr
     proc = run([ruff, "format", "--check", "--no-cache", "--isolated", f"--line-length={target.LINE_LENGTH}", "."], cwd=PKG)
@@ -39,8 +41,8 @@ def test_formatter_pinned_version_matches_setup_script():
     from importlib.metadata import version
 
     setup = (pkgpath.ROOT / ".ci" / "setup.d" / "40-python.sh").read_text()
-    assert f"RUFF_VERSION={target.RUFF_VERSION}" in setup
-    assert version("ruff") == target.RUFF_VERSION, "the installed ruff differs from the pinned one: output may format differently"
+    assert f"RUFF_VERSION={formatters.RUFF_VERSION}" in setup
+    assert version("ruff") == formatters.RUFF_VERSION, "the installed ruff differs from the pinned one: output may format differently"
 
 
 def test_generation_is_deterministic_and_up_to_date(spec):
@@ -120,8 +122,8 @@ def test_runner_reads_any_file_and_reports_mismatches(tmp_path, vectors):
 def test_missing_formatter_is_a_clear_generation_error(monkeypatch, spec):
     from canspec.generate import GenerationError, generate
 
-    monkeypatch.setattr(target, "ruff_binary", lambda: (_ for _ in ()).throw(RuntimeError(f"the python target formats its output with ruff: pip install ruff=={target.RUFF_VERSION}")))
-    with pytest.raises(GenerationError, match="pip install ruff=="):
+    monkeypatch.setitem(formatters.FORMATTERS, "ruff", dataclasses.replace(formatters.FORMATTERS["ruff"], locate=lambda: None))
+    with pytest.raises(GenerationError, match=f"ruff not found.*pip install ruff=={formatters.RUFF_VERSION}"):
         generate(spec, ["python"])
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 from canspec import ir
 from canspec.ir.bits import segments, storage_bits
 from canspec.ir.encoding import raw_type_range
-from canspec.render.literals import grouped_int
+from canspec.render.literals import RUST
 from canspec.targets.rust.bits import misfit_expr, raw_type, store_stmt, unpack_expr
 
 TEMPLATE = ir.Signal(
@@ -54,9 +54,9 @@ fn check{i}(words: &[u64]) {{
         assert_eq!(i128::from(f.get()), want, "get {sig.start}/{sig.length}/{sig.signed} of {{w:#x}}");
         let mut g = F{i} {{ bits: !w }};
         g.store(f.get());
-        assert_eq!(g.bits, merged(!w, w, {grouped_int(sig.word_mask)}), "store {sig.start}/{sig.length}");
+        assert_eq!(g.bits, merged(!w, w, {RUST.integer(sig.word_mask)}), "store {sig.start}/{sig.length}");
     }}
-    for v in [{", ".join(f"{grouped_int(p)}_i128" for p in probes)}] {{
+    for v in [{", ".join(f"{RUST.integer(p)}_i128" for p in probes)}] {{
         let fits = ({sig.raw_type_min}_i128..={sig.raw_type_max}_i128).contains(&v);
         assert_eq!(F{i}::misfit(v as {ty}), !fits, "misfit {sig.start}/{sig.length}/{sig.signed} {{v}}");
     }}

@@ -10,12 +10,7 @@ from pathlib import Path
 
 from canspec.commands.common import compile_or_report
 from canspec.diff.changelog import LANGUAGES, rows
-from canspec.render.environment import environment, render
-
-
-def _md_cell(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
-
+from canspec.render.environment import render
 
 _TEXT = {  # (zh, en)
     "heading": ("变更记录表", "Change record"),
@@ -46,7 +41,6 @@ def run(args: argparse.Namespace) -> int:
     if spec.changelog is None:
         print("canspec changelog: the spec has no changelog (a file of kind `changelog`)", file=sys.stderr)
         return 1
-    environment().filters.setdefault("md_cell", _md_cell)
     can = spec.can
     title, title_zh = (can.title, can.title_zh) if can else (spec.name, "")
     has_errata = any(r.errata or any(i.errata for i in r.items) for r in rows(spec.changelog))

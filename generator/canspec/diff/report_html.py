@@ -68,7 +68,7 @@ def html(old: ProtocolModel, new: ProtocolModel, changes: list[Change]) -> str:
     rows = _rows(changes, rel)
     groups = [(key, list(items)) for key, items in groupby(rows, key=lambda r: (r.frame_id, r.message))]
     css = (resources.templates_dir() / "diff" / "report.css").read_text(encoding="utf-8")
-    return environment().get_template("diff/report.html.j2").render(
+    return environment("diff").get_template("diff/report.html.j2").render(
         old=old, new=new, summary=s, ladder=LADDER, titles=TITLES, class_zh=CLASS_ZH, groups=groups, css=css,
         release=rel, items=_items(rel, rows) if rel is not None else [], undeclared=[r for r in rows if r.needs_item],
     )

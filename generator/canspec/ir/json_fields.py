@@ -18,6 +18,7 @@ receiving party.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -209,9 +210,9 @@ def number(value: Fraction | float | None) -> int | float | None:
 
 
 def literal(value: float | str) -> str:
-    """JSON-ish text of a value, as rule texts show it (strings quoted)."""
+    """JSON-ish text of a value, as rule texts show it (strings quoted and escaped as JSON writes them)."""
     if isinstance(value, str):
-        return '"' + value + '"'
+        return json.dumps(value, ensure_ascii=False)
     return repr(value)
 
 

@@ -1,20 +1,36 @@
-"""The one Jinja environment every target renders with (StrictUndefined: a typo in a template
-is an error, never an empty string), plus the header every generated file carries."""
+"""The Jinja environments targets render with, one per template folder (StrictUndefined: a typo in a
+template is an error, never an empty string), the header every generated file carries, and the one way
+to ship a static source file with that header."""
 
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Any
+from pathlib import PurePosixPath
+from typing import Any, Callable
 
 import jinja2
 
 from canspec import ir, resources
-from canspec.ir import names as naming
-from canspec.render import literals as fmt
+from canspec.ir.names import pascal
+from canspec.render.literals import PYTHON, RUST, C, dbc_string, hex_byte, md_cell, num, toml_string
+
+# The filters each template folder sees, and only those (nunavut's per-language filters): a C
+# template cannot reach a Rust literal by mistake, and tests/render/test_filters.py checks that
+# every filter listed here is used by a template of its folder. Nothing is added at run time.
+FILTERS: dict[str, dict[str, Callable[..., str]]] = {
+    "c": {"c_string": C.string, "c_comment": C.comment},
+    "dbc": {"num": num, "dbc_string": dbc_string},
+    "docs": {"num": num, "hex_byte": hex_byte},
+    "python": {"hex": PYTHON.hex, "py_string": PYTHON.string, "toml_string": toml_string},
+    "rust": {"hex": RUST.hex, "rust_string": RUST.string, "toml_string": toml_string},
+    "json_rust": {"pascal": pascal},
+    "changelog": {"md_cell": md_cell},
+}
 
 
-@lru_cache(maxsize=1)
-def environment() -> jinja2.Environment:
+@lru_cache(maxsize=None)
+def environment(folder: str) -> jinja2.Environment:
+    """The environment of one template folder (a target's language): its own filters, the shared settings."""
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(resources.templates_dir())),
         undefined=jinja2.StrictUndefined,
@@ -23,8 +39,7 @@ def environment() -> jinja2.Environment:
         lstrip_blocks=True,
         autoescape=False,
     )
-    env.filters.update(naming.FILTERS)
-    env.filters.update(fmt.FILTERS)
+    env.filters.update(FILTERS.get(folder, {}))
     return env
 
 
@@ -40,5 +55,20 @@ def header_lines(spec: ir.Spec, target: str) -> list[str]:
 
 
 def render(template: str, spec: ir.Spec, target: str, **context: Any) -> str:
-    env = environment()
+    env = environment(template.split("/", 1)[0])
     return env.get_template(template).render(spec=spec, header=header_lines(spec, target), ir=ir, **context)
+
+
+# The line comment a static file's header is written in, by the file's suffix.
+LINE_COMMENT = {".py": "#", ".typed": "#", ".rs": "//", ".ts": "//"}
+
+
+def with_header(spec: ir.Spec, target: str, name: str, text: str) -> str:
+    """A static source file as shipped: the generated header in the comment syntax of `name`, a blank line, the text verbatim."""
+    comment = LINE_COMMENT[PurePosixPath(name).suffix]
+    return "".join(f"{comment} {line}\n" for line in header_lines(spec, target)) + "\n" + text
+
+
+def static_file(spec: ir.Spec, target: str, template: str) -> str:
+    """A real source file under templates/ (`rust/static/codec.rs`), shipped with the generated header."""
+    return with_header(spec, target, template, (resources.templates_dir() / template).read_text(encoding="utf-8"))

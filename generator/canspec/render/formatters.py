@@ -1,24 +1,80 @@
-"""The external formatters generated code goes through, run on text in memory (stdin → stdout)
-so output is deterministic. A missing or failing formatter is a generation error: generated
-code is never written unformatted."""
+"""The external formatters generated code goes through — one registry (clang-format for C, ruff
+for Python, rustfmt for Rust), each run on text in memory (stdin → stdout) so output is
+deterministic, each with a timeout. A missing, failing or hanging formatter is a generation error
+naming the tool and how to install it: generated code is never written unformatted."""
 
 from __future__ import annotations
 
 import shutil
 import subprocess
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
 
 TIMEOUT_S = 300
+# The formatters' versions are part of the output: CI installs exactly these (.ci/setup.d/).
+RUFF_VERSION = "0.17.6"
+CLANG_FORMAT_VERSION = "14.0.6"
 
 
-def run(exe_name: str, args: list[str], text: str, what: str, install_hint: str, exe: str | None = None) -> str:
-    exe = exe or shutil.which(exe_name)
-    if exe is None:
-        raise RuntimeError(f"{exe_name} not found on PATH; {what} is formatted with it ({install_hint})")
-    proc = subprocess.run([exe, *args], input=text.encode("utf-8"), capture_output=True, check=False, timeout=TIMEOUT_S)
-    if proc.returncode != 0:
-        raise RuntimeError(f"{exe_name} failed on {what}: {proc.stderr.decode('utf-8', 'replace').strip()[:2000]}")
-    return proc.stdout.decode("utf-8")
+class FormatterError(RuntimeError):
+    """A formatter is missing, failed or timed out (generate.py reports it as one line, no traceback)."""
+
+
+def _ruff_binary() -> str | None:
+    try:
+        from ruff.__main__ import find_ruff_bin  # type: ignore[import-not-found,import-untyped,unused-ignore]
+    except ImportError:
+        return None
+    return str(find_ruff_bin())
+
+
+@dataclass(frozen=True)
+class Formatter:
+    name: str
+    install: str  # how to install it: the hint of the error when it is missing
+    locate: Callable[[], str | None]  # the executable, or None when it is not installed
+
+    def executable(self) -> str:
+        exe = self.locate()
+        if exe is None:
+            raise FormatterError(f"{self.name} not found; generated code is formatted with it (install: {self.install})")
+        return exe
+
+    def run(self, args: list[str], text: str, what: str) -> str:
+        """`text` as the tool writes it to stdout, given `args`; `what` names the file in errors."""
+        try:
+            proc = subprocess.run([self.executable(), *args], input=text.encode("utf-8"), capture_output=True, check=False, timeout=TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            raise FormatterError(f"{self.name} took more than {TIMEOUT_S} s on {what}") from None
+        if proc.returncode != 0:
+            raise FormatterError(f"{self.name} failed on {what}: {proc.stderr.decode('utf-8', 'replace').strip()[:2000]}")
+        return proc.stdout.decode("utf-8")
+
+
+FORMATTERS = {
+    "clang-format": Formatter(
+        "clang-format", f"pip install clang-format=={CLANG_FORMAT_VERSION}, or apt-get install clang-format", lambda: shutil.which("clang-format")
+    ),
+    "ruff": Formatter("ruff", f"pip install ruff=={RUFF_VERSION}", _ruff_binary),
+    "rustfmt": Formatter("rustfmt", "rustup component add rustfmt", lambda: shutil.which("rustfmt")),
+}
+
+
+def clang_format(text: str, name: str, style: Path) -> str:
+    """C in the style of the given .clang-format file."""
+    return FORMATTERS["clang-format"].run([f"--style=file:{style}", f"--assume-filename={name}"], text, name)
+
+
+def ruff_format(source: str, filename: str, package: str, line_length: int) -> str:
+    """Python as ruff writes it, with the Python target's settings and no config files: imports
+    sorted (isort's order of names, which the templates do not reproduce), then formatted."""
+    ruff = FORMATTERS["ruff"]
+    common = ["--isolated", f"--line-length={line_length}", "--target-version=py310", f"--stdin-filename={filename}", "-"]
+    isort = ["check", "--select=I", "--fix", "--exit-zero", "--quiet", "--config", f"lint.isort.known-first-party = [{package!r}]"]
+    return ruff.run(["format", *common], ruff.run([*isort, *common], source, filename), filename)
 
 
 def rustfmt(text: str, what: str) -> str:
-    return run("rustfmt", ["--edition", "2021", "--emit", "stdout"], text, what, "rustup component add rustfmt")
+    return FORMATTERS["rustfmt"].run(["--edition", "2021", "--emit", "stdout"], text, what)

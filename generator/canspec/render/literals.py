@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import json
 import re
+from abc import ABC, abstractmethod
 from fractions import Fraction
 
 from canspec.ir.encoding import decimal_text
 
-# --- numbers, every language -----------------------------------------------------------------
+# --- text of numbers, shared by the languages -----------------------------------------------
 
 
 def num(value: Fraction | int | None) -> str:
@@ -18,56 +19,35 @@ def num(value: Fraction | int | None) -> str:
     return "" if value is None else decimal_text(Fraction(value))
 
 
-def float_lit(value: Fraction | int) -> str:
-    """A floating-point literal of an exact decimal, valid as a C double, a Rust f64, a Python
-    float and a TypeScript number: 0.1, -1080.0, 0.0015 (each parses to the nearest double)."""
+def hex_byte(value: int) -> str:
+    """A byte in documents (DBC comments, docs, spreadsheets): 0x0A."""
+    return hex_text(value, 2)
+
+
+def hex_text(value: int, digits: int = 0) -> str:
+    """Hex as every language here and every document writes it: 0x3FF, -0x10, 0x0A (digits: at least)."""
+    return f"-0x{-value:0{digits}X}" if value < 0 else f"0x{value:0{digits}X}"
+
+
+def _exact_decimal(value: Fraction | int) -> str:
+    """A floating-point literal of an exact decimal: 0.1, -1080.0, 0.0015 (each parses to the nearest double)."""
     text = decimal_text(Fraction(value))
     return text if any(c in text for c in ".eE") else f"{text}.0"
 
 
-def double_repr(value: float) -> str:
+def _shortest(value: Fraction | float) -> str:
     """The shortest text that reads back as this double, as a float literal: 0.1, 1e-07, 3.0."""
     text = repr(float(value)).replace("e+", "e")
     return text if any(c in text for c in ".e") or text in ("inf", "-inf", "nan") else f"{text}.0"
 
 
-def hex32(value: int) -> str:
-    return f"0x{value:08X}"
-
-
-def hex_byte(value: int) -> str:
-    return f"0x{value:02X}"
-
-
-def grouped_int(value: int) -> str:
-    """Decimal below 2^16, else hex in groups of four digits (Rust and Python: readable masks)."""
+def _grouped(value: int) -> str:
+    """Decimal below 2^16, else hex in groups of four digits (readable masks; Rust and Python read it)."""
     if abs(value) < 1 << 16:
         return str(value)
     digits = f"{abs(value):X}"
     groups = [digits[max(i - 4, 0) : i] for i in range(len(digits), 0, -4)][::-1]
     return ("-" if value < 0 else "") + "0x" + "_".join(groups)
-
-
-# --- C ---------------------------------------------------------------------------------------
-
-
-def c_uint(value: int, bits: int = 32) -> str:
-    """An unsigned C constant: `5u`, or `UINT64_C(...)` beyond 32 bits."""
-    if value < 0:
-        raise ValueError(f"negative unsigned literal {value}")
-    return f"UINT64_C({value})" if bits > 32 or value > 0xFFFFFFFF else f"{value}u"
-
-
-def c_int(value: int, bits: int = 32) -> str:
-    """A signed C constant of the given width: `-5` in parentheses, `INT64_C(...)` / `INT64_MIN`
-    beyond 32 bits (the most negative value has no literal of its own)."""
-    if bits > 32 or not -(2**31) < value < 2**31:
-        return f"INT64_C({value})" if value > -(2**63) else "INT64_MIN"
-    return f"{value}" if value >= 0 else f"({value})"
-
-
-def c_hex(value: int, bits: int = 32) -> str:
-    return f"UINT64_C(0x{value:X})" if bits > 32 or value > 0xFFFFFFFF else f"0x{value:X}u"
 
 
 def _escaped(text: str, control: str) -> str:
@@ -89,73 +69,174 @@ def _escaped(text: str, control: str) -> str:
 _QUESTIONS = re.compile(r"\?(?=\?)")  # a `?` followed by another: a backslash between them
 
 
-def c_string(text: str) -> str:
-    """A C string literal, UTF-8 kept; other control characters as 3-digit octal escapes (which,
-    unlike hex escapes, cannot swallow a following digit); `??` split so no trigraph forms."""
-    return _QUESTIONS.sub("?\\\\", _escaped(text, "\\{:03o}"))
-
-
-def c_comment(text: str) -> str:
-    """Text inside a C block comment, on one line: `*/`, `/*` and `??` (a trigraph) broken up so
-    the comment neither ends early nor warns; line breaks and other control characters as spaces."""
-    flat = "".join(" " if ord(ch) < 0x20 or ord(ch) == 0x7F else ch for ch in text)
-    return _QUESTIONS.sub("?\\\\", flat.replace("*/", "*\\/").replace("/*", "/\\*"))
-
-
-# --- Rust, Python, TypeScript, TOML ------------------------------------------------------------
-
-
-def rust_string(text: str) -> str:
-    return _escaped(text, "\\u{{{:x}}}")
-
-
-def py_string(text: str) -> str:
-    """A Python (and JSON, TypeScript, TOML basic) string literal, UTF-8 kept."""
-    return json.dumps(text, ensure_ascii=False)
-
-
 def _one_line(text: str, control: str) -> str:
     text = " ".join(text.split())  # newlines (and every other whitespace run) as one space
     return re.sub(r"[\x00-\x08\x0e-\x1f\x7f]", lambda m: control.format(ord(m.group())), text)
 
 
-def py_doc(text: str) -> str:
-    """Text for one line of a Python docstring: backslashes doubled and a quote before a quote (or
-    at the end) escaped, so the docstring reads back as the text and never ends early; other control
-    characters as escapes; whitespace runs, newlines included, as one space."""
-    return re.sub(r'"(?="|$)', '\\\\"', _one_line(text.replace("\\", "\\\\"), "\\x{:02x}"))
+def _json_text(text: str) -> str:
+    """A JSON string, UTF-8 kept: also a Python, TypeScript and TOML basic string literal."""
+    return json.dumps(text, ensure_ascii=False)
 
 
-def py_comment(text: str) -> str:
-    """Text for a Python `#` comment: one line; other control characters shown as `\\xNN`."""
-    return _one_line(text, "\\x{:02x}")
+toml_string = _json_text
 
 
-ts_string = py_string
-toml_string = py_string
+# --- the interface every language answers (Kaitai's CommonLiterals) ---------------------------
 
 
-def ts_value(value: int | str) -> str:
-    """A TypeScript literal type / value of a JSON enum member."""
-    return json.dumps(value, ensure_ascii=False)
+class Literals(ABC):
+    """How one language writes an integer, a double, a string and a hex constant. Every target
+    writes its literals through its language's instance (C, PYTHON, RUST, TYPESCRIPT), so a
+    syntax rule lives in one place and tests/render/test_literals_table.py checks each language
+    on the same values."""
+
+    @abstractmethod
+    def integer(self, value: int) -> str: ...
+
+    @abstractmethod
+    def double(self, value: Fraction | float) -> str: ...
+
+    @abstractmethod
+    def string(self, text: str) -> str: ...
+
+    @abstractmethod
+    def hex(self, value: int, digits: int = 0) -> str: ...
+
+    def number(self, value: Fraction | int, integral: bool) -> str:
+        """An integer literal where the quantity is integral (then the value must be an integer), else a double."""
+        if not integral:
+            return self.double(value)
+        if Fraction(value).denominator != 1:
+            raise ValueError(f"{value} is not an integer")
+        return self.integer(int(value))
 
 
-def py_value(value: bool | float | str | None) -> str:
-    """A Python literal of a JSON scalar: "N", 3, -1.5, True, None."""
-    if isinstance(value, str):
-        return py_string(value)
-    if isinstance(value, float):
-        return double_repr(value)
-    return repr(value)
+class CLiterals(Literals):
+    """C99: integer constants typed by width (`5u`, `(-5)`, `INT64_C(...)`), doubles as the exact
+    decimal of the spec's value, strings in the execution character set's escapes."""
+
+    def integer(self, value: int, bits: int = 32) -> str:
+        """A signed constant: negative ones in parentheses, `INT64_C(...)` / `INT64_MIN` beyond 32 bits
+        (the most negative value has no literal of its own)."""
+        if bits > 32 or not -(2**31) < value < 2**31:
+            return f"INT64_C({value})" if value > -(2**63) else "INT64_MIN"
+        return f"{value}" if value >= 0 else f"({value})"
+
+    def unsigned(self, value: int, bits: int = 32) -> str:
+        """An unsigned constant: `5u`, or `UINT64_C(...)` beyond 32 bits."""
+        if value < 0:
+            raise ValueError(f"negative unsigned literal {value}")
+        return f"UINT64_C({value})" if bits > 32 or value > 0xFFFFFFFF else f"{value}u"
+
+    def double(self, value: Fraction | float) -> str:
+        return _exact_decimal(Fraction(value))
+
+    def string(self, text: str) -> str:
+        """UTF-8 kept; other control characters as 3-digit octal escapes (which, unlike hex escapes,
+        cannot swallow a following digit); `??` split so no trigraph forms."""
+        return _QUESTIONS.sub("?\\\\", _escaped(text, "\\{:03o}"))
+
+    def hex(self, value: int, digits: int = 0, bits: int = 32) -> str:
+        """An unsigned hex constant: `0x3FFu`, `UINT64_C(0x...)` beyond 32 bits."""
+        if value < 0:
+            raise ValueError(f"negative unsigned literal {value}")
+        text = hex_text(value, digits)
+        return f"UINT64_C({text})" if bits > 32 or value > 0xFFFFFFFF else f"{text}u"
+
+    def comment(self, text: str) -> str:
+        """Text inside a block comment, on one line: `*/`, `/*` and `??` (a trigraph) broken up so
+        the comment neither ends early nor warns; line breaks and other control characters as spaces."""
+        flat = "".join(" " if ord(ch) < 0x20 or ord(ch) == 0x7F else ch for ch in text)
+        return _QUESTIONS.sub("?\\\\", flat.replace("*/", "*\\/").replace("/*", "/\\*"))
 
 
-def rust_value(value: bool | float | str) -> str:
-    """A Rust literal of a JSON scalar: "N", 3, -1.5, true (an f64 where the value is a float)."""
-    if isinstance(value, str):
-        return rust_string(value)
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    return double_repr(value) if isinstance(value, float) else str(value)
+class PythonLiterals(Literals):
+    """Python 3: plain decimal integers, the shortest double that reads back, JSON-style strings."""
+
+    def integer(self, value: int) -> str:
+        return str(value)
+
+    def double(self, value: Fraction | float) -> str:
+        return _shortest(value)
+
+    def string(self, text: str) -> str:
+        return _json_text(text)
+
+    def hex(self, value: int, digits: int = 0) -> str:
+        return hex_text(value, digits)
+
+    def value(self, value: bool | float | str | None) -> str:
+        """A JSON scalar: "N", 3, -1.5, True, None."""
+        if isinstance(value, str):
+            return self.string(value)
+        return self.double(value) if isinstance(value, float) else repr(value)
+
+    def doc(self, text: str) -> str:
+        """Text for one line of a docstring: backslashes doubled and a quote before a quote (or at the
+        end) escaped, so the docstring reads back as the text and never ends early; other control
+        characters as escapes; whitespace runs, newlines included, as one space."""
+        return re.sub(r'"(?="|$)', '\\\\"', _one_line(text.replace("\\", "\\\\"), "\\x{:02x}"))
+
+    def comment(self, text: str) -> str:
+        """Text for a `#` comment: one line; other control characters shown as `\\xNN`."""
+        return _one_line(text, "\\x{:02x}")
+
+
+class RustLiterals(Literals):
+    """Rust: integers in decimal below 2^16, else grouped hex (untyped: the context types them),
+    the shortest f64 that reads back, strings with `\\u{..}` escapes."""
+
+    def integer(self, value: int) -> str:
+        return _grouped(value)
+
+    def double(self, value: Fraction | float) -> str:
+        return _shortest(value)
+
+    def string(self, text: str) -> str:
+        return _escaped(text, "\\u{{{:x}}}")
+
+    def hex(self, value: int, digits: int = 0) -> str:
+        return hex_text(value, digits)
+
+    def value(self, value: bool | float | str) -> str:
+        """A JSON scalar: "N", 3, -1.5, true (an f64 where the value is a float; an integer in decimal, as the spec writes it)."""
+        if isinstance(value, str):
+            return self.string(value)
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        return self.double(value) if isinstance(value, float) else str(value)
+
+
+class TypeScriptLiterals(Literals):
+    """TypeScript: numbers as Python and JSON write them (`1e+22`; integers beyond 2^53 become the
+    nearest double, as JSON.parse reads them), JSON strings."""
+
+    def integer(self, value: int) -> str:
+        return str(value)
+
+    def double(self, value: Fraction | float) -> str:
+        return repr(float(value))
+
+    def string(self, text: str) -> str:
+        return _json_text(text)
+
+    def hex(self, value: int, digits: int = 0) -> str:
+        return hex_text(value, digits)
+
+    def value(self, value: bool | float | str) -> str:
+        """A literal type / value of a JSON scalar."""
+        if isinstance(value, str):
+            return self.string(value)
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        return self.double(value) if isinstance(value, float) else self.integer(value)
+
+
+C = CLiterals()
+PYTHON = PythonLiterals()
+RUST = RustLiterals()
+TYPESCRIPT = TypeScriptLiterals()
 
 
 # --- DBC ---------------------------------------------------------------------------------------
@@ -164,6 +245,14 @@ def rust_value(value: bool | float | str) -> str:
 def dbc_string(text: str) -> str:
     """DBC strings cannot escape quotes: replace them."""
     return '"' + text.replace("\\", "/").replace('"', "'") + '"'
+
+
+# --- Markdown ----------------------------------------------------------------------------------
+
+
+def md_cell(text: str) -> str:
+    """Text in one Markdown table cell: a `|` escaped, line breaks as spaces."""
+    return text.replace("|", "\\|").replace("\n", " ")
 
 
 # --- spreadsheets (XLSX) -----------------------------------------------------------------------
@@ -179,19 +268,3 @@ def sheet_number(value: Fraction | int) -> int | float | str:
     if len(text.lstrip("-").replace(".", "").strip("0")) > SHEET_DIGITS:
         return text
     return float(text) if "." in text else int(text)
-
-
-FILTERS = {
-    "num": num,
-    "float_lit": float_lit,
-    "hex32": hex32,
-    "hex_byte": hex_byte,
-    "c_string": c_string,
-    "c_comment": c_comment,
-    "rust_string": rust_string,
-    "py_string": py_string,
-    "py_doc": py_doc,
-    "py_comment": py_comment,
-    "toml_string": toml_string,
-    "dbc_string": dbc_string,
-}

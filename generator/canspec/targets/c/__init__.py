@@ -8,19 +8,15 @@ from __future__ import annotations
 from concurrent.futures import ThreadPoolExecutor
 
 from canspec import ir, resources
-from canspec.render import formatters
 from canspec.render.environment import render
+from canspec.render.formatters import clang_format
 from canspec.targets import Target
 from canspec.targets.c.check import c_problems
 from canspec.targets.c.model import build_model
 from canspec.targets.c.names import HEADERS
 
-CLANG_FORMAT = "clang-format"
 STYLE_FILE = ".clang-format"
 MISRA_RECORD = "MISRA.md"  # the deviation record firmware teams file with the headers
-def clang_format(text: str, name: str) -> str:
-    style = resources.templates_dir() / "c" / STYLE_FILE
-    return formatters.run(CLANG_FORMAT, [f"--style=file:{style}", f"--assume-filename={name}"], text, name, "pip install clang-format==14.0.6, or apt-get install clang-format")
 
 
 def render_c(spec: ir.Spec) -> dict[str, bytes]:
@@ -28,8 +24,9 @@ def render_c(spec: ir.Spec) -> dict[str, bytes]:
         return {}
     model = build_model(spec)
     rendered = {f"{model.prefix}{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
+    style = resources.templates_dir() / "c" / STYLE_FILE
     with ThreadPoolExecutor(max_workers=len(rendered)) as pool:  # clang-format runs in parallel processes
-        formatted = dict(zip(rendered, pool.map(clang_format, rendered.values(), rendered)))
+        formatted = dict(zip(rendered, pool.map(lambda text, name: clang_format(text, name, style), rendered.values(), rendered)))
     out = {f"c/{name}": text.encode("utf-8") for name, text in formatted.items()}
     out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
     out[f"c/{MISRA_RECORD}"] = render("c/MISRA.md.j2", spec, "c", c=model).encode("utf-8")

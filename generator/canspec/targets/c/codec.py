@@ -21,7 +21,7 @@ import re
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.render.literals import c_hex, c_int, c_uint
+from canspec.render.literals import C
 from canspec.targets.c.signals import CSignal
 
 
@@ -64,7 +64,7 @@ def shl(expr: str, n: int) -> str:
 
 
 def masked(expr: str, width: int) -> str:
-    return f"({paren(expr)} & {c_hex((1 << width) - 1)})"
+    return f"({paren(expr)} & {C.hex((1 << width) - 1)})"
 
 
 def ored(terms: list[str]) -> str:
@@ -111,10 +111,10 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
         if s.length == bits:
             continue
         if s.sig.signed:
-            signed += [f"({field} < {c_int(s.sig.raw_type_min, bits)})", f"({field} > {c_int(s.sig.raw_type_max, bits)})"]
+            signed += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
         else:
             groups.setdefault((s.length, bits), []).append(field)
-    terms = [f"({ored(fields)} > {c_uint((1 << n) - 1, bits)})" for (n, bits), fields in sorted(groups.items())]
+    terms = [f"({ored(fields)} > {C.unsigned((1 << n) - 1, bits)})" for (n, bits), fields in sorted(groups.items())]
     return " || ".join(terms + signed)
 
 
@@ -199,9 +199,9 @@ def store(s: CSignal) -> list[str]:
         return [*stmts, f"t64 = {bits};", negate64("t64", "t64", field)]
     sign = s.sig.sign_bit
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
-        return [*stmts, f"t = {bits} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
+        return [*stmts, f"t = {bits} ^ {C.hex(sign)};", f"{field} = ({t})((int32_t)t - {C.integer(sign)});"]
     wide = "t64" if n > 32 else "t"
-    return [*stmts, f"{wide} = {bits} ^ {c_hex(sign, 64 if n > 32 else 32)};", f"{field} = ({t})((int64_t){wide} - {c_int(sign, 64)});"]
+    return [*stmts, f"{wide} = {bits} ^ {C.hex(sign, bits=64 if n > 32 else 32)};", f"{field} = ({t})((int64_t){wide} - {C.integer(sign, 64)});"]
 
 
 def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:

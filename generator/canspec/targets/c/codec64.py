@@ -26,7 +26,7 @@ byte as codec.py does; with `w` loaded the XOR checksum is folded from it.
 from __future__ import annotations
 
 from canspec import ir
-from canspec.render.literals import c_hex, c_int, c_uint
+from canspec.render.literals import C
 from canspec.targets.c.codec import CCodec, byte_pieces, negate64, paren, shl, shr, store
 from canspec.targets.c.signals import CSignal
 
@@ -54,11 +54,11 @@ def _check(sigs: tuple[CSignal, ...], err: str) -> list[str]:
     """The message's one range check: per bit count the OR of its fields (`ored<n>`, or the one
     field) against the count's maximum, two compares per signed field narrower than its type."""
     shared = _shared(sigs)
-    terms = [f"({f'ored{n}' if n in shared else f[0]} > {c_uint((1 << n) - 1)})" for n, f in sorted(_ored(sigs).items())]
+    terms = [f"({f'ored{n}' if n in shared else f[0]} > {C.unsigned((1 << n) - 1)})" for n, f in sorted(_ored(sigs).items())]
     for s in sigs:
         if s.sig.signed and s.length != s.sig.storage_bits:
             bits, field = s.sig.storage_bits, f"src->{s.field}"
-            terms += [f"({field} < {c_int(s.sig.raw_type_min, bits)})", f"({field} > {c_int(s.sig.raw_type_max, bits)})"]
+            terms += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
     return [f"if ({' || '.join(terms)}) {{", f"return {err};", "}"] if terms else []
 
 
@@ -100,7 +100,7 @@ def _placed(s: CSignal) -> str:
     """The field's bits at their place in the frame word (a signed field cut to its bits)."""
     v = f"(uint64_t)src->{s.field}"
     if s.sig.signed and s.length < 64:
-        v = f"({v} & {c_hex(s.sig.mask, 64)})"
+        v = f"({v} & {C.hex(s.sig.mask, bits=64)})"
     return v if s.start == 0 else f"({v} << {s.start}u)"
 
 
@@ -147,15 +147,15 @@ def _word_store(s: CSignal) -> list[str]:
     field, n, t = f"dst->{s.field}", s.length, s.type
     at = "w" if s.start == 0 else f"(w >> {s.start}u)"
     exact = n == 64 or (n == s.sig.storage_bits and not s.sig.signed)  # the store's conversion cuts the rest
-    bits = at if exact else f"({at} & {c_hex(s.sig.mask, 64)})"
+    bits = at if exact else f"({at} & {C.hex(s.sig.mask, bits=64)})"
     if not s.sig.signed:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
         return [negate64("w", "t64", field)]
     sign = s.sig.sign_bit
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
-        return [f"t = (uint32_t){paren(bits)} ^ {c_hex(sign)};", f"{field} = ({t})((int32_t)t - {c_int(sign)});"]
-    return [f"t64 = {bits} ^ {c_hex(sign, 64)};", f"{field} = ({t})((int64_t)t64 - {c_int(sign, 64)});"]
+        return [f"t = (uint32_t){paren(bits)} ^ {C.hex(sign)};", f"{field} = ({t})((int32_t)t - {C.integer(sign)});"]
+    return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
 def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]] | None:

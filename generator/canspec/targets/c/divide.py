@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from canspec.render.literals import c_hex, c_uint
+from canspec.render.literals import C
 
 
 @dataclass(frozen=True)
@@ -124,7 +124,7 @@ def call(fn: dict[str, str], num: str, mg: Magic) -> str:
     """The C call that rounds num / d half away from zero; fn names the runtime's functions
     (`mul`, `mulhi`, `mulrem`)."""
     k, m = (mg.divisor, fn["mulrem"]) if not mg.half else (mg.divisor // 2, fn["mulhi" if mg.high else "mul"])
-    return f"{m}({num}, {c_uint(k, mg.bits)}, {c_hex(mg.m, mg.bits)}, {c_uint(mg.shift)})"
+    return f"{m}({num}, {C.unsigned(k, mg.bits)}, {C.hex(mg.m, bits=mg.bits)}, {C.unsigned(mg.shift)})"
 
 
 def note(mg: Magic) -> str:

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from canspec import ir
 from canspec.ir import j1939
 from canspec.ir.names import snake
-from canspec.render.literals import c_hex, c_uint, hex32, hex_byte
+from canspec.render.literals import C
 from canspec.targets.c.codec import CCodec, build_codec
 from canspec.targets.c.codec64 import build_codec64
 from canspec.targets.c.names import CNames
@@ -60,8 +60,8 @@ def _j1939(msg: ir.Message) -> CJ1939 | None:
     j = msg.j1939
     if j is None:
         return None
-    da = c_hex(j.da) if j.da is not None else None
-    return CJ1939(c_uint(j.priority), f"{j.pgn_text}u", f"{hex_byte(j.sa)}u", da, da or f"{hex_byte(j1939.GLOBAL_ADDRESS)}u")
+    da = C.hex(j.da) if j.da is not None else None
+    return CJ1939(C.unsigned(j.priority), f"{j.pgn_text}u", C.hex(j.sa, 2), da, da or C.hex(j1939.GLOBAL_ADDRESS, 2))
 
 
 def _word64(codec: CCodec, codec64: CCodec | None) -> tuple[CCodec | None, CCodec | None]:
@@ -84,10 +84,10 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     return CMessage(
         msg=msg, name=snake(msg.name), macro=names.const(base), fn=names.fn(base),
         type=names.fn(base, "t"), index_const=names.const("msg", base), member=CNames.member(msg.c_name),
-        frame_id=f"{msg.id_text}u", fingerprint=f"{hex32(msg.fingerprint)}u", dlc=c_uint(msg.dlc), cycle_ms=c_uint(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
-        info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else c_uint(0),
-        counter_modulo=c_uint(msg.counter.modulo if msg.counter else 0), counter_start=c_uint(msg.counter.start if msg.counter else 0),
+        frame_id=f"{msg.id_text}u", fingerprint=C.hex(msg.fingerprint, 8), dlc=C.unsigned(msg.dlc), cycle_ms=C.unsigned(msg.cycle_ms) if msg.cycle_ms is not None else None, j1939=_j1939(msg),
+        info_cycle=names.const(base, "cycle_ms") if msg.cycle_ms is not None else C.unsigned(0),
+        counter_modulo=C.unsigned(msg.counter.modulo if msg.counter else 0), counter_start=C.unsigned(msg.counter.start if msg.counter else 0),
         signals=sigs, codec=codec, pack64=pack64, unpack64=unpack64,
-        counter=counter, counter_mask=c_hex(msg.counter.modulo - 1) if msg.counter else "",
+        counter=counter, counter_mask=C.hex(msg.counter.modulo - 1) if msg.counter else "",
         comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,
     )

@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 from canspec import ir
 from canspec.ir import j1939
-from canspec.render.literals import c_hex, c_int, c_uint, float_lit
+from canspec.render.literals import C
 from canspec.targets.c.messages import CMessage, build_message
 from canspec.targets.c.names import CNames
 from canspec.targets.c.physical import phys_store, with_descriptor
@@ -124,11 +124,11 @@ def _enum(names: CNames, table: ir.ValueTable) -> CEnum:
     raws = [e.raw for e in table.entries]
     is_enum = INT_MIN <= min(raws) and max(raws) <= INT_MAX
     if min(raws) < 0:
-        base, case = "int64_t", (lambda v: c_int(v, 64))
+        base, case = "int64_t", (lambda v: C.integer(v, 64))
     elif max(raws) > 0xFFFFFFFF:
-        base, case = "uint64_t", (lambda v: c_uint(v, 64))
+        base, case = "uint64_t", (lambda v: C.unsigned(v, 64))
     else:
-        base, case = "uint32_t", c_uint
+        base, case = "uint32_t", C.unsigned
     words = names.table(table.name)
     entries = tuple(
         CEnumEntry(names.const(words, e.name), e.name, e.raw, str(e.raw) if is_enum else case(e.raw), case(e.raw), e.label, e.label_zh) for e in table.entries
@@ -164,8 +164,8 @@ def _vin(names: CNames, cm: CMessage, mf: ir.MultiFrame) -> CVin:
     return CVin(
         cm=cm, index=index, payload=by[mf.payload_signal], frames=mf.frames, last_index=mf.frames - 1, bytes_per_frame=mf.bytes_per_frame,
         payload_byte=mf.payload_byte, payload_last=mf.payload_byte + mf.bytes_per_frame - 1, text_length=mf.text_length,
-        length_lit=c_uint(mf.text_length), frames_lit=c_uint(mf.frames), bytes_lit=c_uint(mf.bytes_per_frame),
-        capacity=mf.text_length + 1, received_bytes=(mf.frames + 7) // 8, padding=c_hex(mf.padding),
+        length_lit=C.unsigned(mf.text_length), frames_lit=C.unsigned(mf.frames), bytes_lit=C.unsigned(mf.bytes_per_frame),
+        capacity=mf.text_length + 1, received_bytes=(mf.frames + 7) // 8, padding=C.hex(mf.padding),
         index_ok=" && ".join(([f"f.{index.field} >= 0"] if index.sig.signed else []) + ([f"{cast}f.{index.field} < {frames}"] if mf.frames <= index.sig.raw_type_max else [])),
         fn=names.fn(base, "text"), type=names.fn(base, "text", "rx_t"), macro=names.const(base, "text"),
         others=tuple(s for s in cm.signals if s.sig.name not in varying),
@@ -193,8 +193,8 @@ def _share_descriptors(names: CNames, messages: tuple[CMessage, ...]) -> tuple[C
 
 
 def _j1939_constants() -> tuple[tuple[str, str], ...]:
-    return (("PDU2_MIN_PF", c_uint(j1939.PDU2_MIN_PF)), ("GLOBAL_ADDRESS", c_hex(j1939.GLOBAL_ADDRESS)), ("ID_MASK", c_hex(j1939.ID_MASK)),
-            ("PRIORITY_MASK", c_hex(j1939.PRIORITY_MASK)))
+    return (("PDU2_MIN_PF", C.unsigned(j1939.PDU2_MIN_PF)), ("GLOBAL_ADDRESS", C.hex(j1939.GLOBAL_ADDRESS)), ("ID_MASK", C.hex(j1939.ID_MASK)),
+            ("PRIORITY_MASK", C.hex(j1939.PRIORITY_MASK)))
 
 
 def build_model(spec: ir.Spec) -> CModel:
@@ -214,8 +214,8 @@ def build_model(spec: ir.Spec) -> CModel:
         msg_type=names.fn("msg_t"), msg_none=names.const("msg_none"), status=names.fn("status_t"),
         is_j1939=can.bus.is_j1939, j1939=_j1939_constants(), has_phys=bool(phys_users),         has_phys_round=any(s.double is not None and (s.double.window_test or s.double.special_test) for s in phys_users),
         phys_stores=tuple(sorted({(names.fn(phys_store(s.sig)), s.type) for s in phys_users if s.double is not None and s.double.encode_tail})),
-        phys_q_min=float_lit(-(2**63)), phys_q_max=float_lit(2**63), format_arg=can.has_standard,
-        bitrate=c_uint(can.bus.bitrate), cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
-        state_slots=names.const("msg_count") if messages else c_uint(1), timeout_cycles=c_uint(ir.MONITOR_TIMEOUT_CYCLES),
-        counter_tolerance=c_uint(ir.MONITOR_COUNTER_TOLERANCE), valid_after=c_uint(ir.MONITOR_VALID_AFTER),
+        phys_q_min=C.double(-(2**63)), phys_q_max=C.double(2**63), format_arg=can.has_standard,
+        bitrate=C.unsigned(can.bus.bitrate), cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
+        state_slots=names.const("msg_count") if messages else C.unsigned(1), timeout_cycles=C.unsigned(ir.MONITOR_TIMEOUT_CYCLES),
+        counter_tolerance=C.unsigned(ir.MONITOR_COUNTER_TOLERANCE), valid_after=C.unsigned(ir.MONITOR_VALID_AFTER),
     )

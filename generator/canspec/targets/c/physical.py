@@ -32,7 +32,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import decimal_scaling, round_half_away
-from canspec.render.literals import c_int, c_uint, float_lit
+from canspec.render.literals import C
 from canspec.targets.c import divide
 from canspec.targets.c.names import CNames
 
@@ -44,7 +44,7 @@ Q_SAFE = 2**62  # |q| below this: inside the rounding's domain [-2^63, 2^63) wit
 
 
 def int_lit(value: int, bits: int, signed: bool) -> str:
-    return c_int(value, bits) if signed else c_uint(value, bits)
+    return C.integer(value, bits) if signed else C.unsigned(value, bits)
 
 
 def _bound_terms(var: str, lo: int | None, hi: int | None, type_lo: int, type_hi: int, lit) -> list[str]:  # type: ignore[no-untyped-def]
@@ -61,7 +61,7 @@ def _either_side(var: str, lo: int | None, hi: int | None, low: str, high: str) 
     in the form cppcheck 2.10's value flow does not misjudge (its interval arithmetic overflows
     there and reports the second compare as invariant, MISRA rule 14.3)."""
     if low and high and lo is not None and hi is not None and lo < 0 and hi - lo > INT64_MAX:
-        return [f"((uint64_t){var} + {c_uint(-lo, 64)}) > {c_uint(hi - lo, 64)}"]
+        return [f"((uint64_t){var} + {C.unsigned(-lo, 64)}) > {C.unsigned(hi - lo, 64)}"]
     return [t for t in (low, high) if t]
 
 
@@ -118,8 +118,8 @@ class CFixed:
 def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str], r_reach: tuple[int, int] | None) -> CRanges:
     """`r_reach`: the interval r lies in wherever the value terms are false; None where they
     are always true (r is never compared)."""
-    lit = (lambda v: c_int(v, 64)) if r_signed else (lambda v: c_uint(v, 64))
-    specials = any_of([f"r == {c_int(sp.raw) if r_signed else c_uint(sp.raw)}" for sp in sig.specials])
+    lit = (lambda v: C.integer(v, 64)) if r_signed else (lambda v: C.unsigned(v, 64))
+    specials = any_of([f"r == {C.integer(sp.raw) if r_signed else C.unsigned(sp.raw)}" for sp in sig.specials])
     r_terms = _bound_terms("r", sig.raw_min, sig.raw_max, *r_reach, lit) if r_reach else []
     return CRanges(specials, any_of(value_terms + r_terms))
 
@@ -155,16 +155,16 @@ def double_path(names: CNames, sig: ir.Signal, fn: str, macro: str, force: bool)
     pre = ""
     if offset:
         pre, expr = (expr, f"scaled + {macro}_OFFSET") if factor != 1 else ("", f"{expr} + {macro}_OFFSET")
-    accept = f"!((value >= {float_lit(sig.accept_min)}) && (value <= {float_lit(sig.accept_max)}))"
+    accept = f"!((value >= {C.double(sig.accept_min)}) && (value <= {C.double(sig.accept_max)}))"
     if not sig.signed and sig.raw_type_max > 2**63 - 1:
         # q's bounds: the raw type widened by one step, i.e. -1 and 2^64 (both doubles)
         return CDouble(
             decode_pre=pre, decode_expr=expr, exact=exact, phys="", phys_name="", phys_local=False, phys_defines=False, window_test="", special_test="", encode_test="", encode_tail="",
             ranges=_ranges(sig, False, [accept], _r_type_range(False)), wide_unsigned=True,
-            refuse=f"!((q > -1.0) && (q < {float_lit(sig.raw_type_max + 1)}))", rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
+            refuse=f"!((q > -1.0) && (q < {C.double(sig.raw_type_max + 1)}))", rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
         )
     scaled = "false" if sig.is_identity else "true"
-    init = f"{{{float_lit(offset)}, {float_lit(factor)}, {float_lit(sig.accept_min)}, {float_lit(sig.accept_max)}, {scaled}}}"
+    init = f"{{{C.double(offset)}, {C.double(factor)}, {C.double(sig.accept_min)}, {C.double(sig.accept_max)}, {scaled}}}"
     return with_descriptor(names, sig, CDouble(
         decode_pre=pre, decode_expr=expr, exact=exact, phys=init, phys_name="", phys_local=True, phys_defines=False,
         window_test="", special_test="", encode_test="", encode_tail="", ranges=CRanges("", ""), wide_unsigned=False, refuse="", rounded="",
@@ -182,7 +182,7 @@ def with_descriptor(names: CNames, sig: ir.Signal, d: CDouble, name: str, local:
     is encoded as if it had none (rounded again: the code stays a call on every core)."""
     # phys_encode rounds without the domain check where the accepted range keeps q well inside it
     window = f"!{names.fn('phys_round')}(value, &{name}, &r)" if sig.max_quotient >= Q_SAFE else ""
-    specials = any_of([f"r == {c_int(sp.raw)}" for sp in sig.specials])
+    specials = any_of([f"r == {C.integer(sp.raw)}" for sp in sig.specials])
     special = f"{names.fn('phys_round')}(value, &{name}, &r) && ({specials})" if specials else ""
     # the accepted range first, in the call: r then lies between the roundings of its ends
     ranges = _ranges(sig, True, [], sig.accept_raw if d.exact else _r_type_range(True))
@@ -230,7 +230,7 @@ def _difference_fits(ff: int, fo: int, vlo: int, vhi: int, bits: int = 64) -> bo
 
 def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int, int], ctype: str, bounds: tuple[int, int], trange: tuple[int, int]) -> CFixed:
     ff, fo = scaling
-    lit = lambda v: c_int(v, 32 if ctype == "int32_t" else 64)
+    lit = lambda v: C.integer(v, 32 if ctype == "int32_t" else 64)
     expr = f"({ctype})raw"
     if ff != 1:
         expr = f"{expr} * {lit(ff)}" if ctype == "int32_t" else f"{names.fn('mul64')}({expr}, {lit(ff)})"
@@ -249,19 +249,19 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
     if abs(ff) != 1:
         rounded, note = _divided(names, num, abs(ff), max(abs(v - fo) for v in reach), "" if narrow else "64")
     return CFixed(
-        scale=scale, scale_lit=c_int(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
+        scale=scale, scale_lit=C.integer(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
         rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note,
     )
 
 
 def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: int) -> CFixed:
     """A wide unsigned field without offset: physical × scale = raw × ff, as a uint64_t."""
-    lit = lambda v: c_uint(v, 64)
+    lit = lambda v: C.unsigned(v, 64)
     expr = "(uint64_t)raw" if ff == 1 else f"{names.fn('mul64_u')}((uint64_t)raw, {lit(ff)})"
     outside, reach = _first_check(sig, scale, (-1, above), (0, U64_MAX), lit)
     rounded, note = _divided(names, "value", ff, reach[1], "_u64") if ff != 1 else ("value", "")
     return CFixed(
-        scale=scale, scale_lit=c_int(scale), type="uint64_t", decode_expr=expr, outside=any_of(outside),
+        scale=scale, scale_lit=C.integer(scale), type="uint64_t", decode_expr=expr, outside=any_of(outside),
         rounded=rounded, r_type="uint64_t", ranges=_fixed_ranges(sig, False, scale, (ff, 0), reach, lit), note=note,
     )
 

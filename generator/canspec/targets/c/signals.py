@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.render.literals import c_int, float_lit
+from canspec.render.literals import C
 from canspec.targets.c.names import CNames
 from canspec.targets.c.physical import CDouble, CFixed, double_path, fixed_path, int_lit
 
@@ -61,7 +61,7 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
     fits_type = sig.length == bits
     range_check = ""
     if sig.signed and not fits_type:
-        range_check = f"(src->{field} < {c_int(sig.raw_type_min, bits)}) | (src->{field} > {c_int(sig.raw_type_max, bits)})"
+        range_check = f"(src->{field} < {C.integer(sig.raw_type_min, bits)}) | (src->{field} > {C.integer(sig.raw_type_max, bits)})"
     base = names.message(msg.name)
     macro = names.const(base, sig.c_name)
     specials = tuple(CSpecial(names.special(base, sig.c_name, sp.name), int_lit(sp.raw, bits, sig.signed), sp.raw, sp.label) for sp in sig.specials)
@@ -74,7 +74,7 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
     return CSignal(
         sig=sig, field=field, macro=macro, fn=fn, type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
         range_check=range_check, needs_check=not fits_type and not sig.signed, specials=specials,
-        factor=float_lit(sig.factor) if sig.factor > 0 else f"({float_lit(sig.factor)})", offset=float_lit(sig.offset), check_min=float_lit(sig.check_min), check_max=float_lit(sig.check_max),
+        factor=C.double(sig.factor) if sig.factor > 0 else f"({C.double(sig.factor)})", offset=C.double(sig.offset), check_min=C.double(sig.check_min), check_max=C.double(sig.check_max),
         enum_type=enum_types.get(sig.value_table.name, "") if sig.value_table else "",
         is_data=is_data, double=double, fixed=fixed, unit=sig.unit, comment=comment,
     )

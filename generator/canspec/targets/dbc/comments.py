@@ -8,7 +8,7 @@ label only where the spec gives one): `canspec diff` reads them back from there 
 from __future__ import annotations
 
 from canspec import ir
-from canspec.render.literals import hex_byte, num
+from canspec.render.literals import hex_byte, hex_text, num
 
 SEPARATOR = " | "
 
@@ -18,8 +18,7 @@ def joined(parts: list[str]) -> str:
 
 
 def special_text(s: ir.SpecialValue) -> str:
-    sign = "-" if s.raw < 0 else ""
-    return f"{sign}0x{abs(s.raw):X} = {s.name}" + (f" ({s.label_zh})" if s.label_zh else "")
+    return f"{hex_text(s.raw)} = {s.name}" + (f" ({s.label_zh})" if s.label_zh else "")
 
 
 def signal_comment(sig: ir.Signal, spec_name: str | None) -> str:

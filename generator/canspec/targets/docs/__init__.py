@@ -17,6 +17,7 @@ from canspec import ir
 from canspec.ir import nodeview
 from canspec.reference import busload
 from canspec.render.environment import header_lines, render
+from canspec.render.literals import hex_text
 from canspec.targets import Target
 from canspec.targets.c.names import CNames
 from canspec.targets.docs import cells, jsonpage, svg
@@ -114,7 +115,7 @@ def nav_yaml(spec: ir.Spec, lg: Lang) -> str:
 # --- rendering -------------------------------------------------------------------------------
 
 HELPERS: dict[str, Any] = {
-    "cell": cells.cell, "raw_hex": cells.raw_hex, "pct": cells.pct, "decimal": cells.decimal, "titled": cells.titled,
+    "cell": cells.cell, "raw_hex": hex_text, "pct": cells.pct, "decimal": cells.decimal, "titled": cells.titled,
     "id_kind": cells.id_kind, "cycle_text": cells.cycle_text, "doc_range": cells.doc_range, "enc_range": cells.enc_range,
     "range_note": cells.range_note, "value_cell": cells.value_cell, "special_cell": cells.special_cell, "role_cell": cells.role_cell,
     "bytes_cell": cells.bytes_cell, "byte_list": cells.byte_list, "node_label": cells.node_label, "receivers_text": cells.receivers_text,

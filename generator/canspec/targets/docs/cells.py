@@ -7,7 +7,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import round_half_away
-from canspec.render.literals import num
+from canspec.render.literals import hex_text, num
 from canspec.targets.docs.lang import Lang
 
 
@@ -18,11 +18,7 @@ def cell(text: object) -> str:
 
 def hex_id(value: int) -> str:
     """A frame ID from the change record, which does not say whether it is 11 or 29 bits."""
-    return f"0x{value:08X}"
-
-
-def raw_hex(raw: int) -> str:
-    return f"-0x{-raw:X}" if raw < 0 else f"0x{raw:X}"
+    return hex_text(value, 8)
 
 
 def pct(value: Fraction, places: int = 2) -> str:
@@ -89,7 +85,7 @@ def value_cell(sig: ir.Signal, prefix: str, lang: Lang) -> str:
 
 def special_cell(sig: ir.Signal, lang: Lang) -> str:
     """Special values, as decoders name them (a value the table names keeps the table's name)."""
-    return "<br>".join(cell(f"{raw_hex(lb.raw)} = {label_text(lb, lang)}") for lb in sig.labels if lb.is_special)
+    return "<br>".join(cell(f"{hex_text(lb.raw)} = {label_text(lb, lang)}") for lb in sig.labels if lb.is_special)
 
 
 def role_cell(sig: ir.Signal, msg: ir.Message, lang: Lang) -> str:

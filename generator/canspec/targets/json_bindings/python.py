@@ -9,7 +9,7 @@ from canspec import ir
 from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import Branch, FieldRule, MessageModel, Pair, Plan, ProtocolModel
 from canspec.render.environment import render
-from canspec.render.literals import py_string, py_value
+from canspec.render.literals import PYTHON
 from canspec.targets.json_bindings import names, text
 
 TYPING = ("Any", "ClassVar", "NoReturn")
@@ -17,7 +17,7 @@ TYPING = ("Any", "ClassVar", "NoReturn")
 
 def py_tuple(values: tuple[Any, ...]) -> str:
     """A tuple literal: (), ("a",), ("a", "b")."""
-    items = [py_value(v) for v in values]
+    items = [PYTHON.value(v) for v in values]
     return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
 
 
@@ -38,16 +38,16 @@ def check(r: FieldRule, expr: str, indent: int = 8) -> str:
     """The call that type-checks `expr` for field `r` and returns its normalised value; its
     arguments go on their own line when the call would pass PY_LINE characters."""
     name = "self.NAME" if expr.startswith("self.") else "cls.NAME"
-    args = [name, py_value(r.key), expr]
+    args = [name, PYTHON.value(r.key), expr]
     if r.kind == "integer":
-        fn, args = "_integer", [*args, py_value(r.type_lo), py_value(r.type_hi), py_value(r.type_rule), py_value(r.type_range_rule)]
+        fn, args = "_integer", [*args, PYTHON.value(r.type_lo), PYTHON.value(r.type_hi), PYTHON.value(r.type_rule), PYTHON.value(r.type_range_rule)]
     elif r.kind == "number":
-        fn, args = "_number", [*args, py_value(r.type_lo), py_value(r.type_hi), py_value(r.type_rule), py_value(r.type_range_rule)]
+        fn, args = "_number", [*args, PYTHON.value(r.type_lo), PYTHON.value(r.type_hi), PYTHON.value(r.type_rule), PYTHON.value(r.type_range_rule)]
     elif r.kind == "boolean":
-        fn, args = "_boolean", [*args, py_value(r.type_rule)]
+        fn, args = "_boolean", [*args, PYTHON.value(r.type_rule)]
     else:
         f = r.field
-        fn, args = "_string", [*args, py_value(f.min_length), py_value(f.max_length), py_value(r.type_rule), py_value(r.length_rule)]
+        fn, args = "_string", [*args, PYTHON.value(f.min_length), PYTHON.value(f.max_length), PYTHON.value(r.type_rule), PYTHON.value(r.length_rule)]
     one_line = f"{fn}({', '.join(args)})"
     if indent + len("value = ") + len(one_line) <= text.PY_LINE:
         return one_line
@@ -57,8 +57,8 @@ def check(r: FieldRule, expr: str, indent: int = 8) -> str:
 
 def range_test(r: FieldRule) -> str:
     """The condition a value outside the documented range (and not a sentinel) meets."""
-    bounds = " <= ".join([*([py_value(r.lo)] if r.lo is not None else []), "value", *([py_value(r.hi)] if r.hi is not None else [])])
-    return f"not {bounds}" + "".join(f" and value != {py_value(s.value)}" for s in r.sentinels)
+    bounds = " <= ".join([*([PYTHON.value(r.lo)] if r.lo is not None else []), "value", *([PYTHON.value(r.hi)] if r.hi is not None else [])])
+    return f"not {bounds}" + "".join(f" and value != {PYTHON.value(s.value)}" for s in r.sentinels)
 
 
 def to_json_expr(r: FieldRule) -> str:
@@ -101,7 +101,7 @@ def echo_test(pm: ProtocolModel, pair: Pair) -> str:
 
 def match_key(pair: Pair, mm: MessageModel) -> str:
     """What a request shares with its reply: the request's name and the echoed keys' values."""
-    items = [py_value(pair.request), *(f"self.{names.py_attr(mm.rule(k))}" for k in pair.echoed)]
+    items = [PYTHON.value(pair.request), *(f"self.{names.py_attr(mm.rule(k))}" for k in pair.echoed)]
     return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
 
 
@@ -110,7 +110,7 @@ def self_attr(r: FieldRule) -> str:
 
 
 def item(key: str) -> str:
-    return f"obj[{py_value(key)}]"
+    return f"obj[{PYTHON.value(key)}]"
 
 
 def enum_values(r: FieldRule) -> str:
@@ -124,7 +124,7 @@ def field_line(r: FieldRule) -> str:
 
 
 def markers_test(b: Branch) -> str:
-    return " or ".join(f"{py_value(k)} in obj" for k in b.markers)
+    return " or ".join(f"{PYTHON.value(k)} in obj" for k in b.markers)
 
 
 def union(types: list[str]) -> str:
@@ -151,7 +151,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     name = pm.protocol.name
     base = f"json/python/{name}"
     helpers = {
-        "py_value": py_value, "py_tuple": py_tuple, "py_type": py_type, "check": check, "range_test": range_test, "to_json_expr": to_json_expr,
+        "py_value": PYTHON.value, "py_tuple": py_tuple, "py_type": py_type, "check": check, "range_test": range_test, "to_json_expr": to_json_expr,
         "reply_params": reply_params, "reply_args": reply_args, "echo_test": echo_test, "match_key": match_key, "attr": names.py_attr,
         "member": names.member, "sentinel_const": names.sentinel_const, "wrap": text.py_wrap, "label": text.label, "self_attr": self_attr, "item": item, "enum_values": enum_values, "field_line": field_line,
         "markers_test": markers_test, "union": union, "reader": reader, "summary": text.summary, "echo_clause": text.echo_clause,
@@ -165,7 +165,7 @@ def python_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     context = {"p": pm.protocol, "pm": pm, "codes": jsonmodel.ERROR_CODES + jsonmodel.TEXT_ERROR_CODES, "typing": typing_names(pm), **types, **helpers}
     files = {
         f"{base}/{name}/messages.py": render("json_python/messages.py.j2", spec, "json_python", **context),
-        f"{base}/{name}/__init__.py": render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, exports=exports(pm), py_string=py_string),
+        f"{base}/{name}/__init__.py": render("json_python/__init__.py.j2", spec, "json_python", p=pm.protocol, exports=exports(pm), py_string=PYTHON.string),
         f"{base}/{name}/py.typed": "",
         f"{base}/pyproject.toml": render("json_python/pyproject.toml.j2", spec, "json_python", p=pm.protocol),
     }

@@ -4,12 +4,12 @@ literals, identifiers and signatures are computed here."""
 
 from __future__ import annotations
 
-from canspec import ir, resources
+from canspec import ir
 from canspec.ir import json_fields as jsonmodel
 from canspec.ir.json_fields import Branch, FieldRule, MessageModel, Pair, Plan, ProtocolModel
-from canspec.render.environment import header_lines, render
+from canspec.render.environment import render, static_file
 from canspec.render.formatters import rustfmt
-from canspec.render.literals import double_repr, rust_string, rust_value
+from canspec.render.literals import RUST
 from canspec.targets.json_bindings import names, text
 
 # Rust integer types, narrowest first: a field holds its declared type's range in the first that fits.
@@ -20,11 +20,11 @@ CLIPPY_MAX_ARGS = 7  # clippy::too_many_arguments fires above this many paramete
 
 def rs_value(r: FieldRule, value: float | str) -> str:
     """A value of the field's Rust type (a number field's as an f64 literal)."""
-    return rust_value(float(value) if r.kind == "number" else value)
+    return RUST.value(float(value) if r.kind == "number" else value)
 
 
 def rs_opt_f64(value: float | None) -> str:
-    return "None" if value is None else f"Some({double_repr(value)})"
+    return "None" if value is None else f"Some({RUST.double(value)})"
 
 
 def rs_type(r: FieldRule) -> str:
@@ -36,7 +36,7 @@ def rs_type(r: FieldRule) -> str:
 
 
 def src(r: FieldRule) -> str:
-    return f"&obj[{rust_string(r.key)}]"
+    return f"&obj[{RUST.string(r.key)}]"
 
 
 def range_test(r: FieldRule) -> str:
@@ -82,7 +82,7 @@ def echo_tests(pm: ProtocolModel, pair: Pair) -> list[str]:
 
 
 def markers_test(b: Branch) -> str:
-    return " || ".join(f"obj.contains_key({rust_string(k)})" for k in b.markers)
+    return " || ".join(f"obj.contains_key({RUST.string(k)})" for k in b.markers)
 
 
 def reads_keys(plan: Plan) -> bool:
@@ -102,17 +102,11 @@ def rust_crate_name(protocol: ir.JsonProtocol) -> str:
     return protocol.name.replace("_", "-") + "-json"
 
 
-def runtime(spec: ir.Spec) -> str:
-    """rt.rs: the checks, a real source file under templates/, with the generated header."""
-    body = (resources.templates_dir() / "json_rust" / "rt.rs").read_text(encoding="utf-8")
-    return "".join(f"// {line}\n" for line in header_lines(spec, "json_rust")) + "\n" + body
-
-
 def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/rust/{pm.protocol.name}"
     receivers = {p.receiver for p in pm.receiver_plans}
     helpers = {
-        "rs_str": rust_string, "rust_value": rust_value, "rs_value": rs_value, "rs_opt_f64": rs_opt_f64, "rs_type": rs_type, "src": src,
+        "rs_str": RUST.string, "rust_value": RUST.value, "rs_value": rs_value, "rs_opt_f64": rs_opt_f64, "rs_type": rs_type, "src": src,
         "range_test": range_test, "length_bounds": length_bounds, "reply_params": reply_params, "reply_many_args": reply_many_args,
         "reply_fields": reply_fields, "echo_tests": echo_tests, "markers_test": markers_test, "reader": reader, "reads_keys": reads_keys, "unexpected_rule": unexpected_rule,
         "field": names.rust_field, "local": names.rust_local, "variant": names.rust_variant, "sentinel_const": names.sentinel_const,
@@ -125,6 +119,6 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     cargo = render("json_rust/Cargo.toml.j2", spec, "json_rust", p=pm.protocol, crate=rust_crate_name(pm.protocol))
     return {
         f"{base}/src/lib.rs": rustfmt(lib, f"{base}/src/lib.rs").encode(),
-        f"{base}/src/rt.rs": runtime(spec).encode(),
+        f"{base}/src/rt.rs": static_file(spec, "json_rust", "json_rust/rt.rs").encode(),
         f"{base}/Cargo.toml": cargo.encode(),
     }

@@ -8,6 +8,7 @@ import textwrap
 
 from canspec import ir
 from canspec.ir.json_fields import FieldRule, Pair, Plan
+from canspec.render.literals import PYTHON
 
 PY_LINE = 100  # generated Python stays within this width
 
@@ -88,14 +89,9 @@ def doc_lines(text: str, width: int = 92) -> list[str]:
 # --- per language ---------------------------------------------------------------------------
 
 
-def py_doc(text: str) -> str:
-    """Text inside a Python docstring: backslashes and triple quotes escaped."""
-    return one_line(text).replace("\\", "\\\\").replace('"""', '\\"\\"\\"')
-
-
 def py_wrap(text: str, indent: int, width: int = PY_LINE) -> str:
     """Docstring text wrapped to `width`, continuation lines indented by `indent` spaces."""
-    return ("\n" + " " * indent).join(textwrap.wrap(py_doc(text), width - indent, break_long_words=False, break_on_hyphens=False))
+    return ("\n" + " " * indent).join(textwrap.wrap(PYTHON.doc(text), width - indent, break_long_words=False, break_on_hyphens=False))
 
 
 def ts_doc(text: str) -> str:

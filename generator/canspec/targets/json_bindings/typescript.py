@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import textwrap
 
-from canspec import ir, resources
+from canspec import ir
 from canspec.ir.json_fields import Branch, FieldRule, Plan, ProtocolModel
-from canspec.render.environment import header_lines, render
-from canspec.render.literals import ts_value
+from canspec.render.environment import render, static_file
+from canspec.render.literals import TYPESCRIPT
 from canspec.targets.json_bindings import text
 
 
@@ -37,43 +37,38 @@ def receiver_types(pm: ProtocolModel, plan: Plan) -> str:
     return union([pm.message(name).type_name for name in plan.messages])
 
 
-def ts_num(value: float) -> str:
-    """A JavaScript number literal (integers beyond 2^53 become the nearest double, as JSON.parse reads them)."""
-    return repr(value)
-
-
 def ts_list(values: tuple[float | str, ...] | list[str]) -> str:
-    return "[" + ", ".join(ts_value(v) if isinstance(v, str) else ts_num(v) for v in values) + "]"
+    return "[" + ", ".join(TYPESCRIPT.value(v) for v in values) + "]"
 
 
 def field_props(r: FieldRule) -> list[str]:
     """A field's rules as the properties of canspec-json.ts `Field` (absent where the rule is)."""
-    props = [f"key: {ts_value(r.key)}", f"kind: {ts_value(r.kind)}"]
+    props = [f"key: {TYPESCRIPT.value(r.key)}", f"kind: {TYPESCRIPT.value(r.kind)}"]
     if r.type_lo is not None:
-        props.append(f"typeLo: {ts_num(r.type_lo)}")
+        props.append(f"typeLo: {TYPESCRIPT.value(r.type_lo)}")
     if r.type_hi is not None:
-        props.append(f"typeHi: {ts_num(r.type_hi)}")
-    props.append(f"typeRule: {ts_value(r.type_rule)}")
+        props.append(f"typeHi: {TYPESCRIPT.value(r.type_hi)}")
+    props.append(f"typeRule: {TYPESCRIPT.value(r.type_rule)}")
     if r.has_type_range:
-        props.append(f"typeRangeRule: {ts_value(r.type_range_rule)}")
+        props.append(f"typeRangeRule: {TYPESCRIPT.value(r.type_range_rule)}")
     if r.kind == "string":
         f = r.field
         props += [*([f"minLength: {f.min_length}"] if f.min_length is not None else []), *([f"maxLength: {f.max_length}"] if f.max_length is not None else [])]
         if r.length_rule:
-            props.append(f"lengthRule: {ts_value(r.length_rule)}")
+            props.append(f"lengthRule: {TYPESCRIPT.value(r.length_rule)}")
     if r.enum is not None:
         props.append(f"values: {ts_list(tuple(e.value for e in r.enum.values))}")
     elif r.has_range:
-        props += [*([f"lo: {ts_num(r.lo)}"] if r.lo is not None else []), *([f"hi: {ts_num(r.hi)}"] if r.hi is not None else [])]
+        props += [*([f"lo: {TYPESCRIPT.value(r.lo)}"] if r.lo is not None else []), *([f"hi: {TYPESCRIPT.value(r.hi)}"] if r.hi is not None else [])]
         if r.sentinels:
             props.append(f"sentinels: {ts_list(tuple(s.value for s in r.sentinels))}")
     if r.value_rule:
-        props.append(f"valueRule: {ts_value(r.value_rule)}")
+        props.append(f"valueRule: {TYPESCRIPT.value(r.value_rule)}")
     return props
 
 
 def branch(b: Branch) -> str:
-    return f"{{ message: {ts_value(b.message)}, markers: {ts_list(b.markers)}, tried: {'true' if b.tried else 'false'} }}"
+    return f"{{ message: {TYPESCRIPT.value(b.message)}, markers: {ts_list(b.markers)}, tried: {'true' if b.tried else 'false'} }}"
 
 
 def plan_const(plan: Plan) -> str:
@@ -92,13 +87,7 @@ def read_union(pm: ProtocolModel) -> str:
     """`Read`: one `{ name, value }` per message, a line each."""
     if not pm.messages:
         return " never"
-    return "".join(f"\n  | {{ readonly name: {ts_value(mm.name)}; readonly value: T.{mm.type_name} }}" for mm in pm.messages)
-
-
-def runtime(spec: ir.Spec) -> str:
-    """canspec-json.ts: the strict text reader and the checks, a real source file under templates/."""
-    body = (resources.templates_dir() / "json_ts" / "canspec-json.ts").read_text(encoding="utf-8")
-    return "".join(f"// {line}\n" for line in header_lines(spec, "json_ts")) + "\n" + body
+    return "".join(f"\n  | {{ readonly name: {TYPESCRIPT.value(mm.name)}; readonly value: T.{mm.type_name} }}" for mm in pm.messages)
 
 
 def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
@@ -108,13 +97,13 @@ def ts_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
         "reply_types": union([pm.message(p.reply).type_name for p in pm.pairs]),
         "reply_to_doc": "it carries the same `cmd`" + "".join(f" and echoes `{k}`" for k in dict.fromkeys(k for p in pm.pairs for k in p.echoed)),
     }
-    body = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=ts_value, doc=text.field_doc,
+    body = render("json_ts/messages.d.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_type=ts_type, ts_lit=TYPESCRIPT.value, doc=text.field_doc,
                   ts_doc=text.ts_doc, paren=text.paren, heading=text.heading, echo_clause=text.echo_clause, reply_chain=reply_chain(pm),
                   receiver_types=lambda plan: receiver_types(pm, plan), **types)
-    reader = render("json_ts/reader.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_lit=ts_value, ts_list=ts_list, field_props=field_props, branch=branch,
-                    plan_const=plan_const, plan_doc=plan_doc, read_union=read_union(pm), receivers=[plan.receiver for plan in pm.receiver_plans])
+    reader = render("json_ts/reader.ts.j2", spec, "json_ts", p=pm.protocol, pm=pm, ts_lit=TYPESCRIPT.value, ts_list=ts_list, field_props=field_props,
+                    branch=branch, plan_const=plan_const, plan_doc=plan_doc, read_union=read_union(pm), receivers=[plan.receiver for plan in pm.receiver_plans])
     return {
         f"json/typescript/{pm.protocol.name}.d.ts": body.encode(),
         f"json/typescript/{pm.protocol.name}.reader.ts": reader.encode(),
-        "json/typescript/canspec-json.ts": runtime(spec).encode(),
+        "json/typescript/canspec-json.ts": static_file(spec, "json_ts", "json_ts/canspec-json.ts").encode(),
     }

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
+from canspec.render.literals import PYTHON
 from canspec.targets.python.fields import PySignal
 
 TIE = ir.TIE_EPSILON_TEXT
@@ -83,7 +84,7 @@ def pack_tail(f: Frame) -> tuple[str, ...]:
     """The raw values in `r0`, `r1`, ... (each fits its field) into the frame bytes, checksum filled."""
     if not f.values:
         return (f"return bytes({f.dlc})",)  # reserved bits 0; a checksum of zero bytes is 0
-    terms = [(f"({s.raw_var} & 0x{s.sig.mask:X})" if s.sig.signed else s.raw_var) + (f" << {s.sig.start}" if s.sig.start else "") for s in f.values]
+    terms = [(f"({s.raw_var} & {PYTHON.hex(s.sig.mask)})" if s.sig.signed else s.raw_var) + (f" << {s.sig.start}" if s.sig.start else "") for s in f.values]
     lines = ["v = " + " | ".join(terms)]
     if f.checksum is not None:
         lines += [*_xor(f.checksum), f"v |= (c & 0xFF) << {f.checksum.shift}"]

@@ -13,7 +13,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import decimal_text
-from canspec.render.literals import double_repr, py_comment, py_doc, py_string
+from canspec.render.literals import PYTHON
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 
 # Method names of every message class: an attribute never takes one of these.
@@ -70,14 +70,6 @@ class PySignal:
         return self.sig.role == "checksum"
 
 
-def num_lit(value: Fraction, as_int: bool) -> str:
-    if as_int:
-        if value.denominator != 1:
-            raise ValueError(f"{value} is not an integer")
-        return str(value.numerator)
-    return double_repr(value)
-
-
 def _paren(expr: str) -> str:
     return expr if expr.isidentifier() else f"({expr})"
 
@@ -86,9 +78,9 @@ def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
     """The raw value from the frame integer `v`: shift, mask, sign-extend (no outer parentheses)."""
     expr = "v" if sig.start == 0 else f"v >> {sig.start}"
     if sig.start + sig.length < frame_bits:
-        expr = f"{_paren(expr)} & 0x{sig.mask:X}"
+        expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
-        expr = f"({expr} ^ 0x{sig.sign_bit:X}) - 0x{sig.sign_bit:X}"
+        expr = f"({expr} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
     return expr
 
 
@@ -97,10 +89,10 @@ def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
     as_int = kind == "int"
     expr = raw
     if sig.factor != 1:
-        expr = f"{_paren(expr)} * {num_lit(sig.factor, as_int)}"
+        expr = f"{_paren(expr)} * {PYTHON.number(sig.factor, as_int)}"
     if sig.offset != 0:
         expr = _paren(expr) if sig.factor == 1 else expr
-        expr = f"{expr} + {num_lit(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {num_lit(abs(sig.offset), as_int)}"
+        expr = f"{expr} + {PYTHON.number(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {PYTHON.number(-sig.offset, as_int)}"
     return expr
 
 
@@ -111,11 +103,11 @@ def q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     if off == 0:
         expr = x
     elif off > 0:
-        expr = f"{x} - {num_lit(off, direct)}"
+        expr = f"{x} - {PYTHON.number(off, direct)}"
     else:
-        expr = f"{x} + {num_lit(abs(off), direct)}"
+        expr = f"{x} + {PYTHON.number(-off, direct)}"
     if not direct and sig.factor != 1:
-        expr = f"({expr}) / {double_repr(sig.factor)}" if off != 0 else f"{expr} / {double_repr(sig.factor)}"
+        expr = f"({expr}) / {PYTHON.double(sig.factor)}" if off != 0 else f"{expr} / {PYTHON.double(sig.factor)}"
     return expr
 
 
@@ -151,7 +143,7 @@ def labelled(name: str, label_zh: str) -> str:
 
 def label_comment(label: str, label_zh: str) -> str:
     """A value's comment: `中文 (English)`, or the English label alone."""
-    return py_comment(f"{label_zh} ({label})" if label_zh else label)
+    return PYTHON.comment(f"{label_zh} ({label})" if label_zh else label)
 
 
 def doc_line(sig: ir.Signal, enum: str | None) -> str:
@@ -171,7 +163,7 @@ def doc_line(sig: ir.Signal, enum: str | None) -> str:
         parts.append({"counter": "rolling counter", "checksum": "XOR checksum, filled by encode"}[sig.role])
     if sig.desc:
         parts.append(sig.desc)
-    return py_doc("; ".join(parts))
+    return PYTHON.doc("; ".join(parts))
 
 
 def default_raw(sig: ir.Signal) -> int:
@@ -192,7 +184,7 @@ def _default(sig: ir.Signal, kind: str, enum: str | None, members: dict[int, str
     raw = default_raw(sig)
     if enum is not None:
         return f"{enum}.{members[raw]}" if raw in members else str(raw)
-    return num_lit(sig.physical(raw), kind != "float")
+    return PYTHON.number(sig.physical(raw), kind != "float")
 
 
 def _descriptor_args(sig: ir.Signal, direct: bool, lo_lit: str, hi_lit: str) -> str:
@@ -201,7 +193,7 @@ def _descriptor_args(sig: ir.Signal, direct: bool, lo_lit: str, hi_lit: str) -> 
     specials = ", ".join(raws) + ("," if len(raws) == 1 else "")
     offset_int = str(sig.offset.numerator) if direct else "0"
     return ", ".join(
-        (str(direct), double_repr(sig.factor), double_repr(sig.offset), offset_int, lo_lit, hi_lit, str(sig.raw_min), str(sig.raw_max),
+        (str(direct), PYTHON.double(sig.factor), PYTHON.double(sig.offset), offset_int, lo_lit, hi_lit, str(sig.raw_min), str(sig.raw_max),
          str(sig.raw_type_min), str(sig.raw_type_max), f"frozenset(({specials}))")
     )
 
@@ -223,7 +215,7 @@ class SignalContext:
 
 def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecial, ...]:
     return tuple(
-        PySpecial(consts.take(f"{sig.name}_{s.name}".upper()), f"-0x{-s.raw:X}" if s.raw < 0 else f"0x{s.raw:X}", num_lit(s.physical, as_int),
+        PySpecial(consts.take(f"{sig.name}_{s.name}".upper()), PYTHON.hex(s.raw), PYTHON.number(s.physical, as_int),
                   label_comment(s.label, s.label_zh))
         for s in sig.specials
     )
@@ -238,13 +230,13 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
         phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
     direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
-    lo_lit = num_lit(lo, True) if lo.denominator == 1 and as_int else double_repr(lo)
-    hi_lit = num_lit(hi, True) if hi.denominator == 1 and as_int else double_repr(hi)
+    lo_lit = PYTHON.number(lo, as_int and lo.denominator == 1)
+    hi_lit = PYTHON.number(hi, as_int and hi.denominator == 1)
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, phys_expr=phys,
-        specials=_specials(sig, ctx.consts, as_int), allowed=py_string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
+        specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), var=var, raw_var=f"r{ctx.index}", direct=direct,
         q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
         q_nonneg=sig.factor > 0 and float(lo) >= float(sig.offset), exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from canspec import ir
 from canspec.ir.names import pascal, snake
-from canspec.render.literals import py_doc, py_string
+from canspec.render.literals import PYTHON
 from canspec.targets.python import code
 from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
@@ -154,12 +154,12 @@ def titled(title: str, zh: str) -> str:
 def _frame_line(msg: ir.Message) -> str:
     timing = f"every {msg.cycle_ms} ms" if msg.cycle_ms is not None else "event-driven"
     route = f"{msg.sender} → {', '.join(msg.receivers)}" if msg.receivers else f"sent by {msg.sender}"
-    return py_doc(f"Frame {msg.id_text} ({'29' if msg.is_extended else '11'}-bit), DLC {msg.dlc}, {timing}, {route}.")
+    return PYTHON.doc(f"Frame {msg.id_text} ({'29' if msg.is_extended else '11'}-bit), DLC {msg.dlc}, {timing}, {route}.")
 
 
 def _heading(msg: ir.Message) -> str:
     text = f"{msg.title} — {msg.zh}" if msg.zh else msg.title
-    return py_doc(f"{text} (§{msg.section})." if msg.section else f"{text}.")
+    return PYTHON.doc(f"{text} (§{msg.section})." if msg.section else f"{text}.")
 
 
 class _Builder:
@@ -203,10 +203,10 @@ class _Builder:
             return None
         split, join = self.module.take(f"split_{msg.name}_text"), self.module.take(f"join_{msg.name}_text")
         return PyMultiFrame(
-            by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, f"0x{m.padding:02X}", m.encoding,
+            by_name[m.index_signal].attr, by_name[m.payload_signal].attr, m.frames, m.bytes_per_frame, m.text_length, PYTHON.hex(m.padding, 2), m.encoding,
             split, join, self.module.take(f"{self.classes[msg.name]}TextAssembler"), m.frames * m.bytes_per_frame, m.frames - 1, repr(bytes([m.padding])),
-            f"0x{(1 << (8 * m.bytes_per_frame)) - 1:X}", self.module.take(f"_{msg.name}_text"), tuple(by_name[k].attr for k in m.key_signals),
-            "{" + ", ".join(f"{py_string(s.name)}: {s.base_raw}" for s in msg.data_signals if s.role != "checksum" and s.base_raw) + "}",
+            PYTHON.hex((1 << (8 * m.bytes_per_frame)) - 1), self.module.take(f"_{msg.name}_text"), tuple(by_name[k].attr for k in m.key_signals),
+            "{" + ", ".join(f"{PYTHON.string(s.name)}: {s.base_raw}" for s in msg.data_signals if s.role != "checksum" and s.base_raw) + "}",
         )
 
     def message(self, msg: ir.Message) -> PyMessage:
@@ -215,19 +215,19 @@ class _Builder:
         checksum = None
         if msg.checksum is not None:
             cover = msg.checksum
-            checksum = code.PyChecksum(cover.byte * 8, f"0x{cover.cover_mask:X}", code.xor_folds(max(cover.covers) + 1))
+            checksum = code.PyChecksum(cover.byte * 8, PYTHON.hex(cover.cover_mask), code.xor_folds(max(cover.covers) + 1))
         frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
         funcs = {kind: self.module.take(f"_{kind}_{msg.name}") for kind in ("decode", "encode", "unpack")}
         return PyMessage(
             name=msg.name, class_name=cls, raw_class=self.module.take(f"{cls}Raw"), heading=_heading(msg), frame_line=_frame_line(msg),
-            desc=py_doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
-            fingerprint=f"0x{msg.fingerprint:08X}", signals=signals, checksum=checksum,
+            desc=PYTHON.doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
+            fingerprint=PYTHON.hex(msg.fingerprint, 8), signals=signals, checksum=checksum,
             counter=by_name[msg.counter.signal] if msg.counter is not None else None, counter_modulo=msg.counter.modulo if msg.counter is not None else 0,
             counter_start=msg.counter.start if msg.counter is not None else 0, counter_length=msg.counter.length if msg.counter is not None else 0,
             checksum_byte=msg.checksum.byte if msg.checksum is not None else 0,
-            checksum_cover=f"0x{msg.checksum.cover_mask:X}" if msg.checksum is not None else "", rule_args=_rule_args(cls, msg),
+            checksum_cover=PYTHON.hex(msg.checksum.cover_mask) if msg.checksum is not None else "", rule_args=_rule_args(cls, msg),
             multiframe=self.multiframe(msg, by_name), decode_func=funcs["decode"], encode_func=funcs["encode"], pack_func=pack_func,
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
             frame_checks=code.frame_checks(frame), encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
@@ -258,7 +258,7 @@ def build_package(spec: ir.Spec) -> PyPackage:
     present = dict.fromkeys(MODULE_DOCS, True) | {"enums": bool(can.value_tables), "j1939": can.bus.is_j1939, "multiframe": can.has_multiframe}
     title = titled(can.title, can.title_zh)
     return PyPackage(
-        package=package_name(can.name), protocol=can.name, dist_name=snake(can.name).replace("_", "-"), version=can.version, title=py_doc(title),
+        package=package_name(can.name), protocol=can.name, dist_name=snake(can.name).replace("_", "-"), version=can.version, title=PYTHON.doc(title),
         description=f"{title} V{can.version}: generated CAN bindings", document=can.document, bitrate=can.bus.bitrate, is_j1939=can.bus.is_j1939,
         enums=b.enums, used_enums=tuple(sorted({lk.enum for lk in lookups})), lookups=lookups, messages=messages, example=example,
         modules=tuple(sorted(m for m in MODULE_DOCS if m != "bus" and present[m])), modules_doc=_modules_doc(present),

@@ -8,8 +8,8 @@ so the committed files are exactly what `make gen` writes. The view model is `mo
 
 from __future__ import annotations
 
-from canspec import ir, resources
-from canspec.render.environment import header_lines, render
+from canspec import ir
+from canspec.render.environment import render, static_file
 from canspec.render.formatters import rustfmt
 from canspec.targets import Target
 from canspec.targets.rust.check import problems
@@ -38,11 +38,6 @@ def _wanted(rel: str, crate: RustCrate) -> bool:
     return {"src/j1939.rs": crate.is_j1939, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
 
 
-def _static(rel: str, spec: ir.Spec) -> str:
-    source = (resources.templates_dir() / "rust" / "static" / rel).read_text(encoding="utf-8")
-    return "".join(f"// {line}\n" for line in header_lines(spec, TARGET_NAME)) + "\n" + source
-
-
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
@@ -52,7 +47,7 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     sources = {
         rel: render(template, spec, TARGET_NAME, can=spec.can, crate=crate, tests=tests, sup=sup) for rel, template in TEMPLATES.items() if _wanted(rel, crate)
     }
-    sources.update({rel: _static(rel, spec) for rel in STATIC if _wanted(rel, crate)})
+    sources.update({rel: static_file(spec, TARGET_NAME, f"rust/static/{rel}") for rel in STATIC if _wanted(rel, crate)})
     return {f"rust/{rel}": (rustfmt(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
 
 

@@ -9,7 +9,7 @@ identity (clippy rejects both).
 from __future__ import annotations
 
 from canspec import ir
-from canspec.render.literals import grouped_int
+from canspec.render.literals import RUST
 
 WORD_BITS = 64
 WORD_MASK = (1 << WORD_BITS) - 1
@@ -40,7 +40,7 @@ def unpack_expr(sig: ir.Signal, word: str = "self.bits") -> str:
     value = f"{word} >> {sig.start}" if sig.start else word
     # The cast truncates to the storage width, and the shift empties the bits above the word's top.
     if sig.length != sig.storage_bits and sig.start + sig.length < WORD_BITS:
-        value = f"({value}) & {grouped_int(sig.mask)}" if sig.start else f"{value} & {grouped_int(sig.mask)}"
+        value = f"({value}) & {RUST.integer(sig.mask)}" if sig.start else f"{value} & {RUST.integer(sig.mask)}"
     if ty == "u64":
         return value
     return f"({value}) as {ty}" if value != word else f"{word} as {ty}"
@@ -49,7 +49,7 @@ def unpack_expr(sig: ir.Signal, word: str = "self.bits") -> str:
 def pack_expr(sig: ir.Signal, var: str) -> str:
     """The field's bits in place in the frame word, from `var` (a raw value that fits the field)."""
     if sig.signed:
-        value = f"{var} as u64" if sig.length == WORD_BITS else f"({var} as u64 & {grouped_int(sig.mask)})"
+        value = f"{var} as u64" if sig.length == WORD_BITS else f"({var} as u64 & {RUST.integer(sig.mask)})"
     elif sig.storage_bits == WORD_BITS:
         value = var
     else:
@@ -61,7 +61,7 @@ def store_stmt(sig: ir.Signal, var: str = "value") -> str:
     """`self.bits` with the field replaced by `var`."""
     if sig.word_mask == WORD_MASK:
         return f"self.bits = {pack_expr(sig, var)};"
-    return f"self.bits = (self.bits & {grouped_int(WORD_MASK ^ sig.word_mask)}) | {pack_expr(sig, var)};"
+    return f"self.bits = (self.bits & {RUST.integer(WORD_MASK ^ sig.word_mask)}) | {pack_expr(sig, var)};"
 
 
 def outside_expr(var: str, lo: int | None, hi: int | None) -> str | None:
@@ -69,12 +69,12 @@ def outside_expr(var: str, lo: int | None, hi: int | None) -> str | None:
     if lo is None and hi is None:
         return None
     if lo is None:
-        return f"{var} > {grouped_int(hi)}"  # type: ignore[arg-type]
+        return f"{var} > {RUST.integer(hi)}"  # type: ignore[arg-type]
     if hi is None:
-        return f"{var} < {grouped_int(lo)}"
+        return f"{var} < {RUST.integer(lo)}"
     if lo == hi:
-        return f"{var} != {grouped_int(lo)}"
-    return f"!({grouped_int(lo)}..={grouped_int(hi)}).contains(&{var})"
+        return f"{var} != {RUST.integer(lo)}"
+    return f"!({RUST.integer(lo)}..={RUST.integer(hi)}).contains(&{var})"
 
 
 def type_bounds(ty: str) -> tuple[int, int]:
@@ -102,4 +102,4 @@ def refused_expr(sig: ir.Signal, var: str = "value", ty: str | None = None) -> s
     outside = outside_expr(var, *_bounds(lo, hi, ty or raw_type(sig)))
     if outside is None:
         return None
-    return " && ".join([*(f"{var} != {grouped_int(s.raw)}" for s in sig.specials if not lo <= s.raw <= hi), outside])
+    return " && ".join([*(f"{var} != {RUST.integer(s.raw)}" for s in sig.specials if not lo <= s.raw <= hi), outside])

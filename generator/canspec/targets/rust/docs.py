@@ -12,7 +12,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.names import humanize
-from canspec.render.literals import grouped_int, hex_byte, num
+from canspec.render.literals import RUST, num
 
 BIDI_CONTROLS = re.compile("[\u202a-\u202e\u2066-\u2069]")
 LIST_MARKER = re.compile(r"^([-*+]|\d+[.)])(\s|$)")
@@ -71,10 +71,10 @@ def field_doc(sig: ir.Signal) -> tuple[str, ...]:
         "| start bit | length | factor | offset | unit | range | raw |",
         "|---|---|---|---|---|---|---|",
         (f"| {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {_unit(sig)} "
-         f"| {_range_text(sig.check_min, sig.check_max)} | {grouped_int(sig.raw_min)} … {grouped_int(sig.raw_max)} |"),
+         f"| {_range_text(sig.check_min, sig.check_max)} | {RUST.integer(sig.raw_min)} … {RUST.integer(sig.raw_max)} |"),
     ]
     for s in sig.specials:
-        lines += ["", doc_text(f"Special raw value {grouped_int(s.raw)}: {labelled(s.label_zh, s.label)}")]
+        lines += ["", doc_text(f"Special raw value {RUST.integer(s.raw)}: {labelled(s.label_zh, s.label)}")]
     if sig.errata:
         lines += ["", doc_text(f"Errata: {', '.join(sig.errata)} (see spec/ERRATA.md)")]
     return tuple(lines)
@@ -114,8 +114,8 @@ def message_doc(msg: ir.Message) -> tuple[str, ...]:
     lines.append(f"ID `{msg.id_text}` ({width}), DLC {msg.dlc}, {timing}{section}.")
     j = msg.j1939
     if j is not None:
-        destination = f", destination {hex_byte(j.da)}." if j.da is not None else " (broadcast)."
-        lines.append(f"J1939: priority {j.priority}, PGN {j.pgn_text}, source address {hex_byte(j.sa)}{destination}")
+        destination = f", destination {RUST.hex(j.da, 2)}." if j.da is not None else " (broadcast)."
+        lines.append(f"J1939: priority {j.priority}, PGN {j.pgn_text}, source address {RUST.hex(j.sa, 2)}{destination}")
     receivers = f"; receivers {', '.join(msg.receivers)}" if msg.receivers else ""
     lines.append(doc_text(f"Sender {msg.sender}{receivers}."))
     if msg.layout_undefined:

@@ -14,7 +14,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import fits_runtime, to_raw_runtime
-from canspec.render.literals import double_repr, grouped_int
+from canspec.render.literals import RUST
 
 # Integer factors below this give the same raw value in exact integer arithmetic as the
 # double rule (a non-tie quotient is at least 1/(2·factor) > TIE_EPSILON away from a tie).
@@ -153,14 +153,10 @@ class Encoding:
     returns: str  # the raw type the function returns
 
 
-def _lit(value: float | Fraction) -> str:
-    return double_repr(float(value))
-
-
 def int_encoding(sig: ir.Signal) -> Encoding:
     short = documented_range_suffices(sig, integer_path=True)
     lo, hi = math.ceil(sig.check_min), math.floor(sig.check_max)
-    scale = {"factor": grouped_int(int(sig.factor)), "offset": grouped_int(int(sig.offset)), "check_min": grouped_int(lo), "check_max": grouped_int(hi),
+    scale = {"factor": RUST.integer(int(sig.factor)), "offset": RUST.integer(int(sig.offset)), "check_min": RUST.integer(lo), "check_max": RUST.integer(hi),
              **_raw_bounds(sig)}
     if not short.suffices:
         return Encoding("to_raw_int", "IntScale", scale, _specials(sig), "i64")
@@ -170,9 +166,10 @@ def int_encoding(sig: ir.Signal) -> Encoding:
 
 
 def float_encoding(sig: ir.Signal) -> Encoding:
-    scale = {"factor": _lit(sig.factor), "offset": _lit(sig.offset), "check_min": _lit(sig.accept_min), "check_max": _lit(sig.accept_max)}
+    scale = {"factor": RUST.double(sig.factor), "offset": RUST.double(sig.offset)}
+    scale.update(check_min=RUST.double(sig.accept_min), check_max=RUST.double(sig.accept_max))
     if is_wide_unsigned(sig):
-        return Encoding("to_raw_u64", "ScaleU64", {**scale, "raw_min": grouped_int(sig.raw_min), "raw_max": grouped_int(sig.raw_max)}, _specials(sig), "u64")
+        return Encoding("to_raw_u64", "ScaleU64", {**scale, "raw_min": RUST.integer(sig.raw_min), "raw_max": RUST.integer(sig.raw_max)}, _specials(sig), "u64")
     scale.update(_raw_bounds(sig))
     short = documented_range_suffices(sig, integer_path=False)
     if not short.suffices:
@@ -180,7 +177,7 @@ def float_encoding(sig: ir.Signal) -> Encoding:
     # The doubles the full rule accepts (without specials): the shortcut's one range check,
     # and for the full rule the same answers (outside it another check fails anyway).
     assert short.pass_min is not None and short.pass_max is not None
-    scale["check_min"], scale["check_max"] = _lit(short.pass_min), _lit(short.pass_max)
+    scale["check_min"], scale["check_max"] = RUST.double(short.pass_min), RUST.double(short.pass_max)
     if sig.specials:
         return Encoding("to_raw_documented_or_special", "Scale", scale, _specials(sig), "i64")
     # The unsigned paths compute floor((q + 0.5) + ε): round_half_away(q) for q below 2^52 that
@@ -190,13 +187,13 @@ def float_encoding(sig: ir.Signal) -> Encoding:
     # Quotients below 2^17 and a factor that is not a power of two (whose division the
     # compiler makes a multiplication already): the reciprocal path gives the same result.
     if short.q_max < RECIPROCAL_LIMIT and not _power_of_two(Fraction(sig.factor)):
-        return Encoding("to_raw_documented_unsigned_recip", "Scale", scale, double_repr(sig.reciprocal), "i64")
+        return Encoding("to_raw_documented_unsigned_recip", "Scale", scale, RUST.double(sig.reciprocal), "i64")
     return Encoding("to_raw_documented_unsigned", "Scale", scale, "", "i64")
 
 
 def _raw_bounds(sig: ir.Signal) -> dict[str, str]:
-    return {"raw_min": grouped_int(sig.raw_min), "raw_max": grouped_int(sig.raw_max), "type_min": grouped_int(sig.raw_type_min), "type_max": grouped_int(sig.raw_type_max)}
+    return {"raw_min": RUST.integer(sig.raw_min), "raw_max": RUST.integer(sig.raw_max), "type_min": RUST.integer(sig.raw_type_min), "type_max": RUST.integer(sig.raw_type_max)}
 
 
 def _specials(sig: ir.Signal) -> str:
-    return "&[" + ", ".join(grouped_int(s.raw) for s in sig.specials) + "]"
+    return "&[" + ", ".join(RUST.integer(s.raw) for s in sig.specials) + "]"

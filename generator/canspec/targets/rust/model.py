@@ -13,7 +13,7 @@ from canspec.ir import j1939
 from canspec.ir.ids import MAX_STANDARD_ID
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
 from canspec.reference import textframes
-from canspec.render.literals import double_repr, grouped_int, hex_byte, rust_string
+from canspec.render.literals import RUST
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
@@ -157,16 +157,16 @@ def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEn
         return raw
     if kind == "scaled_int":
         expr = cast(raw, raw_type(sig), phys_type)
-        factor, offset = grouped_int(int(sig.factor)), grouped_int(int(abs(sig.offset)))
+        factor, offset = RUST.integer(int(sig.factor)), RUST.integer(int(abs(sig.offset)))
     else:
         expr = f"{raw} as f64"
-        factor, offset = double_repr(float(sig.factor)), double_repr(float(abs(sig.offset)))
+        factor, offset = RUST.double(float(sig.factor)), RUST.double(float(abs(sig.offset)))
     if sig.factor == -1:
         expr = f"-({expr})"  # x × -1.0 is -x exactly
     elif sig.factor != 1:
         expr += f" * {factor}"
     if kind == "scaled_int" and sig.offset < -type_bounds(phys_type)[1]:
-        expr += f" + {grouped_int(int(sig.offset))}"  # the type's minimum: its magnitude has no literal
+        expr += f" + {RUST.integer(int(sig.offset))}"  # the type's minimum: its magnitude has no literal
     elif sig.offset:
         expr += f" {'+' if sig.offset > 0 else '-'} {offset}"  # x - c == x + (-c) exactly in IEEE arithmetic
     return expr
@@ -191,16 +191,16 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
     min_lit = max_lit = ""
     if encoding is not None:
         min_lit, max_lit = (encoding.scale["check_min"], encoding.scale["check_max"]) if kind == "scaled_int" else \
-            (double_repr(float(sig.check_min)), double_repr(float(sig.check_max)))
+            (RUST.double(float(sig.check_min)), RUST.double(float(sig.check_max)))
     return RustField(
         sig=sig, names=names, qualified=f"{msg.name}.{sig.name}", kind=kind, raw_type=ty, phys_type=phys_type, enum=enum,
         raw_expr=unpack_expr(sig), phys_expr=_phys_expr(sig, kind, f"self.{names.raw_getter}()", phys_type, enum),
         store=store_stmt(sig), misfit=misfit_expr(sig), encoding=encoding, set_arg=set_arg, set_check=set_check, store_arg=store_arg,
         min_lit=min_lit, max_lit=max_lit,
-        specials=tuple(RustSpecial(special_const(names, s), grouped_int(s.raw), docs.special_doc(sig, s, names.base)) for s in sig.specials),
+        specials=tuple(RustSpecial(special_const(names, s), RUST.integer(s.raw), docs.special_doc(sig, s, names.base)) for s in sig.specials),
         doc=docs.field_doc(sig), short_doc=docs.short_doc(sig, type_name, names.getter), table_row=docs.table_row(sig, names.base, bilingual),
         getter_allow="clippy::wrong_self_convention" if names.base.startswith(CONVERSION_PREFIXES) else "",
-        tolerance=double_repr(float(abs(sig.factor))), offset_abs=double_repr(float(abs(sig.offset))), unit_note=f" ({docs.doc_text(sig.unit)})" if sig.unit else "",
+        tolerance=RUST.double(float(abs(sig.factor))), offset_abs=RUST.double(float(abs(sig.offset))), unit_note=f" ({docs.doc_text(sig.unit)})" if sig.unit else "",
     )
 
 
@@ -216,7 +216,7 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     index = next(f for f in fields if f.sig.name == m.index_signal)
     payload = next(f for f in fields if f.sig.name == m.payload_signal)
     if index.sig.signed:  # the frame number is the field's bit pattern
-        index_of = f"(frame.{index.names.raw_getter}() as u64 & {grouped_int(index.sig.mask)}) as usize"
+        index_of = f"(frame.{index.names.raw_getter}() as u64 & {RUST.integer(index.sig.mask)}) as usize"
     else:
         index_of = f"usize::from(frame.{index.names.raw_getter}())" if index.raw_type in ("u8", "u16") else f"frame.{index.names.raw_getter}() as usize"
     word = "u64::from_le_bytes(word)"
@@ -230,13 +230,13 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     ranges = [(lo, hi) for lo, hi in ((0x20, pad - 1), (pad + 1, 0x7E)) if lo <= hi] if 0x20 <= pad <= 0x7E else [(0x20, 0x7E)]
     pattern = "[" + "".join(f"\\x{{{lo:02X}}}-\\x{{{hi:02X}}}" for lo, hi in ranges) + f"]{{0,{m.text_length}}}"
     found = textframes.other_key(msg)
-    other = (next(f for f in fields if f.sig.name == found[0]), grouped_int(found[1])) if found is not None else (None, "")
+    other = (next(f for f in fields if f.sig.name == found[0]), RUST.integer(found[1])) if found is not None else (None, "")
     return RustText(
         index=index, payload=payload, text_length=m.text_length, frames=m.frames, bytes_per_frame=m.bytes_per_frame, total=m.frames * m.bytes_per_frame,
-        padding=hex_byte(pad), assembler=f"{pascal(msg.name)}Text", seen_type=next(t for n, t in SEEN_TYPES if m.frames <= n), all_seen=grouped_int((1 << m.frames) - 1),
+        padding=RUST.hex(pad, 2), assembler=f"{pascal(msg.name)}Text", seen_type=next(t for n, t in SEEN_TYPES if m.frames <= n), all_seen=RUST.integer((1 << m.frames) - 1),
         index_store=cast("index", "usize", index.raw_type), index_of=index_of,
         error_index=f"frame.{index.names.raw_getter}()" if index.raw_type == "u8" else "u8::try_from(index).unwrap_or(u8::MAX)",
-        chunk_to_raw=cast(word, "u64", payload.raw_type), raw_to_chunk=to_chunk, text_pattern=rust_string(pattern),
+        chunk_to_raw=cast(word, "u64", payload.raw_type), raw_to_chunk=to_chunk, text_pattern=RUST.string(pattern),
         keys=tuple(f for f in fields if f.sig.name in m.key_signals), other_key=other[0], other_raw=other[1],
         sample_a=textframes.sample_text(m, SAMPLE_TEXTS[0]), sample_b=textframes.sample_text(m, SAMPLE_TEXTS[1]),
     )
@@ -261,9 +261,9 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
         example_imports=f"Messages, {name}, EXTENDED_ID_FLAG" if flagged else f"Messages, {name}", fields=fields, counter=counter,
         text=build_text(msg, fields), doc=docs.message_doc(msg),
         table=(*docs.table_head(table_bilingual), *(f.table_row for f in fields)) if fields else (),
-        frame_id=msg.id_text, da="None" if j is None or j.da is None else f"Some({hex_byte(j.da)})",
-        defined_mask=grouped_int(defined), fields_mask=grouped_int(stored),
-        checksum_shift=8 * msg.checksum.byte if msg.checksum else 0, cover_mask=grouped_int(msg.checksum.cover_mask) if msg.checksum else "",
+        frame_id=msg.id_text, da="None" if j is None or j.da is None else f"Some({RUST.hex(j.da, 2)})",
+        defined_mask=RUST.integer(defined), fields_mask=RUST.integer(stored),
+        checksum_shift=8 * msg.checksum.byte if msg.checksum else 0, cover_mask=RUST.integer(msg.checksum.cover_mask) if msg.checksum else "",
         many_arguments=len(fields) > MAX_ARGUMENTS, local="msg_" if any(f.names.field == "msg" for f in fields) else "msg",
     )
 
@@ -281,8 +281,8 @@ def build_crate(can: ir.CanProtocol) -> RustCrate:
         package=rust_crate_name(can.name), version=semver(can.version), title=docs.crate_title(can),
         summary=docs.crate_summary(can, bool(enums)), enums=tuple(enums.values()), messages=messages,
         message_table=(*docs.message_table_head(bilingual), *(docs.message_row(m.msg, m.name, bilingual) for m in messages)),
-        is_j1939=can.bus.is_j1939, pdu2_min_pf=j1939.PDU2_MIN_PF, global_address=hex_byte(j1939.GLOBAL_ADDRESS),
-        id_flag_matters=id_flag_matters, max_standard_id=grouped_int(MAX_STANDARD_ID),
+        is_j1939=can.bus.is_j1939, pdu2_min_pf=j1939.PDU2_MIN_PF, global_address=RUST.hex(j1939.GLOBAL_ADDRESS, 2),
+        id_flag_matters=id_flag_matters, max_standard_id=RUST.integer(MAX_STANDARD_ID),
         uses_codec=bool(kinds & {"scaled_int", "float"}) or can.has_counters or can.has_checksums, kinds=kinds,
     )
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.render.literals import grouped_int
+from canspec.render.literals import RUST
 from canspec.targets.rust.model import RustCrate
 
 
@@ -42,7 +42,7 @@ def _rule(name: str, msg: ir.Message) -> RustRule:
         type=name,
         timeout=f"Some(crate::messages::{name}::CYCLE_TIME_MS * timeout_cycles)" if msg.is_cyclic else "None",
         counter=f"Some(CounterRule {{ start: {c.start}, length: {c.length} }})" if c is not None else "None",
-        checksum=f"Some(ChecksumRule {{ byte: {k.byte}, cover_mask: {grouped_int(k.cover_mask)} }})" if k is not None else "None",
+        checksum=f"Some(ChecksumRule {{ byte: {k.byte}, cover_mask: {RUST.integer(k.cover_mask)} }})" if k is not None else "None",
     )
 
 

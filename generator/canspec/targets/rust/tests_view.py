@@ -11,7 +11,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import TIE_GUARANTEE, fits_runtime, to_raw_runtime
-from canspec.render.literals import grouped_int
+from canspec.render.literals import RUST
 from canspec.targets.rust.model import RustCrate, RustField, RustMessage
 
 
@@ -44,17 +44,17 @@ def float_pick(sig: ir.Signal) -> Pick | None:
         lo = max(sig.raw_min, math.floor(zero - room) + 1)
         hi = min(sig.raw_max, math.ceil(zero + room) - 1)
         if lo <= hi:
-            return Pick(grouped_int(lo), grouped_int(hi))
+            return Pick(RUST.integer(lo), RUST.integer(hi))
     mid = (sig.raw_min + sig.raw_max) // 2
     samples = sorted(r for r in {sig.raw_min, sig.raw_min + 1, mid, mid + 1, sig.raw_max - 1, sig.raw_max} if sig.raw_min <= r <= sig.raw_max)
-    good = tuple(grouped_int(r) for r in samples if _encodes_back(sig, r))
+    good = tuple(RUST.integer(r) for r in samples if _encodes_back(sig, r))
     return Pick(values=good) if good else None
 
 
 def pick(field: RustField) -> Pick | None:
     if field.kind == "float":
         return float_pick(field.sig)
-    return Pick(grouped_int(field.sig.raw_min), grouped_int(field.sig.raw_max))
+    return Pick(RUST.integer(field.sig.raw_min), RUST.integer(field.sig.raw_max))
 
 
 @dataclass(frozen=True)

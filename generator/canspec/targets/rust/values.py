@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.render.literals import grouped_int
+from canspec.render.literals import RUST
 from canspec.spec.problems import Problem, error
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import int_type, type_bounds
@@ -63,13 +63,13 @@ def problems(users: dict[str, list[ir.Signal]]) -> Iterator[Problem]:
 def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> RustEnum:
     repr_ = repr_type(signals)
     assert repr_ is not None, "refused by `canspec check` (rust-value-table-width)"
-    variants = tuple(RustVariant(variant_name(e.name), grouped_int(e.raw), docs.variant_doc(e)) for e in table.entries)
+    variants = tuple(RustVariant(variant_name(e.name), RUST.integer(e.raw), docs.variant_doc(e)) for e in table.entries)
     used = {e.raw for e in table.entries}
     lo, hi = type_bounds(repr_)
     free = next((v for v in range(hi + 1) if v not in used), None) if len(used) <= hi - lo else None
     if free is None and len(used) <= hi - lo:
         free = next(v for v in range(-1, lo - 1, -1) if v not in used)
-    return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, grouped_int(free) if free is not None else "")
+    return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, RUST.integer(free) if free is not None else "")
 
 
 def field_repr(sig: ir.Signal, enum: RustEnum) -> bool:

@@ -10,7 +10,7 @@ in hex, negative ones followed by their value: 0x200 (-512) for a 10-bit signed 
 from __future__ import annotations
 
 from canspec import ir
-from canspec.render.literals import num, sheet_number
+from canspec.render.literals import hex_byte, hex_text, num, sheet_number
 from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
 NAME = "通信矩阵 Matrix"
@@ -53,7 +53,7 @@ SIGNAL_COLUMNS = (
 
 def raw_hex(sig: ir.Signal, raw: int) -> str:
     """The field's bits in hex (two's complement for signed fields), plus the value when negative."""
-    text = f"0x{raw & sig.mask:X}"
+    text = hex_text(raw & sig.mask)
     return text if raw >= 0 else f"{text} ({raw})"
 
 
@@ -85,7 +85,7 @@ def notes(msg: ir.Message, sig: ir.Signal) -> str:
     if mf is not None and sig.name == mf.index_signal:
         out.append(f"Frame index 帧序号: {mf.text_length} {mf.encoding.upper()} characters over {mf.frames} frames")
     if mf is not None and sig.name == mf.payload_signal:
-        out.append(f"Text chunk 文本片段: {mf.bytes_per_frame} characters per frame, padding 0x{mf.padding:02X}")
+        out.append(f"Text chunk 文本片段: {mf.bytes_per_frame} characters per frame, padding {hex_byte(mf.padding)}")
     if sig.doc_min is not None and sig.doc_max is not None and (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
         out.append(f"Documented range 文档范围 {num(sig.doc_min)} … {num(sig.doc_max)}; encodable 可编码 {num(sig.phys_min)} … {num(sig.phys_max)}")
     if sig.since:

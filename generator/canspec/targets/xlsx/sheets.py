@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from canspec import ir
 from canspec.render.environment import header_lines
-from canspec.render.literals import hex_byte, sheet_number
+from canspec.render.literals import hex_byte, hex_text, sheet_number
 from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
 INITIAL_VALUE_NOTE = (
@@ -33,7 +33,7 @@ def value_tables(can: ir.CanProtocol) -> Sheet | None:
     for i, vt in enumerate(can.value_tables):
         for n, e in enumerate(vt.entries):
             used = "\n".join(users.get(vt.name, ())) if n == 0 else None
-            rows.append([vt.name, sheet_number(e.raw), f"0x{e.raw:X}" if e.raw >= 0 else f"-0x{-e.raw:X}", e.name, e.label, e.label_zh, used])
+            rows.append([vt.name, sheet_number(e.raw), hex_text(e.raw), e.name, e.label, e.label_zh, used])
             bands.append(i % 2)
     return sheet("值表 Value tables", columns, rows, freeze="table", bands=bands)
 
@@ -67,7 +67,7 @@ def history(log: ir.Changelog | None) -> Sheet | None:
     for i, v in enumerate(reversed(log.versions)):  # newest first, as the handbook shows it
         head: list[Cell] = [f"V{v.version}", v.date, ", ".join(v.authors), joined(v.label, v.label_zh)]
         for item in v.items:
-            rows.append([*head, item.number, item.zh, item.en, "\n".join(f"0x{fid:08X}" for fid in item.ids), ", ".join(item.errata)])
+            rows.append([*head, item.number, item.zh, item.en, "\n".join(hex_text(fid, 8) for fid in item.ids), ", ".join(item.errata)])
         if not v.items:
             rows.append([*head, None, None, None, None, ", ".join(v.errata)])
         bands += [i % 2] * (len(v.items) or 1)
