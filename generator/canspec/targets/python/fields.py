@@ -92,7 +92,7 @@ def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
         expr = f"{_paren(expr)} * {PYTHON.number(sig.factor, as_int)}"
     if sig.offset != 0:
         expr = _paren(expr) if sig.factor == 1 else expr
-        expr = f"{expr} + {PYTHON.number(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {PYTHON.number(-sig.offset, as_int)}"
+        expr = f"{expr} + {PYTHON.number(sig.offset, as_int)}" if sig.offset > 0 else f"{expr} - {PYTHON.number(abs(sig.offset), as_int)}"
     return expr
 
 
@@ -105,7 +105,7 @@ def q_expr(sig: ir.Signal, direct: bool, x: str) -> str:
     elif off > 0:
         expr = f"{x} - {PYTHON.number(off, direct)}"
     else:
-        expr = f"{x} + {PYTHON.number(-off, direct)}"
+        expr = f"{x} + {PYTHON.number(abs(off), direct)}"
     if not direct and sig.factor != 1:
         expr = f"({expr}) / {PYTHON.double(sig.factor)}" if off != 0 else f"{expr} / {PYTHON.double(sig.factor)}"
     return expr
