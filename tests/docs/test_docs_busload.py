@@ -7,7 +7,7 @@ import random
 from fractions import Fraction
 
 import pytest
-from canspec.reference import busload
+from canspec.ir import busload
 
 # --- an independent model of a CAN 2.0B data frame, bit by bit --------------------------------
 

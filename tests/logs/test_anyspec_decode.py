@@ -13,10 +13,11 @@ from pathlib import Path
 
 import numpy as np
 from canspec.pipeline import compile_spec
-from canspec.reference import bulktext, codec
-from canspec.reference import frames as fr
-from canspec.reference.bulk import Decoder
-from canspec.reference.loghealth import HealthReport
+from canspec.logs import bulktext
+from canspec.reference import codec
+from canspec.logs import frames as fr
+from canspec.logs.bulk import Decoder
+from canspec.logs.loghealth import HealthReport
 from hypothesis import HealthCheck, given, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))

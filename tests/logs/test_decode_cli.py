@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 import pytest
-from canspec.reference.candump import DATA, ERROR, REMOTE, LineError, parse_line
+from canspec.logs.candump import DATA, ERROR, REMOTE, LineError, parse_line
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from repo_paths import CANSPEC_ENV
@@ -210,7 +210,8 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
 
     import numpy as np
     from canspec.pipeline import compile_spec
-    from canspec.reference import bulktext, codec
+    from canspec.logs import bulktext
+    from canspec.reference import codec
     from repo_paths import ROOT
 
     mixed = compile_spec(ROOT / "tests" / "logs" / "specs" / "mixed.yaml").spec.can
@@ -235,7 +236,7 @@ def test_bulk_reader_equals_the_line_reader(lines):
     line it hands to parse_line — so the frames and problems are exactly the line reader's."""
     import math
 
-    from canspec.reference.candump_bulk import read_chunk
+    from canspec.logs.candump_bulk import read_chunk
 
     batch, problems, count = read_chunk(("\n".join(lines) + "\n").encode(), 1)
     assert count == len(lines)

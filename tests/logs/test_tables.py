@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pyarrow as pa
 import pytest
-from canspec.reference import fleet
+from canspec.logs import fleet
 from repo_paths import CANSPEC_ENV
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -120,9 +120,9 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
 
 def test_arrow_frames_round_trip_and_spark_schema(eight_logs, can):
     """What a Spark job does: frame columns through Arrow, decoded per batch, cast to the plain schema."""
-    from canspec.reference.bulk import Decoder, decode_arrow
-    from canspec.reference.frames import Batch
-    from canspec.reference.logread import read_log
+    from canspec.logs.bulk import Decoder, decode_arrow
+    from canspec.logs.frames import Batch
+    from canspec.logs.logread import read_log
 
     logs, _ = eight_logs
     decoder = Decoder(can.messages)

@@ -15,8 +15,8 @@ import uuid
 import can
 import pytest
 from canspec import cli
-from canspec.reference import supervision
-from canspec.simulate import RestBus, SimFault, SimulationError
+from canspec.runtime import supervision
+from canspec.runtime.simulate import RestBus, SimFault, SimulationError
 from repo_paths import ROOT
 
 from python import pkgpath  # noqa: F401  (puts the generated package on sys.path)

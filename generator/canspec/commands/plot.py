@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         import matplotlib
 
-        from canspec.reference.bulk import Decoder
+        from canspec.logs.bulk import Decoder
     except ImportError as exc:
         print(f"canspec plot: {exc.name} is missing; {EXTRA_HINT}", file=sys.stderr)
         return 2

@@ -14,7 +14,7 @@ from typing import Any
 import yaml
 
 from canspec import ir
-from canspec.reference import busload
+from canspec.ir import busload
 from canspec.render.environment import header_lines, render
 from canspec.targets import Target
 from canspec.targets.docs import cells, jsonpage, svg

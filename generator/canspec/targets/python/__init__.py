@@ -17,7 +17,7 @@ from canspec.targets.python.model import PyPackage, build_package
 
 # The formatter's version is part of the output: CI installs exactly this one (.ci/setup.d/40-python.sh).
 RUFF_VERSION = "0.17.6"
-MONITOR_SOURCE = "canspec.reference.monitor"  # modules' source: copied from canspec's own package
+MONITOR_SOURCE = "canspec.runtime.monitor"  # modules' source: copied from canspec's own package
 LINE_LENGTH = 120
 TARGET_NAME = "python"
 
@@ -61,7 +61,7 @@ def _modules(pkg: PyPackage) -> dict[str, str]:
 def static_source(spec: ir.Spec, name: str) -> str:
     """A static source file as shipped: the generated header, then the file verbatim."""
     if name == MONITOR_SOURCE:  # canspec's own receive monitor, the one implementation of it
-        text = (importlib.resources.files("canspec.reference") / "monitor.py").read_text(encoding="utf-8")
+        text = (importlib.resources.files("canspec.runtime") / "monitor.py").read_text(encoding="utf-8")
     else:
         text = (resources.templates_dir() / "python" / name).read_text(encoding="utf-8")
     return "".join(f"# {line}\n" for line in header_lines(spec, TARGET_NAME)) + "\n" + text

@@ -17,8 +17,9 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from canspec import ir
-from canspec.reference import codec, supervision
-from canspec.reference.monitor import FrameEvent, Monitor
+from canspec.reference import codec
+from canspec.runtime import supervision
+from canspec.runtime.monitor import FrameEvent, Monitor
 
 MESSAGES_PER_CATEGORY = 3
 EVENT_GAP_MS = 1000  # between frames of an event-driven message

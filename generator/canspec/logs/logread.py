@@ -17,9 +17,9 @@ from typing import IO, Any
 
 import numpy as np
 
-from canspec.reference import frames as fr
-from canspec.reference.candump import DATA, ERROR, REMOTE, Frame
-from canspec.reference.candump_bulk import read_chunk
+from canspec.logs import frames as fr
+from canspec.logs.candump import DATA, ERROR, REMOTE, Frame
+from canspec.logs.candump_bulk import read_chunk
 
 FORMATS = ("candump", "asc", "blf", "trc", "mf4")
 EXTENSIONS = {".log": "candump", ".candump": "candump", ".txt": "candump", ".asc": "asc", ".blf": "blf", ".trc": "trc", ".mf4": "mf4"}
@@ -141,7 +141,7 @@ def _candump(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
 
 
 def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
-    from canspec.reference.blf_bulk import read_blf
+    from canspec.logs.blf_bulk import read_blf
 
     for batch, objects in read_blf(stream):
         yield Chunk(batch, [], objects)

@@ -9,7 +9,7 @@ import numpy as np
 
 from canspec import ir
 from canspec.reference import codec
-from canspec.reference.bulk import physical_column, raw_column
+from canspec.logs.bulk import physical_column, raw_column
 
 SAFE_BITS = 52  # integer arithmetic in int64 is exact below this many bits of raw × factor + offset
 

@@ -20,8 +20,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from canspec import ir
-from canspec.reference import frames as fr
-from canspec.reference.candump import DATA, ERROR, REMOTE
+from canspec.logs import frames as fr
+from canspec.logs.candump import DATA, ERROR, REMOTE
 
 if TYPE_CHECKING:  # pyarrow is imported where tables are made: the text output needs none
     import pyarrow as pa

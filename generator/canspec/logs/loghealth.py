@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 
 from canspec import ir
-from canspec.reference.monitor import Fault, FrameEvent, MessageStats, Monitor
-from canspec.reference.supervision import message_rule
+from canspec.runtime.monitor import Fault, FrameEvent, MessageStats, Monitor
+from canspec.runtime.supervision import message_rule
 
 
 class MonitorAdapter:

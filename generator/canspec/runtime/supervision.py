@@ -6,7 +6,7 @@ rules from its message classes."""
 from __future__ import annotations
 
 from canspec import ir
-from canspec.reference.monitor import ChecksumRule, CounterRule, FaultTable, MessageRule, Monitor
+from canspec.runtime.monitor import ChecksumRule, CounterRule, FaultTable, MessageRule, Monitor
 
 
 def message_rule(msg: ir.Message, timeout_cycles: int = ir.MONITOR_TIMEOUT_CYCLES) -> MessageRule:

@@ -15,8 +15,8 @@ from typing import IO
 
 import numpy as np
 
-from canspec.reference import frames as fr
-from canspec.reference.candump import DATA, ERROR, REMOTE
+from canspec.logs import frames as fr
+from canspec.logs.candump import DATA, ERROR, REMOTE
 
 FILE_HEADER = struct.Struct("<4sLBBBBBBBBQQLL8H8H")
 OBJ_BASE = struct.Struct("<4sHHLL")

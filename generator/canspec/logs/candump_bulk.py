@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from canspec.reference import frames as fr
-from canspec.reference.candump import LineError, parse_line
+from canspec.logs import frames as fr
+from canspec.logs.candump import LineError, parse_line
 
 HEX = np.full(256, 255, dtype=np.uint8)
 for _i, _c in enumerate(b"0123456789abcdef"):

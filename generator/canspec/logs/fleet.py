@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 import pyarrow as pa
 
 from canspec import ir
-from canspec.reference.bulk import Decoder
-from canspec.reference.logread import read_log
+from canspec.logs.bulk import Decoder
+from canspec.logs.logread import read_log
 
 
 @dataclass

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from canspec.reference.candump import Frame
+from canspec.logs.candump import Frame
 
 COLUMNS = ("timestamp", "channel", "frame_id", "extended", "kind", "dlc", "word", "line")
 DTYPES = (np.float64, np.int32, np.uint32, np.bool_, np.uint8, np.uint8, np.uint64, np.int64)

@@ -20,8 +20,8 @@ import numpy as np
 
 from canspec import ir
 from canspec.reference import codec
-from canspec.reference.bulk import Decoder
-from canspec.reference.bulktext import message_texts
+from canspec.logs.bulk import Decoder
+from canspec.logs.bulktext import message_texts
 
 
 class FrameSink:
