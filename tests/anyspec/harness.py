@@ -239,12 +239,12 @@ def stage_c(ctx: Ctx) -> None:
         if rc != 0:
             ctx.fail("c", f"{cc} -O2 -c {umbrella.name[5:-2]}", err)
     doc = _vectors(ctx)
-    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/c/gen_runner_tables.py"):
+    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/targets/c/gen_runner_tables.py"):
         return
     try:
         (work / "runner_tables.h").write_text(adapters.c_runner_tables(ctx.spec), encoding="utf-8")
     except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
-        ctx.fail("c", "tests/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
+        ctx.fail("c", "tests/targets/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
         return
     lines = work / "vectors.lines.txt"
     lines.write_text(adapters.c_vectors_lines(doc, ctx.spec), encoding="ascii")

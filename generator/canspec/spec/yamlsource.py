@@ -51,7 +51,7 @@ MAX_VALUES = 5_000_000  # mapping entries and list items after expanding aliases
 
 try:  # libyaml's scanner and parser when PyYAML has them: about 4x faster on big specs
     from yaml.cyaml import CParser as _CParser
-except ImportError:  # PyYAML built without libyaml (tests/robust/test_yaml_fallback.py)
+except ImportError:  # PyYAML built without libyaml (tests/spec/test_yaml_fallback.py)
     _CParser = None
 
 if _CParser is not None:

@@ -9,9 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.ir import j1939
+from canspec.ir import j1939, textsamples
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
-from canspec.ir import textsamples
 from canspec.render.literals import double_repr, grouped_int, hex_byte, rust_string
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
