@@ -84,7 +84,7 @@ def mutated(draw: st.DrawFn) -> str:
 @settings(max_examples=1500, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(mutated())
 def test_mutated_spec_never_raises(text: str) -> None:
-    from canspec.generate import generate
+    from canspec.generation import generate
     from canspec.pipeline import compile_spec
     from canspec.targets import registry
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from canspec.generate import generate
+from canspec.generation import generate
 from canspec.pipeline import compile_spec
 from json_support import BUILD, HERE, NODE_MODULES, ROOT, require_tool, run, ts_runners
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from canspec.generate import generate
+from canspec.generation import generate
 from canspec.ir import json_fields as jsonmodel
 from canspec.pipeline import compile_spec
 from canspec.reference import jsonvalue

@@ -8,7 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from canspec.generate import generate
+from canspec.generation import generate
 from canspec.pipeline import compile_spec
 
 HEAD = """schema_version: 1

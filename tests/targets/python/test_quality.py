@@ -118,7 +118,7 @@ def test_runner_reads_any_file_and_reports_mismatches(tmp_path, vectors):
 
 
 def test_missing_formatter_is_a_clear_generation_error(monkeypatch, spec):
-    from canspec.generate import GenerationError, generate
+    from canspec.generation import GenerationError, generate
 
     monkeypatch.setattr(target, "ruff_binary", lambda: (_ for _ in ()).throw(RuntimeError(f"the python target formats its output with ruff: pip install ruff=={target.RUFF_VERSION}")))
     with pytest.raises(GenerationError, match="pip install ruff=="):

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from canspec import ir
-from canspec.generate import GenerationError, generate
+from canspec.generation import GenerationError, generate
 from canspec.ir.encoding import fits_runtime, to_raw_runtime
 from canspec.pipeline import compile_spec
 from canspec.render import formatters
