@@ -1,6 +1,6 @@
 """The declared Python API (canspec/__init__.py): every name it lists resolves, to the object the
 internal module defines; `import canspec` loads none of the stages or the log decoder's optional
-dependencies; and the README's example of the API runs as written."""
+dependencies."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """A small, independent model of the receive monitor and of multi-frame text reassembly, written
-from the rules as README.md states them (not from canspec's reference/monitor.py): the oracle the
+from the rules as README.md states them (not from canspec's runtime/monitor.py): the oracle the
 sequence vectors and the property tests are checked against.
 
 It reads only what the spec says of a message: ID and format, DLC, cycle time, the counter's bits,

@@ -1,7 +1,7 @@
 """`canspec decode LOG...`: bus logs (candump, Vector ASC/BLF, PEAK TRC, ASAM MF4) decoded with
 the spec — frames as text / JSON lines / CSV, per-message Parquet tables, or a health report.
 
-Every chunk of every log is decoded in bulk (reference/bulk.py); text, JSON and CSV are then
+Every chunk of every log is decoded in bulk (logs/bulk.py); text, JSON and CSV are then
 written frame by frame in log order. Unknown IDs, malformed lines, wrong lengths and checksum
 mismatches go to stderr as `FILE:LINE: problem` and are counted; one summary line per input
 ends the run. Exit status: 2 when an input cannot be read (or is not in its format), 1 when an

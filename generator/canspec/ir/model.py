@@ -25,7 +25,7 @@ EXACT_LIMIT = 2**52
 EXACT_LIMIT_TEXT = "4503599627370496.0"
 # Receive monitors time a cyclic message out after this many cycle times without a frame,
 # accept a counter step of up to 1 + MONITOR_COUNTER_TOLERANCE (frames lost in between) and hold a
-# message valid after MONITOR_VALID_AFTER good frames in a row (reference/monitor.py states the rules).
+# message valid after MONITOR_VALID_AFTER good frames in a row (runtime/monitor.py states the rules).
 MONITOR_TIMEOUT_CYCLES = 3
 MONITOR_COUNTER_TOLERANCE = 1
 MONITOR_VALID_AFTER = 2

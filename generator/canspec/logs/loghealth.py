@@ -1,5 +1,5 @@
-"""The log health report (`canspec decode --report`): the receive monitor (reference/monitor.py,
-configured from the IR by reference/supervision.py; the same rules as the generated C, Python and
+"""The log health report (`canspec decode --report`): the receive monitor (runtime/monitor.py,
+configured from the IR by runtime/supervision.py; the same rules as the generated C, Python and
 Rust monitors) applied to a recording. Per message: frames, measured period against the spec's
 cycle, counter jumps (beyond the monitor's tolerance), lost frames (counter steps within it) and
 repeats, checksum errors, timeouts (gaps since the last accepted frame longer than the monitor's

@@ -1,4 +1,4 @@
-"""The receive monitor (reference/monitor.py) configured from the IR: one rule per message, the
+"""The receive monitor (runtime/monitor.py) configured from the IR: one rule per message, the
 protocol's fault-code tables, and the IR's default parameters. `canspec decode --report`, the
 sequence vectors and the simulator's tests use it; a generated Python package builds the same
 rules from its message classes."""

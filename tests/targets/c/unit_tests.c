@@ -196,7 +196,7 @@ static uint32_t speed_at(kaiwo_gateway_monitor_t *mon, uint8_t counter, uint32_t
     return kaiwo_gateway_monitor_on_frame(mon, KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_FRAME_ID, buf, 8u, t, NULL);
 }
 
-/* The rules by hand (generator/canspec/reference/monitor.py); the shared sequence vectors test them in full. */
+/* The rules by hand (generator/canspec/runtime/monitor.py); the shared sequence vectors test them in full. */
 static void test_monitor(void) {
     kaiwo_gateway_monitor_t mon;
     uint8_t buf[8];

@@ -3,7 +3,7 @@ CAN protocol, formatted with ruff at generation time (in memory, so output is de
 for a pinned ruff version). Modules that depend on the spec are rendered from templates; the
 rest (errors, the encode slow path, J1939 helpers, python-can glue) are plain source files
 under templates/python/static/, copied with the generated header — and the receive monitor,
-`monitor.py`, is canspec's own reference/monitor.py, copied the same way."""
+`monitor.py`, is canspec's own runtime/monitor.py, copied the same way."""
 
 from __future__ import annotations
 

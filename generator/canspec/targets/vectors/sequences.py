@@ -1,7 +1,7 @@
 """Sequence vectors (`vectors/sequences.json`): timed frame sequences with what the receive monitor
 must report after every step, and multi-frame texts fed frame by frame with what reassembly must
-give. The expected values come from the reference monitor (reference/monitor.py, configured by
-reference/supervision.py) and the reference reassembly (reference/textframes.py); the C, Python and
+give. The expected values come from the reference monitor (runtime/monitor.py, configured by
+runtime/supervision.py) and the reference reassembly (reference/textframes.py); the C, Python and
 Rust runners replay every step and compare.
 
 Steps: `start` (supervise the listed messages' timeouts from t), `frame` (a frame received at t:
