@@ -97,10 +97,6 @@ def decimals(value: Fraction) -> int:
     return places
 
 
-def to_physical(raw: int, factor: Fraction, offset: Fraction) -> Fraction:
-    return raw * factor + offset
-
-
 def decimal_text(value: Fraction | int) -> str:
     """Shortest exact decimal text of a value with a finite decimal expansion (0.02, -1080, 1e-3 → 0.001)."""
     value = Fraction(value)
@@ -115,8 +111,3 @@ def decimal_text(value: Fraction | int) -> str:
     if Fraction(Decimal(text)) != value:
         raise ValueError(f"{value} has no finite decimal expansion")
     return text
-
-
-def json_number(value: Fraction) -> int | float:
-    """A vector/JSON number: int when integral, else the nearest double."""
-    return value.numerator if value.denominator == 1 else float(value)

@@ -322,10 +322,6 @@ class CanProtocol:
 
     # What the protocol uses at all: targets leave out the helpers of what it does not.
     @property
-    def has_extended(self) -> bool:
-        return any(m.is_extended for m in self.messages)
-
-    @property
     def has_standard(self) -> bool:
         return any(not m.is_extended for m in self.messages)
 
@@ -470,7 +466,3 @@ class Spec:
     generator_version: str
     errata_md: str | None = None  # text of ERRATA.md beside the bundle, if any (rendered by the docs)
     node: str | None = None  # set in one node's view (ir/nodeview.py): only its messages
-
-    @property
-    def short_hash(self) -> str:
-        return self.sha256[:16]

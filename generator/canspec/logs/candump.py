@@ -21,7 +21,6 @@ from typing import NamedTuple
 MAX_DATA = 64
 ERR_FLAG = 0x20000000  # linux/can.h CAN_ERR_FLAG: candump prints it as part of an error frame's ID
 DATA, REMOTE, ERROR = 0, 1, 2  # frame kinds
-KIND_NAMES = ("data", "remote", "error")
 
 
 class LineError(ValueError):

@@ -50,7 +50,7 @@ def tables(c: CModel) -> str:
     # A protocol of one ID format has a C API without the format: its caller drops a frame of the
     # other format (no message of the protocol), which the runner counts as the unknown frame it is.
     ext = "ext != 0, " if c.format_arg else ""
-    sole = [] if c.format_arg else [f"    if (ext != {int(c.can.has_extended)}) {{", "        seq_dropped++;", "        return SEQ_FLAG_UNKNOWN_ID;", "    }"]
+    sole = [] if c.format_arg else [f"    if (ext != {int(any(m.is_extended for m in c.can.messages))}) {{", "        seq_dropped++;", "        return SEQ_FLAG_UNKNOWN_ID;", "    }"]
     out += ["static uint32_t seq_frame(seq_monitor_t *mon, uint32_t id, int ext, const uint8_t *data, size_t n, uint32_t t) {",
             *sole, f"    return {p}_monitor_on_frame(mon, id, {ext}data, n, t, NULL);", "}", ""]
     out += ["static uint32_t seq_check(seq_monitor_t *mon, uint32_t t) {", f"    return {p}_monitor_check(mon, t);", "}", ""]

@@ -39,7 +39,8 @@ def test_the_fixtures_reach_what_the_c_target_had_refused():
     signals = [s for can in cans for m in can.messages for s in m.signals]
     messages = [m for can in cans for m in can.messages]
     assert any(s.length == 64 and not s.signed for s in signals) and any(s.length == 64 and s.signed for s in signals)
-    assert any(can.has_standard and not can.has_extended for can in cans) and any(can.has_standard and can.has_extended for can in cans)
+    assert any(can.has_standard and not any(m.is_extended for m in can.messages) for can in cans)
+    assert any(can.has_standard and any(m.is_extended for m in can.messages) for can in cans)
     assert any(m.cycle_ms is None for m in messages) and any(m.dlc == 0 for m in messages)
     assert any(m.checksum is not None and m.dlc < 8 for m in messages)
     assert any(can.bus.is_j1939 for can in cans) and any(not can.bus.is_j1939 for can in cans)

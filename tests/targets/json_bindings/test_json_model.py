@@ -28,7 +28,8 @@ def test_whole_protocol_plan(pm):
 
 
 def test_direction_plans_need_no_markers(pm):
-    to_vehicle, to_autonomous = pm.plan_for("vehicle"), pm.plan_for("autonomous")
+    plans = {p.receiver: p for p in pm.receiver_plans}
+    to_vehicle, to_autonomous = plans["vehicle"], plans["autonomous"]
     assert set(to_vehicle.messages) == {"status", "shutdown_request", "restart_request", "record_request", "photo_request"}
     assert set(to_autonomous.messages) == {"control", "shutdown_reply", "restart_reply", "record_reply", "photo_reply"}
     for p in (to_vehicle, to_autonomous):

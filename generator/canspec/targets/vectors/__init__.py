@@ -46,7 +46,7 @@ Scales = tuple[tuple[str, int, int, int], ...]
 
 def _scales(msg: ir.Message) -> Scales:
     """Per data signal (name, a, b, d) with raw * factor + offset == (raw * a + b) / d in integers:
-    the same numbers as json_number(codec.to_physical(...)) (int when exact, else the correctly
+    the same numbers as codec.to_physical(...) as a JSON number (int when exact, else the correctly
     rounded double of the quotient), without Fraction arithmetic for each of many cases."""
     return tuple(
         (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
