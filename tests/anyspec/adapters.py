@@ -81,8 +81,9 @@ def c_runner_tables(spec_path: Path) -> str:
     if prefix != "kaiwo_gateway":
         text += "".join(f"#define kaiwo_gateway_{n} {prefix}_{n}\n" for n in ("msg_t", "lookup_id", "msg_info_t", "msg_info"))
     # A DLC-0 message has no shorter buffer to refuse (the tables would pass length -1u).
-    text = re.sub(r"    st = \(int\)\w+_unpack\(&s, vc->data, -1u\);\n    if \(st != \(int\)\w+_ERR_LENGTH\) bad \+= fail\(vc, \"short buffer gave %d\", st\);\n",
-                  "    /* DLC 0: no shorter frame */\n", text)
+    text = re.sub(
+        r"    st = \(int\)\w+_unpack\(&s, vc->data, -1u\);\n    if \(st != \(int\)\w+_ERR_LENGTH\) bad \+= fail\(vc, \"short buffer gave %d\", st\);\n",
+        "    /* DLC 0: no shorter frame */\n", text)
     return text
 
 

@@ -81,11 +81,10 @@ def test_fingerprint_tracks_wire_not_names(tmp_path, can):
 
 
 def test_names_per_language(can):
-    from canspec.ir.names import c_ident, pascal, rust_ident, upper_snake
-    from canspec.targets.python.naming import Namespace
+    from canspec.ir.names import c_ident, camel, pascal, py_ident, rust_ident, upper_snake
 
     msg = can.message("rgate_speed_command")
-    assert (pascal(msg.name), upper_snake(msg.name)) == ("RgateSpeedCommand", "RGATE_SPEED_COMMAND")
+    assert (pascal(msg.name), upper_snake(msg.name), camel(msg.name)) == ("RgateSpeedCommand", "RGATE_SPEED_COMMAND", "rgateSpeedCommand")
     off = can.message("vehicle_state_1").signal("door_state").value_table.by_raw(0)
     assert off.name == "off" and pascal(off.name) == "Off"  # `off` stays text, not YAML 1.1's False
-    assert rust_ident("type") == "r#type" and Namespace().take("class") == "class_" and c_ident("default") == "default_"
+    assert rust_ident("type") == "r#type" and py_ident("class") == "class_" and c_ident("default") == "default_"

@@ -163,7 +163,9 @@ def test_package_text_assembler_agrees_with_the_model(can, gw, events):
     """Two senders (device types) × two texts, frames interleaved, dropped, repeated, short or with
     a bad index, in any order."""
     msg = can.message("device_id")
-    texts = {(d, k): gw.split_device_id_text(text, gw.DeviceId(device_type=d)) for d in (0, 1) for k, text in enumerate(("LSKG5GC13KA123456", "LSKG5GC13KB999999"))}
+    texts = {
+        (d, k): gw.split_device_id_text(text, gw.DeviceId(device_type=d)) for d in (0, 1) for k, text in enumerate(("LSKG5GC13KA123456", "LSKG5GC13KB999999"))
+    }
     asm, model = gw.DeviceIdTextAssembler(), ModelText(msg)
     for which, index, mode in events:
         frames = texts[(which // 2, which % 2)]

@@ -102,7 +102,9 @@ def message_problems(msg_of: Callable[[int], ir.Message], batch: Any, decoded: A
     for i in decoded.bad_checksum.tolist():
         m = msg_of(int(decoded.key[i]))
         assert m.checksum is not None
-        items.append((int(line[i]), "checksum", f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{(int(word[i]) >> 8 * m.checksum.byte) & 0xFF:02X})"))
+        items.append((
+            int(line[i]), "checksum",
+            f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{(int(word[i]) >> 8 * m.checksum.byte) & 0xFF:02X})"))
     return items
 
 

@@ -97,6 +97,10 @@ def decimals(value: Fraction) -> int:
     return places
 
 
+def to_physical(raw: int, factor: Fraction, offset: Fraction) -> Fraction:
+    return raw * factor + offset
+
+
 def decimal_text(value: Fraction | int) -> str:
     """Shortest exact decimal text of a value with a finite decimal expansion (0.02, -1080, 1e-3 → 0.001)."""
     value = Fraction(value)

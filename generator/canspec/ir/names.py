@@ -3,6 +3,7 @@ is computed in Python, never built by concatenation in a template."""
 
 from __future__ import annotations
 
+import keyword
 import re
 
 C_KEYWORDS = frozenset(
@@ -15,6 +16,7 @@ C_KEYWORDS = frozenset(
 RUST_KEYWORDS = frozenset(
     ["as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type", "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract", "become", "box", "do", "final", "macro", "override", "priv", "typeof", "unsized", "virtual", "yield", "try"]
 )
+TS_KEYWORDS = frozenset(["break", "case", "catch", "class", "const", "continue", "debugger", "default", "delete", "do", "else", "enum", "export", "extends", "false", "finally", "for", "function", "if", "import", "in", "instanceof", "new", "null", "return", "super", "switch", "this", "throw", "true", "try", "typeof", "var", "void", "while", "with"])
 
 
 def words(name: str) -> list[str]:
@@ -36,6 +38,11 @@ def pascal(name: str) -> str:
     return f"_{out}" if out[:1].isdigit() else out
 
 
+def camel(name: str) -> str:
+    p = pascal(name)
+    return p[:1].lower() + p[1:]
+
+
 def humanize(name: str) -> str:
     """English label from an identifier: `manual_assist` → `Manual assist`."""
     text = " ".join(words(name))
@@ -50,12 +57,23 @@ def rust_ident(name: str) -> str:
     return f"r#{name}" if name in RUST_KEYWORDS and name not in ("self", "Self", "crate", "super") else (f"{name}_" if name in RUST_KEYWORDS else name)
 
 
+def py_ident(name: str) -> str:
+    return f"{name}_" if keyword.iskeyword(name) or keyword.issoftkeyword(name) else name
+
+
+def ts_ident(name: str) -> str:
+    return f"{name}_" if name in TS_KEYWORDS else name
+
+
 
 FILTERS = {
     "snake": snake,
     "upper_snake": upper_snake,
     "pascal": pascal,
+    "camel": camel,
     "humanize": humanize,
     "c_ident": c_ident,
     "rust_ident": rust_ident,
+    "py_ident": py_ident,
+    "ts_ident": ts_ident,
 }

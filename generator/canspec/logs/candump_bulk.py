@@ -100,7 +100,9 @@ def _fast(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarr
     tail = ends - data_end
     ok &= (chan_end < hash_at) & (hash_at < ends) & ((tail == 0) | ((tail == 2) & np.isin(b[np.minimum(data_end + 1, len(b) - 1)], (ord("R"), ord("T")))))
     id_len, data_len, ts_len, ch_len = hash_at - chan_end - 1, data_end - hash_at - 1, close - starts - 1, chan_end - close - 2
-    ok &= ((id_len == 3) | (id_len == 8)) & (data_len % 2 == 0) & (data_len <= 16) & (ts_len > 0) & (ts_len <= MAX_TIME) & (ch_len > 0) & (ch_len <= MAX_CHANNEL)
+    ok &= (
+        ((id_len == 3) | (id_len == 8)) & (data_len % 2 == 0) & (data_len <= 16) & (ts_len > 0) & (ts_len <= MAX_TIME) & (ch_len > 0) & (ch_len <= MAX_CHANNEL)
+    )
     rows = np.flatnonzero(ok)
     cells, valid = _gather(b, chan_end[rows] + 1, id_len[rows], 8, zero=False)
     frame_id, id_ok = _hex_value(cells, valid, id_len[rows])

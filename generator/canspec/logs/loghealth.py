@@ -114,7 +114,8 @@ class HealthReport:
 
 
 def format_text(report: dict[str, Any]) -> str:
-    head = f"{'message':28} {'id':>10} {'frames':>9} {'period ms':>10} {'spec ms':>8} {'min..max ms':>19} {'jumps':>6} {'lost':>6} {'repeats':>7} {'checksum':>8} {'gaps':>5} {'longest':>9}"
+    head = (f"{'message':28} {'id':>10} {'frames':>9} {'period ms':>10} {'spec ms':>8} {'min..max ms':>19} "
+            f"{'jumps':>6} {'lost':>6} {'repeats':>7} {'checksum':>8} {'gaps':>5} {'longest':>9}")
     lines = [head, "-" * len(head)]
     for r in report["messages"]:
         if not r["frames"]:

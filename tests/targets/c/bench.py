@@ -111,8 +111,8 @@ def range_checks(spec: Path, dbc: Path, access: str = "s->") -> dict[str, str]:
 def harness(lib: str, include: str, names: list[str], frames: dict[str, list[str]], struct_kw: str, pack_args: str,
             fn: str = "kaiwo_gateway_", xor: dict[str, tuple[int, tuple[int, ...]]] | None = None, ranges: dict[str, str] | None = None,
             c_base: dict[str, str] | None = None) -> str:
-    """`c_base`: canspec's C name of each message (a spec `c_name`), where it is not the spec's; `xor`: for each message that carries a checksum, (checksum byte, covered bytes): the
-    loop verifies it before unpack and fills it after pack; `ranges`: the check before pack
+    """`c_base`: canspec's C name of each message (a spec `c_name`), where it is not the spec's; `xor`: for each
+    message that carries a checksum, (checksum byte, covered bytes): the loop verifies it before unpack and fills it after pack; `ranges`: the check before pack
     that a field fits its bits (for a library that does neither)."""
     out = [include, "#include <stdint.h>", "#include <stddef.h>", XOR_HELPERS if xor else ""]
     for n in names:
@@ -386,7 +386,9 @@ def main(argv: list[str]) -> int:
     for name, text in _sources(names, frames, xor, iters, ranges, c_base).items():
         (build / name).write_text(text)
     exes, size_a, size_b = _objects(build, ct)
-    print(f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time")
+    print(
+        f"{CC} {' '.join(CFLAGS)}; {iters} pack+unpack pairs per message, interleaved, best of {REPS} runs (thread CPU time); ratio = cantools / canspec time"
+    )
     for i, objs in enumerate(exes.values()):
         exe = build / f"bench_{i}"
         subprocess.run([CC, *objs, "-o", str(exe)], check=True)
@@ -395,7 +397,9 @@ def main(argv: list[str]) -> int:
     counted = [instruction_counts(build / f"bench_{i}", mode, names) for i, mode in enumerate(exes)]
     pa, pb = symbol_bytes(Path(size_a), r"_(pack|unpack)$"), symbol_bytes(Path(size_b), r"_(pack|unpack)$")
     print(f"\ncode size of pack+unpack of all messages: canspec {pa} bytes, cantools {pb} bytes")
-    print(f".text of the object: canspec (pack+unpack wrappers) {text_size(Path(size_a))} bytes, cantools (whole kaiwo_gateway.c) {text_size(Path(size_b))} bytes")
+    print(
+        f".text of the object: canspec (pack+unpack wrappers) {text_size(Path(size_a))} bytes, cantools (whole kaiwo_gateway.c) {text_size(Path(size_b))} bytes"
+    )
     return 0 if all(counted) else 1
 
 

@@ -50,7 +50,11 @@ def tables(c: CModel) -> str:
     # A protocol of one ID format has a C API without the format: its caller drops a frame of the
     # other format (no message of the protocol), which the runner counts as the unknown frame it is.
     ext = "ext != 0, " if c.format_arg else ""
-    sole = [] if c.format_arg else [f"    if (ext != {int(any(m.is_extended for m in c.can.messages))}) {{", "        seq_dropped++;", "        return SEQ_FLAG_UNKNOWN_ID;", "    }"]
+    sole = (
+        []
+        if c.format_arg
+        else [f"    if (ext != {int(any(m.is_extended for m in c.can.messages))}) {{", "        seq_dropped++;", "        return SEQ_FLAG_UNKNOWN_ID;", "    }"]
+    )
     out += ["static uint32_t seq_frame(seq_monitor_t *mon, uint32_t id, int ext, const uint8_t *data, size_t n, uint32_t t) {",
             *sole, f"    return {p}_monitor_on_frame(mon, id, {ext}data, n, t, NULL);", "}", ""]
     out += ["static uint32_t seq_check(seq_monitor_t *mon, uint32_t t) {", f"    return {p}_monitor_check(mon, t);", "}", ""]
@@ -96,7 +100,8 @@ def lines(doc: dict, c: CModel) -> str:
             elif step["action"] == "frame":
                 faults = ",".join(e["faults"]) or "-"
                 msg = index[e["message"]] if e["message"] is not None else -1
-                out.append(f"F {step['t']} {step['frame_id']} {int(step['extended'])} {step['data'] or '-'} {faults} {int(e['recovered'])} {msg} {e['state'] or '-'} {codes}")
+                out.append(f"F {step['t']} {step['frame_id']} {int(step['extended'])} {step['data'] or '-'} {faults} "
+                           f"{int(e['recovered'])} {msg} {e['state'] or '-'} {codes}")
             else:
                 states = " ".join(e["states"][n] for n in msgs)
                 out.append(f"K {step['t']} {len(e['timeouts'])} " + " ".join(str(index[n]) for n in e["timeouts"]) + f" {states} {codes}")

@@ -28,7 +28,8 @@ MODES = (("gcc", ["-std=c99"]), ("clang", ["-std=c99"]), ("g++", ["-x", "c++", "
 
 # What the headers declare at file scope: macros, typedef names, enumerators, functions.
 DECLARATIONS = re.compile(
-    r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = |^static (?:inline )?[^(=]*?\b(\w+)\(|^ *static const \w+ (\w+) =",
+    r"^#define (\w+)|^typedef \w+ (\w+);|^\} (\w+);|^typedef char (\w+)|^ +([A-Z][A-Z0-9_]*) = "
+    r"|^static (?:inline )?[^(=]*?\b(\w+)\(|^ *static const \w+ (\w+) =",
     re.MULTILINE,
 )
 

@@ -41,7 +41,8 @@ int main(void) {
     if (mixed_bus_monitor_check(&mon, 61u) != MIXED_BUS_RX_TIMEOUT || !mixed_bus_monitor_timed_out(&mon, MIXED_BUS_MSG_NODE_REPORT)) return 7;
     if (mixed_bus_monitor_check(&mon, 4000000000u) != 0u || mixed_bus_monitor_timed_out(&mon, MIXED_BUS_MSG_NODE_ALIVE)) return 8;
     /* after a timeout: valid again after MIXED_BUS_MONITOR_VALID_AFTER (2) accepted frames */
-    if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000001u, NULL) != 0u || mixed_bus_monitor_state(&mon, MIXED_BUS_MSG_NODE_REPORT) != MIXED_BUS_RX_INVALID) return 9;
+    if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000001u, NULL) != 0u
+        || mixed_bus_monitor_state(&mon, MIXED_BUS_MSG_NODE_REPORT) != MIXED_BUS_RX_INVALID) return 9;
     if (mixed_bus_monitor_on_frame(&mon, 0x124u, true, f, 4, 4000000021u, NULL) != MIXED_BUS_RX_RECOVERED) return 10;
     if (mixed_bus_monitor_on_frame(&mon, 0x124u, false, f, 4, 4000000022u, NULL) != MIXED_BUS_RX_UNKNOWN_ID) return 11;
     puts("api ok");
@@ -96,7 +97,8 @@ int main(void) {
     o.total = UINT64_MAX;
     if (wide_bus_odometer_pack(f, 8u, &o) != WIDE_BUS_OK || f[0] != 0xFFu || f[7] != 0xFFu) return 1;
     if (wide_bus_odometer_unpack(&o2, f, 8u) != WIDE_BUS_OK || o2.total != UINT64_MAX) return 2;
-    if (wide_bus_odometer_total_encode_fixed(UINT64_MAX, &u) != WIDE_BUS_OK || u != UINT64_MAX || wide_bus_odometer_total_decode_fixed(u) != UINT64_MAX) return 3;
+    if (wide_bus_odometer_total_encode_fixed(UINT64_MAX, &u) != WIDE_BUS_OK || u != UINT64_MAX
+        || wide_bus_odometer_total_decode_fixed(u) != UINT64_MAX) return 3;
     if (wide_bus_position_x_encode_fixed(INT64_MIN, &i) != WIDE_BUS_OK || i != INT64_MIN) return 4;
     p.x = INT64_MIN;
     if (wide_bus_position_pack(f, 8u, &p) != WIDE_BUS_OK || f[7] != 0x80u || f[0] != 0u) return 5;

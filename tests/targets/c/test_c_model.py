@@ -46,7 +46,8 @@ def test_signal_plans(spec):
     assert pack[-1] == "dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);"
     assert "dst->steering_angle_cmd = (uint16_t)(b3 | (b4 << 8u));" in eps.codec.unpack
     # every byte read once, each folded into the XOR the checksum check needs
-    assert [line for line in eps.codec.unpack if line.startswith("x ")] == ["x = b0;", "x ^= b1;", "x ^= b2;", "x ^= b3;", "x ^= b4;", "x ^= b7;", "x ^= src[5];", "x ^= src[6];"]
+    assert [line for line in eps.codec.unpack if line.startswith("x ")] == [
+        "x = b0;", "x ^= b1;", "x ^= b2;", "x ^= b3;", "x ^= b4;", "x ^= b7;", "x ^= src[5];", "x ^= src[6];"]
     cmd1 = by["autocar_control_command_1"]
     assert cmd1.counter is not None and cmd1.counter_mask == "0xFu"
     chars = next(s for s in by["device_id"].signals if s.sig.name == "id_chars")

@@ -53,7 +53,8 @@ def test_runtime_names_move_the_spec_element_aside():
     assert names.table("status") == "status_values" and names.table("monitor") == "monitor_values"
     model = build_model(spec)
     status = next(cm for cm in model.messages if cm.msg.name == "status")
-    assert (status.type, status.fn, status.macro, status.index_const) == ("small_frames_status_msg_t", "small_frames_status_msg", "SMALL_FRAMES_STATUS_MSG", "SMALL_FRAMES_MSG_STATUS_MSG")
+    assert (status.type, status.fn, status.macro, status.index_const) == (
+        "small_frames_status_msg_t", "small_frames_status_msg", "SMALL_FRAMES_STATUS_MSG", "SMALL_FRAMES_MSG_STATUS_MSG")
     assert status.member == "status" and model.status == "small_frames_status_t"  # the union member and the runtime keep theirs
     table = next(e for e in model.enums if e.table == "status")
     assert table.type == "small_frames_status_values_t" and table.entries[0].const == "SMALL_FRAMES_STATUS_VALUES_IDLE"

@@ -79,7 +79,9 @@ def ajv(outputs: list[Output]) -> dict[tuple[str, str, str], dict[str, Any]]:
 
 
 def python_runner(o: Output) -> str:
-    proc = run([sys.executable, str(HERE / "py_runner.py"), "--bindings", str(o.out / "json" / "python"), str(o.vectors)], f"Python vector runner ({o.fixture})")
+    proc = run(
+        [sys.executable, str(HERE / "py_runner.py"), "--bindings", str(o.out / "json" / "python"), str(o.vectors)], f"Python vector runner ({o.fixture})"
+    )
     return proc.stdout
 
 

@@ -1,5 +1,5 @@
-"""Paths, helpers and the shipped protocol's fixtures of the JSON-protocol tests (other fixtures are in conftest.py): the shared vectors, the generated schemas, the Python
-bindings, and the results of the validators from other ecosystems (ajv via node, the Rust
+"""Paths, helpers and the shipped protocol's fixtures of the JSON-protocol tests (other fixtures are in
+conftest.py): the shared vectors, the generated schemas, the Python bindings, and the results of the validators from other ecosystems (ajv via node, the Rust
 bindings via cargo). Tools come from `.ci/setup.d/60-json.sh` (`make setup`)."""
 
 from __future__ import annotations

@@ -167,7 +167,9 @@ def test_rust_crate_is_clippy_clean():
     if subprocess.run([cargo, "clippy", "--version"], capture_output=True, check=False).returncode != 0:
         pytest.fail("clippy is not installed with this Rust toolchain (rustup component add clippy)")
     env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
-    run([cargo, "clippy", "--quiet", "--locked", "--all-targets", "--manifest-path", str(RUST_CRATE / "Cargo.toml"), "--", "-D", "warnings"], "cargo clippy", env=env)
+    run(
+        [cargo, "clippy", "--quiet", "--locked", "--all-targets", "--manifest-path", str(RUST_CRATE / "Cargo.toml"), "--", "-D", "warnings"], "cargo clippy",
+        env=env)
 
 
 def _ts_case(i: int, c: dict) -> str:

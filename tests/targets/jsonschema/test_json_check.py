@@ -70,12 +70,14 @@ REFUSED = {
     ],
     "json-reply-match": [
         ("two replies to one request",
-         msg("q", "[{name: cmd, type: U8}]", ", cmd: 1, role: request") + msg("r1", "[{name: cmd, type: U8}, {name: res, type: S8}]", ", cmd: 1, role: reply, reply_to: q", "b", "a")
+         msg("q", "[{name: cmd, type: U8}]", ", cmd: 1, role: request")
+         + msg("r1", "[{name: cmd, type: U8}, {name: res, type: S8}]", ", cmd: 1, role: reply, reply_to: q", "b", "a")
          + msg("r2", "[{name: cmd, type: U8}, {name: err, type: S8}]", ", cmd: 1, role: reply, reply_to: q", "b", "a"), ""),
     ],
     "json-binding-name": [
         ("two enum values alike", msg("m", "[{name: x, type: U8, enum: {1: a_b, 2: a__b}}]"), ""),
-        ("two sentinels alike", msg("m", "[{name: x, type: S8, range: [0, 9], sentinel: {-1: y_z}}, {name: x_y, type: S8, range: [0, 9], sentinel: {-1: z}}]"), ""),
+        ("two sentinels alike",
+         msg("m", "[{name: x, type: S8, range: [0, 9], sentinel: {-1: y_z}}, {name: x_y, type: S8, range: [0, 9], sentinel: {-1: z}}]"), ""),
     ],
     "json-schema-file": [
         ("a message named like a receiver's schema", msg("to_b", "[{name: x, type: U8}]"), ""),
@@ -83,7 +85,8 @@ REFUSED = {
 }
 
 
-@pytest.mark.parametrize(("rule", "why", "messages", "types"), [(r, *case) for r, cases in REFUSED.items() for case in cases], ids=lambda v: v if isinstance(v, str) and len(v) < 60 else None)
+@pytest.mark.parametrize(("rule", "why", "messages", "types"), [(r, *case) for r, cases in REFUSED.items() for case in cases],
+                         ids=lambda v: v if isinstance(v, str) and len(v) < 60 else None)
 def test_refused_with_its_rule(tmp_path, rule, why, messages, types):
     found = problems(tmp_path, spec_text(messages, types))
     assert found and {r for r, _ in found} == {rule}, (why, found)

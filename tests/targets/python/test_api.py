@@ -125,7 +125,8 @@ def test_j1939_helpers_agree_with_the_reference(gw, can):
     for msg in can.messages:
         mine = gw.j1939.decompose(msg.frame_id)
         ref = ref_j1939.decompose(msg.frame_id)
-        assert (mine.priority, mine.pgn, mine.sa, mine.da, mine.pf, mine.ps, mine.is_pdu2) == (ref.priority, ref.pgn, ref.sa, ref.da, ref.pf, ref.ps, ref.is_pdu2)
+        assert (mine.priority, mine.pgn, mine.sa, mine.da, mine.pf, mine.ps, mine.is_pdu2) == (
+            ref.priority, ref.pgn, ref.sa, ref.da, ref.pf, ref.ps, ref.is_pdu2)
         assert gw.j1939.compose(mine.priority, mine.pgn, mine.sa, mine.da) == msg.frame_id == ref_j1939.compose(ref.priority, ref.pgn, ref.sa, ref.da)
     with pytest.raises(ValueError, match="29-bit"):
         gw.j1939.decompose(1 << 29)

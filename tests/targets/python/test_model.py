@@ -100,7 +100,8 @@ def _run_encode(sig, x):
     return got if isinstance(got, dict) else int.from_bytes(got, "little")
 
 
-WIDE_SCALINGS = [(False, Fraction(1, 10), Fraction(0)), (True, Fraction(1, 10), Fraction(-5, 2)), (True, Fraction(-3), Fraction(0)), (False, Fraction(2), Fraction(7))]
+WIDE_SCALINGS = [
+    (False, Fraction(1, 10), Fraction(0)), (True, Fraction(1, 10), Fraction(-5, 2)), (True, Fraction(-3), Fraction(0)), (False, Fraction(2), Fraction(7))]
 
 
 @pytest.mark.parametrize(("signed", "factor", "offset"), WIDE_SCALINGS)

@@ -141,7 +141,8 @@ def message_module(rm: RustMessage, cases: list[dict], api: tuple, names: dict[s
     theirs_types = "(" + "".join(f"dbc::{ty}, " if ty in others else f"{ty}, " for _, _, ty in params) + ")"
     theirs_args = ", ".join(f"t.{i}" for i in range(len(params)))
     ours_sum = consume([
-        ("float", f"m.{f.names.getter}()") if f.kind == "float" else ("int", f"(m.{f.names.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.names.getter}() as u64)")
+        ("float", f"m.{f.names.getter}()") if f.kind == "float"
+        else ("int", f"(m.{f.names.getter}().raw() as u64)" if f.kind == "enum" else f"(m.{f.names.getter}() as u64)")
         for f in rm.fields
     ])
     checksum = rm.msg.checksum.signal if rm.msg.checksum is not None else None
@@ -348,11 +349,16 @@ def main() -> int:
         body += (
             f"    let (oe, de) = time_pair({name}::FRAMES.len(), {name}::ours_encode, {name}::theirs_encode);\n"
             f"    let (od, dd) = time_pair({name}::FRAMES.len(), {name}::ours_decode, {name}::theirs_decode);\n"
-            + (f"    let ck = Some(time_pair({name}::FRAMES.len(), {name}::ours_decode, {name}::theirs_decode_checked));\n" if has_checksum else "    let ck: Option<(f64, f64)> = None;\n")
+            + (
+                f"    let ck = Some(time_pair({name}::FRAMES.len(), {name}::ours_decode, {name}::theirs_decode_checked));\n"
+                if has_checksum
+                else "    let ck: Option<(f64, f64)> = None;\n"
+            )
             + f"    rows.push(({name}::NAME, {name}::FRAMES.len(), oe, de, od, dd, ck, {name}::correctness()));\n"
         )
     body += r"""
-    println!("| message | cases | encode canspec ns | encode dbc-codegen ns | ratio | decode canspec ns | decode dbc-codegen ns | ratio | decode ratio vs dbc-codegen + XOR check | dbc-codegen refused / wrong bytes |");
+    println!("| message | cases | encode canspec ns | encode dbc-codegen ns | ratio | decode canspec ns | decode dbc-codegen ns | ratio | \
+              decode ratio vs dbc-codegen + XOR check | dbc-codegen refused / wrong bytes |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let (mut slower, mut ours_bad) = (Vec::new(), 0);
     let (mut te, mut ce, mut td, mut cd, mut n) = (0.0, 0.0, 0.0, 0.0, 0usize);
@@ -369,7 +375,8 @@ def main() -> int:
     }
     let n = n as f64;
     println!("| **all** | {} | {:.1} | {:.1} | {:.2} | {:.1} | {:.1} | {:.2} | | |", n, ce / n, te / n, te / ce, cd / n, td / n, td / cd);
-    println!("ratio = dbc-codegen ns / canspec ns (above 1: canspec faster); canspec's decode also verifies the XOR checksum, which dbc-codegen's does not: the XOR-check column times dbc-codegen with that test added");
+    println!("ratio = dbc-codegen ns / canspec ns (above 1: canspec faster); canspec's decode also verifies the XOR checksum, which dbc-codegen's \
+              does not: the XOR-check column times dbc-codegen with that test added");
     if ours_bad > 0 {
         println!("canspec refused or mis-encoded {ours_bad} vector cases");
         std::process::exit(1);
@@ -428,7 +435,8 @@ def instruction_counts(exe: Path, rows: list[tuple[str, int, bool]]) -> None:
         m = re.match(r"\s*([\d,]+)\s.*canspec_rust_bench::(\w+)::(\w+)\b", line)
         if m:
             ir[(m.group(2), m.group(3))] = int(m.group(1).replace(",", ""))
-    print("\n| message | encode canspec Ir | encode dbc-codegen Ir | ratio | decode canspec Ir | decode dbc-codegen Ir | ratio | decode dbc-codegen + XOR check Ir | ratio |")
+    print("\n| message | encode canspec Ir | encode dbc-codegen Ir | ratio | decode canspec Ir | decode dbc-codegen Ir | ratio | "
+          "decode dbc-codegen + XOR check Ir | ratio |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     tot = [0.0] * 4
     more = []

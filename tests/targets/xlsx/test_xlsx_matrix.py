@@ -208,7 +208,8 @@ def test_shipped_matrix_agrees_with_the_dbc(spec, db):
     label_to_node = {r["Label"]: r["Node"] for r in book.rows("节点 Nodes")}
     for row in book.rows(MATRIX):
         m = db.get_message_by_frame_id(int(row["Message ID"], 16))
-        assert (m.name, m.is_extended_frame, m.length, m.cycle_time) == (row["Message name"], row["Frame format"] == "Extended", row["DLC (bytes)"], row["Cycle time (ms)"])
+        assert (m.name, m.is_extended_frame, m.length, m.cycle_time) == (
+            row["Message name"], row["Frame format"] == "Extended", row["DLC (bytes)"], row["Cycle time (ms)"])
         senders = {label_to_node[k] for k, v in row.items() if k in label_to_node and "S" in (v or "")}
         receivers = {label_to_node[k] for k, v in row.items() if k in label_to_node and "R" in (v or "")}
         assert set(m.senders) == senders

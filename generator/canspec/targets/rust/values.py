@@ -70,3 +70,4 @@ def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> Rus
     if free is None and len(used) <= hi - lo:
         free = next(v for v in range(-1, lo - 1, -1) if v not in used)
     return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, grouped_int(free) if free is not None else "")
+

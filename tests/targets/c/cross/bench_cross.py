@@ -471,7 +471,9 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
     }
     try:
         objs = {}
-        for name in ("canspec_wrappers", "cantools_xor", "cantools_xoronly", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api", "stub_main", "stub_main_api"):
+        for name in (
+            "canspec_wrappers", "cantools_xor", "cantools_xoronly", "harness_canspec", "harness_cantools", "harness_cantools_xor", "bench_main", "canspec_api",
+            "stub_main", "stub_main_api"):
             compile_obj(core, opt, build / f"{name}.c", out / f"{name}.o", inc["cantools" if "cantools" in name else "canspec"])
             objs[name] = out / f"{name}.o"
         compile_obj(core, opt, ct / f"{inp.db}.c", out / "cantools.o", [ct])
@@ -506,20 +508,25 @@ def measure(inp: Inputs, build: Path, ct: Path, ct_nofp: Path, core: str, opt: s
         groups = {
             "canspec pack+unpack": ("canspec", [f"x_{n}_{ph}" for n in inp.names for ph in PHASES]),
             "cantools pack+unpack": ("cantools", [f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
-            "cantools+XOR pack+unpack": ("cantools_xoronly", [f"cxo_{n}_{ph}" if f"cxo_{n}_{ph}" in images["cantools_xoronly"].sizes else f"{inp.db}_{n}_{ph}"
-                                                              for n in inp.names for ph in PHASES]),
+            "cantools+XOR pack+unpack": (
+                "cantools_xoronly",
+                [f"cxo_{n}_{ph}" if f"cxo_{n}_{ph}" in images["cantools_xoronly"].sizes else f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
             # like for like: the user's XOR and range-check wrappers with the cantools functions they call
-            "cantools+user pack+unpack": ("cantools_xor", [f"cx_{n}_{ph}" if f"cx_{n}_{ph}" in images["cantools_xor"].sizes else f"{inp.db}_{n}_{ph}"
-                                                           for n in inp.names for ph in PHASES]),
+            "cantools+user pack+unpack": (
+                "cantools_xor",
+                [f"cx_{n}_{ph}" if f"cx_{n}_{ph}" in images["cantools_xor"].sizes else f"{inp.db}_{n}_{ph}" for n in inp.names for ph in PHASES]),
             "canspec double encode+decode": ("api", [f for f in images["api"].sizes if re.fullmatch(api["double"], f)]),
             "cantools double encode+decode": ("cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_(encode|decode)", f)]),
-            "cantools is_in_range+is_in_phys_range": ("cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_(phys_)?range", f)]),
+            "cantools is_in_range+is_in_phys_range": (
+                "cantools", [f for f in images["cantools"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_(phys_)?range", f)]),
             "canspec integer encode+decode_fixed": ("api", [f for f in images["api"].sizes if re.fullmatch(api["fixed"], f)]),
-            "cantools --no-floating-point-numbers is_in_range": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_range", f)]),
+            "cantools --no-floating-point-numbers is_in_range": (
+                "cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_range", f)]),
             # like for like: cantools converts nothing without floats; the user's conversion around its is_in_range (fixed_user.py)
-            "cantools+user integer (conversion + is_in_range)": ("cantools_fixed_user", [f for f in images["cantools_fixed_user"].sizes
-                                                                                         if re.fullmatch(r"ux_\w+_(en|de)code_fixed", f)]),
-            "cantools --no-floating-point-numbers is_in_phys_range (double)": ("cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_phys_range", f)]),
+            "cantools+user integer (conversion + is_in_range)": (
+                "cantools_fixed_user", [f for f in images["cantools_fixed_user"].sizes if re.fullmatch(r"ux_\w+_(en|de)code_fixed", f)]),
+            "cantools --no-floating-point-numbers is_in_phys_range (double)": (
+                "cantools_nofp", [f for f in images["cantools_nofp"].sizes if re.fullmatch(rf"{db}_({msgs})_\w+_is_in_phys_range", f)]),
             "canspec monitor on_frame+check": ("api", [f for f in images["api"].sizes if re.fullmatch(api["monitor"], f)]),
         }
         # read-only data a group's functions read, by name: the double encoders' descriptors
@@ -619,13 +626,17 @@ def report(inp: Inputs, results: list[ConfigResult]) -> str:
                    f"{tot['cantools_xor']:13.1f} {tot['cantools_xor'] / tot['canspec']:5.2f}x")
         fewer = sum(r.counts[("canspec", n, "unpack")] + r.counts[("canspec", n, "pack")]
                     <= r.counts[("cantools_xor", n, "unpack")] + r.counts[("cantools_xor", n, "pack")] for n in inp.names)
-        out.append(f"worst message (like for like): {worst[1]} {worst[0]:.2f}x; canspec executes at most as many instructions as cantools+user on {fewer} of {len(inp.names)}"
-                   f"  (* = XOR checksum message; cantools+user = cantools + the XOR fill/check + the field range check a user adds for canspec's guarantees; {r.check})")
+        out.append(
+            f"worst message (like for like): {worst[1]} {worst[0]:.2f}x; "
+            f"canspec executes at most as many instructions as cantools+user on {fewer} of {len(inp.names)}"
+            "  (* = XOR checksum message; cantools+user = cantools + the XOR fill/check + the field range check a user adds for canspec's guarantees; "
+            f"{r.check})")
         for lib in LIBS:
             out.append(f"helpers executed by {lib}: {', '.join(sorted(r.traced_helpers[lib])) or 'none'}")
     for core, by_opt in sizes_by_core.items():
         opts = list(by_opt)
-        out.append(f"\n[{core}] code size, bytes (-ffunction-sections -fno-ipa-icf: the functions + the static helpers they call; libgcc/libc helpers named, not counted)")
+        out.append(f"\n[{core}] code size, bytes (-ffunction-sections -fno-ipa-icf: the functions + the static helpers they call; "
+                   "libgcc/libc helpers named, not counted)")
         labels = next((list(r.sizes) for r in by_opt.values() if r.sizes), [])
         out.append(f"{'':<62}" + "".join(f"{o:>8}" for o in opts) + "  helpers called")
         for label in labels:

@@ -54,7 +54,8 @@ def main(argv: list[str]) -> int:
     bad = 0
     for target in TARGETS:
         r = run(target, seconds, out)
-        print(f"fuzz_{target}: {r['executions']} executions in {seconds} s, cov {r['cov']}, ft {r['ft']}, corpus {r['corpus']}, {'clean' if r['clean'] else 'FAILED'}")
+        print(f"fuzz_{target}: {r['executions']} executions in {seconds} s, cov {r['cov']}, ft {r['ft']}, corpus {r['corpus']}, "
+              f"{'clean' if r['clean'] else 'FAILED'}")
         if not r["clean"]:
             bad += 1
             print(r["log"], file=sys.stderr)
