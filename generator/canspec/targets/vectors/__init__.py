@@ -31,7 +31,7 @@ MONITOR_RULES = (
     "Each sequence runs on a fresh monitor of every message (timeout = timeout_cycles x cycle, its params). Steps: start "
     "(supervise the messages' timeouts from t), frame (received at t: its faults, state, counter delta, checksum, recovery "
     "and the fault codes after it), check (the messages that time out at t). Times are ms modulo 2^32. "
-    "The rules: generator/canspec/reference/monitor.py."
+    "The rules: generator/canspec/runtime/monitor.py."
 )
 TEXT_RULES = (
     "Frames of one multi-frame message fed in order to a fresh reassembly: result ok/length/checksum/index/inconsistent, "
