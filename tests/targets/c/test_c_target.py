@@ -14,7 +14,7 @@ from canspec.render import formatters
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import cbuild
-from canspec import generate as gen_mod
+from canspec import generation as gen_mod
 from canspec.targets import c as c_target
 
 HEADER_NAMES = sorted(p.name for p in cbuild.HEADERS.glob("*.h"))
