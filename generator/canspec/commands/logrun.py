@@ -14,10 +14,11 @@ from typing import IO, Any
 
 from canspec import ir
 from canspec.commands.common import compile_or_report
+from canspec.commands.extras import install_hint
 
 PROBLEM_KINDS = ("malformed", "unknown_id", "wrong_length", "checksum")
 LOG_FORMATS = ("candump", "asc", "blf", "trc", "mf4")
-EXTRA_HINT = "install the logs extra: pip install 'canspec[logs]'"
+EXTRA_HINT = install_hint("logs")
 
 
 def add_input_arguments(p: argparse.ArgumentParser) -> None:
