@@ -67,9 +67,8 @@ def main() -> int:
         synth_spec.synthesize(spec, 2000, 30000, seed=1)
         specs.append(("synthetic 30k signals", spec, 2000))
 
-    print(
-        f"{'spec':24} {'messages':>8} | {'check wall':>10} {'check cpu':>9} {'x 1st':>6} {'ms/msg':>7} | {'gen wall':>9} {'gen cpu':>8} {'x 1st':>6} {'ms/msg':>7} | {'output':>8}"
-    )
+    print(f"{'spec':24} {'messages':>8} | {'check wall':>10} {'check cpu':>9} {'x 1st':>6} {'ms/msg':>7} | "
+          f"{'gen wall':>9} {'gen cpu':>8} {'x 1st':>6} {'ms/msg':>7} | {'output':>8}")
     first: tuple[int, float, float] | None = None
     for label, spec, messages in specs:
         check_wall, check_cpu = timed("check", "-q", spec)
@@ -102,9 +101,8 @@ def main() -> int:
     wall, cpu = min(runs)
     verdict = "OK" if wall < TARGET_SECONDS else "OVER TARGET"
     print(f"shipped spec, all targets: gen {wall:.2f}s wall ({cpu:.2f}s cpu), best of 3; target < {TARGET_SECONDS:.0f}s: {verdict}")
-    print(
-        f"(x 1st: CPU relative to the first row; ms/msg: CPU per message beyond the first row, constant when growth is linear. load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)"
-    )
+    print("(x 1st: CPU relative to the first row; ms/msg: CPU per message beyond the first row, constant when growth is linear. "
+          f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)")
     if not args.keep:
         for _, spec, _ in specs:
             shutil.rmtree(spec, ignore_errors=True)

@@ -6,8 +6,8 @@ BENCH_TARGETS += bench-python
 
 PYTHON_PACKAGE ?=
 roundtrip-python:  ## the generated Python package ($(PYTHON_PACKAGE), default the shipped one) on $(VECTORS); fails on any mismatch
-	$(PYTHON) tests/python/vector_runner.py $(VECTORS) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
+	$(PYTHON) tests/targets/python/vector_runner.py $(VECTORS) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
 
 BENCH_PYTHON_FRAMES ?= 1000000
 bench-python:  ## generated Python vs cantools (µs/frame), canspec decode vs cantools decode on a candump log
-	$(PYTHON) tests/python/bench.py --log-frames $(BENCH_PYTHON_FRAMES)
+	$(PYTHON) tests/targets/python/bench.py --log-frames $(BENCH_PYTHON_FRAMES)

@@ -12,10 +12,10 @@ SIM_CHANNEL ?= canspec
 roundtrip-sequences: roundtrip-sequences-c roundtrip-sequences-python roundtrip-sequences-rust  ## every language's sequence runner on $(SEQUENCES)
 
 roundtrip-sequences-c:  ## the C monitor and text reassembly on $(SEQUENCES) (gcc, ASan/UBSan)
-	$(PYTHON) tests/c/c_sequences.py $(SEQUENCES) --build build/c-sequences
+	$(PYTHON) tests/targets/c/c_sequences.py $(SEQUENCES) --build build/c-sequences
 
 roundtrip-sequences-python:  ## the generated Python package ($(PYTHON_PACKAGE), default the shipped one) on $(SEQUENCES)
-	$(PYTHON) tests/python/sequence_runner.py $(SEQUENCES) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
+	$(PYTHON) tests/targets/python/sequence_runner.py $(SEQUENCES) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
 
 roundtrip-sequences-rust:  ## the Rust crate's sequence test on $(SEQUENCES)
 	cd $(RUST_CRATE) && CARGO_TARGET_DIR=$(RUST_TARGET_DIR) CANSPEC_SEQUENCES=$(abspath $(SEQUENCES)) \

@@ -13,4 +13,4 @@ roundtrip-rust:  ## the Rust crate's vector test on $(VECTORS); fails on any mis
 		$(CARGO) test --locked --all-features --test vectors -- --nocapture
 
 bench-rust:  ## canspec's crate vs dbc-codegen on the generated DBC: ns/frame and ratio per message
-	$(PYTHON) tests/rust/bench.py
+	$(PYTHON) tests/targets/rust/bench.py

@@ -1,7 +1,7 @@
 """cantools reading a canspec DBC under the spec's signal names. The DBC writes a signal whose spec
 name has different definitions in different messages as `<name>_<frame ID>` and states its spec
 name in the SpecSignalName attribute (generator/canspec/targets/dbc/naming.py); tests that compare
-cantools with the generated code signal by signal read the DBC this way. (tests/dbc reads it as is.)"""
+cantools with the generated code signal by signal read the DBC this way. (tests/targets/dbc reads it as is.)"""
 
 from __future__ import annotations
 

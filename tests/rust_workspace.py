@@ -1,7 +1,7 @@
 """Generated crates of several specs in one cargo workspace (one build, one target directory,
 offline with the shipped crate's pins): each member's package renamed apart, its library keeping
-the name the crate's own tests use. Used by tests/rust/test_rust_fixtures.py and
-tests/sequences/test_random_runners.py."""
+the name the crate's own tests use. Used by tests/targets/rust/test_rust_fixtures.py and
+tests/runtime/test_random_runners.py."""
 
 from __future__ import annotations
 

@@ -11,5 +11,7 @@ from repo_paths import ROOT
 
 
 def test_generated_tree_is_up_to_date():
-    r = subprocess.run([sys.executable, "-m", "canspec", "gen", "spec", "-o", "generated", "--check"], cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=600)
+    r = subprocess.run(
+        [sys.executable, "-m", "canspec", "gen", "spec", "-o", "generated", "--check"], cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=600
+    )
     assert r.returncode == 0, f"generated/ is stale — run `make gen` and commit:\n{r.stdout}{r.stderr}"

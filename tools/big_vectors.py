@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write a large, seeded vectors file in the shared format (generated/vectors/can.json's format)
 for the cross-language agreement check (issue 9): `make roundtrip VECTORS=<file>` runs every
-language's runner on it, and tests/robust/test_big_vectors.py checks a sample with cantools.
+language's runner on it, and tests/targets/vectors/test_big_vectors.py checks a sample with cantools.
 
   tools/big_vectors.py [SPEC] -o build/big.json [--cases 100000] [--seed 1] [--encoder MODULE:ATTR]
 

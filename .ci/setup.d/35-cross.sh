@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# C on other machines (tests/c/cross/): arm-none-eabi-gcc + newlib for the exact Cortex-M0+/M4
+# C on other machines (tests/targets/c/cross/): arm-none-eabi-gcc + newlib for the exact Cortex-M0+/M4
 # cores, user-mode qemu (qemu-arm, qemu-ppc) to run them and big-endian PowerPC
 # (powerpc-linux-gnu-gcc + its libc), cppcheck with its MISRA C:2012 addon.
 set -euo pipefail

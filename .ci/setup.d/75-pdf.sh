@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The PDF handbook (`make docs-pdf`, tests/publish/test_pdf.py): WeasyPrint (pinned: its layout decides
+# The PDF handbook (`make docs-pdf`, tests/pdf/test_pdf.py): WeasyPrint (pinned: its layout decides
 # the pages) on Debian's Pango, the Noto CJK fonts for the Chinese text, poppler-utils to read the PDF
 # back (pdftotext, pdftoppm, pdffonts). The spreadsheet's readers (openpyxl, pandas) come with '.[test]'.
 set -euo pipefail

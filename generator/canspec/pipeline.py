@@ -36,7 +36,9 @@ def _example_problems(spec: ir.Spec, res: object) -> list[Problem]:
             examples = raw.get("examples", [])
             for i, example in enumerate(msg.examples):
                 for text in message_problems(msg, example):
-                    out.append(error(f"example {i + 1} of {msg.name!r} is invalid: {text}", examples.loc_of(i), "fix the example or the field definition (and record the erratum)", "json-example"))
+                    out.append(error(
+                        f"example {i + 1} of {msg.name!r} is invalid: {text}", examples.loc_of(i),
+                        "fix the example or the field definition (and record the erratum)", "json-example"))
     return out
 
 

@@ -3,15 +3,15 @@
 The harness drives canspec through its CLI only (`python -m canspec check|gen`). It reuses
 these existing test helpers; if one of them moves or changes its interface, fix it here:
 
-- tests/c/runner.c + tests/c/gen_runner_tables.py (+ vectors_to_lines.py): the C vector runner
+- tests/targets/c/runner.c + tests/targets/c/gen_runner_tables.py (+ vectors_to_lines.py): the C vector runner
   (gen_runner_tables imports canspec's C model: that import happens in `c_runner_tables`);
-- tests/c/cbuild.py: the strict warning flags and the runner's summary line;
-- tests/c/c_sequences.py + tests/c/seq_runner.c: the C sequence runner (vectors/sequences.json);
-- tests/python/sequence_runner.py: the Python sequence runner (`--package`);
-- tests/python/vector_runner.py: the Python vector runner (written for the shipped package
+- tests/targets/c/cbuild.py: the strict warning flags and the runner's summary line;
+- tests/targets/c/c_sequences.py + tests/targets/c/seq_runner.c: the C sequence runner (vectors/sequences.json);
+- tests/targets/python/sequence_runner.py: the Python sequence runner (`--package`);
+- tests/targets/python/vector_runner.py: the Python vector runner (written for the shipped package
   `kaiwo_gateway`; `python_vector_runner` points that name at another package);
-- tests/json/py_runner.py: the Python JSON-bindings check of one vector case;
-- tests/json/node/ajv_check.cjs + build/json-node (ajv, typescript from `.ci/setup.d/60-json.sh`);
+- tests/targets/json_bindings/py_runner.py: the Python JSON-bindings check of one vector case;
+- tests/targets/json_bindings/node/ajv_check.cjs + build/json-node (ajv, typescript from `.ci/setup.d/60-json.sh`);
 - tests/dbc_names.py: cantools reading a canspec DBC under the spec's signal names.
 """
 
@@ -31,10 +31,10 @@ ROOT = HERE.parents[1]
 TESTS = ROOT / "tests"
 GENERATOR = ROOT / "generator"
 
-C_RUNNER = TESTS / "c" / "runner.c"
-PY_VECTOR_RUNNER = TESTS / "python" / "vector_runner.py"
-JSON_PY_RUNNER = TESTS / "json" / "py_runner.py"
-AJV_CHECK = TESTS / "json" / "node" / "ajv_check.cjs"
+C_RUNNER = TESTS / "targets" / "c" / "runner.c"
+PY_VECTOR_RUNNER = TESTS / "targets" / "python" / "vector_runner.py"
+JSON_PY_RUNNER = TESTS / "targets" / "json_bindings" / "py_runner.py"
+AJV_CHECK = TESTS / "targets" / "json_bindings" / "node" / "ajv_check.cjs"
 NODE_MODULES = ROOT / "build" / "json-node" / "node_modules"
 TSC = NODE_MODULES / "typescript" / "bin" / "tsc"
 
@@ -54,7 +54,7 @@ def _load(path: Path, name: str) -> ModuleType:
 
 
 def _c_helpers() -> tuple[ModuleType, ModuleType, ModuleType]:
-    cdir = str(TESTS / "c")
+    cdir = str(TESTS / "targets" / "c")
     if cdir not in sys.path:
         sys.path.insert(0, cdir)
     if str(GENERATOR) not in sys.path:
@@ -81,8 +81,9 @@ def c_runner_tables(spec_path: Path) -> str:
     if prefix != "kaiwo_gateway":
         text += "".join(f"#define kaiwo_gateway_{n} {prefix}_{n}\n" for n in ("msg_t", "lookup_id", "msg_info_t", "msg_info"))
     # A DLC-0 message has no shorter buffer to refuse (the tables would pass length -1u).
-    text = re.sub(r"    st = \(int\)\w+_unpack\(&s, vc->data, -1u\);\n    if \(st != \(int\)\w+_ERR_LENGTH\) bad \+= fail\(vc, \"short buffer gave %d\", st\);\n",
-                  "    /* DLC 0: no shorter frame */\n", text)
+    text = re.sub(
+        r"    st = \(int\)\w+_unpack\(&s, vc->data, -1u\);\n    if \(st != \(int\)\w+_ERR_LENGTH\) bad \+= fail\(vc, \"short buffer gave %d\", st\);\n",
+        "    /* DLC 0: no shorter frame */\n", text)
     return text
 
 
@@ -98,16 +99,16 @@ def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
 
 
 def c_sequences(spec_path: Path, headers: Path, sequences: Path, build: Path) -> tuple[int, str]:
-    """tests/c/c_sequences.py: build the C sequence runner for the spec's headers and run it (no sanitizers)."""
+    """tests/targets/c/c_sequences.py: build the C sequence runner for the spec's headers and run it (no sanitizers)."""
     _c_helpers()
     return importlib.import_module("c_sequences").run_sequences(sequences, spec_path, headers, build, sanitize=False)
 
 
-PY_SEQUENCE_RUNNER = TESTS / "python" / "sequence_runner.py"
+PY_SEQUENCE_RUNNER = TESTS / "targets" / "python" / "sequence_runner.py"
 
 
 def python_vector_runner(package_dir: Path, package: str) -> ModuleType:
-    """tests/python/vector_runner.py bound to the generated package `package` in `package_dir`
+    """tests/targets/python/vector_runner.py bound to the generated package `package` in `package_dir`
     (call in a fresh interpreter: it imports the package under the shipped name)."""
     sys.path.insert(0, str(package_dir))
     mod = importlib.import_module(package)

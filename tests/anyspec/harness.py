@@ -36,7 +36,9 @@ BUILD = ROOT / "build" / "anyspec"
 FAILURES = BUILD / "failures"
 TIMEOUT_S = 600
 CANSPEC_TARGETS = ("dbc", "vectors", "json_vectors", "c", "python", "jsonschema", "rust", "json_bindings", "docs")
-C_MODES = (("gcc", ["-std=c99"], "c99"), ("clang", ["-std=c99"], "c99"), ("g++", ["-x", "c++", "-std=c++11"], "c++11"), ("clang++", ["-x", "c++", "-std=c++11"], "c++11"))
+C_MODES = (
+    ("gcc", ["-std=c99"], "c99"), ("clang", ["-std=c99"], "c99"), ("g++", ["-x", "c++", "-std=c++11"], "c++11"),
+    ("clang++", ["-x", "c++", "-std=c++11"], "c++11"))
 TOOLS = ("gcc", "clang", "g++", "clang++", "cargo", "node", "ruff")
 
 
@@ -97,7 +99,9 @@ def signature_text(message: str) -> str:
     line = re.sub(r"\b[\w/.-]*?(\w+\.(py|rs|ts|h))\b", r"P/\1", line)
     m = re.match(r"(canspec gen: target \w+: )(.*)", line)
     if m:  # names from the spec in canspec's own messages
-        line = m.group(1) + re.sub(r"(?<![/\w.])(?!error\b)(?:[a-z_][a-z0-9_]*\.)?[a-z_][a-z0-9_]*(?=:)(?!\d)|(?<=value table )\w+|(?<=JSON field )\S+", "X", m.group(2))
+        line = m.group(1) + re.sub(
+            r"(?<![/\w.])(?!error\b)(?:[a-z_][a-z0-9_]*\.)?[a-z_][a-z0-9_]*(?=:)(?!\d)|(?<=value table )\w+|(?<=JSON field )\S+", "X", m.group(2)
+        )
     line = re.sub(r"/\S+/", "", line)
     line = re.sub(r"\bs\d{4}\b", "S", line)
     line = re.sub(r"'[^']*'|\"[^\"]*\"|`[^`]*`|‘[^’]*’", "X", line)
@@ -239,12 +243,12 @@ def stage_c(ctx: Ctx) -> None:
         if rc != 0:
             ctx.fail("c", f"{cc} -O2 -c {umbrella.name[5:-2]}", err)
     doc = _vectors(ctx)
-    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/c/gen_runner_tables.py"):
+    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/targets/c/gen_runner_tables.py"):
         return
     try:
         (work / "runner_tables.h").write_text(adapters.c_runner_tables(ctx.spec), encoding="utf-8")
     except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
-        ctx.fail("c", "tests/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
+        ctx.fail("c", "tests/targets/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
         return
     lines = work / "vectors.lines.txt"
     lines.write_text(adapters.c_vectors_lines(doc, ctx.spec), encoding="ascii")
@@ -412,7 +416,8 @@ def stage_json(ctx: Ctx, mypy: bool) -> None:
                 if r is None:
                     bad.append(f"{c['id']}: not checked by ajv")
                 elif r["own"] != c["valid"] or r["received"] != (c["as_received"] is not None) or r["any"] != (c["as_any"] is not None):
-                    bad.append(f"{c['id']}: ajv own={r['own']} received={r['received']} any={r['any']}, vectors valid={c['valid']} as_received={c['as_received']} as_any={c['as_any']}")
+                    bad.append(f"{c['id']}: ajv own={r['own']} received={r['received']} any={r['any']}, "
+                               f"vectors valid={c['valid']} as_received={c['as_received']} as_any={c['as_any']}")
             if bad:
                 ctx.fail("json", "ajv vs vectors/json.json", f"{len(bad)} case(s) disagree; first: " + "\n".join(bad[:8]))
         pkg_dir = ctx.out / "json" / "python" / name
@@ -507,7 +512,10 @@ def _rust_members(results: list[SpecResult], root: Path) -> dict[str, SpecResult
             # carries a digest of the crate: two workspaces sharing the target directory never
             # share artifacts.
             digest = hashlib.sha256(str(crate.resolve()).encode() + b"".join(p.read_bytes() for p in sorted(crate.rglob("*.rs")))).hexdigest()[:10]
-            text = text.replace(m.group(0), f'[package]\nname = "anyspec-{r.sid}-{digest}"', 1) + f'\n[lib]\nname = "{lib.replace("-", "_")}"\npath = "src/lib.rs"\n'
+            text = (
+                text.replace(m.group(0), f'[package]\nname = "anyspec-{r.sid}-{digest}"', 1)
+                + f'\n[lib]\nname = "{lib.replace("-", "_")}"\npath = "src/lib.rs"\n'
+            )
             toml.write_text(text, encoding="utf-8")
         members[os.path.relpath(crate, root)] = r
     return members
@@ -530,8 +538,9 @@ def stage_rust(results: list[SpecResult], root: Path, proptest_cases: int = 32) 
     env.pop("RUSTFLAGS", None)
     for r in members.values():
         r.checked.append("rust")
-    rc, out, err = sh(["cargo", "clippy", "--offline", "--workspace", "--all-targets", "--all-features", "--keep-going", "--message-format=short", "--", "-D", "warnings"],
-                      cwd=root, env=env, timeout=1800)
+    rc, out, err = sh(
+        ["cargo", "clippy", "--offline", "--workspace", "--all-targets", "--all-features", "--keep-going", "--message-format=short", "--", "-D", "warnings"],
+        cwd=root, env=env, timeout=1800)
     if rc != 0:
         _attribute_rust(err, members, by_pkg, "cargo clippy --all-targets -- -D warnings")
     rc, out, err = sh(["cargo", "test", "--offline", "--workspace", "--all-features", "--no-run", "--message-format=short"], cwd=root, env=env, timeout=1800)
@@ -690,7 +699,8 @@ def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, r
         job.bytewise = i % 4 == 0
         jobs_list.append(job)
     timings["draw specs"] = time.monotonic() - t0
-    log(f"anyspec: {n} specs drawn (seeds {base_seed}..{base_seed + n - 1}, features: {','.join(sorted(features)) or 'current'}) in {timings['draw specs']:.1f} s")
+    log(f"anyspec: {n} specs drawn (seeds {base_seed}..{base_seed + n - 1}, features: {','.join(sorted(features)) or 'current'}) "
+        f"in {timings['draw specs']:.1f} s")
     t1 = time.monotonic()
     workers = jobs or os.cpu_count() or 2
     results: list[SpecResult] = []
@@ -730,8 +740,9 @@ def save_failures(batch: Batch) -> None:
         shutil.rmtree(dest, ignore_errors=True)
         shutil.copytree(r.spec_dir, dest)
         shutil.copy(Path(r.spec_dir).parent / "choices.json", dest / "choices.json")
-        lines = [f"seed {r.seed} ({r.sid}); features used: {', '.join(r.features) or 'none'}; features allowed: {','.join(sorted(batch.features)) or 'current'}",
-                 f"reproduce: {repro_command(r, batch.features)}", f"   or: python3 tests/anyspec/run.py --spec {dest / r.entry}", ""]
+        lines = [
+            f"seed {r.seed} ({r.sid}); features used: {', '.join(r.features) or 'none'}; features allowed: {','.join(sorted(batch.features)) or 'current'}",
+            f"reproduce: {repro_command(r, batch.features)}", f"   or: python3 tests/anyspec/run.py --spec {dest / r.entry}", ""]
         for f in r.failures:
             lines += [f"== {f.target}: {f.stage}", f.message, ""]
         (dest / "FAILURE.txt").write_text("\n".join(lines), encoding="utf-8")
@@ -749,7 +760,10 @@ def report(batch: Batch, verbose_specs: int = 3) -> str:
     out.append("timings: " + ", ".join(f"{k} {v:.0f} s" for k, v in batch.timings.items()))
     groups: dict[str, list[Failure]] = {}
     for f in batch.failures:
-        key = f.signature if f.target != "check" else f"check | refused: {', '.join(sorted(f.refusal or [])) or 'UNEXPLAINED'} | {signature_text(classify_refusal(f.message)[1][0]) if classify_refusal(f.message)[1] else ''}"
+        key = f.signature
+        if f.target == "check":
+            refused = classify_refusal(f.message)[1]
+            key = f"check | refused: {', '.join(sorted(f.refusal or [])) or 'UNEXPLAINED'} | {signature_text(refused[0]) if refused else ''}"
         groups.setdefault(key, []).append(f)
     if not groups:
         out.append("anyspec: no failures")

@@ -1,5 +1,5 @@
 """Import a generated Python JSON-bindings package and check every case of its vectors file
-with tests/json/py_runner.py's `check` (own verdict, field at fault, dispatch, round trip).
+with tests/targets/json_bindings/py_runner.py's `check` (own verdict, field at fault, dispatch, round trip).
 
     python3 tests/anyspec/py_json.py PACKAGE_DIR PACKAGE VECTORS_JSON
 """

@@ -1,4 +1,4 @@
-"""Run tests/python/vector_runner.py against a generated CAN package (a fresh interpreter per
+"""Run tests/targets/python/vector_runner.py against a generated CAN package (a fresh interpreter per
 package: the runner imports the package under the shipped name).
 
     python3 tests/anyspec/py_vectors.py PYTHON_DIR PACKAGE VECTORS.json

@@ -21,7 +21,9 @@ SHRINK_DIR = harness.BUILD / "shrink"
 class Shrinker:
     """`fails(spec)` returns the failure (anything truthy) when `spec` still fails the same way."""
 
-    def __init__(self, features: frozenset[str], fails: Callable[[strategy.GeneratedSpec], Any], budget_s: float = 900, log: Callable[[str], None] = print) -> None:
+    def __init__(
+        self, features: frozenset[str], fails: Callable[[strategy.GeneratedSpec], Any], budget_s: float = 900, log: Callable[[str], None] = print
+    ) -> None:
         self.features, self.fails = features, fails
         self.deadline = time.monotonic() + budget_s
         self.log = log
@@ -138,7 +140,9 @@ def save(spec: strategy.GeneratedSpec, failure: harness.Failure, name: str) -> P
 def _shrink_job(args: tuple[int, list[int], list[str], dict[str, Any], float, str]) -> tuple[str, str | None, str | None]:
     seed, choices, features, fdict, budget, name = args
     failure = harness.Failure(**fdict)
-    small, got = Shrinker(frozenset(features), lambda spec: failure_of(spec, failure.target, failure.signature, failure.stage), budget, log=lambda _: None).run(choices)
+    small, got = Shrinker(frozenset(features), lambda spec: failure_of(spec, failure.target, failure.signature, failure.stage), budget, log=lambda _: None).run(
+        choices
+    )
     if small is None or got is None:
         return name, None, None
     path = save(small, got, name)

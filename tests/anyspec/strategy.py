@@ -50,9 +50,13 @@ KEYWORDS = ("type", "match", "class", "int", "for", "async", "self", "default")
 # (message + signal, table + value) never collide by accident; keywords are whole names only.
 MSG_WORDS = ("engine", "brake", "steer", "door", "lamp", "motor", "battery", "radar", "wiper", "seat", "horn", "pump", "valve", "charger")
 MSG_SUFFIX = ("cmd", "state", "info", "status", "req", "data")
-SIG_WORDS = ("speed", "mode", "temp", "level", "angle", "torque", "voltage", "current", "pressure", "flag", "fault", "position", "rate", "count", "value", "enable", "target", "limit")
+SIG_WORDS = (
+    "speed", "mode", "temp", "level", "angle", "torque", "voltage", "current", "pressure", "flag", "fault", "position", "rate", "count", "value", "enable",
+    "target", "limit")
 TABLE_WORDS = ("mode", "state", "switch", "fault_level", "gear", "onoff", "status", "fault")
-VALUE_IDENTS = ("off", "on", "idle", "active", "fault", "error", "ok", "low", "high", "open", "closed", "none", "auto", "manual", "unknown", "init", "invalid", "standby", "true", "false")
+VALUE_IDENTS = (
+    "off", "on", "idle", "active", "fault", "error", "ok", "low", "high", "open", "closed", "none", "auto", "manual", "unknown", "init", "invalid", "standby",
+    "true", "false")
 SPECIAL_IDENTS = ("not_available", "no_limit", "invalid_value", "error_value", "init_value", "no_obstacle")
 NODE_NAMES = ("ECU", "VCU", "BMS", "GW", "CTRL", "EPS", "Tester", "node_a", "Radar1", "HMI")
 PROTOCOL_NAMES = ("fixture", "demo_bus", "body_can", "chassis", "truck_j1939", "pt_can")
@@ -313,7 +317,9 @@ class Builder:
         name = self.pick(PROTOCOL_NAMES) if not self.p(0.04) else self.pick(KEYWORDS)
         fmt = self.pick(("extended", "standard"))
         addressing = self.pick(("j1939", "none")) if fmt == "extended" else "none"
-        bitrate = self.pick((250000, 500000, 125000, 1000000, 10000, 20000, 50000, 100000, 800000, 83333)) if not self.p(0.2) else self.ch.integer(10000, 1000000)
+        bitrate = (
+            self.pick((250000, 500000, 125000, 1000000, 10000, 20000, 50000, 100000, 800000, 83333)) if not self.p(0.2) else self.ch.integer(10000, 1000000)
+        )
         self.bus = {"bitrate": bitrate, "id_format": fmt, "addressing": addressing, "byte_order": "little_endian"}
         self.j1939 = addressing == "j1939"
         nodes = self.nodes()
@@ -332,7 +338,10 @@ class Builder:
         if layouts:
             can["layouts"] = layouts
         can["messages"] = messages
-        tables = {t: {Hex(r) if r >= 0 and self.p(0.3) else r: (ident if zh is None else [ident, zh]) for r, (ident, zh) in entries.items()} for t, entries in self.tables.items()}
+        tables = {
+            t: {Hex(r) if r >= 0 and self.p(0.3) else r: (ident if zh is None else [ident, zh]) for r, (ident, zh) in entries.items()}
+            for t, entries in self.tables.items()
+        }
         files: dict[str, str] = {}
         facts: dict[str, Any] = {"bundle": bundle, "protocol": name, "messages": len(messages), "addressing": addressing, "id_format": fmt}
         separate_tables = bundle and tables and self.p(0.6)

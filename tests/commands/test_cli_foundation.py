@@ -83,7 +83,9 @@ def test_bad_spec_writes_nothing(tmp_path):
     assert (out / "dbc" / "kaiwo_gateway.dbc").read_bytes() == before
 
 
-@pytest.mark.parametrize("args,code", [(["gen", "--target", "nope"], 2), (["check", "/nonexistent/spec"], 1), (["gen", "/nonexistent/spec", "-o", "/tmp/x"], 1)])
+@pytest.mark.parametrize(
+    "args,code", [(["gen", "--target", "nope"], 2), (["check", "/nonexistent/spec"], 1), (["gen", "/nonexistent/spec", "-o", "/tmp/x"], 1)]
+)
 def test_usage_errors(args, code):
     r = canspec(*args)
     assert r.returncode == code and "Traceback" not in r.stderr and r.stderr.strip()

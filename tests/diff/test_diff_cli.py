@@ -57,8 +57,9 @@ def test_json_change_fields():
     data = json.loads(out)
     assert data["old"]["version"] == "2.0.4" and data["new"]["version"] == "2.0.5"
     first = data["changes"][0]
-    assert first == {"kind": "signal_added", "class": "compatible", "frame_id": "0x1805B0A0", "message": "autocar_control_command_1",
-                     "signal": "drive_mode_reset", "detail": "drive_mode_reset (bit 28) added in formerly reserved bits", "old": None, "new": "drive_mode_reset"}
+    assert first == {
+        "kind": "signal_added", "class": "compatible", "frame_id": "0x1805B0A0", "message": "autocar_control_command_1", "signal": "drive_mode_reset",
+        "detail": "drive_mode_reset (bit 28) added in formerly reserved bits", "old": None, "new": "drive_mode_reset"}
     assert data["summary"]["counts"] == {"wire": 0, "source": 0, "compatible": 5, "docs": 0}
     assert data["summary"]["note"] == "2.0.4 → 2.0.5 is a patch bump; the changes suggest minor"
 

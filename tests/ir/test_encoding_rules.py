@@ -19,7 +19,9 @@ def test_document_worked_examples():
     assert 70 * 1 + (-40) == 30
 
 
-@pytest.mark.parametrize("q,expected", [(Fraction(1, 2), 1), (Fraction(-1, 2), -1), (Fraction(3, 2), 2), (Fraction(-5, 2), -3), (Fraction(49, 100), 0), (Fraction(-51, 100), -1), (0, 0)])
+@pytest.mark.parametrize(
+    "q,expected",
+    [(Fraction(1, 2), 1), (Fraction(-1, 2), -1), (Fraction(3, 2), 2), (Fraction(-5, 2), -3), (Fraction(49, 100), 0), (Fraction(-51, 100), -1), (0, 0)])
 def test_round_half_away_from_zero(q, expected):
     assert round_half_away(Fraction(q)) == expected
 
@@ -115,7 +117,9 @@ def _decimal_float(value: Fraction) -> tuple[str, float]:
 
 
 @settings(max_examples=3000, deadline=None)
-@given(FACTORS, OFFSETS, st.integers(-(2**40), 2**40), st.sampled_from([Fraction(1, 2), Fraction(0), Fraction(333, 1000), Fraction(-1, 4), Fraction(499, 1000)]))
+@given(
+    FACTORS, OFFSETS, st.integers(-(2**40), 2**40), st.sampled_from([Fraction(1, 2), Fraction(0), Fraction(333, 1000), Fraction(-1, 4), Fraction(499, 1000)])
+)
 def test_runtime_equals_exact_within_the_guarantee(factor, offset, k, frac):
     q = k + frac  # the exact quotient: a tie, a step, or well away from a tie
     physical = q * factor + offset

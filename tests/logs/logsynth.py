@@ -23,7 +23,8 @@ FORMATS = {
     "candump": "bus.log", "candump_gz": "bus.log.gz", "candump_default": "bus_default.log", "candump_ta": "bus_ta.log",
     "candump_tA": "bus_tA.log", "candump_x": "bus_x.log", "asc": "bus.asc", "blf": "bus.blf", "trc": "bus.trc", "mf4": "bus.mf4",
 }
-HAS_SPECIAL_FRAMES = {"candump", "candump_gz", "candump_default", "candump_ta", "candump_tA", "candump_x", "asc", "blf", "mf4"}  # TRC: python-can writes neither
+HAS_SPECIAL_FRAMES = {
+    "candump", "candump_gz", "candump_default", "candump_ta", "candump_tA", "candump_x", "asc", "blf", "mf4"}  # TRC: python-can writes neither
 HAS_TIME = {"candump", "candump_gz", "candump_ta", "candump_tA", "candump_x", "asc", "blf", "trc", "mf4"}
 
 

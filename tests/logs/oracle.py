@@ -7,7 +7,7 @@ from collections import defaultdict
 from dataclasses import dataclass, field
 
 import pyarrow as pa
-from canspec.reference import fleet
+from canspec.logs import fleet
 from logsynth import Frame
 
 

@@ -3,7 +3,7 @@ or not, fields of 1..64 bits, value tables, counters, checksums, event-driven an
 messages), random frames of every message, decoded in bulk (tables and text) and compared with
 the reference codec frame by frame (raw values exactly, physical values, labels, checksum
 flags, the text line), and the health report's counts with the independent monitor model of
-tests/sequences/model.py."""
+tests/runtime/model.py."""
 
 from __future__ import annotations
 
@@ -13,15 +13,16 @@ from pathlib import Path
 
 import numpy as np
 from canspec.pipeline import compile_spec
-from canspec.reference import bulktext, codec
-from canspec.reference import frames as fr
-from canspec.reference.bulk import Decoder
-from canspec.reference.loghealth import HealthReport
+from canspec.logs import bulktext
+from canspec.reference import codec
+from canspec.logs import frames as fr
+from canspec.logs.bulk import Decoder
+from canspec.logs.loghealth import HealthReport
 from hypothesis import HealthCheck, given, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from anyspec import strategy
-from sequences.model import ModelMonitor
+from runtime.model import ModelMonitor
 
 
 def random_batch(msgs, n, rng):

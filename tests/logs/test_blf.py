@@ -8,8 +8,8 @@ import random
 
 import can
 import pytest
-from canspec.reference import blf_bulk, logread
-from canspec.reference import frames as fr
+from canspec.logs import blf_bulk, logread
+from canspec.logs import frames as fr
 
 
 def messages(n, seed=5):

@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 import pytest
-from canspec.reference.candump import DATA, ERROR, REMOTE, LineError, parse_line
+from canspec.logs.candump import DATA, ERROR, REMOTE, LineError, parse_line
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from repo_paths import CANSPEC_ENV
@@ -51,7 +51,9 @@ def test_json_output_agrees_with_cantools(tmp_path, vectors, db):
 
 
 def test_text_output_has_enum_names_units_and_the_three_line_forms(vectors):
-    m = "1803B0A0#" + next(c["data"] for c in vectors["cases"] if c["message"] == "autocar_speed_command" and c["kind"] == "enum" and c["note"] == "gear_cmd=drive")
+    m = "1803B0A0#" + next(
+        c["data"] for c in vectors["cases"] if c["message"] == "autocar_speed_command" and c["kind"] == "enum" and c["note"] == "gear_cmd=drive"
+    )
     log = f"(1.500000) can1 {m}\n{m}\n  can0  {m[:8]}   [8]  {' '.join(m[9:][i:i + 2] for i in range(0, 16, 2))}\n"
     proc = canspec_decode("-", stdin=log)
     assert proc.returncode == 0, proc.stderr
@@ -110,7 +112,9 @@ def test_binary_garbage_and_limits(tmp_path):
     proc = canspec_decode("--max-problems", "3", str(log))
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
     assert f"canspec decode: {log}: binary data, not a candump text log" in proc.stderr
-    proc = canspec_decode("--max-problems", "3", "--input-format", "candump", "-", stdin=("garbage\n" * 50 + "(1) can0 1801B0A0#00\n1801B0A0#0000000000000000\n"))
+    proc = canspec_decode(
+        "--max-problems", "3", "--input-format", "candump", "-", stdin=("garbage\n" * 50 + "(1) can0 1801B0A0#00\n1801B0A0#0000000000000000\n")
+    )
     assert proc.returncode == 0 and "Traceback" not in proc.stderr
     assert sum(line.startswith("<stdin>:") for line in proc.stderr.splitlines()) == 4  # three problems and the note that more are not shown
     assert "more problems not shown (--max-problems 3)" in proc.stderr
@@ -210,7 +214,8 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
 
     import numpy as np
     from canspec.pipeline import compile_spec
-    from canspec.reference import bulktext, codec
+    from canspec.logs import bulktext
+    from canspec.reference import codec
     from repo_paths import ROOT
 
     mixed = compile_spec(ROOT / "tests" / "logs" / "specs" / "mixed.yaml").spec.can
@@ -223,9 +228,10 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
         assert mine == [codec.text_decoder(msg)(w) for w in words], msg.name
 
 
-LINE_PIECES = st.sampled_from(["(1.5)", "(1700000000.000100)", "(abc)", "(1.2.3)", "(2023-11-14 22:13:20.123456)", "can0", "vcan12", "RX", "-", "123", "7FF", "800",
-                               "1806A0B0", "20000080", "3FFFFFFF", "[0]", "[2]", "[8]", "[12]", "[x]", "01", "0A", "ff", "0", "GG", "123#0102", "1806A0B0#R",
-                               "123#", "7FF##1" + "00" * 9, "ERRORFRAME", "remote", "request", "'..'", "R", "T", "#", ";"])
+LINE_PIECES = st.sampled_from([
+    "(1.5)", "(1700000000.000100)", "(abc)", "(1.2.3)", "(2023-11-14 22:13:20.123456)", "can0", "vcan12", "RX", "-", "123", "7FF", "800", "1806A0B0",
+    "20000080", "3FFFFFFF", "[0]", "[2]", "[8]", "[12]", "[x]", "01", "0A", "ff", "0", "GG", "123#0102", "1806A0B0#R", "123#", "7FF##1" + "00" * 9,
+    "ERRORFRAME", "remote", "request", "'..'", "R", "T", "#", ";"])
 
 
 @settings(max_examples=400, deadline=None)
@@ -235,7 +241,7 @@ def test_bulk_reader_equals_the_line_reader(lines):
     line it hands to parse_line — so the frames and problems are exactly the line reader's."""
     import math
 
-    from canspec.reference.candump_bulk import read_chunk
+    from canspec.logs.candump_bulk import read_chunk
 
     batch, problems, count = read_chunk(("\n".join(lines) + "\n").encode(), 1)
     assert count == len(lines)

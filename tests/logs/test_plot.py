@@ -63,7 +63,9 @@ def test_plotted_points_are_the_decoded_values(drive, db, tmp_path):
 
 def test_unknown_signal_and_missing_log(drive):
     log, _ = drive
-    proc = subprocess.run([sys.executable, "-m", "canspec", "plot", str(log), "no_such_*", "-o", "x.png"], capture_output=True, text=True, env=CANSPEC_ENV, check=False)
+    proc = subprocess.run(
+        [sys.executable, "-m", "canspec", "plot", str(log), "no_such_*", "-o", "x.png"], capture_output=True, text=True, env=CANSPEC_ENV, check=False
+    )
     assert proc.returncode == 2 and "no signal matches 'no_such_*'" in proc.stderr and "Traceback" not in proc.stderr
     proc = subprocess.run([sys.executable, "-m", "canspec", "plot", "missing.blf", "accel_cmd"], capture_output=True, text=True, env=CANSPEC_ENV, check=False)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pyarrow as pa
 import pytest
-from canspec.reference import fleet
+from canspec.logs import fleet
 from repo_paths import CANSPEC_ENV
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -42,7 +42,9 @@ def test_parquet_read_back_with_duckdb_pandas_polars(eight_logs, tmp_path, db):
     cm = db.get_message_by_name("autocar_speed_command")
     mine = [f for f in frames if f.frame_id == cm.frame_id]
     glob = str(out / "autocar_speed_command" / "*" / "*.parquet")
-    rows = duckdb.sql(f"SELECT source, timestamp, accel_cmd, gear_cmd_label, gear_cmd_raw FROM read_parquet('{glob}', hive_partitioning = true) ORDER BY timestamp").fetchall()
+    rows = duckdb.sql(
+        f"SELECT source, timestamp, accel_cmd, gear_cmd_label, gear_cmd_raw FROM read_parquet('{glob}', hive_partitioning = true) ORDER BY timestamp"
+    ).fetchall()
     assert len(rows) == len(mine)
     for (source, ts, accel, gear, gear_raw), f in zip(rows, mine):
         theirs = cm.decode(f.data)
@@ -112,7 +114,9 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
     assert r["checksum_errors"] == 1 and r["gaps"] == 1 and r["longest_gap_ms"] == pytest.approx(220, abs=0.01)
     assert r["period_ms"] == pytest.approx(20 * (len(mine) - 1) / (len(mine) - 11), abs=1e-3)
     steady = by["vehicle_state_1"]
-    assert steady["counter_jumps"] == steady["counter_repeats"] == steady["lost_frames"] == steady["gaps"] == 0 and steady["period_ms"] == pytest.approx(50, abs=1e-3)
+    assert steady["counter_jumps"] == steady["counter_repeats"] == steady["lost_frames"] == steady["gaps"] == 0 and steady["period_ms"] == pytest.approx(
+        50, abs=1e-3
+    )
     assert report["unknown_ids"] == {"0x18FEEE00": 1} and report["counts"]["checksum"] == 1
     text = canspec("decode", "--report", str(log)).stdout
     assert "autocar_eps_command" in text and "unknown IDs: 0x18FEEE00 ×1" in text
@@ -120,9 +124,9 @@ def test_health_report_counts_what_was_put_in(can, tmp_path):
 
 def test_arrow_frames_round_trip_and_spark_schema(eight_logs, can):
     """What a Spark job does: frame columns through Arrow, decoded per batch, cast to the plain schema."""
-    from canspec.reference.bulk import Decoder, decode_arrow
-    from canspec.reference.frames import Batch
-    from canspec.reference.logread import read_log
+    from canspec.logs.bulk import Decoder, decode_arrow
+    from canspec.logs.frames import Batch
+    from canspec.logs.logread import read_log
 
     logs, _ = eight_logs
     decoder = Decoder(can.messages)

@@ -59,6 +59,6 @@ def test_cargo_project_depends_on_the_generated_crate(release_venv, tmp_path):
         data, *physical = line.split()
         assert data == case["data"].upper(), (case, line)
         if case["message"] == "autocar_eps_command" and case["kind"] != "tie":  # a tie's physical is the encoder's input, between two steps
-            # the decoded double, within rounding of the decimal the vector states (exactness: tests/rust/)
+            # the decoded double, within rounding of the decimal the vector states (exactness: tests/targets/rust/)
             assert len(physical) == 1 and math.isclose(float(physical[0]), case["physical"]["steering_angle_cmd"], abs_tol=1e-9), (case, line)
 

@@ -1,1 +1,2 @@
-"""Subcommands of `canspec`; each module defines `register(subparsers)`."""
+"""Subcommands of `canspec`; each module defines `register(subparsers)`. Internal: the
+command line is their interface."""

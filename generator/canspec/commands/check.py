@@ -33,7 +33,9 @@ def run(args: argparse.Namespace) -> int:
         if not args.quiet:
             counts = []
             if s.can is not None:
-                counts.append(f"{len(s.can.messages)} messages, {sum(len(m.data_signals) for m in s.can.messages)} signals, {len(s.can.value_tables)} value tables")
+                counts.append(
+                    f"{len(s.can.messages)} messages, {sum(len(m.data_signals) for m in s.can.messages)} signals, {len(s.can.value_tables)} value tables"
+                )
             if s.json:
                 counts.append(f"{sum(len(j.messages) for j in s.json)} JSON messages")
             warn = f", {len(compiled.warnings)} warning(s)" if compiled.warnings else ""

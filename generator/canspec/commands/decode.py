@@ -1,7 +1,7 @@
 """`canspec decode LOG...`: bus logs (candump, Vector ASC/BLF, PEAK TRC, ASAM MF4) decoded with
 the spec — frames as text / JSON lines / CSV, per-message Parquet tables, or a health report.
 
-Every chunk of every log is decoded in bulk (reference/bulk.py); text, JSON and CSV are then
+Every chunk of every log is decoded in bulk (logs/bulk.py); text, JSON and CSV are then
 written frame by frame in log order. Unknown IDs, malformed lines, wrong lengths and checksum
 mismatches go to stderr as `FILE:LINE: problem` and are counted; one summary line per input
 ends the run. Exit status: 2 when an input cannot be read (or is not in its format), 1 when an
@@ -22,7 +22,7 @@ FORMATS = ("text", "json", "csv", "parquet")
 
 
 def _sink(args: argparse.Namespace, decoder, out: IO[str]):  # type: ignore[no-untyped-def]
-    from canspec.reference import logsinks
+    from canspec.logs import logsinks
 
     if args.format == "parquet":
         return logsinks.ParquetSink(decoder, args.output)
@@ -31,7 +31,7 @@ def _sink(args: argparse.Namespace, decoder, out: IO[str]):  # type: ignore[no-u
 
 def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # type: ignore[no-untyped-def]
     """One health report per input (a recording each: monitor state starts afresh)."""
-    from canspec.reference.loghealth import HealthReport, format_text
+    from canspec.logs.loghealth import HealthReport, format_text
 
     reports: dict[str, HealthReport] = {}
 
@@ -56,7 +56,7 @@ def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # typ
 
 def run(args: argparse.Namespace) -> int:
     try:
-        from canspec.reference.bulk import Decoder
+        from canspec.logs.bulk import Decoder
     except ImportError as exc:
         print(f"canspec decode: {exc.name} is missing; {EXTRA_HINT}", file=sys.stderr)
         return 2

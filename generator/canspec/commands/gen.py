@@ -8,7 +8,7 @@ from pathlib import Path
 
 from canspec import depfile
 from canspec.commands.common import compile_or_report
-from canspec.generate import GenerationError, generate
+from canspec.generation import GenerationError, generate
 from canspec.ir.nodeview import for_node, node_names
 from canspec.render import writer
 from canspec.targets import registry

@@ -103,7 +103,9 @@ def message_problems(msg_of: Callable[[int], ir.Message], batch: Any, decoded: A
     for i in decoded.bad_checksum.tolist():
         m = msg_of(int(decoded.key[i]))
         assert m.checksum is not None
-        items.append((int(line[i]), "checksum", f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{(int(word[i]) >> 8 * m.checksum.byte) & 0xFF:02X})"))
+        items.append((
+            int(line[i]), "checksum",
+            f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{(int(word[i]) >> 8 * m.checksum.byte) & 0xFF:02X})"))
     return items
 
 
@@ -137,7 +139,7 @@ def asammdf_without_extras(args: argparse.Namespace) -> None:
     0.35 s of its 0.7 s import, for nothing the MF4 reader asks of it (raw columns). With an MF4
     input, asammdf is imported with them hidden, as if absent. Only for the CLI's process: a
     library user's asammdf keeps them."""
-    from canspec.reference.logread import InputError, detect_format
+    from canspec.logs.logread import InputError, detect_format
 
     def is_mf4(path: str) -> bool:
         try:
@@ -162,7 +164,7 @@ def each_chunk(args: argparse.Namespace, decoder: Any, command: str, want_tables
                consume: Callable[[str, Any, Any], None]) -> list[InputStats]:
     """Reads every input chunk by chunk, decodes each chunk in bulk, reports its problems and
     hands (source, batch, decoded) to `consume`; returns per-input statistics."""
-    from canspec.reference.logread import InputError, input_size, read_log
+    from canspec.logs.logread import InputError, input_size, read_log
 
     if want_tables:
         pyarrow_without_pandas()

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from canspec.commands.common import add_spec_argument, compile_or_report
-from canspec.generate import GenerationError
+from canspec.generation import GenerationError
 from canspec.pdf.document import handbook_html
 from canspec.pdf.render import RendererMissing, write_pdf
 

@@ -35,7 +35,9 @@ def select(can: ir.CanProtocol, patterns: list[str]) -> tuple[list[tuple[ir.Mess
     """The (message, signal) pairs the patterns name, in spec order; and patterns matching nothing."""
     chosen, unmatched = [], []
     for pattern in patterns:
-        hits = [(m, s) for m in can.messages for s in m.data_signals if fnmatch.fnmatchcase(s.name, pattern) or fnmatch.fnmatchcase(f"{m.name}.{s.name}", pattern)]
+        hits = [
+            (m, s) for m in can.messages for s in m.data_signals if fnmatch.fnmatchcase(s.name, pattern) or fnmatch.fnmatchcase(f"{m.name}.{s.name}", pattern)
+        ]
         if not hits:
             unmatched.append(pattern)
         chosen += [h for h in hits if h not in chosen]
@@ -100,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         import matplotlib
 
-        from canspec.reference.bulk import Decoder
+        from canspec.logs.bulk import Decoder
     except ImportError as exc:
         print(f"canspec plot: {exc.name} is missing; {EXTRA_HINT}", file=sys.stderr)
         return 2

@@ -19,7 +19,7 @@ import time
 from collections.abc import Iterable
 
 from canspec.commands.common import add_spec_argument, compile_or_report
-from canspec.simulate import RestBus, SimulationError
+from canspec.runtime.simulate import RestBus, SimulationError
 
 
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]

@@ -2,7 +2,8 @@
 (build) from a validated spec, with the bit layout (bits), J1939 fields (j1939), fingerprints
 and the encoding rules every language shares (encoding). Targets read it; they never recompute it.
 
-`from canspec import ir` gives the model's classes (`ir.Spec`, `ir.Message`, ...)."""
+`from canspec import ir` gives the model's classes (`ir.Spec`, `ir.Message`, ...): they are public API (a
+compiled spec is made of them); the modules of ir/ that compute them are internal."""
 
 from canspec.ir.model import (
     EXACT_LIMIT,

@@ -126,8 +126,3 @@ def decimal_text(value: Fraction | int) -> str:
     if Fraction(Decimal(text)) != value:
         raise ValueError(f"{value} has no finite decimal expansion")
     return text
-
-
-def json_number(value: Fraction) -> int | float:
-    """A vector/JSON number: int when integral, else the nearest double."""
-    return value.numerator if value.denominator == 1 else float(value)

@@ -10,5 +10,8 @@ import hashlib
 def layout_fingerprint(frame_id: int, dlc: int, fields: list[tuple[str, int, int, bool, str, str]]) -> int:
     """`fields`: (role, start, length, signed, factor_text, offset_text) for every non-reserved signal."""
     parts = [f"id={frame_id:08X}", f"dlc={dlc}"]
-    parts += [f"{role}:{start}:{length}:{'s' if signed else 'u'}:{factor}:{offset}" for role, start, length, signed, factor, offset in sorted(fields, key=lambda f: f[1])]
+    parts += [
+        f"{role}:{start}:{length}:{'s' if signed else 'u'}:{factor}:{offset}"
+        for role, start, length, signed, factor, offset in sorted(fields, key=lambda f: f[1])
+    ]
     return int.from_bytes(hashlib.sha256(";".join(parts).encode()).digest()[:4], "big")

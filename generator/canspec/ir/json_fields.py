@@ -189,9 +189,6 @@ class ProtocolModel:
     def receiver_plans(self) -> tuple[Plan, ...]:
         return self.plans[1:]
 
-    def plan_for(self, receiver: str | None) -> Plan:
-        return next(p for p in self.plans if p.receiver == receiver)
-
     @property
     def replies_by_cmd(self) -> bool:
         """Each request carries its `cmd` and no two pairs share one: the cmd names the reply type."""

@@ -26,7 +26,7 @@ EXACT_LIMIT = 2**52
 EXACT_LIMIT_TEXT = "4503599627370496.0"
 # Receive monitors time a cyclic message out after this many cycle times without a frame,
 # accept a counter step of up to 1 + MONITOR_COUNTER_TOLERANCE (frames lost in between) and hold a
-# message valid after MONITOR_VALID_AFTER good frames in a row (reference/monitor.py states the rules).
+# message valid after MONITOR_VALID_AFTER good frames in a row (runtime/monitor.py states the rules).
 MONITOR_TIMEOUT_CYCLES = 3
 MONITOR_COUNTER_TOLERANCE = 1
 MONITOR_VALID_AFTER = 2
@@ -368,10 +368,6 @@ class CanProtocol:
 
     # What the protocol uses at all: targets leave out the helpers of what it does not.
     @property
-    def has_extended(self) -> bool:
-        return any(m.is_extended for m in self.messages)
-
-    @property
     def has_standard(self) -> bool:
         return any(not m.is_extended for m in self.messages)
 
@@ -516,7 +512,3 @@ class Spec:
     generator_version: str
     errata_md: str | None = None  # text of ERRATA.md beside the bundle, if any (rendered by the docs)
     node: str | None = None  # set in one node's view (ir/nodeview.py): only its messages
-
-    @property
-    def short_hash(self) -> str:
-        return self.sha256[:16]

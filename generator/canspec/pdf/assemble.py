@@ -19,7 +19,7 @@ from typing import Any
 import yaml
 
 from canspec import ir
-from canspec.generate import GenerationError, generate
+from canspec.generation import GenerationError, generate
 
 DOCS = "docs/"
 NAV = "mkdocs.nav.yml"  # the docs target's navigation (pages in order, with their titles)

@@ -1,2 +1,3 @@
-"""The reference implementation in Python, read straight from the IR: the codec every generated
-language is tested against, candump log lines, bus load, JSON value checks."""
+"""The reference models, read straight from the IR: what the tests (and the shared vectors) hold
+the generated code against — the codec (`codec`), the JSON value checks (`jsonvalue`) and the
+multi-frame text reassembly (`textframes`). Internal: not part of canspec's public API."""

@@ -1,6 +1,6 @@
 """The reference reassembly of multi-frame text (a VIN), read from the IR: the rules the C
 `_rx_feed`/`_rx_get`, the Python `…TextAssembler` and the Rust `…Text` follow, and which the
-shared sequence vectors record.
+shared sequence vectors record. (Sample texts and a second key value: ir/textsamples.py.)
 
 - A frame that does not decode (wrong length, wrong checksum) or whose index is outside
   0..frames-1 is refused and changes nothing.
@@ -22,25 +22,6 @@ from canspec.reference import codec
 
 OK, LENGTH, CHECKSUM, INDEX, INCONSISTENT = "ok", "length", "checksum", "index", "inconsistent"
 PRINTABLE = range(0x20, 0x7F)
-
-
-def sample_text(mf: ir.MultiFrame, text: str) -> str:
-    """`text` repeated or cut to the text length, without the padding byte: a text that round-trips."""
-    chars = "".join(c for c in text if ord(c) != mf.padding) or "A"
-    return (chars * (mf.text_length // len(chars) + 1))[: mf.text_length]
-
-
-def other_key(msg: ir.Message) -> tuple[str, int] | None:
-    """A key signal of a multi-frame message and a valid raw value of it besides its base value
-    (the nearest to 0 in range): what tells another sender's frames apart."""
-    assert msg.multiframe is not None
-    for name in msg.multiframe.key_signals:
-        sig = msg.signal(name)
-        base = min(max(0, sig.raw_min), sig.raw_max)
-        other = next((r for r in (base + 1, base - 1) if sig.raw_min <= r <= sig.raw_max), None)
-        if other is not None:
-            return name, other
-    return None
 
 
 def text_of(mf: ir.MultiFrame, chunks: list[bytes]) -> str | None:

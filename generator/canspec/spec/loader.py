@@ -125,7 +125,9 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
             if version > newest
             else f"migrate the file to schema_version {newest} as described in spec/schema/CHANGELOG.md"
         )
-        return [error(f"unsupported schema_version {version} (this canspec reads {', '.join(map(str, SUPPORTED_SCHEMA_VERSIONS))})", data.loc_of("schema_version"), hint, "schema-version")]
+        return [error(
+            f"unsupported schema_version {version} (this canspec reads {', '.join(map(str, SUPPORTED_SCHEMA_VERSIONS))})", data.loc_of("schema_version"),
+            hint, "schema-version")]
     problems = []
     errors = sorted(_validator(version).iter_errors(data), key=lambda e: (list(map(str, e.absolute_path)), str(e.validator)))
     seen = set()
@@ -151,7 +153,8 @@ def _load_document(path: Path) -> Document:
     name = display_name(path)
     data = load_yaml(path, name)
     if not isinstance(data, LocDict):
-        raise SpecError([error(f"expected a mapping at the top of the file, got {_kind_of(data)}", getattr(data, "loc", Loc(name, 1, 1)), "a spec file starts with `schema_version:` and `kind:`")])
+        raise SpecError([error(f"expected a mapping at the top of the file, got {_kind_of(data)}", getattr(data, "loc", Loc(name, 1, 1)),
+                               "a spec file starts with `schema_version:` and `kind:`")])
     problems = schema_problems(data, name)
     if problems:
         raise SpecError(problems)
@@ -172,7 +175,8 @@ def _load(path: Path) -> LoadedSpec:
     if path.is_dir():
         manifest = path / "canspec.yaml"
         if not manifest.is_file():
-            raise SpecError([error("directory has no canspec.yaml bundle file", Loc(display_name(path)), "pass a spec file, or add canspec.yaml listing the spec files")])
+            raise SpecError([error("directory has no canspec.yaml bundle file", Loc(display_name(path)),
+                                   "pass a spec file, or add canspec.yaml listing the spec files")])
         path = manifest
     elif not path.exists():
         raise SpecError([error("no such file or directory", Loc(display_name(path)), "check the spec path")])

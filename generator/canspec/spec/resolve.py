@@ -68,12 +68,16 @@ def _expand_layout(msg: LocDict, layouts: LocDict, problems: list[Problem]) -> l
     removes: LocList = msg.get("remove", LocList())
     for i, victim in enumerate(removes):
         if victim not in by_name:
-            problems.append(error(f"`remove` names {victim!r}, which layout {name!r} does not have", removes.loc_of(i), f"signals of {name!r}: {', '.join(by_name)}", "unknown-override"))
+            problems.append(error(
+                f"`remove` names {victim!r}, which layout {name!r} does not have", removes.loc_of(i), f"signals of {name!r}: {', '.join(by_name)}",
+                "unknown-override"))
         removed.add(victim)
     overrides: LocDict = msg.get("override", LocDict())
     for target, patch in overrides.items():
         if target not in by_name:
-            problems.append(error(f"`override` names {target!r}, which layout {name!r} does not have", overrides.key_locs[target], f"signals of {name!r}: {', '.join(by_name)}", "unknown-override"))
+            problems.append(error(
+                f"`override` names {target!r}, which layout {name!r} does not have", overrides.key_locs[target],
+                f"signals of {name!r}: {', '.join(by_name)}", "unknown-override"))
             continue
         signals[by_name[target]] = _patched(signals[by_name[target]], patch)
     kept = [s for s in signals if s.get("name", f"reserved_{s['start']}") not in removed]
@@ -99,14 +103,17 @@ def resolve(spec: LoadedSpec) -> Resolved:
             for tname, table in source.items():
                 if tname in can.value_tables:
                     first = can.value_tables[tname].loc
-                    problems.append(error(f"value table {tname!r} is defined twice (first at {first})", source.key_locs[tname], "rename one of them", "duplicate-value-table"))
+                    problems.append(error(f"value table {tname!r} is defined twice (first at {first})", source.key_locs[tname], "rename one of them",
+                                          "duplicate-value-table"))
                     continue
                 can.value_tables[tname] = table
         layouts: LocDict = doc.data.get("layouts", LocDict())
         for msg in doc.data["messages"]:
             has_layout, has_signals = "layout" in msg, "signals" in msg
             if has_layout == has_signals:
-                problems.append(error(f"message {msg['name']!r} needs exactly one of `signals` or `layout`", msg.loc, "list its signals, or name a shared layout and its differences", "signals-or-layout"))
+                problems.append(error(
+                    f"message {msg['name']!r} needs exactly one of `signals` or `layout`", msg.loc,
+                    "list its signals, or name a shared layout and its differences", "signals-or-layout"))
                 continue
             if not has_layout and any(k in msg for k in ("override", "remove", "add")):
                 problems.append(error(f"message {msg['name']!r} uses override/remove/add without a `layout`", msg.loc, None, "signals-or-layout"))

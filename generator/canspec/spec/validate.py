@@ -51,15 +51,21 @@ def unique_names_and_ids(can: ResolvedCan) -> Iterator[Problem]:
     ids: dict[int, Any] = {}
     for msg in can.messages:
         if msg["name"] in names:
-            yield error(f"message name {msg['name']!r} is used twice (first at {names[msg['name']]})", msg.loc_of("name"), "give each message its own name", "duplicate-message-name")
+            yield error(
+                f"message name {msg['name']!r} is used twice (first at {names[msg['name']]})", msg.loc_of("name"), "give each message its own name",
+                "duplicate-message-name")
         names.setdefault(msg["name"], msg.loc_of("name"))
         if msg["id"] in ids:
-            yield error(f"frame ID 0x{msg['id']:08X} is used twice (first at {ids[msg['id']]})", msg.loc_of("id"), "each message needs its own frame ID", "duplicate-frame-id")
+            yield error(
+                f"frame ID 0x{msg['id']:08X} is used twice (first at {ids[msg['id']]})", msg.loc_of("id"), "each message needs its own frame ID",
+                "duplicate-frame-id")
         ids.setdefault(msg["id"], msg.loc_of("id"))
         seen: dict[str, Any] = {}
         for sig in _signals(msg):
             if sig["name"] in seen:
-                yield error(f"signal name {sig['name']!r} is used twice in message {msg['name']!r} (first at {seen[sig['name']]})", sig.loc_of("name"), "rename one of the signals", "duplicate-signal-name")
+                yield error(
+                    f"signal name {sig['name']!r} is used twice in message {msg['name']!r} (first at {seen[sig['name']]})", sig.loc_of("name"),
+                    "rename one of the signals", "duplicate-signal-name")
             seen.setdefault(sig["name"], sig.loc_of("name"))
 
 
@@ -74,9 +80,13 @@ def nodes(can: ResolvedCan) -> Iterator[Problem]:
             yield error(f"node {node['name']!r} is defined twice", node.loc_of("name"), None, "duplicate-node")
         if "sa" not in node:
             if j1939_bus:
-                yield error(f"node {node['name']!r} has no source address, which J1939 addressing needs", node.loc, "add `sa: 0x..` (its J1939 source address)", "node-sa")
+                yield error(
+                    f"node {node['name']!r} has no source address, which J1939 addressing needs", node.loc, "add `sa: 0x..` (its J1939 source address)",
+                    "node-sa")
         elif node["sa"] in sas:
-            yield error(f"source address 0x{node['sa']:02X} of {node['name']!r} is already {sas[node['sa']]!r}'s", node.loc_of("sa"), "each node needs its own source address", "duplicate-node")
+            yield error(
+                f"source address 0x{node['sa']:02X} of {node['name']!r} is already {sas[node['sa']]!r}'s", node.loc_of("sa"),
+                "each node needs its own source address", "duplicate-node")
         names[node["name"]] = node
         if "sa" in node:
             sas.setdefault(node["sa"], node["name"])
@@ -94,7 +104,8 @@ def nodes(can: ResolvedCan) -> Iterator[Problem]:
         sender = names.get(msg["sender"])
         if sender is not None and j1939_bus and "sa" in sender and (msg["id"] & 0xFF) != sender["sa"]:
             yield error(
-                f"message {msg['name']!r} is sent by {sender['name']!r} (SA 0x{sender['sa']:02X}) but its ID 0x{msg['id']:08X} carries SA 0x{msg['id'] & 0xFF:02X}",
+                f"message {msg['name']!r} is sent by {sender['name']!r} (SA 0x{sender['sa']:02X}) "
+                f"but its ID 0x{msg['id']:08X} carries SA 0x{msg['id'] & 0xFF:02X}",
                 msg.loc_of("id"), "fix the ID's last byte or the sender", "sender-sa")
 
 
@@ -109,13 +120,17 @@ def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
             continue
         if j1939_bus and not is_extended:
             where = msg.loc_of("extended") if "extended" in msg else bus.loc_of("id_format")
-            yield error(f"message {msg['name']!r} has an 11-bit ID, but J1939 addressing needs 29-bit IDs", where, "use `id_format: extended`, or `addressing: none` for a bus without J1939", "j1939-addressing")
+            yield error(
+                f"message {msg['name']!r} has an 11-bit ID, but J1939 addressing needs 29-bit IDs", where,
+                "use `id_format: extended`, or `addressing: none` for a bus without J1939", "j1939-addressing")
             continue
         declared = msg.get("j1939")
         if declared is None:
             continue  # derived from the ID
         if not j1939_bus:
-            yield error(f"message {msg['name']!r} declares J1939 fields on a bus without J1939 addressing", msg.loc_of("j1939"), "remove `j1939:`, or set the bus's `addressing: j1939`", "j1939-addressing")
+            yield error(
+                f"message {msg['name']!r} declares J1939 fields on a bus without J1939 addressing", msg.loc_of("j1939"),
+                "remove `j1939:`, or set the bus's `addressing: j1939`", "j1939-addressing")
             continue
         actual = j1939.decompose(msg["id"])
         for key in ("priority", "edp", "dp", "pf", "ps", "sa"):
@@ -129,13 +144,17 @@ def frame_ids(can: ResolvedCan) -> Iterator[Problem]:
 def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
         if not 0 <= msg.get("cycle_ms", 0) <= MAX_CYCLE_MS:
-            yield error(f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 0..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"), "give the period in milliseconds (0, or no `cycle_ms`, for an event-driven message)", "cycle-time")
+            yield error(
+                f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 0..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"),
+                "give the period in milliseconds (0, or no `cycle_ms`, for an event-driven message)", "cycle-time")
         if not 0 <= msg.get("dlc", 8) <= 8:
             yield error(f"DLC {msg['dlc']} of {msg['name']!r} is not in 0..8", msg.loc_of("dlc"), "classic CAN frames carry 0 to 8 bytes", "dlc-range")
         if msg.get("layout_undefined") and len(_signals(msg)):
             yield error(f"message {msg['name']!r} says `layout_undefined` but lists signals", msg.loc_of("layout_undefined"), None, "empty-message")
         if not msg.get("layout_undefined") and not len(_signals(msg)) and msg.get("dlc", 8) != 0:
-            yield error(f"message {msg['name']!r} has no signals", msg.loc, "list its signals, or set `layout_undefined: true` if the document defines none (a DLC-0 frame needs none)", "empty-message")
+            yield error(
+                f"message {msg['name']!r} has no signals", msg.loc,
+                "list its signals, or set `layout_undefined: true` if the document defines none (a DLC-0 frame needs none)", "empty-message")
 
 
 @rule
@@ -147,21 +166,29 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
         for sig in _signals(msg):
             start, length = sig["start"], sig["len"]
             if not 1 <= length <= 64 or start < 0:
-                yield error(f"signal {sig['name']!r}: start {start} / length {length} is not a valid bit field", sig.loc_of("len"), "length is 1..64 bits, start is >= 0", "signal-length")
+                yield error(
+                    f"signal {sig['name']!r}: start {start} / length {length} is not a valid bit field", sig.loc_of("len"),
+                    "length is 1..64 bits, start is >= 0", "signal-length")
                 continue
             if start + length > frame_bits:
-                yield error(f"signal {sig['name']!r} (bits {start}..{start + length - 1}) extends beyond the {frame_bits // 8}-byte frame of {msg['name']!r}", sig.loc_of("start"), "check start and length against the DLC", "signal-beyond-dlc")
+                yield error(
+                    f"signal {sig['name']!r} (bits {start}..{start + length - 1}) extends beyond the {frame_bits // 8}-byte frame of {msg['name']!r}",
+                    sig.loc_of("start"), "check start and length against the DLC", "signal-beyond-dlc")
                 continue
             clash = {owners[b] for b in range(start, start + length) if owners[b] is not None}
             if clash:
-                yield error(f"signal {sig['name']!r} (bits {start}..{start + length - 1}) overlaps {', '.join(sorted(map(str, clash)))} in {msg['name']!r}", sig.loc_of("start"), "check the start bits and lengths in the document's table", "signal-overlap")
+                yield error(
+                    f"signal {sig['name']!r} (bits {start}..{start + length - 1}) overlaps {', '.join(sorted(map(str, clash)))} in {msg['name']!r}",
+                    sig.loc_of("start"), "check the start bits and lengths in the document's table", "signal-overlap")
             for b in range(start, start + length):
                 owners[b] = owners[b] or sig["name"]
             for key in ("factor", "offset"):
                 if not _finite(sig[key]):
                     yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
             if _finite(sig["factor"]) and sig["factor"] == 0:
-                yield error(f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero")
+                yield error(
+                    f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero"
+                )
 
 
 @rule
@@ -176,18 +203,22 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                 continue
             lo, hi = Fraction(rng[0]), Fraction(rng[1])
             if lo > hi:
-                yield error(f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] has min > max", sig.loc_of("range"), "write the range as [min, max]", "range-order")
+                yield error(
+                    f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] has min > max", sig.loc_of("range"), "write the range as [min, max]", "range-order"
+                )
                 continue
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
             ends = sorted([to_physical(tmin, factor, offset), to_physical(tmax, factor, offset)])
             if hi < ends[0] or lo > ends[1] or _no_raw_in(lo, hi, factor, offset, sig["len"], sig["signed"]):
                 yield error(
-                    f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] (it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
+                    f"signal {sig['name']!r}: no value of the {sig['len']}-bit field lies in the documented range [{rng[0]}, {rng[1]}] "
+                    f"(it encodes [{_num(ends[0])}, {_num(ends[1])}] in steps of {sig['factor']})",
                     sig.loc_of("range"), "check offset, factor, length and range against the document", "range-empty")
             elif lo < ends[0] or hi > ends[1]:
                 yield warning(
-                    f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} can encode [{_num(ends[0])}, {_num(ends[1])}]",
+                    f"signal {sig['name']!r}: documented range [{rng[0]}, {rng[1]}] exceeds what {sig['len']} bits × {sig['factor']} + {sig['offset']} "
+                    f"can encode [{_num(ends[0])}, {_num(ends[1])}]",
                     sig.loc_of("range"), "encoders accept only the encodable part; record the erratum if the document is wrong", "range-unreachable")
 
 
@@ -230,7 +261,9 @@ def value_fit(can: ResolvedCan) -> Iterator[Problem]:
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             tname = sig.get("values")
             if tname is not None and tname not in can.value_tables:
-                yield error(f"signal {sig['name']!r} uses unknown value table {tname!r}", sig.loc_of("values"), "define it under value_tables", "unknown-value-table")
+                yield error(
+                    f"signal {sig['name']!r} uses unknown value table {tname!r}", sig.loc_of("values"), "define it under value_tables", "unknown-value-table"
+                )
             tables = [("value", tname, can.value_tables.get(tname))] if tname else []
             if "special" in sig:
                 tables.append(("special value", None, sig["special"]))
@@ -239,7 +272,9 @@ def value_fit(can: ResolvedCan) -> Iterator[Problem]:
                     continue
                 for raw in table:
                     if not tmin <= raw <= tmax:
-                        yield error(f"{what} {raw} (0x{raw:X}) does not fit the {sig['len']}-bit field {sig['name']!r} of {msg['name']!r} ({tmin}..{tmax})", sig.loc_of("values" if what == "value" else "special"), "widen the field or drop the value", "value-out-of-field")
+                        yield error(
+                            f"{what} {raw} (0x{raw:X}) does not fit the {sig['len']}-bit field {sig['name']!r} of {msg['name']!r} ({tmin}..{tmax})",
+                            sig.loc_of("values" if what == "value" else "special"), "widen the field or drop the value", "value-out-of-field")
             if sig["role"] == "reserved" and any(k in sig for k in ("values", "special", "range")):
                 yield warning(f"reserved field {sig['name']!r} has values or a range", sig.loc, "reserved bits carry no meaning", "reserved-with-meaning")
 
@@ -251,7 +286,9 @@ def value_table_identifiers(can: ResolvedCan) -> Iterator[Problem]:
         for raw, value in table.items():
             ident = label_pair(value)[0]
             if ident in seen:
-                yield error(f"value table {tname!r}: identifier {ident!r} names both {seen[ident]} and {raw}", table.loc_of(raw), "identifiers become enum members and must be unique", "duplicate-value-name")
+                yield error(
+                    f"value table {tname!r}: identifier {ident!r} names both {seen[ident]} and {raw}", table.loc_of(raw),
+                    "identifiers become enum members and must be unique", "duplicate-value-name")
             seen.setdefault(ident, raw)
 
 
@@ -273,15 +310,21 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
             rng = sig.get("range")
             if rng is not None and full is not None and all(_finite(v) for v in rng) and [Fraction(rng[0]), Fraction(rng[1])] != full:
                 yield error(
-                    f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}",
-                    sig.loc_of("range"), f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
+                    f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}", sig.loc_of("range"),
+                    f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
             if role == "checksum":
                 if sig["len"] != 8 or sig["start"] % 8:
-                    yield error(f"checksum {sig['name']!r} must be one whole byte (8 bits at a multiple of 8), not {sig['len']} bits at bit {sig['start']}", sig.loc_of("start"), "the XOR checksum is byte 7 = XOR of bytes 0..6", "checksum-shape")
+                    yield error(
+                        f"checksum {sig['name']!r} must be one whole byte (8 bits at a multiple of 8), not {sig['len']} bits at bit {sig['start']}",
+                        sig.loc_of("start"), "the XOR checksum is byte 7 = XOR of bytes 0..6", "checksum-shape")
                 elif dlc < 2:
-                    yield error(f"checksum {sig['name']!r} in a {dlc}-byte frame has no byte to cover", sig.loc_of("start"), "the XOR checksum needs a frame of at least 2 bytes", "checksum-shape")
+                    yield error(
+                        f"checksum {sig['name']!r} in a {dlc}-byte frame has no byte to cover", sig.loc_of("start"),
+                        "the XOR checksum needs a frame of at least 2 bytes", "checksum-shape")
                 elif sig["start"] // 8 != dlc - 1:
-                    yield error(f"checksum {sig['name']!r} in byte {sig['start'] // 8} would not cover the bytes after it; the XOR checksum is the last byte of the frame", sig.loc_of("start"), f"put it at start bit {8 * (dlc - 1)}", "checksum-shape")
+                    yield error(
+                        f"checksum {sig['name']!r} in byte {sig['start'] // 8} would not cover the bytes after it; "
+                        "the XOR checksum is the last byte of the frame", sig.loc_of("start"), f"put it at start bit {8 * (dlc - 1)}", "checksum-shape")
             if role == "counter" and sig["len"] > 8:
                 yield error(f"counter {sig['name']!r} is {sig['len']} bits; rolling counters are 1..8 bits", sig.loc_of("len"), None, "counter-shape")
 
@@ -304,9 +347,13 @@ def multiframes(can: ResolvedCan) -> Iterator[Problem]:
             continue
         per_frame = payload["len"] // 8
         if mf["frames"] * per_frame < mf["text_length"]:
-            yield error(f"{mf['frames']} frames × {per_frame} bytes cannot carry {mf['text_length']} characters", mf.loc_of("frames"), "raise `frames` or shorten the text", "multiframe")
+            yield error(
+                f"{mf['frames']} frames × {per_frame} bytes cannot carry {mf['text_length']} characters", mf.loc_of("frames"),
+                "raise `frames` or shorten the text", "multiframe")
         if mf["frames"] > (1 << index["len"]):
-            yield error(f"{mf['frames']} frames need more than the {index['len']}-bit index {index['name']!r} can count", mf.loc_of("frames"), None, "multiframe")
+            yield error(
+                f"{mf['frames']} frames need more than the {index['len']}-bit index {index['name']!r} can count", mf.loc_of("frames"), None, "multiframe"
+            )
 
 
 def _json_rules(doc: Any) -> Iterator[Problem]:
@@ -328,19 +375,25 @@ def _json_rules(doc: Any) -> Iterator[Problem]:
         by_name[msg["name"]] = msg
         for key in ("from", "to"):
             if msg[key] not in parties:
-                yield error(f"message {msg['name']!r}: `{key}` {msg[key]!r} is not a party", msg.loc_of(key), f"parties: {', '.join(sorted(parties))}", "json-unknown-party")
+                yield error(
+                    f"message {msg['name']!r}: `{key}` {msg[key]!r} is not a party", msg.loc_of(key), f"parties: {', '.join(sorted(parties))}",
+                    "json-unknown-party")
         keys: dict[str, Any] = {}
         fields = msg["fields"]
         for i, ref in enumerate(fields):
             if isinstance(ref, str):
                 if ref not in shared:
-                    yield error(f"message {msg['name']!r} refers to unknown field {ref!r}", fields.loc_of(i), f"shared fields: {', '.join(shared)}", "json-unknown-field")
+                    yield error(
+                        f"message {msg['name']!r} refers to unknown field {ref!r}", fields.loc_of(i), f"shared fields: {', '.join(shared)}",
+                        "json-unknown-field")
                     continue
                 fdef, default_key = shared[ref], ref
             else:
                 fdef, default_key = ref, ref["name"]
                 if fdef["type"] not in types:
-                    yield error(f"field {default_key!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")
+                    yield error(
+                        f"field {default_key!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type"
+                    )
             key = fdef.get("json_name", default_key)
             if key in keys:
                 yield error(f"message {msg['name']!r} has JSON key {key!r} twice", fields.loc_of(i), None, "json-duplicate-field")
@@ -351,9 +404,13 @@ def _json_rules(doc: Any) -> Iterator[Problem]:
         if msg.get("role") == "reply":
             req = by_name.get(msg.get("reply_to", ""))
             if req is None or req.get("role") != "request":
-                yield error(f"reply {msg['name']!r} must name its request in `reply_to`", msg.loc_of("reply_to") if "reply_to" in msg else msg.loc, "reply_to: <a message with role: request>", "json-reply-to")
+                yield error(
+                    f"reply {msg['name']!r} must name its request in `reply_to`", msg.loc_of("reply_to") if "reply_to" in msg else msg.loc,
+                    "reply_to: <a message with role: request>", "json-reply-to")
             elif req.get("cmd") != msg.get("cmd"):
-                yield error(f"reply {msg['name']!r} (cmd {msg.get('cmd')}) answers {req['name']!r} (cmd {req.get('cmd')})", msg.loc_of("cmd"), "a reply carries its request's cmd", "json-reply-to")
+                yield error(
+                    f"reply {msg['name']!r} (cmd {msg.get('cmd')}) answers {req['name']!r} (cmd {req.get('cmd')})", msg.loc_of("cmd"),
+                    "a reply carries its request's cmd", "json-reply-to")
 
 
 def check_changelog(res: Resolved) -> Iterator[Problem]:
@@ -362,12 +419,16 @@ def check_changelog(res: Resolved) -> Iterator[Problem]:
     versions = res.changelog.data["versions"]
     for prev, cur in zip(versions, versions[1:]):
         if version_key(cur["version"]) <= version_key(prev["version"]):
-            yield error(f"changelog version {cur['version']} does not come after {prev['version']}", cur.loc_of("version"), "list versions oldest first", "changelog-order")
+            yield error(
+                f"changelog version {cur['version']} does not come after {prev['version']}", cur.loc_of("version"), "list versions oldest first",
+                "changelog-order")
     if res.can is not None:
         protocol_version = str(res.can.doc.data["protocol"]["version"])
         newest = str(versions[-1]["version"])
         if newest != protocol_version:
-            yield error(f"the changelog ends at {newest} but the protocol is version {protocol_version}", versions.loc_of(len(versions) - 1), "add the protocol's current version to the changelog", "changelog-current")
+            yield error(
+                f"the changelog ends at {newest} but the protocol is version {protocol_version}", versions.loc_of(len(versions) - 1),
+                "add the protocol's current version to the changelog", "changelog-current")
 
 
 def validate(res: Resolved) -> list[Problem]:

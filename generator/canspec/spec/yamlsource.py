@@ -51,7 +51,7 @@ MAX_VALUES = 5_000_000  # mapping entries and list items after expanding aliases
 
 try:  # libyaml's scanner and parser when PyYAML has them: about 4x faster on big specs
     from yaml.cyaml import CParser as _CParser
-except ImportError:  # PyYAML built without libyaml (tests/robust/test_yaml_fallback.py)
+except ImportError:  # PyYAML built without libyaml (tests/spec/test_yaml_fallback.py)
     _CParser = None
 
 if _CParser is not None:
@@ -189,7 +189,8 @@ def load_yaml(path: Path, display_name: str | None = None) -> Any:
     try:
         size = path.stat().st_size
         if size > MAX_FILE_BYTES:
-            raise SpecError([error(f"file is {size / 2**20:.0f} MiB; spec files are limited to {MAX_FILE_BYTES >> 20} MiB", Loc(name), "split the spec into several files listed in a bundle")])
+            raise SpecError([error(f"file is {size / 2**20:.0f} MiB; spec files are limited to {MAX_FILE_BYTES >> 20} MiB", Loc(name),
+                                   "split the spec into several files listed in a bundle")])
         raw = path.read_bytes()
     except FileNotFoundError:
         raise SpecError([error("file not found", Loc(name), "check the path (and the bundle's `files` list)")]) from None
@@ -241,5 +242,6 @@ def load_yaml(path: Path, display_name: str | None = None) -> Any:
         raise SpecError([error("file holds no data", Loc(name), "a spec file starts with `schema_version:` and `kind:`")])
     if loader.first_alias is not None and _expanded_size(data, {}) > MAX_VALUES:
         mark = loader.first_alias
-        raise SpecError([error(f"YAML aliases expand this file to more than {MAX_VALUES:,} values", Loc(name, mark.line + 1, mark.column + 1), "use fewer, smaller aliases (is this a \"billion laughs\" document?)")])
+        raise SpecError([error(f"YAML aliases expand this file to more than {MAX_VALUES:,} values", Loc(name, mark.line + 1, mark.column + 1),
+                               "use fewer, smaller aliases (is this a \"billion laughs\" document?)")])
     return data

@@ -43,3 +43,8 @@ def registry() -> dict[str, Target]:
         if isinstance(target, Target):
             found[target.name] = target
     return dict(sorted(found.items(), key=lambda kv: (kv[1].order, kv[0])))
+
+
+def target_names() -> list[str]:
+    """The names `canspec.generate` accepts, in generation order (what `canspec targets` lists)."""
+    return list(registry())

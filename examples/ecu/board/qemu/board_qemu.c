@@ -1,5 +1,5 @@
 /* The test bench's board: the ECU image runs as a Linux process under user-mode qemu-arm (the
- * core's exact Thumb code; qemu-arm has no Cortex-M peripherals), like tests/c/cross/. It stands in
+ * core's exact Thumb code; qemu-arm has no Cortex-M peripherals), like tests/targets/c/cross/. It stands in
  * for the board support package: the SysTick is a simulated millisecond, the CAN controller's
  * receive interrupt fires for each frame the bench scripted for that millisecond, the transmit
  * mailbox and the text channel write lines to stdout. The bench script comes on stdin:

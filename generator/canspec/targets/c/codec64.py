@@ -5,7 +5,7 @@ form of codec.py, which every other core runs.
 The byte form pays there for what small cores need: a branch per byte's range check (so that
 few fields are held in registers at once) and, for a field that crosses bytes, a reload, shifts
 and an OR per byte it touches (a store to dst may alias src). Per message the generator picks
-(by the instruction estimates below, x86-64 gcc -O2; tests/c/bench.py measures them):
+(by the instruction estimates below, x86-64 gcc -O2; tests/targets/c/bench.py measures them):
 
 - pack, frame word: each field placed at its start bit in a uint64_t `w` (the frame read as a
   little-endian integer: byte k is bits 8k..8k+7), the checksum byte the XOR fold of the others,

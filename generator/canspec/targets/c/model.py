@@ -1,8 +1,8 @@
 """The C target's view of the IR: names, types, literals and pack plans of a whole protocol.
 
-Python owns the meaning here (messages.py, signals.py, physical.py, runs.py, words.py) — bit
-positions, masks, range checks, fixed-point scales, literal syntax, what the protocol uses at
-all — so the `templates/c/` family only loops, branches on booleans and places text.
+Python owns the meaning here (names.py, messages.py, signals.py, physical.py, divide.py, codec.py,
+codec64.py) — bit positions, masks, range checks, fixed-point scales, literal syntax, what the
+protocol uses at all — so the `templates/c/` family only loops, branches on booleans and places text.
 """
 
 from __future__ import annotations

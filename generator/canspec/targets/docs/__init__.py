@@ -14,8 +14,7 @@ from typing import Any
 import yaml
 
 from canspec import ir
-from canspec.ir import nodeview
-from canspec.reference import busload
+from canspec.ir import busload, nodeview
 from canspec.render.environment import header_lines, render
 from canspec.render.literals import hex_text
 from canspec.targets import Target

@@ -111,7 +111,9 @@ def bit_layout(msg: ir.Message, zh: bool) -> str:
     for byte in range(msg.dlc):  # absolute bit numbers (Intel start-bit numbering) in each cell's corner
         for col in range(8):
             bit = byte * 8 + 7 - col
-            out.append(f'<text x="{LEFT + col * CELL_W + CELL_W - 5}" y="{TOP + byte * CELL_H + 11}" font-size="8" text-anchor="end" fill="#777777">{bit}</text>')
+            out.append(
+                f'<text x="{LEFT + col * CELL_W + CELL_W - 5}" y="{TOP + byte * CELL_H + 11}" font-size="8" text-anchor="end" fill="#777777">{bit}</text>'
+            )
     out.append(f'<rect x="{LEFT}" y="{TOP}" width="{8 * CELL_W}" height="{msg.dlc * CELL_H}" fill="none" stroke="#555555" stroke-width="1.5"/>')
     out.append("</svg>")
     return "\n".join(out) + "\n"

@@ -3,7 +3,7 @@ CAN protocol, formatted with ruff at generation time (render/formatters.py: in m
 deterministic for the pinned ruff version). Modules that depend on the spec are rendered from templates; the
 rest (errors, the encode slow path, J1939 helpers, python-can glue) are plain source files
 under templates/python/static/, copied with the generated header — and the receive monitor,
-`monitor.py`, is canspec's own reference/monitor.py, copied the same way."""
+`monitor.py`, is canspec's own runtime/monitor.py, copied the same way."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ from canspec.render.formatters import ruff_format
 from canspec.targets import Target
 from canspec.targets.python.model import PyPackage, build_package
 
-MONITOR_SOURCE = "canspec.reference.monitor"  # modules' source: copied from canspec's own package
+MONITOR_SOURCE = "canspec.runtime.monitor"  # modules' source: copied from canspec's own package
 LINE_LENGTH = 120
 TARGET_NAME = "python"
 
@@ -36,7 +36,7 @@ def _modules(pkg: PyPackage) -> dict[str, str]:
 def static_source(spec: ir.Spec, name: str) -> str:
     """A static source file as shipped: the generated header, then the file verbatim."""
     if name == MONITOR_SOURCE:  # canspec's own receive monitor, the one implementation of it
-        return with_header(spec, TARGET_NAME, "monitor.py", (importlib.resources.files("canspec.reference") / "monitor.py").read_text(encoding="utf-8"))
+        return with_header(spec, TARGET_NAME, "monitor.py", (importlib.resources.files("canspec.runtime") / "monitor.py").read_text(encoding="utf-8"))
     return static_file(spec, TARGET_NAME, f"python/{name}")
 
 

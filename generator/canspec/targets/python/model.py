@@ -18,16 +18,13 @@ from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, pa
 MAX_TUPLE_LOOKUP_BITS = 8
 # Names the package defines itself (its modules, __init__ constants, errors, messages.py's API and
 # imports): message and enum classes never take one.
-PACKAGE_NAMES = frozenset(
-    {
-        "annotations", "enums", "errors", "j1939", "messages", "multiframe", "bus", "monitor", "supervision", "PROTOCOL", "VERSION", "DOCUMENT",
-        "BITRATE", "SPEC_SHA256", "Error", "DecodeError", "EncodeError", "ChecksumError", "FrameLengthError", "RangeError", "RawRangeError",
-        "UnknownFrameError", "UnknownSignalError", "TextError", "TextIndexError", "InconsistentTextError", "InvalidTextError", "new_monitor", "TEXT_ASSEMBLERS",
-        "FaultTable", "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode", "encode_raw", "Callable",
-        "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum", "_new", "_from_bytes",
-        "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
-    }
-)
+PACKAGE_NAMES = frozenset({
+    "annotations", "enums", "errors", "j1939", "messages", "multiframe", "bus", "monitor", "supervision", "PROTOCOL", "VERSION", "DOCUMENT", "BITRATE",
+    "SPEC_SHA256", "Error", "DecodeError", "EncodeError", "ChecksumError", "FrameLengthError", "RangeError", "RawRangeError", "UnknownFrameError",
+    "UnknownSignalError", "TextError", "TextIndexError", "InconsistentTextError", "InvalidTextError", "new_monitor", "TEXT_ASSEMBLERS", "FaultTable",
+    "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode",
+    "encode_raw", "Callable", "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum",
+    "_new", "_from_bytes", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS"})
 # The package's modules, as its docstring introduces them.
 MODULE_DOCS = {
     "messages": "dataclasses, encode/decode",

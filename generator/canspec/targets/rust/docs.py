@@ -154,4 +154,6 @@ def message_row(msg: ir.Message, type_name: str, bilingual: bool) -> str:
 
 
 def message_table_head(bilingual: bool) -> tuple[str, str]:
-    return ("| message | 名称 | ID | DLC | cycle (ms) |", "|---|---|---|---|---|") if bilingual else ("| message | ID | DLC | cycle (ms) |", "|---|---|---|---|")
+    return (
+        ("| message | 名称 | ID | DLC | cycle (ms) |", "|---|---|---|---|---|") if bilingual else ("| message | ID | DLC | cycle (ms) |", "|---|---|---|---|")
+    )

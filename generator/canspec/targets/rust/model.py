@@ -12,7 +12,7 @@ from canspec import ir
 from canspec.ir import j1939
 from canspec.ir.ids import MAX_STANDARD_ID
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
-from canspec.reference import textframes
+from canspec.ir.textsamples import other_key, sample_text
 from canspec.render.literals import RUST
 from canspec.targets.rust import docs
 from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
@@ -229,7 +229,7 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     pad = m.padding
     ranges = [(lo, hi) for lo, hi in ((0x20, pad - 1), (pad + 1, 0x7E)) if lo <= hi] if 0x20 <= pad <= 0x7E else [(0x20, 0x7E)]
     pattern = "[" + "".join(f"\\x{{{lo:02X}}}-\\x{{{hi:02X}}}" for lo, hi in ranges) + f"]{{0,{m.text_length}}}"
-    found = textframes.other_key(msg)
+    found = other_key(msg)
     other = (next(f for f in fields if f.sig.name == found[0]), RUST.integer(found[1])) if found is not None else (None, "")
     return RustText(
         index=index, payload=payload, text_length=m.text_length, frames=m.frames, bytes_per_frame=m.bytes_per_frame, total=m.frames * m.bytes_per_frame,
@@ -238,7 +238,7 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
         error_index=f"frame.{index.names.raw_getter}()" if index.raw_type == "u8" else "u8::try_from(index).unwrap_or(u8::MAX)",
         chunk_to_raw=cast(word, "u64", payload.raw_type), raw_to_chunk=to_chunk, text_pattern=RUST.string(pattern),
         keys=tuple(f for f in fields if f.sig.name in m.key_signals), other_key=other[0], other_raw=other[1],
-        sample_a=textframes.sample_text(m, SAMPLE_TEXTS[0]), sample_b=textframes.sample_text(m, SAMPLE_TEXTS[1]),
+        sample_a=sample_text(m, SAMPLE_TEXTS[0]), sample_b=sample_text(m, SAMPLE_TEXTS[1]),
     )
 
 

@@ -10,7 +10,7 @@ from canspec import ir
 from canspec.render.literals import RUST
 from canspec.spec.problems import Problem, error
 from canspec.targets.rust import docs
-from canspec.targets.rust.bits import int_type, type_bounds
+from canspec.targets.rust.bits import type_bounds
 from canspec.targets.rust.naming import OTHER_VARIANT, variant_name
 
 REPR_TYPES = ("u8", "i8", "u16", "i16", "u32", "i32", "u64", "i64")
@@ -71,7 +71,3 @@ def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> Rus
         free = next(v for v in range(-1, lo - 1, -1) if v not in used)
     return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, RUST.integer(free) if free is not None else "")
 
-
-def field_repr(sig: ir.Signal, enum: RustEnum) -> bool:
-    """Whether the enum's type is the field's own raw type (else the setter narrows it)."""
-    return enum.repr == int_type(sig.storage_bits, sig.signed)

@@ -31,7 +31,7 @@ MONITOR_RULES = (
     "Each sequence runs on a fresh monitor of every message (timeout = timeout_cycles x cycle, its params). Steps: start "
     "(supervise the messages' timeouts from t), frame (received at t: its faults, state, counter delta, checksum, recovery "
     "and the fault codes after it), check (the messages that time out at t). Times are ms modulo 2^32. "
-    "The rules: generator/canspec/reference/monitor.py."
+    "The rules: generator/canspec/runtime/monitor.py."
 )
 TEXT_RULES = (
     "Frames of one multi-frame message fed in order to a fresh reassembly: result ok/length/checksum/index/inconsistent, "
@@ -46,7 +46,7 @@ Scales = tuple[tuple[str, int, int, int], ...]
 
 def _scales(msg: ir.Message) -> Scales:
     """Per data signal (name, a, b, d) with raw * factor + offset == (raw * a + b) / d in integers:
-    the same numbers as json_number(sig.physical(...)) (int when exact, else the correctly
+    the same numbers as sig.physical(...) as a JSON number (int when exact, else the correctly
     rounded double of the quotient), without Fraction arithmetic for each of many cases."""
     return tuple(
         (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)

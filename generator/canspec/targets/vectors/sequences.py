@@ -1,7 +1,7 @@
 """Sequence vectors (`vectors/sequences.json`): timed frame sequences with what the receive monitor
 must report after every step, and multi-frame texts fed frame by frame with what reassembly must
-give. The expected values come from the reference monitor (reference/monitor.py, configured by
-reference/supervision.py) and the reference reassembly (reference/textframes.py); the C, Python and
+give. The expected values come from the reference monitor (runtime/monitor.py, configured by
+runtime/supervision.py) and the reference reassembly (reference/textframes.py); the C, Python and
 Rust runners replay every step and compare.
 
 Steps: `start` (supervise the listed messages' timeouts from t), `frame` (a frame received at t:
@@ -18,8 +18,9 @@ from typing import Any
 
 from canspec import ir
 from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID
-from canspec.reference import codec, supervision
-from canspec.reference.monitor import FrameEvent, Monitor
+from canspec.reference import codec
+from canspec.runtime import supervision
+from canspec.runtime.monitor import FrameEvent, Monitor
 
 MESSAGES_PER_CATEGORY = 3
 EVENT_GAP_MS = 1000  # between frames of an event-driven message

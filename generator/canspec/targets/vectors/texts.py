@@ -15,6 +15,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from canspec import ir
+from canspec.ir import textsamples
 from canspec.reference import codec
 from canspec.reference import textframes as tf
 
@@ -60,7 +61,7 @@ class TextSequence:
 def text_sequences(msg: ir.Message) -> Iterator[dict[str, Any]]:
     mf = msg.multiframe
     assert mf is not None
-    a, b = tf.sample_text(mf, SAMPLE).encode(), tf.sample_text(mf, OTHER).encode()
+    a, b = textsamples.sample_text(mf, SAMPLE).encode(), textsamples.sample_text(mf, OTHER).encode()
     fa, fb = frames_of(msg, a), frames_of(msg, b)
     n = msg.name
     yield TextSequence(msg, "in_order", f"{n}: frames 0..{mf.frames - 1}").feed(*fa).done()
@@ -70,7 +71,7 @@ def text_sequences(msg: ir.Message) -> Iterator[dict[str, Any]]:
         yield TextSequence(msg, "stale", f"{n}: a complete text, then a frame of the next text, then the rest of it").feed(*fa, *fb).done()
         note = f"{n}: the next text begins, a stale frame of the previous one arrives, then a complete set (recovery)"
         yield TextSequence(msg, "stale", note).feed(*fa, fb[0], fa[0], *fb).done()
-    other = tf.other_key(msg)
+    other = textsamples.other_key(msg)
     if other is not None and mf.frames > 1:
         fc = frames_of(msg, b, **{other[0]: other[1]})
         mixed = [f for pair in zip(fa, fc) for f in pair]

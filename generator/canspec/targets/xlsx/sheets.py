@@ -88,7 +88,9 @@ def about(spec: ir.Spec, can: ir.CanProtocol, sheet_names: list[str]) -> Sheet:
         ("工作表 Sheets", "\n".join(sheet_names)),
         ("S / R", "S: the node sends the message 发送; R: the node receives it 接收. Sender ALL: any node (no node column is S)."),
         ("原始值 Raw values", "Hex of the field's bits (two's complement for signed fields); a negative value follows in parentheses."),
-        ("物理范围 Physical range", "What a sender may encode: the documented range cut to what the bits carry; Notes show the documented range where it differs."),
+        (
+            "物理范围 Physical range",
+            "What a sender may encode: the documented range cut to what the bits carry; Notes show the documented range where it differs."),
         ("初始值 Initial value", INITIAL_VALUE_NOTE),
     ]
     columns = [Column("item", "项目", "Item", 24), Column("value", "内容", "Value", 110, wrap=True)]

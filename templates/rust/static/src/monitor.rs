@@ -1,7 +1,7 @@
 //! Receive monitor: per message, timeouts, rolling-counter repeats and jumps, checksum and length
 //! faults, a state in the spirit of AUTOSAR E2E's state machine, statistics, and the protocol's
 //! fault codes — without allocation, from caller-supplied millisecond times (a wrapping 32-bit
-//! tick). The rules are those of canspec's reference monitor (`generator/canspec/reference/monitor.py`),
+//! tick). The rules are those of canspec's reference monitor (`generator/canspec/runtime/monitor.py`),
 //! which the C and Python monitors follow too; the shared sequence vectors test all three:
 //!
 //! - A frame is looked up by its ID and ID format; an unknown one is counted and touches nothing.

@@ -1,0 +1,132 @@
+"""candump text → frames, one line at a time (the exact reader; `logfast.py` reads the common
+`-L` form in bulk and hands every other line to this one). Accepted (SocketCAN can-utils):
+
+    (1700000000.123456) can0 1806A0B0#0011223344556677 [R|T]   candump -L / -l log file
+    1806A0B0#0011223344556677                                  bare cansend form
+    can0  1806A0B0   [8]  00 11 22 33 44 55 66 77              candump default output
+    (1700000000.123456)  can0  1806A0B0   [8]  00 11 ...       -ta, -td, -tz (time as written)
+    (2023-11-14 22:13:20.123456)  can0  1806A0B0   [8]  ...    -tA (local time)
+    (1700000000.123456)  can0  RX - -  1806A0B0   [8]  ...     -x (direction and FD flags)
+    can0  1806A0B0  [12]  00 11 ...   /   1806A0B0##1<data>    CAN FD
+
+Remote frames (`ID#R`, `remote request`) and error frames (the ID carries CAN_ERR_FLAG,
+0x20000000) are frames of their own kind; trailing `'ascii'` (-a) and error text (-e) are ignored.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime
+from typing import NamedTuple
+
+from canspec.ir.ids import max_id
+
+MAX_DATA = 64
+ERR_FLAG = 0x20000000  # linux/can.h CAN_ERR_FLAG: candump prints it as part of an error frame's ID
+DATA, REMOTE, ERROR = 0, 1, 2  # frame kinds
+
+
+class LineError(ValueError):
+    pass
+
+
+class Frame(NamedTuple):
+    timestamp: float | None  # seconds as written (None: the line has none)
+    channel: str | None
+    frame_id: int
+    extended: bool
+    data: bytes
+    kind: int = DATA
+
+
+HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
+TIME_CHARS = frozenset("0123456789.")
+
+
+def parse_id(text: str) -> tuple[int, bool, int]:
+    """(id, extended, kind): 8 digits are a 29-bit ID (or an error frame's class), else 11-bit."""
+    if not text or not HEX_DIGITS.issuperset(text):  # int() alone would take "-1", "0x1F", "1_0"
+        raise LineError(f"frame ID {text!r} is not hexadecimal")
+    value = int(text, 16)
+    extended = len(text) > 3
+    if extended and value & ERR_FLAG and value < 2 * ERR_FLAG:
+        return value & ~ERR_FLAG, True, ERROR
+    if value > max_id(extended):
+        raise LineError(f"frame ID {text} does not fit {'29' if extended else '11'} bits")
+    return value, extended, DATA
+
+
+def _hex_bytes(text: str) -> bytes:
+    try:
+        data = bytes.fromhex(text)
+    except ValueError:
+        raise LineError(f"data {text!r} is not an even number of hex digits") from None
+    if len(data) > MAX_DATA:
+        raise LineError(f"{len(data)} data bytes (at most {MAX_DATA})")
+    return data
+
+
+def parse_time(text: str) -> float:
+    """A candump time stamp: seconds (`-ta/-td/-tz`, log files) or a local date and time (`-tA`)."""
+    if text and TIME_CHARS.issuperset(text) and text.count(".") <= 1 and text != ".":
+        return float(text)
+    try:
+        return datetime.strptime(text, "%Y-%m-%d %H:%M:%S.%f").timestamp()
+    except ValueError:
+        raise LineError(f"time stamp ({text}) is not a number") from None
+
+
+def _compact(text: str, timestamp: float | None, channel: str | None) -> Frame:
+    hash_at = text.find("#")
+    if hash_at <= 0:
+        raise LineError(f"expected ID#DATA, got {text!r}")
+    frame_id, extended, kind = parse_id(text[:hash_at])
+    data = text[hash_at + 1:]
+    if data[:1] == "#":  # CAN FD: one flags digit, then the data
+        data = data[2:]
+    if data[:1] in ("R", "r"):
+        return Frame(timestamp, channel, frame_id, extended, b"", REMOTE)
+    return Frame(timestamp, channel, frame_id, extended, _hex_bytes(data.replace(".", "")), kind)
+
+
+def _bracketed(tokens: list[str], at: int, timestamp: float | None) -> Frame:
+    """candump's screen form: CHANNEL [RX - -] ID [LEN] BYTES... (tokens[at] is `[LEN]`)."""
+    if at < 2:
+        raise LineError("expected 'CHANNEL ID [LEN] DATA'")
+    frame_id, extended, kind = parse_id(tokens[at - 1])
+    try:
+        dlc = int(tokens[at][1:-1])
+    except ValueError:
+        raise LineError(f"length {tokens[at]!r} is not a number") from None
+    rest = tokens[at + 1:]
+    if rest[:2] == ["remote", "request"]:
+        return Frame(timestamp, tokens[0], frame_id, extended, b"", REMOTE)
+    if len(rest) < dlc:
+        raise LineError(f"length [{dlc}] but {len(rest)} data bytes")
+    if any(len(t) != 2 for t in rest[:dlc]):
+        raise LineError(f"data {' '.join(rest[:dlc])!r} is not hex bytes")
+    return Frame(timestamp, tokens[0], frame_id, extended, _hex_bytes("".join(rest[:dlc])), kind)
+
+
+def parse_line(line: str) -> Frame | None:
+    """The frame on a line; None for a blank or comment line; LineError when it is malformed."""
+    text = line.strip()
+    if not text or text[0] in "#;":
+        return None
+    timestamp = None
+    if text[0] == "(":
+        close = text.find(")")
+        if close < 0:
+            raise LineError("expected '(TIMESTAMP) CHANNEL ID#DATA'")
+        timestamp = parse_time(text[1:close])
+        text = text[close + 1:]
+    tokens = text.split()
+    at = next((i for i, t in enumerate(tokens) if t[:1] == "[" and t[-1:] == "]"), -1)
+    if at >= 0:
+        return _bracketed(tokens, at, timestamp)
+    if timestamp is not None:
+        if len(tokens) < 2 or len(tokens) > 3 or tokens[2:] not in ([], ["R"], ["T"]):
+            raise LineError("expected '(TIMESTAMP) CHANNEL ID#DATA'")
+        return _compact(tokens[1], timestamp, tokens[0])
+    if len(tokens) == 1:
+        return _compact(tokens[0], None, None)
+    raise LineError("not a candump line (expected '(TIMESTAMP) CHANNEL ID#DATA' or 'ID#DATA')")

@@ -1,0 +1,266 @@
+"""Bus logs → batches of frame columns (frames.Batch), read in bounded chunks so memory does not
+grow with the log. Formats: candump (every output form, in bulk: candump_bulk), Vector BLF (in bulk:
+blf_bulk), Vector ASC and PEAK TRC through python-can's readers, ASAM MF4 through asammdf (whole
+columns of the bus-logging groups at once). Picked by extension (`.gz` too) or by name; `-` is
+stdin (text forms). A file that cannot be read, or is not in its format, raises InputError with
+one line saying what is wrong."""
+
+from __future__ import annotations
+
+import gzip
+import io
+import os
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import IO, Any
+
+import numpy as np
+
+from canspec.ir.ids import MAX_EXTENDED_ID
+from canspec.logs import frames as fr
+from canspec.logs.candump import DATA, ERROR, REMOTE, Frame
+from canspec.logs.candump_bulk import read_chunk
+
+FORMATS = ("candump", "asc", "blf", "trc", "mf4")
+EXTENSIONS = {".log": "candump", ".candump": "candump", ".txt": "candump", ".asc": "asc", ".blf": "blf", ".trc": "trc", ".mf4": "mf4"}
+TEXT_FORMATS = ("candump", "asc", "trc")
+MAGIC = {"blf": b"LOGG", "mf4": b"MDF     "}
+CHUNK_BYTES = 2 << 20  # candump text per bulk step (bounds the working memory)
+CHUNK_FRAMES = 1 << 18  # frames per batch from the python-can readers
+MF4_CHUNK = 1 << 20  # records per asammdf read (about 90 MiB of 64-byte data records)
+
+
+class InputError(Exception):
+    """The input cannot be read at all (missing, unreadable, not in its format)."""
+
+
+@dataclass
+class Chunk:
+    batch: fr.Batch
+    problems: list[tuple[int, str]] = field(default_factory=list)  # (line or record, message)
+    lines: int = 0  # lines (text) or records read
+    position: int | None = None  # bytes of the file read so far (None: stdin), for progress
+
+
+def detect_format(path: str, forced: str | None) -> str:
+    if forced:
+        return forced
+    if path == "-":
+        return "candump"
+    stem = path[:-3] if path.lower().endswith(".gz") else path
+    ext = os.path.splitext(stem)[1].lower()
+    if ext not in EXTENSIONS:
+        raise InputError(f"unknown log extension {ext or '(none)'!r}; name the format with --input-format {{{','.join(FORMATS)}}}")
+    return EXTENSIONS[ext]
+
+
+def _open(path: str) -> tuple[IO[bytes], IO[bytes] | None]:
+    """The (decompressed) byte stream and the file under it."""
+    if path == "-":
+        return sys.stdin.buffer, None
+    try:
+        if os.path.isdir(path):
+            raise InputError("is a directory")
+        raw = open(path, "rb")  # noqa: SIM115 - closed by the caller
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}") from None
+    if path.lower().endswith(".gz"):
+        return gzip.open(raw), raw  # type: ignore[return-value]
+    return raw, raw
+
+
+def _head(stream: IO[bytes], fmt: str) -> bytes:
+    """The first bytes, checked against the format; the caller re-reads them."""
+    try:
+        head = stream.peek(4096)[:4096] if hasattr(stream, "peek") else b""
+    except (OSError, EOFError, gzip.BadGzipFile) as exc:
+        raise InputError(f"cannot read: {exc}") from None
+    if not head:
+        raise InputError("empty input")
+    magic = MAGIC.get(fmt)
+    if magic is not None and not head.startswith(magic):
+        raise InputError(f"not a {fmt.upper()} file (no {magic.decode().strip()!r} signature at the start)")
+    if fmt in TEXT_FORMATS and (b"\0" in head or head.startswith((b"LOGG", b"MDF "))):
+        raise InputError(f"binary data, not a {fmt} text log (name the format with --input-format)")
+    if fmt == "asc" and not any(line.strip().lower().startswith((b"date", b"base")) for line in head.splitlines()[:20]):
+        raise InputError("not a Vector ASC log (no 'date' or 'base' header line)")
+    if fmt == "trc" and not head.lstrip().startswith(b";"):
+        raise InputError("not a PEAK TRC log (no ';' header)")
+    return head
+
+
+def read_log(path: str, fmt: str | None = None) -> Iterator[Chunk]:
+    """The log's frames, chunk by chunk (`fmt` None: from the extension). InputError before the
+    first chunk when the input cannot be read or is not in its format."""
+    stream, raw = _open(path)
+    try:
+        fmt = detect_format(path, fmt)
+    except InputError:
+        if raw is not None:
+            raw.close()
+        raise
+    if not hasattr(stream, "peek"):
+        stream = io.BufferedReader(stream)  # type: ignore[arg-type]
+    try:
+        _head(stream, fmt)
+        reader = {"candump": _candump, "mf4": _mf4, "blf": _blf}.get(fmt, _python_can)
+        for chunk in reader(stream, fmt):
+            chunk.position = raw.tell() if raw is not None and not raw.closed else None
+            yield chunk
+    except (OSError, EOFError, gzip.BadGzipFile, ValueError) as exc:
+        raise InputError(f"cannot read: {exc}") from None
+    finally:
+        if raw is not None:
+            stream.close()
+            raw.close()
+
+
+def input_size(path: str) -> int | None:
+    try:
+        return None if path == "-" else os.path.getsize(path)
+    except OSError:
+        return None
+
+
+def _candump(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+    line, rest = 1, b""
+    while True:
+        block = stream.read(CHUNK_BYTES)
+        data = rest + block
+        cut = data.rfind(b"\n") + 1 if block else len(data)
+        if cut == 0 and block:
+            rest = data
+            continue
+        rest = data[cut:]
+        if data[:cut]:
+            batch, problems, lines = read_chunk(data[:cut], line)
+            yield Chunk(batch, problems, lines)
+            line += lines
+        if not block:
+            return
+
+
+def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+    from canspec.logs.blf_bulk import read_blf
+
+    for batch, objects in read_blf(stream):
+        yield Chunk(batch, [], objects)
+
+
+def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+    """ASC and TRC through python-can: batches of its messages turned into columns. The
+    text readers see a line-counting file, so frames carry their line numbers."""
+    can = _import_can()
+    counter = _LineCounter(stream) if fmt in TEXT_FORMATS else None
+    kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
+    reader_cls = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt]
+    reader = reader_cls(counter if counter is not None else stream, **kwargs)
+    frames: list[Frame] = []
+    lines: list[int] = []
+    record = done = 0
+    try:
+        for msg in reader:
+            record += 1
+            kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
+            channel = None if msg.channel is None else str(msg.channel)
+            frames.append(Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, bytes(msg.data) if kind == DATA else b"", kind))
+            lines.append(counter.line if counter is not None else record)
+            if len(frames) == CHUNK_FRAMES:
+                yield Chunk(fr.from_frames(frames, lines), [], lines[-1] - done)
+                done, frames, lines = lines[-1], [], []
+    except Exception as exc:  # noqa: BLE001 - a reader's parse error: the rest of the file cannot be read
+        at = counter.line if counter is not None else record + 1
+        yield Chunk(fr.from_frames(frames, lines), [(at, f"unreadable {fmt.upper()} record ({type(exc).__name__}: {exc}); the rest of the file is not read")])
+        return
+    end = counter.line if counter is not None else record
+    yield Chunk(fr.from_frames(frames, lines), [], end - done)
+
+
+def _import_can() -> Any:
+    """python-can without the 2 s import of asammdf that its MF4 module does on `import can`:
+    these readers do not need it, and MF4 files are read with asammdf directly (_mf4)."""
+    if "can" in sys.modules or "asammdf" in sys.modules:
+        import can
+
+        return can
+    sys.modules["asammdf"] = None  # type: ignore[assignment]  # makes python-can's `import asammdf` fail fast, as if absent
+    try:
+        import can
+    finally:
+        del sys.modules["asammdf"]
+    return can
+
+
+class _LineCounter(io.TextIOBase):
+    """A text view of a byte stream that counts the lines handed out."""
+
+    def __init__(self, stream: IO[bytes]) -> None:
+        self.stream, self.line = stream, 0
+
+    def __iter__(self) -> _LineCounter:
+        return self
+
+    def __next__(self) -> str:
+        raw = self.stream.readline()
+        if not raw:
+            raise StopIteration
+        self.line += 1
+        return raw.decode("utf-8", errors="replace")
+
+    def readline(self, size: int = -1) -> str:  # type: ignore[override]
+        try:
+            return next(self)
+        except StopIteration:
+            return ""
+
+
+MF4_GROUPS = {"CAN_DataFrame": DATA, "CAN_RemoteFrame": REMOTE, "CAN_ErrorFrame": ERROR}
+
+
+def _mf4(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+    """ASAM MF4 bus logging: the CAN_DataFrame / _RemoteFrame / _ErrorFrame channel groups read
+    as whole columns by asammdf, MF4_CHUNK records at a time."""
+    from asammdf import MDF
+
+    # process_bus_logging=False: asammdf would otherwise decode every frame on opening (0.2 s per
+    # million records) for the DBC-less bus views canspec never asks for.
+    mdf = MDF(io.BytesIO(stream.read()) if not stream.seekable() else stream, process_bus_logging=False)
+    start = mdf.header.start_time.timestamp()
+    record = 0
+    try:
+        for gi, group in enumerate(mdf.groups):
+            for ch in group.channels:
+                kind = MF4_GROUPS.get(ch.name)
+                if kind is None:
+                    continue
+                total = group.channel_group.cycles_nr
+                for offset in range(0, total, MF4_CHUNK):
+                    sig = mdf.get(ch.name, group=gi, record_offset=offset, record_count=min(MF4_CHUNK, total - offset), raw=True)
+                    yield Chunk(_mf4_columns(sig, ch.name, kind, start, record), [], len(sig.timestamps))
+                    record += len(sig.timestamps)
+    finally:
+        mdf.close()
+
+
+BYTE_MASKS = np.array([(1 << 8 * k) - 1 for k in range(8)] + [2**64 - 1], dtype=np.uint64)  # the first k bytes of a word
+
+
+def _mf4_columns(sig: Any, name: str, kind: int, start: float, first: int) -> fr.Batch:
+    s = sig.samples
+    n = len(s)
+    if kind == DATA:
+        dlc = s[f"{name}.DataLength"].astype(np.uint8)
+        word = np.ascontiguousarray(s[f"{name}.DataBytes"][:, :8]).view("<u8").ravel() & BYTE_MASKS[np.minimum(dlc, 8)]
+    else:
+        dlc, word = np.zeros(n, np.uint8), np.zeros(n, np.uint64)
+    bus = s[f"{name}.BusChannel"]
+    if n and np.all(bus == bus[0]):  # the usual log: one channel
+        channels, codes = bus[:1], np.zeros(n, np.int32)
+    else:
+        channels, codes = np.unique(bus, return_inverse=True)
+    return fr.Batch(
+        sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), s[f"{name}.ID"].astype(np.uint32) & np.uint32(MAX_EXTENDED_ID),
+        s[f"{name}.IDE"].astype(bool), np.full(n, kind, np.uint8), dlc, word,
+        np.arange(first + 1, first + n + 1, dtype=np.int64), channels=tuple(str(c) for c in channels.tolist()),
+    )

@@ -1,0 +1,104 @@
+"""Names, text and the reference reading for specs unlike the shipped one: keyword and reserved
+names get escaped or distinct type names in every binding (tests/fixtures/valid/json_keywords.yaml),
+an English-only protocol shows no empty Chinese, the reference checker reports faults in the
+bindings' order, and the Rust checks (rt.rs) are copied verbatim."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from canspec.generation import generate
+from canspec.ir import json_fields as jsonmodel
+from canspec.pipeline import compile_spec
+from canspec.reference import jsonvalue
+from canspec.targets.json_bindings import names
+from json_support import ROOT, RUST_CRATE
+
+VALID = ROOT / "tests" / "fixtures" / "valid"
+
+
+def _model(fixture: str) -> jsonmodel.ProtocolModel:
+    compiled = compile_spec(VALID / f"{fixture}.yaml")
+    assert compiled.spec is not None
+    (protocol,) = compiled.spec.json
+    return jsonmodel.model(protocol)
+
+
+@pytest.fixture(scope="module")
+def kw() -> jsonmodel.ProtocolModel:
+    return _model("json_keywords")
+
+
+def test_type_names_avoid_keywords_and_the_bindings_own_names(kw):
+    assert {mm.name: mm.type_name for mm in kw.messages} == {
+        "type": "Type",
+        "match": "Match",
+        "none": "NoneMessage",  # Python None, Rust None
+        "result": "ResultMessage",  # Rust Result
+        "value": "ValueMessage",  # serde_json::Value
+        "message": "MessageMessage",  # the bindings' Message
+        "mode": "Mode",
+    }
+    assert {e.name for e in kw.enums} == {"Class", "ModeValue"}  # the field `mode` gives way to the message `mode`
+    assert [p.type_name for p in kw.receiver_plans] == ["ToOther", "ToSelf"]
+
+
+def test_identifiers_are_escaped_per_language(kw):
+    t = kw.message("type")
+    assert [names.py_attr(r) for r in t.rules] == ["class_", "from_", "self_", "async_"]
+    assert kw.message("match").type_name == "Match" and names.py_attr(kw.message("match").rules[0]) == "type"
+    assert [names.rust_field(r) for r in t.rules] == ["class", "from", "self_", "r#async"]
+    assert [names.py_attr(r) for r in kw.message("match").rules] == ["type", "to_json_"]  # soft keyword kept; a method name escaped
+    assert [names.rust_local(r) for r in kw.message("none").rules] == ["obj_", "v_"]  # from_value's own locals
+    cls = next(e for e in kw.enums if e.name == "Class")
+    assert [names.member(v) for v in cls.values] == ["NONE", "TRUE", "SELF", "FALSE"]
+    assert [names.rust_variant(v.name) for v in cls.values] == ["None", "True", "Self_", "False"]
+    assert names.rust_variant("self") == "Self_"
+
+
+def test_english_only_protocol_shows_no_chinese(tmp_path):
+    compiled = compile_spec(VALID / "json_english_only.yaml")
+    assert compiled.spec is not None
+    for files in generate(compiled.spec, ["jsonschema", "json_bindings", "json_vectors"]).values():
+        for rel, body in files.items():
+            text = body.decode("utf-8")
+            assert not any("\u4e00" <= ch <= "\u9fff" or ch in "（）：；" for ch in text), rel
+            lines = text.splitlines()
+            assert not any(line != line.rstrip() for line in lines), rel
+            comments = [line for line in lines if line.lstrip().startswith(("#", "//", "*", "/**"))]
+            assert not any(line.endswith(" /") or " ()" in line for line in comments), rel
+            if rel.endswith(".schema.json"):
+                assert '"zh"' not in text and "\n" not in json.loads(text)["description"], rel
+
+
+def _first(message, obj) -> tuple[str, str] | None:
+    faults = jsonvalue.message_faults(message, obj)
+    return (faults[0].key, faults[0].code) if faults else None
+
+
+def test_faults_come_in_the_bindings_order(kw):
+    t = kw.message("type").message
+    valid = {"class": 1, "fr": -5, "self": True, "await": ""}
+    assert _first(t, valid) is None
+    assert _first(t, {"fr": 99, "self": 1}) == ("class", "required")  # missing keys before anything else
+    assert _first(t, {**valid, "Z": 1, "a": 2}) == ("Z", "unexpected")  # the least unknown key in code-point order
+    assert _first(t, {**valid, "class": 9, "fr": 99}) == ("class", "enum")  # then the fields in document order
+    assert _first(t, {**valid, "fr": 9}) == ("fr", "range")
+    assert _first(t, {**valid, "fr": -100}) is None  # the sentinel
+    assert _first(t, {**valid, "fr": 40000}) == ("fr", "type_range")
+
+
+def test_a_commands_number_is_checked_first():
+    pm = _model("json_string_enums")
+    dispatch = pm.message("dispatch").message
+    obj = {"cmd": 11, "bn": "x", "lane": "A1", "note": "go"}
+    assert _first(dispatch, obj) == ("cmd", "cmd")
+
+
+def test_rust_checks_are_the_source_file_with_the_generated_header():
+    shipped = (RUST_CRATE / "src" / "rt.rs").read_text(encoding="utf-8")
+    source = (ROOT / "templates" / "json_rust" / "rt.rs").read_text(encoding="utf-8")
+    header, body = shipped.split("\n\n", 1)
+    assert body == source
+    assert all(line.startswith("// ") for line in header.splitlines()) and "Generated by canspec" in header
