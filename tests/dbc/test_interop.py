@@ -5,12 +5,12 @@ converter loses (the README's DBC section lists the same). And the renaming is w
 from __future__ import annotations
 
 import re
-import tomllib
 from pathlib import Path
 
 import canmatrix
 import interop
 import pytest
+import tomllib
 from dbc_support import can_fixtures, compiled, write_dbc
 from repo_paths import GENERATED, ROOT
 
