@@ -55,6 +55,21 @@ def test_current_format_specs_use_no_relaxation(spec):
     assert spec.features == frozenset()
 
 
+def test_the_batch_draws_rows_of_one_width_of_both_signs():
+    """The default batch holds a frame with two unsigned fields and a signed one of one bit count
+    (not a whole byte count): strategy 3's range check ORs the unsigned ones into one local, which
+    once took the signed field's type (issue 24, fixture ored_mixed_signedness)."""
+    def mixed(signals: list[dict]) -> bool:  # type: ignore[type-arg]
+        widths: dict[int, list[bool]] = {}
+        for s in signals:
+            if s.get("role") not in ("reserved", "checksum") and s["len"] not in (8, 16, 32, 64):
+                widths.setdefault(s["len"], []).append(bool(s.get("signed")))
+        return any(signs.count(False) >= 2 and True in signs for signs in widths.values())
+
+    docs = (yaml.safe_load(text) for seed in range(SEED, SEED + 100) for text in strategy.example(seed, FEATURES).files.values())
+    assert any(mixed(m.get("signals") or []) for d in docs if d.get("kind") == "can_protocol" for m in d["messages"])
+
+
 @settings(max_examples=200, deadline=None)
 @given(drawn=strategy.specs())
 def test_every_decoded_raw_end_encodes_back(drawn, tmp_path_factory):
