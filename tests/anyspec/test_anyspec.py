@@ -76,7 +76,9 @@ def test_every_decoded_raw_end_encodes_back(drawn, tmp_path_factory):
     """Decode then encode gives the same raw value at every field's raw ends and their neighbours:
     the double a decoder returns (raw × factor + offset, each step in doubles, as C, Python and
     Rust compute it) passes the reference encode's range check wherever the double rounding
-    itself carries it back (fields wider than 2^52 steps need not). The generated code of each
+    itself carries it back: its quotient inside the field (± the tie epsilon: at the type's end of
+    a field wider than about 2^22 steps, one double step beyond it, the encoders' window refuses it)
+    and rounding to it (fields wider than 2^52 steps need not). The generated code of each
     language checks the same through the vectors' `decoded` cases."""
     from canspec.pipeline import compile_spec
     from canspec.reference import codec
@@ -89,7 +91,8 @@ def test_every_decoded_raw_end_encodes_back(drawn, tmp_path_factory):
             for raw in (r for r in {sig.raw_min, sig.raw_min + 1, sig.raw_max - 1, sig.raw_max} if sig.raw_min <= r <= sig.raw_max):
                 x = float(raw) * f + o
                 q = (x - o) / f
-                carried = abs(q) < 2**52 and math.floor(abs(q) + 0.5 + 1e-9) * (1 if q >= 0 else -1) == raw
+                inside = sig.raw_type_min - 1e-9 <= q <= sig.raw_type_max + 1e-9  # the encoders' window on q
+                carried = inside and abs(q) < 2**52 and math.floor(abs(q) + 0.5 + 1e-9) * (1 if q >= 0 else -1) == raw
                 if carried:
                     assert codec.to_raw(sig, x) == raw, f"{msg.name}.{sig.name}: raw {raw} decodes to {x!r}, range [{float(sig.accept_min)!r}, {float(sig.accept_max)!r}]"
                     assert float(sig.accept_min) <= x <= float(sig.accept_max), f"{msg.name}.{sig.name}: raw {raw} decodes to {x!r}"  # as targets compare

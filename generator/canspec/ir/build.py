@@ -11,7 +11,7 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits
-from canspec.ir.encoding import covering_decimal, decimal_text, decimals, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
+from canspec.ir.encoding import covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
@@ -31,15 +31,17 @@ def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) 
     return tuple(named[raw] for raw in sorted(named))
 
 
-def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fraction, offset: Fraction) -> tuple[Fraction, Fraction]:
+def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fraction, offset: Fraction, field: tuple[int, int]) -> tuple[Fraction, Fraction]:
     """[lo, hi] (the range widened by the tie tolerance) widened further to the doubles the decoders
-    return for the raw ends, wherever those encode back: a double's step can exceed the tolerance
-    (raw 0x7FFFFFFF × 0.1 decodes to 214748364.70000002, beyond 214748364.7 + 1e-10), and every
-    decoded value must encode to its raw value again."""
+    return for the raw ends, wherever the runtime rule carries those back: a double's step can
+    exceed the tolerance (raw 0x7FFFFFFF × 0.1 decodes to 214748364.70000002, beyond 214748364.7 +
+    1e-10), and every decoded value must encode to its raw value again."""
     f, o = float(factor), float(offset)
     for raw in raws:
         x = to_physical_runtime(raw, f, o)
-        if to_raw_runtime(x, f, o) != raw:  # beyond what doubles carry back (fields wider than 2^52 steps)
+        # not where the double quotient leaves the field (the encoders' window refuses it) or rounds
+        # elsewhere (fields wider than 2^52 steps)
+        if not fits_runtime((x - o) / f, *field) or to_raw_runtime(x, f, o) != raw:
             continue
         if Fraction(x) < lo:
             lo = covering_decimal(x, up=False)
@@ -61,7 +63,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     check_max = doc_max if doc_max is not None else phys_max
     is_integer = factor.denominator == 1 and offset.denominator == 1
     tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
-    accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset)
+    accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), raw * factor + offset)
         for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
