@@ -115,14 +115,17 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
 def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
     """The raw ends of a field and their neighbours with the double every decoder returns for them
     (raw × factor + offset, each step in doubles) where that is not the nearest double of the exact
-    value (those the min/max cases hold): each must encode back to its raw value."""
+    value (those the min/max cases hold) and the runtime rule carries it back (its quotient inside
+    the field, rounding to the raw value): each must encode back to its raw value."""
     if sig.is_integer:  # integer physical values: exact in doubles wherever they survive at all
         return []
     f, o = float(sig.factor), float(sig.offset)
     out = []
     for raw in sorted({sig.raw_min, sig.raw_min + 1, sig.raw_max - 1, sig.raw_max}):
         x = to_physical_runtime(raw, f, o)
-        if sig.raw_min <= raw <= sig.raw_max and x != float(raw * sig.factor + sig.offset):
+        if not sig.raw_min <= raw <= sig.raw_max or x == float(raw * sig.factor + sig.offset):
+            continue
+        if fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) and to_raw_runtime(x, f, o) == raw:
             out.append((raw, x))
     return out
 
