@@ -546,6 +546,7 @@ class Builder:
             occ |= set(range(bits - 8, bits))
         want_counter = counter and self.p(0.3)
         cursor = 0
+        last = 0  # the previous field's length: rows of one width (wheel speeds, cell voltages), signed and unsigned mixed
         while cursor < bits:
             if cursor in occ:
                 cursor += 1
@@ -562,7 +563,8 @@ class Builder:
                 occ |= set(range(cursor, cursor + gap))
                 cursor += gap
                 continue
-            length = min(run, self.pick(LENGTHS))
+            length = min(run, last if last and self.p(0.3) else self.pick(LENGTHS))
+            last = length
             if want_counter and length <= 8 and self.p(0.5):
                 want_counter = False
                 out.append(self.counter(cursor, length, names))

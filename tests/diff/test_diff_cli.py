@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 from diff_helpers import BASE, ROOT, edited, run_cli
@@ -109,3 +110,31 @@ def test_yaml_syntax_error(tmp_path):
 
 def test_directory_without_bundle(tmp_path):
     assert "no canspec.yaml" in _bad(run_cli, tmp_path, BASE)
+
+
+# What the comparison model cannot hold is refused, never compared as equal: each pair below
+# differs only in it, a wire break a diff that ignored it would report as "no differences".
+_DBC_HEAD = 'VERSION "tiny 1.0.0"\n\nNS_ :\n\nBS_:\n\nBU_: ECU LOGGER\n\nBO_ 256 status: 8 ECU\n'
+_DBC_FRAME_FORMAT = ('BA_DEF_ BO_ "VFrameFormat" ENUM "StandardCAN","ExtendedCAN"' + ',"reserved"' * 12 + ',"StandardCAN_FD","ExtendedCAN_FD";\n'
+                     'BA_DEF_DEF_ "VFrameFormat" "StandardCAN";\n')
+_PLAIN_SIGNALS = ' SG_ speed : 0|16@1+ (0.1,0) [0|6553.5] "km/h" LOGGER\n SG_ level : 16|32@1- (1,0) [0|0] "" LOGGER\n'
+_MUX_SIGNALS = ' SG_ mode M : 0|8@1+ (1,0) [0|255] "" LOGGER\n SG_ speed m8 : 8|16@1+ (0.1,0) [0|6553.5] "km/h" LOGGER\n'
+
+
+def _dbc(tmp_path, name: str, signals: str, tail: str = "") -> Path:
+    path = tmp_path / f"{name}.dbc"
+    path.write_text(_DBC_HEAD + signals + "\n" + _DBC_FRAME_FORMAT + tail, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(("old", "new", "refusal"), [
+    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " m9 "), ""), "old.dbc: message 'status': is multiplexed (multiplexer 'mode')"),
+    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, 'BA_ "VFrameFormat" BO_ 256 14;\n'), "new.dbc: message 'status': is a CAN FD frame (VFrameFormat)"),
+    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, "SIG_VALTYPE_ 256 level : 1;\n"), "new.dbc: message 'status': signal 'level' is an IEEE float (SIG_VALTYPE_)"),
+], ids=["multiplexer_value", "fd_frame", "float_signal"])
+def test_what_diff_cannot_compare_is_refused(tmp_path, old, new, refusal):
+    plain = _dbc(tmp_path, "plain", _PLAIN_SIGNALS)
+    code, out, _ = run_cli("diff", plain, plain)
+    assert code == 0 and "no differences" in out  # the plain DBC is one diff compares
+    err = _bad(run_cli, _dbc(tmp_path, "old", *old), _dbc(tmp_path, "new", *new))
+    assert refusal in err and len(err.strip().splitlines()) == 1, err

@@ -6,7 +6,9 @@ renamed (targets/dbc/naming.py), so a spec and its own DBC compare equal. Specia
 back from the comments canspec writes ("0x3FF = no_obstacle (无障碍物)", "-0x4 = no_limit" for a
 negative raw value or a special without a Chinese label). Factors, offsets and ranges are taken
 as written in the SG_ lines: cantools reads them as doubles, which cannot hold 0.1 or a 64-bit
-field's 18446744073709551615 exactly."""
+field's 18446744073709551615 exactly. What the model cannot hold — Motorola signals, IEEE float
+signals, multiplexing, CAN FD frames — is refused (an InputError naming it): ignored, a change of
+it would read as "no differences"."""
 
 from __future__ import annotations
 
@@ -74,6 +76,8 @@ def _role(sig: object, attribute_definitions: dict) -> str:  # type: ignore[type
 def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: ignore[no-untyped-def]
     if sig.byte_order != "little_endian":
         raise InputError(f"signal {sig.name!r} is big-endian (Motorola); canspec compares Intel-order protocols only")
+    if sig.is_float:
+        raise InputError(f"signal {sig.name!r} is an IEEE float (SIG_VALTYPE_); canspec compares integer signals only")
     specials = {}
     for m in _SPECIAL.finditer(sig.comment or ""):
         specials[int(m.group(1) + m.group(2), 16)] = Entry(m.group(3), m.group(4))
@@ -95,6 +99,14 @@ def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: 
         unit=sig.unit or "", minimum=lo, maximum=hi, role=_role(sig, definitions), values=values, values_table=None,
         specials=specials, zh=None, desc=None,
     )
+
+
+def _check_frame(msg) -> None:  # type: ignore[no-untyped-def]
+    if msg.is_fd:
+        raise InputError("is a CAN FD frame (VFrameFormat); canspec compares classic CAN frames only")
+    if msg.is_multiplexed():
+        mux = next((s.name for s in msg.signals if s.is_multiplexer), "?")
+        raise InputError(f"is multiplexed (multiplexer {mux!r}); canspec compares messages without multiplexing only")
 
 
 def _read_text(path: Path, source: str) -> str:
@@ -126,6 +138,7 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
     for msg in db.messages:
         dbc_id = msg.frame_id | 0x80000000 if msg.is_extended_frame else msg.frame_id
         try:
+            _check_frame(msg)
             signals = tuple(sorted((_signal(s, definitions, written.get((dbc_id, s.name))) for s in msg.signals), key=lambda s: (s.start, s.length)))
         except InputError as exc:
             raise InputError(f"{source}: message {msg.name!r}: {exc}") from exc

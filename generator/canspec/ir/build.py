@@ -11,7 +11,7 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits
-from canspec.ir.encoding import decimal_text, decimals, raw_range, raw_type_range
+from canspec.ir.encoding import covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
@@ -34,6 +34,25 @@ def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) 
     return tuple(named[raw] for raw in sorted(named))
 
 
+def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fraction, offset: Fraction, field: tuple[int, int]) -> tuple[Fraction, Fraction]:
+    """[lo, hi] (the range widened by the tie tolerance) widened further to the doubles the decoders
+    return for the raw ends, wherever the runtime rule carries those back: a double's step can
+    exceed the tolerance (raw 0x7FFFFFFF × 0.1 decodes to 214748364.70000002, beyond 214748364.7 +
+    1e-10), and every decoded value must encode to its raw value again."""
+    f, o = float(factor), float(offset)
+    for raw in raws:
+        x = to_physical_runtime(raw, f, o)
+        # not where the double quotient leaves the field (the encoders' window refuses it) or rounds
+        # elsewhere (fields wider than 2^52 steps)
+        if not fits_runtime((x - o) / f, *field) or to_raw_runtime(x, f, o) != raw:
+            continue
+        if Fraction(x) < lo:
+            lo = covering_decimal(x, up=False)
+        if Fraction(x) > hi:
+            hi = covering_decimal(x, up=True)
+    return lo, hi
+
+
 def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     length, signed = sig["len"], bool(sig["signed"])
     factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
@@ -47,6 +66,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
     check_max = doc_max if doc_max is not None else phys_max
     is_integer = factor.denominator == 1 and offset.denominator == 1
     tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
+    accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))
         for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
@@ -75,8 +95,8 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         phys_max=phys_max,
         check_min=check_min,
         check_max=check_max,
-        accept_min=check_min - tolerance,
-        accept_max=check_max + tolerance,
+        accept_min=accept_min,
+        accept_max=accept_max,
         storage_bits=storage_bits(length),
         value_table=table,
         specials=specials,

@@ -58,6 +58,26 @@ def to_raw_runtime(physical: float, factor: float, offset: float) -> int:
     return -r if q < 0 else r
 
 
+def to_physical_runtime(raw: int, factor: float, offset: float) -> float:
+    """The generated decoders' rule, step for step: the raw value as a double, times factor, plus
+    offset, each step rounded to a double (C, Python and Rust alike)."""
+    return float(raw) * factor + offset
+
+
+def covering_decimal(x: float, up: bool) -> Fraction:
+    """The shortest decimal that reads back as the double x and lies at or above x's exact value
+    (at or below where not `up`): a bound a literal can state, which keeps x inside in exact
+    arithmetic (the reference codec) and in doubles (every target) alike."""
+    exact_x = Fraction(x)
+    for digits in range(17):
+        d = Decimal(f"{x:.{digits}e}")
+        step = Decimal(f"1e{d.adjusted() - digits}")
+        for c in (d, d + step if up else d - step):
+            if float(c) == x and (Fraction(c) >= exact_x if up else Fraction(c) <= exact_x):
+                return Fraction(c)
+    return exact_x
+
+
 def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     """The runtime rule's field check: the double quotient q lies in the field's raw range
     widened by TIE_EPSILON (exactly, in real arithmetic), as the documented range is widened to

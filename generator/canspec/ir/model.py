@@ -125,7 +125,8 @@ class Signal:
     check_max: Fraction
     # What the runtime range check compares against: check_min/max widened by |factor| × TIE_EPSILON
     # for non-integer scaling, so a value decoded in doubles (252 × 0.05 − 9 = 3.6000000000000014)
-    # re-encodes, while 3.605 is still out of [-9, 3.6].
+    # re-encodes, while 3.605 is still out of [-9, 3.6]; and further to the decoded doubles of
+    # raw_min/raw_max where a double's step exceeds that (build._accepted).
     accept_min: Fraction
     accept_max: Fraction
     storage_bits: int  # 8 / 16 / 32 / 64: narrowest unsigned/signed container

@@ -70,10 +70,11 @@ def to_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
         value = exact(physical)
     except (ValueError, ArithmeticError, TypeError):
         raise CodecError(f"{sig.name}: {physical!r} is not a finite number") from None
-    q = (value - sig.offset) / sig.factor
-    if not sig.raw_type_min <= q <= sig.raw_type_max:
+    # the rounded value must fit, not q: a decoded value at the field's end (5 bits, 31 × 0.1 -
+    # 0.05 = 3.0500000000000003 in doubles) lies a hair beyond it and rounds back into it
+    raw = round_half_away((value - sig.offset) / sig.factor)
+    if not sig.raw_type_min <= raw <= sig.raw_type_max:
         raise CodecError(f"{sig.name}: {physical} does not fit the {sig.length}-bit field")
-    raw = round_half_away(q)
     if any(s.raw == raw for s in sig.specials):
         return raw
     if not sig.accept_min <= value <= sig.accept_max or not sig.raw_min <= raw <= sig.raw_max:

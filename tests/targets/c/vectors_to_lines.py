@@ -96,7 +96,8 @@ def fixed_fields(sig: ir.Signal, scale: int, kind: str, raw: int, text: str) -> 
     """<fixed> <agrees> <fixed in> <fixed raw> of one physical value (see the module docstring)."""
     ff, fo = int(sig.factor * scale), int(sig.offset * scale)
     want, scaled = raw * ff + fo, Fraction(text) * scale
-    agrees = kind == "tie" or significant_digits(want) > DOUBLE_DIGITS or scaled == want
+    # a tie or a decoded double is, by design, not the exact value: nothing to compare
+    agrees = kind in ("tie", "decoded") or significant_digits(want) > DOUBLE_DIGITS or scaled == want
     return f"{int64_text(want)} {int(agrees)} {fixed_encode(kind, raw, scaled, ff, fo)}"
 
 
@@ -106,7 +107,8 @@ def physical_line(data: dict[str, tuple[ir.Signal, int | None]], case: dict, nam
     if name not in data:  # a counter or checksum: its physical value is its raw value
         return line
     sig, scale = data[name]
-    r = double_rule(sig, float(text))
+    # a decoded case's value is what a decoder returns for its raw value: it must encode back to it
+    r = int(case["raw"][name]) if case.get("kind") == "decoded" else double_rule(sig, float(text))
     line += f" {'-' if r is None else int64_text(r)}"
     if scale is None:
         return line

@@ -23,6 +23,8 @@ from canspec.diff.dbcimport import written_numbers
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 from dbc_support import ENCODINGS, attribute, load_cantools
 
+# The canmatrix minor version: its ARXML writer changed between 1.2 and 1.3 (see _canmatrix_arxml).
+CANMATRIX = tuple(int(part) for part in canmatrix.__version__.split(".")[:2])
 # (tool, format) → whether the converter rewrites numbers (then compared as exact decimals in, doubles out)
 PATHS = [("canmatrix", "sym"), ("canmatrix", "kcd"), ("canmatrix", "arxml"), ("cantools", "sym"), ("cantools", "kcd")]
 REWRITTEN = ("scale", "offset", "min", "max")  # numbers canmatrix's KCD and ARXML writers recompute or round
@@ -142,10 +144,25 @@ def _canmatrix_arxml(snap: dict[str, Any]) -> None:
         m["name"], m["cycle"] = f"FRAME_{m['name']}", None
         used.update(m["senders"] if m["senders"] is not LOST else ())
         for s in m["signals"].values():
-            _six_digit_scaling(s)
+            if CANMATRIX < (1, 3):
+                _six_digit_scaling(s)
+            else:
+                _one_decimal_scaling(s)
             s["min"], s["max"] = _bits_range(s)
             used.update(s["receivers"] if s["receivers"] is not LOST else ())
     snap["nodes"] = {n: c for n, c in snap["nodes"].items() if n in used}
+
+
+def _one_decimal_scaling(sig: dict[str, Any]) -> None:
+    """canmatrix 1.3's ARXML: every signal comes back unsigned; factor and offset are written with one
+    decimal place (a factor that rounds to 0 comes back as 1: 0.02 → 1, 0.05 → 0.1); a signal with
+    value descriptions gets a text table only and comes back unscaled (factor 1, offset 0)."""
+    sig["signed"] = False
+    if sig["choices"]:
+        sig["scale"], sig["offset"] = Decimal(1), Decimal(0)
+        return
+    sig["scale"] = Decimal(repr(round(float(sig["scale"]), 1))) or Decimal(1)
+    sig["offset"] = Decimal(repr(round(float(sig["offset"]), 1)))
 
 
 def expected(tool: str, fmt: str, original: dict[str, Any]) -> dict[str, Any]:

@@ -7,10 +7,12 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import canmatrix
 import interop
 import pytest
+import tomllib
 from dbc_support import can_fixtures, compiled, write_dbc
-from repo_paths import GENERATED
+from repo_paths import GENERATED, ROOT
 
 SHIPPED = GENERATED / "dbc" / "kaiwo_gateway.dbc"
 SOURCES = [SHIPPED, *can_fixtures()]
@@ -61,3 +63,11 @@ def test_without_unique_names_canmatrix_mixes_definitions_up(tmp_path):
     arxml = interop.differences(interop.expected("canmatrix", "arxml", original),
                                 interop.snapshot(interop.round_trip("canmatrix", "arxml", shared, tmp_path)), as_doubles=True)
     assert any("counter.length: 4 != 8" in d for d in arxml), arxml
+
+
+def test_canmatrix_is_the_pinned_version():
+    """The loss model above is checked against the canmatrix the test extra pins (the README states
+    what 1.2 and 1.3.3 each keep); another version is a different converter."""
+    extra = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]["test"]
+    (pin,) = [d for d in extra if d.startswith("canmatrix")]
+    assert pin.endswith(f"=={canmatrix.__version__}"), f"installed canmatrix {canmatrix.__version__}, pyproject's test extra: {pin} (run `make setup`)"

@@ -36,7 +36,7 @@ def canspec_annotation(node: dict[str, Any]) -> dict[str, Any]:
     return json.loads(node["$comment"])["x-canspec"]
 
 
-# Every keyword of draft 2020-12 the schemas may use: ajv's strict mode (its default) refuses others.
+# Every keyword of draft 2020-12 the schemas may use: ajv's strict mode refuses others (node/ajv_check.cjs: strict: true).
 KEYWORDS = {"$schema", "$id", "$comment", "$defs", "$ref", "title", "description", "examples", "type", "properties", "required",
             "additionalProperties", "minimum", "maximum", "minLength", "maxLength", "const", "enum", "anyOf", "if", "then", "else", "allOf", "not"}
 

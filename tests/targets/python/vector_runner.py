@@ -23,7 +23,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import pkgpath
 
-PHYSICAL_KINDS = {"zero", "base", "min", "max", "enum", "special", "tie", "random"}
+PHYSICAL_KINDS = {"zero", "base", "min", "max", "enum", "special", "tie", "random", "decoded"}
 
 
 def load_package(package_dir: Path) -> ModuleType:

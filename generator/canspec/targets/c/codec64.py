@@ -35,13 +35,17 @@ FOLD_COST = 14  # x86-64 instructions to fold the word and merge the checksum by
 MARGIN = 2  # the word form where its estimate is at least this much lower (near ties go either way)
 
 
+def _checked(sigs: tuple[CSignal, ...]) -> list[CSignal]:
+    """The unsigned fields narrower than their type (their OR exceeds their bit count's maximum
+    exactly when one of them does)."""
+    return [s for s in sigs if not s.sig.signed and s.length != s.sig.storage_bits]
+
+
 def _ored(sigs: tuple[CSignal, ...]) -> dict[int, list[str]]:
-    """The unsigned fields narrower than their type, by bit count (their OR exceeds the count's
-    maximum exactly when one of them does)."""
+    """The checked fields by bit count."""
     out: dict[int, list[str]] = {}
-    for s in sigs:
-        if not s.sig.signed and s.length != s.sig.storage_bits:
-            out.setdefault(s.length, []).append(f"src->{s.field}")
+    for s in _checked(sigs):
+        out.setdefault(s.length, []).append(f"src->{s.field}")
     return out
 
 
@@ -63,8 +67,8 @@ def _check(sigs: tuple[CSignal, ...], err: str) -> list[str]:
 
 
 def _check_locals(sigs: tuple[CSignal, ...]) -> list[str]:
-    """`ored<n>` in the type of the n-bit fields."""
-    types = {s.length: s.type for s in sigs}
+    """`ored<n>` in the type of the checked n-bit fields (a signed field of n bits has another)."""
+    types = {s.length: s.type for s in _checked(sigs)}
     return [f"{types[n]} ored{n};" for n in sorted(_shared(sigs))]
 
 

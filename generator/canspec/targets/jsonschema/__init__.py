@@ -177,8 +177,14 @@ def _root(protocol: ir.JsonProtocol, name: str, body: dict[str, Any]) -> dict[st
     return {"$schema": DRAFT, "$id": schema_id(protocol, name), **body}
 
 
+def _has(key: str) -> dict[str, Any]:
+    """The object has `key` (declared beside `required`, any value: strict validators such as ajv's
+    strictRequired refuse a required key no `properties` of the same schema names)."""
+    return {"properties": {key: {}}, "required": [key]}
+
+
 def _any_of_keys(keys: tuple[str, ...]) -> dict[str, Any]:
-    return {"required": [keys[0]]} if len(keys) == 1 else {"anyOf": [{"required": [k]} for k in keys]}
+    return _has(keys[0]) if len(keys) == 1 else {"anyOf": [_has(k) for k in keys]}
 
 
 def _group_schema(group: tuple[jsonmodel.Branch, ...]) -> dict[str, Any]:
@@ -203,13 +209,13 @@ def plan_schema(pm: ProtocolModel, p: Plan, generated: str | None = None) -> dic
         "$comment": annotation({"protocol": pm.protocol.name, "version": pm.protocol.version, "receiver": p.receiver, "messages": list(p.messages)}, generated),
         "$defs": defs,
     }
-    plain = _group_schema(p.plain) if p.plain else {"required": [jsonmodel.CMD_KEY]}
+    plain = _group_schema(p.plain) if p.plain else _has(jsonmodel.CMD_KEY)
     if p.commands:
         command = {
             "properties": {jsonmodel.CMD_KEY: {"enum": list(p.command_values), "description": "known commands"}},
             "allOf": [{"if": {"properties": {jsonmodel.CMD_KEY: {"const": c}}}, "then": _group_schema(g)} for c, g in p.commands],
         }
-        body.update({"if": {"required": [jsonmodel.CMD_KEY]}, "then": command, "else": plain})
+        body.update({"if": _has(jsonmodel.CMD_KEY), "then": command, "else": plain})
     elif p.plain:
         body.update(plain)
     else:

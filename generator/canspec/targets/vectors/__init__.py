@@ -19,7 +19,7 @@ from fractions import Fraction
 from typing import Any
 
 from canspec import ir
-from canspec.ir.encoding import fits_runtime, to_raw_exact, to_raw_runtime
+from canspec.ir.encoding import fits_runtime, to_physical_runtime, to_raw_exact, to_raw_runtime
 from canspec.reference import codec
 from canspec.targets import Target
 from canspec.targets.vectors import sequences, texts
@@ -66,13 +66,14 @@ def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, A
     if physical:
         phys.update(physical)
     if kind != "raw_only":
-        lost = [s.name for s in msg.data_signals if not s.is_identity and not _survives_doubles(s, raw[s.name], phys[s.name])]
+        # a decoded case's values must encode back whatever the accepted range says: no range check here
+        lost = [s.name for s in msg.data_signals if not s.is_identity and not _survives_doubles(s, raw[s.name], phys[s.name], kind != "decoded")]
         if lost:
             kind, note = "beyond_double", f"{note}; " * bool(note) + f"the physical value of {', '.join(lost)} does not encode back in doubles"
     return case_record(msg, data, raw, phys, kind, note)
 
 
-def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int) -> bool:
+def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int, ranged: bool = True) -> bool:
     """Whether the runtime rule (ir/encoding.py), given this physical value as a double, encodes
     it back to `raw`: always within a field's first 2^52 steps, not always beyond (a 63-bit
     field's maximum has no double of its own). Every language encodes an identity field
@@ -81,7 +82,7 @@ def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int) -> bool:
     x, f, o = float(physical), float(sig.factor), float(sig.offset)
     if not fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
         return False
-    return any(s.raw == raw for s in sig.specials) or float(sig.accept_min) <= x <= float(sig.accept_max)
+    return not ranged or any(s.raw == raw for s in sig.specials) or float(sig.accept_min) <= x <= float(sig.accept_max)
 
 
 def case_record(msg: ir.Message, data: bytes, raw: dict[str, int], physical: dict[str, Any], kind: str, note: str = "") -> dict[str, Any]:
@@ -111,6 +112,24 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
     return out
 
 
+def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
+    """The raw ends of a field and their neighbours with the double every decoder returns for them
+    (raw × factor + offset, each step in doubles) where that is not the nearest double of the exact
+    value (those the min/max cases hold) and the runtime rule carries it back (its quotient inside
+    the field, rounding to the raw value): each must encode back to its raw value."""
+    if sig.is_integer:  # integer physical values: exact in doubles wherever they survive at all
+        return []
+    f, o = float(sig.factor), float(sig.offset)
+    out = []
+    for raw in sorted({sig.raw_min, sig.raw_min + 1, sig.raw_max - 1, sig.raw_max}):
+        x = to_physical_runtime(raw, f, o)
+        if not sig.raw_min <= raw <= sig.raw_max or x == float(raw * sig.factor + sig.offset):
+            continue
+        if fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) and to_raw_runtime(x, f, o) == raw:
+            out.append((raw, x))
+    return out
+
+
 def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
     sigs = [s for s in msg.data_signals if s.role != "checksum"]
     case = functools.partial(_case, msg, scales=_scales(msg))
@@ -133,6 +152,8 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
             cases.append(case({**base, sig.name: special.raw}, "special", note=f"{sig.name}={special.name}"))
         for tie, expected, beyond in _ties(sig):
             cases.append(case({**base, sig.name: expected}, "tie", {sig.name: tie}, note=f"{sig.name} tie {tie!r} -> raw {expected}{beyond}"))
+        for raw, x in _decoded(sig):
+            cases.append(case({**base, sig.name: raw}, "decoded", {sig.name: x}, note=f"{sig.name} raw {raw} decodes to {x!r}"))
     rng = random.Random(zlib.crc32(msg.name.encode()))
     for _ in range(RANDOM_CASES if sigs else 0):
         raw = {}
@@ -180,7 +201,7 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
             "range": "physical outside the documented range, or a raw value that does not fit, is an error unless the raw value is a special value",
             "reserved_bits": 0,
             "checksum": "XOR of every other byte of the frame, in its checksum byte",
-            "kinds": "zero/base/min/max/enum/special/tie/random cases are physical-encodable; raw_only cases decode and pack at raw level and a physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields wider than 2^52 steps) decode and pack at raw level only",
+            "kinds": "zero/base/min/max/enum/special/tie/random/decoded cases are physical-encodable (a decoded case's physical value is the double a decoder returns for its raw value: raw x factor + offset, each step in doubles); raw_only cases decode and pack at raw level and a physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields wider than 2^52 steps) decode and pack at raw level only",
         },
         "cases": cases,
         "multiframe": vin_cases(spec.can),

@@ -1,5 +1,6 @@
-// Validates every case of the JSON-protocol vectors with ajv (draft 2020-12, strict mode as by
-// default: no keyword declared for the schemas, which carry canspec's annotations in $comment):
+// Validates every case of the JSON-protocol vectors with ajv (draft 2020-12, every strict option
+// on — strictSchema, strictNumbers, strictTypes, strictTuples, strictRequired: no keyword declared
+// for the schemas, which carry canspec's annotations in $comment; every required key declared):
 // against the case's own message schema, its receiver's schema and the whole-protocol schema.
 // Usage: NODE_PATH=<node_modules> node ajv_check.cjs SCHEMA_DIR VECTORS_JSON [SCHEMA_DIR VECTORS_JSON ...]
 // Prints one JSON array: [{input, protocol, id, own, own_fields, received, any}] (fields named by
@@ -20,7 +21,7 @@ function faultFields(errors) {
 }
 
 function check(input, schemaRoot, vectorsPath, results) {
-  const ajv = new Ajv2020({ strictSchema: true, strictNumbers: true, strictTypes: true, strictTuples: true, allErrors: true });
+  const ajv = new Ajv2020({ strict: true, allErrors: true });
   const vectors = JSON.parse(fs.readFileSync(vectorsPath, "utf8"));
   for (const proto of vectors.protocols) {
     const dir = path.join(schemaRoot, proto.protocol);
