@@ -123,9 +123,9 @@ def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
     out = []
     for raw in sorted({sig.raw_min, sig.raw_min + 1, sig.raw_max - 1, sig.raw_max}):
         x = to_physical_runtime(raw, f, o)
-        if not sig.raw_min <= raw <= sig.raw_max or x == float(raw * sig.factor + sig.offset):
+        if not sig.raw_min <= raw <= sig.raw_max or x == float(sig.physical(raw)):
             continue
-        if fits_runtime((x - o) / f, sig.raw_type_min, sig.raw_type_max) and to_raw_runtime(x, f, o) == raw:
+        if fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, sig.raw_type_max) and to_raw_runtime(x, f, o) == raw:
             out.append((raw, x))
     return out
 
