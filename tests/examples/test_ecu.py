@@ -81,7 +81,7 @@ def check_frame(step, fields, flags, states, msgs):
         raw = codec.unpack(msg, bytes.fromhex(step["data"]))
         name = "steering_angle_cmd" if exp["message"] == "autocar_eps_command" else "accel_cmd"
         printed = Fraction(int(fields[name].split("/")[0]), int(fields[name].split("/")[1]))
-        assert printed == codec.to_physical(msg.signal(name), raw[name]), (step, fields)
+        assert printed == msg.signal(name).physical(raw[name]), (step, fields)
 
 
 def check_report(step, fields, rest, states, ids):
@@ -113,8 +113,8 @@ def check_transmissions(seq, lines, msgs, spec):
         if msg.name == "eps_state":
             last = [s for s in accepted if s["expect"]["message"] == "autocar_eps_command"][-1:]
             cmd = msgs["autocar_eps_command"]
-            want = codec.to_physical(cmd.signal("steering_angle_cmd"), codec.unpack(cmd, bytes.fromhex(last[0]["data"]))["steering_angle_cmd"]) if last else 0
-            assert codec.to_physical(msg.signal("steering_angle"), codec.unpack(msg, data)["steering_angle"]) == want, (t, data.hex())
+            want = cmd.signal("steering_angle_cmd").physical(codec.unpack(cmd, bytes.fromhex(last[0]["data"]))["steering_angle_cmd"]) if last else 0
+            assert msg.signal("steering_angle").physical(codec.unpack(msg, data)["steering_angle"]) == want, (t, data.hex())
         if msg.name == "driving_state":
             last = [s for s in accepted if s["expect"]["message"] == "autocar_speed_command"][-1:]
             want = codec.unpack(msgs["autocar_speed_command"], bytes.fromhex(last[0]["data"]))["gear_cmd"] if last else 0
