@@ -11,8 +11,23 @@ from typing import Any
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from json_support import CARGO_TARGET, HERE, NODE_MODULES, PY_BINDINGS, RUNNER, SCHEMAS, TS_DIR, VECTORS, require_tool, run, ts_runners
-from json_support import cases, json_vectors, schemas  # noqa: F401  (fixtures shared with ../jsonschema)
+from json_support import (  # noqa: F401  (fixtures shared with ../jsonschema)
+    CARGO_TARGET,
+    HERE,
+    NODE_MODULES,
+    PROTOCOL,
+    PY_BINDINGS,
+    RUNNER,
+    SCHEMAS,
+    TS_DIR,
+    VECTORS,
+    cases,
+    json_vectors,
+    require_tool,
+    run,
+    schemas,
+    ts_runners,
+)
 
 
 @pytest.fixture(scope="session")

@@ -11,6 +11,7 @@ from fractions import Fraction
 import pytest
 from canspec import ir
 from canspec.ir.encoding import to_raw_runtime
+from canspec.render.literals import PYTHON
 from canspec.targets.python import code, fields, naming
 from canspec.targets.python import model as pm
 
@@ -33,9 +34,10 @@ def test_xor_folds(nbytes, folds):
 
 
 def test_number_literals():
-    assert fields.num_lit(Fraction(5), True) == "5" and fields.num_lit(Fraction(1, 10), False) == "0.1" and fields.num_lit(Fraction(-1080), False) == "-1080.0"
+    """The Python target's numbers: an int where the quantity is integral, else a float literal."""
+    assert PYTHON.number(Fraction(5), True) == "5" and PYTHON.number(Fraction(1, 10), False) == "0.1" and PYTHON.number(Fraction(-1080), False) == "-1080.0"
     with pytest.raises(ValueError):
-        fields.num_lit(Fraction(1, 2), True)
+        PYTHON.number(Fraction(1, 2), True)
 
 
 def test_raw_expressions_extract_every_raw(can):
