@@ -136,7 +136,7 @@ def build(spec: ir.Spec, cases: int, seed: int, encoder: Encoder) -> dict[str, A
         def again(c: dict[str, Any]) -> dict[str, Any]:
             msg = by_name[c["message"]]
             raw = {k: v for k, v in c["raw"].items() if msg.checksum is None or k != msg.checksum.signal}
-            return maker.case(msg, raw, c["kind"], c["physical"] if c["kind"] == "tie" else None, c.get("note", ""))
+            return maker.case(msg, raw, c["kind"], c["physical"] if c["kind"] in ("tie", "decoded") else None, c.get("note", ""))
 
         doc["cases"] = [again(c) for c in doc["cases"]]
     rng = random.Random(seed)
