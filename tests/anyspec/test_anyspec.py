@@ -94,7 +94,9 @@ def test_every_decoded_raw_end_encodes_back(drawn, tmp_path_factory):
                 inside = sig.raw_type_min - 1e-9 <= q <= sig.raw_type_max + 1e-9  # the encoders' window on q
                 carried = inside and abs(q) < 2**52 and math.floor(abs(q) + 0.5 + 1e-9) * (1 if q >= 0 else -1) == raw
                 if carried:
-                    assert codec.to_raw(sig, x) == raw, f"{msg.name}.{sig.name}: raw {raw} decodes to {x!r}, range [{float(sig.accept_min)!r}, {float(sig.accept_max)!r}]"
+                    assert codec.to_raw(sig, x) == raw, (
+                        f"{msg.name}.{sig.name}: raw {raw} decodes to {x!r}, range [{float(sig.accept_min)!r}, {float(sig.accept_max)!r}]"
+                    )
                     assert float(sig.accept_min) <= x <= float(sig.accept_max), f"{msg.name}.{sig.name}: raw {raw} decodes to {x!r}"  # as targets compare
 
 

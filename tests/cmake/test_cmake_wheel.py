@@ -12,7 +12,10 @@ from pathlib import Path
 
 from repo_paths import ROOT
 
-PROJECT = "cmake_minimum_required(VERSION 3.20)\nproject(probe NONE)\nfind_package(canspec {version} CONFIG REQUIRED)\nmessage(STATUS \"canspec ${{canspec_VERSION}}\")\n"
+PROJECT = (
+    "cmake_minimum_required(VERSION 3.20)\nproject(probe NONE)\n"
+    'find_package(canspec {version} CONFIG REQUIRED)\nmessage(STATUS "canspec ${{canspec_VERSION}}")\n'
+)
 
 
 def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:  # type: ignore[type-arg]

@@ -125,7 +125,9 @@ def check_transmissions(seq, lines, msgs, spec):
 def test_ecu_image_against_the_sequence_vectors(images, chosen, spec, core):
     tree, elves = images
     macros = header_macros(tree)
-    flags = {name: bit for name, bit in macros.items() if name in {"UNKNOWN_ID", "LENGTH", "CHECKSUM", "COUNTER_JUMP", "COUNTER_REPEAT", "TIMEOUT", "RECOVERED"}}
+    flags = {
+        name: bit for name, bit in macros.items() if name in {"UNKNOWN_ID", "LENGTH", "CHECKSUM", "COUNTER_JUMP", "COUNTER_REPEAT", "TIMEOUT", "RECOVERED"}
+    }
     states = {macros[f"{s.upper()}"]: s for s in ("no_data", "init", "valid", "invalid")}
     assert len(flags) == 7 and len(states) == 4, macros
     msgs = {m.name: m for m in spec.can.messages}

@@ -63,7 +63,15 @@ def test_storage_widths_and_roles(can):
     assert vin.signal("id_chars").storage_bits == 64 and vin.signal("id_frame_index").storage_bits == 8
     assert vin.multiframe.frames == 3 and vin.multiframe.bytes_per_frame == 7 and vin.multiframe.payload_byte == 1
     checksummed = {m.name for m in can.messages if m.checksum}
-    assert checksummed == {"autocar_eps_command", "rgate_eps_command", "tele_eps_command", "autocar_speed_command", "rgate_speed_command", "tele_speed_command", "driving_state"}
+    assert checksummed == {
+        "autocar_eps_command",
+        "rgate_eps_command",
+        "tele_eps_command",
+        "autocar_speed_command",
+        "rgate_speed_command",
+        "tele_speed_command",
+        "driving_state",
+    }
     assert can.message("autocar_control_command_1").counter.modulo == 16
     assert can.message("eps_state").counter.modulo == 256
     assert can.message("driving_state").counter is None

@@ -113,7 +113,9 @@ def id_limits(source: str) -> list[str]:
     for node in ast.walk(ast.parse(source)):
         if isinstance(node, ast.Constant) and type(node.value) is int and node.value in ID_LIMITS:
             out.append(f"{node.lineno}: 0x{node.value:X}")
-        elif isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.Pow)) and isinstance(node.right, ast.Constant) and node.right.value in ID_BITS:
+        elif (
+            isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.Pow)) and isinstance(node.right, ast.Constant) and node.right.value in ID_BITS
+        ):
             out.append(f"{node.lineno}: {ast.unparse(node)}")
     return sorted(set(out))
 

@@ -77,5 +77,7 @@ def test_hooks_guard_the_commit(tmp_path):
 
     firmware_repo.break_spec(repo)
     status, out = commit("a broken spec")
-    assert status == 1 and re.search(r"^canspec check .*Failed$", out, re.MULTILINE) and re.search(r"spec/can/gateway\.yaml:\d+:\d+: error: .*cycle_ms", out), out
+    assert status == 1 and re.search(r"^canspec check .*Failed$", out, re.MULTILINE) and re.search(r"spec/can/gateway\.yaml:\d+:\d+: error: .*cycle_ms", out), (
+        out
+    )
     assert ok(_git(repo, "log", "--format=%s", env=env)).stdout.split("\n")[:2] == ["regenerated", "spec and its generated C"]

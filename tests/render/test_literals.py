@@ -12,7 +12,15 @@ import pytest
 from canspec.render import literals
 from canspec.render.literals import PYTHON, RUST, TYPESCRIPT, C
 
-NASTY = ['plain', 'quote " and backslash \\', "tab\tnewline\n", "bell\x07 del\x7f nul-ish\x01", "trigraph ??= ??( ???=", "中文 °C m/s²", "digit after control \x017"]
+NASTY = [
+    "plain",
+    'quote " and backslash \\',
+    "tab\tnewline\n",
+    "bell\x07 del\x7f nul-ish\x01",
+    "trigraph ??= ??( ???=",
+    "中文 °C m/s²",
+    "digit after control \x017",
+]
 
 
 def test_c_integers():

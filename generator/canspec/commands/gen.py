@@ -28,7 +28,9 @@ def run(args: argparse.Namespace) -> int:
     spec = compiled.spec
     if args.node is not None:
         if args.node not in node_names(spec):
-            print(f"canspec gen: --node {args.node}: no such node (nodes: {', '.join(node_names(spec)) or 'none: the spec has no CAN protocol'})", file=sys.stderr)
+            print(
+                f"canspec gen: --node {args.node}: no such node (nodes: {', '.join(node_names(spec)) or 'none: the spec has no CAN protocol'})", file=sys.stderr
+            )
             return 2
         spec = for_node(spec, args.node)
     out = Path(args.output)
@@ -72,7 +74,9 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("-t", "--target", action="append", help="target to generate (repeatable; default: all)")
     p.add_argument("--node", metavar="NAME", help="only the messages this node sends or receives (an ECU's headers: --target c --node NAME)")
     p.add_argument("--check", action="store_true", help="write nothing; list stale or missing files and exit 1 if any")
-    p.add_argument("--depfile", metavar="FILE", help="also write a Makefile rule: the output's manifest depends on every file the spec read (for CMake/Ninja/Make)")
+    p.add_argument(
+        "--depfile", metavar="FILE", help="also write a Makefile rule: the output's manifest depends on every file the spec read (for CMake/Ninja/Make)"
+    )
     p.add_argument("--strict", action="store_true", help="treat spec warnings as errors")
     p.add_argument("-q", "--quiet", action="store_true")
     p.set_defaults(func=run)

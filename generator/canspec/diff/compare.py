@@ -59,7 +59,9 @@ class _Collector:
 
     def add(self, kind: str, msg: MessageModel, sig: SignalModel | None, detail: str, old: object = None, new: object = None, cls: str | None = None) -> None:
         loc = (sig.loc if sig is not None else None) or msg.loc
-        self.changes.append(Change(kind, cls or KINDS[kind], msg.frame_id, msg.name, sig.name if sig else None, detail, old, new, loc, sig.start if sig else -1))
+        self.changes.append(
+            Change(kind, cls or KINDS[kind], msg.frame_id, msg.name, sig.name if sig else None, detail, old, new, loc, sig.start if sig else -1)
+        )
 
 
 def _both(a: object, b: object) -> bool:
@@ -76,7 +78,14 @@ def _entries(c: _Collector, msg: MessageModel, sig: SignalModel, what: str, old:
             c.add(f"{kind}_removed", msg, sig, f"{what} {raw} = {o.name} removed", o.name, None)
         elif o is not None and n is not None:
             if _both(o.label, n.label) and o.label != n.label:
-                c.add(f"{kind}_relabelled", msg, sig, f"{what} {raw}: {o.label} → {n.label}" + (f" ({o.name} → {n.name})" if o.name != n.name else ""), o.label, n.label)
+                c.add(
+                    f"{kind}_relabelled",
+                    msg,
+                    sig,
+                    f"{what} {raw}: {o.label} → {n.label}" + (f" ({o.name} → {n.name})" if o.name != n.name else ""),
+                    o.label,
+                    n.label,
+                )
             elif o.name != n.name:
                 c.add(f"{kind}_renamed", msg, sig, f"{what} {raw}: {o.name} → {n.name}", o.name, n.name)
 
@@ -89,15 +98,29 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
     if o.length != n.length:
         c.add("signal_resized", msg, n, f"length {o.length} → {n.length} bits", o.length, n.length)
     if (o.factor, o.offset) != (n.factor, n.offset):
-        c.add("signal_rescaled", msg, n, f"factor/offset {num(o.factor)}/{num(o.offset)} → {num(n.factor)}/{num(n.offset)}", [o.factor, o.offset], [n.factor, n.offset])
+        c.add(
+            "signal_rescaled",
+            msg,
+            n,
+            f"factor/offset {num(o.factor)}/{num(o.offset)} → {num(n.factor)}/{num(n.offset)}",
+            [o.factor, o.offset],
+            [n.factor, n.offset],
+        )
     if o.signed != n.signed:
         c.add("signal_signedness_changed", msg, n, f"{'signed' if o.signed else 'unsigned'} → {'signed' if n.signed else 'unsigned'}", o.signed, n.signed)
     if o.unit != n.unit:
         c.add("signal_unit_changed", msg, n, f"unit {o.unit or '(none)'} → {n.unit or '(none)'}", o.unit, n.unit)
     if (o.minimum, o.maximum) != (n.minimum, n.maximum):
         widened = n.minimum <= o.minimum and n.maximum >= o.maximum
-        c.add("signal_range_changed", msg, n, f"range [{num(o.minimum)}, {num(o.maximum)}] → [{num(n.minimum)}, {num(n.maximum)}]" + (" (widened)" if widened else ""),
-              [o.minimum, o.maximum], [n.minimum, n.maximum], cls="compatible" if widened else "wire")
+        c.add(
+            "signal_range_changed",
+            msg,
+            n,
+            f"range [{num(o.minimum)}, {num(o.maximum)}] → [{num(n.minimum)}, {num(n.maximum)}]" + (" (widened)" if widened else ""),
+            [o.minimum, o.maximum],
+            [n.minimum, n.maximum],
+            cls="compatible" if widened else "wire",
+        )
     if o.role != n.role:
         c.add("signal_role_changed", msg, n, f"role {o.role} → {n.role}", o.role, n.role)
     if _both(o.values_table, n.values_table) and o.values_table != n.values_table:

@@ -57,7 +57,9 @@ def _check(version: ir.ChangeVersion, item: ir.ChangeItem, changes: list[Change]
     if item.changes:
         entries = [e for e in item.changes if e["kind"] != UNRECONSTRUCTED]
         hits = [i for i, c in enumerate(changes) if any(declares(e, c) for e in entries)]
-        missing = [f"{e['kind']} 0x{e['message']:08X}" + (f" {e['signal']}" if "signal" in e else "") for e in entries if not any(declares(e, c) for c in changes)]
+        missing = [
+            f"{e['kind']} 0x{e['message']:08X}" + (f" {e['signal']}" if "signal" in e else "") for e in entries if not any(declares(e, c) for c in changes)
+        ]
     else:
         hits = [i for i, c in enumerate(changes) if c.frame_id in item.ids]
         missing = [f"0x{fid:08X}: no change" for fid in item.ids if not any(c.frame_id == fid for c in changes)]

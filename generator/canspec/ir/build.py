@@ -288,9 +288,20 @@ def build_changelog(doc: Any) -> ir.Changelog:
     data = doc.data
     versions = tuple(
         ir.ChangeVersion(
-            version=str(v["version"]), date=v.get("date"), authors=tuple(v.get("authors", [])), label=v.get("label", ""), label_zh=v.get("label_zh", ""),
+            version=str(v["version"]),
+            date=v.get("date"),
+            authors=tuple(v.get("authors", [])),
+            label=v.get("label", ""),
+            label_zh=v.get("label_zh", ""),
             items=tuple(
-                ir.ChangeItem(i + 1, it.get("zh", ""), it.get("en", ""), tuple(it.get("ids", [])), tuple(it.get("errata", [])), tuple(_plain(c) for c in it.get("changes", [])))
+                ir.ChangeItem(
+                    i + 1,
+                    it.get("zh", ""),
+                    it.get("en", ""),
+                    tuple(it.get("ids", [])),
+                    tuple(it.get("errata", [])),
+                    tuple(_plain(c) for c in it.get("changes", [])),
+                )
                 for i, it in enumerate(v["items"])
             ),
             errata=tuple(v.get("errata", [])),

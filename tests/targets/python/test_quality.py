@@ -48,7 +48,11 @@ def test_formatter_pinned_version_matches_setup_script():
 def test_generation_is_deterministic_and_up_to_date(spec):
     first = target.render_python(spec)
     assert first == target.render_python(spec)
-    on_disk = {f"python/{p.relative_to(PKG).as_posix()}": p.read_bytes() for p in PKG.rglob("*") if p.is_file() and "__pycache__" not in p.parts and ".mypy_cache" not in p.parts and ".ruff_cache" not in p.parts}
+    on_disk = {
+        f"python/{p.relative_to(PKG).as_posix()}": p.read_bytes()
+        for p in PKG.rglob("*")
+        if p.is_file() and "__pycache__" not in p.parts and ".mypy_cache" not in p.parts and ".ruff_cache" not in p.parts
+    }
     assert on_disk == first, "generated/python is stale: run `make gen`"
 
 

@@ -87,13 +87,20 @@ fn merged(outside: u64, inside: u64, mask: u64) -> u64 {
 def test_bit_expressions_for_every_width(tmp_path: Path) -> None:
     source = ["#![allow(dead_code, clippy::unusual_byte_groupings)]", ORACLE]
     source += [case(i, s) for i, s in enumerate(FIELDS)]
-    source.append("fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n    let mut words = vec![0, u64::MAX, 0x5555_5555_5555_5555, 0xAAAA_AAAA_AAAA_AAAA];\n"
-                  "    for _ in 0..200 { s ^= s << 13; s ^= s >> 7; s ^= s << 17; words.push(s); }\n"
-                  + "".join(f"    check{i}(&words);\n" for i in range(len(FIELDS))) + "    println!(\"ok {}\", " + str(len(FIELDS)) + ");\n}\n")
+    source.append(
+        "fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n    let mut words = vec![0, u64::MAX, 0x5555_5555_5555_5555, 0xAAAA_AAAA_AAAA_AAAA];\n"
+        "    for _ in 0..200 { s ^= s << 13; s ^= s >> 7; s ^= s << 17; words.push(s); }\n"
+        + "".join(f"    check{i}(&words);\n" for i in range(len(FIELDS)))
+        + '    println!("ok {}", '
+        + str(len(FIELDS))
+        + ");\n}\n"
+    )
     src = tmp_path / "bits.rs"
     src.write_text("\n".join(source), encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if k != "RUSTFLAGS"}
-    lint = subprocess.run(["clippy-driver", "--edition", "2021", "-D", "warnings", "-o", str(tmp_path / "bits"), str(src)], capture_output=True, text=True, env=env, check=False)
+    lint = subprocess.run(
+        ["clippy-driver", "--edition", "2021", "-D", "warnings", "-o", str(tmp_path / "bits"), str(src)], capture_output=True, text=True, env=env, check=False
+    )
     assert lint.returncode == 0, lint.stderr[-6000:]
     run = subprocess.run([str(tmp_path / "bits")], capture_output=True, text=True, check=False)
     assert run.returncode == 0 and run.stdout.strip() == f"ok {len(FIELDS)}", run.stdout + run.stderr[-3000:]

@@ -159,9 +159,21 @@ def double_path(names: CNames, sig: ir.Signal, fn: str, macro: str, force: bool)
     if not sig.signed and sig.raw_type_max > 2**63 - 1:
         # q's bounds: the raw type widened by one step, i.e. -1 and 2^64 (both doubles)
         return CDouble(
-            decode_pre=pre, decode_expr=expr, exact=exact, phys="", phys_name="", phys_local=False, phys_defines=False, window_test="", special_test="", encode_test="", encode_tail="",
-            ranges=_ranges(sig, False, [accept], _r_type_range(False)), wide_unsigned=True,
-            refuse=f"!((q > -1.0) && (q < {C.double(sig.raw_type_max + 1)}))", rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
+            decode_pre=pre,
+            decode_expr=expr,
+            exact=exact,
+            phys="",
+            phys_name="",
+            phys_local=False,
+            phys_defines=False,
+            window_test="",
+            special_test="",
+            encode_test="",
+            encode_tail="",
+            ranges=_ranges(sig, False, [accept], _r_type_range(False)),
+            wide_unsigned=True,
+            refuse=f"!((q > -1.0) && (q < {C.double(sig.raw_type_max + 1)}))",
+            rounded=f"{names.fn('round_abs')}((q < 0.0) ? -q : q)",
         )
     scaled = "false" if sig.is_identity else "true"
     init = f"{{{C.double(offset)}, {C.double(factor)}, {C.double(sig.accept_min)}, {C.double(sig.accept_max)}, {scaled}}}"

@@ -72,10 +72,25 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
     renamed = f"spec name {sig.name}" if sig.c_name != sig.name else ""  # the reviewer's key into the protocol table
     comment = " ".join(t for t in (sig.zh or sig.desc, f"[{sig.unit}]" if sig.unit else "", renamed) if t)
     return CSignal(
-        sig=sig, field=field, macro=macro, fn=fn, type=ctype(bits, sig.signed), length=sig.length, start=sig.start,
-        range_check=range_check, needs_check=not fits_type and not sig.signed, specials=specials,
-        factor=C.double(sig.factor) if sig.factor > 0 else f"({C.double(sig.factor)})", offset=C.double(sig.offset), check_min=C.double(sig.check_min), check_max=C.double(sig.check_max),
+        sig=sig,
+        field=field,
+        macro=macro,
+        fn=fn,
+        type=ctype(bits, sig.signed),
+        length=sig.length,
+        start=sig.start,
+        range_check=range_check,
+        needs_check=not fits_type and not sig.signed,
+        specials=specials,
+        factor=C.double(sig.factor) if sig.factor > 0 else f"({C.double(sig.factor)})",
+        offset=C.double(sig.offset),
+        check_min=C.double(sig.check_min),
+        check_max=C.double(sig.check_max),
         enum_type=enum_types.get(sig.value_table.name, "") if sig.value_table else "",
-        is_data=is_data, double=double, fixed=fixed, unit=sig.unit, comment=comment,
+        is_data=is_data,
+        double=double,
+        fixed=fixed,
+        unit=sig.unit,
+        comment=comment,
     )
 

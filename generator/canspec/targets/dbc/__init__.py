@@ -15,9 +15,17 @@ def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
     text = render(
-        "dbc/protocol.dbc.j2", spec, "dbc", dbc=model.build(spec, spec.can), unknown_node=model.UNKNOWN_NODE,
-        sig_types=attributes.SIG_TYPES, vframe_formats=attributes.VFRAME_FORMATS, send_types=attributes.MSG_SEND_TYPES, default_send_type=attributes.MSG_SEND_TYPES[attributes.NOT_CYCLIC],
-        max_cycle_ms=attributes.MAX_CYCLE_MS, spec_name_attribute=naming.SPEC_NAME_ATTRIBUTE,
+        "dbc/protocol.dbc.j2",
+        spec,
+        "dbc",
+        dbc=model.build(spec, spec.can),
+        unknown_node=model.UNKNOWN_NODE,
+        sig_types=attributes.SIG_TYPES,
+        vframe_formats=attributes.VFRAME_FORMATS,
+        send_types=attributes.MSG_SEND_TYPES,
+        default_send_type=attributes.MSG_SEND_TYPES[attributes.NOT_CYCLIC],
+        max_cycle_ms=attributes.MAX_CYCLE_MS,
+        spec_name_attribute=naming.SPEC_NAME_ATTRIBUTE,
     )
     return {f"dbc/{spec.can.name}.dbc": text.encode("utf-8")}
 

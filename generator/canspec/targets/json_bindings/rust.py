@@ -106,16 +106,45 @@ def rust_files(spec: ir.Spec, pm: ProtocolModel) -> dict[str, bytes]:
     base = f"json/rust/{pm.protocol.name}"
     receivers = {p.receiver for p in pm.receiver_plans}
     helpers = {
-        "rs_str": RUST.string, "rust_value": RUST.value, "rs_value": rs_value, "rs_opt_f64": rs_opt_f64, "rs_type": rs_type, "src": src,
-        "range_test": range_test, "length_bounds": length_bounds, "reply_params": reply_params, "reply_many_args": reply_many_args,
-        "reply_fields": reply_fields, "echo_tests": echo_tests, "markers_test": markers_test, "reader": reader, "reads_keys": reads_keys, "unexpected_rule": unexpected_rule,
-        "field": names.rust_field, "local": names.rust_local, "variant": names.rust_variant, "sentinel_const": names.sentinel_const,
-        "doc": text.field_doc, "label": text.label, "heading": text.heading, "party_doc": text.party_doc, "echo_clause": text.echo_clause,
+        "rs_str": RUST.string,
+        "rust_value": RUST.value,
+        "rs_value": rs_value,
+        "rs_opt_f64": rs_opt_f64,
+        "rs_type": rs_type,
+        "src": src,
+        "range_test": range_test,
+        "length_bounds": length_bounds,
+        "reply_params": reply_params,
+        "reply_many_args": reply_many_args,
+        "reply_fields": reply_fields,
+        "echo_tests": echo_tests,
+        "markers_test": markers_test,
+        "reader": reader,
+        "reads_keys": reads_keys,
+        "unexpected_rule": unexpected_rule,
+        "field": names.rust_field,
+        "local": names.rust_local,
+        "variant": names.rust_variant,
+        "sentinel_const": names.sentinel_const,
+        "doc": text.field_doc,
+        "label": text.label,
+        "heading": text.heading,
+        "party_doc": text.party_doc,
+        "echo_clause": text.echo_clause,
         "doc_lines": text.doc_lines,
     }
     read_any_doc = "Read any message of the protocol" + (f": {'; '.join(pm.any_plan.rules)}." if pm.messages else " (it has none).")
-    lib = render("json_rust/lib.rs.j2", spec, "json_rust", p=pm.protocol, pm=pm, codes=jsonmodel.ERROR_CODES + jsonmodel.TEXT_ERROR_CODES, read_any_doc=read_any_doc,
-                 silent=[p for p in pm.protocol.parties if p.name not in receivers], **helpers)
+    lib = render(
+        "json_rust/lib.rs.j2",
+        spec,
+        "json_rust",
+        p=pm.protocol,
+        pm=pm,
+        codes=jsonmodel.ERROR_CODES + jsonmodel.TEXT_ERROR_CODES,
+        read_any_doc=read_any_doc,
+        silent=[p for p in pm.protocol.parties if p.name not in receivers],
+        **helpers,
+    )
     cargo = render("json_rust/Cargo.toml.j2", spec, "json_rust", p=pm.protocol, crate=rust_crate_name(pm.protocol))
     return {
         f"{base}/src/lib.rs": rustfmt(lib, f"{base}/src/lib.rs").encode(),

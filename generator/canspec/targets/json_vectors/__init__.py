@@ -173,7 +173,9 @@ class _Cases:
         faults = jsonvalue.message_faults(m, obj)
         got = (faults[0].key, faults[0].code) if faults else None
         if got != (None if rule is None else (field, rule)):
-            raise AssertionError(f"{m.name} {note}: expected {rule and (field, rule) or 'valid'}, the reference checker says {[f.text for f in faults] or 'valid'}")
+            raise AssertionError(
+                f"{m.name} {note}: expected {rule and (field, rule) or 'valid'}, the reference checker says {[f.text for f in faults] or 'valid'}"
+            )
         case: dict[str, Any] = {"id": f"{m.name}/{kind}/{len(self.cases)}", "message": m.name, "receiver": m.receiver, "valid": not faults,
                                 "kind": kind, "note": note, "json": obj}
         for label, receiver in (("as_received", m.receiver), ("as_any", None)):

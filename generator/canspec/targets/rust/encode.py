@@ -192,7 +192,12 @@ def float_encoding(sig: ir.Signal) -> Encoding:
 
 
 def _raw_bounds(sig: ir.Signal) -> dict[str, str]:
-    return {"raw_min": RUST.integer(sig.raw_min), "raw_max": RUST.integer(sig.raw_max), "type_min": RUST.integer(sig.raw_type_min), "type_max": RUST.integer(sig.raw_type_max)}
+    return {
+        "raw_min": RUST.integer(sig.raw_min),
+        "raw_max": RUST.integer(sig.raw_max),
+        "type_min": RUST.integer(sig.raw_type_min),
+        "type_max": RUST.integer(sig.raw_type_max),
+    }
 
 
 def _specials(sig: ir.Signal) -> str:

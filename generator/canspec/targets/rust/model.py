@@ -193,14 +193,31 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
         min_lit, max_lit = (encoding.scale["check_min"], encoding.scale["check_max"]) if kind == "scaled_int" else \
             (RUST.double(float(sig.check_min)), RUST.double(float(sig.check_max)))
     return RustField(
-        sig=sig, names=names, qualified=f"{msg.name}.{sig.name}", kind=kind, raw_type=ty, phys_type=phys_type, enum=enum,
-        raw_expr=unpack_expr(sig), phys_expr=_phys_expr(sig, kind, f"self.{names.raw_getter}()", phys_type, enum),
-        store=store_stmt(sig), misfit=misfit_expr(sig), encoding=encoding, set_arg=set_arg, set_check=set_check, store_arg=store_arg,
-        min_lit=min_lit, max_lit=max_lit,
+        sig=sig,
+        names=names,
+        qualified=f"{msg.name}.{sig.name}",
+        kind=kind,
+        raw_type=ty,
+        phys_type=phys_type,
+        enum=enum,
+        raw_expr=unpack_expr(sig),
+        phys_expr=_phys_expr(sig, kind, f"self.{names.raw_getter}()", phys_type, enum),
+        store=store_stmt(sig),
+        misfit=misfit_expr(sig),
+        encoding=encoding,
+        set_arg=set_arg,
+        set_check=set_check,
+        store_arg=store_arg,
+        min_lit=min_lit,
+        max_lit=max_lit,
         specials=tuple(RustSpecial(special_const(names, s), RUST.integer(s.raw), docs.special_doc(sig, s, names.base)) for s in sig.specials),
-        doc=docs.field_doc(sig), short_doc=docs.short_doc(sig, type_name, names.getter), table_row=docs.table_row(sig, names.base, bilingual),
+        doc=docs.field_doc(sig),
+        short_doc=docs.short_doc(sig, type_name, names.getter),
+        table_row=docs.table_row(sig, names.base, bilingual),
         getter_allow="clippy::wrong_self_convention" if names.base.startswith(CONVERSION_PREFIXES) else "",
-        tolerance=RUST.double(float(abs(sig.factor))), offset_abs=RUST.double(float(abs(sig.offset))), unit_note=f" ({docs.doc_text(sig.unit)})" if sig.unit else "",
+        tolerance=RUST.double(float(abs(sig.factor))),
+        offset_abs=RUST.double(float(abs(sig.offset))),
+        unit_note=f" ({docs.doc_text(sig.unit)})" if sig.unit else "",
     )
 
 
@@ -232,13 +249,27 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     found = other_key(msg)
     other = (next(f for f in fields if f.sig.name == found[0]), RUST.integer(found[1])) if found is not None else (None, "")
     return RustText(
-        index=index, payload=payload, text_length=m.text_length, frames=m.frames, bytes_per_frame=m.bytes_per_frame, total=m.frames * m.bytes_per_frame,
-        padding=RUST.hex(pad, 2), assembler=f"{pascal(msg.name)}Text", seen_type=next(t for n, t in SEEN_TYPES if m.frames <= n), all_seen=RUST.integer((1 << m.frames) - 1),
-        index_store=cast("index", "usize", index.raw_type), index_of=index_of,
+        index=index,
+        payload=payload,
+        text_length=m.text_length,
+        frames=m.frames,
+        bytes_per_frame=m.bytes_per_frame,
+        total=m.frames * m.bytes_per_frame,
+        padding=RUST.hex(pad, 2),
+        assembler=f"{pascal(msg.name)}Text",
+        seen_type=next(t for n, t in SEEN_TYPES if m.frames <= n),
+        all_seen=RUST.integer((1 << m.frames) - 1),
+        index_store=cast("index", "usize", index.raw_type),
+        index_of=index_of,
         error_index=f"frame.{index.names.raw_getter}()" if index.raw_type == "u8" else "u8::try_from(index).unwrap_or(u8::MAX)",
-        chunk_to_raw=cast(word, "u64", payload.raw_type), raw_to_chunk=to_chunk, text_pattern=RUST.string(pattern),
-        keys=tuple(f for f in fields if f.sig.name in m.key_signals), other_key=other[0], other_raw=other[1],
-        sample_a=sample_text(m, SAMPLE_TEXTS[0]), sample_b=sample_text(m, SAMPLE_TEXTS[1]),
+        chunk_to_raw=cast(word, "u64", payload.raw_type),
+        raw_to_chunk=to_chunk,
+        text_pattern=RUST.string(pattern),
+        keys=tuple(f for f in fields if f.sig.name in m.key_signals),
+        other_key=other[0],
+        other_raw=other[1],
+        sample_a=sample_text(m, SAMPLE_TEXTS[0]),
+        sample_b=sample_text(m, SAMPLE_TEXTS[1]),
     )
 
 

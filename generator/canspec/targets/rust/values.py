@@ -56,8 +56,13 @@ def problems(users: dict[str, list[ir.Signal]]) -> Iterator[Problem]:
         if repr_type(signals) is None:
             wide = next(s for s in signals if not s.signed)
             signed = next(s for s in signals if s.signed)
-            yield error(f"value table {table!r} is used by the 64-bit unsigned field {wide.name!r} and the signed field {signed.name!r}: "
-                        "no Rust integer type holds the raw values of both", signed.loc, "give the signed field a value table of its own", "rust-value-table-width")
+            yield error(
+                f"value table {table!r} is used by the 64-bit unsigned field {wide.name!r} and the signed field {signed.name!r}: "
+                "no Rust integer type holds the raw values of both",
+                signed.loc,
+                "give the signed field a value table of its own",
+                "rust-value-table-width",
+            )
 
 
 def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> RustEnum:

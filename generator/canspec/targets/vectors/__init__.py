@@ -54,7 +54,9 @@ def _scales(msg: ir.Message) -> Scales:
     )
 
 
-def _case(msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, Any] | None = None, note: str = "", *, scales: Scales | None = None) -> dict[str, Any]:
+def _case(
+    msg: ir.Message, raw: dict[str, int], kind: str, physical: dict[str, Any] | None = None, note: str = "", *, scales: Scales | None = None
+) -> dict[str, Any]:
     raw = dict(raw)
     data = codec.pack(msg, raw)
     if msg.checksum is not None:
@@ -177,7 +179,7 @@ def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
             text = vin.encode("ascii")
             frames = []
             for i in range(mf.frames):
-                chunk = text[i * mf.bytes_per_frame:(i + 1) * mf.bytes_per_frame].ljust(mf.bytes_per_frame, bytes([mf.padding]))
+                chunk = text[i * mf.bytes_per_frame : (i + 1) * mf.bytes_per_frame].ljust(mf.bytes_per_frame, bytes([mf.padding]))
                 raw = {mf.index_signal: i, mf.payload_signal: int.from_bytes(chunk, "little")}
                 for s in msg.data_signals:
                     raw.setdefault(s.name, s.base_raw)
@@ -197,11 +199,18 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
     return {
         **_about(spec),
         "rules": {
-            "physical_to_raw": "q = (physical - offset) / factor in doubles; raw = sign(q) * (|q| >= 2^52 ? |q| : floor(|q| + 0.5 + " + ir.TIE_EPSILON_TEXT + ")) (round half away from zero)",
+            "physical_to_raw": "q = (physical - offset) / factor in doubles; raw = sign(q) * (|q| >= 2^52 ? |q| : floor(|q| + 0.5 + "
+            + ir.TIE_EPSILON_TEXT
+            + ")) (round half away from zero)",
             "range": "physical outside the documented range, or a raw value that does not fit, is an error unless the raw value is a special value",
             "reserved_bits": 0,
             "checksum": "XOR of every other byte of the frame, in its checksum byte",
-            "kinds": "zero/base/min/max/enum/special/tie/random/decoded cases are physical-encodable (a decoded case's physical value is the double a decoder returns for its raw value: raw x factor + offset, each step in doubles); raw_only cases decode and pack at raw level and a physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields wider than 2^52 steps) decode and pack at raw level only",
+            "kinds": (
+                "zero/base/min/max/enum/special/tie/random/decoded cases are physical-encodable (a decoded case's physical value is the double a "
+                "decoder returns for its raw value: raw x factor + offset, each step in doubles); raw_only cases decode and pack at raw level and a"
+                " physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields "
+                "wider than 2^52 steps) decode and pack at raw level only"
+            ),
         },
         "cases": cases,
         "multiframe": vin_cases(spec.can),
