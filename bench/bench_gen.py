@@ -22,9 +22,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(ROOT / "generator"))
-import synth_spec  # noqa: E402
-
-from canspec.targets import target_names  # noqa: E402
+import synth_spec
+from canspec.targets import target_names
 
 SIGNALS_PER_MESSAGE = 12
 GOAL_SECONDS, GOAL_MB = 10.0, 500.0
