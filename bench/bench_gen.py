@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Generation benchmark (issue 25, item 5): time and peak memory of `canspec gen` per target on
+synthetic specs of 10, 100, 300 and 1,000 messages (tools/synth_spec.py, 12 signals per message),
+plus the gcc -O2 compile time of the largest spec's C headers and the time of `canspec gen --check`
+on an unchanged spec. Each target runs in its own process; its peak RSS comes from os.wait4, so
+one target's memory never hides another's. The ms/msg column stays flat when growth is linear.
+Goal: every target of the 1,000-message spec within 10 s and 500 MB.
+
+  python3 bench/bench_gen.py [--sizes 10 100 300 1000] [--targets c rust] [--work build/bench-gen]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT / "generator"))
+import synth_spec
+from canspec.targets import target_names
+
+SIGNALS_PER_MESSAGE = 12
+GOAL_SECONDS, GOAL_MB = 10.0, 500.0
+
+
+def _env() -> dict[str, str]:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "generator") + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    return env
+
+
+def measured(argv: list[str]) -> tuple[float, float, int]:
+    """Wall seconds, peak MB (this child alone, via wait4) and exit code of one command."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(argv, env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    assert proc.stderr is not None
+    err = proc.stderr.read()
+    _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.perf_counter() - start
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"bench-gen: {' '.join(argv)} failed ({proc.returncode}):\n{err.decode(errors='replace')}")
+    return wall, usage.ru_maxrss / 1024.0, proc.returncode  # ru_maxrss is KiB on Linux
+
+
+def canspec(*args: str | Path) -> list[str]:
+    return [sys.executable, "-m", "canspec", *map(str, args)]
+
+
+def compile_c(out: Path, work: Path) -> float:
+    """Seconds gcc -O2 takes on a .c that includes every generated header."""
+    headers = sorted((out / "c").rglob("*.h"))
+    main = work / "include_all.c"
+    main.write_text("".join(f'#include "{h.name}"\n' for h in headers) + "int main(void) { return 0; }\n", encoding="utf-8")
+    dirs = sorted({str(h.parent) for h in headers})
+    argv = ["gcc", "-O2", "-std=c99", *(f"-I{d}" for d in dirs), "-c", str(main), "-o", str(work / "include_all.o")]
+    start = time.perf_counter()
+    proc = subprocess.run(argv, capture_output=True, text=True, check=False)
+    if proc.returncode != 0:
+        raise SystemExit(f"bench-gen: gcc failed:\n{proc.stderr[-4000:]}")
+    return time.perf_counter() - start
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sizes", type=int, nargs="+", default=[10, 100, 300, 1000])
+    ap.add_argument("--targets", nargs="+", default=target_names())
+    ap.add_argument("--work", type=Path, default=ROOT / "build" / "bench-gen")
+    args = ap.parse_args()
+    args.work.mkdir(parents=True, exist_ok=True)
+    print(f"{'target':14} {'msgs':>5} | {'wall s':>7} {'ms/msg':>7} | {'peak MB':>8} {'KB/msg':>7} | goal")
+    over: list[str] = []
+    for size in args.sizes:
+        spec = args.work / f"m{size}"
+        synth_spec.synthesize(spec, size, size * SIGNALS_PER_MESSAGE, seed=1)
+        for target in args.targets:
+            out = args.work / f"m{size}-{target}"
+            shutil.rmtree(out, ignore_errors=True)
+            wall, mb, _ = measured(canspec("gen", "-q", spec, "-o", out, "-t", target))
+            ok = wall <= GOAL_SECONDS and mb <= GOAL_MB
+            print(f"{target:14} {size:5} | {wall:7.2f} {1000 * wall / size:7.2f} | {mb:8.0f} {1024 * mb / size:7.0f} | {'ok' if ok else 'OVER'}", flush=True)
+            if not ok and size == max(args.sizes):
+                over.append(target)
+    largest = max(args.sizes)
+    spec, out = args.work / f"m{largest}", args.work / f"m{largest}-all"
+    shutil.rmtree(out, ignore_errors=True)
+    chosen = [arg for t in args.targets for arg in ("-t", t)]
+    wall, mb, _ = measured(canspec("gen", "-q", spec, "-o", out, *chosen))
+    print(f"{'all targets':14} {largest:5} | {wall:7.2f} {1000 * wall / largest:7.2f} | {mb:8.0f} {1024 * mb / largest:7.0f} |")
+    check_wall, check_mb, rc = measured(canspec("gen", "-q", spec, "-o", out, "--check", *chosen))
+    print(f"gen --check on the unchanged {largest}-message output: {check_wall:.2f} s, {check_mb:.0f} MB (exit {rc})")
+    if "c" in args.targets:
+        print(f"gcc -O2 of the {largest}-message C headers: {compile_c(args.work / f'm{largest}-c', args.work):.2f} s")
+    print("over the goal (10 s, 500 MB) at", largest, "messages:", ", ".join(over) or "none")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
