@@ -10,8 +10,8 @@ from typing import Any
 
 from canspec import __version__, ir
 from canspec.ir import j1939
-from canspec.ir.bits import segments, storage_bits
-from canspec.ir.encoding import covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
+from canspec.ir.bits import segments, storage_bits, word_shift
+from canspec.ir.encoding import FLOAT_MAX, covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
@@ -53,25 +53,33 @@ def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fractio
     return lo, hi
 
 
-def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
-    length, signed = sig["len"], bool(sig["signed"])
+def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int) -> ir.Signal:
+    length, signed, is_float = sig["len"], bool(sig["signed"]), bool(sig["float"])
     factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
     tmin, tmax = raw_type_range(length, signed)
     rng = sig.get("range")
     doc_min, doc_max = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None else (None, None)
-    raw_min, raw_max = raw_range(length, signed, factor, offset, (doc_min, doc_max) if rng is not None else None)
-    phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
-    phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
-    check_min = doc_min if doc_min is not None else phys_min
-    check_max = doc_max if doc_max is not None else phys_max
-    is_integer = factor.denominator == 1 and offset.denominator == 1
-    tolerance = Fraction(0) if is_integer else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
-    accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
+    if is_float:  # the bit pattern is the raw value; ranges are the float's own (ir.Signal.is_float)
+        raw_min, raw_max = tmin, tmax
+        phys_min, phys_max = -FLOAT_MAX[length], FLOAT_MAX[length]
+        check_min = accept_min = doc_min if doc_min is not None else phys_min
+        check_max = accept_max = doc_max if doc_max is not None else phys_max
+    else:
+        raw_min, raw_max = raw_range(length, signed, factor, offset, (doc_min, doc_max) if rng is not None else None)
+        phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
+        phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
+        check_min = doc_min if doc_min is not None else phys_min
+        check_max = doc_max if doc_max is not None else phys_max
+        tolerance = Fraction(0) if _is_integer(factor, offset) else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
+        accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
+    is_integer = _is_integer(factor, offset) and not is_float
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))
         for raw, (ident, zh) in sorted((r, label_pair(v)) for r, v in sig.get("special", {}).items())
     )
     table = tables.get(sig["values"]) if sig.get("values") else None
+    order = sig["byte_order"]
+    shift = word_shift(sig["start"], length, order, frame_bytes)
     return ir.Signal(
         name=sig["name"],
         c_name=sig.get("c_name", sig["name"]),
@@ -100,24 +108,40 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable]) -> ir.Signal:
         storage_bits=storage_bits(length),
         value_table=table,
         specials=specials,
-        segments=segments(sig["start"], length),
-        word_mask=((1 << length) - 1) << sig["start"],
+        segments=segments(sig["start"], length, order),
+        word_shift=shift,
+        word_mask=((1 << length) - 1) << shift,
         sign_bit=1 << (length - 1) if signed else 0,
         labels=_labels(table, specials),
-        decimals=0 if is_integer else min(MAX_DECIMALS, max(decimals(factor), decimals(offset))),
+        decimals=0 if is_integer or is_float else min(MAX_DECIMALS, max(decimals(factor), decimals(offset))),
         is_integer=is_integer,
-        is_identity=factor == 1 and offset == 0,
+        is_identity=factor == 1 and offset == 0 and not is_float,
         since=str(sig["since"]) if sig.get("since") else None,
         errata=tuple(sig.get("errata", ())),
         loc=sig.loc,
+        byte_order=order,
+        is_float=is_float,
     )
+
+
+def _is_integer(factor: Fraction, offset: Fraction) -> bool:
+    return factor.denominator == 1 and offset.denominator == 1
+
+
+def _layout_fields(signals: tuple[ir.Signal, ...]) -> list[tuple[str, int, int, bool, str, str]]:
+    """The fingerprint's fields; byte order and float marked only where they are not Intel integers,
+    so that a fingerprint of an Intel integer message is what it was before either existed."""
+    def role(s: ir.Signal) -> str:
+        return s.role + (":be" if s.is_big_endian else "") + (":float" if s.is_float else "")
+
+    return [(role(s), s.start, s.length, s.signed, decimal_text(s.factor), decimal_text(s.offset)) for s in signals if not s.is_reserved]
 
 
 def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], node_names: tuple[str, ...]) -> ir.Message:
     dlc = msg.get("dlc", 8)
-    signals = tuple(_signal(s, tables) for s in msg["signals"])
+    signals = tuple(_signal(s, tables, dlc) for s in msg["signals"])
     checksum = next((_checksum(s, dlc) for s in signals if s.role == "checksum"), None)
-    counter = next((ir.Counter(s.name, s.length, 1 << s.length, s.start, s.word_mask) for s in signals if s.role == "counter"), None)
+    counter = next((ir.Counter(s.name, s.length, 1 << s.length, s.word_shift, s.word_mask, s.word_order) for s in signals if s.role == "counter"), None)
     mf = msg.get("multiframe")
     multiframe = None
     if mf is not None:
@@ -129,9 +153,8 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
     receivers = msg["receivers"]
     if receivers == "ALL":
         receivers = tuple(n for n in node_names if n != msg["sender"])
-    fingerprint = layout_fingerprint(
-        msg["id"], dlc, [(s.role, s.start, s.length, s.signed, decimal_text(s.factor), decimal_text(s.offset)) for s in signals if not s.is_reserved]
-    )
+    fd = bool(msg.get("fd", False))
+    fingerprint = layout_fingerprint(msg["id"], dlc, _layout_fields(signals), fd)
     bus = can.doc.data["bus"]
     extended = msg.get("extended", bus["id_format"] == "extended")
     cycle = msg.get("cycle_ms") or None  # 0 or absent: event-driven
@@ -160,6 +183,8 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         fingerprint=fingerprint,
         errata=tuple(msg.get("errata", ())),
         loc=msg.loc,
+        is_fd=fd,
+        brs=fd and bool(msg.get("brs", bus.get("data_bitrate") is not None)),
     )
 
 
@@ -200,7 +225,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         title_zh=p.get("title_zh", ""),
         version=str(p["version"]),
         document=p.get("document", ""),
-        bus=ir.Bus(b["bitrate"], b["id_format"], b["addressing"], b["byte_order"]),
+        bus=ir.Bus(b["bitrate"], b["id_format"], b["addressing"], b["byte_order"], b.get("data_bitrate")),
         nodes=nodes,
         messages=messages,
         value_tables=tuple(tables.values()),

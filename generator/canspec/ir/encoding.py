@@ -23,6 +23,8 @@ quotient (physical - offset) / factor of the decimal the user meant:
 from __future__ import annotations
 
 import math
+import struct
+import sys
 from decimal import Decimal, localcontext
 from fractions import Fraction
 
@@ -146,3 +148,23 @@ def decimal_text(value: Fraction | int) -> str:
     if Fraction(Decimal(text)) != value:
         raise ValueError(f"{value} has no finite decimal expansion")
     return text
+
+
+# --- IEEE 754 fields ------------------------------------------------------------------------
+
+FLOAT_FORMATS = {32: "f", 64: "d"}  # struct codes of binary32 / binary64
+FLOAT_MAX = {32: Fraction(struct.unpack("<f", b"\xff\xff\x7f\x7f")[0]), 64: Fraction(sys.float_info.max)}
+
+
+def float_of_bits(bits: int, length: int) -> float:
+    """The float a field's bit pattern holds (NaN payloads, ±Inf and -0 as they are)."""
+    return float(struct.unpack(f"<{FLOAT_FORMATS[length]}", bits.to_bytes(length // 8, "little"))[0])
+
+
+def bits_of_float(value: float, length: int) -> int:
+    """The bit pattern of a double stored in a field, rounded to nearest for binary32. A finite value
+    beyond the format's largest (which would round to infinity, and is undefined behaviour in C) is
+    the caller's to refuse; NaN becomes the format's quiet NaN with its sign."""
+    if length == 32 and math.isfinite(value) and abs(Fraction(value)) > FLOAT_MAX[32]:
+        raise OverflowError(f"{value!r} is beyond the largest float32")
+    return int.from_bytes(struct.pack(f"<{FLOAT_FORMATS[length]}", value), "little")

@@ -7,9 +7,9 @@ from __future__ import annotations
 import hashlib
 
 
-def layout_fingerprint(frame_id: int, dlc: int, fields: list[tuple[str, int, int, bool, str, str]]) -> int:
+def layout_fingerprint(frame_id: int, dlc: int, fields: list[tuple[str, int, int, bool, str, str]], fd: bool = False) -> int:
     """`fields`: (role, start, length, signed, factor_text, offset_text) for every non-reserved signal."""
-    parts = [f"id={frame_id:08X}", f"dlc={dlc}"]
+    parts = [f"id={frame_id:08X}", f"dlc={dlc}"] + (["fd"] if fd else [])
     parts += [
         f"{role}:{start}:{length}:{'s' if signed else 'u'}:{factor}:{offset}"
         for role, start, length, signed, factor, offset in sorted(fields, key=lambda f: f[1])

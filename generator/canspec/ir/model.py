@@ -89,7 +89,7 @@ class Label:
 
 @dataclass(frozen=True)
 class Segment:
-    """One byte's share of a signal (Intel order): value bits [value_shift, value_shift+width)
+    """One byte's share of a signal (either byte order): value bits [value_shift, value_shift+width)
     live in frame byte `byte` at bits [byte_shift, byte_shift+width)."""
 
     byte: int
@@ -106,7 +106,7 @@ class Signal:
     zh: str
     desc: str
     desc_zh: str
-    start: int
+    start: int  # the LSB (little_endian) or the MSB (big_endian), numbered 8 × byte + bit as in a DBC (ir/bits.py)
     length: int
     signed: bool
     factor: Fraction
@@ -132,8 +132,11 @@ class Signal:
     storage_bits: int  # 8 / 16 / 32 / 64: narrowest unsigned/signed container
     value_table: ValueTable | None
     specials: tuple[SpecialValue, ...]
-    segments: tuple[Segment, ...]
-    word_mask: int  # the field's bits in the frame read as one little-endian integer (bit `start` up)
+    segments: tuple[Segment, ...]  # least significant first
+    # The frame word: the message's dlc bytes read as one integer, little-endian for an Intel field and
+    # big-endian for a Motorola one; the field is the contiguous bits [word_shift, word_shift + length).
+    word_shift: int  # an Intel field's start
+    word_mask: int  # mask << word_shift
     sign_bit: int  # 1 << (length - 1) for signed fields, else 0: raw = (bits ^ sign_bit) - sign_bit
     labels: tuple[Label, ...]  # value-table entries, then specials the table does not name, by raw
     decimals: int  # decimal places that print every physical value exactly (0: integer physical values)
@@ -142,10 +145,24 @@ class Signal:
     since: str | None
     errata: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    byte_order: str = "little_endian"  # or "big_endian" (Motorola)
+    # An IEEE 754 binary32/binary64 field (length 32/64): its raw value is the bit pattern (unsigned),
+    # its physical value the float those bits hold (factor 1, offset 0); the raw/phys ranges are the
+    # float's finite range (or the documented one), and NaN/±Inf pass only without a documented range.
+    is_float: bool = False
 
     @property
     def is_reserved(self) -> bool:
         return self.role == "reserved"
+
+    @property
+    def is_big_endian(self) -> bool:
+        return self.byte_order == "big_endian"
+
+    @property
+    def word_order(self) -> str:
+        """The frame word's order for this field: "little" or "big" (int.from_bytes, to_bytes)."""
+        return "big" if self.is_big_endian else "little"
 
     @property
     def is_scaled(self) -> bool:
@@ -228,8 +245,9 @@ class Counter:
     signal: str
     length: int
     modulo: int  # 2^length: the counter wraps to 0 after modulo - 1
-    start: int  # its bits in the frame word
+    start: int  # its LSB in the frame word (Signal.word_shift)
     word_mask: int
+    word_order: str = "little"  # the frame word's order (Signal.word_order)
 
 
 @dataclass(frozen=True)
@@ -289,6 +307,21 @@ class Message:
     fingerprint: int  # 32-bit hash of the wire layout
     errata: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    is_fd: bool = False  # a CAN FD frame (FDF): up to 64 data bytes
+    brs: bool = False  # CAN FD bit-rate switching: the data phase at the bus's data_bitrate
+
+    @property
+    def is_classic_length(self) -> bool:
+        """At most 8 data bytes: the whole frame fits one 64-bit word."""
+        return self.dlc <= 8
+
+    @property
+    def has_big_endian(self) -> bool:
+        return any(s.is_big_endian for s in self.signals)
+
+    @property
+    def has_float(self) -> bool:
+        return any(s.is_float for s in self.signals)
 
     @property
     def last_byte(self) -> int:
@@ -327,7 +360,8 @@ class Bus:
     bitrate: int
     id_format: str  # "extended" | "standard": the messages' default
     addressing: str  # "j1939" | "none"
-    byte_order: str
+    byte_order: str  # the signals' default: "little_endian" | "big_endian"
+    data_bitrate: int | None = None  # CAN FD data phase (frames with bit-rate switching)
 
     @property
     def is_j1939(self) -> bool:
@@ -379,6 +413,22 @@ class CanProtocol:
     @property
     def has_checksums(self) -> bool:
         return any(m.checksum is not None for m in self.messages)
+
+    @property
+    def has_fd(self) -> bool:
+        return any(m.is_fd for m in self.messages)
+
+    @property
+    def has_big_endian(self) -> bool:
+        return any(m.has_big_endian for m in self.messages)
+
+    @property
+    def has_float(self) -> bool:
+        return any(m.has_float for m in self.messages)
+
+    @property
+    def max_dlc(self) -> int:
+        return max((m.dlc for m in self.messages), default=0)
 
     @property
     def has_multiframe(self) -> bool:

@@ -3,16 +3,19 @@ conversion with the range rules, and per-message decoders compiled for `canspec 
 produces the shared test vectors; the generated C, Python and Rust code must agree with it bit
 for bit (cantools, reading the generated DBC, checks it independently).
 
-A frame of up to 8 bytes is handled as one little-endian integer `v` (the frame word): every
-field of an Intel-order message is `(v & word_mask) >> start`, sign-extended with `sign_bit`."""
+A frame (up to 64 bytes) is handled as one integer, the frame word, read in the order of each
+field: every field is `(v & word_mask) >> word_shift` of the little-endian word (Intel) or of the
+big-endian one (Motorola), sign-extended with `sign_bit`; a float field's raw value is its bit
+pattern, and its physical value the float those bits hold."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import exact, round_half_away
+from canspec.ir.encoding import bits_of_float, exact, float_of_bits, round_half_away
 
 
 class CodecError(ValueError):
@@ -23,9 +26,18 @@ def frame_word(data: bytes | bytearray) -> int:
     return int.from_bytes(data, "little")
 
 
-def raw_value(sig: ir.Signal, v: int) -> int:
-    """The raw value of a field in the frame word `v`."""
-    return (((v & sig.word_mask) >> sig.start) ^ sig.sign_bit) - sig.sign_bit
+def raw_value(sig: ir.Signal, v: int, big: int | None = None) -> int:
+    """The raw value of a field in the frame word `v` (little-endian) or, for a Motorola field,
+    `big` (the same bytes read big-endian: big_word)."""
+    word = v if not sig.is_big_endian else big
+    if word is None:
+        raise ValueError(f"{sig.name}: a Motorola field needs the big-endian frame word")
+    return (((word & sig.word_mask) >> sig.word_shift) ^ sig.sign_bit) - sig.sign_bit
+
+
+def big_word(v: int, dlc: int) -> int:
+    """The big-endian frame word of the little-endian one `v` of a dlc-byte frame."""
+    return int.from_bytes(v.to_bytes(dlc, "little"), "big")
 
 
 def xor_checksum(msg: ir.Message, v: int) -> int:
@@ -44,12 +56,17 @@ def checksum_ok(msg: ir.Message, data: bytes | bytearray) -> bool:
 
 def pack(msg: ir.Message, raw: dict[str, int], *, fill_checksum: bool = True) -> bytes:
     """Raw values → frame bytes. Missing signals are 0, reserved bits 0, checksum computed."""
-    v = 0
+    v = big = 0
     for sig in msg.data_signals:
         value = raw.get(sig.name, 0)
         if not sig.raw_type_min <= value <= sig.raw_type_max:
             raise CodecError(f"{msg.name}.{sig.name}: raw {value} does not fit {sig.length} bits ({sig.raw_type_min}..{sig.raw_type_max})")
-        v |= (value << sig.start) & sig.word_mask
+        if sig.is_big_endian:
+            big |= (value << sig.word_shift) & sig.word_mask
+        else:
+            v |= (value << sig.word_shift) & sig.word_mask
+    if big:
+        v |= int.from_bytes(big.to_bytes(msg.dlc, "big"), "little")
     if fill_checksum and msg.checksum is not None:
         v = (v & ~(0xFF << 8 * msg.checksum.byte)) | xor_checksum(msg, v) << 8 * msg.checksum.byte
     return v.to_bytes(msg.dlc, "little")
@@ -60,12 +77,15 @@ def unpack(msg: ir.Message, data: bytes | bytearray) -> dict[str, int]:
     if len(data) < msg.dlc:
         raise CodecError(f"{msg.name}: frame has {len(data)} bytes, needs {msg.dlc}")
     v = frame_word(data[: msg.dlc])
-    return {sig.name: raw_value(sig, v) for sig in msg.data_signals}
+    big = int.from_bytes(data[: msg.dlc], "big")
+    return {sig.name: raw_value(sig, v, big) for sig in msg.data_signals}
 
 
 def to_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
     """Physical → raw with the shared rules: round half away from zero; outside the
     documented range (unless it is a special value) or not encodable is an error."""
+    if sig.is_float:
+        return float_raw(sig, physical)
     try:
         value = exact(physical)
     except (ValueError, ArithmeticError, TypeError):
@@ -82,6 +102,25 @@ def to_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
     return raw
 
 
+def float_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
+    """A float field's bit pattern: the value rounded to the format (binary32: to nearest). NaN and
+    ±Inf pass where no range is documented; a finite value must lie in the range (the format's
+    finite range without one)."""
+    try:
+        x = float(physical)
+    except (ValueError, TypeError, OverflowError):
+        raise CodecError(f"{sig.name}: {physical!r} is not a number") from None
+    finite = math.isfinite(x)
+    if (finite and not sig.accept_min <= Fraction(x) <= sig.accept_max) or (not finite and sig.doc_min is not None):
+        raise CodecError(f"{sig.name}: {physical} is outside the allowed range [{float(sig.check_min):g}, {float(sig.check_max):g}]")
+    return bits_of_float(x, sig.length)
+
+
+def physical_value(sig: ir.Signal, raw: int) -> float | int | Fraction:
+    """A field's physical value: exact (Fraction, int) for an integer field, the float for a float one."""
+    return float_of_bits(raw, sig.length) if sig.is_float else sig.physical(raw)
+
+
 # --- decoding many frames fast (`canspec decode`) ----------------------------------------------
 
 TABLE_BITS = 10  # unsigned fields up to this wide get the text of every raw value precomputed
@@ -90,6 +129,8 @@ TABLE_BITS = 10  # unsigned fields up to this wide get the text of every raw val
 def physical_number(sig: ir.Signal, raw: int) -> float | int:
     """The physical value as a Python number: exact int arithmetic for integer scaling, doubles
     (raw * factor + offset, as every generated language computes them) otherwise."""
+    if sig.is_float:
+        return float_of_bits(raw, sig.length)
     if sig.is_integer:
         return raw * int(sig.factor) + int(sig.offset)
     return raw * float(sig.factor) + float(sig.offset)
@@ -101,6 +142,8 @@ def value_text(sig: ir.Signal, raw: int) -> str:
     if label is not None:
         return label.name
     phys = physical_number(sig, raw)
+    if sig.is_float:
+        return repr(phys)  # the shortest text that reads back to the same float (nan, inf, -0.0)
     return f"{phys:.{sig.decimals}f}" if sig.decimals else str(phys)
 
 
@@ -116,10 +159,13 @@ def text_decoder(msg: ir.Message) -> Callable[[int], str]:
     env: dict[str, object] = {"signal_text": signal_text}
     pieces = []
     for i, s in enumerate(msg.data_signals):
-        raw = f"((v >> {s.start}) & {s.mask})"
+        raw = f"(({'b' if s.is_big_endian else 'v'} >> {s.word_shift}) & {s.mask})"
         if s.sign_bit:
             raw = f"(({raw} ^ {s.sign_bit}) - {s.sign_bit})"
-        if not s.sign_bit and s.length <= TABLE_BITS:
+        if s.is_float:
+            env[f"S{i}"] = s
+            pieces.append(f"signal_text(S{i}, {raw})")
+        elif not s.sign_bit and s.length <= TABLE_BITS:
             env[f"T{i}"] = tuple(signal_text(s, r) for r in range(s.mask + 1))
             pieces.append(f"T{i}[{raw}]")
         elif s.labels or (not s.is_integer and not s.decimals):
@@ -133,5 +179,6 @@ def text_decoder(msg: ir.Message) -> Callable[[int], str]:
             pieces.append(f"{pattern!r} % ({raw} * {factor!r} + {offset!r})")
     body = f"', '.join(({', '.join(pieces)},))" if pieces else "''"
     namespace: dict[str, object] = {}
-    exec(f"def fields(v):\n    return {body}\n", env, namespace)  # noqa: S102 - source built from the IR's numbers and identifiers
+    big = f"    b = int.from_bytes(v.to_bytes({msg.dlc}, 'little'), 'big')\n" if msg.has_big_endian else ""
+    exec(f"def fields(v):\n{big}    return {body}\n", env, namespace)  # noqa: S102 - source built from the IR's numbers and identifiers
     return namespace["fields"]  # type: ignore[return-value]

@@ -7,11 +7,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from canspec.ir.bits import LITTLE, positions
 from canspec.spec.loader import Document, LoadedSpec
 from canspec.spec.problems import Problem, error
 from canspec.spec.yamlsource import LocDict, LocList
 
-SIGNAL_DEFAULTS: dict[str, Any] = {"factor": 1, "offset": 0, "unit": "", "role": "data", "signed": False, "desc": "", "desc_zh": ""}
+SIGNAL_DEFAULTS: dict[str, Any] = {"factor": 1, "offset": 0, "unit": "", "role": "data", "signed": False, "float": False, "desc": "", "desc_zh": ""}
 
 
 @dataclass
@@ -46,14 +47,23 @@ def _patched(base: LocDict, patch: LocDict) -> LocDict:
     return out
 
 
-def _finish_signal(sig: LocDict) -> LocDict:
+def _finish_signal(sig: LocDict, byte_order: str) -> LocDict:
     out = _copy(sig)
     for key, value in SIGNAL_DEFAULTS.items():
         out.setdefault(key, value)
+    out.setdefault("byte_order", byte_order)
     if out["role"] == "reserved":
         out.setdefault("name", f"reserved_{out['start']}")
         out.setdefault("zh", "保留")
     return out
+
+
+def _frame_order(sig: LocDict) -> tuple[int, int]:
+    """Signals in frame order: by their lowest-numbered bit (an Intel field's start), then length."""
+    start, length = sig["start"], sig["len"]
+    if sig["byte_order"] == LITTLE or not (isinstance(start, int) and isinstance(length, int) and 0 <= start and 0 < length <= 64):
+        return start, length
+    return min(positions(start, length, sig["byte_order"])), length
 
 
 def _expand_layout(msg: LocDict, layouts: LocDict, problems: list[Problem]) -> list[LocDict]:
@@ -118,7 +128,8 @@ def resolve(spec: LoadedSpec) -> Resolved:
             if not has_layout and any(k in msg for k in ("override", "remove", "add")):
                 problems.append(error(f"message {msg['name']!r} uses override/remove/add without a `layout`", msg.loc, None, "signals-or-layout"))
             raw_signals = _expand_layout(msg, layouts, problems) if has_layout else list(msg["signals"])
-            signals = LocList(sorted((_finish_signal(s) for s in raw_signals), key=lambda s: (s["start"], s["len"])))
+            order = doc.data["bus"].get("byte_order", LITTLE)
+            signals = LocList(sorted((_finish_signal(s, order) for s in raw_signals), key=_frame_order))
             signals.loc = msg.loc_of("signals") if has_signals else msg.loc_of("layout")
             signals.item_locs = [s.loc for s in signals]
             can.messages.append(_copy(msg, signals=signals))

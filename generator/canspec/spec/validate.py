@@ -10,7 +10,9 @@ from fractions import Fraction
 from typing import Any
 
 from canspec.ir import j1939
-from canspec.ir.encoding import raw_range, raw_type_range
+from canspec.ir.bits import BIG, describe, fits, positions
+from canspec.ir.encoding import FLOAT_MAX, raw_range, raw_type_range
+from canspec.ir.fd import FD_LENGTHS
 from canspec.ir.ids import max_id
 from canspec.ir.model import to_physical
 from canspec.spec.problems import Problem, error, warning
@@ -147,8 +149,7 @@ def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
             yield error(
                 f"cycle time {msg['cycle_ms']} ms of {msg['name']!r} is not in 0..{MAX_CYCLE_MS}", msg.loc_of("cycle_ms"),
                 "give the period in milliseconds (0, or no `cycle_ms`, for an event-driven message)", "cycle-time")
-        if not 0 <= msg.get("dlc", 8) <= 8:
-            yield error(f"DLC {msg['dlc']} of {msg['name']!r} is not in 0..8", msg.loc_of("dlc"), "classic CAN frames carry 0 to 8 bytes", "dlc-range")
+        yield from _frame_format(msg, can.doc.data["bus"])
         if msg.get("layout_undefined") and len(_signals(msg)):
             yield error(f"message {msg['name']!r} says `layout_undefined` but lists signals", msg.loc_of("layout_undefined"), None, "empty-message")
         if not msg.get("layout_undefined") and not len(_signals(msg)) and msg.get("dlc", 8) != 0:
@@ -157,12 +158,33 @@ def cycle_and_dlc(can: ResolvedCan) -> Iterator[Problem]:
                 "list its signals, or set `layout_undefined: true` if the document defines none (a DLC-0 frame needs none)", "empty-message")
 
 
+def _frame_format(msg: LocDict, bus: LocDict) -> Iterator[Problem]:
+    """DLC and the CAN FD flags: classic frames carry 0..8 bytes, FD frames also 12..64 in steps."""
+    dlc, fd = msg.get("dlc", 8), msg.get("fd", False)
+    if dlc not in FD_LENGTHS:
+        yield error(f"DLC {dlc} of {msg['name']!r} is not a CAN frame length", msg.loc_of("dlc"),
+                    f"classic CAN frames carry 0 to 8 bytes, CAN FD frames also {', '.join(map(str, FD_LENGTHS[9:]))}", "dlc-range")
+    elif dlc > 8 and not fd:
+        yield error(f"DLC {dlc} of {msg['name']!r} needs a CAN FD frame", msg.loc_of("dlc"), "add `fd: true` to the message, or use 0..8 bytes", "dlc-range")
+    if msg.get("brs") and not fd:
+        yield error(f"message {msg['name']!r} sets `brs` but is not a CAN FD frame", msg.loc_of("brs"), "add `fd: true`, or remove `brs`", "fd-brs")
+    elif fd and msg.get("brs", bus.get("data_bitrate") is not None) and bus.get("data_bitrate") is None:
+        yield error(f"message {msg['name']!r} switches bit rate, but the bus gives no data-phase bit rate", msg.loc_of("brs"),
+                    "add `data_bitrate:` (bit/s) to `bus`, or `brs: false` to the message", "fd-brs")
+
+
+def _where(sig: LocDict) -> str:
+    """Where a field lies, in words: its order and bytes (both orders use the DBC's bit numbers)."""
+    order = "Motorola" if sig["byte_order"] == BIG else "Intel"
+    return f"{order}, start {sig['start']}, {sig['len']} bits: {describe(sig['start'], sig['len'], sig['byte_order'])}"
+
+
 @rule
 def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
         dlc = msg.get("dlc", 8)
-        frame_bits = 8 * dlc if 0 <= dlc <= 8 else 64  # a bad DLC is reported by dlc-range
-        owners: list[str | None] = [None] * 64
+        frame_bytes = dlc if dlc in FD_LENGTHS else 64  # a bad DLC is reported by dlc-range
+        owners: dict[int, str] = {}
         for sig in _signals(msg):
             start, length = sig["start"], sig["len"]
             if not 1 <= length <= 64 or start < 0:
@@ -170,18 +192,22 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                     f"signal {sig['name']!r}: start {start} / length {length} is not a valid bit field", sig.loc_of("len"),
                     "length is 1..64 bits, start is >= 0", "signal-length")
                 continue
-            if start + length > frame_bits:
-                yield error(
-                    f"signal {sig['name']!r} (bits {start}..{start + length - 1}) extends beyond the {frame_bits // 8}-byte frame of {msg['name']!r}",
-                    sig.loc_of("start"), "check start and length against the DLC", "signal-beyond-dlc")
+            if not fits(start, length, sig["byte_order"], frame_bytes):
+                hint = "check start and length against the DLC" + (
+                    "; a Motorola field's start is its most significant bit, and it runs down to bit 0, then on from bit 7 of the next byte"
+                    if sig["byte_order"] == BIG else "")
+                yield error(f"signal {sig['name']!r} ({_where(sig)}) extends beyond the {frame_bytes}-byte frame of {msg['name']!r}",
+                            sig.loc_of("start"), hint, "signal-beyond-dlc")
                 continue
-            clash = {owners[b] for b in range(start, start + length) if owners[b] is not None}
+            bits = positions(start, length, sig["byte_order"])
+            clash = {owners[b] for b in bits if b in owners}
             if clash:
                 yield error(
-                    f"signal {sig['name']!r} (bits {start}..{start + length - 1}) overlaps {', '.join(sorted(map(str, clash)))} in {msg['name']!r}",
-                    sig.loc_of("start"), "check the start bits and lengths in the document's table", "signal-overlap")
-            for b in range(start, start + length):
-                owners[b] = owners[b] or sig["name"]
+                    f"signal {sig['name']!r} ({_where(sig)}) overlaps {', '.join(sorted(clash))} in {msg['name']!r}",
+                    sig.loc_of("start"), "check the start bits, lengths and byte orders in the document's table", "signal-overlap")
+            for b in bits:
+                owners.setdefault(b, sig["name"])
+            yield from _float_shape(sig)
             for key in ("factor", "offset"):
                 if not _finite(sig[key]):
                     yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
@@ -189,6 +215,20 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(
                     f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero"
                 )
+
+
+def _float_shape(sig: LocDict) -> Iterator[Problem]:
+    """An IEEE float field: 32 or 64 bits holding the physical value itself (ir.Signal.is_float)."""
+    if not sig["float"]:
+        return
+    if sig["len"] not in (32, 64):
+        yield error(f"float signal {sig['name']!r} has {sig['len']} bits", sig.loc_of("len"), "IEEE floats are 32 (float32) or 64 (float64) bits", "float-field")
+    for key, bad in (("signed", sig["signed"]), ("factor", sig["factor"] != 1), ("offset", sig["offset"] != 0), ("values", "values" in sig),
+                     ("special", "special" in sig), ("role", sig["role"] != "data")):
+        if bad:
+            yield error(f"float signal {sig['name']!r} gives `{key}`", sig.loc_of(key),
+                        "a float field holds its physical value itself: no sign flag, factor 1, offset 0, no value table or specials, role data",
+                        "float-field")
 
 
 @rule
@@ -206,6 +246,11 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(
                     f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] has min > max", sig.loc_of("range"), "write the range as [min, max]", "range-order"
                 )
+                continue
+            if sig["float"]:
+                if sig["len"] in FLOAT_MAX and max(abs(lo), abs(hi)) > FLOAT_MAX[sig["len"]]:
+                    yield error(f"signal {sig['name']!r}: range [{rng[0]}, {rng[1]}] exceeds the largest float{sig['len']}", sig.loc_of("range"),
+                                "give a range within the float's finite values, or none (then NaN and ±Inf pass too)", "range-empty")
                 continue
             tmin, tmax = raw_type_range(sig["len"], sig["signed"])
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
@@ -227,7 +272,7 @@ def physical_doubles(can: ResolvedCan) -> Iterator[Problem]:
     """Every physical value a field may carry is a double: each target computes them in doubles."""
     for msg in can.messages:
         for sig in _signals(msg):
-            if not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
+            if not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]) or sig["float"]:
                 continue
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
             rng = sig.get("range")
@@ -313,9 +358,10 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
                     f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}", sig.loc_of("range"),
                     f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
             if role == "checksum":
-                if sig["len"] != 8 or sig["start"] % 8:
+                if sig["len"] != 8 or sig["start"] % 8 != (7 if sig["byte_order"] == BIG else 0):
                     yield error(
-                        f"checksum {sig['name']!r} must be one whole byte (8 bits at a multiple of 8), not {sig['len']} bits at bit {sig['start']}",
+                        f"checksum {sig['name']!r} must be one whole byte (8 bits from bit 0 of a byte, or from bit 7 in Motorola order), "
+                        f"not {sig['len']} bits at bit {sig['start']}",
                         sig.loc_of("start"), "the XOR checksum is byte 7 = XOR of bytes 0..6", "checksum-shape")
                 elif dlc < 2:
                     yield error(

@@ -21,7 +21,6 @@ def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
         dbc=model.build(spec, spec.can),
         unknown_node=model.UNKNOWN_NODE,
         sig_types=attributes.SIG_TYPES,
-        vframe_formats=attributes.VFRAME_FORMATS,
         send_types=attributes.MSG_SEND_TYPES,
         default_send_type=attributes.MSG_SEND_TYPES[attributes.NOT_CYCLIC],
         max_cycle_ms=attributes.MAX_CYCLE_MS,

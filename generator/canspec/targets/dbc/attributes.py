@@ -9,8 +9,12 @@ from canspec import ir
 # BA_DEF_ SG_ "SigType": what a signal is, for J1939 tools (ASCII text, counters, checksums).
 SIG_TYPES = ("Default", "Range", "RangeSigned", "ASCII", "Discrete", "Control", "ReferencePGN", "DTC",
              "StringDelimiter", "StringLength", "StringLengthControl", "MessageCounter", "MessageChecksum")
-# BA_DEF_ BO_ "VFrameFormat": how a message goes on the bus.
+# BA_DEF_ BO_ "VFrameFormat": how a message goes on the bus; a bus with CAN FD frames gets the values
+# up to Vector's FD ones (14, 15), as CANdb++ writes them.
 VFRAME_FORMATS = ("StandardCAN", "ExtendedCAN", "reserved", "J1939PG")
+VFRAME_FORMATS_FD = VFRAME_FORMATS + ("reserved",) * 10 + ("StandardCAN_FD", "ExtendedCAN_FD")
+# SIG_VALTYPE_: 1 for an IEEE float32 signal, 2 for a float64 (0, an integer, is not written).
+SIG_VALTYPES = {32: 1, 64: 2}
 # BA_DEF_ BO_ "GenMsgSendType", spelt as the J1939 template spells it ("cyclic", "noMsgSendType").
 MSG_SEND_TYPES = ("cyclic", "NotUsed", "NotUsed", "NotUsed", "NotUsed", "NotUsed", "NotUsed", "IfActive", "noMsgSendType")
 CYCLIC = MSG_SEND_TYPES.index("cyclic")
@@ -32,7 +36,9 @@ def sig_type(msg: ir.Message, sig: ir.Signal) -> int:
 
 
 def vframe_format(bus: ir.Bus, msg: ir.Message) -> int:
-    """A J1939 parameter group on a J1939 bus, else a plain standard or extended frame."""
+    """A CAN FD frame; a J1939 parameter group on a J1939 bus; else a plain standard or extended frame."""
+    if msg.is_fd:
+        return VFRAME_FORMATS_FD.index("ExtendedCAN_FD" if msg.is_extended else "StandardCAN_FD")
     if bus.is_j1939:
         return VFRAME_FORMATS.index("J1939PG")
     return VFRAME_FORMATS.index("ExtendedCAN" if msg.is_extended else "StandardCAN")

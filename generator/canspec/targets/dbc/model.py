@@ -20,6 +20,23 @@ class DbcSignal:
     sig_type: int
     comment: str
 
+    @property
+    def byte_order(self) -> int:
+        """The DBC's @0 (Motorola) or @1 (Intel)."""
+        return 0 if self.sig.is_big_endian else 1
+
+    @property
+    def valtype(self) -> int:
+        """SIG_VALTYPE_: 1 float32, 2 float64, 0 an integer."""
+        return attributes.SIG_VALTYPES[self.sig.length] if self.sig.is_float else 0
+
+    @property
+    def bounds(self) -> tuple[object, object]:
+        """[min|max]: the physical range; a float without a documented one writes [0|0], the DBC's 'none'."""
+        if self.sig.is_float and self.sig.doc_min is None:
+            return 0, 0
+        return self.sig.phys_min if not self.sig.is_float else self.sig.check_min, self.sig.phys_max if not self.sig.is_float else self.sig.check_max
+
 
 @dataclass(frozen=True)
 class DbcMessage:
@@ -47,6 +64,18 @@ class Dbc:
     messages: tuple[DbcMessage, ...]
     protocol_type: str  # "J1939" on a J1939 bus, else ""
     default_vframe_format: str
+
+    @property
+    def vframe_formats(self) -> tuple[str, ...]:
+        return attributes.VFRAME_FORMATS_FD if self.can.has_fd else attributes.VFRAME_FORMATS
+
+    @property
+    def bus_type(self) -> str:
+        return "CAN FD" if self.can.has_fd else "CAN"
+
+    @property
+    def floats(self) -> tuple[tuple[DbcMessage, DbcSignal], ...]:
+        return tuple((m, s) for m in self.messages for s in m.signals if s.valtype)
 
     @property
     def renamed(self) -> tuple[tuple[DbcMessage, DbcSignal], ...]:
