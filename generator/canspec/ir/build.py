@@ -11,7 +11,17 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits, word_shift
-from canspec.ir.encoding import FLOAT_MAX, covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
+from canspec.ir.encoding import (
+    FLOAT_MAX,
+    covering_decimal,
+    decimal_text,
+    decimals,
+    fits_runtime,
+    raw_range,
+    raw_type_range,
+    to_physical_runtime,
+    to_raw_runtime,
+)
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
@@ -121,6 +131,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int) ->
         loc=sig.loc,
         byte_order=order,
         is_float=is_float,
+        dbc_name=sig.get("dbc_name", sig["name"]),
     )
 
 
@@ -183,6 +194,7 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         fingerprint=fingerprint,
         errata=tuple(msg.get("errata", ())),
         loc=msg.loc,
+        dbc_name=msg.get("dbc_name", msg["name"]),
         is_fd=fd,
         brs=fd and bool(msg.get("brs", bus.get("data_bitrate") is not None)),
     )
@@ -213,7 +225,8 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
     data = can.doc.data
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
     nodes = tuple(
-        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc)
+        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc,
+                dbc_name=n.get("dbc_name", n["name"]))
         for n in data["nodes"]
     )
     names = tuple(n.name for n in nodes)

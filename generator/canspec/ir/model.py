@@ -150,6 +150,7 @@ class Signal:
     # its physical value the float those bits hold (factor 1, offset 0); the raw/phys ranges are the
     # float's finite range (or the documented one), and NaN/±Inf pass only without a documented range.
     is_float: bool = False
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name` (a source's own spelling), else `name`
 
     @property
     def is_reserved(self) -> bool:
@@ -309,6 +310,7 @@ class Message:
     loc: Loc | None = field(default=None, compare=False, hash=False)
     is_fd: bool = False  # a CAN FD frame (FDF): up to 64 data bytes
     brs: bool = False  # CAN FD bit-rate switching: the data phase at the bus's data_bitrate
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
     @property
     def is_classic_length(self) -> bool:
@@ -353,6 +355,7 @@ class Node:
     desc: str
     aliases: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
 
 @dataclass(frozen=True)

@@ -42,16 +42,16 @@ def signal_names(can: ir.CanProtocol) -> dict[tuple[str, str], str]:
     """(message name, spec signal name) → the signal's name in the DBC, for every data signal."""
     definitions: dict[str, set[Hashable]] = defaultdict(set)
     for msg, sig in _data_signals(can):
-        definitions[sig.name].add(definition(msg, sig))
+        definitions[sig.dbc_name].add(definition(msg, sig))
     ambiguous = {name for name, defs in definitions.items() if len(defs) > 1}
     taken = set(definitions) - ambiguous
     names = {}
     for msg, sig in _data_signals(can):
-        if sig.name in ambiguous:
-            names[(msg.name, sig.name)] = _unique(sig.name, msg.id_text[2:], taken)
+        if sig.dbc_name in ambiguous:
+            names[(msg.name, sig.name)] = _unique(sig.dbc_name, msg.id_text[2:], taken)
             taken.add(names[(msg.name, sig.name)])
         else:
-            names[(msg.name, sig.name)] = sig.name
+            names[(msg.name, sig.name)] = sig.dbc_name
     return names
 
 
