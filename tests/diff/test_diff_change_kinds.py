@@ -132,7 +132,8 @@ BOTH_EDITED = [
     ("message_brs_changed", [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")],
      [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n    brs: false\n")], {("message_brs_changed", "compatible", None)}),
     # a byte-aligned byte is the same field in either order: start 56 Intel and start 63 Motorola are byte 7
-    ("byte_order_of_a_whole_byte", [], [("start: 56, len: 8, range: [0, 255], role: checksum}", "start: 63, len: 8, byte_order: big_endian, range: [0, 255], role: checksum}")],
+    ("byte_order_of_a_whole_byte", [], [("start: 56, len: 8, range: [0, 255], role: checksum}",
+                                         "start: 63, len: 8, byte_order: big_endian, range: [0, 255], role: checksum}")],
      set()),
 ]
 

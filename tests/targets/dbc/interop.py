@@ -48,7 +48,8 @@ def snapshot(path: Path, exact: bool = False) -> dict[str, Any]:
             if frame == dbc_id:
                 signals[name].update(zip(REWRITTEN, map(_decimal, numbers)))
         messages[(m.frame_id, m.is_extended_frame)] = {
-            "name": m.name, "dlc": m.length, "fd": m.is_fd, "brs": attribute(m, "CANFD_BRS") if m.is_fd else None, "cycle": m.cycle_time, "senders": sorted(m.senders), "comment": m.comment, "signals": signals,
+            "name": m.name, "dlc": m.length, "fd": m.is_fd, "brs": attribute(m, "CANFD_BRS") if m.is_fd else None, "cycle": m.cycle_time,
+            "senders": sorted(m.senders), "comment": m.comment, "signals": signals,
         }
     bus = {"type": attribute(db, "BusType"), "data_bitrate": attribute(db, "BaudrateCANFD")}
     return {"bus": bus, "nodes": {n.name: n.comment for n in db.nodes}, "messages": messages}
