@@ -96,12 +96,20 @@ def fd_frame_bits(dlc: int, extended: bool = True, stuffing: bool = True) -> FdF
     return FdFrameBits(a + stuff_a + UNSTUFFED_TRAILER_BITS, d + stuff - stuff_a + fd_crc_field_bits(dlc))
 
 
+def fd_formula_facts() -> dict[str, int]:
+    """The FD formula's constants, for the handbook's statement of it."""
+    return {"a_standard": FD_ARBITRATION_BITS[False], "a_extended": FD_ARBITRATION_BITS[True], "control": FD_CONTROL_BITS,
+            "stuff_count": STUFF_COUNT_BITS, "crc_short": fd_crc_field_bits(16), "crc_long": fd_crc_field_bits(64),
+            "example_nominal": fd_frame_bits(64, False).nominal, "example_data": fd_frame_bits(64, False).data}
+
+
 @dataclass(frozen=True)
 class MessageLoad:
     message: ir.Message
     frames_per_cycle: int  # a multi-frame message sends all its frames every cycle (worst case)
     bits_min: int | Fraction  # frame length without stuff bits (an FD frame's: in nominal bit times)
     bits_max: int | Fraction  # worst-case frame length
+    phases: FdFrameBits | None  # an FD frame's worst-case bits per phase (None: a classic frame)
     frames_per_s: Fraction
     bits_per_s: Fraction  # worst case
     load: Fraction  # share of the bit rate, 0..1
@@ -151,7 +159,8 @@ def message_load(msg: ir.Message, bitrate: int, data_bitrate: int | None = None)
     frames_per_s = Fraction(1000 * frames, msg.cycle_ms)
     worst = message_bits(msg, bitrate, data_bitrate)
     bits_per_s = frames_per_s * worst
-    return MessageLoad(msg, frames, message_bits(msg, bitrate, data_bitrate, stuffing=False), worst, frames_per_s, bits_per_s,
+    phases = fd_frame_bits(msg.dlc, msg.is_extended) if msg.is_fd else None
+    return MessageLoad(msg, frames, message_bits(msg, bitrate, data_bitrate, stuffing=False), worst, phases, frames_per_s, bits_per_s,
                        bits_per_s / bitrate)
 
 
