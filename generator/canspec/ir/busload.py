@@ -11,6 +11,7 @@ DLC, CRC) and 54 for a 29-bit ID (SOF, 11-bit base ID, SRR, IDE, 18-bit extensio
 DLC, CRC); 13 bits that are never stuffed (CRC delimiter, ACK slot and delimiter, 7-bit EOF,
 3-bit interframe space); the floor term is the most stuff bits the stuffed region can need
 (one after the first 5 equal bits, then one per 4 bits). 8 bytes, 29-bit ID: 160 bits.
+
 CAN FD frames (ISO 11898-1:2015, FD base and extended format, the ISO CRC with its stuff count)
 take two bit rates: the arbitration phase at the bus's nominal bitrate and, with bit-rate
 switching (BRS), the data phase at `bus.data_bitrate`. In bits, n data bytes:
@@ -36,6 +37,7 @@ CRC-21, fixed stuff bits), as Vector's CAN FD course describes them
 stuff bit, then one after every 4 bits; no dynamic stuffing after the data field) and as public CAN
 FD bus-load calculators count them. Worked example: 64 bytes, 11-bit ID, BRS, 500 kbit/s / 2
 Mbit/s: at most 33 nominal + 679 data-phase bits = 202.75 nominal bit times (405.5 µs).
+
 All arithmetic is exact (Fraction) so the published figures never depend on float rounding.
 Event-driven messages have no rate to count: they are left out of the figures and listed apart.
 """
