@@ -32,3 +32,13 @@ def test_busload_page_of_an_fd_bus_states_both_phases():
 def test_busload_page_of_a_classic_bus_has_no_fd_formula():
     page = _busload(ROOT / "spec")
     assert "CAN FD" not in page and "data phase" not in page
+
+
+def test_an_event_driven_fd_frame_is_listed_with_its_length(tmp_path):
+    text = FIXTURE.read_text(encoding="utf-8")
+    assert text.count("    cycle_ms: 50\n") == 1
+    path = tmp_path / "fd_event.yaml"
+    path.write_text(text.replace("    cycle_ms: 50\n", ""), encoding="utf-8")
+    page = _busload(path)
+    # radar_objects, 64 bytes with BRS: 33 + 679 / 4 = 202.75 nominal bit times; the figures lose its 4055 bit/s
+    assert "| radar_objects | ADAS | 64 | 202.75 |" in page and "15370.0 bit/s" in page
