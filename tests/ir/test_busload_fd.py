@@ -47,7 +47,7 @@ def crc_field(length: int, stuff_bits: int) -> int:
     """Bits of the CRC field before its delimiter: a fixed stuff bit, then one after every 4 bits of
     the stuff count (Gray code of the count mod 8, parity) and the CRC sequence."""
     gray = (stuff_bits % 8) ^ ((stuff_bits % 8) >> 1)
-    sequence = bits(gray, 3) + [bin(gray).count("1") % 2] + [0] * (17 if length <= 16 else 21)  # the CRC's value never matters
+    sequence = bits(gray, 3) + [gray.bit_count() % 2] + [0] * (17 if length <= 16 else 21)  # the CRC's value never matters
     sent = 0
     for i, _ in enumerate(sequence):
         sent += 1 + (i % 4 == 0)  # the fixed stuff bit before bits 0, 4, 8, ...

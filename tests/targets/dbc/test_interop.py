@@ -63,7 +63,7 @@ MOTOROLA_FD_FLOAT = ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.y
 
 def _features(snap: dict) -> dict[str, object]:
     messages = [snap["messages"][k] for k in sorted(snap["messages"])]
-    signals = [(m["name"][len("FRAME_"):] if m["name"].startswith("FRAME_") else m["name"], n, s) for m in messages for n, s in sorted(m["signals"].items())]
+    signals = [(m["name"].removeprefix("FRAME_"), n, s) for m in messages for n, s in sorted(m["signals"].items())]
     return {"byte order": [(m, n, s["order"]) for m, n, s in signals], "float": [(m, n, s["float"]) for m, n, s in signals],
             "fd": [m["fd"] for m in messages], "length": [m["dlc"] for m in messages], "brs": [m["brs"] for m in messages],
             "bus type": snap["bus"]["type"], "data bitrate": snap["bus"]["data_bitrate"]}

@@ -78,9 +78,9 @@ def _dialect_facts(can: ir.CanProtocol) -> list[tuple[str, Cell]]:
     """How to read the byte-order, float and FD columns, on a bus that has them."""
     facts: list[tuple[str, Cell]] = []
     if can.has_big_endian:
-        facts.append(("排列格式 Byte order", "Per signal. Bits are numbered as in the DBC: 8 × byte + bit (bit 0 = least significant bit of the byte). "
-                      "Intel: the start bit is the field's least significant bit, the field runs upward. Motorola: the start bit is its most "
-                      "significant bit; the field runs down to bit 0 of the byte, then on from bit 7 of the next byte."))
+        facts.append(("排列格式 Byte order", ("Per signal. Bits are numbered as in the DBC: 8 × byte + bit (bit 0 = least significant bit of the byte). "
+                                            "Intel: the start bit is the field's least significant bit, the field runs upward. Motorola: the start bit "
+                                            "is its most significant bit; the field runs down to bit 0 of the byte, then on from bit 7 of the next byte.")))
     if can.has_float:
         facts.append(("浮点 Float", "Float32/Float64 (IEEE 754): the raw value is the bit pattern; raw min/max are the patterns of the physical limits."))
     if can.has_fd:
