@@ -48,6 +48,38 @@ def test_sym_and_kcd_keep_every_message_and_signal_exactly(source, tool, fmt, tm
             assert {f: want["messages"][key]["signals"][name][f] for f in fields} == {f: s[f] for f in fields}
 
 
+# What each conversion keeps of the issue-24 features (the README's DBC table says the same); a
+# feature a converter drops must be taken out here, and in the README, before the test passes.
+FEATURES = ("byte order", "float", "fd", "length", "brs", "bus type", "data bitrate")
+KEEPS = {
+    ("canmatrix", "sym"): {"byte order", "float", "length"},
+    ("canmatrix", "kcd"): {"byte order", "float", "length"},
+    ("canmatrix", "arxml"): {"byte order", "float", "fd", "length", "bus type"},
+    ("cantools", "sym"): {"byte order", "float", "length"},
+    ("cantools", "kcd"): {"byte order", "float", "length"},
+}
+MOTOROLA_FD_FLOAT = ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.yaml"
+
+
+def _features(snap: dict) -> dict[str, object]:
+    messages = [snap["messages"][k] for k in sorted(snap["messages"])]
+    signals = [(m["name"].removeprefix("FRAME_"), n, s) for m in messages for n, s in sorted(m["signals"].items())]
+    return {"byte order": [(m, n, s["order"]) for m, n, s in signals], "float": [(m, n, s["float"]) for m, n, s in signals],
+            "fd": [m["fd"] for m in messages], "length": [m["dlc"] for m in messages], "brs": [m["brs"] for m in messages],
+            "bus type": snap["bus"]["type"], "data bitrate": snap["bus"]["data_bitrate"]}
+
+
+@pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
+def test_each_conversion_keeps_what_the_table_says_of_byte_order_float_and_fd(tool, fmt, tmp_path):
+    dbc = write_dbc(compiled(MOTOROLA_FD_FLOAT), tmp_path)
+    before = _features(interop.snapshot(dbc))
+    # the fixture has every feature, so a lost one shows: both orders, floats, FD with and without BRS
+    assert {o for *_, o in before["byte order"]} == {"big_endian", "little_endian"} and {f for *_, f in before["float"]} == {True, False}
+    assert set(before["fd"]) == {True, False} and set(before["brs"]) == {None, 0, 1} and before["data bitrate"] and before["bus type"] == "CAN FD"
+    after = _features(interop.snapshot(interop.round_trip(tool, fmt, dbc, tmp_path)))
+    assert {f for f in FEATURES if before[f] == after[f]} == KEEPS[(tool, fmt)]
+
+
 def test_without_unique_names_canmatrix_mixes_definitions_up(tmp_path):
     """The shipped DBC with the spec's names put back (what it was before): canmatrix's SYM shares
     one value table per name and its ARXML one signal definition per name."""
