@@ -48,7 +48,7 @@ def test_dbc_choice_rename_is_source_breaking(tmp_path):
 
 
 def test_dbc_counter_role_from_sigtype(tmp_path):
-    dbc = _mutated(tmp_path, 'BA_ "SigType" SG_ 2550571184 counter_1806A0B0 11;', 'BA_ "SigType" SG_ 2550571184 counter_1806A0B0 1;')
+    dbc = _mutated(tmp_path, 'BA_ "SigType" SG_ 2550571184 counter 11;', 'BA_ "SigType" SG_ 2550571184 counter 1;')
     assert {(c.kind, c.cls, c.frame_id) for c in diff_paths(SPEC, dbc)} == {("signal_role_changed", "wire", 0x1806A0B0)}
 
 

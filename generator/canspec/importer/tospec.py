@@ -239,12 +239,17 @@ def _signal(loaded: Loaded, sig: Any, default_order: str, names: Namer, numbers:
     choices = _choices(loaded, sig, source_name, line, report)
     if choices:
         table, labels = f"{table_prefix}{name}", Namer()
-        tables[table] = {raw: labels.name(text, f"value_{raw}") for raw, text in choices}
+        tables[table] = {raw: _label(labels.name(text, f"value_{raw}"), text) for raw, text in choices}
         out["values"] = table
     role = SIG_TYPE_ROLES.get(str(_sig_type(loaded, sig)))
     if role is not None:
         out["role"] = role
     return out
+
+
+def _label(ident: str, text: str) -> str | dict[str, str]:
+    """A value label: the identifier, with the source's own text where that differs."""
+    return ident if ident == text else {"name": ident, "dbc": text}
 
 
 def _sig_type(loaded: Loaded, sig: Any) -> Any:

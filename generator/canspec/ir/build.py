@@ -26,19 +26,19 @@ from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
-from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
+from canspec.spec.resolve import Resolved, ResolvedCan, label_dbc, label_pair
 from canspec.spec.yamlsource import LocDict
 
 MAX_DECIMALS = 15  # log texts print physical doubles with Signal.decimals places: a double holds no more significant digits
 
 
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
-    entries = sorted((r, label_pair(v)) for r, v in table.items())
-    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident), table.loc_of(raw)) for raw, (ident, zh) in entries), table.loc)
+    entries = sorted((r, label_pair(v), label_dbc(v)) for r, v in table.items())
+    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident), table.loc_of(raw), text) for raw, (ident, zh), text in entries), table.loc)
 
 
 def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) -> tuple[ir.Label, ...]:
-    named = {e.raw: ir.Label(e.raw, e.name, e.label_zh, e.label, False) for e in (table.entries if table else ())}
+    named = {e.raw: ir.Label(e.raw, e.name, e.label_zh, e.label, False, e.dbc_text) for e in (table.entries if table else ())}
     for s in specials:
         named.setdefault(s.raw, ir.Label(s.raw, s.name, s.label_zh, s.label, True))
     return tuple(named[raw] for raw in sorted(named))
@@ -244,6 +244,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         value_tables=tuple(tables.values()),
         fault_tables=_fault_tables(tables, messages),
         loc=p.loc_of("name"),
+        dbc_signal_names=p.get("dbc_signal_names", "per_message"),
     )
 
 

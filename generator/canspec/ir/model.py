@@ -54,6 +54,7 @@ class ValueEntry:
     label_zh: str
     label: str  # English label derived from the identifier
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_text: str = ""  # the label the DBC writes where it is not `name` (a source's own text)
 
 
 @dataclass(frozen=True)
@@ -85,6 +86,11 @@ class Label:
     label_zh: str
     label: str
     is_special: bool
+    dbc_text: str = ""  # ValueEntry.dbc_text
+
+    @property
+    def dbc_label(self) -> str:
+        return self.dbc_text or self.name
 
 
 @dataclass(frozen=True)
@@ -400,6 +406,7 @@ class CanProtocol:
     value_tables: tuple[ValueTable, ...]
     fault_tables: tuple[FaultTable, ...] = ()
     loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
+    dbc_signal_names: str = "per_message"  # or "unique" (targets/dbc/naming.py)
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

@@ -4,7 +4,8 @@ converter loses (the README's DBC section lists the same). And the renaming is w
 
 from __future__ import annotations
 
-import re
+from dataclasses import replace
+
 from pathlib import Path
 
 import canmatrix
@@ -15,12 +16,16 @@ from dbc_support import can_fixtures, compiled, write_dbc
 from repo_paths import GENERATED, ROOT
 
 SHIPPED = GENERATED / "dbc" / "kaiwo_gateway.dbc"
-SOURCES = [SHIPPED, *can_fixtures()]
+SOURCES = [ROOT / "spec", *can_fixtures()]
 CORE = ("name", "dlc", "cycle", "start", "length", "order", "signed", "scale", "offset", "min", "max", "unit", "choices")
 
 
 def _dbc(source: Path, tmp_path: Path) -> Path:
-    return source if source.suffix == ".dbc" else write_dbc(compiled(source), tmp_path)
+    """The spec's DBC with `dbc_signal_names: unique`, as a team converting it to SYM, KCD or ARXML
+    writes it: those formats keep one definition per signal name."""
+    spec = compiled(source)
+    assert spec.can is not None
+    return write_dbc(replace(spec, can=replace(spec.can, dbc_signal_names="unique")), tmp_path)
 
 
 @pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
@@ -81,11 +86,10 @@ def test_each_conversion_keeps_what_the_table_says_of_byte_order_float_and_fd(to
 
 
 def test_without_unique_names_canmatrix_mixes_definitions_up(tmp_path):
-    """The shipped DBC with the spec's names put back (what it was before): canmatrix's SYM shares
-    one value table per name and its ARXML one signal definition per name."""
+    """The shipped DBC as generated (per-message names, the default): canmatrix's SYM shares one
+    value table per name and its ARXML one signal definition per name — why `unique` exists."""
     text = SHIPPED.read_text(encoding="utf-8")
-    for dbc_name, spec_name in re.findall(r'^BA_ "SpecSignalName" SG_ \d+ (\w+) "(\w+)";$', text, re.MULTILINE):
-        text = re.sub(rf"\b{dbc_name}\b", spec_name, text)
+    assert "SpecSignalName\" SG_" not in text
     shared = tmp_path / "shared_names.dbc"
     shared.write_text(text, encoding="utf-8")
     original = interop.snapshot(shared, exact=True)
