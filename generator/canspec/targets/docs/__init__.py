@@ -122,6 +122,7 @@ HELPERS: dict[str, Any] = {
     "bytes_cell": cells.bytes_cell, "byte_list": cells.byte_list, "node_label": cells.node_label, "receivers_text": cells.receivers_text,
     "siblings": cells.siblings, "checksum_rule": cells.checksum_rule, "order_cell": cells.order_cell, "type_cell": cells.type_cell,
     "kbit": cells.kbit, "frame_cell": cells.frame_cell, "length_cell": cells.length_cell, "dlc_column": cells.dlc_column, "svg_parts": svg_parts,
+    "order_example": cells.order_example, "order_where": cells.order_where, "example_start": cells.EXAMPLE_START, "example_length": cells.EXAMPLE_LENGTH,
     "message_page": message_page, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor,
     "json_page": json_page, "vt_anchor": cells.vt_anchor, "erratum_anchor": erratum_anchor, "errata_links": errata_links, "id_link": id_link,
     "json_range": jsonpage.json_range, "json_values": jsonpage.json_values, "json_example": jsonpage.json_example,

@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 from canspec import ir
+from canspec.ir import bits
 from canspec.ir.fd import CLASSIC_MAX, dlc_code
 from canspec.ir.encoding import round_half_away
 from canspec.render.literals import hex_text, num
@@ -183,3 +184,18 @@ def checksum_rule(can: ir.CanProtocol) -> str:
         ((byte, covers),) = shapes
         return f"byte {byte} = XOR of bytes {byte_list(covers)}"
     return "the last byte = XOR of every other byte of the frame"
+
+
+# The handbook's worked example of the two byte orders: a 12-bit field at start bit 3.
+EXAMPLE_START, EXAMPLE_LENGTH = 3, 12
+
+
+def order_example(byte_order: str) -> list[tuple[int, list[str]]]:
+    """Per byte the field touches, its cells bit 7 … 0: the value bit held there (11 = MSB), or "·"."""
+    pos = bits.positions(EXAMPLE_START, EXAMPLE_LENGTH, byte_order)
+    return [(byte, [str(pos.index(8 * byte + k)) if 8 * byte + k in pos else "·" for k in range(7, -1, -1)])
+            for byte in sorted({p // 8 for p in pos})]
+
+
+def order_where(byte_order: str) -> str:
+    return bits.describe(EXAMPLE_START, EXAMPLE_LENGTH, byte_order)
