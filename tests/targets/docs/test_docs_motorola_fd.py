@@ -215,3 +215,36 @@ def test_intel_only_bus_keeps_its_tables():
             assert not any(word in text for word in ("Byte order", "Type |", "Frame format", "DLC code", "Motorola")), rel
     index = pages["index.md"]
     assert "Intel (little_endian)" in index and "Motorola" not in index and "{#byte-order}" not in index and "Data bit rate" not in index
+
+
+def _readme_example() -> dict[str, dict[tuple[int, int], int]]:
+    """spec/README.md's worked example (the two grids side by side): order → (byte, bit) → value bit."""
+    text = (ROOT / "spec" / "README.md").read_text(encoding="utf-8")
+    out: dict[str, dict[tuple[int, int], int]] = {"motorola": {}, "intel": {}}
+    for line in text.splitlines():
+        m = re.match(r"^ byte (\d)\s+(.+?)\s+byte (\d)\s+(.+?)\s*$", line)
+        if m:
+            for order, byte, cells in (("motorola", m.group(1), m.group(2)), ("intel", m.group(3), m.group(4))):
+                for bit, value in zip(range(7, -1, -1), cells.split()):
+                    if value != "·":
+                        out[order][(int(byte), bit)] = int(value)
+    return out
+
+
+def test_the_readme_example_is_what_cantools_reads_from_a_dbc():
+    import cantools
+
+    dbc = ('VERSION ""\n\n\nNS_ :\n\nBS_:\n\nBU_: A\n\n\nBO_ 16 m: 8 A\n SG_ motorola : 3|12@0+ (1,0) [0|0] "" A\n\n'
+           'BO_ 17 i: 8 A\n SG_ intel : 3|12@1+ (1,0) [0|0] "" A\n\n')
+    db = cantools.database.load_string(dbc, "dbc")
+    example = _readme_example()
+    for order, frame in (("motorola", "m"), ("intel", "i")):
+        want = {}
+        for byte in range(8):
+            for bit in range(8):
+                data = bytearray(8)
+                data[byte] = 1 << bit
+                value = db.get_message_by_name(frame).decode(bytes(data))[order]
+                if value:
+                    want[(byte, bit)] = value.bit_length() - 1
+        assert example[order] == want, order
