@@ -198,6 +198,8 @@ def test_overview_states_data_bitrate_byte_order_and_fd_lengths():
     assert "| Data bit rate (CAN FD) | 2000000 bit/s (2000 kbit/s)" in index
     assert "| Byte order | Motorola (big_endian), unless a signal says otherwise |" in index
     assert "64 FD BRS" in index and "| 12 FD |" in index
+    load = _pages()["busload.md"]
+    assert "| 64 FD BRS |" in load and "| 12 FD |" in load and "| 8 |" in load
     section = index[index.index("## Byte order {#byte-order}"):index.index("## Messages")]
     # The worked example: a 12-bit Motorola field at start 3 holds byte 0 bits 3..0 (value bits 11..8)
     # then byte 1 bits 7..0; the same field in Intel byte 0 bits 7..3 (value bits 4..0), byte 1 bits 6..0.
@@ -248,3 +250,9 @@ def test_the_readme_example_is_what_cantools_reads_from_a_dbc():
                 if value:
                     want[(byte, bit)] = value.bit_length() - 1
         assert example[order] == want, order
+
+
+def test_tooltips_name_the_start_bit_order_and_float_type():
+    titles = [t.text for text in _diagrams("radar_objects") for t in ET.fromstring(text[text.index("<svg"):]).iter(f"{SVG}title")]
+    assert "distance: start 8 (MSB, Motorola), length 32, float32" in titles
+    assert "timestamp: start 128, length 64, float64" in titles and "wide_id: start 263 (MSB, Motorola), length 40" in titles

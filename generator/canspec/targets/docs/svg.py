@@ -73,9 +73,10 @@ def parts(msg: ir.Message) -> tuple[range, ...]:
 
 def tooltip(sig: ir.Signal, zh: bool) -> str:
     name = f"{sig.name} {sig.zh}".strip() if zh else sig.name
+    kind = f", float{sig.length}" if sig.is_float else ""
     if sig.is_big_endian:
-        return f"{name}: start {sig.start} (MSB, Motorola), length {sig.length}"
-    return f"{name}: start {sig.start}, length {sig.length}"
+        return f"{name}: start {sig.start} (MSB, Motorola), length {sig.length}{kind}"
+    return f"{name}: start {sig.start}, length {sig.length}{kind}"
 
 
 def _span_label(span: Span) -> str:
