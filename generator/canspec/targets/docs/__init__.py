@@ -1,6 +1,6 @@
-"""The protocol handbook: Markdown pages (plus one bit-layout SVG per message) that MkDocs turns
-into the static site (`make docs`, config in the top-level `mkdocs.yml`), bilingual where the spec
-is and English-only where it is (lang.py).
+"""The protocol handbook: Markdown pages (plus each message's bit-layout SVG: one, or one per 16
+bytes of a long CAN FD frame) that MkDocs turns into the static site (`make docs`, config in the
+top-level `mkdocs.yml`), bilingual where the spec is and English-only where it is (lang.py).
 
 Python decides every number and every cell's content (cells.py, jsonpage.py, errata.py); the
 templates in `templates/docs/` only lay the pages out. Links between pages are relative and every
