@@ -128,7 +128,7 @@ KNOWN = {
     ("radar_objects", "wide_id"): (_cells(*((b, 7, 0) for b in range(32, 37))), (32, 7), (36, 0)),  # past byte 32
     ("radar_objects", "timestamp"): (_cells(*((b, 7, 0) for b in range(16, 24))), (23, 7), (16, 0)),  # float64 Intel
     ("radar_objects", "tail"): (_cells((62, 7, 0), (63, 3, 0)), (63, 3), (62, 0)),
-    ("body_status", "mileage"): (_cells(*((b, 7, 0) for b in range(0, 8))), (0, 7), (7, 0)),  # float64 Motorola
+    ("body_status", "mileage"): (_cells(*((b, 7, 0) for b in range(8))), (0, 7), (7, 0)),  # float64 Motorola
 }
 
 

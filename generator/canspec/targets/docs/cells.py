@@ -7,8 +7,8 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir import bits
-from canspec.ir.fd import CLASSIC_MAX, dlc_code
 from canspec.ir.encoding import round_half_away
+from canspec.ir.fd import CLASSIC_MAX, dlc_code
 from canspec.render.literals import hex_text, num
 from canspec.targets.docs.lang import Lang
 
