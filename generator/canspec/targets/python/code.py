@@ -22,9 +22,10 @@ IND = "    "
 
 @dataclass(frozen=True)
 class PyChecksum:
-    shift: int  # bit position of the checksum byte in the frame integer
-    cover_mask: str  # hex literal: the bytes the XOR covers, in the frame integer
-    folds: tuple[int, ...]  # shifts that XOR-fold the frame's bytes into its lowest byte
+    word: str  # the frame word it is computed on: "v" (little-endian) or "b" (big-endian, a frame of Motorola fields only)
+    shift: int  # bit position of the checksum byte in that word
+    cover_mask: str  # hex literal: the bytes the XOR covers, in that word
+    folds: tuple[int, ...]  # shifts that XOR-fold the covered bytes into the word's lowest byte
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,28 @@ class Frame:
         """The signals encode takes from the caller (the checksum it computes)."""
         return tuple(s for s in self.signals if not s.is_checksum)
 
+    def reads(self, word: str) -> bool:
+        """Whether decode needs the frame word `word` ("v" or "b")."""
+        return any(s.word == word for s in self.signals) or (self.checksum is not None and self.checksum.word == word)
+
+
+def pack_word(values: tuple[PySignal, ...]) -> str:
+    """The frame word encode builds the frame in: little-endian unless every field it sets is Motorola."""
+    return "b" if values and all(s.word == "b" for s in values) else "v"
+
+
+def make_checksum(msg: ir.Message, values: tuple[PySignal, ...]) -> PyChecksum | None:
+    """The XOR checksum on the word encode builds (so encode folds the word it has)."""
+    if msg.checksum is None:
+        return None
+    word, mask, byte = pack_word(values), msg.checksum.cover_mask, msg.checksum.byte
+    if word == "b":  # the same bytes, numbered from the frame's end
+        mask, byte = int.from_bytes(mask.to_bytes(msg.dlc, "little"), "big"), msg.dlc - 1 - byte
+    return PyChecksum(word, byte * 8, PYTHON.hex(mask), xor_folds((mask.bit_length() + 7) // 8))
+
+
+ORDERS = {"v": "little", "b": "big"}
+
 
 def xor_folds(nbytes: int) -> tuple[int, ...]:
     """Shifts that XOR-fold `nbytes` bytes of an integer into its lowest byte."""
@@ -56,17 +79,20 @@ def xor_folds(nbytes: int) -> tuple[int, ...]:
 
 
 def _xor(checksum: PyChecksum) -> list[str]:
-    """`c & 0xFF` = the XOR of the bytes of the frame integer `v` that the checksum covers."""
-    return [f"c = v & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in checksum.folds)]
+    """`c & 0xFF` = the XOR of the bytes of the frame word that the checksum covers."""
+    return [f"c = {checksum.word} & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in checksum.folds)]
+
+
+def _checksum_byte(checksum: PyChecksum) -> str:
+    return f"({checksum.word} >> {checksum.shift}) & 0xFF" if checksum.shift else f"{checksum.word} & 0xFF"
 
 
 def frame_checks(f: Frame) -> tuple[str, ...]:
-    """Length check, frame integer `v`, checksum check: the start of decode and unpack."""
+    """Length check, frame words `v` / `b`, checksum check: the start of decode and unpack."""
     lines = [f"if len(data) != {f.dlc}:", f'{IND}raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")']
-    if f.signals or f.checksum:
-        lines.append('v = _from_bytes(data, "little")')
+    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if f.reads(w)]
     if f.checksum is not None:
-        byte = f"(v >> {f.checksum.shift}) & 0xFF"
+        byte = _checksum_byte(f.checksum)
         lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if (c & 0xFF) != {byte}:"]
         lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, c & 0xFF, {byte}, id_text="{f.id_lit}")')
     return tuple(lines)
@@ -76,19 +102,28 @@ def checksum_ok(f: Frame) -> tuple[str, ...]:
     """The body of `checksum_ok(data)`: never raises."""
     if f.checksum is None:
         return ("return True",)
-    byte = f"(v >> {f.checksum.shift}) & 0xFF"
-    return (f"if len(data) != {f.dlc}:", f"{IND}return False", 'v = _from_bytes(data, "little")', *_xor(f.checksum), f"return (c & 0xFF) == {byte}")
+    word = f'{f.checksum.word} = _from_bytes(data, "{ORDERS[f.checksum.word]}")'
+    return (f"if len(data) != {f.dlc}:", f"{IND}return False", word, *_xor(f.checksum), f"return (c & 0xFF) == {_checksum_byte(f.checksum)}")
+
+
+def _terms(values: list[PySignal]) -> str:
+    """The raw values ORed into their frame word (each fits its field; a signed one masked)."""
+    terms = [(f"({s.raw_var} & {PYTHON.hex(s.sig.mask)})" if s.sig.signed else s.raw_var) + (f" << {s.sig.word_shift}" if s.sig.word_shift else "")
+             for s in values]
+    return " | ".join(terms)
 
 
 def pack_tail(f: Frame) -> tuple[str, ...]:
     """The raw values in `r0`, `r1`, ... (each fits its field) into the frame bytes, checksum filled."""
     if not f.values:
         return (f"return bytes({f.dlc})",)  # reserved bits 0; a checksum of zero bytes is 0
-    terms = [(f"({s.raw_var} & {PYTHON.hex(s.sig.mask)})" if s.sig.signed else s.raw_var) + (f" << {s.sig.start}" if s.sig.start else "") for s in f.values]
-    lines = ["v = " + " | ".join(terms)]
+    word = pack_word(f.values)
+    lines = [f"{w} = {_terms(group)}" for w in ORDERS if (group := [s for s in f.values if s.word == w])]
+    if len(lines) == 2:  # both orders: the Motorola fields join the little-endian word
+        lines.append(f'v |= _from_bytes(b.to_bytes({f.dlc}, "big"), "little")')
     if f.checksum is not None:
-        lines += [*_xor(f.checksum), f"v |= (c & 0xFF) << {f.checksum.shift}"]
-    return (*lines, f'return v.to_bytes({f.dlc}, "little")')
+        lines += [*_xor(f.checksum), f"{word} |= (c & 0xFF) << {f.checksum.shift}" if f.checksum.shift else f"{word} |= c & 0xFF"]
+    return (*lines, f'return {word}.to_bytes({f.dlc}, "{ORDERS[word]}")')
 
 
 def pack(f: Frame, names_var: str) -> tuple[str, ...]:
@@ -113,6 +148,9 @@ def _rounded(s: PySignal, q: str) -> list[str]:
 def _to_raw(s: PySignal) -> list[str]:
     """`raw_var` from the attribute: inline inside the range, the runtime's full rule otherwise."""
     r, slow = s.raw_var, f"_to_raw({s.var}, {s.descriptor})"
+    if s.sig.is_float:  # the double's bit pattern in the format (NaN, ±Inf and what lies outside: the slow path)
+        bits = f'_from_bytes(_pack_f{s.sig.length}({s.var}), "little")'
+        return [f"{s.var} = m.{s.attr}", f"{r} = {bits} if {s.lo_lit} <= {s.var} <= {s.hi_lit} else {slow}"]
     if s.direct:  # integers convert exactly: the raw range check is the whole check
         return [f"{r} = {s.q_expr}", f"if not {s.sig.raw_min} <= {r} <= {s.sig.raw_max}:", f"{IND}{r} = _to_raw(m.{s.attr}, {s.descriptor})"]
     in_range = f"{s.lo_lit} <= {s.var} <= {s.hi_lit}"

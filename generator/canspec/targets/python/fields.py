@@ -1,18 +1,21 @@
 """The Python view of one signal: its attribute, type, default, docstring line, and the
 expressions and decisions its decode and encode need (`code.py` turns them into statements).
 
-Decode reads the whole frame as one little-endian integer `v`, so an Intel signal is a shift,
-a mask and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in
-doubles; floats are written as the shortest repr of the nearest double of the exact decimal.
+Decode reads the whole frame as one integer, little-endian `v` for Intel fields and big-endian
+`b` for Motorola ones (ir.Signal.word_order), so every field is a shift by its `word_shift`, a mask
+and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
+literals are the shortest repr of the nearest double of the exact decimal. An IEEE float field's
+raw value is its bit pattern, turned into the float and back by `struct` (`_unpack_f32`, ...).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimal_text
+from canspec.ir.encoding import FLOAT_MAX, decimal_text
 from canspec.render.literals import PYTHON
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 
@@ -54,6 +57,7 @@ class PySignal:
     allowed: str  # string literal: the allowed range as errors show it
     descriptor: str  # module-level name of the slow-path descriptor
     descriptor_args: str  # its _SignalSpec(...) arguments after message and signal name
+    descriptor_tail: str  # its arguments after the allowed text: ", 32, True" (float bits, NaN/±Inf allowed) for a float field
     var: str  # encode: local holding the attribute
     raw_var: str  # encode: local holding the raw value
     # encode decisions
@@ -69,15 +73,25 @@ class PySignal:
     def is_checksum(self) -> bool:
         return self.sig.role == "checksum"
 
+    @property
+    def word(self) -> str:
+        return word_var(self.sig)
+
 
 def _paren(expr: str) -> str:
     return expr if expr.isidentifier() else f"({expr})"
 
 
+def word_var(sig: ir.Signal) -> str:
+    """The local holding the frame word the field lies in: `v` (little-endian) or `b` (big-endian)."""
+    return "b" if sig.is_big_endian else "v"
+
+
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from the frame integer `v`: shift, mask, sign-extend (no outer parentheses)."""
-    expr = "v" if sig.start == 0 else f"v >> {sig.start}"
-    if sig.start + sig.length < frame_bits:
+    """The raw value from its frame word: shift, mask, sign-extend (no outer parentheses)."""
+    word = word_var(sig)
+    expr = word if sig.word_shift == 0 else f"{word} >> {sig.word_shift}"
+    if sig.word_shift + sig.length < frame_bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
         expr = f"({expr} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
@@ -85,7 +99,9 @@ def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
 
 
 def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
-    """physical = raw × factor + offset: integers for integer scaling, else doubles."""
+    """physical = raw × factor + offset: integers for integer scaling, else doubles; a float field's bits unpacked."""
+    if sig.is_float:
+        return f'_unpack_f{sig.length}(({raw}).to_bytes({sig.length // 8}, "little"))[0]'
     as_int = kind == "int"
     expr = raw
     if sig.factor != 1:
@@ -128,6 +144,8 @@ def exact_branch(sig: ir.Signal) -> bool:
 
 def range_text(sig: ir.Signal) -> str:
     """The allowed range as errors show it, e.g. "[-1080, 1080] deg or 0 (no_limit)"."""
+    if sig.is_float and sig.doc_min is None:
+        return f"any float{sig.length}: finite within ±{float(FLOAT_MAX[sig.length])!r}, NaN or ±Inf"
     text = f"[{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]"
     if sig.unit:
         text += f" {sig.unit}"
@@ -150,7 +168,10 @@ def doc_line(sig: ir.Signal, enum: str | None) -> str:
     parts = [sig.zh] if sig.zh else []
     if sig.unit:
         parts.append(f"unit {sig.unit}")
-    parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
+    if sig.is_float:
+        parts.append(f"IEEE float{sig.length}, " + ("any value (NaN and ±Inf too)" if sig.doc_min is None else f"range {range_text(sig)}"))
+    else:
+        parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
     if sig.is_scaled:
         formula = "raw" if sig.factor == 1 else f"raw × {decimal_text(sig.factor)}"
         if sig.offset:
@@ -180,7 +201,20 @@ def _kind(sig: ir.Signal, enum: str | None) -> str:
     return "int" if sig.is_integer else "float"
 
 
+def double_within(bound: Fraction, up: bool) -> float:
+    """The double nearest `bound` on its inner side (at or above it where `up`, else at or below): a
+    double compared with it gives the exact comparison with `bound` (as the reference codec compares)."""
+    x = float(bound)
+    if up and Fraction(x) < bound:
+        x = math.nextafter(x, math.inf)
+    elif not up and Fraction(x) > bound:
+        x = math.nextafter(x, -math.inf)
+    return x
+
+
 def _default(sig: ir.Signal, kind: str, enum: str | None, members: dict[int, str]) -> str:
+    if sig.is_float:  # 0.0 where the range allows it, else the range's lower end
+        return PYTHON.double(0.0 if sig.check_min <= 0 <= sig.check_max else double_within(sig.accept_min, up=True))
     raw = default_raw(sig)
     if enum is not None:
         return f"{enum}.{members[raw]}" if raw in members else str(raw)
@@ -228,16 +262,20 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     phys = phys_expr(sig, raw, kind)
     if ctx.lookup is not None:
         phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
-    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max
+    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
     lo_lit = PYTHON.number(lo, as_int and lo.denominator == 1)
     hi_lit = PYTHON.number(hi, as_int and hi.denominator == 1)
+    tail = ""
+    if sig.is_float:  # compared as doubles, with the exact answer: the bounds' doubles on their inner side
+        lo_lit, hi_lit = PYTHON.double(double_within(lo, up=True)), PYTHON.double(double_within(hi, up=False))
+        tail = f", {sig.length}, {sig.doc_min is None}"
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
-        descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), var=var, raw_var=f"r{ctx.index}", direct=direct,
+        descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
         q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
         q_nonneg=sig.factor > 0 and float(lo) >= float(sig.offset), exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
     )
