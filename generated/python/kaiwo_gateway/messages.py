@@ -519,6 +519,8 @@ class AutocarEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -725,6 +727,8 @@ class EpsState:
     FRAME_ID: ClassVar[int] = 0x1802A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00200
@@ -919,6 +923,8 @@ class AutocarSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -1133,6 +1139,8 @@ class DrivingState:
     FRAME_ID: ClassVar[int] = 0x1804A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00400
@@ -1394,6 +1402,8 @@ class AutocarControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -1829,6 +1839,8 @@ class VehicleState1:
     FRAME_ID: ClassVar[int] = 0x1806A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00600
@@ -2206,6 +2218,8 @@ class AutocarControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700
@@ -2435,6 +2449,8 @@ class VehicleState2:
     FRAME_ID: ClassVar[int] = 0x1810A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01000
@@ -2589,6 +2605,8 @@ class VehicleState3:
     FRAME_ID: ClassVar[int] = 0x1811A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01100
@@ -2771,6 +2789,8 @@ class VehicleState4:
     FRAME_ID: ClassVar[int] = 0x1812A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01200
@@ -3073,6 +3093,8 @@ class VehicleFault:
     FRAME_ID: ClassVar[int] = 0x1813A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01300
@@ -3497,6 +3519,8 @@ class VehicleState5:
     FRAME_ID: ClassVar[int] = 0x1808A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00800
@@ -3592,6 +3616,8 @@ class RgateEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -3796,6 +3822,8 @@ class RgateSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -4042,6 +4070,8 @@ class RgateControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -4445,6 +4475,8 @@ class RgateControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700
@@ -4622,6 +4654,8 @@ class DeviceId:
     FRAME_ID: ClassVar[int] = 0x18FFAF00
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 500
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FFAF
@@ -4761,6 +4795,8 @@ class FrontSensorDistance1:
     FRAME_ID: ClassVar[int] = 0x18FF0123
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF01
@@ -4969,6 +5005,8 @@ class FrontSensorDistance2:
     FRAME_ID: ClassVar[int] = 0x18FF0223
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF02
@@ -5253,6 +5291,8 @@ class RearSensorDistance1:
     FRAME_ID: ClassVar[int] = 0x18FF0323
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF03
@@ -5461,6 +5501,8 @@ class RearSensorDistance2:
     FRAME_ID: ClassVar[int] = 0x18FF0423
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF04
@@ -5741,6 +5783,8 @@ class TeleEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -5945,6 +5989,8 @@ class TeleSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -6191,6 +6237,8 @@ class TeleControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -6594,6 +6642,8 @@ class TeleControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700

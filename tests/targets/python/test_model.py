@@ -84,7 +84,8 @@ def _wide(can, signed, factor, offset=Fraction(0)):
     base = sig_of(can, "autocar_eps_command", "steering_angle_cmd")
     tmin, tmax = (-(2**63), 2**63 - 1) if signed else (0, 2**64 - 1)
     lo, hi = sorted((tmin * factor + offset, tmax * factor + offset))
-    return dataclasses.replace(base, length=64, start=0, signed=signed, sign_bit=2**63 if signed else 0, factor=factor, offset=offset,
+    return dataclasses.replace(base, length=64, start=0, word_shift=0, word_mask=2**64 - 1, signed=signed,
+                               sign_bit=2**63 if signed else 0, factor=factor, offset=offset,
                                raw_type_min=tmin, raw_type_max=tmax, raw_min=tmin, raw_max=tmax, phys_min=lo, phys_max=hi, check_min=lo, check_max=hi,
                                accept_min=lo, accept_max=hi, doc_min=None, doc_max=None, specials=(), value_table=None)
 
