@@ -564,11 +564,10 @@ class AutocarEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: AutocarEpsCommandRaw) -> bytes:
@@ -605,12 +604,13 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0"
+            )
     m = _new(AutocarEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -625,12 +625,13 @@ def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "autocar_eps_command", 0x1801B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0"
+            )
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -662,8 +663,7 @@ def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -687,8 +687,7 @@ def _pack_autocar_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -969,11 +968,10 @@ class AutocarSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: AutocarSpeedCommandRaw) -> bytes:
@@ -1010,12 +1008,13 @@ def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0"
+            )
     m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
     m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -1031,12 +1030,13 @@ def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "autocar_speed_command", 0x1803B0A0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0"
+            )
     return {
         "accel_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -1068,8 +1068,7 @@ def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -1095,8 +1094,7 @@ def _pack_autocar_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _AUTOCAR_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -1189,11 +1187,10 @@ class DrivingState:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: DrivingStateRaw) -> bytes:
@@ -1220,12 +1217,13 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0"
+            )
     m = _new(DrivingState)  # slot stores are faster than a call of __init__
     m.epb_state = _EPB_2[v & 0x3]
     m.gear_state = _GEAR_4[(v >> 2) & 0xF]
@@ -1244,12 +1242,13 @@ def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "driving_state", 0x1804A0B0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0"
+            )
     return {
         "epb_state": v & 0x3,
         "gear_state": (v >> 2) & 0xF,
@@ -1293,8 +1292,7 @@ def _encode_driving_state(m: DrivingState) -> bytes:
         else:
             r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
         v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -1326,8 +1324,7 @@ def _pack_driving_state(raw: Mapping[str, object]) -> bytes:
     r6 = _check_raw(raw.get("motor_speed_ratio", 0), _DRIVING_STATE__MOTOR_SPEED_RATIO)
     r7 = _check_raw(raw.get("current_accel", 0), _DRIVING_STATE__CURRENT_ACCEL)
     v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -3661,11 +3658,10 @@ class RgateEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: RgateEpsCommandRaw) -> bytes:
@@ -3702,12 +3698,13 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0"
+            )
     m = _new(RgateEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -3722,12 +3719,13 @@ def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "rgate_eps_command", 0x1801B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0"
+            )
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -3759,8 +3757,7 @@ def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -3784,8 +3781,7 @@ def _pack_rgate_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -3868,11 +3864,10 @@ class RgateSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: RgateSpeedCommandRaw) -> bytes:
@@ -3909,12 +3904,13 @@ def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0"
+            )
     m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
     m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -3930,12 +3926,13 @@ def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "rgate_speed_command", 0x1803B0C0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0"
+            )
     return {
         "accel_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -3967,8 +3964,7 @@ def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -3994,8 +3990,7 @@ def _pack_rgate_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _RGATE_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -5828,11 +5823,10 @@ class TeleEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: TeleEpsCommandRaw) -> bytes:
@@ -5869,12 +5863,13 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0"
+            )
     m = _new(TeleEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
     m.counter = (v >> 8) & 0xFF
@@ -5889,12 +5884,13 @@ def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "tele_eps_command", 0x1801B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0"
+            )
     return {
         "eps_ctrl_mode": v & 0xFF,
         "counter": (v >> 8) & 0xFF,
@@ -5926,8 +5922,7 @@ def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -5951,8 +5946,7 @@ def _pack_tele_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -6035,11 +6029,10 @@ class TeleSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: TeleSpeedCommandRaw) -> bytes:
@@ -6076,12 +6069,13 @@ def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0"
+            )
     m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
     m.throttle_brake_cmd = (v & 0x3FF) * 0.2 - 100.0
     m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
@@ -6097,12 +6091,13 @@ def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     v = _from_bytes(data, "little")
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
+        if c & 0xFF:
+            raise ChecksumError(
+                "tele_speed_command", 0x1803B0D0, (c ^ v >> 56) & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0"
+            )
     return {
         "throttle_brake_cmd": v & 0x3FF,
         "epb_cmd": (v >> 10) & 0x3,
@@ -6134,8 +6129,7 @@ def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -6161,8 +6155,7 @@ def _pack_tele_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _TELE_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56

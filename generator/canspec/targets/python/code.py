@@ -26,6 +26,9 @@ class PyChecksum:
     shift: int  # bit position of the checksum byte in that word
     cover_mask: str  # hex literal: the bytes the XOR covers, in that word
     folds: tuple[int, ...]  # shifts that XOR-fold the covered bytes into the word's lowest byte
+    # The checksum covers every other byte of the frame: then the XOR of the whole word is 0 for an
+    # intact frame, and (with the checksum byte still 0) the checksum itself while encoding — no mask.
+    whole: bool = False
 
 
 @dataclass(frozen=True)
@@ -60,7 +63,8 @@ def make_checksum(msg: ir.Message, values: tuple[PySignal, ...]) -> PyChecksum |
     word, mask, byte = pack_word(values), msg.checksum.cover_mask, msg.checksum.byte
     if word == "b":  # the same bytes, numbered from the frame's end
         mask, byte = int.from_bytes(mask.to_bytes(msg.dlc, "little"), "big"), msg.dlc - 1 - byte
-    return PyChecksum(word, byte * 8, PYTHON.hex(mask), xor_folds((mask.bit_length() + 7) // 8))
+    whole = set(msg.checksum.covers) | {msg.checksum.byte} == set(range(msg.dlc))
+    return PyChecksum(word, byte * 8, PYTHON.hex(mask), xor_folds(msg.dlc if whole else (mask.bit_length() + 7) // 8), whole)
 
 
 ORDERS = {"v": "little", "b": "big"}
@@ -79,8 +83,12 @@ def xor_folds(nbytes: int) -> tuple[int, ...]:
 
 
 def _xor(checksum: PyChecksum) -> list[str]:
-    """`c & 0xFF` = the XOR of the bytes of the frame word that the checksum covers."""
-    return [f"c = {checksum.word} & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in checksum.folds)]
+    """`c & 0xFF` = the XOR of the bytes of the frame word that the checksum covers (when it covers
+    every other byte: of all bytes, the checksum byte included)."""
+    w, folds = checksum.word, checksum.folds
+    if checksum.whole:
+        return [f"c = {w} ^ {w} >> {folds[0]}", *(f"c ^= c >> {f}" for f in folds[1:])] if folds else [f"c = {w}"]
+    return [f"c = {w} & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in folds)]
 
 
 def _checksum_byte(checksum: PyChecksum) -> str:
@@ -93,8 +101,13 @@ def frame_checks(f: Frame) -> tuple[str, ...]:
     lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if f.reads(w)]
     if f.checksum is not None:
         byte = _checksum_byte(f.checksum)
-        lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if (c & 0xFF) != {byte}:"]
-        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, c & 0xFF, {byte}, id_text="{f.id_lit}")')
+        if f.checksum.whole:  # the XOR of every byte is 0; the one the frame should carry is that XOR with its own
+            own = f"{f.checksum.word} >> {f.checksum.shift}" if f.checksum.shift else f.checksum.word
+            test, computed = "c & 0xFF", f"(c ^ {own}) & 0xFF"
+        else:
+            test, computed = f"(c & 0xFF) != {byte}", "c & 0xFF"
+        lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if {test}:"]
+        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, {computed}, {byte}, id_text="{f.id_lit}")')
     return tuple(lines)
 
 
@@ -103,7 +116,8 @@ def checksum_ok(f: Frame) -> tuple[str, ...]:
     if f.checksum is None:
         return ("return True",)
     word = f'{f.checksum.word} = _from_bytes(data, "{ORDERS[f.checksum.word]}")'
-    return (f"if len(data) != {f.dlc}:", f"{IND}return False", word, *_xor(f.checksum), f"return (c & 0xFF) == {_checksum_byte(f.checksum)}")
+    return (f"if len(data) != {f.dlc}:", f"{IND}return False", word, *_xor(f.checksum),
+            "return not c & 0xFF" if f.checksum.whole else f"return (c & 0xFF) == {_checksum_byte(f.checksum)}")
 
 
 def _terms(values: list[PySignal]) -> str:
