@@ -43,6 +43,9 @@ class SignalSpec(NamedTuple):
 _FLOATS = {32: struct.Struct("<f"), 64: struct.Struct("<d")}
 unpack_f32, pack_f32 = _FLOATS[32].unpack, _FLOATS[32].pack
 unpack_f64, pack_f64 = _FLOATS[64].unpack, _FLOATS[64].pack
+# A float filling whole bytes, read straight from the frame: (data, first byte) → (value,)
+unpack_f32_le, unpack_f32_be = struct.Struct("<f").unpack_from, struct.Struct(">f").unpack_from
+unpack_f64_le, unpack_f64_be = struct.Struct("<d").unpack_from, struct.Struct(">d").unpack_from
 
 
 def float_to_raw(value: object, s: SignalSpec) -> int:

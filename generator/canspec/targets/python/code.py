@@ -46,9 +46,10 @@ class Frame:
         """The signals encode takes from the caller (the checksum it computes)."""
         return tuple(s for s in self.signals if not s.is_checksum)
 
-    def reads(self, word: str) -> bool:
-        """Whether decode needs the frame word `word` ("v" or "b")."""
-        return any(s.word == word for s in self.signals) or (self.checksum is not None and self.checksum.word == word)
+    def reads(self, word: str, physical: bool) -> bool:
+        """Whether decode (`physical`) or unpack needs the frame word `word` ("v" or "b")."""
+        used = (s.decode_word if physical else s.word for s in self.signals)
+        return word in used or (self.checksum is not None and self.checksum.word == word)
 
 
 def pack_word(values: tuple[PySignal, ...]) -> str:
@@ -95,10 +96,10 @@ def _checksum_byte(checksum: PyChecksum) -> str:
     return f"({checksum.word} >> {checksum.shift}) & 0xFF" if checksum.shift else f"{checksum.word} & 0xFF"
 
 
-def frame_checks(f: Frame) -> tuple[str, ...]:
-    """Length check, frame words `v` / `b`, checksum check: the start of decode and unpack."""
+def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
+    """Length check, frame words `v` / `b`, checksum check: the start of decode (`physical`) and unpack."""
     lines = [f"if len(data) != {f.dlc}:", f'{IND}raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")']
-    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if f.reads(w)]
+    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if f.reads(w, physical)]
     if f.checksum is not None:
         byte = _checksum_byte(f.checksum)
         if f.checksum.whole:  # the XOR of every byte is 0; the one the frame should carry is that XOR with its own

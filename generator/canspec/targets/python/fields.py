@@ -77,6 +77,11 @@ class PySignal:
     def word(self) -> str:
         return word_var(self.sig)
 
+    @property
+    def decode_word(self) -> str | None:
+        """The frame word decode reads the field from; None for a float read from its bytes directly."""
+        return None if float_offset(self.sig, 0) is not None else self.word
+
 
 def _paren(expr: str) -> str:
     return expr if expr.isidentifier() else f"({expr})"
@@ -98,9 +103,21 @@ def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
     return expr
 
 
-def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
-    """physical = raw × factor + offset: integers for integer scaling, else doubles; a float field's bits unpacked."""
+def float_offset(sig: ir.Signal, dlc: int) -> int | None:
+    """The first frame byte of a float field that fills whole bytes (read by struct from the data
+    itself, in its byte order), else None. Only whether it is one when `dlc` is 0."""
+    if not sig.is_float or sig.word_shift % 8:
+        return None
+    return sig.word_shift // 8 if not sig.is_big_endian else dlc - (sig.word_shift + sig.length) // 8
+
+
+def phys_expr(sig: ir.Signal, raw: str, kind: str, dlc: int = 0) -> str:
+    """physical = raw × factor + offset: integers for integer scaling, else doubles; a float field's
+    bits unpacked (straight from the frame's bytes where it fills whole bytes)."""
     if sig.is_float:
+        offset = float_offset(sig, dlc)
+        if offset is not None:
+            return f"_unpack_f{sig.length}_{'be' if sig.is_big_endian else 'le'}(data, {offset})[0]"
         return f'_unpack_f{sig.length}(({raw}).to_bytes({sig.length // 8}, "little"))[0]'
     as_int = kind == "int"
     expr = raw
@@ -259,7 +276,7 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     kind = _kind(sig, ctx.enum)
     as_int = kind != "float"
     raw = raw_expr(sig, ctx.frame_bits)
-    phys = phys_expr(sig, raw, kind)
+    phys = phys_expr(sig, raw, kind, ctx.frame_bits // 8)
     if ctx.lookup is not None:
         phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
     direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float

@@ -11,7 +11,7 @@ from canspec import ir
 from canspec.ir.names import pascal, snake
 from canspec.render.literals import PYTHON
 from canspec.targets.python import code
-from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, label_comment
+from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, float_offset, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
@@ -25,7 +25,8 @@ PACKAGE_NAMES = frozenset({
     "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode",
     "encode_raw", "Callable", "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum",
     "_new", "_from_bytes", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
-    "_unpack_f32", "_unpack_f64", "_pack_f32", "_pack_f64", "_FD_BUS"})
+    "_unpack_f32", "_unpack_f64", "_pack_f32", "_pack_f64", "_unpack_f32_le", "_unpack_f32_be", "_unpack_f64_le", "_unpack_f64_be",
+    "_FD_BUS"})
 # The package's modules, as its docstring introduces them.
 MODULE_DOCS = {
     "messages": "dataclasses, encode/decode",
@@ -115,7 +116,8 @@ class PyMessage:
     unpack_func: str
     names_var: str  # frozenset of the raw keys
     raw_functional: bool  # a raw key is a keyword: the TypedDict needs the functional syntax
-    frame_checks: tuple[str, ...]  # statements (see code.py)
+    decode_checks: tuple[str, ...]  # statements (see code.py): the start of decode
+    unpack_checks: tuple[str, ...]  # and of unpack
     encode_lines: tuple[str, ...]
     pack_lines: tuple[str, ...]
     checksum_ok_lines: tuple[str, ...]
@@ -146,7 +148,7 @@ class PyPackage:
     has_multiframe: bool
     tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
     dict_lookups: bool  # some through a dict (`_member`)
-    float_bits: tuple[int, ...]  # the widths of its IEEE float fields (32, 64): their struct helpers are imported
+    float_helpers: tuple[str, ...]  # the struct helpers of _runtime its IEEE float fields use (imported with a leading `_`)
     fault_tables: tuple[ir.FaultTable, ...]
 
 
@@ -232,9 +234,19 @@ class _Builder:
             checksum_cover=PYTHON.hex(msg.checksum.cover_mask) if msg.checksum is not None else "", rule_args=_rule_args(cls, msg),
             multiframe=self.multiframe(msg, by_name), decode_func=funcs["decode"], encode_func=funcs["encode"], pack_func=pack_func,
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
-            frame_checks=code.frame_checks(frame), encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
+            decode_checks=code.frame_checks(frame, True), unpack_checks=code.frame_checks(frame, False),
+            encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
             checksum_ok_lines=code.checksum_ok(frame),
         )
+
+
+def _float_helpers(can: ir.CanProtocol) -> tuple[str, ...]:
+    """What encode (pack_f32, ...) and decode (unpack_f32 from the word, unpack_f32_be from the bytes, ...) of float fields use."""
+    out = set()
+    for s in (s for m in can.messages for s in m.data_signals if s.is_float):
+        order = "_be" if s.is_big_endian else "_le"
+        out |= {f"pack_f{s.length}", f"unpack_f{s.length}" + (order if float_offset(s, 0) is not None else "")}
+    return tuple(sorted(out))
 
 
 def _rule_args(cls: str, msg: ir.Message) -> tuple[str, ...]:
@@ -268,5 +280,5 @@ def build_package(spec: ir.Spec) -> PyPackage:
         has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
         has_checksums=can.has_checksums, has_counters=can.has_counters, has_multiframe=can.has_multiframe,
         tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups), fault_tables=can.fault_tables,
-        float_bits=tuple(sorted({s.length for m in can.messages for s in m.data_signals if s.is_float})),
+        float_helpers=_float_helpers(can),
     )
