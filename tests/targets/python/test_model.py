@@ -47,7 +47,10 @@ def test_raw_expressions_extract_every_raw(can):
     for raw in (0, 1, 0x7FFF, 0xFFFF):
         assert eval(expr, {"v": raw << 8 | 0xFF | 0xFF << 24}) == raw
     top = sig_of(can, "autocar_eps_command", "checksum")
-    assert fields.raw_expr(top, 64) == "v >> 56"  # nothing above it: no mask
+    assert fields.raw_expr(top, 64) == "d7" and fields.raw_expr(top, 72) == "(v >> 56) & 0xFF"  # a classic frame's byte, read alone
+    door = sig_of(can, "autocar_control_command_1", "door_cmd")  # start 2, len 2: within byte 0
+    assert fields.raw_expr(door, 64) == "(d0 >> 2) & 0x3"
+    assert [eval(fields.raw_expr(door, 64), {"d0": raw << 2 | 0b11110011}) for raw in range(4)] == [0, 1, 2, 3]
     signed = dataclasses.replace(sig, signed=True, sign_bit=0x8000, raw_type_min=-32768, raw_type_max=32767)
     sexpr = fields.raw_expr(signed, 64)
     for raw in (-32768, -1, 0, 1, 32767):

@@ -46,10 +46,12 @@ class Frame:
         """The signals encode takes from the caller (the checksum it computes)."""
         return tuple(s for s in self.signals if not s.is_checksum)
 
-    def reads(self, word: str, physical: bool) -> bool:
-        """Whether decode (`physical`) or unpack needs the frame word `word` ("v" or "b")."""
-        used = (s.decode_word if physical else s.word for s in self.signals)
-        return word in used or (self.checksum is not None and self.checksum.word == word)
+    def reads(self, physical: bool) -> set[str | None]:
+        """What decode (`physical`) or unpack reads its fields from: "d" (the frame's bytes), "v", "b" (its words)."""
+        return {s.decode_word if physical else s.read for s in self.signals}
+
+    def bytes_used(self, physical: bool) -> set[int]:
+        return {s.byte for s in self.signals if s.byte is not None and (s.decode_word if physical else s.read) == "d"}
 
 
 def pack_word(values: tuple[PySignal, ...]) -> str:
@@ -96,19 +98,36 @@ def _checksum_byte(checksum: PyChecksum) -> str:
     return f"({checksum.word} >> {checksum.shift}) & 0xFF" if checksum.shift else f"{checksum.word} & 0xFF"
 
 
+def _byte_names(f: Frame, physical: bool, every: bool) -> str:
+    """`d0, _, d2 = data`: the frame's bytes decode reads (every one where the checksum XORs them)."""
+    used = f.bytes_used(physical)
+    names = [f"d{i}" if every or i in used else "_" for i in range(f.dlc)]
+    return f"({names[0]},) = data" if f.dlc == 1 else f"{', '.join(names)} = data"
+
+
 def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
-    """Length check, frame words `v` / `b`, checksum check: the start of decode (`physical`) and unpack."""
+    """Length check, frame bytes `dN` / words `v` / `b`, checksum check: the start of decode (`physical`) and unpack.
+    Where decode reads the bytes anyway, an XOR checksum of every other byte is their XOR (small ints)."""
     lines = [f"if len(data) != {f.dlc}:", f'{IND}raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")']
-    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if f.reads(w, physical)]
-    if f.checksum is not None:
-        byte = _checksum_byte(f.checksum)
-        if f.checksum.whole:  # the XOR of every byte is 0; the one the frame should carry is that XOR with its own
-            own = f"{f.checksum.word} >> {f.checksum.shift}" if f.checksum.shift else f.checksum.word
-            test, computed = "c & 0xFF", f"(c ^ {own}) & 0xFF"
-        else:
-            test, computed = f"(c & 0xFF) != {byte}", "c & 0xFF"
-        lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if {test}:"]
-        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, {computed}, {byte}, id_text="{f.id_lit}")')
+    reads, ck = f.reads(physical), f.checksum
+    by_bytes = ck is not None and ck.whole and "d" in reads
+    if "d" in reads:
+        lines.append(_byte_names(f, physical, by_bytes))
+    words = reads | ({ck.word} if ck is not None and not by_bytes else set())
+    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if w in words]
+    if ck is None:
+        return tuple(lines)
+    if by_bytes:
+        own = f"d{f.dlc - 1 - ck.shift // 8 if ck.word == 'b' else ck.shift // 8}"
+        check, test, computed, byte = [f"c = {' ^ '.join(f'd{i}' for i in range(f.dlc))}"], "c", f"c ^ {own}", own
+    elif ck.whole:  # the XOR of every byte is 0; the one the frame should carry is that XOR with its own
+        own = f"{ck.word} >> {ck.shift}" if ck.shift else ck.word
+        check, test, computed, byte = _xor(ck), "c & 0xFF", f"(c ^ {own}) & 0xFF", _checksum_byte(ck)
+    else:
+        byte = _checksum_byte(ck)
+        check, test, computed = _xor(ck), f"(c & 0xFF) != {byte}", "c & 0xFF"
+    lines += ["if verify_checksum:", *(IND + s for s in check), f"{IND}if {test}:"]
+    lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, {computed}, {byte}, id_text="{f.id_lit}")')
     return tuple(lines)
 
 

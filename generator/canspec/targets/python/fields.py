@@ -51,7 +51,8 @@ class PySignal:
     py_type: str  # "float", "int", "Gear | int"
     const_type: str  # type of its special-value constants: "float" | "int"
     default: str  # literal of the default attribute value
-    raw_expr: str  # raw value from the frame integer `v` (sign-extended)
+    raw_expr: str  # raw value from its frame byte `dN` or frame word `v` / `b` (sign-extended)
+    byte: int | None  # the frame byte it lies in wholly, in a classic frame (fields.frame_byte)
     phys_expr: str  # physical value from the frame integer `v`
     specials: tuple[PySpecial, ...]
     allowed: str  # string literal: the allowed range as errors show it
@@ -78,9 +79,14 @@ class PySignal:
         return word_var(self.sig)
 
     @property
+    def read(self) -> str:
+        """What unpack reads the field from: its byte (`d`, see `byte`) or its frame word (`v`, `b`)."""
+        return "d" if self.byte is not None else self.word
+
+    @property
     def decode_word(self) -> str | None:
-        """The frame word decode reads the field from; None for a float read from its bytes directly."""
-        return None if float_offset(self.sig, 0) is not None else self.word
+        """What decode reads the field from; None for a float read by struct from its bytes."""
+        return None if float_offset(self.sig, 0) is not None else self.read
 
 
 def _paren(expr: str) -> str:
@@ -92,11 +98,25 @@ def word_var(sig: ir.Signal) -> str:
     return "b" if sig.is_big_endian else "v"
 
 
+def frame_byte(sig: ir.Signal, frame_bits: int) -> int | None:
+    """The byte of a classic frame (at most 8 bytes) a non-float field lies in wholly, else None:
+    decode reads it from that byte (`d3`), a small int, not from the frame word. Within one byte
+    both orders hold the same bits (a Motorola `start` is the field's highest bit)."""
+    if frame_bits > 64 or sig.is_float or (sig.is_big_endian and sig.start % 8 < sig.length - 1):
+        return None
+    lo = sig.start - sig.length + 1 if sig.is_big_endian else sig.start
+    return lo // 8 if lo // 8 == (lo + sig.length - 1) // 8 else None
+
+
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from its frame word: shift, mask, sign-extend (no outer parentheses)."""
-    word = word_var(sig)
-    expr = word if sig.word_shift == 0 else f"{word} >> {sig.word_shift}"
-    if sig.word_shift + sig.length < frame_bits:
+    """The raw value from its frame byte or word: shift, mask, sign-extend (no outer parentheses)."""
+    byte = frame_byte(sig, frame_bits)
+    if byte is not None:
+        var, shift, bits = f"d{byte}", (sig.start - sig.length + 1 if sig.is_big_endian else sig.start) % 8, 8
+    else:
+        var, shift, bits = word_var(sig), sig.word_shift, frame_bits
+    expr = var if shift == 0 else f"{var} >> {shift}"
+    if shift + sig.length < bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
         expr = f"({expr} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
@@ -290,7 +310,8 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
-        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, phys_expr=phys,
+        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, byte=frame_byte(sig, ctx.frame_bits),
+        phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
         q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
