@@ -310,7 +310,8 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
-        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, byte=frame_byte(sig, ctx.frame_bits),
+        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
+        byte=frame_byte(sig, ctx.frame_bits),
         phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
