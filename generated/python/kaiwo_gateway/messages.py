@@ -603,7 +603,6 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -612,7 +611,7 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
     m.max_angular_speed = d2 * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
 
@@ -621,7 +620,6 @@ def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -630,7 +628,7 @@ def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
         "eps_ctrl_mode": d0,
         "counter": d1,
         "max_angular_speed": d2,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
+        "steering_angle_cmd": d3 | d4 << 8,
         "checksum": d7,
     }
 
@@ -798,13 +796,12 @@ class EpsState:
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    d0, d1, d2, _, _, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(EpsState)  # slot stores are faster than a call of __init__
     m.eps_ctrl_state = _EPS_MODE_STATE_8[d0]
     m.steering_torque = d1 * 0.1 - 12.8
     m.eps_output_torque = d2 * 0.3 - 38.4
-    m.steering_angle = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.steering_angle = (d3 | d4 << 8) * 0.1 - 1080.0
     m.controller_temp = (d5 & 0x3F) * 2
     m.eps_fault_level = _EPS_FAULT_LEVEL_2[d6 & 0x3]
     m.counter = d7
@@ -814,13 +811,12 @@ def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    d0, d1, d2, _, _, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
         "eps_ctrl_state": d0,
         "steering_torque": d1,
         "eps_output_torque": d2,
-        "steering_angle": (v >> 24) & 0xFFFF,
+        "steering_angle": d3 | d4 << 8,
         "controller_temp": d5 & 0x3F,
         "eps_fault_level": d6 & 0x3,
         "counter": d7,
@@ -1003,13 +999,12 @@ def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("autocar_speed_command", 0x1803B0A0, c ^ d7, d7, id_text="0x1803B0A0")
     m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
+    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -1022,13 +1017,12 @@ def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("autocar_speed_command", 0x1803B0A0, c ^ d7, d7, id_text="0x1803B0A0")
     return {
-        "accel_cmd": v & 0x3FF,
+        "accel_cmd": (d0 | d1 << 8) & 0x3FF,
         "epb_cmd": (d1 >> 2) & 0x3,
         "gear_cmd": d1 >> 4,
         "counter": d2,
@@ -1206,7 +1200,6 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1216,8 +1209,8 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
     m.gear_state = _GEAR_4[(d0 >> 2) & 0xF]
     m.emergency_brake_state = _BRAKE_STATE_1[(d0 >> 6) & 0x1]
     m.uss_brake_state = _BRAKE_STATE_1[d0 >> 7]
-    m.motor_speed = ((v >> 8) & 0xFFFF) - 15000
-    m.motor_torque = ((v >> 24) & 0xFFFF) - 5000
+    m.motor_speed = (d1 | d2 << 8) - 15000
+    m.motor_torque = (d3 | d4 << 8) - 5000
     m.motor_speed_ratio = d5 + 1
     m.current_accel = d6 * 0.05 - 9.0
     m.checksum = d7
@@ -1228,7 +1221,6 @@ def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1238,8 +1230,8 @@ def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
         "gear_state": (d0 >> 2) & 0xF,
         "emergency_brake_state": (d0 >> 6) & 0x1,
         "uss_brake_state": d0 >> 7,
-        "motor_speed": (v >> 8) & 0xFFFF,
-        "motor_torque": (v >> 24) & 0xFFFF,
+        "motor_speed": d1 | d2 << 8,
+        "motor_torque": d3 | d4 << 8,
         "motor_speed_ratio": d5,
         "current_accel": d6,
         "checksum": d7,
@@ -1928,8 +1920,7 @@ class VehicleState1:
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    d0, d1, d2, d3, d4, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState1)  # slot stores are faster than a call of __init__
     m.drive_mode_state = _DRIVE_MODE_STATE_2[d0 & 0x3]
     m.door_state = _OFF_ON_1[(d0 >> 2) & 0x1]
@@ -1951,7 +1942,7 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.charge_state = _CHARGE_STATE_2[(d4 >> 2) & 0x3]
     m.charge_connection = _CHARGE_CONNECTION_2[(d4 >> 4) & 0x3]
     m.vehicle_fault_level = _VEHICLE_FAULT_LEVEL_2[d4 >> 6]
-    m.odometer = ((v >> 40) & 0xFFFF) * 2
+    m.odometer = (d5 | d6 << 8) * 2
     m.counter = d7
     return m
 
@@ -1959,8 +1950,7 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    d0, d1, d2, d3, d4, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
         "drive_mode_state": d0 & 0x3,
         "door_state": (d0 >> 2) & 0x1,
@@ -1982,7 +1972,7 @@ def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
         "charge_state": (d4 >> 2) & 0x3,
         "charge_connection": (d4 >> 4) & 0x3,
         "vehicle_fault_level": d4 >> 6,
-        "odometer": (v >> 40) & 0xFFFF,
+        "odometer": d5 | d6 << 8,
         "counter": d7,
     }
 
@@ -2286,18 +2276,17 @@ class AutocarControlCommand2:
 def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    d0, d1, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(AutocarControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
     m.downhill_regen_speed = d1 * 0.5
-    m.chassis_pitch = ((v >> 16) & 0x3FF) * 0.05 - 25.0
-    m.chassis_roll = ((v >> 26) & 0x3FF) * 0.1 - 40.0
-    m.cargo_pitch = ((v >> 36) & 0x3FF) * 0.2 - 30.0
-    m.cargo_roll = ((v >> 46) & 0x3FF) * 0.1 - 40.0
+    m.chassis_pitch = ((d2 | d3 << 8) & 0x3FF) * 0.05 - 25.0
+    m.chassis_roll = (((d3 | d4 << 8) >> 2) & 0x3FF) * 0.1 - 40.0
+    m.cargo_pitch = (((d4 | d5 << 8) >> 4) & 0x3FF) * 0.2 - 30.0
+    m.cargo_roll = ((d5 | d6 << 8) >> 6) * 0.1 - 40.0
     m.counter = d7
     return m
 
@@ -2305,18 +2294,17 @@ def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
 def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    d0, d1, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,
         "cargo_lift_speed": (d0 >> 3) & 0xF,
         "pto_enable": d0 >> 7,
         "downhill_regen_speed": d1,
-        "chassis_pitch": (v >> 16) & 0x3FF,
-        "chassis_roll": (v >> 26) & 0x3FF,
-        "cargo_pitch": (v >> 36) & 0x3FF,
-        "cargo_roll": (v >> 46) & 0x3FF,
+        "chassis_pitch": (d2 | d3 << 8) & 0x3FF,
+        "chassis_roll": ((d3 | d4 << 8) >> 2) & 0x3FF,
+        "cargo_pitch": ((d4 | d5 << 8) >> 4) & 0x3FF,
+        "cargo_roll": (d5 | d6 << 8) >> 6,
         "counter": d7,
     }
 
@@ -2493,24 +2481,24 @@ class VehicleState2:
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState2)  # slot stores are faster than a call of __init__
-    m.battery_voltage = (v & 0xFFFF) * 0.2
-    m.battery_current = ((v >> 16) & 0xFFFF) * 0.02 - 500.0
-    m.battery_charge_energy = (v >> 32) & 0xFFFF
-    m.battery_discharge_energy = v >> 48
+    m.battery_voltage = (d0 | d1 << 8) * 0.2
+    m.battery_current = (d2 | d3 << 8) * 0.02 - 500.0
+    m.battery_charge_energy = d4 | d5 << 8
+    m.battery_discharge_energy = d6 | d7 << 8
     return m
 
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "battery_voltage": v & 0xFFFF,
-        "battery_current": (v >> 16) & 0xFFFF,
-        "battery_charge_energy": (v >> 32) & 0xFFFF,
-        "battery_discharge_energy": v >> 48,
+        "battery_voltage": d0 | d1 << 8,
+        "battery_current": d2 | d3 << 8,
+        "battery_charge_energy": d4 | d5 << 8,
+        "battery_discharge_energy": d6 | d7 << 8,
     }
 
 
@@ -2653,13 +2641,12 @@ class VehicleState3:
 def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    d0, d1, _, _, _, d5, d6, _ = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, _ = data
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
     m.battery_max_temp = d0 - 40
     m.battery_min_temp = d1 - 40
-    m.max_cell_voltage = ((v >> 16) & 0xFFF) * 0.0015
-    m.min_cell_voltage = ((v >> 28) & 0xFFF) * 0.0015
+    m.max_cell_voltage = ((d2 | d3 << 8) & 0xFFF) * 0.0015
+    m.min_cell_voltage = ((d3 | d4 << 8) >> 4) * 0.0015
     m.motor_temp = d5 - 40
     m.motor_controller_temp = d6 - 40
     return m
@@ -2668,13 +2655,12 @@ def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
 def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    d0, d1, _, _, _, d5, d6, _ = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, _ = data
     return {
         "battery_max_temp": d0,
         "battery_min_temp": d1,
-        "max_cell_voltage": (v >> 16) & 0xFFF,
-        "min_cell_voltage": (v >> 28) & 0xFFF,
+        "max_cell_voltage": (d2 | d3 << 8) & 0xFFF,
+        "min_cell_voltage": (d3 | d4 << 8) >> 4,
         "motor_temp": d5,
         "motor_controller_temp": d6,
     }
@@ -2851,8 +2837,7 @@ class VehicleState4:
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    d0, d1, d2, _, d4, d5, _, _ = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
     m.outside_temp = d0 * 0.5 - 30.0
     m.inside_temp = d1 * 0.5 - 30.0
@@ -2860,20 +2845,19 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.vehicle_power_state = _POWER_STATE_2[(d2 >> 4) & 0x3]
     m.hill_hold_state = _INACTIVE_ACTIVE_1[(d2 >> 6) & 0x1]
     m.regen_brake_state = _INACTIVE_ACTIVE_1[d2 >> 7]
-    m.remaining_range = (v >> 24) & 0xFFF
+    m.remaining_range = (d3 | d4 << 8) & 0xFFF
     m.manual_takeover_state = _TAKEOVER_STATE_1[(d4 >> 4) & 0x1]
     m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[d4 >> 7]
     m.ac_set_temp = (d5 & 0x1F) * 0.5 + 16.0
     m.pto_state = _PTO_STATE_1[(d5 >> 5) & 0x1]
-    m.battery_power = (v >> 48) * 0.01 - 325.0
+    m.battery_power = (d6 | d7 << 8) * 0.01 - 325.0
     return m
 
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    d0, d1, d2, _, d4, d5, _, _ = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
         "outside_temp": d0,
         "inside_temp": d1,
@@ -2881,12 +2865,12 @@ def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
         "vehicle_power_state": (d2 >> 4) & 0x3,
         "hill_hold_state": (d2 >> 6) & 0x1,
         "regen_brake_state": d2 >> 7,
-        "remaining_range": (v >> 24) & 0xFFF,
+        "remaining_range": (d3 | d4 << 8) & 0xFFF,
         "manual_takeover_state": (d4 >> 4) & 0x1,
         "remote_driving_allowed": d4 >> 7,
         "ac_set_temp": d5 & 0x1F,
         "pto_state": (d5 >> 5) & 0x1,
-        "battery_power": v >> 48,
+        "battery_power": d6 | d7 << 8,
     }
 
 
@@ -3689,7 +3673,6 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -3698,7 +3681,7 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
     m.max_angular_speed = d2 * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
 
@@ -3707,7 +3690,6 @@ def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -3716,7 +3698,7 @@ def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
         "eps_ctrl_mode": d0,
         "counter": d1,
         "max_angular_speed": d2,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
+        "steering_angle_cmd": d3 | d4 << 8,
         "checksum": d7,
     }
 
@@ -3889,13 +3871,12 @@ def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("rgate_speed_command", 0x1803B0C0, c ^ d7, d7, id_text="0x1803B0C0")
     m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
+    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -3908,13 +3889,12 @@ def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("rgate_speed_command", 0x1803B0C0, c ^ d7, d7, id_text="0x1803B0C0")
     return {
-        "accel_cmd": v & 0x3FF,
+        "accel_cmd": (d0 | d1 << 8) & 0x3FF,
         "epb_cmd": (d1 >> 2) & 0x3,
         "gear_cmd": d1 >> 4,
         "counter": d2,
@@ -4856,15 +4836,14 @@ class FrontSensorDistance1:
 def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    _, _, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(FrontSensorDistance1)  # slot stores are faster than a call of __init__
-    m.sensor_1_distance = v & 0x3FF
-    m.sensor_2_distance = (v >> 10) & 0x3FF
-    m.sensor_3_distance = (v >> 20) & 0x3FF
-    m.sensor_4_distance = (v >> 30) & 0x3FF
-    m.sensor_5_distance = (v >> 40) & 0x3FF
-    m.sensor_6_distance = (v >> 50) & 0x3FF
+    m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_3_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.sensor_4_distance = (d3 | d4 << 8) >> 6
+    m.sensor_5_distance = (d5 | d6 << 8) & 0x3FF
+    m.sensor_6_distance = ((d6 | d7 << 8) >> 2) & 0x3FF
     m.counter = d7 >> 4
     return m
 
@@ -4872,15 +4851,14 @@ def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) 
 def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    _, _, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "sensor_1_distance": v & 0x3FF,
-        "sensor_2_distance": (v >> 10) & 0x3FF,
-        "sensor_3_distance": (v >> 20) & 0x3FF,
-        "sensor_4_distance": (v >> 30) & 0x3FF,
-        "sensor_5_distance": (v >> 40) & 0x3FF,
-        "sensor_6_distance": (v >> 50) & 0x3FF,
+        "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_3_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "sensor_4_distance": (d3 | d4 << 8) >> 6,
+        "sensor_5_distance": (d5 | d6 << 8) & 0x3FF,
+        "sensor_6_distance": ((d6 | d7 << 8) >> 2) & 0x3FF,
         "counter": d7 >> 4,
     }
 
@@ -5079,12 +5057,11 @@ class FrontSensorDistance2:
 def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    _, _, _, _, d4, d5, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     m = _new(FrontSensorDistance2)  # slot stores are faster than a call of __init__
-    m.sensor_7_distance = v & 0x3FF
-    m.sensor_8_distance = (v >> 10) & 0x3FF
-    m.sensor_9_distance = (v >> 20) & 0x3FF
+    m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_9_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
     m.uss_system_state = _USS_SYSTEM_STATE_2[d4 & 0x3]
     m.sensor_1_fault = _SENSOR_FAULT_1[(d4 >> 2) & 0x1]
     m.sensor_2_fault = _SENSOR_FAULT_1[(d4 >> 3) & 0x1]
@@ -5102,12 +5079,11 @@ def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) 
 def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    _, _, _, _, d4, d5, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     return {
-        "sensor_7_distance": v & 0x3FF,
-        "sensor_8_distance": (v >> 10) & 0x3FF,
-        "sensor_9_distance": (v >> 20) & 0x3FF,
+        "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_9_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
         "uss_system_state": d4 & 0x3,
         "sensor_1_fault": (d4 >> 2) & 0x1,
         "sensor_2_fault": (d4 >> 3) & 0x1,
@@ -5356,15 +5332,14 @@ class RearSensorDistance1:
 def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    _, _, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(RearSensorDistance1)  # slot stores are faster than a call of __init__
-    m.sensor_1_distance = v & 0x3FF
-    m.sensor_2_distance = (v >> 10) & 0x3FF
-    m.sensor_3_distance = (v >> 20) & 0x3FF
-    m.sensor_4_distance = (v >> 30) & 0x3FF
-    m.sensor_5_distance = (v >> 40) & 0x3FF
-    m.sensor_6_distance = (v >> 50) & 0x3FF
+    m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_3_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.sensor_4_distance = (d3 | d4 << 8) >> 6
+    m.sensor_5_distance = (d5 | d6 << 8) & 0x3FF
+    m.sensor_6_distance = ((d6 | d7 << 8) >> 2) & 0x3FF
     m.counter = d7 >> 4
     return m
 
@@ -5372,15 +5347,14 @@ def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -
 def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    _, _, _, _, _, _, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "sensor_1_distance": v & 0x3FF,
-        "sensor_2_distance": (v >> 10) & 0x3FF,
-        "sensor_3_distance": (v >> 20) & 0x3FF,
-        "sensor_4_distance": (v >> 30) & 0x3FF,
-        "sensor_5_distance": (v >> 40) & 0x3FF,
-        "sensor_6_distance": (v >> 50) & 0x3FF,
+        "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_3_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "sensor_4_distance": (d3 | d4 << 8) >> 6,
+        "sensor_5_distance": (d5 | d6 << 8) & 0x3FF,
+        "sensor_6_distance": ((d6 | d7 << 8) >> 2) & 0x3FF,
         "counter": d7 >> 4,
     }
 
@@ -5579,12 +5553,11 @@ class RearSensorDistance2:
 def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    _, _, _, _, d4, d5, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     m = _new(RearSensorDistance2)  # slot stores are faster than a call of __init__
-    m.sensor_7_distance = v & 0x3FF
-    m.sensor_8_distance = (v >> 10) & 0x3FF
-    m.sensor_9_distance = (v >> 20) & 0x3FF
+    m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_9_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
     m.uss_system_state = _USS_SYSTEM_STATE_2[d4 & 0x3]
     m.sensor_1_fault = _SENSOR_FAULT_1[(d4 >> 2) & 0x1]
     m.sensor_2_fault = _SENSOR_FAULT_1[(d4 >> 3) & 0x1]
@@ -5602,12 +5575,11 @@ def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -
 def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    _, _, _, _, d4, d5, _, d7 = data
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     return {
-        "sensor_7_distance": v & 0x3FF,
-        "sensor_8_distance": (v >> 10) & 0x3FF,
-        "sensor_9_distance": (v >> 20) & 0x3FF,
+        "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_9_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
         "uss_system_state": d4 & 0x3,
         "sensor_1_fault": (d4 >> 2) & 0x1,
         "sensor_2_fault": (d4 >> 3) & 0x1,
@@ -5852,7 +5824,6 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -5861,7 +5832,7 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
     m.max_angular_speed = d2 * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
 
@@ -5870,7 +5841,6 @@ def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -5879,7 +5849,7 @@ def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
         "eps_ctrl_mode": d0,
         "counter": d1,
         "max_angular_speed": d2,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
+        "steering_angle_cmd": d3 | d4 << 8,
         "checksum": d7,
     }
 
@@ -6052,13 +6022,12 @@ def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("tele_speed_command", 0x1803B0D0, c ^ d7, d7, id_text="0x1803B0D0")
     m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
-    m.throttle_brake_cmd = (v & 0x3FF) * 0.2 - 100.0
+    m.throttle_brake_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.2 - 100.0
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -6071,13 +6040,12 @@ def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
     d0, d1, d2, d3, d4, d5, d6, d7 = data
-    v = _from_bytes(data, "little")
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
             raise ChecksumError("tele_speed_command", 0x1803B0D0, c ^ d7, d7, id_text="0x1803B0D0")
     return {
-        "throttle_brake_cmd": v & 0x3FF,
+        "throttle_brake_cmd": (d0 | d1 << 8) & 0x3FF,
         "epb_cmd": (d1 >> 2) & 0x3,
         "gear_cmd": d1 >> 4,
         "counter": d2,

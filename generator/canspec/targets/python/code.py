@@ -51,7 +51,7 @@ class Frame:
         return {s.decode_word if physical else s.read for s in self.signals}
 
     def bytes_used(self, physical: bool) -> set[int]:
-        return {s.byte for s in self.signals if s.byte is not None and (s.decode_word if physical else s.read) == "d"}
+        return {i for s in self.signals if s.frame_bytes is not None and (s.decode_word if physical else s.read) == "d" for i, _ in s.frame_bytes}
 
 
 def pack_word(values: tuple[PySignal, ...]) -> str:

@@ -52,7 +52,7 @@ class PySignal:
     const_type: str  # type of its special-value constants: "float" | "int"
     default: str  # literal of the default attribute value
     raw_expr: str  # raw value from its frame byte `dN` or frame word `v` / `b` (sign-extended)
-    byte: int | None  # the frame byte it lies in wholly, in a classic frame (fields.frame_byte)
+    frame_bytes: tuple[tuple[int, int], ...] | None  # the frame bytes it is read from, with their shifts (fields.frame_bytes)
     phys_expr: str  # physical value from the frame integer `v`
     specials: tuple[PySpecial, ...]
     allowed: str  # string literal: the allowed range as errors show it
@@ -80,8 +80,8 @@ class PySignal:
 
     @property
     def read(self) -> str:
-        """What unpack reads the field from: its byte (`d`, see `byte`) or its frame word (`v`, `b`)."""
-        return "d" if self.byte is not None else self.word
+        """What unpack reads the field from: its bytes (`d`, see `frame_bytes`) or its frame word (`v`, `b`)."""
+        return "d" if self.frame_bytes is not None else self.word
 
     @property
     def decode_word(self) -> str | None:
@@ -98,24 +98,31 @@ def word_var(sig: ir.Signal) -> str:
     return "b" if sig.is_big_endian else "v"
 
 
-def frame_byte(sig: ir.Signal, frame_bits: int) -> int | None:
-    """The byte of a classic frame (at most 8 bytes) a non-float field lies in wholly, else None:
-    decode reads it from that byte (`d3`), a small int, not from the frame word. Within one byte
-    both orders hold the same bits (a Motorola `start` is the field's highest bit)."""
-    if frame_bits > 64 or sig.is_float or (sig.is_big_endian and sig.start % 8 < sig.length - 1):
+MAX_BYTE_SPAN = 3  # bytes a field read from the frame's bytes may span: their combination stays a one-digit int (< 2^30)
+
+
+def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] | None:
+    """(frame byte, its left shift) of a non-float field of a classic frame (at most 8 bytes) that spans at most
+    MAX_BYTE_SPAN bytes, else None: decode reads it from those bytes (`d3 | d4 << 8`, small ints), not from the
+    frame word. The bytes are taken in the order of the field's word: a Motorola field's first byte is its highest."""
+    if frame_bits > 64 or sig.is_float:
         return None
-    lo = sig.start - sig.length + 1 if sig.is_big_endian else sig.start
-    return lo // 8 if lo // 8 == (lo + sig.length - 1) // 8 else None
+    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8  # in the word, from its least significant byte
+    if hi - lo >= MAX_BYTE_SPAN:
+        return None
+    last = frame_bits // 8 - 1
+    return tuple((last - p if sig.is_big_endian else p, 8 * (p - lo)) for p in range(lo, hi + 1))
 
 
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from its frame byte or word: shift, mask, sign-extend (no outer parentheses)."""
-    byte = frame_byte(sig, frame_bits)
-    if byte is not None:
-        var, shift, bits = f"d{byte}", (sig.start - sig.length + 1 if sig.is_big_endian else sig.start) % 8, 8
+    """The raw value from its frame bytes or word: shift, mask, sign-extend (no outer parentheses)."""
+    parts = frame_bytes(sig, frame_bits)
+    if parts is not None:
+        var = " | ".join(f"d{i}" if up == 0 else f"d{i} << {up}" for i, up in parts)
+        shift, bits = sig.word_shift % 8, 8 * len(parts)
     else:
         var, shift, bits = word_var(sig), sig.word_shift, frame_bits
-    expr = var if shift == 0 else f"{var} >> {shift}"
+    expr = var if shift == 0 else f"{_paren(var)} >> {shift}"
     if shift + sig.length < bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
@@ -311,7 +318,7 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
-        byte=frame_byte(sig, ctx.frame_bits),
+        frame_bytes=frame_bytes(sig, ctx.frame_bits),
         phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
