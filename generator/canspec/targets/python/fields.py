@@ -53,6 +53,7 @@ class PySignal:
     default: str  # literal of the default attribute value
     raw_expr: str  # raw value from its frame byte `dN` or frame word `v` / `b` (sign-extended)
     frame_bytes: tuple[tuple[int, int], ...] | None  # the frame bytes it is read from, with their shifts (fields.frame_bytes)
+    own_bytes: bool  # a field of a CAN FD frame: read from its own bytes (fields.own_bytes)
     phys_expr: str  # physical value from the frame integer `v`
     specials: tuple[PySpecial, ...]
     allowed: str  # string literal: the allowed range as errors show it
@@ -79,9 +80,12 @@ class PySignal:
         return word_var(self.sig)
 
     @property
-    def read(self) -> str:
-        """What unpack reads the field from: its bytes (`d`, see `frame_bytes`) or its frame word (`v`, `b`)."""
-        return "d" if self.frame_bytes is not None else self.word
+    def read(self) -> str | None:
+        """What unpack reads first: the frame's bytes (`d`, see `frame_bytes`), a frame word (`v`, `b`), or
+        nothing (None: a field of a CAN FD frame, read from its own bytes, see `own_bytes`)."""
+        if self.frame_bytes is not None:
+            return "d"
+        return None if self.own_bytes else self.word
 
     @property
     def decode_word(self) -> str | None:
@@ -90,7 +94,8 @@ class PySignal:
 
 
 def _paren(expr: str) -> str:
-    return expr if expr.isidentifier() else f"({expr})"
+    atomic = expr.isidentifier() or (expr.startswith("_from_bytes(") and expr.count("(") == 1)  # a name, or one call
+    return expr if atomic else f"({expr})"
 
 
 def word_var(sig: ir.Signal) -> str:
@@ -114,12 +119,27 @@ def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] 
     return tuple((last - p if sig.is_big_endian else p, 8 * (p - lo)) for p in range(lo, hi + 1))
 
 
+def own_bytes(sig: ir.Signal, frame_bits: int) -> tuple[str, int, int]:
+    """A field of a CAN FD frame (more than 8 bytes) read from its own bytes, not from a word of up to 512 bits:
+    (the integer of those bytes in the field's order, the field's shift in it, its bits)."""
+    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8
+    last = frame_bits // 8 - 1
+    at = [last - p if sig.is_big_endian else p for p in range(lo, hi + 1)]
+    if hi - lo < MAX_BYTE_SPAN:
+        var = " | ".join(f"data[{i}]" if p == lo else f"data[{i}] << {8 * (p - lo)}" for p, i in zip(range(lo, hi + 1), at))
+    else:
+        var = f'_from_bytes(data[{min(at)}:{max(at) + 1}], "{sig.word_order}")'
+    return var, sig.word_shift - 8 * lo, 8 * len(at)
+
+
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
     """The raw value from its frame bytes or word: shift, mask, sign-extend (no outer parentheses)."""
     parts = frame_bytes(sig, frame_bits)
     if parts is not None:
         var = " | ".join(f"d{i}" if up == 0 else f"d{i} << {up}" for i, up in parts)
         shift, bits = sig.word_shift % 8, 8 * len(parts)
+    elif frame_bits > 64:
+        var, shift, bits = own_bytes(sig, frame_bits)
     else:
         var, shift, bits = word_var(sig), sig.word_shift, frame_bits
     expr = var if shift == 0 else f"{_paren(var)} >> {shift}"
@@ -318,7 +338,7 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
-        frame_bytes=frame_bytes(sig, ctx.frame_bits),
+        frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64,
         phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
