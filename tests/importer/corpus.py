@@ -10,11 +10,9 @@ from pathlib import Path
 from typing import Any
 
 import cantools
-
 from canspec.importer.load import load
 from canspec.importer.run import import_sources
 from canspec.importer.yamlout import dump
-from canspec.pipeline import compile_spec
 from canspec.targets.dbc import render_dbc
 
 OPENDBC_FILES = 115  # opendbc 0.3.1
@@ -41,11 +39,10 @@ class Imported:
 
 
 def import_one(path: Path, out: Path) -> Imported:
-    spec, report = import_sources([str(path)])
+    spec, report, compiled = import_sources([str(path)])
     out.mkdir(parents=True, exist_ok=True)
     name = spec["protocol"]["name"]
     (out / f"{name}.yaml").write_text(dump(spec, ["corpus import"]), encoding="utf-8")
-    compiled = compile_spec(out / f"{name}.yaml")
     if compiled.spec is None:
         return Imported(path, report.warnings, out, [str(p) for p in compiled.errors], None)
     dbc = render_dbc(compiled.spec)[f"dbc/{compiled.spec.can.name}.dbc"].decode()

@@ -7,9 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
 from canspec.ir.encoding import raw_range, raw_type_range
-from tests.importer.corpus import import_one, load_generated, load_source, message_facts, opendbc_files, signal_facts
+from repo_paths import ROOT
+
+from importer.corpus import Imported, import_one, load_generated, load_source, message_facts, opendbc_files, signal_facts
+from importer.kinds import KINDS, kind_of
 
 FILES = opendbc_files()
 
@@ -34,9 +36,22 @@ def _left_out(warnings) -> set[str]:
     return out
 
 
+_CACHE: dict[Path, Imported] = {}
+
+
+@pytest.fixture(scope="module")
+def imports(tmp_path_factory):
+    """Each file imported once, on first use (the README table's test reads them all)."""
+    def get(path: Path) -> Imported:
+        if path not in _CACHE:
+            _CACHE[path] = import_one(path, tmp_path_factory.mktemp(path.stem))
+        return _CACHE[path]
+    return get
+
+
 @pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])
-def test_import_is_faithful(path: Path, tmp_path: Path) -> None:
-    imported = import_one(path, tmp_path)
+def test_import_is_faithful(path: Path, imports, tmp_path: Path) -> None:
+    imported = imports(path)
     assert not imported.problems, f"canspec check refuses the import of {path.name}:\n" + "\n".join(imported.problems[:10])
     (tmp_path / "generated.dbc").write_text(imported.dbc, encoding="utf-8")
     (source, source_names), (ours, our_names) = load_source(path), load_generated(tmp_path / "generated.dbc")
@@ -62,3 +77,29 @@ def test_import_is_faithful(path: Path, tmp_path: Path) -> None:
                 diff = {k: (a[k], b[k]) for k in a if a[k] != b[k]}
                 mismatches.append(f"{msg.name}.{sig.name}: {diff or ranges}")
     assert not mismatches, f"{len(mismatches)} differences, first: " + "\n".join(mismatches[:8])
+
+
+def corpus_table(imports) -> str:
+    """The README's corpus table, from the imports themselves."""
+    clean = sum(1 for p in FILES if not imports(p).warnings and not imports(p).problems)
+    warned = sum(1 for p in FILES if imports(p).warnings and not imports(p).problems)
+    refused = [p.name for p in FILES if imports(p).problems]
+    kinds: dict[str, list] = {}
+    for p in FILES:
+        for source, line, text in imports(p).warnings:
+            kinds.setdefault(kind_of(text), []).append((p.name, line, text))
+    lines = [f"| opendbc {len(FILES)} DBCs | imported, no warning: **{clean}** | with warnings: **{warned}** | refused: **{len(refused)}** |",
+             "|---|---|---|---|", "", "| warning | count | files | example |", "|---|---|---|---|"]
+    for kind, _ in KINDS:
+        found = kinds.get(kind, [])
+        if found:
+            name, line, text = found[0]
+            where = f"{name}:{line}" if line else name
+            lines.append(f"| {kind} | {len(found)} | {len({f[0] for f in found})} | `{where}`: {text.replace('|', '/')} |")
+    return "\n".join(lines)
+
+
+def test_the_readme_table_is_what_the_corpus_gives(imports) -> None:
+    table = corpus_table(imports)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert table in readme, "README's corpus table is stale; it should read:\n" + table

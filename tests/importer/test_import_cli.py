@@ -131,3 +131,22 @@ def test_other_formats_written_by_cantools_import_the_same_messages(fmt: str, tm
         mine = back.get_message_by_frame_id(m.frame_id)
         assert {(s.name, s.start, s.length, s.byte_order, s.is_signed, s.scale, s.offset) for s in m.signals} == \
                {(s.name, s.start, s.length, s.byte_order, s.is_signed, s.scale, s.offset) for s in mine.signals}
+
+
+def test_a_motorola_fd_float_dbc_comes_back_as_it_was(tmp_path: Path) -> None:
+    """The FD fixture's DBC (Motorola and Intel fields, floats, FD with and without BRS) imported and
+    generated again: cantools reads the same frames, fields, FD flags and bus attributes."""
+    assert run_canspec("gen", FIXTURES / "valid" / "motorola_fd_float.yaml", "-o", tmp_path / "gen", "--target", "dbc").returncode == 0
+    source = tmp_path / "gen" / "dbc" / "chassis_fd.dbc"
+    r = run_canspec("import", source, "-o", tmp_path / "spec")
+    assert r.returncode == 0, r.stderr
+    assert run_canspec("gen", tmp_path / "spec", "-o", tmp_path / "back", "--target", "dbc").returncode == 0
+    a, b = (cantools.database.load_file(str(p)) for p in (source, tmp_path / "back" / "dbc" / "chassis_fd.dbc"))
+
+    def facts(db):  # type: ignore[no-untyped-def]
+        return {(m.frame_id, m.length, m.is_fd, str(m.dbc.attributes.get("CANFD_BRS").value) if "CANFD_BRS" in m.dbc.attributes else None,
+                 frozenset((s.name, s.start, s.length, s.byte_order, s.is_signed, s.is_float, s.scale, s.offset, s.minimum, s.maximum)
+                           for s in m.signals)) for m in db.messages}
+
+    assert facts(a) == facts(b)
+    assert b.dbc.attributes["BaudrateCANFD"].value == 2_000_000

@@ -18,7 +18,7 @@ def _where(source: str, line: int | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     try:
-        spec, report = import_sources(args.source)
+        spec, report, compiled = import_sources(args.source)
     except DbcError as exc:
         print(f"canspec import: {exc}", file=sys.stderr)
         return 1
@@ -34,6 +34,10 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.output)
     writer.apply(out, writer.Plan(write={f"{name}.yaml": yamlout.dump(spec, header).encode(), "canspec.yaml": bundle.encode()}))
     print(f"canspec import: {len(spec['messages'])} messages into {out}/{name}.yaml ({len(report.warnings)} warning(s))", file=sys.stderr)
+    if compiled.errors:  # what the importer could not decide: the spec is written for the user to fix
+        print(f"canspec import: `canspec check {out}` finds {len(compiled.errors)} error(s) to fix in the written spec, e.g. "
+              f"{compiled.errors[0].message}", file=sys.stderr)
+        return 1
     return 0
 
 

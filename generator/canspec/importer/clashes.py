@@ -11,24 +11,27 @@ from pathlib import Path
 from typing import Any
 
 from canspec.importer.yamlout import dump_with_lines
-from canspec.pipeline import compile_spec
+from canspec.pipeline import Compiled, compile_spec
 
 CLASH_RULES = ("c-name-clash", "rust-name-clash")
 MAX_ROUNDS = 50
 
 
-def resolve_clashes(spec: dict[str, Any], warn: Any) -> None:
-    """Rename until no target reports a clash (at most MAX_ROUNDS rounds; what is left, check reports)."""
+def resolve_clashes(spec: dict[str, Any], warn: Any) -> Compiled:
+    """Rename until no target reports a clash (at most MAX_ROUNDS rounds); the last compile, whose
+    other problems `canspec check` would report, comes back."""
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "spec.yaml"
         for _ in range(MAX_ROUNDS):
             text, where = dump_with_lines(spec, [])
             path.write_text(text, encoding="utf-8")
-            clashes = [p for p in compile_spec(path).problems if p.rule in CLASH_RULES and p.loc is not None and p.loc.line in where]
+            compiled = compile_spec(path)
+            clashes = [p for p in compiled.problems if p.rule in CLASH_RULES and p.loc is not None and p.loc.line in where]
             if not clashes:
-                return
+                return compiled
             for line in sorted({p.loc.line for p in clashes if p.loc is not None}):
                 _rename(spec, where[line], warn)
+    return compiled
 
 
 def _rename(spec: dict[str, Any], at: tuple[int, ...], warn: Any) -> None:

@@ -51,6 +51,27 @@ class Repairs:
         self.warnings.append((index + 1, text))
 
 
+_SG_OR_BO_NAME = re.compile(r"^\s*(?:SG_|BO_\s+\d+)\s+(\w+)")
+
+
+def prepass(rep: Repairs) -> None:
+    """The repairs a scan of the lines finds, made before cantools first parses the text: each
+    would otherwise cost a parse of the whole file to discover (a large DBC takes seconds)."""
+    for i, line in enumerate(rep.lines):
+        if (m := _SG_OR_BO_NAME.match(line)) is not None and m.group(1)[0].isdigit() and not m.group(1).isdigit():
+            _rename_digit_name(rep, i, m.group(1))
+        elif re.match(r"\s*SG_", line) and _DOT_NUMBER.search(line.partition('"')[0]):
+            rep.lines[i] = _DOT_NUMBER.sub(r"0.\1", line.partition('"')[0]) + line[len(line.partition('"')[0]):]
+            rep.warn(i, "number written without a leading 0 (e.g. '.25'): read as 0.25")
+        elif (m := _CM_BARE.match(line)) is not None:
+            rep.lines[i] = f"{m.group(1)}BO_ {m.group(2)}{line[m.end(2):]}"
+            rep.warn(i, f"CM_ without an object type before ID {m.group(2)}: taken as the comment of message {m.group(2)}")
+    for line in list(rep.lines):
+        if (m := _BO.match(line)) is not None and 0x7FF < int(m.group(2)) < 0x80000000:
+            _extend_id(rep, int(m.group(2)), m.group(4))
+    _drop_unused_vals(rep)
+
+
 def repair_step(rep: Repairs, error: str) -> bool:
     """Apply the repair cantools' `error` calls for; False when there is none."""
     if (m := _STANDARD_TOO_BIG.search(error)) is not None:

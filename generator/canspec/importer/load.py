@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from canspec.importer.dbctext import MAX_REPAIRS, DbcError, Repairs, repair_step
+from canspec.importer.dbctext import MAX_REPAIRS, DbcError, Repairs, prepass, repair_step
 
 FORMATS = {".dbc": "dbc", ".arxml": "arxml", ".kcd": "kcd", ".sym": "sym"}
 
@@ -44,6 +44,7 @@ def _cantools() -> Any:
 def load_dbc(path: Path, source: str) -> Loaded:
     cantools = _cantools()
     rep = Repairs(source, read_text(path, source).replace("\r\n", "\n").split("\n"))
+    prepass(rep)
     last = ""
     for _ in range(MAX_REPAIRS):
         try:
@@ -56,7 +57,7 @@ def load_dbc(path: Path, source: str) -> Loaded:
                                " (hint: fix the line; canspec import repairs only what has one sensible reading)") from None
     else:
         raise DbcError(f"{source}: too many repairs needed ({MAX_REPAIRS}); last: {last}")
-    warnings: list[tuple[int | None, str]] = [(line, text) for line, text in rep.warnings]
+    warnings: list[tuple[int | None, str]] = sorted(rep.warnings)
     return Loaded(source, "dbc", db, rep.text, warnings, rep.renamed)
 
 

@@ -10,9 +10,11 @@ from typing import Any
 from canspec.importer import merge, tospec
 from canspec.importer.clashes import resolve_clashes
 from canspec.importer.load import load
+from canspec.pipeline import Compiled
 
 
-def import_sources(sources: list[str]) -> tuple[dict[str, Any], tospec.Report]:
+def import_sources(sources: list[str]) -> tuple[dict[str, Any], tospec.Report, Compiled]:
+    """The spec, the warnings, and the spec compiled (its problems are what `canspec check` says)."""
     report = tospec.Report()
     specs = []
     for source in sources:
@@ -21,5 +23,5 @@ def import_sources(sources: list[str]) -> tuple[dict[str, Any], tospec.Report]:
             report.warn(source, line, text)
         specs.append((source, tospec.build_spec(loaded, report)))
     spec = merge.merge(specs)
-    resolve_clashes(spec, lambda text: report.warn(sources[0] if len(sources) == 1 else "import", None, text))
-    return spec, report
+    compiled = resolve_clashes(spec, lambda text: report.warn(sources[0] if len(sources) == 1 else "import", None, text))
+    return spec, report, compiled

@@ -34,7 +34,8 @@ def signal_comment(sig: ir.Signal, spec_name: str | None) -> str:
 
 
 def message_comment(msg: ir.Message) -> str:
-    return joined([msg.zh, msg.title, f"§{msg.section}" if msg.section else "",
+    """A title that is only the message's name (the default) says nothing the BO_ line does not."""
+    return joined([msg.zh, msg.title if msg.title != msg.name else "", msg.desc, f"§{msg.section}" if msg.section else "",
                    "layout not defined by the document" if msg.layout_undefined else ""])
 
 

@@ -1,0 +1,32 @@
+"""The kinds of warning `canspec import` gives, for the README's corpus table: a short name per
+kind, recognised by the words of its message (importer/dbctext.py, tospec.py, clashes.py)."""
+
+from __future__ import annotations
+
+KINDS = (  # (kind, words its message holds), first match wins
+    ("29-bit ID without the extended flag", "no extended flag: taken as 29-bit"),
+    ("ID wider than 29 bits: message left out", "does not fit 29 bits"),
+    ("number written `.25`", "without a leading 0"),
+    ("name starting with a digit", "starts with a digit"),
+    ("statement without `;`", "without its closing ';'"),
+    ("`CM_` without object type", "CM_ without an object type"),
+    ("`CM_ SG_` without signal name: dropped", "CM_ SG_ without a signal name"),
+    ("`VAL_` for a missing signal: dropped", "which has no such signal"),
+    ("multiplexed message: left out", "is multiplexed"),
+    ("overlapping signal: left out", "overlaps"),
+    ("signal leaving its frame: left out", "leaves its"),
+    ("value label outside the field: dropped", "does not fit its"),
+    ("node not declared in `BU_`: added", "not declared in BU_"),
+    ("more than 8 bytes without FD format: taken as FD", "no CAN FD frame format"),
+    ("no bit rate: 500 kbit/s assumed", "no bit rate given"),
+    ("no FD data bit rate: assumed", "no data bit rate"),
+    ("range holding no value: dropped", "holds no value of the field"),
+    ("C/Rust name clash: spec name renamed", "name clashes"),
+    ("several senders: first taken", "senders:"),
+    ("scaled float: scaling dropped", "scaling dropped"),
+    ("not a frame length: message left out", "not a CAN frame length"),
+)
+
+
+def kind_of(text: str) -> str:
+    return next((kind for kind, words in KINDS if words in text), "other")
