@@ -30,12 +30,13 @@ TEMPLATES = {
     "tests/vectors.rs": "rust/tests/vectors.rs.j2",
     "tests/properties.rs": "rust/tests/properties.rs.j2",
 }
-STATIC = ("src/codec.rs", "src/j1939.rs", "src/monitor.rs")
+STATIC = ("src/codec.rs", "src/fd.rs", "src/ieee.rs", "src/j1939.rs", "src/monitor.rs")
 
 
 def _wanted(rel: str, crate: RustCrate) -> bool:
-    """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables."""
-    return {"src/j1939.rs": crate.is_j1939, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
+    """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables,
+    FD frames and IEEE fields."""
+    return {"src/j1939.rs": crate.is_j1939, "src/fd.rs": crate.has_fd_frames, "src/ieee.rs": "ieee" in crate.kinds, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
 
 
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:
