@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from canspec import ir
 from canspec.ir import j1939
+from canspec.ir.bits import describe
 from canspec.ir.ids import MAX_STANDARD_ID
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
 from canspec.ir.textsamples import other_key, sample_text
@@ -59,6 +60,7 @@ class RustField:
     doc: tuple[str, ...]
     short_doc: str  # the values struct's doc of the field (its line and a pointer to the getter)
     table_row: str
+    bits_doc: str  # where the raw getter's field lies
     getter_allow: str  # a clippy lint the getter names break ("" for none)
     unit_note: str  # " (unit)" or ""
     tolerance: str  # vector test: |factor| as an f64 literal (a tie decodes within half a step)
@@ -237,6 +239,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
         doc=docs.field_doc(sig),
         short_doc=docs.short_doc(sig, type_name, names.getter),
         table_row=docs.table_row(sig, names.base, bilingual),
+        bits_doc=f"Motorola: {describe(sig.start, sig.length, sig.byte_order)}" if sig.is_big_endian else f"bits {sig.start}..={sig.last_bit}",
         getter_allow="clippy::wrong_self_convention" if names.base.startswith(CONVERSION_PREFIXES) else "",
         tolerance=RUST.double(float(abs(sig.factor))),
         offset_abs=RUST.double(float(abs(sig.offset))),
