@@ -112,6 +112,16 @@ def pack_expr(sig: ir.Signal, var: str, at: Place | None = None) -> str:
     return f"{value} << {shift}" if shift else value
 
 
+def _operand(expr: str) -> str:
+    """`expr` as the receiver of a method call: parenthesized unless it is one term already."""
+    depth = 0
+    for i, c in enumerate(expr):
+        depth += {"(": 1, ")": -1}.get(c, 0)
+        if depth == 0 and c in " )" and i < len(expr) - 1:  # a top-level operator, or a group that ends early
+            return f"({expr})"
+    return expr
+
+
 def store_stmt(sig: ir.Signal, var: str = "value", at: Place | None = None) -> str:
     """The statement that replaces the field in the frame with `var`."""
     at = at or _intel(sig, "self.bits")
@@ -123,7 +133,7 @@ def store_stmt(sig: ir.Signal, var: str = "value", at: Place | None = None) -> s
         word = packed if in_word == full else f"({at.read} & {RUST.integer(full ^ in_word)}) | {packed}"
         return f"let word = {word};\nfd::put_window(&mut self.bytes, {first}, word.to_{order}_bytes());"
     if at.swapped:
-        packed = f"({packed}).swap_bytes()" if " " in packed else f"{packed}.swap_bytes()"
+        packed = f"{_operand(packed)}.swap_bytes()"
         in_word = frame_mask(sig)
     if in_word == WORD_MASK:
         return f"self.bits = {packed};"
