@@ -98,6 +98,7 @@ class CrateTests:
     kinds: frozenset[str]  # field kinds in any message
     has_fields: bool
     has_classic: bool  # some message is held as the u64 frame word
+    has_ieee32: bool  # some field is a float32
     has_scaled: bool  # some field has a physical value other than its raw one (float or scaled_int)
     has_checksums: bool
     has_texts: bool
@@ -122,6 +123,7 @@ def build_tests(crate: RustCrate) -> CrateTests:
     return CrateTests(
         messages=tuple(tests), kinds=crate.kinds, has_fields=any(m.fields for m in crate.messages),
         has_classic=any(not m.is_fd_frame for m in crate.messages),
+        has_ieee32=any(f.phys_type == "f32" for m in crate.messages for f in m.fields),
         has_scaled=bool(crate.kinds & {"float", "scaled_int"}),
         has_checksums=any(m.msg.checksum for m in crate.messages), has_texts=bool(texts),
         picks_range=any(not p.values for p in used), picks_values=any(p.values for p in used),
