@@ -15,10 +15,9 @@ from pathlib import Path
 from canspec import ir
 from canspec.ir.bits import fits, positions, segments, storage_bits, word_shift
 from canspec.ir.encoding import raw_type_range
+from canspec.targets.rust.bits import place, raw_type, store_stmt, unpack_expr
 from repo_paths import ROOT
 from test_rust_bits import TEMPLATE
-
-from canspec.targets.rust.bits import place, raw_type, store_stmt, unpack_expr
 
 FD_MODULE = ROOT / "templates" / "rust" / "static" / "src" / "fd.rs"
 LENGTHS = (1, 7, 12, 32, 57, 64)
@@ -115,7 +114,8 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
     source = ["#![allow(dead_code, clippy::unusual_byte_groupings)]", ORACLE]
     source += [case(i, s, dlc) for i, (s, dlc) in enumerate(cases)]
     source.append(
-        "fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n    let mut frames = vec![vec![0u8; 64], vec![0xFF; 64], vec![0x55; 64], vec![0xAA; 64]];\n"
+        "fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n"
+        "    let mut frames = vec![vec![0u8; 64], vec![0xFF; 64], vec![0x55; 64], vec![0xAA; 64]];\n"
         "    for _ in 0..100 { let mut f = Vec::new(); for _ in 0..8 { s ^= s << 13; s ^= s >> 7; s ^= s << 17; f.extend(s.to_le_bytes()); } frames.push(f); }\n"
         + "".join(f"    check{i}(&frames);\n" for i in range(len(cases)))
         + f'    println!("ok {len(cases)}");\n}}\n'
@@ -124,7 +124,8 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
     src.write_text("\n".join(source), encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if k != "RUSTFLAGS"}
     lint = subprocess.run(
-        ["clippy-driver", "--edition", "2021", "-D", "warnings", "-o", str(tmp_path / "places"), str(src)], capture_output=True, text=True, env=env, check=False
+        ["clippy-driver", "--edition", "2021", "-D", "warnings", "-o", str(tmp_path / "places"), str(src)],
+        capture_output=True, text=True, env=env, check=False,
     )
     assert lint.returncode == 0, lint.stderr[-6000:]
     run = subprocess.run([str(tmp_path / "places")], capture_output=True, text=True, check=False)

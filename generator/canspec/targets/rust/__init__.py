@@ -36,7 +36,9 @@ STATIC = ("src/codec.rs", "src/fd.rs", "src/ieee.rs", "src/j1939.rs", "src/monit
 def _wanted(rel: str, crate: RustCrate) -> bool:
     """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables,
     FD frames and IEEE fields."""
-    return {"src/j1939.rs": crate.is_j1939, "src/fd.rs": crate.has_fd_frames, "src/ieee.rs": "ieee" in crate.kinds, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
+    wanted = {"src/j1939.rs": crate.is_j1939, "src/fd.rs": crate.has_fd_frames, "src/ieee.rs": "ieee" in crate.kinds,
+              "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}
+    return wanted.get(rel, True)
 
 
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:

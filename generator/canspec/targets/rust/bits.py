@@ -30,7 +30,7 @@ class Place:
     bits: int
     shift: int
     swapped: bool = False
-    window: tuple[int, int, str] | None = None
+    window: tuple[int, str] | None = None
 
 
 def place(sig: ir.Signal, dlc: int) -> Place:
@@ -45,7 +45,7 @@ def place(sig: ir.Signal, dlc: int) -> Place:
     order = "be" if sig.is_big_endian else "le"
     shift = 8 * (first + size - 1 - lsb.byte) + lsb.byte_shift if sig.is_big_endian else 8 * (lsb.byte - first) + lsb.byte_shift
     read = f"u{8 * size}::from_{order}_bytes(fd::window::<{size}>(&self.bytes, {first}))"
-    return Place(read, 8 * size, shift, window=(first, size, order))
+    return Place(read, 8 * size, shift, window=(first, order))
 
 
 def frame_mask(sig: ir.Signal) -> int:
@@ -128,7 +128,7 @@ def store_stmt(sig: ir.Signal, var: str = "value", at: Place | None = None) -> s
     packed = pack_expr(sig, var, at)
     in_word = sig.mask << at.shift
     if at.window is not None:
-        first, size, order = at.window
+        first, order = at.window
         full = (1 << at.bits) - 1
         word = packed if in_word == full else f"({at.read} & {RUST.integer(full ^ in_word)}) | {packed}"
         return f"let word = {word};\nfd::put_window(&mut self.bytes, {first}, word.to_{order}_bytes());"

@@ -16,7 +16,19 @@ from canspec.ir.names import RUST_KEYWORDS, pascal, snake
 from canspec.ir.textsamples import other_key, sample_text
 from canspec.render.literals import RUST
 from canspec.targets.rust import docs
-from canspec.targets.rust.bits import CLASSIC_BYTES, byte_masks, cast, frame_mask, misfit_expr, place, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
+from canspec.targets.rust.bits import (
+    CLASSIC_BYTES,
+    byte_masks,
+    cast,
+    frame_mask,
+    misfit_expr,
+    place,
+    raw_type,
+    refused_expr,
+    store_stmt,
+    type_bounds,
+    unpack_expr,
+)
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
 from canspec.targets.rust.ieee import IeeeEncoding, ieee_encoding
 from canspec.targets.rust.naming import FieldNames, enum_type_names, field_names, special_const, stored_signals, type_name
