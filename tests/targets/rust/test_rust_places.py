@@ -116,7 +116,8 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
     source.append(
         "fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n"
         "    let mut frames = vec![vec![0u8; 64], vec![0xFF; 64], vec![0x55; 64], vec![0xAA; 64]];\n"
-        "    for _ in 0..100 { let mut f = Vec::new(); for _ in 0..8 { s ^= s << 13; s ^= s >> 7; s ^= s << 17; f.extend(s.to_le_bytes()); } frames.push(f); }\n"
+        "    for _ in 0..100 {\n        let mut f = Vec::new();\n"
+        "        for _ in 0..8 { s ^= s << 13; s ^= s >> 7; s ^= s << 17; f.extend(s.to_le_bytes()); }\n        frames.push(f);\n    }\n"
         + "".join(f"    check{i}(&frames);\n" for i in range(len(cases)))
         + f'    println!("ok {len(cases)}");\n}}\n'
     )
