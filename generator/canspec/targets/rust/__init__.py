@@ -1,6 +1,6 @@
 """Rust bindings: a `no_std` Cargo crate named after the CAN protocol (`rust/`).
 
-The spec-independent modules (`codec`, `j1939`, `monitor`) are real Rust files under
+The spec-independent modules (`codec`, `fd`, `ieee`, `j1939`, `monitor`) are real Rust files under
 templates/rust/static/, copied with the generated header; the constants they read come from
 the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory,
 so the committed files are exactly what `make gen` writes. The view model is `model.py`.
