@@ -35,10 +35,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 8,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -50,6 +51,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 56,
                 length: 8,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -62,10 +64,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 16,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -77,7 +80,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: None,
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -91,6 +94,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -103,6 +107,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 56,
                 length: 8,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -117,6 +122,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 56,
                 length: 8,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -174,10 +180,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 8,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -189,10 +196,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 16,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -204,6 +212,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -216,6 +225,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 56,
                 length: 8,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -237,6 +247,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -249,6 +260,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -261,6 +273,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -273,6 +286,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -285,10 +299,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 8,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -300,10 +315,11 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 16,
                 length: 8,
+                big_endian: false,
             }),
             checksum: Some(ChecksumRule {
                 byte: 7,
-                cover_mask: 0xFF_FFFF_FFFF_FFFF,
+                covers: 127,
             }),
         },
         Rule {
@@ -315,6 +331,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 60,
                 length: 4,
+                big_endian: false,
             }),
             checksum: None,
         },
@@ -327,6 +344,7 @@ pub const fn monitor_rules(timeout_cycles: u32) -> [Rule; 25] {
             counter: Some(CounterRule {
                 start: 56,
                 length: 8,
+                big_endian: false,
             }),
             checksum: None,
         },

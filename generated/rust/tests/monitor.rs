@@ -32,16 +32,29 @@ fn monitor(tolerance: u32, valid_after: u32) -> ProtocolMonitor {
 
 /// A frame of `rule` with this counter, its checksum valid unless `corrupt`, `short` a byte short.
 fn frame(rule: &Rule, counter: u32, corrupt: bool, short: bool) -> Vec<u8> {
-    let mut word = 0u64;
+    let mut data = vec![0u8; rule.dlc];
     if let Some(c) = rule.counter {
-        word |= u64::from(counter % (1 << c.length)) << c.start;
+        // The counter's bits at `start` of the frame read as one integer in the counter's order.
+        let value = (counter % (1 << c.length)) << (c.start % 8);
+        for k in 0..2 {
+            let bits = (value >> (8 * k)) as u8;
+            let byte = (c.start / 8) as usize + k;
+            if bits != 0 {
+                data[if c.big_endian {
+                    rule.dlc - 1 - byte
+                } else {
+                    byte
+                }] |= bits;
+            }
+        }
+        assert_eq!(u32::from(c.read(&data)), counter % (1 << c.length));
     }
-    let mut data = word.to_le_bytes()[..rule.dlc].to_vec();
     if let Some(ck) = rule.checksum {
-        data[ck.byte] = (word & ck.cover_mask)
-            .to_le_bytes()
+        data[ck.byte] = data
             .iter()
-            .fold(0, |x, b| x ^ b)
+            .enumerate()
+            .filter(|&(i, _)| ck.covers >> i & 1 == 1)
+            .fold(0, |x, (_, b)| x ^ b)
             ^ u8::from(corrupt);
     }
     if short {

@@ -19,7 +19,7 @@ from canspec.targets.rust.bits import misfit_expr, raw_type, store_stmt, unpack_
 TEMPLATE = ir.Signal(
     name="x", c_name="x", zh="", desc="", desc_zh="", start=0, length=1, signed=False, factor=1, offset=0, unit="", role="data", doc_min=None, doc_max=None,  # type: ignore[arg-type]
     raw_type_min=0, raw_type_max=1, raw_min=0, raw_max=1, phys_min=0, phys_max=1, check_min=0, check_max=1, accept_min=0, accept_max=1,  # type: ignore[arg-type]
-    storage_bits=8, value_table=None, specials=(), segments=(), word_mask=1, sign_bit=0, labels=(), decimals=0, is_integer=True,
+    storage_bits=8, value_table=None, specials=(), segments=(), word_shift=0, word_mask=1, sign_bit=0, labels=(), decimals=0, is_integer=True,
     is_identity=True, since=None, errata=(),
 )
 
@@ -27,7 +27,7 @@ TEMPLATE = ir.Signal(
 def field(start: int, length: int, signed: bool) -> ir.Signal:
     lo, hi = raw_type_range(length, signed)
     return dataclasses.replace(TEMPLATE, start=start, length=length, signed=signed, raw_type_min=lo, raw_type_max=hi, raw_min=lo, raw_max=hi,
-                               storage_bits=storage_bits(length), segments=segments(start, length), word_mask=((1 << length) - 1) << start,
+                               storage_bits=storage_bits(length), segments=segments(start, length), word_shift=start, word_mask=((1 << length) - 1) << start,
                                sign_bit=1 << (length - 1) if signed else 0)
 
 

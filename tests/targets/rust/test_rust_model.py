@@ -56,7 +56,7 @@ def test_unpack_expressions(can):
     assert bits.unpack_expr(signed, "bits") == "(((bits << 34) as i64) >> 54) as i16"
     assert bits.pack_expr(signed, "x") == "(x as u64 & 1023) << 20"
     # The whole word: no shift, no mask, no cast to the same type.
-    whole = dataclasses.replace(signed, start=0, length=64, storage_bits=64, word_mask=(1 << 64) - 1)
+    whole = dataclasses.replace(signed, start=0, word_shift=0, length=64, storage_bits=64, word_mask=(1 << 64) - 1)
     assert (bits.unpack_expr(whole), bits.pack_expr(whole, "v"), bits.store_stmt(whole, "v")) == ("self.bits as i64", "v as u64", "self.bits = v as u64;")
     unsigned = dataclasses.replace(whole, signed=False)
     assert (bits.unpack_expr(unsigned), bits.store_stmt(unsigned, "v")) == ("self.bits", "self.bits = v;")

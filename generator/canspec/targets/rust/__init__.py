@@ -1,6 +1,6 @@
 """Rust bindings: a `no_std` Cargo crate named after the CAN protocol (`rust/`).
 
-The spec-independent modules (`codec`, `j1939`, `monitor`) are real Rust files under
+The spec-independent modules (`codec`, `fd`, `ieee`, `j1939`, `monitor`) are real Rust files under
 templates/rust/static/, copied with the generated header; the constants they read come from
 the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory,
 so the committed files are exactly what `make gen` writes. The view model is `model.py`.
@@ -30,12 +30,15 @@ TEMPLATES = {
     "tests/vectors.rs": "rust/tests/vectors.rs.j2",
     "tests/properties.rs": "rust/tests/properties.rs.j2",
 }
-STATIC = ("src/codec.rs", "src/j1939.rs", "src/monitor.rs")
+STATIC = ("src/codec.rs", "src/fd.rs", "src/ieee.rs", "src/j1939.rs", "src/monitor.rs")
 
 
 def _wanted(rel: str, crate: RustCrate) -> bool:
-    """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables."""
-    return {"src/j1939.rs": crate.is_j1939, "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}.get(rel, True)
+    """Modules only where the protocol uses them: J1939 helpers on J1939 buses, enums for tables,
+    FD frames and IEEE fields."""
+    wanted = {"src/j1939.rs": crate.is_j1939, "src/fd.rs": crate.has_fd_frames, "src/ieee.rs": "ieee" in crate.kinds,
+              "src/values.rs": bool(crate.enums), "src/messages.rs": bool(crate.messages)}
+    return wanted.get(rel, True)
 
 
 def render_rust(spec: ir.Spec) -> dict[str, bytes]:

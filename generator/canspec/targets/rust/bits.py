@@ -1,18 +1,64 @@
-"""Bit expressions over the frame word.
+"""Bit expressions over the frame word, in either byte order and for CAN FD frames.
 
-Frames are handled as one little-endian `u64` (`self.bits`): every signal is Intel order, so
-a signal is `(bits >> start) & mask` — one shift and one mask, whatever bytes it spans. Each
-expression is written for its exact widths, so no cast is a no-op and no mask or shift is an
-identity (clippy rejects both).
+A classic frame (at most 8 bytes) is held as one little-endian `u64` (`self.bits`): an Intel
+field is `(bits >> word_shift) & mask`, a Motorola one the same over `bits.swap_bytes()` (the
+frame read big-endian), its shift moved up by the bytes the frame lacks to 8. An FD frame is held
+as its bytes: a field is read from the 8 (or, for a field over 9 bytes, 16) bytes from its first
+byte as one integer in its own order (`Place`). Each expression is written for its exact widths,
+so no cast is a no-op and no mask or shift is an identity (clippy rejects both).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from canspec import ir
 from canspec.render.literals import RUST
 
 WORD_BITS = 64
 WORD_MASK = (1 << WORD_BITS) - 1
+CLASSIC_BYTES = 8  # a classic frame fits the u64 frame word
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where the generated code finds a field: the integer `read` of `bits` bits holds it at bits
+    [shift, shift + length). `window`: (first byte, window bytes, "le"/"be") for an FD frame's
+    bytes, None for the classic frame word (`swapped`: read big-endian by `swap_bytes`)."""
+
+    read: str
+    bits: int
+    shift: int
+    swapped: bool = False
+    window: tuple[int, str] | None = None
+
+
+def place(sig: ir.Signal, dlc: int) -> Place:
+    """The field's place in a message of `dlc` bytes."""
+    if dlc <= CLASSIC_BYTES:
+        if not sig.is_big_endian:
+            return Place("self.bits", WORD_BITS, sig.word_shift)
+        return Place("self.bits.swap_bytes()", WORD_BITS, sig.word_shift + 8 * (CLASSIC_BYTES - dlc), swapped=True)
+    first, last = min(s.byte for s in sig.segments), max(s.byte for s in sig.segments)
+    size = 8 if last - first < 8 else 16
+    lsb = sig.segments[0]  # least significant value bits first
+    order = "be" if sig.is_big_endian else "le"
+    shift = 8 * (first + size - 1 - lsb.byte) + lsb.byte_shift if sig.is_big_endian else 8 * (lsb.byte - first) + lsb.byte_shift
+    read = f"u{8 * size}::from_{order}_bytes(fd::window::<{size}>(&self.bytes, {first}))"
+    return Place(read, 8 * size, shift, window=(first, order))
+
+
+def frame_mask(sig: ir.Signal) -> int:
+    """The field's bits in the frame read as one little-endian integer (any length, either order)."""
+    out = 0
+    for seg in sig.segments:
+        out |= seg.mask << (8 * seg.byte)
+    return out
+
+
+def byte_masks(mask: int, dlc: int) -> str:
+    """A little-endian frame mask as a Rust `[u8; dlc]` literal."""
+    return "[" + ", ".join(RUST.hex((mask >> (8 * i)) & 0xFF, 2) for i in range(dlc)) + "]"
 
 
 def int_type(bits: int, signed: bool) -> str:
@@ -28,40 +74,70 @@ def cast(expr: str, from_type: str, to_type: str) -> str:
     return expr if from_type == to_type else f"{expr} as {to_type}"
 
 
-def unpack_expr(sig: ir.Signal, word: str = "self.bits") -> str:
-    """The raw value of `sig` from the frame word, as its storage type."""
-    ty = raw_type(sig)
+def _intel(sig: ir.Signal, word: str) -> Place:
+    assert not sig.is_big_endian, "a Motorola field needs its place (bits.place)"
+    return Place(word, WORD_BITS, sig.word_shift)
+
+
+def unpack_expr(sig: ir.Signal, word: str = "self.bits", at: Place | None = None) -> str:
+    """The raw value of `sig` as its storage type, from its place (default: bits `word_shift`
+    up of the little-endian word `word`)."""
+    at = at or _intel(sig, word)
+    ty, width, shift, word = raw_type(sig), at.bits, at.shift, at.read
     if sig.signed:
         # Move the field to the top, then an arithmetic shift back sign-extends it.
-        left, right = WORD_BITS - sig.start - sig.length, WORD_BITS - sig.length
+        left, right = width - shift - sig.length, width - sig.length
         moved = f"({word} << {left})" if left else word
-        value = f"({moved} as i64) >> {right}" if right else f"{moved} as i64"
-        return value if ty == "i64" else f"({value}) as {ty}"
-    value = f"{word} >> {sig.start}" if sig.start else word
+        value = f"({moved} as i{width}) >> {right}" if right else f"{moved} as i{width}"
+        return value if ty == f"i{width}" else f"({value}) as {ty}"
+    value = f"{word} >> {shift}" if shift else word
     # The cast truncates to the storage width, and the shift empties the bits above the word's top.
-    if sig.length != sig.storage_bits and sig.start + sig.length < WORD_BITS:
-        value = f"({value}) & {RUST.integer(sig.mask)}" if sig.start else f"{value} & {RUST.integer(sig.mask)}"
-    if ty == "u64":
+    if sig.length != sig.storage_bits and shift + sig.length < width:
+        value = f"({value}) & {RUST.integer(sig.mask)}" if shift else f"{value} & {RUST.integer(sig.mask)}"
+    if ty == f"u{width}":
         return value
     return f"({value}) as {ty}" if value != word else f"{word} as {ty}"
 
 
-def pack_expr(sig: ir.Signal, var: str) -> str:
-    """The field's bits in place in the frame word, from `var` (a raw value that fits the field)."""
+def pack_expr(sig: ir.Signal, var: str, at: Place | None = None) -> str:
+    """The field's bits in place in its word, from `var` (a raw value that fits the field)."""
+    at = at or _intel(sig, "self.bits")
+    width, shift = at.bits, at.shift
     if sig.signed:
-        value = f"{var} as u64" if sig.length == WORD_BITS else f"({var} as u64 & {RUST.integer(sig.mask)})"
-    elif sig.storage_bits == WORD_BITS:
+        value = f"{var} as u{width}" if sig.length == width else f"({var} as u{width} & {RUST.integer(sig.mask)})"
+    elif sig.storage_bits == width:
         value = var
     else:
-        value = f"u64::from({var})"
-    return f"{value} << {sig.start}" if sig.start else value
+        value = f"u{width}::from({var})"
+    return f"{value} << {shift}" if shift else value
 
 
-def store_stmt(sig: ir.Signal, var: str = "value") -> str:
-    """`self.bits` with the field replaced by `var`."""
-    if sig.word_mask == WORD_MASK:
-        return f"self.bits = {pack_expr(sig, var)};"
-    return f"self.bits = (self.bits & {RUST.integer(WORD_MASK ^ sig.word_mask)}) | {pack_expr(sig, var)};"
+def _operand(expr: str) -> str:
+    """`expr` as the receiver of a method call: parenthesized unless it is one term already."""
+    depth = 0
+    for i, c in enumerate(expr):
+        depth += {"(": 1, ")": -1}.get(c, 0)
+        if depth == 0 and c in " )" and i < len(expr) - 1:  # a top-level operator, or a group that ends early
+            return f"({expr})"
+    return expr
+
+
+def store_stmt(sig: ir.Signal, var: str = "value", at: Place | None = None) -> str:
+    """The statement that replaces the field in the frame with `var`."""
+    at = at or _intel(sig, "self.bits")
+    packed = pack_expr(sig, var, at)
+    in_word = sig.mask << at.shift
+    if at.window is not None:
+        first, order = at.window
+        full = (1 << at.bits) - 1
+        word = packed if in_word == full else f"({at.read} & {RUST.integer(full ^ in_word)}) | {packed}"
+        return f"let word = {word};\nfd::put_window(&mut self.bytes, {first}, word.to_{order}_bytes());"
+    if at.swapped:
+        packed = f"{_operand(packed)}.swap_bytes()"
+        in_word = frame_mask(sig)
+    if in_word == WORD_MASK:
+        return f"self.bits = {packed};"
+    return f"self.bits = (self.bits & {RUST.integer(WORD_MASK ^ in_word)}) | {packed};"
 
 
 def outside_expr(var: str, lo: int | None, hi: int | None) -> str | None:

@@ -11,6 +11,7 @@ import textwrap
 from fractions import Fraction
 
 from canspec import ir
+from canspec.ir.bits import describe
 from canspec.ir.names import humanize
 from canspec.render.literals import RUST, num
 
@@ -73,6 +74,11 @@ def field_doc(sig: ir.Signal) -> tuple[str, ...]:
         (f"| {sig.start} | {sig.length} | {num(sig.factor)} | {num(sig.offset)} | {_unit(sig)} "
          f"| {_range_text(sig.check_min, sig.check_max)} | {RUST.integer(sig.raw_min)} … {RUST.integer(sig.raw_max)} |"),
     ]
+    if sig.is_big_endian:
+        lines += ["", doc_text(f"Motorola (big-endian; the start bit is the most significant): {describe(sig.start, sig.length, sig.byte_order)}.")]
+    if sig.is_float:
+        lines += ["", doc_text(f"IEEE 754 float{sig.length}: the raw value is its bit pattern; NaN and ±infinity are "
+                               f"{'refused (a range is documented)' if sig.doc_min is not None else 'allowed'}; NaN is sent as the quiet NaN.")]
     for s in sig.specials:
         lines += ["", doc_text(f"Special raw value {RUST.integer(s.raw)}: {labelled(s.label_zh, s.label)}")]
     if sig.errata:

@@ -47,7 +47,9 @@ def scaled_int_type(sig: ir.Signal) -> str | None:
 
 def kind_of(sig: ir.Signal) -> str:
     """"enum" (a value table), "int" (the raw value is the physical one), "scaled_int" (integer
-    physical values in an integer type) or "float"."""
+    physical values in an integer type), "float" (scaled, in doubles) or "ieee" (an IEEE 754 field)."""
+    if sig.is_float:
+        return "ieee"
     if sig.value_table is not None:
         return "enum"
     if sig.is_identity:
@@ -56,8 +58,8 @@ def kind_of(sig: ir.Signal) -> str:
 
 
 def has_range_consts(sig: ir.Signal) -> bool:
-    """Scaled fields carry `_MIN`, `_MAX` and `_SCALE` constants."""
-    return kind_of(sig) in ("scaled_int", "float")
+    """Scaled fields carry `_MIN`, `_MAX` and `_SCALE` constants (IEEE fields `_MIN` and `_MAX`)."""
+    return kind_of(sig) in ("scaled_int", "float", "ieee")
 
 
 def _double_key(x: float) -> int:

@@ -10,13 +10,27 @@ from dataclasses import dataclass
 
 from canspec import ir
 from canspec.ir import j1939
+from canspec.ir.bits import describe
 from canspec.ir.ids import MAX_STANDARD_ID
 from canspec.ir.names import RUST_KEYWORDS, pascal, snake
 from canspec.ir.textsamples import other_key, sample_text
 from canspec.render.literals import RUST
 from canspec.targets.rust import docs
-from canspec.targets.rust.bits import cast, misfit_expr, raw_type, refused_expr, store_stmt, type_bounds, unpack_expr
+from canspec.targets.rust.bits import (
+    CLASSIC_BYTES,
+    byte_masks,
+    cast,
+    frame_mask,
+    misfit_expr,
+    place,
+    raw_type,
+    refused_expr,
+    store_stmt,
+    type_bounds,
+    unpack_expr,
+)
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
+from canspec.targets.rust.ieee import IeeeEncoding, ieee_encoding
 from canspec.targets.rust.naming import FieldNames, enum_type_names, field_names, special_const, stored_signals, type_name
 from canspec.targets.rust.values import RustEnum, build_enum, enum_users
 
@@ -39,7 +53,7 @@ class RustField:
     sig: ir.Signal
     names: FieldNames
     qualified: str  # "message.signal", for error messages
-    kind: str  # "enum" | "int" (identity) | "scaled_int" (integer factor/offset) | "float"
+    kind: str  # "enum" | "int" (identity) | "scaled_int" (integer factor/offset) | "float" (scaled, f64) | "ieee" (an IEEE 754 field)
     raw_type: str
     phys_type: str
     enum: RustEnum | None
@@ -48,6 +62,7 @@ class RustField:
     store: str  # the store method's body (from `value`)
     misfit: str | None  # `value` (raw type) does not fit the field; None: never
     encoding: Encoding | None  # scaled kinds: the codec call
+    ieee: IeeeEncoding | None  # IEEE fields: their range and the `ieee` call
     set_arg: str  # what the setter passes to the codec (scaled kinds) or checks (`value`)
     set_check: str | None  # enum and int kinds: the refused-value condition on `set_arg`
     store_arg: str  # what the setter stores (from `raw` for scaled kinds, else `value`)
@@ -57,6 +72,7 @@ class RustField:
     doc: tuple[str, ...]
     short_doc: str  # the values struct's doc of the field (its line and a pointer to the getter)
     table_row: str
+    bits_doc: str  # where the raw getter's field lies
     getter_allow: str  # a clippy lint the getter names break ("" for none)
     unit_note: str  # " (unit)" or ""
     tolerance: str  # vector test: |factor| as an f64 literal (a tie decodes within half a step)
@@ -113,8 +129,9 @@ class RustMessage:
     table: tuple[str, ...]  # the doc table of its signals (head, rule, rows)
     frame_id: str
     da: str  # J1939 destination address as an Option<u8>
-    defined_mask: str  # frame-word bits the message defines (not reserved, not undefined)
-    fields_mask: str  # frame-word bits of the fields the type stores (no checksum, no reserved)
+    defined_mask: str  # frame bits the message defines (not reserved, not undefined): a u64, or per byte for FD frames
+    fields_mask: str  # frame bits of the fields the type stores (no checksum, no reserved)
+    frame_bytes: int  # what `encode` returns: 8 bytes (a classic frame, the u64 frame word), or an FD frame's dlc
     checksum_shift: int  # bit position of the checksum byte in the frame word
     cover_mask: str  # frame-word bits the checksum covers
     many_arguments: bool
@@ -123,6 +140,15 @@ class RustMessage:
     @property
     def checksum(self) -> ir.Checksum | None:
         return self.msg.checksum
+
+    @property
+    def has_ieee(self) -> bool:
+        return any(f.kind == "ieee" for f in self.fields)
+
+    @property
+    def is_fd_frame(self) -> bool:
+        """Held as its bytes (`bytes: [u8; DLC]`), not as the u64 frame word."""
+        return not self.msg.is_classic_length
 
     @property
     def needs_word(self) -> bool:
@@ -146,6 +172,8 @@ class RustCrate:
     max_standard_id: str
     uses_codec: bool  # messages.rs calls into codec
     kinds: frozenset[str]  # the field kinds that occur
+    frame_bytes: int  # the longest frame `encode` returns (8 without FD frames over 8 bytes)
+    has_fd_frames: bool  # some message is held as its bytes (module `fd`)
 
 
 def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEnum | None) -> str:
@@ -155,6 +183,8 @@ def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEn
         return f"{enum.name}::from_raw({cast(raw, raw_type(sig), enum.repr)})"
     if kind == "int":
         return raw
+    if kind == "ieee":
+        return f"{phys_type}::from_bits({raw})"
     if kind == "scaled_int":
         expr = cast(raw, raw_type(sig), phys_type)
         factor, offset = RUST.integer(int(sig.factor)), RUST.integer(int(abs(sig.offset)))
@@ -177,10 +207,14 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
     kind = kind_of(sig)
     ty = raw_type(sig)
     enum = enums[sig.value_table.name] if sig.value_table is not None else None
-    phys_type = {"enum": enum.name if enum else "", "int": ty, "scaled_int": scaled_int_type(sig) or "", "float": "f64"}[kind]
+    phys_type = {"enum": enum.name if enum else "", "int": ty, "scaled_int": scaled_int_type(sig) or "", "float": "f64", "ieee": f"f{sig.length}"}[kind]
     encoding = int_encoding(sig) if kind == "scaled_int" else float_encoding(sig) if kind == "float" else None
+    ieee = ieee_encoding(sig) if kind == "ieee" else None
+    at = place(sig, msg.dlc)
     set_arg, set_check, store_arg = "value", None, "value"
-    if encoding is not None:
+    if ieee is not None:
+        store_arg = "raw"
+    elif encoding is not None:
         set_arg = "i64::from(value)" if kind == "scaled_int" else "value"
         store_arg = cast("raw", encoding.returns, ty)
     elif enum is not None:
@@ -189,7 +223,9 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
     else:
         set_check = refused_expr(sig)
     min_lit = max_lit = ""
-    if encoding is not None:
+    if ieee is not None:
+        min_lit, max_lit = ieee.min_lit, ieee.max_lit
+    elif encoding is not None:
         min_lit, max_lit = (encoding.scale["check_min"], encoding.scale["check_max"]) if kind == "scaled_int" else \
             (RUST.double(float(sig.check_min)), RUST.double(float(sig.check_max)))
     return RustField(
@@ -200,11 +236,12 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
         raw_type=ty,
         phys_type=phys_type,
         enum=enum,
-        raw_expr=unpack_expr(sig),
+        raw_expr=unpack_expr(sig, at=at),
         phys_expr=_phys_expr(sig, kind, f"self.{names.raw_getter}()", phys_type, enum),
-        store=store_stmt(sig),
+        store=store_stmt(sig, at=at),
         misfit=misfit_expr(sig),
         encoding=encoding,
+        ieee=ieee,
         set_arg=set_arg,
         set_check=set_check,
         store_arg=store_arg,
@@ -214,6 +251,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
         doc=docs.field_doc(sig),
         short_doc=docs.short_doc(sig, type_name, names.getter),
         table_row=docs.table_row(sig, names.base, bilingual),
+        bits_doc=f"Motorola: {describe(sig.start, sig.length, sig.byte_order)}" if sig.is_big_endian else f"bits {sig.start}..={sig.last_bit}",
         getter_allow="clippy::wrong_self_convention" if names.base.startswith(CONVERSION_PREFIXES) else "",
         tolerance=RUST.double(float(abs(sig.factor))),
         offset_abs=RUST.double(float(abs(sig.offset))),
@@ -279,12 +317,11 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
     table_bilingual = any(s.zh for s in stored_signals(msg))
     fields = tuple(build_field(msg, name, s, enums, table_bilingual) for s in stored_signals(msg))
     counter = next((f for f in fields if msg.counter and f.sig.name == msg.counter.signal), None)
-    defined = 0
+    defined = stored = 0
     for s in msg.data_signals:
-        defined |= s.word_mask
-    stored = 0
-    for f in fields:
-        stored |= f.sig.word_mask
+        defined |= frame_mask(s)
+        stored |= frame_mask(s) if s.role != "checksum" else 0
+    masks = (lambda mask: byte_masks(mask, msg.dlc)) if not msg.is_classic_length else RUST.integer
     j = msg.j1939
     return RustMessage(
         msg=msg, name=name, values=f"{pascal(msg.name)}Values", variant=name, snake=snake(msg.name), extended="true" if msg.is_extended else "false",
@@ -293,7 +330,7 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
         text=build_text(msg, fields), doc=docs.message_doc(msg),
         table=(*docs.table_head(table_bilingual), *(f.table_row for f in fields)) if fields else (),
         frame_id=msg.id_text, da="None" if j is None or j.da is None else f"Some({RUST.hex(j.da, 2)})",
-        defined_mask=RUST.integer(defined), fields_mask=RUST.integer(stored),
+        defined_mask=masks(defined), fields_mask=masks(stored), frame_bytes=CLASSIC_BYTES if msg.is_classic_length else msg.dlc,
         checksum_shift=8 * msg.checksum.byte if msg.checksum else 0, cover_mask=RUST.integer(msg.checksum.cover_mask) if msg.checksum else "",
         many_arguments=len(fields) > MAX_ARGUMENTS, local="msg_" if any(f.names.field == "msg" for f in fields) else "msg",
     )
@@ -314,7 +351,8 @@ def build_crate(can: ir.CanProtocol) -> RustCrate:
         message_table=(*docs.message_table_head(bilingual), *(docs.message_row(m.msg, m.name, bilingual) for m in messages)),
         is_j1939=can.bus.is_j1939, pdu2_min_pf=j1939.PDU2_MIN_PF, global_address=RUST.hex(j1939.GLOBAL_ADDRESS, 2),
         id_flag_matters=id_flag_matters, max_standard_id=RUST.integer(MAX_STANDARD_ID),
-        uses_codec=bool(kinds & {"scaled_int", "float"}) or can.has_counters or can.has_checksums, kinds=kinds,
+        uses_codec=bool(kinds & {"scaled_int", "float"}) or can.has_counters or any(m.checksum and not m.is_fd_frame for m in messages), kinds=kinds,
+        frame_bytes=max((m.frame_bytes for m in messages), default=CLASSIC_BYTES), has_fd_frames=any(m.is_fd_frame for m in messages),
     )
 
 

@@ -41,8 +41,8 @@ def _rule(name: str, msg: ir.Message) -> RustRule:
     return RustRule(
         type=name,
         timeout=f"Some(crate::messages::{name}::CYCLE_TIME_MS * timeout_cycles)" if msg.is_cyclic else "None",
-        counter=f"Some(CounterRule {{ start: {c.start}, length: {c.length} }})" if c is not None else "None",
-        checksum=f"Some(ChecksumRule {{ byte: {k.byte}, cover_mask: {RUST.integer(k.cover_mask)} }})" if k is not None else "None",
+        counter=f"Some(CounterRule {{ start: {c.start}, length: {c.length}, big_endian: {str(c.word_order == 'big').lower()} }})" if c is not None else "None",
+        checksum=f"Some(ChecksumRule {{ byte: {k.byte}, covers: {RUST.integer(sum(1 << b for b in k.covers))} }})" if k is not None else "None",
     )
 
 

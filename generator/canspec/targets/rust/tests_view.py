@@ -12,6 +12,7 @@ from fractions import Fraction
 from canspec import ir
 from canspec.ir.encoding import TIE_GUARANTEE, fits_runtime, to_raw_runtime
 from canspec.render.literals import RUST
+from canspec.targets.rust import ieee
 from canspec.targets.rust.model import RustCrate, RustField, RustMessage
 
 
@@ -51,7 +52,20 @@ def float_pick(sig: ir.Signal) -> Pick | None:
     return Pick(values=good) if good else None
 
 
+def ieee_pick(sig: ir.Signal) -> Pick:
+    """Bit patterns whose float encodes back to them: the range's ends, zeros, ones and its middle
+    inside the range; without a documented range also ±Inf and the quiet NaN of either sign."""
+    lo, hi = float(ieee.literal_value(sig, up=True)), float(ieee.literal_value(sig, up=False))
+    floats = [x for x in (lo, hi, 0.0, -0.0, 1.0, -1.0, lo / 2 + hi / 2) if lo <= x <= hi]
+    patterns = {ieee.bits_of(x, sig.length) for x in floats}
+    if sig.doc_min is None:
+        patterns |= {ieee.bits_of(x, sig.length) for x in (math.inf, -math.inf)} | set(ieee.QUIET_NANS[sig.length])
+    return Pick(values=tuple(RUST.integer(b) for b in sorted(patterns)))
+
+
 def pick(field: RustField) -> Pick | None:
+    if field.kind == "ieee":
+        return ieee_pick(field.sig)
     if field.kind == "float":
         return float_pick(field.sig)
     return Pick(RUST.integer(field.sig.raw_min), RUST.integer(field.sig.raw_max))
@@ -62,6 +76,7 @@ class MessageTests:
     msg: RustMessage
     picks: tuple[Pick, ...] | None  # per field; None: some field has no raw value that round-trips
     checksum_arg: str  # `frame`'s checksum argument: Some((byte, cover mask)) or None
+    fd_checksum_arg: str  # `fd_frame`'s: Some(byte) or None
 
     @property
     def fields_picks(self) -> tuple[tuple[RustField, Pick], ...]:
@@ -82,6 +97,8 @@ class CrateTests:
     messages: tuple[MessageTests, ...]
     kinds: frozenset[str]  # field kinds in any message
     has_fields: bool
+    has_classic: bool  # some message is held as the u64 frame word
+    has_ieee32: bool  # some field is a float32
     has_scaled: bool  # some field has a physical value other than its raw one (float or scaled_int)
     has_checksums: bool
     has_texts: bool
@@ -97,13 +114,16 @@ def build_tests(crate: RustCrate) -> CrateTests:
     for m in crate.messages:
         picks = tuple(pick(f) for f in m.fields)
         ck = f"Some(({m.msg.checksum.byte}, {m.cover_mask}))" if m.msg.checksum else "None"
-        tests.append(MessageTests(m, None if any(p is None for p in picks) else picks, ck))  # type: ignore[arg-type]
+        fd_ck = f"Some({m.msg.checksum.byte})" if m.msg.checksum else "None"
+        tests.append(MessageTests(m, None if any(p is None for p in picks) else picks, ck, fd_ck))  # type: ignore[arg-type]
     used = [p for t in tests if t.msg.fields for p in t.picks or ()]
     types = [m.name for m in crate.messages]
     texts = [m.text.assembler for m in crate.messages if m.text]
     enums = sorted({f.enum.name for m in crate.messages for f in m.fields if f.enum is not None})
     return CrateTests(
         messages=tuple(tests), kinds=crate.kinds, has_fields=any(m.fields for m in crate.messages),
+        has_classic=any(not m.is_fd_frame for m in crate.messages),
+        has_ieee32=any(f.phys_type == "f32" for m in crate.messages for f in m.fields),
         has_scaled=bool(crate.kinds & {"float", "scaled_int"}),
         has_checksums=any(m.msg.checksum for m in crate.messages), has_texts=bool(texts),
         picks_range=any(not p.values for p in used), picks_values=any(p.values for p in used),

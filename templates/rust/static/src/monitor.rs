@@ -21,22 +21,45 @@
 //!   the checksum and the timeout code while any message is timed out; else the table's `none`.
 //! - Counts saturate at `u32::MAX`.
 
-/// A rolling counter: `length` bits from bit `start` of the frame read as a little-endian word.
+/// A rolling counter: `length` bits from bit `start` of the frame read as one integer,
+/// little-endian (an Intel counter) or big-endian (a Motorola one).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CounterRule {
-    /// First bit.
+    /// Its least significant bit in that integer.
     pub start: u32,
     /// Bits (1..=8).
     pub length: u32,
+    /// The frame is read big-endian.
+    pub big_endian: bool,
 }
 
-/// An XOR checksum in byte `byte`: the XOR of the bytes `cover_mask` selects in the frame word.
+impl CounterRule {
+    /// The counter in a frame of the message's length.
+    pub fn read(&self, data: &[u8]) -> u8 {
+        let first = (self.start / 8) as usize; // the integer's byte holding the counter's LSB
+        let byte = |k: usize| {
+            let index = if self.big_endian { data.len().checked_sub(1 + first + k) } else { Some(first + k) };
+            index.and_then(|i| data.get(i)).map_or(0, |&b| u16::from(b))
+        };
+        let pair = byte(0) | byte(1) << 8;
+        ((pair >> (self.start % 8)) & ((1 << self.length) - 1)) as u8
+    }
+}
+
+/// An XOR checksum in byte `byte`: the XOR of the bytes `covers` selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ChecksumRule {
     /// The checksum's byte.
     pub byte: usize,
-    /// The covered bytes in the frame read as a little-endian word.
-    pub cover_mask: u64,
+    /// The covered bytes: bit i is byte i (frames of up to 64 bytes).
+    pub covers: u64,
+}
+
+impl ChecksumRule {
+    /// The XOR of the covered bytes of a frame.
+    pub fn expected(&self, data: &[u8]) -> u8 {
+        data.iter().enumerate().filter(|&(i, _)| i < 64 && self.covers >> i & 1 == 1).fold(0, |x, (_, &b)| x ^ b)
+    }
 }
 
 /// What the monitor checks of one message.
@@ -368,11 +391,9 @@ impl<const N: usize> Monitor<N> {
             track.fail();
             return (Some(Fault::Length), None, None, None);
         }
-        let word = data.iter().rev().fold(0u64, |w, &b| (w << 8) | u64::from(b));
         let mut checksum_ok = None;
         if let Some(ck) = rule.checksum {
-            let xor = (word & ck.cover_mask).to_le_bytes().iter().fold(0u8, |x, &b| x ^ b);
-            let ok = xor == data[ck.byte];
+            let ok = ck.expected(data) == data[ck.byte];
             checksum_ok = Some(ok);
             if !ok {
                 track.stats.checksum_errors = track.stats.checksum_errors.saturating_add(1);
@@ -385,7 +406,7 @@ impl<const N: usize> Monitor<N> {
             return (None, checksum_ok, None, None);
         };
         let modulo = 1u32 << c.length;
-        let counter = ((word >> c.start) as u32 & (modulo - 1)) as u8;
+        let counter = c.read(data);
         let Some(stored) = track.counter else {
             return (None, checksum_ok, Some(counter), None);
         };
