@@ -19,10 +19,10 @@ from fractions import Fraction
 from typing import Any
 
 from canspec import ir
-from canspec.ir.encoding import fits_runtime, to_physical_runtime, to_raw_exact, to_raw_runtime
+from canspec.ir.encoding import fits_runtime, float_of_bits, to_physical_runtime, to_raw_exact, to_raw_runtime
 from canspec.reference import codec
 from canspec.targets import Target
-from canspec.targets.vectors import sequences, texts
+from canspec.targets.vectors import floats, sequences, texts
 
 RANDOM_CASES = 50
 VECTOR_FORMAT = 1
@@ -39,6 +39,13 @@ TEXT_RULES = (
     "The rules: generator/canspec/reference/textframes.py."
 )
 
+FLOAT_RULES = (
+    "An IEEE 754 field's raw value is its bit pattern, its physical value the float those bits hold: a JSON number (-0 as -0.0) or "
+    '"NaN", "Infinity", "-Infinity". Encode rounds to nearest (binary32); NaN and +-Inf encode only where no range is documented (else '
+    "the case is raw_only), NaN to the format's quiet NaN. float_special cases (+0, -0, the smallest subnormals, the quiet NaN, +-Inf) "
+    "are physical-encodable; nan_payload cases (a NaN with another payload) decode to NaN and pack at raw level, their physical encode "
+    "is not checked."
+)
 
 
 Scales = tuple[tuple[str, int, int, int], ...]
@@ -51,6 +58,7 @@ def _scales(msg: ir.Message) -> Scales:
     return tuple(
         (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
         for s in msg.data_signals
+        if not s.is_float
     )
 
 
@@ -65,11 +73,20 @@ def _case(
     for name, a, b, d in scales if scales is not None else _scales(msg):
         n = raw[name] * a + b
         phys[name] = n // d if n % d == 0 else n / d
+    for s in msg.data_signals:
+        if s.is_float:
+            phys[s.name] = floats.json_value(float_of_bits(raw[s.name], s.length))
     if physical:
         phys.update(physical)
-    if kind != "raw_only":
+    refused = {s.name: floats.encodes_to(s, raw[s.name]) for s in msg.data_signals if s.is_float}
+    if kind != "raw_only" and any(refused.values()):
+        kind = "raw_only" if "raw_only" in refused.values() else "nan_payload"
+        why = {"raw_only": "a physical encode refuses it (documented range)", "nan_payload": "a physical encode gives the quiet NaN"}
+        note = f"{note}; " * bool(note) + ", ".join(f"{n}: {why[k]}" for n, k in refused.items() if k)
+    if kind not in ("raw_only", "nan_payload"):
         # a decoded case's values must encode back whatever the accepted range says: no range check here
-        lost = [s.name for s in msg.data_signals if not s.is_identity and not _survives_doubles(s, raw[s.name], phys[s.name], kind != "decoded")]
+        lost = [s.name for s in msg.data_signals
+                if not s.is_identity and not s.is_float and not _survives_doubles(s, raw[s.name], phys[s.name], kind != "decoded")]
         if lost:
             kind, note = "beyond_double", f"{note}; " * bool(note) + f"the physical value of {', '.join(lost)} does not encode back in doubles"
     return case_record(msg, data, raw, phys, kind, note)
@@ -100,7 +117,7 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
     middle, so wide fields get their extremes), with the raw value the shared runtime rule gives
     for that double input (ir/encoding.py). Within the rule's tie guarantee that is the exact
     decimal rule's result (tested); beyond it the note says so."""
-    if sig.is_identity or sig.raw_max - sig.raw_min < 2:
+    if sig.is_identity or sig.is_float or sig.raw_max - sig.raw_min < 2:
         return []
     out = []
     for lower in sorted({sig.raw_min, (sig.raw_min + sig.raw_max) // 2, sig.raw_max - 1}):
@@ -119,7 +136,7 @@ def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
     (raw × factor + offset, each step in doubles) where that is not the nearest double of the exact
     value (those the min/max cases hold) and the runtime rule carries it back (its quotient inside
     the field, rounding to the raw value): each must encode back to its raw value."""
-    if sig.is_integer:  # integer physical values: exact in doubles wherever they survive at all
+    if sig.is_integer or sig.is_float:  # integer physical values: exact in doubles wherever they survive at all
         return []
     f, o = float(sig.factor), float(sig.offset)
     out = []
@@ -144,6 +161,9 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
         cases.append(case(zero, "raw_only", note="all-zero frame; some zero raw values lie outside the documented range"))
     cases.append(case(base, "base"))
     for sig in sigs:
+        if sig.is_float:
+            cases += [case({**base, sig.name: raw}, kind, note=note) for raw, kind, note in floats.edge_cases(sig)]
+            continue
         cases.append(case({**base, sig.name: sig.raw_min}, "min", note=sig.name))
         cases.append(case({**base, sig.name: sig.raw_max}, "max", note=sig.name))
         if sig.value_table is not None:
@@ -160,7 +180,9 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
     for _ in range(RANDOM_CASES if sigs else 0):
         raw = {}
         for s in sigs:
-            if s.specials and rng.random() < 0.1:
+            if s.is_float:
+                raw[s.name] = floats.random_raw(s, rng)
+            elif s.specials and rng.random() < 0.1:
                 raw[s.name] = rng.choice(s.specials).raw
             else:
                 raw[s.name] = rng.randint(s.raw_min, s.raw_max)
@@ -211,6 +233,7 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
                 " physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields "
                 "wider than 2^52 steps) decode and pack at raw level only"
             ),
+            **({"float": FLOAT_RULES} if spec.can.has_float else {}),
         },
         "cases": cases,
         "multiframe": vin_cases(spec.can),
