@@ -16,7 +16,7 @@ def message_rule(msg: ir.Message, timeout_cycles: int = ir.MONITOR_TIMEOUT_CYCLE
         extended=msg.is_extended,
         dlc=msg.dlc,
         timeout_ms=msg.cycle_ms * timeout_cycles if msg.cycle_ms is not None else None,
-        counter=CounterRule(msg.counter.start, msg.counter.length) if msg.counter is not None else None,
+        counter=CounterRule(msg.counter.start, msg.counter.length, msg.counter.word_order) if msg.counter is not None else None,
         checksum=ChecksumRule(msg.checksum.byte, msg.checksum.cover_mask) if msg.checksum is not None else None,
     )
 
