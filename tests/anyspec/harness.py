@@ -16,6 +16,7 @@ import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -314,6 +315,20 @@ def stage_python(ctx: Ctx, mypy: bool) -> None:
             ctx.fail("python", "mypy --strict", out + err)
 
 
+def _cantools_raw(msg: Any, raw: dict[str, int]) -> dict[str, Any]:
+    """The vectors' raw values as cantools takes them: an IEEE float signal's as the float its bits hold."""
+    out: dict[str, Any] = dict(raw)
+    for sig in msg.signals:
+        if sig.is_float and sig.name in out:
+            out[sig.name] = struct.unpack("<f" if sig.length == 32 else "<d", out[sig.name].to_bytes(sig.length // 8, "little"))[0]
+    return out
+
+
+def _bits(values: dict[str, Any]) -> dict[str, Any]:
+    """Values compared exactly: floats by their bits (NaN equal to the same NaN, -0.0 unlike 0.0)."""
+    return {k: struct.pack("<d", v) if isinstance(v, float) else v for k, v in values.items()}
+
+
 def stage_cantools(ctx: Ctx) -> None:
     import canmatrix.formats
 
@@ -338,11 +353,12 @@ def stage_cantools(ctx: Ctx) -> None:
                 if msg.frame_id != case["frame_id"]:
                     bad.append(f"case {i} ({case['message']}): the DBC gives it ID 0x{msg.frame_id:X}, the vectors 0x{case['frame_id']:X}")
                     continue
+                want = _cantools_raw(msg, case["raw"])
                 raw = msg.decode(data, decode_choices=False, scaling=False)
-                if raw != case["raw"]:
+                if _bits(raw) != _bits(want):
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools decodes raw {raw}, vectors say {case['raw']}")
                     continue
-                enc = msg.encode(case["raw"], scaling=False, strict=False)
+                enc = msg.encode(want, scaling=False, strict=False)
                 if enc != data:
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools encodes {enc.hex().upper()}, vectors say {case['data']}")
                 phys = msg.decode(data, decode_choices=False, scaling=True)
@@ -351,6 +367,11 @@ def stage_cantools(ctx: Ctx) -> None:
                         bad.append(f"case {i} ({case['message']}): DBC signal {sig.name} is not in the vector's physical values")
                         continue
                     expected = case["physical"][sig.name]
+                    if sig.is_float:  # the float itself, bit for bit ("NaN" any NaN; -0.0 keeps its sign)
+                        x = phys[sig.name]
+                        if not (math.isnan(x) if expected == "NaN" else _bits({0: x}) == _bits({0: float(expected)})):
+                            bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools physical {sig.name} = {x!r}, vectors say {expected!r}")
+                        continue
                     ulps = 4 * math.ulp(float(expected))  # the double arithmetic of both sides
                     tol = (abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))) + ulps
                     if not math.isclose(phys[sig.name], expected, abs_tol=tol):
