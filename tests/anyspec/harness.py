@@ -475,6 +475,18 @@ class Job:
     bytewise: bool = True  # also the C runner with the word path off
 
 
+def guarded(ctx: Ctx, target: str, stage: Any, *args: Any) -> None:
+    """Run a stage; a crash of its test helpers (a runner that cannot read a case yet) is that
+    target's failure on this spec, not the end of the batch."""
+    try:
+        stage(*args)
+    except Exception as exc:  # noqa: BLE001
+        import traceback
+
+        where = traceback.extract_tb(exc.__traceback__)[-1]
+        ctx.fail(target, "test helper crashed", f"{type(exc).__name__}: {exc} ({Path(where.filename).name}:{where.lineno})")
+
+
 def run_spec(job: Job) -> SpecResult:
     """check → gen → every output's own checks (not Rust/TypeScript: see the batch stages)."""
     t0 = time.monotonic()
@@ -500,13 +512,13 @@ def run_spec(job: Job) -> SpecResult:
             g -= {"c", "python", "dbc", "rust", "vectors"}
             res.facts["has_json"] = True
         if wanted("c") and {"c", "vectors"} <= g:
-            stage_c(ctx)
+            guarded(ctx, "c", stage_c, ctx)
         if wanted("python") and {"python", "vectors"} <= g:
-            stage_python(ctx, job.mypy)
+            guarded(ctx, "python", stage_python, ctx, job.mypy)
         if wanted("cantools", "canmatrix") and {"dbc", "vectors"} <= g:
-            stage_cantools(ctx)
+            guarded(ctx, "cantools", stage_cantools, ctx)
         if wanted("json") and res.facts.get("has_json") and {"jsonschema", "json_vectors", "json_bindings"} <= g:
-            stage_json(ctx, job.mypy)
+            guarded(ctx, "json", stage_json, ctx, job.mypy)
     res.seconds = time.monotonic() - t0
     return res
 
