@@ -13,7 +13,13 @@ choices. Three choosers feed it:
   gives a simpler spec, as with Hypothesis).
 
 Smaller choices mean simpler specs throughout: fewer nodes, messages and signals, DLC 8,
-identity scaling, no options.
+identity scaling, no options, Intel order, classic frames, integer fields.
+
+Always drawn (issue 24, no switch): the bus's default byte order (little or big endian) and
+per field the other one now and then, so both orders mix in one frame and Motorola fields cross
+bytes (counters and checksums too); CAN FD messages (`fd: true`, every FD length up to 64
+bytes, `brs` on or off, the bus's `data_bitrate`); IEEE float32/float64 fields in either order,
+with and without a range. Multi-frame text and shared layouts stay in classic frames.
 
 The specs use the relaxed spec format of this issue. `NEW_FEATURES` names each relaxation;
 `features=CURRENT` restricts the strategy to what the current checker accepts (so the
