@@ -55,6 +55,7 @@ class ValueEntry:
     label_zh: str
     label: str  # English label derived from the identifier
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_text: str = ""  # the label the DBC writes where it is not `name` (a source's own text)
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,11 @@ class Label:
     label_zh: str
     label: str
     is_special: bool
+    dbc_text: str = ""  # ValueEntry.dbc_text
+
+    @property
+    def dbc_label(self) -> str:
+        return self.dbc_text or self.name
 
 
 @dataclass(frozen=True)
@@ -151,6 +157,7 @@ class Signal:
     # its physical value the float those bits hold (factor 1, offset 0); the raw/phys ranges are the
     # float's finite range (or the documented one), and NaN/±Inf pass only without a documented range.
     is_float: bool = False
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name` (a source's own spelling), else `name`
 
     @property
     def is_reserved(self) -> bool:
@@ -324,6 +331,7 @@ class Message:
     loc: Loc | None = field(default=None, compare=False, hash=False)
     is_fd: bool = False  # a CAN FD frame (FDF): up to 64 data bytes
     brs: bool = False  # CAN FD bit-rate switching: the data phase at the bus's data_bitrate
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
     @property
     def is_classic_length(self) -> bool:
@@ -368,6 +376,7 @@ class Node:
     desc: str
     aliases: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
 
 @dataclass(frozen=True)
@@ -412,6 +421,7 @@ class CanProtocol:
     value_tables: tuple[ValueTable, ...]
     fault_tables: tuple[FaultTable, ...] = ()
     loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
+    dbc_signal_names: str = "per_message"  # or "unique" (targets/dbc/naming.py)
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

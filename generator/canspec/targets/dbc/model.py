@@ -90,11 +90,12 @@ def _message(can: ir.CanProtocol, msg: ir.Message, names: dict[tuple[str, str], 
     signals = []
     for sig in msg.data_signals:
         name = names[(msg.name, sig.name)]
-        spec_name = sig.name if name != sig.name else None
+        spec_name = sig.name if name != sig.dbc_name else None
         signals.append(DbcSignal(name, spec_name, sig, attributes.sig_type(msg, sig), comments.signal_comment(sig, spec_name)))
+    node = {n.name: n.dbc_name for n in can.nodes}
     return DbcMessage(
-        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else msg.sender,
-        receivers=",".join(msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
+        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else node.get(msg.sender, msg.sender),
+        receivers=",".join(node.get(r, r) for r in msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
         vframe_format=attributes.vframe_format(can.bus, msg), send_type=attributes.send_type(msg), signals=tuple(signals),
     )
 

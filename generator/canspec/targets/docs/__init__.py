@@ -152,7 +152,7 @@ def _can_pages(spec: ir.Spec, can: ir.CanProtocol, lg: Lang, load: busload.BusLo
     g = busload.STUFFED_CONTROL_BITS[True]
     files["busload.md"] = _page("busload.md.j2", spec, lg, can=can, load=load, frame_bits=busload.frame_bits, g=g, g_minus_1=g - 1,
                                 g_standard=busload.STUFFED_CONTROL_BITS[False], trailer=busload.UNSTUFFED_TRAILER_BITS,
-                                fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS)
+                                fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS, message_bits=busload.message_bits, fd=busload.fd_formula_facts())
     files["firmware.md"] = _page("firmware.md.j2", spec, lg, can=can, c=CNames.plain(can), example_node=_example_node(can),
                                  node_traffic=[(n.name, *nodeview.traffic(can, n.name)) for n in can.nodes])
     return files
