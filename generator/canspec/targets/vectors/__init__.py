@@ -6,7 +6,9 @@ Per message: the all-zero frame, the minimum and maximum of every signal, every 
 value-table entry and special value, rounding ties, and 50 seeded pseudo-random cases.
 Every case's physical values are encodable under the shared rules (values the documented
 range excludes — e.g. reserved enum codes — are not physical-encodable and appear only as
-raw bytes in the `raw_only` cases), and counters and checksums are filled in.
+raw bytes in the `raw_only` cases), and counters and checksums are filled in. A frame's data is
+its `dlc` bytes (up to 64 in CAN FD). IEEE float fields get their own cases (floats.py): range
+ends, ±0, subnormals, NaN (quiet and with a payload), ±Inf and random finite values.
 """
 
 from __future__ import annotations
