@@ -108,7 +108,7 @@ def test_float_kinds_follow_the_range_rule(fixture):
 
 
 def test_float_ends_and_random_values(fixture):
-    can, vectors, _ = fixture
+    _, vectors, _ = fixture
     by_note = {c["note"]: c for c in vectors["cases"] if "note" in c}
     f32_max = as_float(0x7F7FFFFF, 32)
     assert by_note["rel_speed lowest"]["physical"]["rel_speed"] == -f32_max

@@ -179,17 +179,17 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
         for raw, x in _decoded(sig):
             cases.append(case({**base, sig.name: raw}, "decoded", {sig.name: x}, note=f"{sig.name} raw {raw} decodes to {x!r}"))
     rng = random.Random(zlib.crc32(msg.name.encode()))
-    for _ in range(RANDOM_CASES if sigs else 0):
-        raw = {}
-        for s in sigs:
-            if s.is_float:
-                raw[s.name] = floats.random_raw(s, rng)
-            elif s.specials and rng.random() < 0.1:
-                raw[s.name] = rng.choice(s.specials).raw
-            else:
-                raw[s.name] = rng.randint(s.raw_min, s.raw_max)
-        cases.append(case(raw, "random"))
+    cases += [case({s.name: _random_raw(s, rng) for s in sigs}, "random") for _ in range(RANDOM_CASES if sigs else 0)]
     return cases
+
+
+def _random_raw(sig: ir.Signal, rng: random.Random) -> int:
+    """A random raw value of the field: a special value now and then, else any in its range."""
+    if sig.is_float:
+        return floats.random_raw(sig, rng)
+    if sig.specials and rng.random() < 0.1:
+        return rng.choice(sig.specials).raw
+    return rng.randint(sig.raw_min, sig.raw_max)
 
 
 def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:

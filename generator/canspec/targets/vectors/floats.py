@@ -34,7 +34,7 @@ def json_value(x: float) -> float | str:
     return x
 
 
-def read_value(v: float | int | str) -> float:
+def read_value(v: float | str) -> float:
     """A physical value as a runner reads it back from the file."""
     return float(v)  # float("NaN"), float("Infinity"), float("-Infinity") and numbers alike
 
