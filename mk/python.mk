@@ -9,5 +9,8 @@ roundtrip-python:  ## the generated Python package ($(PYTHON_PACKAGE), default t
 	$(PYTHON) tests/targets/python/vector_runner.py $(VECTORS) $(if $(PYTHON_PACKAGE),--package $(PYTHON_PACKAGE))
 
 BENCH_PYTHON_FRAMES ?= 1000000
-bench-python:  ## generated Python vs cantools (µs/frame), canspec decode vs cantools decode on a candump log
+# A second spec, Motorola-heavy with CAN FD frames and floats (until a Motorola benchmark spec exists: the fixture)
+BENCH_PYTHON_SPEC2 ?= tests/fixtures/valid/motorola_fd_float.yaml
+bench-python:  ## generated Python vs cantools (µs/frame) on the shipped spec and $(BENCH_PYTHON_SPEC2), canspec decode vs cantools decode on a candump log
 	$(PYTHON) tests/targets/python/bench.py --log-frames $(BENCH_PYTHON_FRAMES)
+	$(PYTHON) tests/targets/python/bench.py --log-frames 0 --spec $(BENCH_PYTHON_SPEC2)

@@ -11,8 +11,8 @@ from typing import Any
 
 import cantools
 
-from canspec.importer import tospec
 from canspec.importer.load import load
+from canspec.importer.run import import_sources
 from canspec.importer.yamlout import dump
 from canspec.pipeline import compile_spec
 from canspec.targets.dbc import render_dbc
@@ -41,11 +41,7 @@ class Imported:
 
 
 def import_one(path: Path, out: Path) -> Imported:
-    report = tospec.Report()
-    loaded = load(path, path.name)
-    for line, text in loaded.warnings:
-        report.warn(path.name, line, text)
-    spec = tospec.build_spec(loaded, report)
+    spec, report = import_sources([str(path)])
     out.mkdir(parents=True, exist_ok=True)
     name = spec["protocol"]["name"]
     (out / f"{name}.yaml").write_text(dump(spec, ["corpus import"]), encoding="utf-8")
@@ -56,9 +52,17 @@ def import_one(path: Path, out: Path) -> Imported:
     return Imported(path, report.warnings, out, [], dbc, compiled.spec)
 
 
-def load_source(path: Path) -> Any:
-    """The source as cantools reads it after canspec's repairs (the same text the importer read)."""
-    return cantools.database.load_string(load(path, path.name).text, database_format="dbc", strict=False)
+def load_source(path: Path) -> tuple[Any, dict[str, str]]:
+    """The source as cantools reads it after canspec's repairs (the same text the importer read),
+    and the placeholders of its digit-first names."""
+    loaded = load(path, path.name)
+    return cantools.database.load_string(loaded.text, database_format="dbc", strict=False), loaded.renamed
+
+
+def load_generated(path: Path) -> tuple[Any, dict[str, str]]:
+    """The generated DBC, strictly — through the same repairs: it keeps a source's digit-first names."""
+    loaded = load(path, path.name)
+    return cantools.database.load_string(loaded.text, database_format="dbc", strict=True), loaded.renamed
 
 
 def _num(value: Any) -> Fraction | None:

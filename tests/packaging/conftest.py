@@ -23,11 +23,21 @@ def dist(tmp_path_factory) -> Dist:
     return Dist(sdists[0], wheels[0], direct[0])
 
 
-@pytest.fixture(scope="session")
-def release_venv(dist, tmp_path_factory) -> Venv:
-    """An empty virtual environment (no system site-packages) with only the wheel and what it requires."""
+def _venv(tmp_path_factory, requirement: str) -> Venv:
     root = tmp_path_factory.mktemp("venv") / "env"
     venv.EnvBuilder(with_pip=True, system_site_packages=False).create(root)
     env = Venv(root)
-    ok(run([str(env.bin / "python"), "-m", "pip", "install", "--quiet", str(dist.wheel)], env=env.env))
+    ok(run([str(env.bin / "python"), "-m", "pip", "install", "--quiet", requirement], env=env.env))
     return env
+
+
+@pytest.fixture(scope="session")
+def release_venv(dist, tmp_path_factory) -> Venv:
+    """An empty virtual environment (no system site-packages) with only the wheel and what it requires."""
+    return _venv(tmp_path_factory, str(dist.wheel))
+
+
+@pytest.fixture(scope="session")
+def import_venv(dist, tmp_path_factory) -> Venv:
+    """Another, with the wheel and its `import` extra (cantools), as `pip install 'canspec[import]'` gives."""
+    return _venv(tmp_path_factory, f"{dist.wheel}[import]")

@@ -106,6 +106,7 @@ def test_diff_of_two_revisions_is_the_change_record(release_venv, user_spec):
     (["plot", "drive.log", "accel_cmd", "-o", "drive.png"], "logs", 2),
     (["simulate", "--node", "AUTOCAR", "--duration", "0.1"], "logs", 2),
     (["pdf", "-o", "handbook.pdf"], "pdf", 1),
+    (["import", "bus.dbc", "-o", "imported"], "import", 2),
 ])
 def test_a_command_names_the_extra_it_needs(release_venv, tmp_path, args, extra, status):
     (tmp_path / "drive.log").write_text("(1.000000) can0 1801B0A0#0000000000000000\n", encoding="ascii")
@@ -114,13 +115,12 @@ def test_a_command_names_the_extra_it_needs(release_venv, tmp_path, args, extra,
     assert f"pip install 'canspec[{extra}]'" in out.stderr and "Traceback" not in out.stderr + out.stdout, out.stderr
 
 
-@pytest.mark.xfail(strict=True, reason="`canspec import` does not exist yet (issue 25); when it lands this test passes: remove the mark")
-def test_import_the_generated_dbc(release_venv, user_spec, tmp_path):
+def test_import_the_generated_dbc(import_venv, tmp_path):
     dbc = GENERATED / "dbc" / "kaiwo_gateway.dbc"
-    imported = release_venv.canspec("import", str(dbc), "-o", str(tmp_path / "imported"), cwd=tmp_path)
+    imported = import_venv.canspec("import", str(dbc), "-o", str(tmp_path / "imported"), cwd=tmp_path)
     assert imported.returncode == 0, imported.stderr
-    assert release_venv.canspec("check", "imported", cwd=tmp_path).returncode == 0
-    again = release_venv.canspec("gen", "imported", "-o", "out", "-t", "dbc", cwd=tmp_path)
+    assert import_venv.canspec("check", "imported", cwd=tmp_path).returncode == 0
+    again = import_venv.canspec("gen", "imported", "-o", "out", "-t", "dbc", cwd=tmp_path)
     assert again.returncode == 0, again.stderr
-    back = release_venv.canspec("diff", str(dbc), str(next((tmp_path / "out" / "dbc").glob("*.dbc"))), "--fail-on", "any", cwd=tmp_path)
+    back = import_venv.canspec("diff", str(dbc), str(next((tmp_path / "out" / "dbc").glob("*.dbc"))), "--fail-on", "any", cwd=tmp_path)
     assert back.returncode == 0, back.stdout + back.stderr

@@ -15,6 +15,22 @@ WRAP = 2**32
 SATURATE = 2**32 - 1
 
 
+def field_bits(data: bytes, sig) -> int:
+    """A field's unsigned value, bit by bit in the DBC numbering (bit 8 × byte + b): an Intel field
+    rises from its LSB `start`; a Motorola field falls from its MSB `start` to bit 0 of the byte and
+    goes on from bit 7 of the next."""
+    value, pos = 0, sig.start
+    for i in range(sig.length):
+        bit = (data[pos // 8] >> (pos % 8)) & 1
+        if sig.byte_order == "big_endian":
+            value = value << 1 | bit
+            pos = pos - 1 if pos % 8 else pos + 15
+        else:
+            value |= bit << i
+            pos += 1
+    return value
+
+
 def xor_ok(data: bytes, byte: int) -> bool:
     """The checksum byte is the XOR of every other byte of the frame."""
     x = 0
@@ -122,7 +138,7 @@ class ModelMonitor:
         if not m.counter:
             return None, ck, None
         sig = m.signal(m.counter.signal)
-        value = (int.from_bytes(data, "little") >> sig.start) & ((1 << sig.length) - 1)
+        value = field_bits(data, sig)
         previous, s.last_counter = s.last_counter, value
         if previous is None:
             return None, ck, None
@@ -153,10 +169,9 @@ class ModelText:
             return "length"
         if m.checksum and not xor_ok(data, m.checksum.byte):
             return "checksum"
-        word = int.from_bytes(data, "little")
         raw = {}
         for s in m.data_signals:
-            v = (word >> s.start) & ((1 << s.length) - 1)
+            v = field_bits(data, s)
             raw[s.name] = v - (1 << s.length) if s.signed and v >> (s.length - 1) else v
         index = raw[mf.index_signal]
         if index < 0 or index >= mf.frames:

@@ -168,3 +168,25 @@ def test_any_spec_standard_ids_event_driven_no_fault_table():
     assert flags == {"type": False, "async_state": False}  # extended_status is event-driven and unchanged: not sent
     assert all(not ev.faults for _, ev in events) and mon.fault_codes() == {}
     assert mon.stats("type").frames == 1 and 4 <= mon.stats("async_state").frames <= 7
+
+
+def test_fd_frames_go_out_as_fd_and_a_motorola_counter_counts():
+    """The FD fixture's node: the 64-byte message as an FD frame with bit-rate switching, the 12-byte one
+    without; its Motorola counter advances frame by frame (no counter fault in canspec's monitor)."""
+    spec = spec_ir(ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.yaml")
+    ch = channel()
+    with can.Bus(interface="virtual", channel=ch) as tx, can.Bus(interface="virtual", channel=ch) as rx:
+        sim = RestBus(spec.can, "ESC", tx, messages=["radar_objects"])
+        mon = supervision.new_monitor(spec.can)
+        frames = []
+        for _ in range(3):
+            for name in sim.messages:
+                sim.send(name)
+                frames.append(rx.recv(1.0))
+    by_id = {m.frame_id: m for m in spec.can.messages}
+    for frame in frames:
+        msg = by_id[frame.arbitration_id]
+        assert (frame.is_fd, frame.bitrate_switch, len(frame.data)) == (msg.is_fd, msg.brs, msg.dlc), msg.name
+        assert not mon.feed(round(frame.timestamp * 1000), frame.arbitration_id, frame.is_extended_id, frame.data).faults
+    assert {m.name for m in spec.can.messages if m.is_fd} <= {by_id[f.arbitration_id].name for f in frames}
+    assert mon.stats("wheel_speeds").accepted == 3 and mon.stats("wheel_speeds").lost_frames == 0

@@ -519,6 +519,8 @@ class AutocarEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -562,11 +564,10 @@ class AutocarEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: AutocarEpsCommandRaw) -> bytes:
@@ -601,40 +602,34 @@ class AutocarEpsCommand:
 def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c ^ d7, d7, id_text="0x1801B0A0")
     m = _new(AutocarEpsCommand)  # slot stores are faster than a call of __init__
-    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
-    m.counter = (v >> 8) & 0xFF
-    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
-    m.checksum = v >> 56
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
+    m.counter = d1
+    m.max_angular_speed = d2 * 2
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
+    m.checksum = d7
     return m
 
 
 def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0A0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("autocar_eps_command", 0x1801B0A0, c ^ d7, d7, id_text="0x1801B0A0")
     return {
-        "eps_ctrl_mode": v & 0xFF,
-        "counter": (v >> 8) & 0xFF,
-        "max_angular_speed": (v >> 16) & 0xFF,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
-        "checksum": v >> 56,
+        "eps_ctrl_mode": d0,
+        "counter": d1,
+        "max_angular_speed": d2,
+        "steering_angle_cmd": d3 | d4 << 8,
+        "checksum": d7,
     }
 
 
@@ -660,8 +655,7 @@ def _encode_autocar_eps_command(m: AutocarEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -685,8 +679,7 @@ def _pack_autocar_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _AUTOCAR_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _AUTOCAR_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -725,6 +718,8 @@ class EpsState:
     FRAME_ID: ClassVar[int] = 0x1802A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00200
@@ -801,30 +796,30 @@ class EpsState:
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(EpsState)  # slot stores are faster than a call of __init__
-    m.eps_ctrl_state = _EPS_MODE_STATE_8[v & 0xFF]
-    m.steering_torque = ((v >> 8) & 0xFF) * 0.1 - 12.8
-    m.eps_output_torque = ((v >> 16) & 0xFF) * 0.3 - 38.4
-    m.steering_angle = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
-    m.controller_temp = ((v >> 40) & 0x3F) * 2
-    m.eps_fault_level = _EPS_FAULT_LEVEL_2[(v >> 48) & 0x3]
-    m.counter = v >> 56
+    m.eps_ctrl_state = _EPS_MODE_STATE_8[d0]
+    m.steering_torque = d1 * 0.1 - 12.8
+    m.eps_output_torque = d2 * 0.3 - 38.4
+    m.steering_angle = (d3 | d4 << 8) * 0.1 - 1080.0
+    m.controller_temp = (d5 & 0x3F) * 2
+    m.eps_fault_level = _EPS_FAULT_LEVEL_2[d6 & 0x3]
+    m.counter = d7
     return m
 
 
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
     if len(data) != 8:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "eps_ctrl_state": v & 0xFF,
-        "steering_torque": (v >> 8) & 0xFF,
-        "eps_output_torque": (v >> 16) & 0xFF,
-        "steering_angle": (v >> 24) & 0xFFFF,
-        "controller_temp": (v >> 40) & 0x3F,
-        "eps_fault_level": (v >> 48) & 0x3,
-        "counter": v >> 56,
+        "eps_ctrl_state": d0,
+        "steering_torque": d1,
+        "eps_output_torque": d2,
+        "steering_angle": d3 | d4 << 8,
+        "controller_temp": d5 & 0x3F,
+        "eps_fault_level": d6 & 0x3,
+        "counter": d7,
     }
 
 
@@ -919,6 +914,8 @@ class AutocarSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -963,11 +960,10 @@ class AutocarSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: AutocarSpeedCommandRaw) -> bytes:
@@ -1002,42 +998,36 @@ class AutocarSpeedCommand:
 def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c ^ d7, d7, id_text="0x1803B0A0")
     m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
-    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
-    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
-    m.counter = (v >> 16) & 0xFF
-    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
-    m.checksum = v >> 56
+    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
+    m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
+    m.gear_cmd = _GEAR_4[d1 >> 4]
+    m.counter = d2
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[d3 & 0x1]
+    m.checksum = d7
     return m
 
 
 def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0A0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("autocar_speed_command", 0x1803B0A0, c ^ d7, d7, id_text="0x1803B0A0")
     return {
-        "accel_cmd": v & 0x3FF,
-        "epb_cmd": (v >> 10) & 0x3,
-        "gear_cmd": (v >> 12) & 0xF,
-        "counter": (v >> 16) & 0xFF,
-        "emergency_brake_cmd": (v >> 24) & 0x1,
-        "checksum": v >> 56,
+        "accel_cmd": (d0 | d1 << 8) & 0x3FF,
+        "epb_cmd": (d1 >> 2) & 0x3,
+        "gear_cmd": d1 >> 4,
+        "counter": d2,
+        "emergency_brake_cmd": d3 & 0x1,
+        "checksum": d7,
     }
 
 
@@ -1062,8 +1052,7 @@ def _encode_autocar_speed_command(m: AutocarSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -1089,8 +1078,7 @@ def _pack_autocar_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _AUTOCAR_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _AUTOCAR_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -1133,6 +1121,8 @@ class DrivingState:
     FRAME_ID: ClassVar[int] = 0x1804A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00400
@@ -1181,11 +1171,10 @@ class DrivingState:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: DrivingStateRaw) -> bytes:
@@ -1210,48 +1199,42 @@ class DrivingState:
 def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingState:
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("driving_state", 0x1804A0B0, c ^ d7, d7, id_text="0x1804A0B0")
     m = _new(DrivingState)  # slot stores are faster than a call of __init__
-    m.epb_state = _EPB_2[v & 0x3]
-    m.gear_state = _GEAR_4[(v >> 2) & 0xF]
-    m.emergency_brake_state = _BRAKE_STATE_1[(v >> 6) & 0x1]
-    m.uss_brake_state = _BRAKE_STATE_1[(v >> 7) & 0x1]
-    m.motor_speed = ((v >> 8) & 0xFFFF) - 15000
-    m.motor_torque = ((v >> 24) & 0xFFFF) - 5000
-    m.motor_speed_ratio = ((v >> 40) & 0xFF) + 1
-    m.current_accel = ((v >> 48) & 0xFF) * 0.05 - 9.0
-    m.checksum = v >> 56
+    m.epb_state = _EPB_2[d0 & 0x3]
+    m.gear_state = _GEAR_4[(d0 >> 2) & 0xF]
+    m.emergency_brake_state = _BRAKE_STATE_1[(d0 >> 6) & 0x1]
+    m.uss_brake_state = _BRAKE_STATE_1[d0 >> 7]
+    m.motor_speed = (d1 | d2 << 8) - 15000
+    m.motor_torque = (d3 | d4 << 8) - 5000
+    m.motor_speed_ratio = d5 + 1
+    m.current_accel = d6 * 0.05 - 9.0
+    m.checksum = d7
     return m
 
 
 def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingStateRaw:
     if len(data) != 8:
         raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("driving_state", 0x1804A0B0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1804A0B0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("driving_state", 0x1804A0B0, c ^ d7, d7, id_text="0x1804A0B0")
     return {
-        "epb_state": v & 0x3,
-        "gear_state": (v >> 2) & 0xF,
-        "emergency_brake_state": (v >> 6) & 0x1,
-        "uss_brake_state": (v >> 7) & 0x1,
-        "motor_speed": (v >> 8) & 0xFFFF,
-        "motor_torque": (v >> 24) & 0xFFFF,
-        "motor_speed_ratio": (v >> 40) & 0xFF,
-        "current_accel": (v >> 48) & 0xFF,
-        "checksum": v >> 56,
+        "epb_state": d0 & 0x3,
+        "gear_state": (d0 >> 2) & 0xF,
+        "emergency_brake_state": (d0 >> 6) & 0x1,
+        "uss_brake_state": d0 >> 7,
+        "motor_speed": d1 | d2 << 8,
+        "motor_torque": d3 | d4 << 8,
+        "motor_speed_ratio": d5,
+        "current_accel": d6,
+        "checksum": d7,
     }
 
 
@@ -1285,8 +1268,7 @@ def _encode_driving_state(m: DrivingState) -> bytes:
         else:
             r7 = _to_raw(x7, _DRIVING_STATE__CURRENT_ACCEL)
         v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -1318,8 +1300,7 @@ def _pack_driving_state(raw: Mapping[str, object]) -> bytes:
     r6 = _check_raw(raw.get("motor_speed_ratio", 0), _DRIVING_STATE__MOTOR_SPEED_RATIO)
     r7 = _check_raw(raw.get("current_accel", 0), _DRIVING_STATE__CURRENT_ACCEL)
     v = r0 | r1 << 2 | r2 << 6 | r3 << 7 | r4 << 8 | r5 << 24 | r6 << 40 | r7 << 48
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -1394,6 +1375,8 @@ class AutocarControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -1506,66 +1489,66 @@ class AutocarControlCommand1:
 def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(AutocarControlCommand1)  # slot stores are faster than a call of __init__
-    m.drive_mode_cmd = _DRIVE_MODE_CMD_AUTOCAR_2[v & 0x3]
-    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
-    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
-    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
-    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
-    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
-    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
-    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
-    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
-    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
-    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
-    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
-    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
-    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
-    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
-    m.system_state = _SYSTEM_STATE_AUTOCAR_2[(v >> 32) & 0x3]
-    m.system_reliability = _RELIABILITY_AUTOCAR_2[(v >> 34) & 0x3]
-    m.system_fault_level = _FAULT_LEVEL_AUTOCAR_2[(v >> 36) & 0x3]
-    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
-    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
-    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
-    m.protocol_version_a = (v >> 48) & 0xF
-    m.protocol_version_b = (v >> 52) & 0xF
-    m.protocol_version_c = (v >> 56) & 0xF
-    m.counter = v >> 60
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_AUTOCAR_2[d0 & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(d0 >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[d0 >> 6]
+    m.left_turn_cmd = _FLASH_CMD_2[d1 & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(d1 >> 2) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(d1 >> 4) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[d1 >> 6]
+    m.headlight_cmd = _HEADLIGHT_2[d2 & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(d2 >> 2) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(d2 >> 4) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[d2 >> 6]
+    m.dome_light_cmd = _SWITCH_CMD_2[d3 & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(d3 >> 2) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(d3 >> 4) & 0x1]
+    m.system_state = _SYSTEM_STATE_AUTOCAR_2[d4 & 0x3]
+    m.system_reliability = _RELIABILITY_AUTOCAR_2[(d4 >> 2) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_AUTOCAR_2[(d4 >> 4) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
+    m.ac_cmd = _AC_CMD_3[d5 & 0x7]
+    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.protocol_version_a = d6 & 0xF
+    m.protocol_version_b = d6 >> 4
+    m.protocol_version_c = d7 & 0xF
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "drive_mode_cmd": v & 0x3,
-        "door_cmd": (v >> 2) & 0x3,
-        "horn_cmd": (v >> 4) & 0x3,
-        "drl_cmd": (v >> 6) & 0x3,
-        "left_turn_cmd": (v >> 8) & 0x3,
-        "right_turn_cmd": (v >> 10) & 0x3,
-        "hazard_cmd": (v >> 12) & 0x3,
-        "position_light_cmd": (v >> 14) & 0x3,
-        "headlight_cmd": (v >> 16) & 0x3,
-        "rear_fog_cmd": (v >> 18) & 0x3,
-        "left_fog_cmd": (v >> 20) & 0x3,
-        "right_fog_cmd": (v >> 22) & 0x3,
-        "dome_light_cmd": (v >> 24) & 0x3,
-        "ambient_light_cmd": (v >> 26) & 0x3,
-        "drive_mode_reset": (v >> 28) & 0x1,
-        "system_state": (v >> 32) & 0x3,
-        "system_reliability": (v >> 34) & 0x3,
-        "system_fault_level": (v >> 36) & 0x3,
-        "lock_cmd": (v >> 38) & 0x3,
-        "ac_cmd": (v >> 40) & 0x7,
-        "ac_set_temp": (v >> 43) & 0x1F,
-        "protocol_version_a": (v >> 48) & 0xF,
-        "protocol_version_b": (v >> 52) & 0xF,
-        "protocol_version_c": (v >> 56) & 0xF,
-        "counter": v >> 60,
+        "drive_mode_cmd": d0 & 0x3,
+        "door_cmd": (d0 >> 2) & 0x3,
+        "horn_cmd": (d0 >> 4) & 0x3,
+        "drl_cmd": d0 >> 6,
+        "left_turn_cmd": d1 & 0x3,
+        "right_turn_cmd": (d1 >> 2) & 0x3,
+        "hazard_cmd": (d1 >> 4) & 0x3,
+        "position_light_cmd": d1 >> 6,
+        "headlight_cmd": d2 & 0x3,
+        "rear_fog_cmd": (d2 >> 2) & 0x3,
+        "left_fog_cmd": (d2 >> 4) & 0x3,
+        "right_fog_cmd": d2 >> 6,
+        "dome_light_cmd": d3 & 0x3,
+        "ambient_light_cmd": (d3 >> 2) & 0x3,
+        "drive_mode_reset": (d3 >> 4) & 0x1,
+        "system_state": d4 & 0x3,
+        "system_reliability": (d4 >> 2) & 0x3,
+        "system_fault_level": (d4 >> 4) & 0x3,
+        "lock_cmd": d4 >> 6,
+        "ac_cmd": d5 & 0x7,
+        "ac_set_temp": d5 >> 3,
+        "protocol_version_a": d6 & 0xF,
+        "protocol_version_b": d6 >> 4,
+        "protocol_version_c": d7 & 0xF,
+        "counter": d7 >> 4,
     }
 
 
@@ -1829,6 +1812,8 @@ class VehicleState1:
     FRAME_ID: ClassVar[int] = 0x1806A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00600
@@ -1935,60 +1920,60 @@ class VehicleState1:
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState1)  # slot stores are faster than a call of __init__
-    m.drive_mode_state = _DRIVE_MODE_STATE_2[v & 0x3]
-    m.door_state = _OFF_ON_1[(v >> 2) & 0x1]
-    m.drl_state = _OFF_ON_1[(v >> 3) & 0x1]
-    m.left_turn_state = _OFF_FLASHING_1[(v >> 4) & 0x1]
-    m.right_turn_state = _OFF_FLASHING_1[(v >> 5) & 0x1]
-    m.hazard_state = _OFF_FLASHING_1[(v >> 6) & 0x1]
-    m.position_light_state = _OFF_ON_1[(v >> 7) & 0x1]
-    m.headlight_state = _HEADLIGHT_2[(v >> 8) & 0x3]
-    m.rear_fog_state = _OFF_ON_1[(v >> 10) & 0x1]
-    m.left_fog_state = _OFF_ON_1[(v >> 11) & 0x1]
-    m.right_fog_state = _OFF_ON_1[(v >> 12) & 0x1]
-    m.dome_light_state = _OFF_ON_1[(v >> 13) & 0x1]
-    m.ambient_light_state = _OFF_ON_1[(v >> 14) & 0x1]
-    m.door_button_state = _BUTTON_1[(v >> 15) & 0x1]
-    m.vehicle_speed = ((v >> 16) & 0xFF) - 50
-    m.soc = ((v >> 24) & 0xFF) * 0.5
-    m.system_power_cmd = _POWER_CMD_2[(v >> 32) & 0x3]
-    m.charge_state = _CHARGE_STATE_2[(v >> 34) & 0x3]
-    m.charge_connection = _CHARGE_CONNECTION_2[(v >> 36) & 0x3]
-    m.vehicle_fault_level = _VEHICLE_FAULT_LEVEL_2[(v >> 38) & 0x3]
-    m.odometer = ((v >> 40) & 0xFFFF) * 2
-    m.counter = v >> 56
+    m.drive_mode_state = _DRIVE_MODE_STATE_2[d0 & 0x3]
+    m.door_state = _OFF_ON_1[(d0 >> 2) & 0x1]
+    m.drl_state = _OFF_ON_1[(d0 >> 3) & 0x1]
+    m.left_turn_state = _OFF_FLASHING_1[(d0 >> 4) & 0x1]
+    m.right_turn_state = _OFF_FLASHING_1[(d0 >> 5) & 0x1]
+    m.hazard_state = _OFF_FLASHING_1[(d0 >> 6) & 0x1]
+    m.position_light_state = _OFF_ON_1[d0 >> 7]
+    m.headlight_state = _HEADLIGHT_2[d1 & 0x3]
+    m.rear_fog_state = _OFF_ON_1[(d1 >> 2) & 0x1]
+    m.left_fog_state = _OFF_ON_1[(d1 >> 3) & 0x1]
+    m.right_fog_state = _OFF_ON_1[(d1 >> 4) & 0x1]
+    m.dome_light_state = _OFF_ON_1[(d1 >> 5) & 0x1]
+    m.ambient_light_state = _OFF_ON_1[(d1 >> 6) & 0x1]
+    m.door_button_state = _BUTTON_1[d1 >> 7]
+    m.vehicle_speed = d2 - 50
+    m.soc = d3 * 0.5
+    m.system_power_cmd = _POWER_CMD_2[d4 & 0x3]
+    m.charge_state = _CHARGE_STATE_2[(d4 >> 2) & 0x3]
+    m.charge_connection = _CHARGE_CONNECTION_2[(d4 >> 4) & 0x3]
+    m.vehicle_fault_level = _VEHICLE_FAULT_LEVEL_2[d4 >> 6]
+    m.odometer = (d5 | d6 << 8) * 2
+    m.counter = d7
     return m
 
 
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "drive_mode_state": v & 0x3,
-        "door_state": (v >> 2) & 0x1,
-        "drl_state": (v >> 3) & 0x1,
-        "left_turn_state": (v >> 4) & 0x1,
-        "right_turn_state": (v >> 5) & 0x1,
-        "hazard_state": (v >> 6) & 0x1,
-        "position_light_state": (v >> 7) & 0x1,
-        "headlight_state": (v >> 8) & 0x3,
-        "rear_fog_state": (v >> 10) & 0x1,
-        "left_fog_state": (v >> 11) & 0x1,
-        "right_fog_state": (v >> 12) & 0x1,
-        "dome_light_state": (v >> 13) & 0x1,
-        "ambient_light_state": (v >> 14) & 0x1,
-        "door_button_state": (v >> 15) & 0x1,
-        "vehicle_speed": (v >> 16) & 0xFF,
-        "soc": (v >> 24) & 0xFF,
-        "system_power_cmd": (v >> 32) & 0x3,
-        "charge_state": (v >> 34) & 0x3,
-        "charge_connection": (v >> 36) & 0x3,
-        "vehicle_fault_level": (v >> 38) & 0x3,
-        "odometer": (v >> 40) & 0xFFFF,
-        "counter": v >> 56,
+        "drive_mode_state": d0 & 0x3,
+        "door_state": (d0 >> 2) & 0x1,
+        "drl_state": (d0 >> 3) & 0x1,
+        "left_turn_state": (d0 >> 4) & 0x1,
+        "right_turn_state": (d0 >> 5) & 0x1,
+        "hazard_state": (d0 >> 6) & 0x1,
+        "position_light_state": d0 >> 7,
+        "headlight_state": d1 & 0x3,
+        "rear_fog_state": (d1 >> 2) & 0x1,
+        "left_fog_state": (d1 >> 3) & 0x1,
+        "right_fog_state": (d1 >> 4) & 0x1,
+        "dome_light_state": (d1 >> 5) & 0x1,
+        "ambient_light_state": (d1 >> 6) & 0x1,
+        "door_button_state": d1 >> 7,
+        "vehicle_speed": d2,
+        "soc": d3,
+        "system_power_cmd": d4 & 0x3,
+        "charge_state": (d4 >> 2) & 0x3,
+        "charge_connection": (d4 >> 4) & 0x3,
+        "vehicle_fault_level": d4 >> 6,
+        "odometer": d5 | d6 << 8,
+        "counter": d7,
     }
 
 
@@ -2206,6 +2191,8 @@ class AutocarControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0A0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700
@@ -2289,36 +2276,36 @@ class AutocarControlCommand2:
 def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(AutocarControlCommand2)  # slot stores are faster than a call of __init__
-    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
-    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
-    m.cargo_lift_speed = (v >> 3) & 0xF
-    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
-    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
-    m.chassis_pitch = ((v >> 16) & 0x3FF) * 0.05 - 25.0
-    m.chassis_roll = ((v >> 26) & 0x3FF) * 0.1 - 40.0
-    m.cargo_pitch = ((v >> 36) & 0x3FF) * 0.2 - 30.0
-    m.cargo_roll = ((v >> 46) & 0x3FF) * 0.1 - 40.0
-    m.counter = v >> 56
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
+    m.cargo_lift_speed = (d0 >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
+    m.downhill_regen_speed = d1 * 0.5
+    m.chassis_pitch = ((d2 | d3 << 8) & 0x3FF) * 0.05 - 25.0
+    m.chassis_roll = (((d3 | d4 << 8) >> 2) & 0x3FF) * 0.1 - 40.0
+    m.cargo_pitch = (((d4 | d5 << 8) >> 4) & 0x3FF) * 0.2 - 30.0
+    m.cargo_roll = ((d5 | d6 << 8) >> 6) * 0.1 - 40.0
+    m.counter = d7
     return m
 
 
 def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "downhill_regen_enable": v & 0x1,
-        "cargo_lift": (v >> 1) & 0x3,
-        "cargo_lift_speed": (v >> 3) & 0xF,
-        "pto_enable": (v >> 7) & 0x1,
-        "downhill_regen_speed": (v >> 8) & 0xFF,
-        "chassis_pitch": (v >> 16) & 0x3FF,
-        "chassis_roll": (v >> 26) & 0x3FF,
-        "cargo_pitch": (v >> 36) & 0x3FF,
-        "cargo_roll": (v >> 46) & 0x3FF,
-        "counter": v >> 56,
+        "downhill_regen_enable": d0 & 0x1,
+        "cargo_lift": (d0 >> 1) & 0x3,
+        "cargo_lift_speed": (d0 >> 3) & 0xF,
+        "pto_enable": d0 >> 7,
+        "downhill_regen_speed": d1,
+        "chassis_pitch": (d2 | d3 << 8) & 0x3FF,
+        "chassis_roll": ((d3 | d4 << 8) >> 2) & 0x3FF,
+        "cargo_pitch": ((d4 | d5 << 8) >> 4) & 0x3FF,
+        "cargo_roll": (d5 | d6 << 8) >> 6,
+        "counter": d7,
     }
 
 
@@ -2435,6 +2422,8 @@ class VehicleState2:
     FRAME_ID: ClassVar[int] = 0x1810A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01000
@@ -2492,24 +2481,24 @@ class VehicleState2:
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState2)  # slot stores are faster than a call of __init__
-    m.battery_voltage = (v & 0xFFFF) * 0.2
-    m.battery_current = ((v >> 16) & 0xFFFF) * 0.02 - 500.0
-    m.battery_charge_energy = (v >> 32) & 0xFFFF
-    m.battery_discharge_energy = v >> 48
+    m.battery_voltage = (d0 | d1 << 8) * 0.2
+    m.battery_current = (d2 | d3 << 8) * 0.02 - 500.0
+    m.battery_charge_energy = d4 | d5 << 8
+    m.battery_discharge_energy = d6 | d7 << 8
     return m
 
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "battery_voltage": v & 0xFFFF,
-        "battery_current": (v >> 16) & 0xFFFF,
-        "battery_charge_energy": (v >> 32) & 0xFFFF,
-        "battery_discharge_energy": v >> 48,
+        "battery_voltage": d0 | d1 << 8,
+        "battery_current": d2 | d3 << 8,
+        "battery_charge_energy": d4 | d5 << 8,
+        "battery_discharge_energy": d6 | d7 << 8,
     }
 
 
@@ -2589,6 +2578,8 @@ class VehicleState3:
     FRAME_ID: ClassVar[int] = 0x1811A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01100
@@ -2650,28 +2641,28 @@ class VehicleState3:
 def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, _ = data
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
-    m.battery_max_temp = (v & 0xFF) - 40
-    m.battery_min_temp = ((v >> 8) & 0xFF) - 40
-    m.max_cell_voltage = ((v >> 16) & 0xFFF) * 0.0015
-    m.min_cell_voltage = ((v >> 28) & 0xFFF) * 0.0015
-    m.motor_temp = ((v >> 40) & 0xFF) - 40
-    m.motor_controller_temp = ((v >> 48) & 0xFF) - 40
+    m.battery_max_temp = d0 - 40
+    m.battery_min_temp = d1 - 40
+    m.max_cell_voltage = ((d2 | d3 << 8) & 0xFFF) * 0.0015
+    m.min_cell_voltage = ((d3 | d4 << 8) >> 4) * 0.0015
+    m.motor_temp = d5 - 40
+    m.motor_controller_temp = d6 - 40
     return m
 
 
 def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, _ = data
     return {
-        "battery_max_temp": v & 0xFF,
-        "battery_min_temp": (v >> 8) & 0xFF,
-        "max_cell_voltage": (v >> 16) & 0xFFF,
-        "min_cell_voltage": (v >> 28) & 0xFFF,
-        "motor_temp": (v >> 40) & 0xFF,
-        "motor_controller_temp": (v >> 48) & 0xFF,
+        "battery_max_temp": d0,
+        "battery_min_temp": d1,
+        "max_cell_voltage": (d2 | d3 << 8) & 0xFFF,
+        "min_cell_voltage": (d3 | d4 << 8) >> 4,
+        "motor_temp": d5,
+        "motor_controller_temp": d6,
     }
 
 
@@ -2771,6 +2762,8 @@ class VehicleState4:
     FRAME_ID: ClassVar[int] = 0x1812A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01200
@@ -2844,40 +2837,40 @@ class VehicleState4:
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
-    m.outside_temp = (v & 0xFF) * 0.5 - 30.0
-    m.inside_temp = ((v >> 8) & 0xFF) * 0.5 - 30.0
-    m.ac_state = _AC_STATE_4[(v >> 16) & 0xF]
-    m.vehicle_power_state = _POWER_STATE_2[(v >> 20) & 0x3]
-    m.hill_hold_state = _INACTIVE_ACTIVE_1[(v >> 22) & 0x1]
-    m.regen_brake_state = _INACTIVE_ACTIVE_1[(v >> 23) & 0x1]
-    m.remaining_range = (v >> 24) & 0xFFF
-    m.manual_takeover_state = _TAKEOVER_STATE_1[(v >> 36) & 0x1]
-    m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[(v >> 39) & 0x1]
-    m.ac_set_temp = ((v >> 40) & 0x1F) * 0.5 + 16.0
-    m.pto_state = _PTO_STATE_1[(v >> 45) & 0x1]
-    m.battery_power = (v >> 48) * 0.01 - 325.0
+    m.outside_temp = d0 * 0.5 - 30.0
+    m.inside_temp = d1 * 0.5 - 30.0
+    m.ac_state = _AC_STATE_4[d2 & 0xF]
+    m.vehicle_power_state = _POWER_STATE_2[(d2 >> 4) & 0x3]
+    m.hill_hold_state = _INACTIVE_ACTIVE_1[(d2 >> 6) & 0x1]
+    m.regen_brake_state = _INACTIVE_ACTIVE_1[d2 >> 7]
+    m.remaining_range = (d3 | d4 << 8) & 0xFFF
+    m.manual_takeover_state = _TAKEOVER_STATE_1[(d4 >> 4) & 0x1]
+    m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[d4 >> 7]
+    m.ac_set_temp = (d5 & 0x1F) * 0.5 + 16.0
+    m.pto_state = _PTO_STATE_1[(d5 >> 5) & 0x1]
+    m.battery_power = (d6 | d7 << 8) * 0.01 - 325.0
     return m
 
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "outside_temp": v & 0xFF,
-        "inside_temp": (v >> 8) & 0xFF,
-        "ac_state": (v >> 16) & 0xF,
-        "vehicle_power_state": (v >> 20) & 0x3,
-        "hill_hold_state": (v >> 22) & 0x1,
-        "regen_brake_state": (v >> 23) & 0x1,
-        "remaining_range": (v >> 24) & 0xFFF,
-        "manual_takeover_state": (v >> 36) & 0x1,
-        "remote_driving_allowed": (v >> 39) & 0x1,
-        "ac_set_temp": (v >> 40) & 0x1F,
-        "pto_state": (v >> 45) & 0x1,
-        "battery_power": v >> 48,
+        "outside_temp": d0,
+        "inside_temp": d1,
+        "ac_state": d2 & 0xF,
+        "vehicle_power_state": (d2 >> 4) & 0x3,
+        "hill_hold_state": (d2 >> 6) & 0x1,
+        "regen_brake_state": d2 >> 7,
+        "remaining_range": (d3 | d4 << 8) & 0xFFF,
+        "manual_takeover_state": (d4 >> 4) & 0x1,
+        "remote_driving_allowed": d4 >> 7,
+        "ac_set_temp": d5 & 0x1F,
+        "pto_state": (d5 >> 5) & 0x1,
+        "battery_power": d6 | d7 << 8,
     }
 
 
@@ -3073,6 +3066,8 @@ class VehicleFault:
     FRAME_ID: ClassVar[int] = 0x1813A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x01300
@@ -3180,74 +3175,74 @@ class VehicleFault:
 def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFault:
     if len(data) != 8:
         raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, _ = data
     m = _new(VehicleFault)  # slot stores are faster than a call of __init__
-    m.insulation_fault_level = _INSULATION_FAULT_LEVEL_2[v & 0x3]
-    m.dc_fault = _NORMAL_FAULT_1[(v >> 2) & 0x1]
-    m.soc_low = _NORMAL_FAULT_1[(v >> 3) & 0x1]
-    m.cell_undervoltage = _NORMAL_FAULT_1[(v >> 4) & 0x1]
-    m.brake_boost_pressure_fault = _NORMAL_FAULT_1[(v >> 5) & 0x1]
-    m.vacuum_pump_fault = _NORMAL_FAULT_1[(v >> 6) & 0x1]
-    m.vehicle_system_fault = _NORMAL_FAULT_1[(v >> 7) & 0x1]
-    m.battery_overheat = _NORMAL_FAULT_1[(v >> 8) & 0x1]
-    m.motor_overheat = _NORMAL_FAULT_1[(v >> 9) & 0x1]
-    m.traction_battery_fault = _NORMAL_FAULT_1[(v >> 10) & 0x1]
-    m.motor_fault = _NORMAL_FAULT_1[(v >> 11) & 0x1]
-    m.battery_comm_fault = _NORMAL_FAULT_1[(v >> 12) & 0x1]
-    m.motor_comm_fault = _NORMAL_FAULT_1[(v >> 13) & 0x1]
-    m.eps_fault = _NORMAL_FAULT_1[(v >> 14) & 0x1]
-    m.ac_fault = _NORMAL_FAULT_1[(v >> 15) & 0x1]
-    m.aux_battery_fault = _NORMAL_FAULT_1[(v >> 16) & 0x1]
-    m.epb_fault = _NORMAL_FAULT_1[(v >> 17) & 0x1]
-    m.brake_by_wire_fault = _NORMAL_FAULT_1[(v >> 18) & 0x1]
-    m.key_not_detected = _NORMAL_FAULT_1[(v >> 19) & 0x1]
-    m.tire_pressure_low = _NORMAL_FAULT_1[(v >> 20) & 0x1]
-    m.body_motor_fault = _NORMAL_FAULT_1[(v >> 21) & 0x1]
-    m.body_motor_overheat = _NORMAL_FAULT_1[(v >> 22) & 0x1]
-    m.battery_system_fault_level = _BATTERY_SYSTEM_FAULT_LEVEL_2[(v >> 24) & 0x3]
-    m.motor_system_fault_level = _MOTOR_SYSTEM_FAULT_LEVEL_2[(v >> 26) & 0x3]
-    m.unmanned_entry_fault = _UNMANNED_ENTRY_FAULT_4[(v >> 28) & 0xF]
-    m.protocol_version_a = (v >> 32) & 0xF
-    m.protocol_version_b = (v >> 36) & 0xF
-    m.protocol_version_c = (v >> 40) & 0xF
-    m.remote_entry_fault = _REMOTE_ENTRY_FAULT_4[(v >> 44) & 0xF]
+    m.insulation_fault_level = _INSULATION_FAULT_LEVEL_2[d0 & 0x3]
+    m.dc_fault = _NORMAL_FAULT_1[(d0 >> 2) & 0x1]
+    m.soc_low = _NORMAL_FAULT_1[(d0 >> 3) & 0x1]
+    m.cell_undervoltage = _NORMAL_FAULT_1[(d0 >> 4) & 0x1]
+    m.brake_boost_pressure_fault = _NORMAL_FAULT_1[(d0 >> 5) & 0x1]
+    m.vacuum_pump_fault = _NORMAL_FAULT_1[(d0 >> 6) & 0x1]
+    m.vehicle_system_fault = _NORMAL_FAULT_1[d0 >> 7]
+    m.battery_overheat = _NORMAL_FAULT_1[d1 & 0x1]
+    m.motor_overheat = _NORMAL_FAULT_1[(d1 >> 1) & 0x1]
+    m.traction_battery_fault = _NORMAL_FAULT_1[(d1 >> 2) & 0x1]
+    m.motor_fault = _NORMAL_FAULT_1[(d1 >> 3) & 0x1]
+    m.battery_comm_fault = _NORMAL_FAULT_1[(d1 >> 4) & 0x1]
+    m.motor_comm_fault = _NORMAL_FAULT_1[(d1 >> 5) & 0x1]
+    m.eps_fault = _NORMAL_FAULT_1[(d1 >> 6) & 0x1]
+    m.ac_fault = _NORMAL_FAULT_1[d1 >> 7]
+    m.aux_battery_fault = _NORMAL_FAULT_1[d2 & 0x1]
+    m.epb_fault = _NORMAL_FAULT_1[(d2 >> 1) & 0x1]
+    m.brake_by_wire_fault = _NORMAL_FAULT_1[(d2 >> 2) & 0x1]
+    m.key_not_detected = _NORMAL_FAULT_1[(d2 >> 3) & 0x1]
+    m.tire_pressure_low = _NORMAL_FAULT_1[(d2 >> 4) & 0x1]
+    m.body_motor_fault = _NORMAL_FAULT_1[(d2 >> 5) & 0x1]
+    m.body_motor_overheat = _NORMAL_FAULT_1[(d2 >> 6) & 0x1]
+    m.battery_system_fault_level = _BATTERY_SYSTEM_FAULT_LEVEL_2[d3 & 0x3]
+    m.motor_system_fault_level = _MOTOR_SYSTEM_FAULT_LEVEL_2[(d3 >> 2) & 0x3]
+    m.unmanned_entry_fault = _UNMANNED_ENTRY_FAULT_4[d3 >> 4]
+    m.protocol_version_a = d4 & 0xF
+    m.protocol_version_b = d4 >> 4
+    m.protocol_version_c = d5 & 0xF
+    m.remote_entry_fault = _REMOTE_ENTRY_FAULT_4[d5 >> 4]
     return m
 
 
 def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFaultRaw:
     if len(data) != 8:
         raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, _ = data
     return {
-        "insulation_fault_level": v & 0x3,
-        "dc_fault": (v >> 2) & 0x1,
-        "soc_low": (v >> 3) & 0x1,
-        "cell_undervoltage": (v >> 4) & 0x1,
-        "brake_boost_pressure_fault": (v >> 5) & 0x1,
-        "vacuum_pump_fault": (v >> 6) & 0x1,
-        "vehicle_system_fault": (v >> 7) & 0x1,
-        "battery_overheat": (v >> 8) & 0x1,
-        "motor_overheat": (v >> 9) & 0x1,
-        "traction_battery_fault": (v >> 10) & 0x1,
-        "motor_fault": (v >> 11) & 0x1,
-        "battery_comm_fault": (v >> 12) & 0x1,
-        "motor_comm_fault": (v >> 13) & 0x1,
-        "eps_fault": (v >> 14) & 0x1,
-        "ac_fault": (v >> 15) & 0x1,
-        "aux_battery_fault": (v >> 16) & 0x1,
-        "epb_fault": (v >> 17) & 0x1,
-        "brake_by_wire_fault": (v >> 18) & 0x1,
-        "key_not_detected": (v >> 19) & 0x1,
-        "tire_pressure_low": (v >> 20) & 0x1,
-        "body_motor_fault": (v >> 21) & 0x1,
-        "body_motor_overheat": (v >> 22) & 0x1,
-        "battery_system_fault_level": (v >> 24) & 0x3,
-        "motor_system_fault_level": (v >> 26) & 0x3,
-        "unmanned_entry_fault": (v >> 28) & 0xF,
-        "protocol_version_a": (v >> 32) & 0xF,
-        "protocol_version_b": (v >> 36) & 0xF,
-        "protocol_version_c": (v >> 40) & 0xF,
-        "remote_entry_fault": (v >> 44) & 0xF,
+        "insulation_fault_level": d0 & 0x3,
+        "dc_fault": (d0 >> 2) & 0x1,
+        "soc_low": (d0 >> 3) & 0x1,
+        "cell_undervoltage": (d0 >> 4) & 0x1,
+        "brake_boost_pressure_fault": (d0 >> 5) & 0x1,
+        "vacuum_pump_fault": (d0 >> 6) & 0x1,
+        "vehicle_system_fault": d0 >> 7,
+        "battery_overheat": d1 & 0x1,
+        "motor_overheat": (d1 >> 1) & 0x1,
+        "traction_battery_fault": (d1 >> 2) & 0x1,
+        "motor_fault": (d1 >> 3) & 0x1,
+        "battery_comm_fault": (d1 >> 4) & 0x1,
+        "motor_comm_fault": (d1 >> 5) & 0x1,
+        "eps_fault": (d1 >> 6) & 0x1,
+        "ac_fault": d1 >> 7,
+        "aux_battery_fault": d2 & 0x1,
+        "epb_fault": (d2 >> 1) & 0x1,
+        "brake_by_wire_fault": (d2 >> 2) & 0x1,
+        "key_not_detected": (d2 >> 3) & 0x1,
+        "tire_pressure_low": (d2 >> 4) & 0x1,
+        "body_motor_fault": (d2 >> 5) & 0x1,
+        "body_motor_overheat": (d2 >> 6) & 0x1,
+        "battery_system_fault_level": d3 & 0x3,
+        "motor_system_fault_level": (d3 >> 2) & 0x3,
+        "unmanned_entry_fault": d3 >> 4,
+        "protocol_version_a": d4 & 0xF,
+        "protocol_version_b": d4 >> 4,
+        "protocol_version_c": d5 & 0xF,
+        "remote_entry_fault": d5 >> 4,
     }
 
 
@@ -3497,6 +3492,8 @@ class VehicleState5:
     FRAME_ID: ClassVar[int] = 0x1808A0B0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00800
@@ -3592,6 +3589,8 @@ class RgateEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -3635,11 +3634,10 @@ class RgateEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: RgateEpsCommandRaw) -> bytes:
@@ -3674,40 +3672,34 @@ class RgateEpsCommand:
 def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c ^ d7, d7, id_text="0x1801B0C0")
     m = _new(RgateEpsCommand)  # slot stores are faster than a call of __init__
-    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
-    m.counter = (v >> 8) & 0xFF
-    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
-    m.checksum = v >> 56
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
+    m.counter = d1
+    m.max_angular_speed = d2 * 2
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
+    m.checksum = d7
     return m
 
 
 def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0C0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("rgate_eps_command", 0x1801B0C0, c ^ d7, d7, id_text="0x1801B0C0")
     return {
-        "eps_ctrl_mode": v & 0xFF,
-        "counter": (v >> 8) & 0xFF,
-        "max_angular_speed": (v >> 16) & 0xFF,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
-        "checksum": v >> 56,
+        "eps_ctrl_mode": d0,
+        "counter": d1,
+        "max_angular_speed": d2,
+        "steering_angle_cmd": d3 | d4 << 8,
+        "checksum": d7,
     }
 
 
@@ -3733,8 +3725,7 @@ def _encode_rgate_eps_command(m: RgateEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -3758,8 +3749,7 @@ def _pack_rgate_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _RGATE_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _RGATE_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -3796,6 +3786,8 @@ class RgateSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 20
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -3840,11 +3832,10 @@ class RgateSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: RgateSpeedCommandRaw) -> bytes:
@@ -3879,42 +3870,36 @@ class RgateSpeedCommand:
 def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c ^ d7, d7, id_text="0x1803B0C0")
     m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = (v & 0x3FF) * 0.02 - 9.0
-    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
-    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
-    m.counter = (v >> 16) & 0xFF
-    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
-    m.checksum = v >> 56
+    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
+    m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
+    m.gear_cmd = _GEAR_4[d1 >> 4]
+    m.counter = d2
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[d3 & 0x1]
+    m.checksum = d7
     return m
 
 
 def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0C0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("rgate_speed_command", 0x1803B0C0, c ^ d7, d7, id_text="0x1803B0C0")
     return {
-        "accel_cmd": v & 0x3FF,
-        "epb_cmd": (v >> 10) & 0x3,
-        "gear_cmd": (v >> 12) & 0xF,
-        "counter": (v >> 16) & 0xFF,
-        "emergency_brake_cmd": (v >> 24) & 0x1,
-        "checksum": v >> 56,
+        "accel_cmd": (d0 | d1 << 8) & 0x3FF,
+        "epb_cmd": (d1 >> 2) & 0x3,
+        "gear_cmd": d1 >> 4,
+        "counter": d2,
+        "emergency_brake_cmd": d3 & 0x1,
+        "checksum": d7,
     }
 
 
@@ -3939,8 +3924,7 @@ def _encode_rgate_speed_command(m: RgateSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -3966,8 +3950,7 @@ def _pack_rgate_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _RGATE_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _RGATE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -4042,6 +4025,8 @@ class RgateControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -4154,66 +4139,66 @@ class RgateControlCommand1:
 def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(RgateControlCommand1)  # slot stores are faster than a call of __init__
-    m.drive_mode_cmd = _DRIVE_MODE_CMD_RGATE_2[v & 0x3]
-    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
-    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
-    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
-    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
-    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
-    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
-    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
-    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
-    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
-    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
-    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
-    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
-    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
-    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
-    m.system_state = _LINK_STATE_2[(v >> 32) & 0x3]
-    m.system_reliability = _RELIABILITY_RGATE_2[(v >> 34) & 0x3]
-    m.system_fault_level = _FAULT_LEVEL_RGATE_2[(v >> 36) & 0x3]
-    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
-    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
-    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
-    m.protocol_version_a = (v >> 48) & 0xF
-    m.protocol_version_b = (v >> 52) & 0xF
-    m.protocol_version_c = (v >> 56) & 0xF
-    m.counter = v >> 60
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_RGATE_2[d0 & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(d0 >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[d0 >> 6]
+    m.left_turn_cmd = _FLASH_CMD_2[d1 & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(d1 >> 2) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(d1 >> 4) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[d1 >> 6]
+    m.headlight_cmd = _HEADLIGHT_2[d2 & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(d2 >> 2) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(d2 >> 4) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[d2 >> 6]
+    m.dome_light_cmd = _SWITCH_CMD_2[d3 & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(d3 >> 2) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(d3 >> 4) & 0x1]
+    m.system_state = _LINK_STATE_2[d4 & 0x3]
+    m.system_reliability = _RELIABILITY_RGATE_2[(d4 >> 2) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_RGATE_2[(d4 >> 4) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
+    m.ac_cmd = _AC_CMD_3[d5 & 0x7]
+    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.protocol_version_a = d6 & 0xF
+    m.protocol_version_b = d6 >> 4
+    m.protocol_version_c = d7 & 0xF
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "drive_mode_cmd": v & 0x3,
-        "door_cmd": (v >> 2) & 0x3,
-        "horn_cmd": (v >> 4) & 0x3,
-        "drl_cmd": (v >> 6) & 0x3,
-        "left_turn_cmd": (v >> 8) & 0x3,
-        "right_turn_cmd": (v >> 10) & 0x3,
-        "hazard_cmd": (v >> 12) & 0x3,
-        "position_light_cmd": (v >> 14) & 0x3,
-        "headlight_cmd": (v >> 16) & 0x3,
-        "rear_fog_cmd": (v >> 18) & 0x3,
-        "left_fog_cmd": (v >> 20) & 0x3,
-        "right_fog_cmd": (v >> 22) & 0x3,
-        "dome_light_cmd": (v >> 24) & 0x3,
-        "ambient_light_cmd": (v >> 26) & 0x3,
-        "drive_mode_reset": (v >> 28) & 0x1,
-        "system_state": (v >> 32) & 0x3,
-        "system_reliability": (v >> 34) & 0x3,
-        "system_fault_level": (v >> 36) & 0x3,
-        "lock_cmd": (v >> 38) & 0x3,
-        "ac_cmd": (v >> 40) & 0x7,
-        "ac_set_temp": (v >> 43) & 0x1F,
-        "protocol_version_a": (v >> 48) & 0xF,
-        "protocol_version_b": (v >> 52) & 0xF,
-        "protocol_version_c": (v >> 56) & 0xF,
-        "counter": v >> 60,
+        "drive_mode_cmd": d0 & 0x3,
+        "door_cmd": (d0 >> 2) & 0x3,
+        "horn_cmd": (d0 >> 4) & 0x3,
+        "drl_cmd": d0 >> 6,
+        "left_turn_cmd": d1 & 0x3,
+        "right_turn_cmd": (d1 >> 2) & 0x3,
+        "hazard_cmd": (d1 >> 4) & 0x3,
+        "position_light_cmd": d1 >> 6,
+        "headlight_cmd": d2 & 0x3,
+        "rear_fog_cmd": (d2 >> 2) & 0x3,
+        "left_fog_cmd": (d2 >> 4) & 0x3,
+        "right_fog_cmd": d2 >> 6,
+        "dome_light_cmd": d3 & 0x3,
+        "ambient_light_cmd": (d3 >> 2) & 0x3,
+        "drive_mode_reset": (d3 >> 4) & 0x1,
+        "system_state": d4 & 0x3,
+        "system_reliability": (d4 >> 2) & 0x3,
+        "system_fault_level": (d4 >> 4) & 0x3,
+        "lock_cmd": d4 >> 6,
+        "ac_cmd": d5 & 0x7,
+        "ac_set_temp": d5 >> 3,
+        "protocol_version_a": d6 & 0xF,
+        "protocol_version_b": d6 >> 4,
+        "protocol_version_c": d7 & 0xF,
+        "counter": d7 >> 4,
     }
 
 
@@ -4445,6 +4430,8 @@ class RgateControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0C0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700
@@ -4520,28 +4507,28 @@ class RgateControlCommand2:
 def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, _, _, _, _, _, d7 = data
     m = _new(RgateControlCommand2)  # slot stores are faster than a call of __init__
-    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
-    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
-    m.cargo_lift_speed = (v >> 3) & 0xF
-    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
-    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
-    m.counter = v >> 56
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
+    m.cargo_lift_speed = (d0 >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
+    m.downhill_regen_speed = d1 * 0.5
+    m.counter = d7
     return m
 
 
 def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
-    v = _from_bytes(data, "little")
+    d0, d1, _, _, _, _, _, d7 = data
     return {
-        "downhill_regen_enable": v & 0x1,
-        "cargo_lift": (v >> 1) & 0x3,
-        "cargo_lift_speed": (v >> 3) & 0xF,
-        "pto_enable": (v >> 7) & 0x1,
-        "downhill_regen_speed": (v >> 8) & 0xFF,
-        "counter": v >> 56,
+        "downhill_regen_enable": d0 & 0x1,
+        "cargo_lift": (d0 >> 1) & 0x3,
+        "cargo_lift_speed": (d0 >> 3) & 0xF,
+        "pto_enable": d0 >> 7,
+        "downhill_regen_speed": d1,
+        "counter": d7,
     }
 
 
@@ -4622,6 +4609,8 @@ class DeviceId:
     FRAME_ID: ClassVar[int] = 0x18FFAF00
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 500
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FFAF
@@ -4677,10 +4666,11 @@ class DeviceId:
 def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
     if len(data) != 8:
         raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
+    d0, _, _, _, _, _, _, _ = data
     v = _from_bytes(data, "little")
     m = _new(DeviceId)  # slot stores are faster than a call of __init__
-    m.device_type = _DEVICE_TYPE_6[v & 0x3F]
-    m.id_frame_index = _ID_FRAME_INDEX_2[(v >> 6) & 0x3]
+    m.device_type = _DEVICE_TYPE_6[d0 & 0x3F]
+    m.id_frame_index = _ID_FRAME_INDEX_2[d0 >> 6]
     m.id_chars = v >> 8
     return m
 
@@ -4688,10 +4678,11 @@ def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
 def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
     if len(data) != 8:
         raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
+    d0, _, _, _, _, _, _, _ = data
     v = _from_bytes(data, "little")
     return {
-        "device_type": v & 0x3F,
-        "id_frame_index": (v >> 6) & 0x3,
+        "device_type": d0 & 0x3F,
+        "id_frame_index": d0 >> 6,
         "id_chars": v >> 8,
     }
 
@@ -4761,6 +4752,8 @@ class FrontSensorDistance1:
     FRAME_ID: ClassVar[int] = 0x18FF0123
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF01
@@ -4843,30 +4836,30 @@ class FrontSensorDistance1:
 def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(FrontSensorDistance1)  # slot stores are faster than a call of __init__
-    m.sensor_1_distance = v & 0x3FF
-    m.sensor_2_distance = (v >> 10) & 0x3FF
-    m.sensor_3_distance = (v >> 20) & 0x3FF
-    m.sensor_4_distance = (v >> 30) & 0x3FF
-    m.sensor_5_distance = (v >> 40) & 0x3FF
-    m.sensor_6_distance = (v >> 50) & 0x3FF
-    m.counter = v >> 60
+    m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_3_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.sensor_4_distance = (d3 | d4 << 8) >> 6
+    m.sensor_5_distance = (d5 | d6 << 8) & 0x3FF
+    m.sensor_6_distance = ((d6 | d7 << 8) >> 2) & 0x3FF
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "sensor_1_distance": v & 0x3FF,
-        "sensor_2_distance": (v >> 10) & 0x3FF,
-        "sensor_3_distance": (v >> 20) & 0x3FF,
-        "sensor_4_distance": (v >> 30) & 0x3FF,
-        "sensor_5_distance": (v >> 40) & 0x3FF,
-        "sensor_6_distance": (v >> 50) & 0x3FF,
-        "counter": v >> 60,
+        "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_3_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "sensor_4_distance": (d3 | d4 << 8) >> 6,
+        "sensor_5_distance": (d5 | d6 << 8) & 0x3FF,
+        "sensor_6_distance": ((d6 | d7 << 8) >> 2) & 0x3FF,
+        "counter": d7 >> 4,
     }
 
 
@@ -4969,6 +4962,8 @@ class FrontSensorDistance2:
     FRAME_ID: ClassVar[int] = 0x18FF0223
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF02
@@ -5062,44 +5057,44 @@ class FrontSensorDistance2:
 def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     m = _new(FrontSensorDistance2)  # slot stores are faster than a call of __init__
-    m.sensor_7_distance = v & 0x3FF
-    m.sensor_8_distance = (v >> 10) & 0x3FF
-    m.sensor_9_distance = (v >> 20) & 0x3FF
-    m.uss_system_state = _USS_SYSTEM_STATE_2[(v >> 32) & 0x3]
-    m.sensor_1_fault = _SENSOR_FAULT_1[(v >> 34) & 0x1]
-    m.sensor_2_fault = _SENSOR_FAULT_1[(v >> 35) & 0x1]
-    m.sensor_3_fault = _SENSOR_FAULT_1[(v >> 36) & 0x1]
-    m.sensor_4_fault = _SENSOR_FAULT_1[(v >> 37) & 0x1]
-    m.sensor_5_fault = _SENSOR_FAULT_1[(v >> 38) & 0x1]
-    m.sensor_6_fault = _SENSOR_FAULT_1[(v >> 39) & 0x1]
-    m.sensor_7_fault = _SENSOR_FAULT_1[(v >> 40) & 0x1]
-    m.sensor_8_fault = _SENSOR_FAULT_1[(v >> 41) & 0x1]
-    m.sensor_9_fault = _SENSOR_FAULT_1[(v >> 42) & 0x1]
-    m.counter = v >> 60
+    m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_9_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.uss_system_state = _USS_SYSTEM_STATE_2[d4 & 0x3]
+    m.sensor_1_fault = _SENSOR_FAULT_1[(d4 >> 2) & 0x1]
+    m.sensor_2_fault = _SENSOR_FAULT_1[(d4 >> 3) & 0x1]
+    m.sensor_3_fault = _SENSOR_FAULT_1[(d4 >> 4) & 0x1]
+    m.sensor_4_fault = _SENSOR_FAULT_1[(d4 >> 5) & 0x1]
+    m.sensor_5_fault = _SENSOR_FAULT_1[(d4 >> 6) & 0x1]
+    m.sensor_6_fault = _SENSOR_FAULT_1[d4 >> 7]
+    m.sensor_7_fault = _SENSOR_FAULT_1[d5 & 0x1]
+    m.sensor_8_fault = _SENSOR_FAULT_1[(d5 >> 1) & 0x1]
+    m.sensor_9_fault = _SENSOR_FAULT_1[(d5 >> 2) & 0x1]
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     return {
-        "sensor_7_distance": v & 0x3FF,
-        "sensor_8_distance": (v >> 10) & 0x3FF,
-        "sensor_9_distance": (v >> 20) & 0x3FF,
-        "uss_system_state": (v >> 32) & 0x3,
-        "sensor_1_fault": (v >> 34) & 0x1,
-        "sensor_2_fault": (v >> 35) & 0x1,
-        "sensor_3_fault": (v >> 36) & 0x1,
-        "sensor_4_fault": (v >> 37) & 0x1,
-        "sensor_5_fault": (v >> 38) & 0x1,
-        "sensor_6_fault": (v >> 39) & 0x1,
-        "sensor_7_fault": (v >> 40) & 0x1,
-        "sensor_8_fault": (v >> 41) & 0x1,
-        "sensor_9_fault": (v >> 42) & 0x1,
-        "counter": v >> 60,
+        "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_9_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "uss_system_state": d4 & 0x3,
+        "sensor_1_fault": (d4 >> 2) & 0x1,
+        "sensor_2_fault": (d4 >> 3) & 0x1,
+        "sensor_3_fault": (d4 >> 4) & 0x1,
+        "sensor_4_fault": (d4 >> 5) & 0x1,
+        "sensor_5_fault": (d4 >> 6) & 0x1,
+        "sensor_6_fault": d4 >> 7,
+        "sensor_7_fault": d5 & 0x1,
+        "sensor_8_fault": (d5 >> 1) & 0x1,
+        "sensor_9_fault": (d5 >> 2) & 0x1,
+        "counter": d7 >> 4,
     }
 
 
@@ -5253,6 +5248,8 @@ class RearSensorDistance1:
     FRAME_ID: ClassVar[int] = 0x18FF0323
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF03
@@ -5335,30 +5332,30 @@ class RearSensorDistance1:
 def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(RearSensorDistance1)  # slot stores are faster than a call of __init__
-    m.sensor_1_distance = v & 0x3FF
-    m.sensor_2_distance = (v >> 10) & 0x3FF
-    m.sensor_3_distance = (v >> 20) & 0x3FF
-    m.sensor_4_distance = (v >> 30) & 0x3FF
-    m.sensor_5_distance = (v >> 40) & 0x3FF
-    m.sensor_6_distance = (v >> 50) & 0x3FF
-    m.counter = v >> 60
+    m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_3_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.sensor_4_distance = (d3 | d4 << 8) >> 6
+    m.sensor_5_distance = (d5 | d6 << 8) & 0x3FF
+    m.sensor_6_distance = ((d6 | d7 << 8) >> 2) & 0x3FF
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "sensor_1_distance": v & 0x3FF,
-        "sensor_2_distance": (v >> 10) & 0x3FF,
-        "sensor_3_distance": (v >> 20) & 0x3FF,
-        "sensor_4_distance": (v >> 30) & 0x3FF,
-        "sensor_5_distance": (v >> 40) & 0x3FF,
-        "sensor_6_distance": (v >> 50) & 0x3FF,
-        "counter": v >> 60,
+        "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_3_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "sensor_4_distance": (d3 | d4 << 8) >> 6,
+        "sensor_5_distance": (d5 | d6 << 8) & 0x3FF,
+        "sensor_6_distance": ((d6 | d7 << 8) >> 2) & 0x3FF,
+        "counter": d7 >> 4,
     }
 
 
@@ -5461,6 +5458,8 @@ class RearSensorDistance2:
     FRAME_ID: ClassVar[int] = 0x18FF0423
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x0FF04
@@ -5554,44 +5553,44 @@ class RearSensorDistance2:
 def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     m = _new(RearSensorDistance2)  # slot stores are faster than a call of __init__
-    m.sensor_7_distance = v & 0x3FF
-    m.sensor_8_distance = (v >> 10) & 0x3FF
-    m.sensor_9_distance = (v >> 20) & 0x3FF
-    m.uss_system_state = _USS_SYSTEM_STATE_2[(v >> 32) & 0x3]
-    m.sensor_1_fault = _SENSOR_FAULT_1[(v >> 34) & 0x1]
-    m.sensor_2_fault = _SENSOR_FAULT_1[(v >> 35) & 0x1]
-    m.sensor_3_fault = _SENSOR_FAULT_1[(v >> 36) & 0x1]
-    m.sensor_4_fault = _SENSOR_FAULT_1[(v >> 37) & 0x1]
-    m.sensor_5_fault = _SENSOR_FAULT_1[(v >> 38) & 0x1]
-    m.sensor_6_fault = _SENSOR_FAULT_1[(v >> 39) & 0x1]
-    m.sensor_7_fault = _SENSOR_FAULT_1[(v >> 40) & 0x1]
-    m.sensor_8_fault = _SENSOR_FAULT_1[(v >> 41) & 0x1]
-    m.sensor_9_fault = _SENSOR_FAULT_1[(v >> 42) & 0x1]
-    m.counter = v >> 60
+    m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
+    m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
+    m.sensor_9_distance = ((d2 | d3 << 8) >> 4) & 0x3FF
+    m.uss_system_state = _USS_SYSTEM_STATE_2[d4 & 0x3]
+    m.sensor_1_fault = _SENSOR_FAULT_1[(d4 >> 2) & 0x1]
+    m.sensor_2_fault = _SENSOR_FAULT_1[(d4 >> 3) & 0x1]
+    m.sensor_3_fault = _SENSOR_FAULT_1[(d4 >> 4) & 0x1]
+    m.sensor_4_fault = _SENSOR_FAULT_1[(d4 >> 5) & 0x1]
+    m.sensor_5_fault = _SENSOR_FAULT_1[(d4 >> 6) & 0x1]
+    m.sensor_6_fault = _SENSOR_FAULT_1[d4 >> 7]
+    m.sensor_7_fault = _SENSOR_FAULT_1[d5 & 0x1]
+    m.sensor_8_fault = _SENSOR_FAULT_1[(d5 >> 1) & 0x1]
+    m.sensor_9_fault = _SENSOR_FAULT_1[(d5 >> 2) & 0x1]
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
     if len(data) != 8:
         raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, _, d7 = data
     return {
-        "sensor_7_distance": v & 0x3FF,
-        "sensor_8_distance": (v >> 10) & 0x3FF,
-        "sensor_9_distance": (v >> 20) & 0x3FF,
-        "uss_system_state": (v >> 32) & 0x3,
-        "sensor_1_fault": (v >> 34) & 0x1,
-        "sensor_2_fault": (v >> 35) & 0x1,
-        "sensor_3_fault": (v >> 36) & 0x1,
-        "sensor_4_fault": (v >> 37) & 0x1,
-        "sensor_5_fault": (v >> 38) & 0x1,
-        "sensor_6_fault": (v >> 39) & 0x1,
-        "sensor_7_fault": (v >> 40) & 0x1,
-        "sensor_8_fault": (v >> 41) & 0x1,
-        "sensor_9_fault": (v >> 42) & 0x1,
-        "counter": v >> 60,
+        "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
+        "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
+        "sensor_9_distance": ((d2 | d3 << 8) >> 4) & 0x3FF,
+        "uss_system_state": d4 & 0x3,
+        "sensor_1_fault": (d4 >> 2) & 0x1,
+        "sensor_2_fault": (d4 >> 3) & 0x1,
+        "sensor_3_fault": (d4 >> 4) & 0x1,
+        "sensor_4_fault": (d4 >> 5) & 0x1,
+        "sensor_5_fault": (d4 >> 6) & 0x1,
+        "sensor_6_fault": d4 >> 7,
+        "sensor_7_fault": d5 & 0x1,
+        "sensor_8_fault": (d5 >> 1) & 0x1,
+        "sensor_9_fault": (d5 >> 2) & 0x1,
+        "counter": d7 >> 4,
     }
 
 
@@ -5741,6 +5740,8 @@ class TeleEpsCommand:
     FRAME_ID: ClassVar[int] = 0x1801B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00100
@@ -5784,11 +5785,10 @@ class TeleEpsCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: TeleEpsCommandRaw) -> bytes:
@@ -5823,40 +5823,34 @@ class TeleEpsCommand:
 def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, c ^ d7, d7, id_text="0x1801B0D0")
     m = _new(TeleEpsCommand)  # slot stores are faster than a call of __init__
-    m.eps_ctrl_mode = _EPS_MODE_CMD_8[v & 0xFF]
-    m.counter = (v >> 8) & 0xFF
-    m.max_angular_speed = ((v >> 16) & 0xFF) * 2
-    m.steering_angle_cmd = ((v >> 24) & 0xFFFF) * 0.1 - 1080.0
-    m.checksum = v >> 56
+    m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
+    m.counter = d1
+    m.max_angular_speed = d2 * 2
+    m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
+    m.checksum = d7
     return m
 
 
 def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_eps_command", 0x1801B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1801B0D0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("tele_eps_command", 0x1801B0D0, c ^ d7, d7, id_text="0x1801B0D0")
     return {
-        "eps_ctrl_mode": v & 0xFF,
-        "counter": (v >> 8) & 0xFF,
-        "max_angular_speed": (v >> 16) & 0xFF,
-        "steering_angle_cmd": (v >> 24) & 0xFFFF,
-        "checksum": v >> 56,
+        "eps_ctrl_mode": d0,
+        "counter": d1,
+        "max_angular_speed": d2,
+        "steering_angle_cmd": d3 | d4 << 8,
+        "checksum": d7,
     }
 
 
@@ -5882,8 +5876,7 @@ def _encode_tele_eps_command(m: TeleEpsCommand) -> bytes:
         else:
             r3 = _to_raw(x3, _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
         v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -5907,8 +5900,7 @@ def _pack_tele_eps_command(raw: Mapping[str, object]) -> bytes:
     r2 = _check_raw(raw.get("max_angular_speed", 0), _TELE_EPS_COMMAND__MAX_ANGULAR_SPEED)
     r3 = _check_raw(raw.get("steering_angle_cmd", 0), _TELE_EPS_COMMAND__STEERING_ANGLE_CMD)
     v = r0 | r1 << 8 | r2 << 16 | r3 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -5945,6 +5937,8 @@ class TeleSpeedCommand:
     FRAME_ID: ClassVar[int] = 0x1803B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00300
@@ -5989,11 +5983,10 @@ class TeleSpeedCommand:
         if len(data) != 8:
             return False
         v = _from_bytes(data, "little")
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
-        return (c & 0xFF) == (v >> 56) & 0xFF
+        return not c & 0xFF
 
     @staticmethod
     def pack_raw(raw: TeleSpeedCommandRaw) -> bytes:
@@ -6028,42 +6021,36 @@ class TeleSpeedCommand:
 def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, c ^ d7, d7, id_text="0x1803B0D0")
     m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
-    m.throttle_brake_cmd = (v & 0x3FF) * 0.2 - 100.0
-    m.epb_cmd = _EPB_2[(v >> 10) & 0x3]
-    m.gear_cmd = _GEAR_4[(v >> 12) & 0xF]
-    m.counter = (v >> 16) & 0xFF
-    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[(v >> 24) & 0x1]
-    m.checksum = v >> 56
+    m.throttle_brake_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.2 - 100.0
+    m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
+    m.gear_cmd = _GEAR_4[d1 >> 4]
+    m.counter = d2
+    m.emergency_brake_cmd = _EMERGENCY_BRAKE_CMD_1[d3 & 0x1]
+    m.checksum = d7
     return m
 
 
 def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
     if len(data) != 8:
         raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     if verify_checksum:
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
-        c ^= c >> 16
-        c ^= c >> 8
-        if (c & 0xFF) != (v >> 56) & 0xFF:
-            raise ChecksumError("tele_speed_command", 0x1803B0D0, c & 0xFF, (v >> 56) & 0xFF, id_text="0x1803B0D0")
+        c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
+        if c:
+            raise ChecksumError("tele_speed_command", 0x1803B0D0, c ^ d7, d7, id_text="0x1803B0D0")
     return {
-        "throttle_brake_cmd": v & 0x3FF,
-        "epb_cmd": (v >> 10) & 0x3,
-        "gear_cmd": (v >> 12) & 0xF,
-        "counter": (v >> 16) & 0xFF,
-        "emergency_brake_cmd": (v >> 24) & 0x1,
-        "checksum": v >> 56,
+        "throttle_brake_cmd": (d0 | d1 << 8) & 0x3FF,
+        "epb_cmd": (d1 >> 2) & 0x3,
+        "gear_cmd": d1 >> 4,
+        "counter": d2,
+        "emergency_brake_cmd": d3 & 0x1,
+        "checksum": d7,
     }
 
 
@@ -6088,8 +6075,7 @@ def _encode_tele_speed_command(m: TeleSpeedCommand) -> bytes:
         if not 0 <= r4 <= 1:
             r4 = _to_raw(m.emergency_brake_cmd, _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
         v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-        c = v & 0xFFFFFFFFFFFFFF
-        c ^= c >> 32
+        c = v ^ v >> 32
         c ^= c >> 16
         c ^= c >> 8
         v |= (c & 0xFF) << 56
@@ -6115,8 +6101,7 @@ def _pack_tele_speed_command(raw: Mapping[str, object]) -> bytes:
     r3 = _check_raw(raw.get("counter", 0), _TELE_SPEED_COMMAND__COUNTER)
     r4 = _check_raw(raw.get("emergency_brake_cmd", 0), _TELE_SPEED_COMMAND__EMERGENCY_BRAKE_CMD)
     v = r0 | r1 << 10 | r2 << 12 | r3 << 16 | r4 << 24
-    c = v & 0xFFFFFFFFFFFFFF
-    c ^= c >> 32
+    c = v ^ v >> 32
     c ^= c >> 16
     c ^= c >> 8
     v |= (c & 0xFF) << 56
@@ -6191,6 +6176,8 @@ class TeleControlCommand1:
     FRAME_ID: ClassVar[int] = 0x1805B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 50
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00500
@@ -6303,66 +6290,66 @@ class TeleControlCommand1:
 def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     m = _new(TeleControlCommand1)  # slot stores are faster than a call of __init__
-    m.drive_mode_cmd = _DRIVE_MODE_CMD_TELE_2[v & 0x3]
-    m.door_cmd = _DOOR_CMD_2[(v >> 2) & 0x3]
-    m.horn_cmd = _SWITCH_CMD_2[(v >> 4) & 0x3]
-    m.drl_cmd = _SWITCH_CMD_2[(v >> 6) & 0x3]
-    m.left_turn_cmd = _FLASH_CMD_2[(v >> 8) & 0x3]
-    m.right_turn_cmd = _FLASH_CMD_2[(v >> 10) & 0x3]
-    m.hazard_cmd = _FLASH_CMD_2[(v >> 12) & 0x3]
-    m.position_light_cmd = _SWITCH_CMD_2[(v >> 14) & 0x3]
-    m.headlight_cmd = _HEADLIGHT_2[(v >> 16) & 0x3]
-    m.rear_fog_cmd = _SWITCH_CMD_2[(v >> 18) & 0x3]
-    m.left_fog_cmd = _SWITCH_CMD_2[(v >> 20) & 0x3]
-    m.right_fog_cmd = _SWITCH_CMD_2[(v >> 22) & 0x3]
-    m.dome_light_cmd = _SWITCH_CMD_2[(v >> 24) & 0x3]
-    m.ambient_light_cmd = _SWITCH_CMD_2[(v >> 26) & 0x3]
-    m.drive_mode_reset = _MODE_RESET_1[(v >> 28) & 0x1]
-    m.system_state = _LINK_STATE_2[(v >> 32) & 0x3]
-    m.system_reliability = _RELIABILITY_TELE_2[(v >> 34) & 0x3]
-    m.system_fault_level = _FAULT_LEVEL_TELE_2[(v >> 36) & 0x3]
-    m.lock_cmd = _LOCK_CMD_2[(v >> 38) & 0x3]
-    m.ac_cmd = _AC_CMD_3[(v >> 40) & 0x7]
-    m.ac_set_temp = ((v >> 43) & 0x1F) * 0.5 + 16.0
-    m.protocol_version_a = (v >> 48) & 0xF
-    m.protocol_version_b = (v >> 52) & 0xF
-    m.protocol_version_c = (v >> 56) & 0xF
-    m.counter = v >> 60
+    m.drive_mode_cmd = _DRIVE_MODE_CMD_TELE_2[d0 & 0x3]
+    m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
+    m.horn_cmd = _SWITCH_CMD_2[(d0 >> 4) & 0x3]
+    m.drl_cmd = _SWITCH_CMD_2[d0 >> 6]
+    m.left_turn_cmd = _FLASH_CMD_2[d1 & 0x3]
+    m.right_turn_cmd = _FLASH_CMD_2[(d1 >> 2) & 0x3]
+    m.hazard_cmd = _FLASH_CMD_2[(d1 >> 4) & 0x3]
+    m.position_light_cmd = _SWITCH_CMD_2[d1 >> 6]
+    m.headlight_cmd = _HEADLIGHT_2[d2 & 0x3]
+    m.rear_fog_cmd = _SWITCH_CMD_2[(d2 >> 2) & 0x3]
+    m.left_fog_cmd = _SWITCH_CMD_2[(d2 >> 4) & 0x3]
+    m.right_fog_cmd = _SWITCH_CMD_2[d2 >> 6]
+    m.dome_light_cmd = _SWITCH_CMD_2[d3 & 0x3]
+    m.ambient_light_cmd = _SWITCH_CMD_2[(d3 >> 2) & 0x3]
+    m.drive_mode_reset = _MODE_RESET_1[(d3 >> 4) & 0x1]
+    m.system_state = _LINK_STATE_2[d4 & 0x3]
+    m.system_reliability = _RELIABILITY_TELE_2[(d4 >> 2) & 0x3]
+    m.system_fault_level = _FAULT_LEVEL_TELE_2[(d4 >> 4) & 0x3]
+    m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
+    m.ac_cmd = _AC_CMD_3[d5 & 0x7]
+    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.protocol_version_a = d6 & 0xF
+    m.protocol_version_b = d6 >> 4
+    m.protocol_version_c = d7 & 0xF
+    m.counter = d7 >> 4
     return m
 
 
 def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1Raw:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, d2, d3, d4, d5, d6, d7 = data
     return {
-        "drive_mode_cmd": v & 0x3,
-        "door_cmd": (v >> 2) & 0x3,
-        "horn_cmd": (v >> 4) & 0x3,
-        "drl_cmd": (v >> 6) & 0x3,
-        "left_turn_cmd": (v >> 8) & 0x3,
-        "right_turn_cmd": (v >> 10) & 0x3,
-        "hazard_cmd": (v >> 12) & 0x3,
-        "position_light_cmd": (v >> 14) & 0x3,
-        "headlight_cmd": (v >> 16) & 0x3,
-        "rear_fog_cmd": (v >> 18) & 0x3,
-        "left_fog_cmd": (v >> 20) & 0x3,
-        "right_fog_cmd": (v >> 22) & 0x3,
-        "dome_light_cmd": (v >> 24) & 0x3,
-        "ambient_light_cmd": (v >> 26) & 0x3,
-        "drive_mode_reset": (v >> 28) & 0x1,
-        "system_state": (v >> 32) & 0x3,
-        "system_reliability": (v >> 34) & 0x3,
-        "system_fault_level": (v >> 36) & 0x3,
-        "lock_cmd": (v >> 38) & 0x3,
-        "ac_cmd": (v >> 40) & 0x7,
-        "ac_set_temp": (v >> 43) & 0x1F,
-        "protocol_version_a": (v >> 48) & 0xF,
-        "protocol_version_b": (v >> 52) & 0xF,
-        "protocol_version_c": (v >> 56) & 0xF,
-        "counter": v >> 60,
+        "drive_mode_cmd": d0 & 0x3,
+        "door_cmd": (d0 >> 2) & 0x3,
+        "horn_cmd": (d0 >> 4) & 0x3,
+        "drl_cmd": d0 >> 6,
+        "left_turn_cmd": d1 & 0x3,
+        "right_turn_cmd": (d1 >> 2) & 0x3,
+        "hazard_cmd": (d1 >> 4) & 0x3,
+        "position_light_cmd": d1 >> 6,
+        "headlight_cmd": d2 & 0x3,
+        "rear_fog_cmd": (d2 >> 2) & 0x3,
+        "left_fog_cmd": (d2 >> 4) & 0x3,
+        "right_fog_cmd": d2 >> 6,
+        "dome_light_cmd": d3 & 0x3,
+        "ambient_light_cmd": (d3 >> 2) & 0x3,
+        "drive_mode_reset": (d3 >> 4) & 0x1,
+        "system_state": d4 & 0x3,
+        "system_reliability": (d4 >> 2) & 0x3,
+        "system_fault_level": (d4 >> 4) & 0x3,
+        "lock_cmd": d4 >> 6,
+        "ac_cmd": d5 & 0x7,
+        "ac_set_temp": d5 >> 3,
+        "protocol_version_a": d6 & 0xF,
+        "protocol_version_b": d6 >> 4,
+        "protocol_version_c": d7 & 0xF,
+        "counter": d7 >> 4,
     }
 
 
@@ -6594,6 +6581,8 @@ class TeleControlCommand2:
     FRAME_ID: ClassVar[int] = 0x1807B0D0
     IS_EXTENDED: ClassVar[bool] = True
     DLC: ClassVar[int] = 8
+    IS_FD: ClassVar[bool] = False  # a CAN FD frame
+    BRS: ClassVar[bool] = False  # CAN FD bit-rate switching
     CYCLE_MS: ClassVar[int] = 100
     PRIORITY: ClassVar[int] = 6
     PGN: ClassVar[int] = 0x00700
@@ -6669,28 +6658,28 @@ class TeleControlCommand2:
 def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, _, _, _, _, _, d7 = data
     m = _new(TeleControlCommand2)  # slot stores are faster than a call of __init__
-    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[v & 0x1]
-    m.cargo_lift = _CARGO_LIFT_2[(v >> 1) & 0x3]
-    m.cargo_lift_speed = (v >> 3) & 0xF
-    m.pto_enable = _PTO_ENABLE_1[(v >> 7) & 0x1]
-    m.downhill_regen_speed = ((v >> 8) & 0xFF) * 0.5
-    m.counter = v >> 56
+    m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
+    m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
+    m.cargo_lift_speed = (d0 >> 3) & 0xF
+    m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
+    m.downhill_regen_speed = d1 * 0.5
+    m.counter = d7
     return m
 
 
 def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
     if len(data) != 8:
         raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
-    v = _from_bytes(data, "little")
+    d0, d1, _, _, _, _, _, d7 = data
     return {
-        "downhill_regen_enable": v & 0x1,
-        "cargo_lift": (v >> 1) & 0x3,
-        "cargo_lift_speed": (v >> 3) & 0xF,
-        "pto_enable": (v >> 7) & 0x1,
-        "downhill_regen_speed": (v >> 8) & 0xFF,
-        "counter": v >> 56,
+        "downhill_regen_enable": d0 & 0x1,
+        "cargo_lift": (d0 >> 1) & 0x3,
+        "cargo_lift_speed": (d0 >> 3) & 0xF,
+        "pto_enable": d0 >> 7,
+        "downhill_regen_speed": d1,
+        "counter": d7,
     }
 
 

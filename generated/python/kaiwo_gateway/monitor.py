@@ -94,10 +94,12 @@ class Fault(str, Enum):
 
 @dataclass(frozen=True)
 class CounterRule:
-    """A rolling counter: `length` bits from bit `start` of the frame read as a little-endian integer."""
+    """A rolling counter: `length` bits from bit `start` of the frame read as one integer, little-endian
+    (an Intel counter) or big-endian (a Motorola one: `word_order` "big")."""
 
     start: int
     length: int
+    word_order: str = "little"
 
 
 @dataclass(frozen=True)
@@ -382,7 +384,8 @@ class Monitor:
         if rule.counter is None:
             return None, checksum_ok, None, None
         modulo = 1 << rule.counter.length
-        counter = (word >> rule.counter.start) % modulo
+        counter_word = word if rule.counter.word_order == "little" else int.from_bytes(data, "big")
+        counter = (counter_word >> rule.counter.start) % modulo
         if track.counter is None:
             return None, checksum_ok, counter, None
         delta = (counter - track.counter) % modulo

@@ -14,6 +14,7 @@ MODULE_EXTRA = {
     "tqdm": ("tqdm", "logs"),
     "weasyprint": ("weasyprint", "pdf"),
     "markdown": ("markdown", "pdf"),
+    "cantools": ("cantools", "import"),  # `canspec import`, `canspec diff` of a DBC
 }
 
 

@@ -6,9 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from canspec.importer import merge, tospec, yamlout
+from canspec.importer import yamlout
 from canspec.importer.dbctext import DbcError
-from canspec.importer.load import load
+from canspec.importer.run import import_sources
 from canspec.render import writer
 
 
@@ -17,15 +17,8 @@ def _where(source: str, line: int | None) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    report = tospec.Report()
-    specs = []
     try:
-        for source in args.source:
-            loaded = load(Path(source), source)
-            for line, text in loaded.warnings:
-                report.warn(source, line, text)
-            specs.append((source, tospec.build_spec(loaded, report)))
-        spec = merge.merge(specs)
+        spec, report = import_sources(args.source)
     except DbcError as exc:
         print(f"canspec import: {exc}", file=sys.stderr)
         return 1

@@ -19,6 +19,7 @@ import re
 from fractions import Fraction
 from pathlib import Path
 
+from canspec.commands.extras import install_hint
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
 from canspec.ir.encoding import FLOAT_MAX, raw_type_range
 from canspec.ir.model import to_physical
@@ -140,7 +141,7 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
     try:
         import cantools  # optional: only DBC inputs need it
     except ImportError as exc:
-        raise InputError(f"{source}: reading DBC files needs cantools (pip install cantools)") from exc
+        raise InputError(f"{source}: reading DBC files needs cantools; {install_hint('import')}") from exc
     text = _read_text(path, source)
     try:
         db = cantools.database.load_string(text, database_format="dbc", strict=False)

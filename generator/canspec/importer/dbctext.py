@@ -26,7 +26,6 @@ _STATEMENT = re.compile(r"^\s*(CM_|VAL_|BA_|BA_DEF_|BA_DEF_DEF_|VAL_TABLE_|SIG_V
 _UNUSED_VAL = re.compile(r"unused VAL_ entries in DBC")
 _BO = re.compile(r"^(\s*BO_\s+)(\d+)(\s+)(\w+)(\s*:)")
 _DOT_NUMBER = re.compile(r"(?<![\w.])\.(\d)")
-_DIGIT_NAME = re.compile(r"^(\s*(?:SG_|BO_\s+\d+)\s+)(\d\w*)")
 _CM_BARE = re.compile(r"^(\s*CM_\s+)(\d+)(\s+\")")
 _CM_SG_NO_NAME = re.compile(r"^\s*CM_\s+SG_\s+\d+\s+\"")
 _VAL = re.compile(r"^\s*VAL_\s+(\d+)\s+(\w+)\s")
@@ -128,8 +127,9 @@ def _repair_syntax(rep: Repairs, index: int, column: int) -> bool:
         rep.lines[index] = _DOT_NUMBER.sub(r"0.\1", line)
         rep.warn(index, "number written without a leading 0 (e.g. '.25'): read as 0.25")
         return True
-    if (m := _DIGIT_NAME.match(line)) is not None:
-        return _rename_digit_name(rep, index, m.group(2))
+    token = re.match(r"\d\w*", line[column:]) if 0 <= column < len(line) else None
+    if token is not None and not token.group(0).isdigit():  # a name where the grammar wants one: `0_COUNTER`
+        return _rename_digit_name(rep, index, token.group(0))
     if (m := _CM_BARE.match(line)) is not None:
         rep.lines[index] = f"{m.group(1)}BO_ {m.group(2)}{line[m.end(2):]}"
         rep.warn(index, f"CM_ without an object type before ID {m.group(2)}: taken as the comment of message {m.group(2)}")

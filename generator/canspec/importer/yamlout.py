@@ -33,7 +33,13 @@ def scalar(value: Any, key: str = "") -> str:
 
 
 def dump(spec: dict[str, Any], header: list[str]) -> str:
+    return dump_with_lines(spec, header)[0]
+
+
+def dump_with_lines(spec: dict[str, Any], header: list[str]) -> tuple[str, dict[int, tuple[int, ...]]]:
+    """The text, and each message's and signal's 1-based line: (message index,) or (message, signal index)."""
     out = [f"# {line}" for line in header]
+    where: dict[int, tuple[int, ...]] = {}
     for key in ("schema_version", "kind", "protocol", "bus"):
         out.append(f"{key}: {scalar(spec[key])}")
     out.append("nodes:" + ("" if spec["nodes"] else " []"))
@@ -44,13 +50,17 @@ def dump(spec: dict[str, Any], header: list[str]) -> str:
             out.append(f"  {name}:")
             out += [f"    {raw}: {scalar(label)}" for raw, label in table.items()]
     out.append("messages:" + ("" if spec["messages"] else " []"))
-    for msg in spec["messages"]:
+    for mi, msg in enumerate(spec["messages"]):
         first = True
         for key, value in msg.items():
             if key == "signals":
                 out.append("    signals:" + ("" if value else " []"))
-                out += [f"      - {scalar(s)}" for s in value]
+                for si, sig in enumerate(value):
+                    out.append(f"      - {scalar(sig)}")
+                    where[len(out)] = (mi, si)
                 continue
             out.append(f"  {'- ' if first else '  '}{key}: {scalar(value, key)}")
+            if first:
+                where[len(out)] = (mi,)
             first = False
-    return "\n".join(out) + "\n"
+    return "\n".join(out) + "\n", where

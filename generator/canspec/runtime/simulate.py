@@ -9,7 +9,8 @@ with live rolling counters and checksums, values settable while it runs, and del
 
 Frames are built by the reference codec from raw values (physical values go through the shared
 encoding rules, range-checked); each cyclic message is scheduled on its own grid of absolute
-deadlines (no drift). Event-driven messages are sent when `set` changes them or on `send`.
+deadlines (no drift). A CAN FD message goes out as an FD frame, with bit-rate switching where the
+spec asks for it. Event-driven messages are sent when `set` changes them or on `send`.
 Needs python-can (`pip install python-can`).
 """
 
@@ -164,7 +165,8 @@ class RestBus:
             entry.frames += 1
         import can  # python-can, only when frames go out
 
-        self.bus.send(can.Message(arbitration_id=entry.msg.frame_id, is_extended_id=entry.msg.is_extended, data=data, is_fd=False, check=True))
+        msg = entry.msg
+        self.bus.send(can.Message(arbitration_id=msg.frame_id, is_extended_id=msg.is_extended, data=data, is_fd=msg.is_fd, bitrate_switch=msg.brs, check=True))
         return True
 
     # --- the schedule -------------------------------------------------------------------------

@@ -4,6 +4,7 @@ per-message code handles in-range values inline and calls these only otherwise."
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Mapping
 from enum import IntEnum
 from typing import NamedTuple, TypeVar
@@ -32,10 +33,40 @@ class SignalSpec(NamedTuple):
     raw_type_max: int
     specials: frozenset[int]
     allowed: str
+    float_bits: int = 0  # 32 or 64: an IEEE 754 field (raw = the bit pattern, lo/hi its range as doubles)
+    nonfinite: bool = False  # a float field without a documented range: NaN and ±Inf encode too
+
+
+_FLOATS = {32: struct.Struct("<f"), 64: struct.Struct("<d")}
+unpack_f32, pack_f32 = _FLOATS[32].unpack, _FLOATS[32].pack
+unpack_f64, pack_f64 = _FLOATS[64].unpack, _FLOATS[64].pack
+# A float filling whole bytes, read straight from the frame: (data, first byte) → (value,)
+unpack_f32_le, unpack_f32_be = struct.Struct("<f").unpack_from, struct.Struct(">f").unpack_from
+unpack_f64_le, unpack_f64_be = struct.Struct("<d").unpack_from, struct.Struct(">d").unpack_from
+
+
+def float_to_raw(value: object, s: SignalSpec) -> int:
+    """A float field's bit pattern (float32 rounded to nearest), or RangeError / TypeError: a finite
+    value must lie in [lo, hi] (beyond the largest float32 is out of range), NaN and ±Inf only
+    where no range is documented."""
+    if isinstance(value, float):
+        x = value
+    elif isinstance(value, int):
+        try:
+            x = float(value)
+        except OverflowError:
+            raise RangeError(s.message, s.signal, value, s.allowed) from None
+    else:
+        raise TypeError(f"{s.message}.{s.signal}: expected a number, got {type(value).__name__} {value!r}")
+    if s.lo <= x <= s.hi if math.isfinite(x) else s.nonfinite:
+        return int.from_bytes(_FLOATS[s.float_bits].pack(x), "little")
+    raise RangeError(s.message, s.signal, value, s.allowed)
 
 
 def physical_to_raw(value: object, s: SignalSpec) -> int:
     """The raw value a physical value encodes to, or RangeError / TypeError."""
+    if s.float_bits:
+        return float_to_raw(value, s)
     if isinstance(value, int):
         if s.direct:
             raw = int(value) - s.offset_int

@@ -26,6 +26,7 @@ from .monitor import FrameEvent, Monitor
 __all__ = ["Skip", "Skipped", "decode_frame", "feed", "from_can_message", "messages", "receive", "send", "to_can_message"]
 
 CLASSIC_MAX_DLC = 8
+_FD_BUS = any(cls.IS_FD for cls in BY_ID.values())  # whether any message of this protocol is a CAN FD frame
 
 
 class Skip(str, Enum):
@@ -33,7 +34,7 @@ class Skip(str, Enum):
 
     ERROR_FRAME = "error_frame"
     REMOTE_FRAME = "remote_frame"
-    FD_FRAME = "fd_frame"  # a CAN FD frame, or more than 8 data bytes: this protocol is classic CAN
+    FD_FRAME = "fd_frame"  # a frame format other than the message's (CAN FD for a classic message, or classic for an FD one)
     UNKNOWN_ID = "unknown_id"  # no message has this ID in this ID format
     LENGTH = "length"  # a message's ID with a different number of data bytes than its DLC
     CHECKSUM = "checksum"
@@ -49,12 +50,14 @@ class Skipped:
 
 
 def to_can_message(message: Message, *, channel: str | int | None = None) -> can.Message:
-    """A classic data frame carrying the encoded message, with the message's ID format and DLC."""
+    """A data frame carrying the encoded message, with the message's ID format, DLC and frame format
+    (classic, or CAN FD with its bit-rate switch)."""
     return can.Message(
         arbitration_id=message.FRAME_ID,
         is_extended_id=message.IS_EXTENDED,
         is_remote_frame=False,
-        is_fd=False,
+        is_fd=message.IS_FD,
+        bitrate_switch=message.BRS,
         data=message.encode(),
         channel=channel,
         check=True,
@@ -67,11 +70,14 @@ def decode_frame(frame: can.Message, *, verify_checksum: bool = True) -> Message
         return Skipped(Skip.ERROR_FRAME, frame)
     if frame.is_remote_frame:
         return Skipped(Skip.REMOTE_FRAME, frame)
-    if frame.is_fd or len(frame.data) > CLASSIC_MAX_DLC:
-        return Skipped(Skip.FD_FRAME, frame)
+    fd = frame.is_fd or len(frame.data) > CLASSIC_MAX_DLC
     cls = BY_ID.get(frame.arbitration_id)
     if cls is None or frame.is_extended_id != cls.IS_EXTENDED:
+        if fd and not _FD_BUS:  # a classic protocol: an FD frame is none of its messages
+            return Skipped(Skip.FD_FRAME, frame)
         return Skipped(Skip.UNKNOWN_ID, frame, UnknownFrameError(frame.arbitration_id, frame.is_extended_id))
+    if fd != cls.IS_FD:
+        return Skipped(Skip.FD_FRAME, frame)
     try:
         return cls.decode(frame.data, verify_checksum=verify_checksum)
     except FrameLengthError as exc:

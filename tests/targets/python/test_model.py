@@ -42,16 +42,22 @@ def test_number_literals():
 
 def test_raw_expressions_extract_every_raw(can):
     sig = sig_of(can, "driving_state", "motor_speed")  # start 8, len 16
-    expr = fields.raw_expr(sig, 64)
-    assert expr == "(v >> 8) & 0xFFFF"
+    classic, fd = fields.raw_expr(sig, 64), fields.raw_expr(sig, 72)
+    assert classic == "d1 | d2 << 8" and fd == "data[1] | data[2] << 8"  # from the frame's bytes, in a classic or an FD frame
     for raw in (0, 1, 0x7FFF, 0xFFFF):
-        assert eval(expr, {"v": raw << 8 | 0xFF | 0xFF << 24}) == raw
+        frame = (raw << 8 | 0xFF | 0xFF << 24).to_bytes(9, "little")
+        assert eval(classic, {f"d{i}": b for i, b in enumerate(frame)}) == raw and eval(fd, {"data": frame}) == raw
+    wide = _wide(can, False, Fraction(1))
+    assert fields.raw_expr(wide, 64) == "v" and fields.raw_expr(dataclasses.replace(wide, length=40, word_mask=2**40 - 1), 64) == "v & 0xFFFFFFFFFF"
     top = sig_of(can, "autocar_eps_command", "checksum")
-    assert fields.raw_expr(top, 64) == "v >> 56"  # nothing above it: no mask
+    assert fields.raw_expr(top, 64) == "d7"  # a classic frame's byte, read alone
+    door = sig_of(can, "autocar_control_command_1", "door_cmd")  # start 2, len 2: within byte 0
+    assert fields.raw_expr(door, 64) == "(d0 >> 2) & 0x3"
+    assert [eval(fields.raw_expr(door, 64), {"d0": raw << 2 | 0b11110011}) for raw in range(4)] == [0, 1, 2, 3]
     signed = dataclasses.replace(sig, signed=True, sign_bit=0x8000, raw_type_min=-32768, raw_type_max=32767)
-    sexpr = fields.raw_expr(signed, 64)
+    sexpr = fields.raw_expr(signed, 72)
     for raw in (-32768, -1, 0, 1, 32767):
-        assert eval(sexpr, {"v": (raw & 0xFFFF) << 8 | 0xAB | 0xCD << 24}) == raw
+        assert eval(sexpr, {"data": ((raw & 0xFFFF) << 8 | 0xAB | 0xCD << 24).to_bytes(9, "little")}) == raw
 
 
 def test_physical_and_quotient_expressions(can):
@@ -84,7 +90,8 @@ def _wide(can, signed, factor, offset=Fraction(0)):
     base = sig_of(can, "autocar_eps_command", "steering_angle_cmd")
     tmin, tmax = (-(2**63), 2**63 - 1) if signed else (0, 2**64 - 1)
     lo, hi = sorted((tmin * factor + offset, tmax * factor + offset))
-    return dataclasses.replace(base, length=64, start=0, signed=signed, sign_bit=2**63 if signed else 0, factor=factor, offset=offset,
+    return dataclasses.replace(base, length=64, start=0, word_shift=0, word_mask=2**64 - 1, signed=signed,
+                               sign_bit=2**63 if signed else 0, factor=factor, offset=offset,
                                raw_type_min=tmin, raw_type_max=tmax, raw_min=tmin, raw_max=tmax, phys_min=lo, phys_max=hi, check_min=lo, check_max=hi,
                                accept_min=lo, accept_max=hi, doc_min=None, doc_max=None, specials=(), value_table=None)
 

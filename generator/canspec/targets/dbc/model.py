@@ -32,10 +32,15 @@ class DbcSignal:
 
     @property
     def bounds(self) -> tuple[object, object]:
-        """[min|max]: the physical range; a float without a documented one writes [0|0], the DBC's 'none'."""
-        if self.sig.is_float and self.sig.doc_min is None:
-            return 0, 0
-        return self.sig.phys_min if not self.sig.is_float else self.sig.check_min, self.sig.phys_max if not self.sig.is_float else self.sig.check_max
+        """[min|max]: the physical range the encoders accept. [0|0] is the DBC's "no range", so a float
+        without a documented range writes it, and a field whose only allowed value is 0 writes its
+        documented range instead."""
+        sig = self.sig
+        if sig.is_float:
+            return (0, 0) if sig.doc_min is None else (sig.check_min, sig.check_max)
+        if sig.phys_min == sig.phys_max == 0 and sig.doc_min is not None:
+            return sig.doc_min, sig.doc_max
+        return sig.phys_min, sig.phys_max
 
 
 @dataclass(frozen=True)

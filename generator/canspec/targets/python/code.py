@@ -22,9 +22,13 @@ IND = "    "
 
 @dataclass(frozen=True)
 class PyChecksum:
-    shift: int  # bit position of the checksum byte in the frame integer
-    cover_mask: str  # hex literal: the bytes the XOR covers, in the frame integer
-    folds: tuple[int, ...]  # shifts that XOR-fold the frame's bytes into its lowest byte
+    word: str  # the frame word it is computed on: "v" (little-endian) or "b" (big-endian, a frame of Motorola fields only)
+    shift: int  # bit position of the checksum byte in that word
+    cover_mask: str  # hex literal: the bytes the XOR covers, in that word
+    folds: tuple[int, ...]  # shifts that XOR-fold the covered bytes into the word's lowest byte
+    # The checksum covers every other byte of the frame: then the XOR of the whole word is 0 for an
+    # intact frame, and (with the checksum byte still 0) the checksum itself while encoding — no mask.
+    whole: bool = False
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,32 @@ class Frame:
         """The signals encode takes from the caller (the checksum it computes)."""
         return tuple(s for s in self.signals if not s.is_checksum)
 
+    def reads(self, physical: bool) -> set[str | None]:
+        """What decode (`physical`) or unpack reads its fields from: "d" (the frame's bytes), "v", "b" (its words)."""
+        return {s.decode_word if physical else s.read for s in self.signals}
+
+    def bytes_used(self, physical: bool) -> set[int]:
+        return {i for s in self.signals if s.frame_bytes is not None and (s.decode_word if physical else s.read) == "d" for i, _ in s.frame_bytes}
+
+
+def pack_word(values: tuple[PySignal, ...]) -> str:
+    """The frame word encode builds the frame in: little-endian unless every field it sets is Motorola."""
+    return "b" if values and all(s.word == "b" for s in values) else "v"
+
+
+def make_checksum(msg: ir.Message, values: tuple[PySignal, ...]) -> PyChecksum | None:
+    """The XOR checksum on the word encode builds (so encode folds the word it has)."""
+    if msg.checksum is None:
+        return None
+    word, mask, byte = pack_word(values), msg.checksum.cover_mask, msg.checksum.byte
+    if word == "b":  # the same bytes, numbered from the frame's end
+        mask, byte = int.from_bytes(mask.to_bytes(msg.dlc, "little"), "big"), msg.dlc - 1 - byte
+    whole = set(msg.checksum.covers) | {msg.checksum.byte} == set(range(msg.dlc))
+    return PyChecksum(word, byte * 8, PYTHON.hex(mask), xor_folds(msg.dlc if whole else (mask.bit_length() + 7) // 8), whole)
+
+
+ORDERS = {"v": "little", "b": "big"}
+
 
 def xor_folds(nbytes: int) -> tuple[int, ...]:
     """Shifts that XOR-fold `nbytes` bytes of an integer into its lowest byte."""
@@ -56,19 +86,48 @@ def xor_folds(nbytes: int) -> tuple[int, ...]:
 
 
 def _xor(checksum: PyChecksum) -> list[str]:
-    """`c & 0xFF` = the XOR of the bytes of the frame integer `v` that the checksum covers."""
-    return [f"c = v & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in checksum.folds)]
+    """`c & 0xFF` = the XOR of the bytes of the frame word that the checksum covers (when it covers
+    every other byte: of all bytes, the checksum byte included)."""
+    w, folds = checksum.word, checksum.folds
+    if checksum.whole:
+        return [f"c = {w} ^ {w} >> {folds[0]}", *(f"c ^= c >> {f}" for f in folds[1:])] if folds else [f"c = {w}"]
+    return [f"c = {w} & {checksum.cover_mask}", *(f"c ^= c >> {f}" for f in folds)]
 
 
-def frame_checks(f: Frame) -> tuple[str, ...]:
-    """Length check, frame integer `v`, checksum check: the start of decode and unpack."""
+def _checksum_byte(checksum: PyChecksum) -> str:
+    return f"({checksum.word} >> {checksum.shift}) & 0xFF" if checksum.shift else f"{checksum.word} & 0xFF"
+
+
+def _byte_names(f: Frame, physical: bool, every: bool) -> str:
+    """`d0, _, d2 = data`: the frame's bytes decode reads (every one where the checksum XORs them)."""
+    used = f.bytes_used(physical)
+    names = [f"d{i}" if every or i in used else "_" for i in range(f.dlc)]
+    return f"({names[0]},) = data" if f.dlc == 1 else f"{', '.join(names)} = data"
+
+
+def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
+    """Length check, frame bytes `dN` / words `v` / `b`, checksum check: the start of decode (`physical`) and unpack.
+    Where decode reads the bytes anyway, an XOR checksum of every other byte is their XOR (small ints)."""
     lines = [f"if len(data) != {f.dlc}:", f'{IND}raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")']
-    if f.signals or f.checksum:
-        lines.append('v = _from_bytes(data, "little")')
-    if f.checksum is not None:
-        byte = f"(v >> {f.checksum.shift}) & 0xFF"
-        lines += ["if verify_checksum:", *(IND + s for s in _xor(f.checksum)), f"{IND}if (c & 0xFF) != {byte}:"]
-        lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, c & 0xFF, {byte}, id_text="{f.id_lit}")')
+    reads, ck = f.reads(physical), f.checksum
+    by_bytes = ck is not None and ck.whole and "d" in reads
+    if "d" in reads:
+        lines.append(_byte_names(f, physical, by_bytes))
+    words = reads | ({ck.word} if ck is not None and not by_bytes else set())
+    lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if w in words]
+    if ck is None:
+        return tuple(lines)
+    if by_bytes:
+        own = f"d{f.dlc - 1 - ck.shift // 8 if ck.word == 'b' else ck.shift // 8}"
+        check, test, computed, byte = [f"c = {' ^ '.join(f'd{i}' for i in range(f.dlc))}"], "c", f"c ^ {own}", own
+    elif ck.whole:  # the XOR of every byte is 0; the one the frame should carry is that XOR with its own
+        own = f"{ck.word} >> {ck.shift}" if ck.shift else ck.word
+        check, test, computed, byte = _xor(ck), "c & 0xFF", f"(c ^ {own}) & 0xFF", _checksum_byte(ck)
+    else:
+        byte = _checksum_byte(ck)
+        check, test, computed = _xor(ck), f"(c & 0xFF) != {byte}", "c & 0xFF"
+    lines += ["if verify_checksum:", *(IND + s for s in check), f"{IND}if {test}:"]
+    lines.append(f'{IND * 2}raise ChecksumError("{f.name}", {f.id_lit}, {computed}, {byte}, id_text="{f.id_lit}")')
     return tuple(lines)
 
 
@@ -76,19 +135,29 @@ def checksum_ok(f: Frame) -> tuple[str, ...]:
     """The body of `checksum_ok(data)`: never raises."""
     if f.checksum is None:
         return ("return True",)
-    byte = f"(v >> {f.checksum.shift}) & 0xFF"
-    return (f"if len(data) != {f.dlc}:", f"{IND}return False", 'v = _from_bytes(data, "little")', *_xor(f.checksum), f"return (c & 0xFF) == {byte}")
+    word = f'{f.checksum.word} = _from_bytes(data, "{ORDERS[f.checksum.word]}")'
+    return (f"if len(data) != {f.dlc}:", f"{IND}return False", word, *_xor(f.checksum),
+            "return not c & 0xFF" if f.checksum.whole else f"return (c & 0xFF) == {_checksum_byte(f.checksum)}")
+
+
+def _terms(values: list[PySignal]) -> str:
+    """The raw values ORed into their frame word (each fits its field; a signed one masked)."""
+    terms = [(f"({s.raw_var} & {PYTHON.hex(s.sig.mask)})" if s.sig.signed else s.raw_var) + (f" << {s.sig.word_shift}" if s.sig.word_shift else "")
+             for s in values]
+    return " | ".join(terms)
 
 
 def pack_tail(f: Frame) -> tuple[str, ...]:
     """The raw values in `r0`, `r1`, ... (each fits its field) into the frame bytes, checksum filled."""
     if not f.values:
         return (f"return bytes({f.dlc})",)  # reserved bits 0; a checksum of zero bytes is 0
-    terms = [(f"({s.raw_var} & {PYTHON.hex(s.sig.mask)})" if s.sig.signed else s.raw_var) + (f" << {s.sig.start}" if s.sig.start else "") for s in f.values]
-    lines = ["v = " + " | ".join(terms)]
+    word = pack_word(f.values)
+    lines = [f"{w} = {_terms(group)}" for w in ORDERS if (group := [s for s in f.values if s.word == w])]
+    if len(lines) == 2:  # both orders: the Motorola fields join the little-endian word
+        lines.append(f'v |= _from_bytes(b.to_bytes({f.dlc}, "big"), "little")')
     if f.checksum is not None:
-        lines += [*_xor(f.checksum), f"v |= (c & 0xFF) << {f.checksum.shift}"]
-    return (*lines, f'return v.to_bytes({f.dlc}, "little")')
+        lines += [*_xor(f.checksum), f"{word} |= (c & 0xFF) << {f.checksum.shift}" if f.checksum.shift else f"{word} |= c & 0xFF"]
+    return (*lines, f'return {word}.to_bytes({f.dlc}, "{ORDERS[word]}")')
 
 
 def pack(f: Frame, names_var: str) -> tuple[str, ...]:
@@ -113,6 +182,9 @@ def _rounded(s: PySignal, q: str) -> list[str]:
 def _to_raw(s: PySignal) -> list[str]:
     """`raw_var` from the attribute: inline inside the range, the runtime's full rule otherwise."""
     r, slow = s.raw_var, f"_to_raw({s.var}, {s.descriptor})"
+    if s.sig.is_float:  # the double's bit pattern in the format (NaN, ±Inf and what lies outside: the slow path)
+        bits = f'_from_bytes(_pack_f{s.sig.length}({s.var}), "little")'
+        return [f"{s.var} = m.{s.attr}", f"{r} = {bits} if {s.lo_lit} <= {s.var} <= {s.hi_lit} else {slow}"]
     if s.direct:  # integers convert exactly: the raw range check is the whole check
         return [f"{r} = {s.q_expr}", f"if not {s.sig.raw_min} <= {r} <= {s.sig.raw_max}:", f"{IND}{r} = _to_raw(m.{s.attr}, {s.descriptor})"]
     in_range = f"{s.lo_lit} <= {s.var} <= {s.hi_lit}"

@@ -1,18 +1,21 @@
 """The Python view of one signal: its attribute, type, default, docstring line, and the
 expressions and decisions its decode and encode need (`code.py` turns them into statements).
 
-Decode reads the whole frame as one little-endian integer `v`, so an Intel signal is a shift,
-a mask and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in
-doubles; floats are written as the shortest repr of the nearest double of the exact decimal.
+Decode reads the whole frame as one integer, little-endian `v` for Intel fields and big-endian
+`b` for Motorola ones (ir.Signal.word_order), so every field is a shift by its `word_shift`, a mask
+and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
+literals are the shortest repr of the nearest double of the exact decimal. An IEEE float field's
+raw value is its bit pattern, turned into the float and back by `struct` (`_unpack_f32`, ...).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import decimal_text
+from canspec.ir.encoding import FLOAT_MAX, decimal_text
 from canspec.render.literals import PYTHON
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 
@@ -48,12 +51,15 @@ class PySignal:
     py_type: str  # "float", "int", "Gear | int"
     const_type: str  # type of its special-value constants: "float" | "int"
     default: str  # literal of the default attribute value
-    raw_expr: str  # raw value from the frame integer `v` (sign-extended)
+    raw_expr: str  # raw value from its frame byte `dN` or frame word `v` / `b` (sign-extended)
+    frame_bytes: tuple[tuple[int, int], ...] | None  # the frame bytes it is read from, with their shifts (fields.frame_bytes)
+    own_bytes: bool  # a field of a CAN FD frame: read from its own bytes (fields.own_bytes)
     phys_expr: str  # physical value from the frame integer `v`
     specials: tuple[PySpecial, ...]
     allowed: str  # string literal: the allowed range as errors show it
     descriptor: str  # module-level name of the slow-path descriptor
     descriptor_args: str  # its _SignalSpec(...) arguments after message and signal name
+    descriptor_tail: str  # its arguments after the allowed text: ", 32, True" (float bits, NaN/±Inf allowed) for a float field
     var: str  # encode: local holding the attribute
     raw_var: str  # encode: local holding the raw value
     # encode decisions
@@ -69,23 +75,97 @@ class PySignal:
     def is_checksum(self) -> bool:
         return self.sig.role == "checksum"
 
+    @property
+    def word(self) -> str:
+        return word_var(self.sig)
+
+    @property
+    def read(self) -> str | None:
+        """What unpack reads first: the frame's bytes (`d`, see `frame_bytes`), a frame word (`v`, `b`), or
+        nothing (None: a field of a CAN FD frame, read from its own bytes, see `own_bytes`)."""
+        if self.frame_bytes is not None:
+            return "d"
+        return None if self.own_bytes else self.word
+
+    @property
+    def decode_word(self) -> str | None:
+        """What decode reads the field from; None for a float read by struct from its bytes."""
+        return None if float_offset(self.sig, 0) is not None else self.read
+
 
 def _paren(expr: str) -> str:
-    return expr if expr.isidentifier() else f"({expr})"
+    atomic = expr.isidentifier() or (expr.startswith("_from_bytes(") and expr.count("(") == 1)  # a name, or one call
+    return expr if atomic else f"({expr})"
+
+
+def word_var(sig: ir.Signal) -> str:
+    """The local holding the frame word the field lies in: `v` (little-endian) or `b` (big-endian)."""
+    return "b" if sig.is_big_endian else "v"
+
+
+MAX_BYTE_SPAN = 3  # bytes a field read from the frame's bytes may span: their combination stays a one-digit int (< 2^30)
+
+
+def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] | None:
+    """(frame byte, its left shift) of a non-float field of a classic frame (at most 8 bytes) that spans at most
+    MAX_BYTE_SPAN bytes, else None: decode reads it from those bytes (`d3 | d4 << 8`, small ints), not from the
+    frame word. The bytes are taken in the order of the field's word: a Motorola field's first byte is its highest."""
+    if frame_bits > 64 or sig.is_float:
+        return None
+    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8  # in the word, from its least significant byte
+    if hi - lo >= MAX_BYTE_SPAN:
+        return None
+    last = frame_bits // 8 - 1
+    return tuple((last - p if sig.is_big_endian else p, 8 * (p - lo)) for p in range(lo, hi + 1))
+
+
+def own_bytes(sig: ir.Signal, frame_bits: int) -> tuple[str, int, int]:
+    """A field of a CAN FD frame (more than 8 bytes) read from its own bytes, not from a word of up to 512 bits:
+    (the integer of those bytes in the field's order, the field's shift in it, its bits)."""
+    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8
+    last = frame_bits // 8 - 1
+    at = [last - p if sig.is_big_endian else p for p in range(lo, hi + 1)]
+    if hi - lo < MAX_BYTE_SPAN:
+        var = " | ".join(f"data[{i}]" if p == lo else f"data[{i}] << {8 * (p - lo)}" for p, i in zip(range(lo, hi + 1), at))
+    else:
+        var = f'_from_bytes(data[{min(at)}:{max(at) + 1}], "{sig.word_order}")'
+    return var, sig.word_shift - 8 * lo, 8 * len(at)
 
 
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from the frame integer `v`: shift, mask, sign-extend (no outer parentheses)."""
-    expr = "v" if sig.start == 0 else f"v >> {sig.start}"
-    if sig.start + sig.length < frame_bits:
+    """The raw value from its frame bytes or word: shift, mask, sign-extend (no outer parentheses)."""
+    parts = frame_bytes(sig, frame_bits)
+    if parts is not None:
+        var = " | ".join(f"d{i}" if up == 0 else f"d{i} << {up}" for i, up in parts)
+        shift, bits = sig.word_shift % 8, 8 * len(parts)
+    elif frame_bits > 64:
+        var, shift, bits = own_bytes(sig, frame_bits)
+    else:
+        var, shift, bits = word_var(sig), sig.word_shift, frame_bits
+    expr = var if shift == 0 else f"{_paren(var)} >> {shift}"
+    if shift + sig.length < bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
         expr = f"({expr} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
     return expr
 
 
-def phys_expr(sig: ir.Signal, raw: str, kind: str) -> str:
-    """physical = raw × factor + offset: integers for integer scaling, else doubles."""
+def float_offset(sig: ir.Signal, dlc: int) -> int | None:
+    """The first frame byte of a float field that fills whole bytes (read by struct from the data
+    itself, in its byte order), else None. Only whether it is one when `dlc` is 0."""
+    if not sig.is_float or sig.word_shift % 8:
+        return None
+    return sig.word_shift // 8 if not sig.is_big_endian else dlc - (sig.word_shift + sig.length) // 8
+
+
+def phys_expr(sig: ir.Signal, raw: str, kind: str, dlc: int = 0) -> str:
+    """physical = raw × factor + offset: integers for integer scaling, else doubles; a float field's
+    bits unpacked (straight from the frame's bytes where it fills whole bytes)."""
+    if sig.is_float:
+        offset = float_offset(sig, dlc)
+        if offset is not None:
+            return f"_unpack_f{sig.length}_{'be' if sig.is_big_endian else 'le'}(data, {offset})[0]"
+        return f'_unpack_f{sig.length}(({raw}).to_bytes({sig.length // 8}, "little"))[0]'
     as_int = kind == "int"
     expr = raw
     if sig.factor != 1:
@@ -128,6 +208,8 @@ def exact_branch(sig: ir.Signal) -> bool:
 
 def range_text(sig: ir.Signal) -> str:
     """The allowed range as errors show it, e.g. "[-1080, 1080] deg or 0 (no_limit)"."""
+    if sig.is_float and sig.doc_min is None:
+        return f"any float{sig.length}: finite within ±{float(FLOAT_MAX[sig.length])!r}, NaN or ±Inf"
     text = f"[{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]"
     if sig.unit:
         text += f" {sig.unit}"
@@ -150,7 +232,10 @@ def doc_line(sig: ir.Signal, enum: str | None) -> str:
     parts = [sig.zh] if sig.zh else []
     if sig.unit:
         parts.append(f"unit {sig.unit}")
-    parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
+    if sig.is_float:
+        parts.append(f"IEEE float{sig.length}, " + ("any value (NaN and ±Inf too)" if sig.doc_min is None else f"range {range_text(sig)}"))
+    else:
+        parts.append(f"range [{decimal_text(sig.check_min)}, {decimal_text(sig.check_max)}]")
     if sig.is_scaled:
         formula = "raw" if sig.factor == 1 else f"raw × {decimal_text(sig.factor)}"
         if sig.offset:
@@ -180,7 +265,20 @@ def _kind(sig: ir.Signal, enum: str | None) -> str:
     return "int" if sig.is_integer else "float"
 
 
+def double_within(bound: Fraction, up: bool) -> float:
+    """The double nearest `bound` on its inner side (at or above it where `up`, else at or below): a
+    double compared with it gives the exact comparison with `bound` (as the reference codec compares)."""
+    x = float(bound)
+    if up and Fraction(x) < bound:
+        x = math.nextafter(x, math.inf)
+    elif not up and Fraction(x) > bound:
+        x = math.nextafter(x, -math.inf)
+    return x
+
+
 def _default(sig: ir.Signal, kind: str, enum: str | None, members: dict[int, str]) -> str:
+    if sig.is_float:  # 0.0 where the range allows it, else the range's lower end
+        return PYTHON.double(0.0 if sig.check_min <= 0 <= sig.check_max else double_within(sig.accept_min, up=True))
     raw = default_raw(sig)
     if enum is not None:
         return f"{enum}.{members[raw]}" if raw in members else str(raw)
@@ -225,19 +323,25 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     kind = _kind(sig, ctx.enum)
     as_int = kind != "float"
     raw = raw_expr(sig, ctx.frame_bits)
-    phys = phys_expr(sig, raw, kind)
+    phys = phys_expr(sig, raw, kind, ctx.frame_bits // 8)
     if ctx.lookup is not None:
         phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
-    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max
+    direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
     lo_lit = PYTHON.number(lo, as_int and lo.denominator == 1)
     hi_lit = PYTHON.number(hi, as_int and hi.denominator == 1)
+    tail = ""
+    if sig.is_float:  # compared as doubles, with the exact answer: the bounds' doubles on their inner side
+        lo_lit, hi_lit = PYTHON.double(double_within(lo, up=True)), PYTHON.double(double_within(hi, up=False))
+        tail = f", {sig.length}, {sig.doc_min is None}"
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     return PySignal(
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
-        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw, phys_expr=phys,
+        const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
+        frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64,
+        phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
-        descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), var=var, raw_var=f"r{ctx.index}", direct=direct,
+        descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
         q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
         q_nonneg=sig.factor > 0 and float(lo) >= float(sig.offset), exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
     )

@@ -11,7 +11,7 @@ from canspec import ir
 from canspec.ir.names import pascal, snake
 from canspec.render.literals import PYTHON
 from canspec.targets.python import code
-from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, label_comment
+from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, float_offset, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
@@ -24,7 +24,9 @@ PACKAGE_NAMES = frozenset({
     "UnknownSignalError", "TextError", "TextIndexError", "InconsistentTextError", "InvalidTextError", "new_monitor", "TEXT_ASSEMBLERS", "FaultTable",
     "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode",
     "encode_raw", "Callable", "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum",
-    "_new", "_from_bytes", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS"})
+    "_new", "_from_bytes", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
+    "_unpack_f32", "_unpack_f64", "_pack_f32", "_pack_f64", "_unpack_f32_le", "_unpack_f32_be", "_unpack_f64_le", "_unpack_f64_be",
+    "_FD_BUS"})
 # The package's modules, as its docstring introduces them.
 MODULE_DOCS = {
     "messages": "dataclasses, encode/decode",
@@ -40,7 +42,8 @@ MODULE_DOCS = {
 CLASS_CONSTANTS = frozenset(
     {
         "NAME", "FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "PDU_FORMAT", "PDU_SPECIFIC", "SOURCE_ADDRESS",
-        "DESTINATION_ADDRESS", "FINGERPRINT", "SIGNALS", "COUNTER_MODULO", "COUNTER_START", "COUNTER_LENGTH", "CHECKSUM_BYTE", "CHECKSUM_COVER",
+        "DESTINATION_ADDRESS", "FINGERPRINT", "SIGNALS", "COUNTER_MODULO", "COUNTER_START", "COUNTER_LENGTH", "COUNTER_WORD_ORDER",
+        "IS_FD", "BRS", "CHECKSUM_BYTE", "CHECKSUM_COVER",
     }
 )
 
@@ -99,6 +102,9 @@ class PyMessage:
     counter: PySignal | None
     counter_modulo: int
     counter_start: int
+    counter_big: bool  # a Motorola counter: COUNTER_START counts in the frame read as a big-endian integer
+    is_fd: bool
+    brs: bool
     counter_length: int
     checksum_byte: int
     checksum_cover: str  # hex literal of ir.Checksum.cover_mask ("" without a checksum)
@@ -110,7 +116,8 @@ class PyMessage:
     unpack_func: str
     names_var: str  # frozenset of the raw keys
     raw_functional: bool  # a raw key is a keyword: the TypedDict needs the functional syntax
-    frame_checks: tuple[str, ...]  # statements (see code.py)
+    decode_checks: tuple[str, ...]  # statements (see code.py): the start of decode
+    unpack_checks: tuple[str, ...]  # and of unpack
     encode_lines: tuple[str, ...]
     pack_lines: tuple[str, ...]
     checksum_ok_lines: tuple[str, ...]
@@ -141,6 +148,7 @@ class PyPackage:
     has_multiframe: bool
     tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
     dict_lookups: bool  # some through a dict (`_member`)
+    float_helpers: tuple[str, ...]  # the struct helpers of _runtime its IEEE float fields use (imported with a leading `_`)
     fault_tables: tuple[ir.FaultTable, ...]
 
 
@@ -151,7 +159,8 @@ def titled(title: str, zh: str) -> str:
 def _frame_line(msg: ir.Message) -> str:
     timing = f"every {msg.cycle_ms} ms" if msg.cycle_ms is not None else "event-driven"
     route = f"{msg.sender} → {', '.join(msg.receivers)}" if msg.receivers else f"sent by {msg.sender}"
-    return PYTHON.doc(f"Frame {msg.id_text} ({'29' if msg.is_extended else '11'}-bit), DLC {msg.dlc}, {timing}, {route}.")
+    fd = (", CAN FD" + (" with bit-rate switching" if msg.brs else "")) if msg.is_fd else ""
+    return PYTHON.doc(f"Frame {msg.id_text} ({'29' if msg.is_extended else '11'}-bit{fd}), DLC {msg.dlc}, {timing}, {route}.")
 
 
 def _heading(msg: ir.Message) -> str:
@@ -209,10 +218,7 @@ class _Builder:
     def message(self, msg: ir.Message) -> PyMessage:
         signals = self.signals(msg)
         by_name = {s.name: s for s in signals}
-        checksum = None
-        if msg.checksum is not None:
-            cover = msg.checksum
-            checksum = code.PyChecksum(cover.byte * 8, PYTHON.hex(cover.cover_mask), code.xor_folds(max(cover.covers) + 1))
+        checksum = code.make_checksum(msg, tuple(s for s in signals if not s.is_checksum))
         frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
@@ -222,21 +228,33 @@ class _Builder:
             desc=PYTHON.doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
             fingerprint=PYTHON.hex(msg.fingerprint, 8), signals=signals, checksum=checksum,
             counter=by_name[msg.counter.signal] if msg.counter is not None else None, counter_modulo=msg.counter.modulo if msg.counter is not None else 0,
-            counter_start=msg.counter.start if msg.counter is not None else 0, counter_length=msg.counter.length if msg.counter is not None else 0,
+            counter_start=msg.counter.start if msg.counter is not None else 0, counter_big=msg.counter is not None and msg.counter.word_order == "big",
+            is_fd=msg.is_fd, brs=msg.brs, counter_length=msg.counter.length if msg.counter is not None else 0,
             checksum_byte=msg.checksum.byte if msg.checksum is not None else 0,
             checksum_cover=PYTHON.hex(msg.checksum.cover_mask) if msg.checksum is not None else "", rule_args=_rule_args(cls, msg),
             multiframe=self.multiframe(msg, by_name), decode_func=funcs["decode"], encode_func=funcs["encode"], pack_func=pack_func,
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
-            frame_checks=code.frame_checks(frame), encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
+            decode_checks=code.frame_checks(frame, True), unpack_checks=code.frame_checks(frame, False),
+            encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
             checksum_ok_lines=code.checksum_ok(frame),
         )
+
+
+def _float_helpers(can: ir.CanProtocol) -> tuple[str, ...]:
+    """What encode (pack_f32, ...) and decode (unpack_f32 from the word, unpack_f32_be from the bytes, ...) of float fields use."""
+    out = set()
+    for s in (s for m in can.messages for s in m.data_signals if s.is_float):
+        order = "_be" if s.is_big_endian else "_le"
+        out |= {f"pack_f{s.length}", f"unpack_f{s.length}" + (order if float_offset(s, 0) is not None else "")}
+    return tuple(sorted(out))
 
 
 def _rule_args(cls: str, msg: ir.Message) -> tuple[str, ...]:
     return (
         f"{cls}.NAME", f"{cls}.FRAME_ID", f"{cls}.IS_EXTENDED", f"{cls}.DLC",
         f"{cls}.CYCLE_MS * timeout_cycles" if msg.cycle_ms is not None else "None",
-        f"CounterRule({cls}.COUNTER_START, {cls}.COUNTER_LENGTH)" if msg.counter is not None else "None",
+        (f"CounterRule({cls}.COUNTER_START, {cls}.COUNTER_LENGTH" + (f", {cls}.COUNTER_WORD_ORDER)" if msg.counter.word_order == "big" else ")"))
+        if msg.counter is not None else "None",
         f"ChecksumRule({cls}.CHECKSUM_BYTE, {cls}.CHECKSUM_COVER)" if msg.checksum is not None else "None",
     )
 
@@ -262,4 +280,5 @@ def build_package(spec: ir.Spec) -> PyPackage:
         has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
         has_checksums=can.has_checksums, has_counters=can.has_counters, has_multiframe=can.has_multiframe,
         tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups), fault_tables=can.fault_tables,
+        float_helpers=_float_helpers(can),
     )

