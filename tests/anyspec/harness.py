@@ -16,6 +16,7 @@ import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -314,6 +315,20 @@ def stage_python(ctx: Ctx, mypy: bool) -> None:
             ctx.fail("python", "mypy --strict", out + err)
 
 
+def _cantools_raw(msg: Any, raw: dict[str, int]) -> dict[str, Any]:
+    """The vectors' raw values as cantools takes them: an IEEE float signal's as the float its bits hold."""
+    out: dict[str, Any] = dict(raw)
+    for sig in msg.signals:
+        if sig.is_float and sig.name in out:
+            out[sig.name] = struct.unpack("<f" if sig.length == 32 else "<d", out[sig.name].to_bytes(sig.length // 8, "little"))[0]
+    return out
+
+
+def _bits(values: dict[str, Any]) -> dict[str, Any]:
+    """Values compared exactly: floats by their bits (NaN equal to the same NaN, -0.0 unlike 0.0)."""
+    return {k: struct.pack("<d", v) if isinstance(v, float) else v for k, v in values.items()}
+
+
 def stage_cantools(ctx: Ctx) -> None:
     import canmatrix.formats
 
@@ -338,11 +353,12 @@ def stage_cantools(ctx: Ctx) -> None:
                 if msg.frame_id != case["frame_id"]:
                     bad.append(f"case {i} ({case['message']}): the DBC gives it ID 0x{msg.frame_id:X}, the vectors 0x{case['frame_id']:X}")
                     continue
+                want = _cantools_raw(msg, case["raw"])
                 raw = msg.decode(data, decode_choices=False, scaling=False)
-                if raw != case["raw"]:
+                if _bits(raw) != _bits(want):
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools decodes raw {raw}, vectors say {case['raw']}")
                     continue
-                enc = msg.encode(case["raw"], scaling=False, strict=False)
+                enc = msg.encode(want, scaling=False, strict=False)
                 if enc != data:
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools encodes {enc.hex().upper()}, vectors say {case['data']}")
                 phys = msg.decode(data, decode_choices=False, scaling=True)
@@ -351,6 +367,11 @@ def stage_cantools(ctx: Ctx) -> None:
                         bad.append(f"case {i} ({case['message']}): DBC signal {sig.name} is not in the vector's physical values")
                         continue
                     expected = case["physical"][sig.name]
+                    if sig.is_float:  # the float itself, bit for bit ("NaN" any NaN; -0.0 keeps its sign)
+                        x = phys[sig.name]
+                        if not (math.isnan(x) if expected == "NaN" else _bits({0: x}) == _bits({0: float(expected)})):
+                            bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools physical {sig.name} = {x!r}, vectors say {expected!r}")
+                        continue
                     ulps = 4 * math.ulp(float(expected))  # the double arithmetic of both sides
                     tol = (abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))) + ulps
                     if not math.isclose(phys[sig.name], expected, abs_tol=tol):
@@ -454,6 +475,18 @@ class Job:
     bytewise: bool = True  # also the C runner with the word path off
 
 
+def guarded(ctx: Ctx, target: str, stage: Any, *args: Any) -> None:
+    """Run a stage; a crash of its test helpers (a runner that cannot read a case yet) is that
+    target's failure on this spec, not the end of the batch."""
+    try:
+        stage(*args)
+    except Exception as exc:  # noqa: BLE001
+        import traceback
+
+        where = traceback.extract_tb(exc.__traceback__)[-1]
+        ctx.fail(target, "test helper crashed", f"{type(exc).__name__}: {exc} ({Path(where.filename).name}:{where.lineno})")
+
+
 def run_spec(job: Job) -> SpecResult:
     """check → gen → every output's own checks (not Rust/TypeScript: see the batch stages)."""
     t0 = time.monotonic()
@@ -479,13 +512,13 @@ def run_spec(job: Job) -> SpecResult:
             g -= {"c", "python", "dbc", "rust", "vectors"}
             res.facts["has_json"] = True
         if wanted("c") and {"c", "vectors"} <= g:
-            stage_c(ctx)
+            guarded(ctx, "c", stage_c, ctx)
         if wanted("python") and {"python", "vectors"} <= g:
-            stage_python(ctx, job.mypy)
+            guarded(ctx, "python", stage_python, ctx, job.mypy)
         if wanted("cantools", "canmatrix") and {"dbc", "vectors"} <= g:
-            stage_cantools(ctx)
+            guarded(ctx, "cantools", stage_cantools, ctx)
         if wanted("json") and res.facts.get("has_json") and {"jsonschema", "json_vectors", "json_bindings"} <= g:
-            stage_json(ctx, job.mypy)
+            guarded(ctx, "json", stage_json, ctx, job.mypy)
     res.seconds = time.monotonic() - t0
     return res
 

@@ -13,7 +13,13 @@ choices. Three choosers feed it:
   gives a simpler spec, as with Hypothesis).
 
 Smaller choices mean simpler specs throughout: fewer nodes, messages and signals, DLC 8,
-identity scaling, no options.
+identity scaling, no options, Intel order, classic frames, integer fields.
+
+Always drawn (issue 24, no switch): the bus's default byte order (little or big endian) and
+per field the other one now and then, so both orders mix in one frame and Motorola fields cross
+bytes (counters and checksums too); CAN FD messages (`fd: true`, every FD length up to 64
+bytes, `brs` on or off, the bus's `data_bitrate`); IEEE float32/float64 fields in either order,
+with and without a range. Multi-frame text and shared layouts stay in classic frames.
 
 The specs use the relaxed spec format of this issue. `NEW_FEATURES` names each relaxation;
 `features=CURRENT` restricts the strategy to what the current checker accepts (so the
@@ -80,6 +86,11 @@ INT_OFFSETS = (0, -40, 1, -1000, 250, -32768, 100000)
 DEC_FACTORS = ("0.1", "0.05", "0.001", "2.5", "-0.5", "0.000001", "0.5", "0.02", "0.25", "0.3", "0.125", "0.01")
 DEC_OFFSETS = ("0", "-12.8", "0.5", "-40", "1000000", "-1080", "-0.05", "1.5", "-273.15")
 LENGTHS = (8, 1, 2, 4, 16, 3, 12, 10, 5, 7, 32, 24, 6, 20, 64, 48, 33, 63, 40, 11)
+CLASSIC_DLCS = (8, 8, 4, 2, 1, 0, 3, 5, 6, 7)
+FD_DLCS = (8, 12, 64, 16, 20, 24, 32, 48, 2, 5)  # a CAN FD frame: every FD length, and short ones
+DATA_BITRATES = (2000000, 4000000, 5000000, 8000000, 1000000)
+FLOAT_RANGES = (("-100", "100"), ("0", "250"), ("-1000.5", "1000.5"), ("0.1", "3.3"), ("-40", "125"), ("-1e+20", "1e+20"))
+LITTLE, BIG = "little_endian", "big_endian"
 
 
 # --- choosers ------------------------------------------------------------------------------
@@ -274,6 +285,19 @@ def occupied_all(occupied: set[int] | None) -> set[int]:
     return set(occupied or ())
 
 
+def seq_bit(k: int, order: str) -> int:
+    """The frame bit (DBC numbering, 8 × byte + bit) at place k of a field's run in this order: an
+    Intel field's bits run upward from its LSB; a Motorola field's run from its MSB down to bit 0 of
+    a byte, then on from bit 7 of the next, so place k is bit 7 - k % 8 of byte k // 8."""
+    return k if order == LITTLE else 8 * (k // 8) + 7 - k % 8
+
+
+def frame_bits(start: int, length: int, order: str) -> set[int]:
+    """The frame bits of a field (`start` its LSB in Intel order, its MSB in Motorola order)."""
+    first = seq_bit(start, order)  # seq_bit is its own inverse
+    return {seq_bit(k, order) for k in range(first, first + length)}
+
+
 class Builder:
     def __init__(self, ch: Chooser, features: frozenset[str]) -> None:
         self.ch = ch
@@ -320,7 +344,10 @@ class Builder:
         bitrate = (
             self.pick((250000, 500000, 125000, 1000000, 10000, 20000, 50000, 100000, 800000, 83333)) if not self.p(0.2) else self.ch.integer(10000, 1000000)
         )
-        self.bus = {"bitrate": bitrate, "id_format": fmt, "addressing": addressing, "byte_order": "little_endian"}
+        self.order = BIG if self.p(0.3) else LITTLE  # the signals' default; each field may take the other
+        self.bus = {"bitrate": bitrate, "id_format": fmt, "addressing": addressing, "byte_order": self.order}
+        if self.p(0.3):  # a CAN FD bus: its data phase's bit rate (the FD frames' bit-rate switching)
+            self.bus = {"bitrate": bitrate, "data_bitrate": self.pick(DATA_BITRATES), **{k: v for k, v in self.bus.items() if k != "bitrate"}}
         self.j1939 = addressing == "j1939"
         nodes = self.nodes()
         self.node_list = nodes
@@ -512,16 +539,19 @@ class Builder:
             m["cycle_ms"] = self.pick((20, 100, 10, 50, 1000, 1, 10000, 500)) if not self.p(0.2) else self.ch.integer(1, 10000)
         if layout is not None:
             return self.layout_user(m, *layout)
-        dlc = self.pick((8, 8, 4, 2, 1, 0, 3, 5, 6, 7))
+        fd = self.p(0.2)
+        dlc = self.pick(FD_DLCS if fd else CLASSIC_DLCS)
         if dlc != 8 or self.p(0.2):
             m["dlc"] = dlc
+        if fd:
+            self.fd_frame(m)
         if dlc == 0 or self.p(0.03):
             if dlc > 0 or not self.feature("empty_signals", 0.6):
                 m["layout_undefined"] = True
             m["signals"] = []
             return m
         mf = None
-        if dlc >= 2 and self.multiframes < 2 and self.p(0.12):
+        if 2 <= dlc <= 8 and self.multiframes < 2 and self.p(0.12):
             self.multiframes += 1
             sigs, mf = self.multiframe_signals(dlc)
         else:
@@ -534,7 +564,27 @@ class Builder:
             m["multiframe"] = mf
         return m
 
+    def fd_frame(self, m: dict[str, Any]) -> None:
+        """`fd: true`, and `brs` where it is not the default (switching when the bus gives a data bit rate)."""
+        m["fd"] = True
+        if "data_bitrate" in self.bus:
+            if self.p(0.3):
+                m["brs"] = False
+            elif self.p(0.1):
+                m["brs"] = True
+        elif self.p(0.2):
+            m["brs"] = False
+
     # --- signals
+    def field_order(self) -> str:
+        """A field's byte order: mostly the bus default, else the other (both orders mixed in one frame)."""
+        return (LITTLE if self.order == BIG else BIG) if self.p(0.25) else self.order
+
+    def orient(self, s: dict[str, Any], order: str) -> None:
+        """Write the field's `byte_order` where it differs from the bus default (now and then where it does not)."""
+        if order != self.order or self.p(0.05):
+            s["byte_order"] = order
+
     def signals(self, dlc: int, occupied: set[int] | None = None, names: _Names | None = None, counter: bool = True, checksum: bool = True,
                 first_needed: bool = True) -> list[dict[str, Any]]:
         bits = 8 * dlc
@@ -545,40 +595,43 @@ class Builder:
             out.append(self.checksum(dlc, names))
             occ |= set(range(bits - 8, bits))
         want_counter = counter and self.p(0.3)
-        cursor = 0
         last = 0  # the previous field's length: rows of one width (wheel speeds, cell voltages), signed and unsigned mixed
-        while cursor < bits:
-            if cursor in occ:
-                cursor += 1
-                continue
-            if (out or not first_needed) and not self.p(0.8):
+        while (not out and first_needed) or self.p(0.8):
+            order = self.field_order()
+            # the field's first place (Intel: its LSB, Motorola: its MSB) and the free run from there, in its order's run of bits
+            first = next((k for k in range(bits) if seq_bit(k, order) not in occ), None)
+            if first is None:
                 break
             run = 0
-            while cursor + run < bits and cursor + run not in occ:
+            while first + run < bits and seq_bit(first + run, order) not in occ:
                 run += 1
+            start = seq_bit(first, order)
             if self.p(0.2):  # a gap: free, or a reserved field
                 gap = min(run, self.pick((1, 2, 3, 4, 8, 5, 7, 16)))
                 if self.p(0.5):
-                    out.append(self.reserved(cursor, gap))
-                occ |= set(range(cursor, cursor + gap))
-                cursor += gap
+                    out.append(self.reserved(start, gap, order))
+                occ |= frame_bits(start, gap, order)
                 continue
-            length = min(run, last if last and self.p(0.3) else self.pick(LENGTHS))
-            last = length
-            if want_counter and length <= 8 and self.p(0.5):
-                want_counter = False
-                out.append(self.counter(cursor, length, names))
+            if run >= 32 and self.p(0.2):  # an IEEE float
+                length = 64 if run >= 64 and self.p(0.4) else 32
+                out.append(self.float_field(start, length, names, order))
             else:
-                out.append(self.data(cursor, length, names))
-            occ |= set(range(cursor, cursor + length))
-            cursor += length
+                length = min(run, last if last and self.p(0.3) else self.pick(LENGTHS))
+                last = length
+                if want_counter and length <= 8 and self.p(0.5):
+                    want_counter = False
+                    out.append(self.counter(start, length, names, order))
+                else:
+                    out.append(self.data(start, length, names, order=order))
+            occ |= frame_bits(start, length, order)
         if first_needed and not out:  # every bit went to a free gap: one field after all
             start = min(b for b in range(bits) if b not in occupied_all(occupied))
-            out.append(self.data(start, min(8, bits - start), names))
+            out.append(self.data(start, min(8, bits - start), names, order=LITTLE))
         return out
 
-    def reserved(self, start: int, length: int) -> dict[str, Any]:
+    def reserved(self, start: int, length: int, order: str) -> dict[str, Any]:
         s: dict[str, Any] = {"role": "reserved", "start": start, "len": length}
+        self.orient(s, order)
         if self.p(0.2):
             s["desc_zh"] = "保留"
         return s
@@ -586,16 +639,19 @@ class Builder:
     def checksum(self, dlc: int, names: _Names) -> dict[str, Any]:
         s: dict[str, Any] = {"name": names.take("checksum" if self.p(0.8) else self.pick(("xor", "crc_byte", "check")))}
         self.sig_zh(s, "校验")
-        s.update({"start": 8 * (dlc - 1), "len": 8})
+        order = self.field_order()
+        s.update({"start": 8 * (dlc - 1) + (7 if order == BIG else 0), "len": 8})  # the last byte: its MSB is bit 7 in Motorola order
+        self.orient(s, order)
         if self.p(0.5):
             s["range"] = [0, 255]
         s["role"] = "checksum"
         return s
 
-    def counter(self, start: int, length: int, names: _Names) -> dict[str, Any]:
+    def counter(self, start: int, length: int, names: _Names, order: str) -> dict[str, Any]:
         s: dict[str, Any] = {"name": names.take("counter" if self.p(0.7) else self.pick(("alive", "rolling_counter", "heartbeat")))}
         self.sig_zh(s, "心跳")
         s.update({"start": start, "len": length})
+        self.orient(s, order)
         if self.p(0.5):
             s["range"] = [0, (1 << length) - 1]
         s["role"] = "counter"
@@ -633,10 +689,11 @@ class Builder:
             out["_raw"] = (lo_raw, hi_raw) if factor > 0 else (lo_raw, hi_raw)
         return out
 
-    def data(self, start: int, length: int, names: _Names, name: str | None = None) -> dict[str, Any]:
+    def data(self, start: int, length: int, names: _Names, name: str | None = None, order: str = LITTLE) -> dict[str, Any]:
         s: dict[str, Any] = {"name": names.take(name) if name else self.ident(SIG_WORDS, names, 0.1)}
         self.sig_zh(s)
         s.update({"start": start, "len": length})
+        self.orient(s, order)
         signed = self.p(0.25)
         if signed:
             s["signed"] = True
@@ -661,6 +718,18 @@ class Builder:
             s["desc"] = self.text()
         if self.p(0.1):
             s["desc_zh"] = self.zh()
+        return s
+
+    def float_field(self, start: int, length: int, names: _Names, order: str) -> dict[str, Any]:
+        """An IEEE 754 float32/float64 field: no scaling, sign flag or tables; a range or none (NaN, ±Inf pass)."""
+        s: dict[str, Any] = {"name": self.ident(SIG_WORDS, names, 0.1)}
+        self.sig_zh(s)
+        s.update({"start": start, "len": length, "float": True})
+        self.orient(s, order)
+        if self.p(0.5):
+            s["range"] = [Decimal(v) for v in self.pick(FLOAT_RANGES)]
+        if self.p(0.4):
+            s["unit"] = self.pick(UNITS)
         return s
 
     def specials(self, s: dict[str, Any], tmin: int, tmax: int, raw_lo: int, raw_hi: int) -> None:
@@ -712,6 +781,7 @@ class Builder:
         index: dict[str, Any] = {"name": names.take(self.pick(("frame_index", "index", "seq")))}
         self.sig_zh(index, "序号")
         index.update({"start": 0, "len": index_len})
+        self.orient(index, LITTLE)  # whole bytes from bit 0 of a byte: Intel fields
         if self.p(0.5):
             index["range"] = [0, (1 << index_len) - 1]
         first_byte = (index_len + 7) // 8
@@ -722,6 +792,7 @@ class Builder:
         payload: dict[str, Any] = {"name": names.take(self.pick(("text_chars", "chars", "payload")))}
         self.sig_zh(payload, "字符")
         payload.update({"start": 8 * first_byte, "len": 8 * nbytes})
+        self.orient(payload, LITTLE)
         frames = 1 + self.ch.integer(0, min((1 << index_len), 8) - 1)
         text_length = 1 + self.ch.integer(0, frames * nbytes - 1)
         mf = {"index": index["name"], "payload": payload["name"], "encoding": "ascii", "text_length": text_length, "frames": frames,
@@ -764,7 +835,7 @@ class Builder:
             elif what == "name":
                 new = self.ident(SIG_WORDS, final_names, 0.1)
                 overrides[target] = {"name": new}
-            elif what == "scaling" and sig.get("role", "data") == "data" and "values" not in sig and "special" not in sig:
+            elif what == "scaling" and sig.get("role", "data") == "data" and "values" not in sig and "special" not in sig and not sig.get("float"):
                 sc = self.scaling(sig["len"], bool(sig.get("signed")))
                 sc.pop("_raw", None)
                 sc.setdefault("factor", Decimal(1))
@@ -780,7 +851,7 @@ class Builder:
             key = s.get("name", f"reserved_{s['start']}")
             if key in removed:
                 continue
-            occ |= set(range(s["start"], s["start"] + s["len"]))
+            occ |= frame_bits(s["start"], s["len"], s.get("byte_order", self.order))
             has_counter |= s.get("role") == "counter"
             has_checksum |= s.get("role") == "checksum"
         adds: list[dict[str, Any]] = []

@@ -35,7 +35,7 @@ CORPUS = {
     "absurd_start_2_70.yaml": ("22:38", "extends beyond the 8-byte frame of 'command' [signal-beyond-dlc]"),
     "absurd_len_2_70.yaml": ("22:46", "length 1180591620717411303424 is not a valid bit field [signal-length]"),
     "absurd_len_negative.yaml": ("22:46", "length -16 is not a valid bit field [signal-length]"),
-    "absurd_dlc_100.yaml": ("20:10", "DLC 100 of 'command' is not in 0..8 [dlc-range]"),
+    "absurd_dlc_100.yaml": ("20:10", "DLC 100 of 'command' is not a CAN frame length [dlc-range]"),
     "absurd_id_negative.yaml": ("15:9", "does not fit 29 bits [id-range]"),
     "absurd_value_2_70.yaml": ("21:71", "value 1180591620717411303424 (0x400000000000000000) does not fit the 2-bit field"),
     "absurd_cycle_2_70.yaml": ("19:15", "cycle time 1180591620717411303424 ms"),

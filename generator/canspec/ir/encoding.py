@@ -168,3 +168,24 @@ def bits_of_float(value: float, length: int) -> int:
     if length == 32 and math.isfinite(value) and abs(Fraction(value)) > FLOAT_MAX[32]:
         raise OverflowError(f"{value!r} is beyond the largest float32")
     return int.from_bytes(struct.pack(f"<{FLOAT_FORMATS[length]}", value), "little")
+
+
+def _ordered(bits: int, length: int) -> int:
+    """A finite float's bit pattern as an integer that rises with its value (-0 and +0 both 0)."""
+    sign = 1 << (length - 1)
+    return -(bits & (sign - 1)) if bits & sign else bits
+
+
+def _unordered(n: int, length: int) -> int:
+    return (1 << (length - 1)) | -n if n < 0 else n
+
+
+def float_inside(x: Fraction, length: int, up: bool) -> int:
+    """The bit pattern of the format's float nearest to x at or above it (`up`) or at or below it:
+    a range end a field can hold that keeps its value inside the range (0.1 has no float32; the
+    float32 just above it lies inside [0.1, 1]). x is clipped to the format's finite range."""
+    x = max(-FLOAT_MAX[length], min(FLOAT_MAX[length], x))
+    n, step = _ordered(bits_of_float(float(x), length), length), 1 if up else -1
+    while (Fraction(float_of_bits(_unordered(n, length), length)) - x) * step < 0:  # the double (and binary32) roundings may land outside
+        n += step
+    return _unordered(n, length)

@@ -8,6 +8,7 @@ read it and templates only shape text.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
@@ -189,7 +190,12 @@ class Signal:
     @property
     def base_raw(self) -> int:
         """The raw value a field holds when nothing sets it (the other fields of a split text, of
-        a vector, of a simulated message): 0 where the range allows it, else the nearest allowed."""
+        a vector, of a simulated message): 0 where the range allows it, else the nearest allowed
+        (for a float field: the bits of the in-range float nearest 0.0)."""
+        if self.is_float:
+            from canspec.ir.encoding import float_inside  # here: encoding imports this module
+
+            return float_inside(min(max(Fraction(0), self.check_min), self.check_max), self.length, up=self.check_min > 0)
         return min(max(0, self.raw_min), self.raw_max)
 
     # The runtime rule over the accepted range: the C and Python encoders decide their checks on
@@ -209,7 +215,16 @@ class Signal:
         return max(abs(self.quotient(v)) for v in (self.accept_min, self.accept_max))
 
     def raw_allowed(self, raw: int) -> bool:
-        """Whether a physical encode may produce this raw value."""
+        """Whether a physical encode may produce this raw value (a float field: a value in the range,
+        NaN or ±Inf only without one, and a NaN only as the format's quiet NaN)."""
+        if self.is_float:
+            from canspec.ir.encoding import bits_of_float, float_of_bits
+
+            x = float_of_bits(raw, self.length)
+            if math.isfinite(x):
+                return self.accept_min <= Fraction(x) <= self.accept_max
+            quiet = bits_of_float(math.nan, self.length)  # NaN's payload is lost: only the quiet NaN (either sign) comes back
+            return self.doc_min is None and (math.isinf(x) or raw & ~(1 << (self.length - 1)) == quiet)
         return self.raw_min <= raw <= self.raw_max or any(s.raw == raw for s in self.specials)
 
     def physical(self, raw: int | Fraction) -> Fraction:

@@ -8,12 +8,14 @@ import functools
 import json
 import logging
 import math
+import struct
 from pathlib import Path
 from typing import Any
 
 import canmatrix.formats
 import cantools
 from canspec import ir
+from canspec.ir.encoding import float_of_bits
 from canspec.pipeline import compile_spec
 from canspec.targets import registry
 from repo_paths import ROOT
@@ -74,13 +76,26 @@ def check_oracle(db: Any, vectors_: dict[str, Any]) -> int:
     for case in vectors_["cases"]:
         msg = db.get_message_by_name(case["message"])  # by name: frame IDs repeat across 11 and 29 bits
         to_dbc = {v: k for k, v in spec_names(msg).items()}
-        raw = {to_dbc[k]: v for k, v in case["raw"].items()}
+        # cantools' raw value of an IEEE float signal is the float itself: the bits the vectors hold, as a float
+        raw = {to_dbc[k]: float_of_bits(v, msg.get_signal_by_name(to_dbc[k]).length) if msg.get_signal_by_name(to_dbc[k]).is_float else v
+               for k, v in case["raw"].items()}
         data = bytes.fromhex(case["data"])
-        assert msg.decode(data, decode_choices=False, scaling=False) == raw, case
+        assert same_values(msg.decode(data, decode_choices=False, scaling=False), raw), case
         assert msg.encode(raw, scaling=False, strict=False) == data, case
         phys = msg.decode(data, decode_choices=False, scaling=True)
         for sig in msg.signals:
             expected = case["physical"][spec_names(msg)[sig.name]]
+            if sig.is_float:  # a number, -0.0 with its sign, or "NaN" / "Infinity" / "-Infinity"
+                assert math.isnan(phys[sig.name]) if expected == "NaN" else same_values({0: phys[sig.name]}, {0: float(expected)}), (case, sig.name)
+                continue
             tolerance = abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))
             assert math.isclose(phys[sig.name], expected, abs_tol=tolerance), (case, sig.name)
     return len(vectors_["cases"])
+
+
+def same_values(a: dict[Any, Any], b: dict[Any, Any]) -> bool:
+    """Equal values, floats bit for bit (NaN equals NaN of the same bits; -0.0 differs from 0.0)."""
+    def key(v: Any) -> Any:
+        return ("float", struct.pack("<d", v)) if isinstance(v, float) else v
+
+    return a.keys() == b.keys() and all(key(a[k]) == key(b[k]) for k in a)

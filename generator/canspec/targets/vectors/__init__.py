@@ -6,7 +6,9 @@ Per message: the all-zero frame, the minimum and maximum of every signal, every 
 value-table entry and special value, rounding ties, and 50 seeded pseudo-random cases.
 Every case's physical values are encodable under the shared rules (values the documented
 range excludes — e.g. reserved enum codes — are not physical-encodable and appear only as
-raw bytes in the `raw_only` cases), and counters and checksums are filled in.
+raw bytes in the `raw_only` cases), and counters and checksums are filled in. A frame's data is
+its `dlc` bytes (up to 64 in CAN FD). IEEE float fields get their own cases (floats.py): range
+ends, ±0, subnormals, NaN (quiet and with a payload), ±Inf and random finite values.
 """
 
 from __future__ import annotations
@@ -19,10 +21,10 @@ from fractions import Fraction
 from typing import Any
 
 from canspec import ir
-from canspec.ir.encoding import fits_runtime, to_physical_runtime, to_raw_exact, to_raw_runtime
+from canspec.ir.encoding import fits_runtime, float_of_bits, to_physical_runtime, to_raw_exact, to_raw_runtime
 from canspec.reference import codec
 from canspec.targets import Target
-from canspec.targets.vectors import sequences, texts
+from canspec.targets.vectors import floats, sequences, texts
 
 RANDOM_CASES = 50
 VECTOR_FORMAT = 1
@@ -39,6 +41,13 @@ TEXT_RULES = (
     "The rules: generator/canspec/reference/textframes.py."
 )
 
+FLOAT_RULES = (
+    "An IEEE 754 field's raw value is its bit pattern, its physical value the float those bits hold: a JSON number (-0 as -0.0) or "
+    '"NaN", "Infinity", "-Infinity". Encode rounds to nearest (binary32); NaN and +-Inf encode only where no range is documented (else '
+    "the case is raw_only), NaN to the format's quiet NaN. float_special cases (+0, -0, the smallest subnormals, the quiet NaN, +-Inf) "
+    "are physical-encodable; nan_payload cases (a NaN with another payload) decode to NaN and pack at raw level, their physical encode "
+    "is not checked."
+)
 
 
 Scales = tuple[tuple[str, int, int, int], ...]
@@ -51,6 +60,7 @@ def _scales(msg: ir.Message) -> Scales:
     return tuple(
         (s.name, s.factor.numerator * s.offset.denominator, s.offset.numerator * s.factor.denominator, s.factor.denominator * s.offset.denominator)
         for s in msg.data_signals
+        if not s.is_float
     )
 
 
@@ -65,11 +75,20 @@ def _case(
     for name, a, b, d in scales if scales is not None else _scales(msg):
         n = raw[name] * a + b
         phys[name] = n // d if n % d == 0 else n / d
+    for s in msg.data_signals:
+        if s.is_float:
+            phys[s.name] = floats.json_value(float_of_bits(raw[s.name], s.length))
     if physical:
         phys.update(physical)
-    if kind != "raw_only":
+    refused = {s.name: floats.encodes_to(s, raw[s.name]) for s in msg.data_signals if s.is_float}
+    if kind != "raw_only" and any(refused.values()):
+        kind = "raw_only" if "raw_only" in refused.values() else "nan_payload"
+        why = {"raw_only": "a physical encode refuses it (documented range)", "nan_payload": "a physical encode gives the quiet NaN"}
+        note = f"{note}; " * bool(note) + ", ".join(f"{n}: {why[k]}" for n, k in refused.items() if k)
+    if kind not in ("raw_only", "nan_payload"):
         # a decoded case's values must encode back whatever the accepted range says: no range check here
-        lost = [s.name for s in msg.data_signals if not s.is_identity and not _survives_doubles(s, raw[s.name], phys[s.name], kind != "decoded")]
+        lost = [s.name for s in msg.data_signals
+                if not s.is_identity and not s.is_float and not _survives_doubles(s, raw[s.name], phys[s.name], kind != "decoded")]
         if lost:
             kind, note = "beyond_double", f"{note}; " * bool(note) + f"the physical value of {', '.join(lost)} does not encode back in doubles"
     return case_record(msg, data, raw, phys, kind, note)
@@ -100,7 +119,7 @@ def _ties(sig: ir.Signal) -> list[tuple[float, int, str]]:
     middle, so wide fields get their extremes), with the raw value the shared runtime rule gives
     for that double input (ir/encoding.py). Within the rule's tie guarantee that is the exact
     decimal rule's result (tested); beyond it the note says so."""
-    if sig.is_identity or sig.raw_max - sig.raw_min < 2:
+    if sig.is_identity or sig.is_float or sig.raw_max - sig.raw_min < 2:
         return []
     out = []
     for lower in sorted({sig.raw_min, (sig.raw_min + sig.raw_max) // 2, sig.raw_max - 1}):
@@ -119,7 +138,7 @@ def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
     (raw × factor + offset, each step in doubles) where that is not the nearest double of the exact
     value (those the min/max cases hold) and the runtime rule carries it back (its quotient inside
     the field, rounding to the raw value): each must encode back to its raw value."""
-    if sig.is_integer:  # integer physical values: exact in doubles wherever they survive at all
+    if sig.is_integer or sig.is_float:  # integer physical values: exact in doubles wherever they survive at all
         return []
     f, o = float(sig.factor), float(sig.offset)
     out = []
@@ -144,6 +163,9 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
         cases.append(case(zero, "raw_only", note="all-zero frame; some zero raw values lie outside the documented range"))
     cases.append(case(base, "base"))
     for sig in sigs:
+        if sig.is_float:
+            cases += [case({**base, sig.name: raw}, kind, note=note) for raw, kind, note in floats.edge_cases(sig)]
+            continue
         cases.append(case({**base, sig.name: sig.raw_min}, "min", note=sig.name))
         cases.append(case({**base, sig.name: sig.raw_max}, "max", note=sig.name))
         if sig.value_table is not None:
@@ -157,15 +179,17 @@ def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
         for raw, x in _decoded(sig):
             cases.append(case({**base, sig.name: raw}, "decoded", {sig.name: x}, note=f"{sig.name} raw {raw} decodes to {x!r}"))
     rng = random.Random(zlib.crc32(msg.name.encode()))
-    for _ in range(RANDOM_CASES if sigs else 0):
-        raw = {}
-        for s in sigs:
-            if s.specials and rng.random() < 0.1:
-                raw[s.name] = rng.choice(s.specials).raw
-            else:
-                raw[s.name] = rng.randint(s.raw_min, s.raw_max)
-        cases.append(case(raw, "random"))
+    cases += [case({s.name: _random_raw(s, rng) for s in sigs}, "random") for _ in range(RANDOM_CASES if sigs else 0)]
     return cases
+
+
+def _random_raw(sig: ir.Signal, rng: random.Random) -> int:
+    """A random raw value of the field: a special value now and then, else any in its range."""
+    if sig.is_float:
+        return floats.random_raw(sig, rng)
+    if sig.specials and rng.random() < 0.1:
+        return rng.choice(sig.specials).raw
+    return rng.randint(sig.raw_min, sig.raw_max)
 
 
 def vin_cases(can: ir.CanProtocol) -> list[dict[str, Any]]:
@@ -211,6 +235,7 @@ def build_vectors(spec: ir.Spec) -> dict[str, Any]:
                 " physical encode must refuse them; beyond_double cases (physical values a double cannot carry back to their raw value, on fields "
                 "wider than 2^52 steps) decode and pack at raw level only"
             ),
+            **({"float": FLOAT_RULES} if spec.can.has_float else {}),
         },
         "cases": cases,
         "multiframe": vin_cases(spec.can),

@@ -17,6 +17,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from canspec import ir
+from canspec.ir.fd import FD_LENGTHS, dlc_code
 from canspec.ir.ids import MAX_EXTENDED_ID, MAX_STANDARD_ID
 from canspec.reference import codec
 from canspec.runtime import supervision
@@ -237,10 +238,9 @@ def event_driven(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
 def frames_refused(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
     """Wrong lengths, unknown IDs, an ID in the other ID format; parameters valid_after 1 and 3."""
     for msg in pick(can, lambda m: True):
-        seq = Sequence(can, "length", f"{msg.name}: a frame one byte short (or long), then good frames", [msg])
-        data = frame(msg, 0)
+        seq = Sequence(can, "length", f"{msg.name}: a frame {'one length' if msg.dlc > 8 else 'one byte'} short (or long), then good frames", [msg])
         _run(seq, msg, period(msg), [0])
-        seq.frame(2 * period(msg), msg, data[:-1] if data else b"\x00")
+        seq.frame(2 * period(msg), msg, short_frame(frame(msg, 0)))
         _run(seq, msg, 3 * period(msg), [1, 2, 3])
         yield seq.done()
         for valid_after in (1, 3):
@@ -253,6 +253,14 @@ def frames_refused(can: ir.CanProtocol) -> Iterator[dict[str, Any]]:
         for t, (fid, ext) in enumerate(unknown_ids(can)):
             seq.frame(t, msg, frame(msg, 0), frame_id=fid, extended=ext)
         yield seq.done()
+
+
+def short_frame(data: bytes) -> bytes:
+    """A frame of the wrong length: one byte short (one FD length short above 8 bytes, as no frame
+    of 9..11 bytes exists), or one byte long for a 0-byte message."""
+    if not data:
+        return b"\x00"
+    return data[: FD_LENGTHS[dlc_code(len(data)) - 1]]
 
 
 def unknown_ids(can: ir.CanProtocol) -> list[tuple[int, bool]]:
