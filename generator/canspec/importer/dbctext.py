@@ -16,6 +16,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from canspec.ir.ids import DBC_EXTENDED_FLAG, MAX_EXTENDED_ID, MAX_STANDARD_ID
+
 MAX_REPAIRS = 10_000
 PLACEHOLDER = "CANSPEC_DIGIT_"  # prefix of a digit-first name while cantools parses it
 
@@ -67,7 +69,7 @@ def prepass(rep: Repairs) -> None:
             rep.lines[i] = f"{m.group(1)}BO_ {m.group(2)}{line[m.end(2):]}"
             rep.warn(i, f"CM_ without an object type before ID {m.group(2)}: taken as the comment of message {m.group(2)}")
     for line in list(rep.lines):
-        if (m := _BO.match(line)) is not None and 0x7FF < int(m.group(2)) < 0x80000000:
+        if (m := _BO.match(line)) is not None and MAX_STANDARD_ID < int(m.group(2)) < DBC_EXTENDED_FLAG:
             _extend_id(rep, int(m.group(2)), m.group(4))
     _drop_unused_vals(rep)
 
@@ -77,7 +79,7 @@ def repair_step(rep: Repairs, error: str) -> bool:
     if (m := _STANDARD_TOO_BIG.search(error)) is not None:
         return _extend_id(rep, int(m.group(1), 16), m.group(2))
     if (m := _EXTENDED_TOO_BIG.search(error)) is not None:
-        return _drop_message(rep, int(m.group(1), 16) | 0x80000000, m.group(2))
+        return _drop_message(rep, int(m.group(1), 16) | DBC_EXTENDED_FLAG, m.group(2))
     if _UNUSED_VAL.search(error):
         return _drop_unused_vals(rep)
     if (m := _SYNTAX.search(error)) is not None:
@@ -86,12 +88,12 @@ def repair_step(rep: Repairs, error: str) -> bool:
 
 
 def _extend_id(rep: Repairs, frame_id: int, name: str) -> bool:
-    if frame_id > 0x1FFFFFFF:
+    if frame_id > MAX_EXTENDED_ID:
         return _drop_message(rep, frame_id, name)
     for i, line in enumerate(rep.lines):
         m = _BO.match(line)
         if m and int(m.group(2)) == frame_id and m.group(4) == name:
-            rep.lines[i] = f"{m.group(1)}{frame_id | 0x80000000}{line[m.end(2):]}"
+            rep.lines[i] = f"{m.group(1)}{frame_id | DBC_EXTENDED_FLAG}{line[m.end(2):]}"
             rep.warn(i, f"ID 0x{frame_id:X} of {name} is above 0x7FF but has no extended flag: taken as 29-bit")
             return True
     return False
@@ -100,9 +102,9 @@ def _extend_id(rep: Repairs, frame_id: int, name: str) -> bool:
 def _drop_message(rep: Repairs, dbc_id: int, name: str) -> bool:
     for i, line in enumerate(rep.lines):
         m = _BO.match(line)
-        if m and int(m.group(2)) in (dbc_id, dbc_id & 0x7FFFFFFF) and m.group(4) == name:
+        if m and int(m.group(2)) in (dbc_id, dbc_id & ~DBC_EXTENDED_FLAG) and m.group(4) == name:
             dbc_id = int(m.group(2))
-            rep.warn(i, f"ID 0x{dbc_id & 0x7FFFFFFF:X} of {name} does not fit 29 bits: message left out")
+            rep.warn(i, f"ID 0x{dbc_id & ~DBC_EXTENDED_FLAG:X} of {name} does not fit 29 bits: message left out")
             rep.lines[i] = ""
             j = i + 1
             while j < len(rep.lines) and _SG.match(rep.lines[j]):

@@ -14,6 +14,7 @@ from canspec.importer.names import Namer, identifier
 from canspec.ir.bits import positions
 from canspec.ir.encoding import raw_range
 from canspec.ir.fd import FD_LENGTHS
+from canspec.ir.ids import DBC_EXTENDED_FLAG
 
 DEFAULT_BITRATE = 500_000
 DEFAULT_DATA_BITRATE = 2_000_000
@@ -142,7 +143,7 @@ def _protocol(loaded: Loaded) -> dict[str, Any]:
 def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables: dict[str, dict[int, str]],
              written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
              report: Report) -> dict[str, Any] | None:
-    dbc_id = msg.frame_id | 0x80000000 if msg.is_extended_frame else msg.frame_id
+    dbc_id = msg.frame_id | DBC_EXTENDED_FLAG if msg.is_extended_frame else msg.frame_id
     line = lines.get((dbc_id, ""))
     source_name = loaded.renamed.get(msg.name, msg.name)
     if msg.is_multiplexed():

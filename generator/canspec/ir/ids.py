@@ -4,6 +4,7 @@ from __future__ import annotations
 
 MAX_STANDARD_ID = 0x7FF  # 11-bit identifier
 MAX_EXTENDED_ID = 0x1FFFFFFF  # 29-bit identifier
+DBC_EXTENDED_FLAG = 0x80000000  # a DBC writes a 29-bit ID with bit 31 set
 
 
 def max_id(extended: bool) -> int:

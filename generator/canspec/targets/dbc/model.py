@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
+from canspec.ir.ids import DBC_EXTENDED_FLAG
 from canspec.render.environment import header_lines
 from canspec.targets.dbc import attributes, comments, naming
 
@@ -88,7 +89,7 @@ class Dbc:
 
 
 def dbc_id(msg: ir.Message) -> int:
-    return msg.frame_id | 0x80000000 if msg.is_extended else msg.frame_id
+    return msg.frame_id | DBC_EXTENDED_FLAG if msg.is_extended else msg.frame_id
 
 
 def _message(can: ir.CanProtocol, msg: ir.Message, names: dict[tuple[str, str], str]) -> DbcMessage:
