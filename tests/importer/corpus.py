@@ -11,7 +11,7 @@ from typing import Any
 
 import cantools
 from canspec.importer.load import load
-from canspec.importer.run import import_sources
+from canspec.importer.run import import_loaded
 from canspec.importer.yamlout import dump
 from canspec.targets.dbc import render_dbc
 
@@ -34,26 +34,21 @@ class Imported:
     spec_dir: Path
     problems: list[str]  # canspec check's errors
     dbc: str | None  # the DBC `canspec gen` writes from the imported spec
+    loaded: Any = None  # the source as the importer read it (cantools' database after the repairs)
     spec: Any = None
     skipped: dict[str, str] = field(default_factory=dict)
 
 
 def import_one(path: Path, out: Path) -> Imported:
-    spec, report, compiled = import_sources([str(path)])
+    loaded = load(path, path.name)
+    spec, report, compiled = import_loaded([loaded])
     out.mkdir(parents=True, exist_ok=True)
     name = spec["protocol"]["name"]
     (out / f"{name}.yaml").write_text(dump(spec, ["corpus import"]), encoding="utf-8")
     if compiled.spec is None:
-        return Imported(path, report.warnings, out, [str(p) for p in compiled.errors], None)
+        return Imported(path, report.warnings, out, [str(p) for p in compiled.errors], None, loaded)
     dbc = render_dbc(compiled.spec)[f"dbc/{compiled.spec.can.name}.dbc"].decode()
-    return Imported(path, report.warnings, out, [], dbc, compiled.spec)
-
-
-def load_source(path: Path) -> tuple[Any, dict[str, str]]:
-    """The source as cantools reads it after canspec's repairs (the same text the importer read),
-    and the placeholders of its digit-first names."""
-    loaded = load(path, path.name)
-    return cantools.database.load_string(loaded.text, database_format="dbc", strict=False), loaded.renamed
+    return Imported(path, report.warnings, out, [], dbc, loaded, compiled.spec)
 
 
 def load_generated(path: Path) -> tuple[Any, dict[str, str]]:

@@ -10,7 +10,7 @@ import pytest
 from canspec.ir.encoding import raw_range, raw_type_range
 from repo_paths import ROOT
 
-from importer.corpus import Imported, import_one, load_generated, load_source, message_facts, opendbc_files, signal_facts
+from importer.corpus import Imported, import_one, load_generated, message_facts, opendbc_files, signal_facts
 from importer.kinds import KINDS, kind_of
 
 FILES = opendbc_files()
@@ -54,7 +54,7 @@ def test_import_is_faithful(path: Path, imports, tmp_path: Path) -> None:
     imported = imports(path)
     assert not imported.problems, f"canspec check refuses the import of {path.name}:\n" + "\n".join(imported.problems[:10])
     (tmp_path / "generated.dbc").write_text(imported.dbc, encoding="utf-8")
-    (source, source_names), (ours, our_names) = load_source(path), load_generated(tmp_path / "generated.dbc")
+    (source, source_names), (ours, our_names) = (imported.loaded.db, imported.loaded.renamed), load_generated(tmp_path / "generated.dbc")
     left_out = _left_out(imported.warnings)
     dropped_values = {w[2] for w in imported.warnings if w[2].startswith("value ")}
     mismatches = []

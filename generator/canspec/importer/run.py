@@ -9,19 +9,22 @@ from typing import Any
 
 from canspec.importer import merge, tospec
 from canspec.importer.clashes import resolve_clashes
-from canspec.importer.load import load
+from canspec.importer.load import Loaded, load
 from canspec.pipeline import Compiled
 
 
 def import_sources(sources: list[str]) -> tuple[dict[str, Any], tospec.Report, Compiled]:
     """The spec, the warnings, and the spec compiled (its problems are what `canspec check` says)."""
+    return import_loaded([load(Path(source), source) for source in sources])
+
+
+def import_loaded(sources: list[Loaded]) -> tuple[dict[str, Any], tospec.Report, Compiled]:
     report = tospec.Report()
     specs = []
-    for source in sources:
-        loaded = load(Path(source), source)
+    for loaded in sources:
         for line, text in loaded.warnings:
-            report.warn(source, line, text)
-        specs.append((source, tospec.build_spec(loaded, report)))
+            report.warn(loaded.source, line, text)
+        specs.append((loaded.source, tospec.build_spec(loaded, report)))
     spec = merge.merge(specs)
-    compiled = resolve_clashes(spec, lambda text: report.warn(sources[0] if len(sources) == 1 else "import", None, text))
+    compiled = resolve_clashes(spec, lambda text: report.warn(sources[0].source if len(sources) == 1 else "import", None, text))
     return spec, report, compiled
