@@ -12,15 +12,14 @@ import random
 import sys
 from pathlib import Path
 
-import numpy as np
-from canspec.pipeline import compile_spec
 from canspec.logs import bulktext
-from canspec.reference import codec
 from canspec.logs import frames as fr
 from canspec.logs.bulk import Decoder
 from canspec.logs.candump import Frame
 from canspec.logs.fields import MessageFrames
 from canspec.logs.loghealth import HealthReport
+from canspec.pipeline import compile_spec
+from canspec.reference import codec
 from hypothesis import HealthCheck, given, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))

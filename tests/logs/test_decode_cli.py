@@ -247,10 +247,10 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
     import random
 
     import numpy as np
-    from canspec.pipeline import compile_spec
     from canspec.logs import bulktext
     from canspec.logs import frames as fr
     from canspec.logs.fields import MessageFrames
+    from canspec.pipeline import compile_spec
     from canspec.reference import codec
     from repo_paths import ROOT
 

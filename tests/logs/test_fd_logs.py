@@ -29,7 +29,7 @@ from canspec.reference import codec
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import oracle
-from canspec_cli import FIXTURES, run_canspec
+from canspec_cli import FIXTURES, canspec_env, run_canspec
 from logsynth import T0, Frame, write
 
 SPEC = FIXTURES / "valid" / "motorola_fd_float.yaml"
@@ -142,8 +142,11 @@ def _json_number(value):
 @pytest.mark.parametrize("fmt", ["blf", "asc"])
 def test_decode_cli_text_json_csv_match_the_reference_codec(fmt, logs, frames, can):
     msg_of = {m.frame_id: m for m in can.messages}
-    run = lambda *extra: subprocess.run([sys.executable, "-m", "canspec", "decode", "--spec", str(SPEC), str(logs[fmt]), *extra],  # noqa: E731
-                                        capture_output=True, text=True, env=oracle_env(), check=True).stdout
+
+    def run(*extra):
+        args = [sys.executable, "-m", "canspec", "decode", "--spec", str(SPEC), str(logs[fmt]), *extra]
+        return subprocess.run(args, capture_output=True, text=True, env=canspec_env(), check=True).stdout
+
     text = run().splitlines()
     want = [f"({f.timestamp:.6f}) {{}} {f.frame_id:03X} {msg_of[f.frame_id].name}: {codec.text_decoder(msg_of[f.frame_id])(codec.frame_word(f.data))}"
             for f in frames]
@@ -178,8 +181,3 @@ def test_report_counts_fd_frames_and_wrong_lengths(tmp_path, can):
     assert next(r for r in report["messages"] if r["message"] == m.name)["frames"] == 5
     assert f"{log}:6: error: {m.name} ({m.id_text}): 48 data bytes, expected 64" in result.stderr
 
-
-def oracle_env():
-    from canspec_cli import canspec_env
-
-    return canspec_env()

@@ -8,9 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from canspec import ir
-from canspec.reference import codec
 from canspec.logs.bulk import physical_column
 from canspec.logs.fields import MessageFrames
+from canspec.reference import codec
 
 SAFE_BITS = 52  # integer arithmetic in int64 is exact below this many bits of raw × factor + offset
 

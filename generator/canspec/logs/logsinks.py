@@ -19,10 +19,10 @@ from typing import IO, Any
 import numpy as np
 
 from canspec import ir
-from canspec.reference import codec
 from canspec.logs.bulk import Decoder
 from canspec.logs.bulktext import message_texts
 from canspec.logs.fields import MessageFrames
+from canspec.reference import codec
 
 
 class FrameSink:
