@@ -14,7 +14,7 @@ more than the word)."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from canspec.logs.candump import Frame
 COLUMNS = ("timestamp", "channel", "frame_id", "extended", "kind", "dlc", "word", "line", "flags")
 DTYPES = (np.float64, np.int32, np.uint32, np.bool_, np.uint8, np.uint8, np.uint64, np.int64, np.uint8)
 FD, BRS, ESI = 1, 2, 4  # flags bits (the FD frame format, bit-rate switching, error state indicator)
-NO_DATA = np.zeros((0, 0), np.uint8)
+NO_FLAGS, NO_DATA = np.zeros(0, np.uint8), np.zeros((0, 0), np.uint8)  # defaults: replaced by zeros of the batch's length
 
 
 @dataclass
@@ -36,13 +36,13 @@ class Batch:
     dlc: np.ndarray
     word: np.ndarray
     line: np.ndarray
-    flags: np.ndarray | None = None  # None: all zero (classic frames)
+    flags: np.ndarray = field(default_factory=lambda: NO_FLAGS)  # left out: all zero (classic frames)
     channels: tuple[str, ...] = ()
-    data: np.ndarray | None = None  # None: no frame longer than 8 bytes
+    data: np.ndarray = field(default_factory=lambda: NO_DATA)  # left out (or None): no frame longer than 8 bytes
 
     def __post_init__(self) -> None:
         n = len(self.frame_id)
-        if self.flags is None:
+        if self.flags is None or len(self.flags) != n:
             self.flags = np.zeros(n, np.uint8)
         if self.data is None or (self.data.shape[1] == 0 and len(self.data) != n):
             self.data = np.zeros((n, 0), np.uint8)
