@@ -129,7 +129,8 @@ def _objects(buf: bytes, start: float, first: int) -> tuple[fr.Batch, int]:
     d = p + OBJ_BASE.size + np.where(v == 1, 16, 24)  # the object's own fields
     ten_us = _uint(b, p + 16, 4) == 1
     timestamp = _uint(b, p + 24, 8).astype(np.float64) * np.where(ten_us, 1e-5, 1e-9) + start
-    channel = _uint(b, d, 2).astype(np.int64) - 1
+    # the channel: 16 bits, but 8 in a CAN_FD_MESSAGE_64 (its DLC follows)
+    channel = np.where(t == CAN_FD_MESSAGE_64, b[d], _uint(b, d, 2)).astype(np.int64) - 1
     classic, error, fd = np.isin(t, (CAN_MESSAGE, CAN_MESSAGE2)), t == CAN_ERROR_EXT, t == CAN_FD_MESSAGE
     flags = b[d + 2]
     frame_id = _uint(b, np.where(error, d + 16, d + 4), 4)
