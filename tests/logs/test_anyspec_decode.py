@@ -64,6 +64,29 @@ def test_bulk_decoding_of_motorola_fd_and_floats_equals_the_reference_codec():
     check_decoding(can, random.Random(24))
 
 
+SHORT_MOTOROLA = """\
+schema_version: 1
+kind: can_protocol
+protocol: {name: short_frames, version: 1.0.0}
+bus: {bitrate: 500000, id_format: standard, addressing: none, byte_order: big_endian}
+nodes: [{name: A}, {name: B}]
+messages:
+  - {name: three, id: 0x10, sender: A, receivers: [B], cycle_ms: 10, dlc: 3, signals: [
+      {name: a, start: 7, len: 10}, {name: b, start: 13, len: 10, factor: 0.5}, {name: c, start: 19, len: 4, signed: true}]}
+  - {name: five, id: 0x11, sender: A, receivers: [B], cycle_ms: 10, dlc: 5, signals: [
+      {name: x, start: 7, len: 1}, {name: f, start: 15, len: 32, float: true}, {name: y, start: 0, len: 7, byte_order: little_endian}]}
+  - {name: one, id: 0x12, sender: A, receivers: [B], cycle_ms: 10, dlc: 1, signals: [{name: n, start: 5, len: 3, signed: true}]}
+"""
+
+
+def test_bulk_decoding_of_motorola_fields_in_short_frames(tmp_path):
+    """Motorola fields of frames shorter than 8 bytes (the big-endian word of a 1-, 3- and 5-byte frame)."""
+    (tmp_path / "short.yaml").write_text(SHORT_MOTOROLA)
+    compiled = compile_spec(tmp_path / "short.yaml")
+    assert compiled.spec is not None, [p.format() for p in compiled.problems]
+    check_decoding(compiled.spec.can, random.Random(5))
+
+
 def check_decoding(can, rng):
     msgs = can.messages
     picks, payloads, batch = random_batch(msgs, 400, rng)
