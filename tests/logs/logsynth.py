@@ -36,6 +36,7 @@ class Frame(NamedTuple):
     kind: str = "data"  # data | remote | error
     fd: bool = False  # a CAN FD frame (up to 64 bytes)
     brs: bool = False  # with bit-rate switching
+    esi: bool = False  # error state indicator (the sender is error passive)
 
 
 def frames_from_cases(cases: list[tuple[int, bool, bytes]], n: int, specials_every: int = 0) -> list[Frame]:
@@ -62,7 +63,7 @@ def _can_messages(frames: Iterable[Frame]) -> Iterator[object]:
         else:
             yield can.Message(timestamp=f.timestamp, arbitration_id=f.frame_id, is_extended_id=f.extended, is_remote_frame=f.kind == "remote",
                               dlc=len(f.data) if f.kind == "data" else 2, data=f.data if f.kind == "data" else None, channel=0,
-                              is_fd=f.fd, bitrate_switch=f.brs)
+                              is_fd=f.fd, bitrate_switch=f.brs, error_state_indicator=f.esi)
 
 
 def _hex_id(f: Frame) -> str:
@@ -92,7 +93,7 @@ def _screen(frames: Iterable[Frame], path: Path, form: str) -> None:
             else:
                 lead = f"({f.timestamp:.6f}) "
             line = _screen_line(f, lead)
-            out.write(line.replace(" can0  ", f" can0  RX {'B' if f.brs else '-'} -  ", 1) if form == "x" else line)
+            out.write(line.replace(" can0  ", f" can0  RX {'B' if f.brs else '-'} {'E' if f.esi else '-'}  ", 1) if form == "x" else line)
 
 
 def write(fmt: str, path: Path, frames: list[Frame]) -> Path:
@@ -118,7 +119,7 @@ def write(fmt: str, path: Path, frames: list[Frame]) -> Path:
 
 def _trc_writer():  # type: ignore[no-untyped-def]
     """python-can's TRC writer (file version 2.1), which drops CAN FD frames, taught PEAK's FD records:
-    type FD (or FB with bit-rate switching) and the length's DLC code in the L column."""
+    type FD, FB (bit-rate switching), FE (BRS and ESI) or BI (ESI), and the length's DLC code in the L column."""
     import can
     from can.util import len2dlc
 
@@ -130,7 +131,8 @@ def _trc_writer():  # type: ignore[no-untyped-def]
                 self.first_timestamp = msg.timestamp
             coded = can.Message(timestamp=msg.timestamp, arbitration_id=msg.arbitration_id, is_extended_id=msg.is_extended_id, is_fd=True,
                                 dlc=len2dlc(len(msg.data)), data=msg.data, check=False)
-            plain, self._msg_fmt_string = self._msg_fmt_string, self.FORMAT_MESSAGE.replace(" DT ", " FB " if msg.bitrate_switch else " FD ")
+            kind = {(False, False): "FD", (True, False): "FB", (True, True): "FE", (False, True): "BI"}[msg.bitrate_switch, msg.error_state_indicator]
+            plain, self._msg_fmt_string = self._msg_fmt_string, self.FORMAT_MESSAGE.replace(" DT ", f" {kind} ")
             try:
                 line = self._format_message_by_format(coded, (msg.channel or 0) + 1)
             finally:
@@ -154,7 +156,7 @@ def _blf64_writer():  # type: ignore[no-untyped-def]
             if not msg.is_fd:
                 return super().on_message_received(msg)
             can_id = msg.arbitration_id | (blf.CAN_MSG_EXT if msg.is_extended_id else 0)
-            flags = 0x1000 | (0x2000 if msg.bitrate_switch else 0)
+            flags = 0x1000 | (0x2000 if msg.bitrate_switch else 0) | (0x4000 if msg.error_state_indicator else 0)
             head = blf.CAN_FD_MSG_64_STRUCT.pack((msg.channel or 0) + 1, len2dlc(len(msg.data)), len(msg.data), 0, can_id, 0, flags, 0, 0, 0, 0, 0, 0, 0, 0)
             self._add_object(blf.CAN_FD_MESSAGE_64, head + bytes(msg.data), msg.timestamp)
             return None

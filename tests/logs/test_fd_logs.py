@@ -116,6 +116,21 @@ def test_fd_logs_decode_as_cantools_does(fmt, logs, frames, can, db):
     assert all(result.tables["wheel_speeds"].column("checksum_ok").to_pylist())
 
 
+@pytest.mark.parametrize("fmt", list(FORMATS))
+def test_brs_and_esi_in_every_format(fmt, tmp_path):
+    """Every combination of BRS and ESI on FD frames of 0..64 bytes (ASC's BRS/ESI columns, TRC's FD/FB/FE/BI
+    types, the candump flags digit and -x marks, BLF's and MF4's flag bits) read back as written."""
+    sizes = (0, 5, 8, 12, 16, 20, 24, 32, 48, 64)
+    frames = [Frame(round(T0 + i * 0.001, 6), 0x100 + i, i % 3 == 0, bytes(range(i, i + size)), fd=True, brs=bool(i & 1), esi=bool(i & 2))
+              for i, size in enumerate(sizes * 2)]
+    frames.append(Frame(round(T0 + 1, 6), 0x7FF, False, bytes(8)))  # and a classic frame
+    path = write(fmt, tmp_path / FORMATS[fmt], frames)
+    batch = fr.concat([c.batch for c in read_log(str(path), "blf" if fmt == "blf64" else None)])
+    assert [batch.frame_bytes(i) for i in range(len(batch))] == [f.data for f in frames]
+    screen = fmt == "candump_default"  # shows an FD frame's length with two digits, not its flags
+    assert batch.flags.tolist() == [fr.FD * f.fd | (0 if screen else fr.BRS * f.brs | fr.ESI * f.esi) for f in frames]
+
+
 def test_fd_frames_through_arrow(logs, can):
     """FD batches keep their bytes and flags through the Arrow form a distributed engine passes around."""
     from canspec.logs.bulk import Decoder, decode_arrow
