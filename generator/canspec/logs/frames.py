@@ -56,7 +56,8 @@ class Batch:
 
     def take(self, index: np.ndarray) -> Batch:
         """The frames at `index` (an index or boolean mask), in that order."""
-        return Batch(*(getattr(self, c)[index] for c in COLUMNS), channels=self.channels, data=self.data[index])
+        data = self.data[index] if self.data.shape[1] else None  # classic frames: nothing to gather
+        return Batch(*(getattr(self, c)[index] for c in COLUMNS), channels=self.channels, data=data)
 
     def frame_bytes(self, i: int) -> bytes:
         """The data bytes of frame `i`."""

@@ -253,16 +253,18 @@ def _mf4_data(s: Any, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | N
     """(length, word, data, flags) of data frames: DataBytes is as wide as the group's longest frame."""
     dlc = s[f"{name}.DataLength"].astype(np.uint8)
     raw = s[f"{name}.DataBytes"]
-    cells = np.zeros((len(dlc), 8), np.uint8)
-    cells[:, : min(raw.shape[1], 8)] = raw[:, :8]
+    if raw.shape[1] >= 8:
+        cells = np.ascontiguousarray(raw[:, :8])
+    else:
+        cells = np.zeros((len(dlc), 8), np.uint8)
+        cells[:, : raw.shape[1]] = raw
     word = cells.view("<u8").ravel() & BYTE_MASKS[np.minimum(dlc, 8)]
     data = None
     if raw.shape[1] > 8 and (dlc > 8).any():
         data = np.where(np.arange(raw.shape[1]) < dlc[:, None], raw, 0).astype(np.uint8)
-    names = s.dtype.names
     flags = np.zeros(len(dlc), np.uint8)
-    for field_name, bit in (("EDL", fr.FD), ("BRS", fr.BRS), ("ESI", fr.ESI)):
-        if f"{name}.{field_name}" in names:
+    if f"{name}.EDL" in s.dtype.names and s[f"{name}.EDL"].any():  # BRS and ESI exist only on FD frames
+        for field_name, bit in (("EDL", fr.FD), ("BRS", fr.BRS), ("ESI", fr.ESI)):
             flags |= np.where(s[f"{name}.{field_name}"] != 0, bit, 0).astype(np.uint8)
     return dlc, word, data, flags
 
