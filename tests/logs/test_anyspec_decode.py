@@ -19,15 +19,14 @@ from canspec.logs.bulk import Decoder
 from canspec.logs.candump import Frame
 from canspec.logs.fields import MessageFrames
 from canspec.logs.loghealth import HealthReport
-from canspec.runtime.monitor import CounterRule
 from canspec.pipeline import compile_spec
 from canspec.reference import codec
+from canspec.runtime.monitor import CounterRule
 from hypothesis import HealthCheck, given, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from anyspec import strategy
 from runtime.model import ModelMonitor
-
 
 # The receive monitor (runtime/) and its model (tests/runtime/model.py) read a Motorola counter from the
 # big-endian word once CounterRule has a word_order (helper py24's branch; checked there with this test):
