@@ -34,6 +34,9 @@ class Frame(NamedTuple):
     extended: bool
     data: bytes
     kind: str = "data"  # data | remote | error
+    fd: bool = False  # a CAN FD frame (up to 64 bytes)
+    brs: bool = False  # with bit-rate switching
+    esi: bool = False  # error state indicator (the sender is error passive)
 
 
 def frames_from_cases(cases: list[tuple[int, bool, bytes]], n: int, specials_every: int = 0) -> list[Frame]:
@@ -59,7 +62,8 @@ def _can_messages(frames: Iterable[Frame]) -> Iterator[object]:
             yield can.Message(timestamp=f.timestamp, is_error_frame=True, arbitration_id=f.frame_id, data=f.data, channel=0)
         else:
             yield can.Message(timestamp=f.timestamp, arbitration_id=f.frame_id, is_extended_id=f.extended, is_remote_frame=f.kind == "remote",
-                              dlc=len(f.data) if f.kind == "data" else 2, data=f.data if f.kind == "data" else None, channel=0)
+                              dlc=len(f.data) if f.kind == "data" else 2, data=f.data if f.kind == "data" else None, channel=0,
+                              is_fd=f.fd, bitrate_switch=f.brs, error_state_indicator=f.esi)
 
 
 def _hex_id(f: Frame) -> str:
@@ -69,8 +73,10 @@ def _hex_id(f: Frame) -> str:
 
 
 def _screen_line(f: Frame, lead: str) -> str:
-    """candump's screen form (lib.c sprint_long_canframe): `  can0  1806A0B0   [8]  00 11 ...`."""
-    head = f"{lead} can0  {_hex_id(f):>8}   [{len(f.data) if f.kind != 'remote' else 2}]  "
+    """candump's screen form (lib.c sprint_long_canframe): `  can0  1806A0B0   [8]  00 11 ...`; a CAN
+    FD frame's length with two digits (`[12]`, `[08]`)."""
+    size = len(f.data) if f.kind != "remote" else 2
+    head = f"{lead} can0  {_hex_id(f):>8}   [{size:02d}]  " if f.fd else f"{lead} can0  {_hex_id(f):>8}   [{size}]  "
     if f.kind == "remote":
         return head + "remote request\n"
     body = " ".join(f"{b:02X}" for b in f.data)
@@ -87,7 +93,7 @@ def _screen(frames: Iterable[Frame], path: Path, form: str) -> None:
             else:
                 lead = f"({f.timestamp:.6f}) "
             line = _screen_line(f, lead)
-            out.write(line.replace(" can0  ", " can0  RX - -  ", 1) if form == "x" else line)
+            out.write(line.replace(" can0  ", f" can0  RX {'B' if f.brs else '-'} {'E' if f.esi else '-'}  ", 1) if form == "x" else line)
 
 
 def write(fmt: str, path: Path, frames: list[Frame]) -> Path:
@@ -103,11 +109,59 @@ def write(fmt: str, path: Path, frames: list[Frame]) -> Path:
             shutil.copyfileobj(src, dst)
         plain.unlink()
     else:
-        writer = {"candump": can.CanutilsLogWriter, "asc": can.ASCWriter, "blf": can.BLFWriter, "trc": can.TRCWriter, "mf4": can.MF4Writer}[fmt]
+        writer = {"candump": can.CanutilsLogWriter, "asc": can.ASCWriter, "blf": can.BLFWriter, "blf64": _blf64_writer(), "trc": _trc_writer(),
+                  "mf4": can.MF4Writer}[fmt]
         with writer(str(path)) as w:
             for msg in _can_messages(f for f in frames if fmt != "trc" or f.kind == "data"):
                 w.on_message_received(msg)
     return path
+
+
+def _trc_writer():  # type: ignore[no-untyped-def]
+    """python-can's TRC writer (file version 2.1), which drops CAN FD frames, taught PEAK's FD records:
+    type FD, FB (bit-rate switching), FE (BRS and ESI) or BI (ESI), and the length's DLC code in the L column."""
+    import can
+    from can.util import len2dlc
+
+    class TrcFdWriter(can.TRCWriter):
+        def on_message_received(self, msg):  # type: ignore[no-untyped-def]
+            if not msg.is_fd:
+                return super().on_message_received(msg)
+            if self.first_timestamp is None:
+                self.first_timestamp = msg.timestamp
+            coded = can.Message(timestamp=msg.timestamp, arbitration_id=msg.arbitration_id, is_extended_id=msg.is_extended_id, is_fd=True,
+                                dlc=len2dlc(len(msg.data)), data=msg.data, check=False)
+            kind = {(False, False): "FD", (True, False): "FB", (True, True): "FE", (False, True): "BI"}[msg.bitrate_switch, msg.error_state_indicator]
+            plain, self._msg_fmt_string = self._msg_fmt_string, self.FORMAT_MESSAGE.replace(" DT ", f" {kind} ")
+            try:
+                line = self._format_message_by_format(coded, (msg.channel or 0) + 1)
+            finally:
+                self._msg_fmt_string = plain
+            self.msgnr += 1
+            self.log_event(line, msg.timestamp)
+            return None
+
+    return TrcFdWriter
+
+
+def _blf64_writer():  # type: ignore[no-untyped-def]
+    """python-can's BLF writer with CAN FD frames as CAN_FD_MESSAGE_64 objects (as CANoe writes them;
+    python-can itself writes CAN_FD_MESSAGE), through its own object writer."""
+    import can
+    from can.io import blf
+    from can.util import len2dlc
+
+    class Blf64Writer(can.BLFWriter):
+        def on_message_received(self, msg):  # type: ignore[no-untyped-def]
+            if not msg.is_fd:
+                return super().on_message_received(msg)
+            can_id = msg.arbitration_id | (blf.CAN_MSG_EXT if msg.is_extended_id else 0)
+            flags = 0x1000 | (0x2000 if msg.bitrate_switch else 0) | (0x4000 if msg.error_state_indicator else 0)
+            head = blf.CAN_FD_MSG_64_STRUCT.pack((msg.channel or 0) + 1, len2dlc(len(msg.data)), len(msg.data), 0, can_id, 0, flags, 0, 0, 0, 0, 0, 0, 0, 0)
+            self._add_object(blf.CAN_FD_MESSAGE_64, head + bytes(msg.data), msg.timestamp)
+            return None
+
+    return Blf64Writer
 
 
 def vector_cases(vectors: dict) -> list[tuple[int, bool, bytes]]:  # type: ignore[type-arg]

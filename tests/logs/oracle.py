@@ -3,6 +3,8 @@ independent oracle) decoding the frames that were written into the log."""
 
 from __future__ import annotations
 
+import math
+import struct
 from collections import defaultdict
 from dataclasses import dataclass, field
 
@@ -27,7 +29,12 @@ def expected_by_message(frames: list[Frame], names: dict[tuple[int, bool], str])
 
 
 def _same_physical(mine: float, theirs: object) -> bool:
-    return mine == float(theirs)  # type: ignore[arg-type]
+    return mine == float(theirs) or (math.isnan(mine) and math.isnan(float(theirs)))  # type: ignore[arg-type]
+
+
+def _float_bits(value: float, length: int) -> int:
+    """The IEEE 754 bit pattern cantools' float value came from (its raw value is the float itself)."""
+    return int.from_bytes(struct.pack("<f" if length == 32 else "<d", value), "little")
 
 
 def compare(tables: dict[str, pa.Table], expected: dict[str, list[Frame]], db, timestamps: float | None) -> Comparison:  # type: ignore[no-untyped-def]
@@ -48,6 +55,9 @@ def compare(tables: dict[str, pa.Table], expected: dict[str, list[Frame]], db, t
             named = cm.decode(f.data)
             for sig, value in raw.items():
                 problems = []
+                cs = cm.get_signal_by_name(sig)
+                if cs.is_float:
+                    value = _float_bits(value, cs.length)
                 if row[f"{sig}_raw"] != value:
                     problems.append(f"raw {row[f'{sig}_raw']} != {value}")
                 if not _same_physical(row[sig], phys[sig]):

@@ -13,6 +13,7 @@ import subprocess
 import sys
 
 import pytest
+from canspec.logs import frames as fr
 from canspec.logs.candump import DATA, ERROR, REMOTE, LineError, parse_line
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -190,14 +191,47 @@ def test_malformed_lines(line):
 
 
 def test_line_forms():
-    assert parse_line("(1.5) vcan0 18FF0123#01.02") == (1.5, "vcan0", 0x18FF0123, True, b"\x01\x02", DATA)
-    assert parse_line("123#") == (None, None, 0x123, False, b"", DATA)
-    assert parse_line("1806A0B0##1" + "00" * 12) == (None, None, 0x1806A0B0, True, bytes(12), DATA)
-    assert parse_line("  can0  1806A0B0   [2]  0A 0B") == (None, "can0", 0x1806A0B0, True, b"\x0a\x0b", DATA)
-    assert parse_line("(1.5)  can0  RX - -  123   [1]  0A  '.'") == (1.5, "can0", 0x123, False, b"\x0a", DATA)
-    assert parse_line("  can0  123   [2]  remote request") == (None, "can0", 0x123, False, b"", REMOTE)
-    assert parse_line("(2.0) can0 123#R2 R") == (2.0, "can0", 0x123, False, b"", REMOTE)
-    assert parse_line("  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME")[4:] == (bytes([0, 4]) + bytes(6), ERROR)
+    assert parse_line("(1.5) vcan0 18FF0123#01.02") == (1.5, "vcan0", 0x18FF0123, True, b"\x01\x02", DATA, 0)
+    assert parse_line("123#") == (None, None, 0x123, False, b"", DATA, 0)
+    assert parse_line("  can0  1806A0B0   [2]  0A 0B") == (None, "can0", 0x1806A0B0, True, b"\x0a\x0b", DATA, 0)
+    assert parse_line("(1.5)  can0  RX - -  123   [1]  0A  '.'") == (1.5, "can0", 0x123, False, b"\x0a", DATA, 0)
+    assert parse_line("  can0  123   [2]  remote request") == (None, "can0", 0x123, False, b"", REMOTE, 0)
+    assert parse_line("(2.0) can0 123#R2 R") == (2.0, "can0", 0x123, False, b"", REMOTE, 0)
+    assert parse_line("  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME")[4:] == (bytes([0, 4]) + bytes(6), ERROR, 0)
+
+
+def test_can_fd_line_forms():
+    """candump's CAN FD forms (lib.c): `ID##<flags digit><data>` (linux/can.h CANFD_BRS 1, CANFD_ESI 2),
+    and the screen form's two-digit length, with -x's B (BRS) / E (ESI) marks."""
+    fd, brs, esi = fr.FD, fr.BRS, fr.ESI
+    assert parse_line("123##1112233") == (None, None, 0x123, False, bytes.fromhex("112233"), DATA, fd | brs)
+    assert parse_line("(3.0) can1 1806A0B0##0" + "AB" * 64) == (3.0, "can1", 0x1806A0B0, True, bytes([0xAB] * 64), DATA, fd)
+    assert parse_line("123##3" + "00" * 12)[4:] == (bytes(12), DATA, fd | brs | esi)
+    assert parse_line("123##2")[4:] == (b"", DATA, fd | esi)
+    assert parse_line("  can0  123  [12]  " + "01 " * 12)[4:] == (bytes([1] * 12), DATA, fd)
+    assert parse_line("  can0  123  [08]  " + "01 " * 8)[4:] == (bytes([1] * 8), DATA, fd)  # an FD frame of 8 bytes
+    assert parse_line("(1.5)  can0  RX B E  123  [16]  " + "02 " * 16)[4:] == (bytes([2] * 16), DATA, fd | brs | esi)
+    assert parse_line("(1.5)  can0  RX B -  123  [64]  " + "02 " * 64)[4:] == (bytes([2] * 64), DATA, fd | brs)
+
+
+@pytest.mark.parametrize("line", ["123##", "123##G00", "123##1" + "00" * 65, "123##1123"])
+def test_malformed_can_fd_lines(line):
+    with pytest.raises(LineError):
+        parse_line(line)
+
+
+def test_can_fd_lines_in_bulk():
+    """FD lines amid classic ones: the bulk reader hands them to the line reader and keeps their bytes and flags."""
+    from canspec.logs.candump_bulk import read_chunk
+
+    text = "(1.0) can0 123#0102\n(2.0) can0 2B0##1" + "11" * 64 + "\n(3.0) can0 3C0##0" + "22" * 12 + "\n  can0  123   [8]  " + "03 " * 8 + "\n"
+    batch, problems, count = read_chunk(text.encode(), 1)
+    assert count == 4 and problems == []
+    assert batch.dlc.tolist() == [2, 64, 12, 8] and batch.flags.tolist() == [0, fr.FD | fr.BRS, fr.FD, 0]
+    assert [batch.frame_bytes(i) for i in range(4)] == [b"\x01\x02", bytes([0x11] * 64), bytes([0x22] * 12), bytes([3] * 8)]
+
+
+def test_line_forms_blank():
     assert parse_line("   ") is None and parse_line("# comment") is None
 
 
@@ -213,8 +247,10 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
     import random
 
     import numpy as np
-    from canspec.pipeline import compile_spec
     from canspec.logs import bulktext
+    from canspec.logs import frames as fr
+    from canspec.logs.fields import MessageFrames
+    from canspec.pipeline import compile_spec
     from canspec.reference import codec
     from repo_paths import ROOT
 
@@ -222,16 +258,20 @@ def test_bulk_text_equals_the_per_frame_text_decoder(can, vectors, tmp_path):
     rng = random.Random(3)
     cases = [(can.by_id(c["frame_id"]), codec.frame_word(bytes.fromhex(c["data"]))) for c in vectors["cases"]]
     cases += [(m, rng.getrandbits(8 * m.dlc)) for m in mixed.messages for _ in range(300)]
+    fd = compile_spec(ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.yaml").spec.can  # Motorola, FD, floats
+    cases += [(m, rng.getrandbits(8 * m.dlc)) for m in fd.messages for _ in range(300)]
     for msg in {m for m, _ in cases}:
         words = [w for m, w in cases if m is msg]
-        mine = bulktext.message_texts(msg, np.array(words, dtype=np.uint64), {})
-        assert mine == [codec.text_decoder(msg)(w) for w in words], msg.name
+        payloads = [w.to_bytes(msg.dlc, "little") for w in words]
+        data = fr.data_matrix(payloads)
+        frames = MessageFrames(msg, np.array([w & (2**64 - 1) for w in words], dtype=np.uint64), None if data is None else data[:, : msg.dlc])
+        assert bulktext.message_texts(frames, {}) == [codec.text_decoder(msg)(w) for w in words], msg.name
 
 
 LINE_PIECES = st.sampled_from([
     "(1.5)", "(1700000000.000100)", "(abc)", "(1.2.3)", "(2023-11-14 22:13:20.123456)", "can0", "vcan12", "RX", "-", "123", "7FF", "800", "1806A0B0",
     "20000080", "3FFFFFFF", "[0]", "[2]", "[8]", "[12]", "[x]", "01", "0A", "ff", "0", "GG", "123#0102", "1806A0B0#R", "123#", "7FF##1" + "00" * 9,
-    "ERRORFRAME", "remote", "request", "'..'", "R", "T", "#", ";"])
+    "7FF##0" + "00" * 64, "123##3", "[08]", "[64]", "B", "E", "ERRORFRAME", "remote", "request", "'..'", "R", "T", "#", ";"])
 
 
 @settings(max_examples=400, deadline=None)
@@ -246,7 +286,8 @@ def test_bulk_reader_equals_the_line_reader(lines):
     batch, problems, count = read_chunk(("\n".join(lines) + "\n").encode(), 1)
     assert count == len(lines)
     got = {int(i): row for i, *row in zip(batch.line, batch.timestamp.tolist(), batch.channel_names().tolist(), batch.frame_id.tolist(),
-                                          batch.extended.tolist(), batch.kind.tolist(), batch.dlc.tolist(), batch.word.tolist())}
+                                          batch.extended.tolist(), batch.kind.tolist(), batch.dlc.tolist(), batch.word.tolist(),
+                                          [batch.frame_bytes(i) for i in range(len(batch))], batch.flags.tolist())}
     bad = {line for line, _ in problems}
     for i, line in enumerate(lines, 1):
         try:
@@ -259,4 +300,4 @@ def test_bulk_reader_equals_the_line_reader(lines):
             continue
         t, *rest = got[i]
         assert (None if math.isnan(t) else t, *rest) == (frame.timestamp, frame.channel or "", frame.frame_id, frame.extended, frame.kind,
-                                                          len(frame.data), int.from_bytes(frame.data[:8], "little")), line
+                                                          len(frame.data), int.from_bytes(frame.data[:8], "little"), frame.data, frame.flags), line

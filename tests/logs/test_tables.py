@@ -132,7 +132,7 @@ def test_arrow_frames_round_trip_and_spark_schema(eight_logs, can):
     decoder = Decoder(can.messages)
     for chunk in read_log(str(logs[0])):
         record_batch = chunk.batch.to_arrow()
-        assert record_batch.schema.names == ["timestamp", "channel", "frame_id", "extended", "kind", "dlc", "word", "line"]
+        assert record_batch.schema.names == ["timestamp", "channel", "frame_id", "extended", "kind", "dlc", "word", "line", "flags"]
         direct = decoder.decode(chunk.batch).tables
         via_arrow = decode_arrow(can.messages, record_batch)
         assert sorted(direct) == sorted(via_arrow) and all(direct[n].equals(via_arrow[n]) for n in direct)

@@ -31,6 +31,7 @@ def _sink(args: argparse.Namespace, decoder, out: IO[str]):  # type: ignore[no-u
 
 def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # type: ignore[no-untyped-def]
     """One health report per input (a recording each: monitor state starts afresh)."""
+    from canspec.logs.fields import MessageFrames
     from canspec.logs.loghealth import HealthReport, format_text
 
     reports: dict[str, HealthReport] = {}
@@ -38,7 +39,8 @@ def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # typ
     def feed(source: str, batch, decoded) -> None:  # type: ignore[no-untyped-def]
         health = reports.get(source) or reports.setdefault(source, HealthReport(can.messages))
         for name, rows in decoded.groups.items():
-            health.feed_message(can.message(name), batch.timestamp[rows], batch.word[rows])
+            msg = can.message(name)
+            health.feed_message(msg, batch.timestamp[rows], MessageFrames.of(msg, batch, rows).payloads())
         health.feed_unknown(batch.frame_id[decoded.unknown], batch.extended[decoded.unknown])
 
     results = each_chunk(args, decoder, "decode", False, feed)

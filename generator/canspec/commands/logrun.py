@@ -94,7 +94,7 @@ class InputStats:
 def message_problems(msg_of: Callable[[int], ir.Message], batch: Any, decoded: Any) -> list[tuple[int, str, str]]:
     """The undecodable frames of a decoded chunk as (line, kind, text)."""
     items = []
-    line, fid, ext, dlc, word = batch.line, batch.frame_id, batch.extended, batch.dlc, batch.word
+    line, fid, ext, dlc = batch.line, batch.frame_id, batch.extended, batch.dlc
     for i in decoded.unknown.tolist():
         items.append((int(line[i]), "unknown_id", f"unknown frame ID {int(fid[i]):0{8 if ext[i] else 3}X}"))
     for i in decoded.wrong_length.tolist():
@@ -105,7 +105,7 @@ def message_problems(msg_of: Callable[[int], ir.Message], batch: Any, decoded: A
         assert m.checksum is not None
         items.append((
             int(line[i]), "checksum",
-            f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{(int(word[i]) >> 8 * m.checksum.byte) & 0xFF:02X})"))
+            f"{m.name} ({m.id_text}): checksum mismatch (byte {m.checksum.byte} is 0x{batch.frame_bytes(i)[m.checksum.byte]:02X})"))
     return items
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from canspec.ir.ids import MAX_EXTENDED_ID
 from canspec.logs import frames as fr
-from canspec.logs.candump import DATA, ERROR, REMOTE
+from canspec.logs.candump import DATA, ERROR, MAX_DATA, REMOTE
 
 FILE_HEADER = struct.Struct("<4sLBBBBBBBBQQLL8H8H")
 OBJ_BASE = struct.Struct("<4sHHLL")
@@ -129,32 +129,52 @@ def _objects(buf: bytes, start: float, first: int) -> tuple[fr.Batch, int]:
     d = p + OBJ_BASE.size + np.where(v == 1, 16, 24)  # the object's own fields
     ten_us = _uint(b, p + 16, 4) == 1
     timestamp = _uint(b, p + 24, 8).astype(np.float64) * np.where(ten_us, 1e-5, 1e-9) + start
-    channel = _uint(b, d, 2).astype(np.int64) - 1
+    # the channel: 16 bits, but 8 in a CAN_FD_MESSAGE_64 (its DLC follows)
+    channel = np.where(t == CAN_FD_MESSAGE_64, b[d], _uint(b, d, 2)).astype(np.int64) - 1
     classic, error, fd = np.isin(t, (CAN_MESSAGE, CAN_MESSAGE2)), t == CAN_ERROR_EXT, t == CAN_FD_MESSAGE
     flags = b[d + 2]
     frame_id = _uint(b, np.where(error, d + 16, d + 4), 4)
-    length = np.where(classic, np.minimum(b[d + 3], 8), np.where(fd, b[d + 14], 0)).astype(np.int64)
+    length = np.where(classic, np.minimum(b[d + 3], 8), np.where(fd, np.minimum(b[d + 14], MAX_DATA), 0)).astype(np.int64)
     remote = (classic | fd) & (flags & REMOTE_FLAG > 0)
     word = _uint(b, np.where(fd, d + 20, d + 8), 8)
     kind = np.where(error, ERROR, np.where(remote, REMOTE, DATA)).astype(np.uint8)
+    fd_flags = np.where(fd, b[d + 13] & 7, 0).astype(np.uint8)  # EDL, BRS, ESI: frames.FD, BRS, ESI
+    long64 = {}
     for i in np.flatnonzero(t == CAN_FD_MESSAGE_64).tolist():
-        frame_id[i], length[i], word[i], kind[i] = _fd64(buf, positions[i], int(d[i]), sizes[i])
+        frame_id[i], kind[i], fd_flags[i], payload = _fd64(buf, positions[i], int(d[i]), sizes[i])
+        length[i], word[i] = len(payload), int.from_bytes(payload[:8], "little")
+        if len(payload) > 8:
+            long64[i] = payload
     length = np.where(kind == DATA, length, 0)
     word = np.where(kind == DATA, word & BYTE_MASKS[np.minimum(length, 8)], np.uint64(0))
     names, codes = np.unique(channel, return_inverse=True)
     batch = fr.Batch(
         timestamp, codes.astype(np.int32), (frame_id & np.uint64(MAX_EXTENDED_ID)).astype(np.uint32), (frame_id & np.uint64(CAN_MSG_EXT)) > 0,
-        kind, np.minimum(length, 255).astype(np.uint8), word, np.arange(first + 1, first + len(p) + 1, dtype=np.int64),
-        channels=tuple(str(c) for c in names.tolist()),
+        kind, length.astype(np.uint8), word, np.arange(first + 1, first + len(p) + 1, dtype=np.int64), fd_flags,
+        channels=tuple(str(c) for c in names.tolist()), data=_fd_data(b, d, fd & (length > 8), length, long64),
     )
     return batch, consumed
 
 
-def _fd64(buf: bytes, pos: int, at: int, obj_size: int) -> tuple[int, int, int, int]:
-    """(id, data length, frame word, kind) of a CAN_FD_MESSAGE_64, as python-can reads it."""
+def _fd_data(b: np.ndarray, d: np.ndarray, long_fd: np.ndarray, length: np.ndarray, long64: dict[int, bytes]) -> np.ndarray | None:
+    """The data matrix of the frames longer than 8 bytes (None when there are none): CAN_FD_MESSAGE's
+    64-byte field at +20, cut at its valid bytes; CAN_FD_MESSAGE_64's bytes as read."""
+    if not long_fd.any() and not long64:
+        return None
+    data = np.zeros((len(d), MAX_DATA), np.uint8)
+    rows = np.flatnonzero(long_fd)
+    cells = b[(d[rows] + 20)[:, None] + np.arange(MAX_DATA)]
+    data[rows] = np.where(np.arange(MAX_DATA) < length[rows][:, None], cells, 0)
+    for i, payload in long64.items():
+        data[i, : len(payload)] = np.frombuffer(payload, np.uint8)
+    return data
+
+
+def _fd64(buf: bytes, pos: int, at: int, obj_size: int) -> tuple[int, int, int, bytes]:
+    """(id, kind, FD/BRS/ESI flags, data) of a CAN_FD_MESSAGE_64, as python-can reads it (data cut at 64 bytes)."""
     _, _, valid, _, can_id, _, fd_flags, _, _, _, _, _, _, ext_offset, _ = FD_64.unpack_from(buf, at)
     header_size = int.from_bytes(buf[pos + 4: pos + 6], "little")
     field = min(valid, (ext_offset or obj_size) - header_size - FD_64.size)
     data = buf[at + FD_64.size: at + FD_64.size + max(field, 0)].ljust(valid, b"\0")
     kind = REMOTE if fd_flags & 0x0010 else DATA
-    return can_id, len(data), int.from_bytes(data[:8], "little"), kind
+    return can_id, kind, (fd_flags >> 12) & 7, data[:MAX_DATA]

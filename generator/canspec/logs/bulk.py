@@ -1,8 +1,9 @@
 """The bulk decoder: a pure function from a batch of frames (frames.Batch, or its Arrow form) to
 one Arrow table per message. All frames of one ID are decoded at once — NumPy shifts and masks
-over the column of 64-bit frame words, with the IR's word_mask/start/sign_bit, the checksum's
-cover_mask and the reference codec's physical formula — so it maps over log files in Dask or
-Spark (see README) and gives the same tables as a single process.
+over the column of 64-bit frame words (byte gathers for CAN FD frames: fields.py), with the IR's
+word_mask/word_shift/sign_bit, the checksum's cover_mask and the reference codec's physical
+formula — so it maps over log files in Dask or Spark (see README) and gives the same tables as
+a single process.
 
 A message's table: `timestamp` (float64 s), `channel` (dictionary string), per data signal its
 physical value (float64), `<signal>_label` (dictionary string, null where the raw value has no
@@ -22,12 +23,10 @@ import numpy as np
 from canspec import ir
 from canspec.logs import frames as fr
 from canspec.logs.candump import DATA, ERROR, REMOTE
+from canspec.logs.fields import MessageFrames, float_column
 
 if TYPE_CHECKING:  # pyarrow is imported where tables are made: the text output needs none
     import pyarrow as pa
-
-U64 = np.uint64
-
 
 def message_key(frame_id: int, extended: bool) -> int:
     return frame_id << 1 | int(extended)
@@ -95,18 +94,12 @@ def raw_type(sig: ir.Signal) -> pa.DataType:
     return getattr(pa, f"{'int' if sig.signed else 'uint'}{sig.storage_bits}")()
 
 
-def raw_column(sig: ir.Signal, word: np.ndarray) -> np.ndarray:
-    """The raw values of a field over a column of frame words (uint64, or int64 when signed)."""
-    bits = (word & U64(sig.word_mask)) >> U64(sig.start)
-    if not sig.sign_bit:
-        return bits
-    return ((bits ^ U64(sig.sign_bit)) - U64(sig.sign_bit)).view(np.int64)  # two's complement wrap
-
-
 def physical_column(sig: ir.Signal, raw: np.ndarray) -> np.ndarray:
     """The physical values as float64, as float(codec.physical_number) gives them: integer
     scaling exactly (int64 where it cannot overflow, else Python ints) and rounded once;
-    otherwise raw × factor + offset in doubles."""
+    otherwise raw × factor + offset in doubles; a float field's bit patterns as the floats they hold."""
+    if sig.is_float:
+        return float_column(sig, raw)
     if not sig.is_integer:
         return ir.to_physical(raw.astype(np.float64), float(sig.factor), float(sig.offset))
     factor, offset = int(sig.factor), int(sig.offset)
@@ -127,31 +120,22 @@ def label_column(sig: ir.Signal, raw: np.ndarray) -> pa.DictionaryArray:
     return pa.DictionaryArray.from_arrays(pa.array(at.astype(np.int32), mask=~hit), pa.array([lb.name for lb in labels], pa.string()))
 
 
-def checksum_column(msg: ir.Message, word: np.ndarray) -> np.ndarray:
-    """Whether the checksum byte equals the XOR of the bytes cover_mask selects."""
-    assert msg.checksum is not None
-    x = word & U64(msg.checksum.cover_mask)
-    for shift in (32, 16, 8):
-        x ^= x >> U64(shift)
-    return (x & U64(0xFF)) == ((word >> U64(8 * msg.checksum.byte)) & U64(0xFF))
-
-
 def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
     """The table of frames that all carry layout.msg with the right length."""
     import pyarrow as pa
 
-    word = batch.word
+    frames = MessageFrames.of(layout.msg, batch)
     channel = pa.DictionaryArray.from_arrays(pa.array(batch.channel, mask=batch.channel < 0), pa.array(batch.channels, pa.string()))
     cols: list[pa.Array] = [pa.array(batch.timestamp), channel]
     for s in layout.msg.data_signals:
-        raw = raw_column(s, word)
+        raw = frames.raw(s)
         cols.append(pa.array(physical_column(s, raw)))
         if s.labels:
             cols.append(label_column(s, raw))
         if layout.raw:
             cols.append(pa.array(raw.astype(f"{'int' if s.signed else 'uint'}{s.storage_bits}")))
     if layout.msg.checksum is not None:
-        cols.append(pa.array(checksum_column(layout.msg, word)))
+        cols.append(pa.array(frames.checksum_ok()))
     return pa.Table.from_arrays(cols, schema=layout.schema())
 
 
@@ -203,7 +187,7 @@ class Decoder:
             if tables:
                 out.tables[layout.msg.name] = message_table(layout, batch.take(group))
             if layout.msg.checksum is not None:
-                bad.append(group[~checksum_column(layout.msg, batch.word[group])])
+                bad.append(group[~MessageFrames.of(layout.msg, batch, group).checksum_ok()])
         out.bad_checksum = np.sort(np.concatenate(bad)) if bad else out.bad_checksum
         return out
 

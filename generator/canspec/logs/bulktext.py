@@ -8,8 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from canspec import ir
+from canspec.logs.bulk import physical_column
+from canspec.logs.fields import MessageFrames
 from canspec.reference import codec
-from canspec.logs.bulk import physical_column, raw_column
 
 SAFE_BITS = 52  # integer arithmetic in int64 is exact below this many bits of raw × factor + offset
 
@@ -18,14 +19,17 @@ def _table(sig: ir.Signal) -> np.ndarray:
     return np.array([codec.signal_text(sig, r) for r in range(sig.mask + 1)], dtype=object)
 
 
-def signal_texts(sig: ir.Signal, words: np.ndarray, tables: dict[str, np.ndarray]) -> list[str]:
-    """`name=value[ unit]` of one signal for every frame word."""
-    raw = raw_column(sig, words)
+def signal_texts(sig: ir.Signal, frames: MessageFrames, tables: dict[str, np.ndarray]) -> list[str]:
+    """`name=value[ unit]` of one signal for every frame."""
+    raw = frames.raw(sig)
     if not sig.sign_bit and sig.length <= codec.TABLE_BITS:
         table = tables.get(sig.name)
         if table is None:
             table = tables[sig.name] = _table(sig)
         return table[raw].tolist()  # type: ignore[no-any-return]
+    if sig.is_float:  # repr: the shortest text that reads back to the same float (nan, inf, -0.0)
+        unit = f" {sig.unit}" if sig.unit else ""
+        return [f"{sig.name}={x!r}{unit}" for x in physical_column(sig, raw).tolist()]
     if not sig.is_integer and not sig.decimals:
         return [codec.signal_text(sig, r) for r in raw.tolist()]
     texts = _numbers(sig, raw)
@@ -48,11 +52,11 @@ def _numbers(sig: ir.Signal, raw: np.ndarray) -> list[str]:
     return list(map(pattern.__mod__, physical_column(sig, raw).tolist()))
 
 
-def message_texts(msg: ir.Message, words: np.ndarray, tables: dict[str, np.ndarray]) -> list[str]:
-    """The fields text of every frame of `msg` (frame words in `words`)."""
-    columns = [signal_texts(s, words, tables) for s in msg.data_signals]
+def message_texts(frames: MessageFrames, tables: dict[str, np.ndarray]) -> list[str]:
+    """The fields text of every frame of one message."""
+    columns = [signal_texts(s, frames, tables) for s in frames.msg.data_signals]
     if not columns:
-        return [""] * len(words)
+        return [""] * len(frames)
     if len(columns) == 1:
         return columns[0]
     return list(map(", ".join, zip(*columns)))

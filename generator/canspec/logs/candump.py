@@ -7,7 +7,8 @@
     (1700000000.123456)  can0  1806A0B0   [8]  00 11 ...       -ta, -td, -tz (time as written)
     (2023-11-14 22:13:20.123456)  can0  1806A0B0   [8]  ...    -tA (local time)
     (1700000000.123456)  can0  RX - -  1806A0B0   [8]  ...     -x (direction and FD flags)
-    can0  1806A0B0  [12]  00 11 ...   /   1806A0B0##1<data>    CAN FD
+    can0  1806A0B0  [12]  00 11 ...   /   1806A0B0##1<data>    CAN FD (`##` + a flags digit:
+                                                               1 BRS, 2 ESI; then the data)
 
 Remote frames (`ID#R`, `remote request`) and error frames (the ID carries CAN_ERR_FLAG,
 0x20000000) are frames of their own kind; trailing `'ascii'` (-a) and error text (-e) are ignored.
@@ -23,6 +24,7 @@ from canspec.ir.ids import max_id
 MAX_DATA = 64
 ERR_FLAG = 0x20000000  # linux/can.h CAN_ERR_FLAG: candump prints it as part of an error frame's ID
 DATA, REMOTE, ERROR = 0, 1, 2  # frame kinds
+FD_FLAG, BRS_FLAG, ESI_FLAG = 1, 2, 4  # Frame.flags (frames.FD, BRS, ESI)
 
 
 class LineError(ValueError):
@@ -36,6 +38,7 @@ class Frame(NamedTuple):
     extended: bool
     data: bytes
     kind: int = DATA
+    flags: int = 0  # CAN FD: frames.FD | BRS | ESI
 
 
 HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
@@ -81,11 +84,15 @@ def _compact(text: str, timestamp: float | None, channel: str | None) -> Frame:
         raise LineError(f"expected ID#DATA, got {text!r}")
     frame_id, extended, kind = parse_id(text[:hash_at])
     data = text[hash_at + 1:]
-    if data[:1] == "#":  # CAN FD: one flags digit, then the data
+    flags = 0
+    if data[:1] == "#":  # CAN FD: one flags digit (linux/can.h CANFD_BRS 1, CANFD_ESI 2), then the data
+        if len(data) < 2 or data[1] not in HEX_DIGITS:
+            raise LineError(f"CAN FD frame {text!r}: expected a flags digit after '##'")
+        flags = FD_FLAG | (BRS_FLAG if int(data[1], 16) & 1 else 0) | (ESI_FLAG if int(data[1], 16) & 2 else 0)
         data = data[2:]
-    if data[:1] in ("R", "r"):
+    elif data[:1] in ("R", "r"):
         return Frame(timestamp, channel, frame_id, extended, b"", REMOTE)
-    return Frame(timestamp, channel, frame_id, extended, _hex_bytes(data.replace(".", "")), kind)
+    return Frame(timestamp, channel, frame_id, extended, _hex_bytes(data.replace(".", "")), kind, flags)
 
 
 def _bracketed(tokens: list[str], at: int, timestamp: float | None) -> Frame:
@@ -104,7 +111,10 @@ def _bracketed(tokens: list[str], at: int, timestamp: float | None) -> Frame:
         raise LineError(f"length [{dlc}] but {len(rest)} data bytes")
     if any(len(t) != 2 for t in rest[:dlc]):
         raise LineError(f"data {' '.join(rest[:dlc])!r} is not hex bytes")
-    return Frame(timestamp, tokens[0], frame_id, extended, _hex_bytes("".join(rest[:dlc])), kind)
+    # candump prints a CAN FD frame's length with two digits ([08], [12]); -x adds B (BRS) / E (ESI)
+    marks = tokens[1: at - 1]
+    flags = FD_FLAG | (BRS_FLAG if "B" in marks else 0) | (ESI_FLAG if "E" in marks else 0) if len(tokens[at]) == 4 or dlc > 8 else 0
+    return Frame(timestamp, tokens[0], frame_id, extended, _hex_bytes("".join(rest[:dlc])), kind, flags)
 
 
 def parse_line(line: str) -> Frame | None:

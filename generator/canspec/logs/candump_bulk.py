@@ -140,14 +140,15 @@ def _screen(b: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> tuple[np.nda
     chan_end = _next(spaces, chan)
     lb = _next(np.flatnonzero(b == ord("[")), close + 1)  # the line's first '[' must open the `[N]` token
     rb = _next(np.flatnonzero(b == ord("]")), lb)
-    ok &= (lb < ends) & (rb < ends) & ((rb - lb == 2) | (rb - lb == 3)) & (at(lb - 1) == SP) & ((rb + 1 == ends) | (at(rb + 1) == SP))
+    # `[N]` only: candump writes a CAN FD frame's length with two digits (`[08]`), left to the line reader
+    ok &= (lb < ends) & (rb < ends) & (rb - lb == 2) & (at(lb - 1) == SP) & ((rb + 1 == ends) | (at(rb + 1) == SP))
     lb, rb = np.where(ok, lb, 0), np.where(ok, rb, 0)
     id_end = _prev(solid, lb) + 1  # just past the ID token
     id_start = _prev(spaces, id_end) + 1
     id_len, ch_len = id_end - id_start, chan_end - chan
     ok &= (id_start > chan_end) & ((id_len == 3) | (id_len == 8)) & (ch_len > 0) & (ch_len <= MAX_CHANNEL)
-    digits = np.where(rb - lb == 3, (at(lb + 1).astype(np.int64) - 48) * 10 + at(lb + 2) - 48, at(lb + 1).astype(np.int64) - 48)
-    ok &= (digits >= 0) & (digits <= 8) & np.all((at(lb[:, None] + 1 + np.arange(2)) - 48 <= 9) | (np.arange(2) >= rb[:, None] - lb[:, None] - 1), axis=1)
+    digits = at(lb + 1).astype(np.int64) - 48
+    ok &= (digits >= 0) & (digits <= 8)
     data = _next(solid, rb + 1)
     data_end = data + 3 * digits - 1  # the last byte's end
     ok &= (digits == 0) | ((data_end <= ends) & ((data_end == ends) | (at(data_end) == SP)))

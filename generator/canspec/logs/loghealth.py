@@ -33,16 +33,16 @@ class MonitorAdapter:
                                valid_after=ir.MONITOR_VALID_AFTER)
         self.now_ms: dict[str, int] = {}
 
-    def events(self, msg: ir.Message, times: list[float], words: list[int]) -> Iterator[tuple[float, FrameEvent]]:
+    def events(self, msg: ir.Message, times: list[float], payloads: list[bytes]) -> Iterator[tuple[float, FrameEvent]]:
         """(time in seconds, the monitor's event) per frame."""
-        feed, size = self.monitor.feed, msg.dlc
+        feed = self.monitor.feed
         now = self.now_ms.get(msg.name)
         if now is None:  # frames before the first timestamp take it
             now = next((round(t * 1000) for t in times if not math.isnan(t)), 0)
-        for t, word in zip(times, words):
+        for t, data in zip(times, payloads):
             if not math.isnan(t):
                 now = max(now, round(t * 1000))
-            yield t, feed(now, msg.frame_id, msg.is_extended, word.to_bytes(size, "little"))
+            yield t, feed(now, msg.frame_id, msg.is_extended, data)
         self.now_ms[msg.name] = now
 
     def stats(self, msg: ir.Message) -> MessageStats:
@@ -62,7 +62,7 @@ class MessageHealth:
     longest_gap: float = 0.0  # seconds before a frame that found its message timed out
     stats: MessageStats = field(default_factory=MessageStats)
 
-    def feed(self, times: np.ndarray, words: np.ndarray) -> None:
+    def feed(self, times: np.ndarray, payloads: list[bytes]) -> None:
         self.frames += len(times)
         valid = times[~np.isnan(times)]
         if len(valid):
@@ -71,7 +71,7 @@ class MessageHealth:
                 self.min_period, self.max_period = min(self.min_period, float(steps.min())), max(self.max_period, float(steps.max()))
             self.first = self.first if not math.isnan(self.first) else float(valid[0])
             self.last = float(valid[-1])
-        for t, ev in self.adapter.events(self.msg, times.tolist(), words.tolist()):
+        for t, ev in self.adapter.events(self.msg, times.tolist(), payloads):
             if Fault.TIMEOUT in ev.faults and not math.isnan(t - self.previous):
                 self.longest_gap = max(self.longest_gap, t - self.previous)
             self.previous = t if not math.isnan(t) else self.previous
@@ -99,8 +99,9 @@ class HealthReport:
         self.health = {m.name: MessageHealth(m, adapter) for m in messages}
         self.unknown: Counter[str] = Counter()
 
-    def feed_message(self, msg: ir.Message, times: np.ndarray, words: np.ndarray) -> None:
-        self.health[msg.name].feed(times, words)
+    def feed_message(self, msg: ir.Message, times: np.ndarray, payloads: list[bytes]) -> None:
+        """One message's frames: their times and data bytes (fields.MessageFrames.payloads)."""
+        self.health[msg.name].feed(times, payloads)
 
     def feed_unknown(self, frame_ids: np.ndarray, extended: np.ndarray) -> None:
         for fid, ext in zip(frame_ids.tolist(), extended.tolist()):

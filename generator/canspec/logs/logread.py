@@ -1,7 +1,8 @@
 """Bus logs → batches of frame columns (frames.Batch), read in bounded chunks so memory does not
 grow with the log. Formats: candump (every output form, in bulk: candump_bulk), Vector BLF (in bulk:
 blf_bulk), Vector ASC and PEAK TRC through python-can's readers, ASAM MF4 through asammdf (whole
-columns of the bus-logging groups at once). Picked by extension (`.gz` too) or by name; `-` is
+columns of the bus-logging groups at once); CAN FD records in every format (up to 64 bytes, the
+FD/BRS/ESI flags). Picked by extension (`.gz` too) or by name; `-` is
 stdin (text forms). A file that cannot be read, or is not in its format, raises InputError with
 one line saying what is wrong."""
 
@@ -164,7 +165,9 @@ def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
             record += 1
             kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
             channel = None if msg.channel is None else str(msg.channel)
-            frames.append(Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, bytes(msg.data) if kind == DATA else b"", kind))
+            flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
+            data = bytes(msg.data) if kind == DATA else b""
+            frames.append(Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, data, kind, flags))
             lines.append(counter.line if counter is not None else record)
             if len(frames) == CHUNK_FRAMES:
                 yield Chunk(fr.from_frames(frames, lines), [], lines[-1] - done)
@@ -246,14 +249,34 @@ def _mf4(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
 BYTE_MASKS = np.array([(1 << 8 * k) - 1 for k in range(8)] + [2**64 - 1], dtype=np.uint64)  # the first k bytes of a word
 
 
+def _mf4_data(s: Any, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
+    """(length, word, data, flags) of data frames: DataBytes is as wide as the group's longest frame."""
+    dlc = s[f"{name}.DataLength"].astype(np.uint8)
+    raw = s[f"{name}.DataBytes"]
+    if raw.shape[1] >= 8:
+        cells = np.ascontiguousarray(raw[:, :8])
+    else:
+        cells = np.zeros((len(dlc), 8), np.uint8)
+        cells[:, : raw.shape[1]] = raw
+    word = cells.view("<u8").ravel() & BYTE_MASKS[np.minimum(dlc, 8)]
+    data = None
+    if raw.shape[1] > 8 and (dlc > 8).any():
+        data = np.where(np.arange(raw.shape[1]) < dlc[:, None], raw, 0).astype(np.uint8)
+    flags = np.zeros(len(dlc), np.uint8)
+    if f"{name}.EDL" in s.dtype.names and s[f"{name}.EDL"].any():  # BRS and ESI exist only on FD frames
+        for field_name, bit in (("EDL", fr.FD), ("BRS", fr.BRS), ("ESI", fr.ESI)):
+            flags |= np.where(s[f"{name}.{field_name}"] != 0, bit, 0).astype(np.uint8)
+    return dlc, word, data, flags
+
+
 def _mf4_columns(sig: Any, name: str, kind: int, start: float, first: int) -> fr.Batch:
     s = sig.samples
     n = len(s)
+    data = None
     if kind == DATA:
-        dlc = s[f"{name}.DataLength"].astype(np.uint8)
-        word = np.ascontiguousarray(s[f"{name}.DataBytes"][:, :8]).view("<u8").ravel() & BYTE_MASKS[np.minimum(dlc, 8)]
+        dlc, word, data, flags = _mf4_data(s, name)
     else:
-        dlc, word = np.zeros(n, np.uint8), np.zeros(n, np.uint64)
+        dlc, word, flags = np.zeros(n, np.uint8), np.zeros(n, np.uint64), np.zeros(n, np.uint8)
     bus = s[f"{name}.BusChannel"]
     if n and np.all(bus == bus[0]):  # the usual log: one channel
         channels, codes = bus[:1], np.zeros(n, np.int32)
@@ -262,5 +285,5 @@ def _mf4_columns(sig: Any, name: str, kind: int, start: float, first: int) -> fr
     return fr.Batch(
         sig.timestamps.astype(np.float64) + start, codes.astype(np.int32), s[f"{name}.ID"].astype(np.uint32) & np.uint32(MAX_EXTENDED_ID),
         s[f"{name}.IDE"].astype(bool), np.full(n, kind, np.uint8), dlc, word,
-        np.arange(first + 1, first + n + 1, dtype=np.int64), channels=tuple(str(c) for c in channels.tolist()),
+        np.arange(first + 1, first + n + 1, dtype=np.int64), flags, channels=tuple(str(c) for c in channels.tolist()), data=data,
     )

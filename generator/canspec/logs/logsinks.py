@@ -19,9 +19,10 @@ from typing import IO, Any
 import numpy as np
 
 from canspec import ir
-from canspec.reference import codec
 from canspec.logs.bulk import Decoder
 from canspec.logs.bulktext import message_texts
+from canspec.logs.fields import MessageFrames
+from canspec.reference import codec
 
 
 class FrameSink:
@@ -31,11 +32,15 @@ class FrameSink:
         self.decoder, self.out = decoder, out
 
     def rows(self, batch: Any, decoded: Any) -> tuple[list[Any], ...]:
+        """Per decoded frame: message key, data bytes, time, channel, checksum flag."""
         rows = np.flatnonzero(decoded.fits)
         ok = np.ones(len(batch), bool)
         ok[decoded.bad_checksum] = False
-        return (decoded.key[rows].tolist(), batch.word[rows].tolist(), batch.timestamp[rows].tolist(),
-                batch.channel_names()[rows].tolist(), ok[rows].tolist())
+        dlc = batch.dlc[rows].tolist()
+        payloads = [w.to_bytes(8, "little")[:n] for w, n in zip(batch.word[rows].tolist(), dlc)]
+        for j in np.flatnonzero(batch.dlc[rows] > 8).tolist():  # CAN FD frames: their bytes
+            payloads[j] = batch.data[rows[j], : dlc[j]].tobytes()
+        return (decoded.key[rows].tolist(), payloads, batch.timestamp[rows].tolist(), batch.channel_names()[rows].tolist(), ok[rows].tolist())
 
     def close(self) -> None:
         self.out.flush()
@@ -59,7 +64,7 @@ class TextSink(FrameSink):
         one_channel = batch.channels[0] if len(batch.channels) == 1 and not (batch.channel < 0).any() else None
         for name, group in decoded.groups.items():
             head, msg = self.messages[name]
-            texts = message_texts(msg, batch.word[group], self.tables.setdefault(name, {}))
+            texts = message_texts(MessageFrames.of(msg, batch, group), self.tables.setdefault(name, {}))
             lines[np.searchsorted(rows, group)] = _lines(head, texts, batch.timestamp[group], channels[group], one_channel)
         if len(decoded.bad_checksum):
             at = np.searchsorted(rows, decoded.bad_checksum)
@@ -79,22 +84,34 @@ def _lines(head: str, texts: list[str], time: np.ndarray, channel: np.ndarray, o
     return [lead_text + head + text if lead_text else head[1:] + text for lead_text, text in zip(lead, texts)]
 
 
+NON_FINITE = {math.inf: "Infinity", -math.inf: "-Infinity"}  # as the vectors write them (JSON has no such numbers)
+
+
 def json_value(sig: ir.Signal, raw: int) -> str | float | int:
     label = sig.label_of(raw)
     if label is not None:
         return label.name
     phys = codec.physical_number(sig, raw)
+    if sig.is_float and not math.isfinite(phys):
+        return NON_FINITE.get(phys, "NaN")
     return round(phys, sig.decimals) if sig.decimals else phys
+
+
+def raw_values(msg: ir.Message, data: bytes) -> list[tuple[ir.Signal, int]]:
+    """Each data signal with its raw value in the frame (the reference codec's reading)."""
+    v = int.from_bytes(data, "little")
+    big = int.from_bytes(data, "big") if msg.has_big_endian else None
+    return [(s, codec.raw_value(s, v, big)) for s in msg.data_signals]
 
 
 class JsonSink(FrameSink):
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
         parts = []
-        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
+        for k, data, t, c, ok in zip(*self.rows(batch, decoded)):
             msg = self.decoder.layouts[k].msg
             record = {
                 "timestamp": None if math.isnan(t) else t, "channel": c or None, "frame_id": msg.id_text[2:], "message": msg.name,
-                "signals": {s.name: json_value(s, codec.raw_value(s, w)) for s in msg.data_signals}, "checksum_ok": ok,
+                "signals": {s.name: json_value(s, raw) for s, raw in raw_values(msg, data)}, "checksum_ok": ok,
             }
             parts.append(json.dumps(record, ensure_ascii=False) + "\n")
         self.out.write("".join(parts))
@@ -109,11 +126,10 @@ class CsvSink(FrameSink):
         self.csv.writerow(["timestamp", "channel", "frame_id", "message", "signal", "raw", "value", "unit", "checksum_ok"])
 
     def __call__(self, source: str, batch: Any, decoded: Any) -> None:
-        for k, w, t, c, ok in zip(*self.rows(batch, decoded)):
+        for k, data, t, c, ok in zip(*self.rows(batch, decoded)):
             msg = self.decoder.layouts[k].msg
             ts = "" if math.isnan(t) else f"{t:.6f}"
-            for s in msg.data_signals:
-                raw = codec.raw_value(s, w)
+            for s, raw in raw_values(msg, data):
                 self.csv.writerow([ts, c, msg.id_text[2:], msg.name, s.name, raw, codec.value_text(s, raw), s.unit, int(ok)])
 
 
