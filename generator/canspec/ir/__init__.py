@@ -42,6 +42,7 @@ from canspec.ir.model import (
     runtime_quotient,
     to_physical,
 )
+from canspec.ir.mux import MuxCondition, MuxGroup
 
 __all__ = [
     "TIE_EPSILON",
@@ -62,6 +63,8 @@ __all__ = [
     "Checksum",
     "Counter",
     "MultiFrame",
+    "MuxCondition",
+    "MuxGroup",
     "FaultTable",
     "J1939Id",
     "Message",

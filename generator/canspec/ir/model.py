@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
 
+from canspec.ir.mux import MuxCondition, MuxGroup
 from canspec.spec.problems import Loc
 
 # Runtime rounding rule shared by every generated language (ir/encoding.py states what it guarantees):
@@ -150,6 +151,10 @@ class Signal:
     # its physical value the float those bits hold (factor 1, offset 0); the raw/phys ranges are the
     # float's finite range (or the documented one), and NaN/±Inf pass only without a documented range.
     is_float: bool = False
+    # Multiplexing (ir/mux.py): present only while its multiplexer holds one of some values (None:
+    # in every frame); a multiplexer is a field others name in their `mux`.
+    mux: MuxCondition | None = None
+    is_multiplexer: bool = False
 
     @property
     def is_reserved(self) -> bool:
@@ -309,6 +314,31 @@ class Message:
     loc: Loc | None = field(default=None, compare=False, hash=False)
     is_fd: bool = False  # a CAN FD frame (FDF): up to 64 data bytes
     brs: bool = False  # CAN FD bit-rate switching: the data phase at the bus's data_bitrate
+    # The pages of each multiplexer, top-level multiplexer first (ir/mux.py): () without multiplexing.
+    mux_groups: tuple[MuxGroup, ...] = ()
+
+    @property
+    def is_multiplexed(self) -> bool:
+        return bool(self.mux_groups)
+
+    @property
+    def multiplexers(self) -> tuple[Signal, ...]:
+        """The multiplexers, in frame order; one of them is in every frame (the top-level one)."""
+        return tuple(s for s in self.signals if s.is_multiplexer)
+
+    def mux_chain(self, sig: Signal) -> tuple[MuxCondition, ...]:
+        """What a field's presence needs, top-level multiplexer first: () for a field in every frame."""
+        chain: list[MuxCondition] = []
+        while sig.mux is not None:
+            chain.insert(0, sig.mux)
+            sig = self.signal(sig.mux.by)
+        return tuple(chain)
+
+    def present(self, values: dict[str, int]) -> tuple[Signal, ...]:
+        """The data fields a frame holds when its multiplexers hold `values` (raw; a multiplexer
+        missing from it holds 0, as an encoder writes it), in frame order: the fields in every
+        frame and those of the selected pages; the other pages' fields are absent."""
+        return tuple(s for s in self.data_signals if all(c.holds(values.get(c.by, 0)) for c in self.mux_chain(s)))
 
     @property
     def is_classic_length(self) -> bool:
@@ -429,6 +459,10 @@ class CanProtocol:
     @property
     def max_dlc(self) -> int:
         return max((m.dlc for m in self.messages), default=0)
+
+    @property
+    def has_multiplexing(self) -> bool:
+        return any(m.is_multiplexed for m in self.messages)
 
     @property
     def has_multiframe(self) -> bool:

@@ -5,6 +5,7 @@ read the results (Signal.mux, Message.mux_groups, Message.present) and never rec
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
@@ -90,7 +91,7 @@ def groups(multiplexer: str, children: list[tuple[str, Ranges]]) -> tuple[MuxGro
     present fields changes, runs with the same set merged, ordered by their first value."""
     cuts = sorted({lo for _, rs in children for lo, _ in rs} | {hi + 1 for _, rs in children for _, hi in rs})
     by_set: dict[tuple[str, ...], list[tuple[int, int]]] = {}
-    for lo, nxt in zip(cuts, cuts[1:]):
+    for lo, nxt in itertools.pairwise(cuts):
         present = tuple(name for name, rs in children if holds(rs, lo))
         if present:
             by_set.setdefault(present, []).append((lo, nxt - 1))
