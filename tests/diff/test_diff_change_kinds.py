@@ -5,12 +5,13 @@ from the ladder's definitions rather than taken from the tool."""
 from __future__ import annotations
 
 import dataclasses
+import json
 
 import pytest
 from canspec.diff.classes import KINDS
 from canspec.diff.compare import compare
 from canspec.diff.inputs import load_model
-from diff_helpers import BASE, diff_paths, edited
+from diff_helpers import BASE, ROOT, diff_paths, edited
 
 CMD_RESERVED = "      - {role: reserved, start: 16, len: 48}\n"
 NEW_MESSAGE = """  - name: extra
@@ -85,6 +86,15 @@ CASES = [
     ("special_renamed", [(DISTANCE, DISTANCE.replace("no_obstacle", "clear"))], {("special_renamed", "source", "distance")}),
 ]
 
+# Issue 24: byte order, CAN FD and IEEE floats. Each pair differs only in that.
+FD_BUS = ("bitrate: 250000,", "bitrate: 250000, data_bitrate: 1000000,")
+CASES += [
+    # torque's 16 bits as Motorola in bytes 0..1 (start = its MSB, bit 7): the same bits, other weights
+    ("signal_byte_order_changed", [(TORQUE, TORQUE.replace("start: 0,", "start: 7, byte_order: big_endian,"))],
+     {("signal_byte_order_changed", "wire", "torque")}),
+    ("message_fd_changed", [("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")], {("message_fd_changed", "wire", None)}),
+]
+
 _COMMAND_BLOCK = BASE.read_text(encoding="utf-8").split("  - name: command\n")[1]
 CASES[1] = ("message_removed", [("  - name: command\n" + _COMMAND_BLOCK, "")], {("message_removed", "wire", None)})
 
@@ -114,6 +124,41 @@ def test_sender_and_multiframe_changes_on_the_model():
     assert {(c.kind, c.cls) for c in compare(old, new)} == {("message_sender_changed", "compatible"), ("message_multiframe_changed", "wire")}
 
 
+LEVEL = "      - {name: level, start: 16, len: 32}\n      - {role: reserved, start: 48, len: 16}\n"
+# (case id, edits of the old revision, edits of the new one, expected): pairs whose old side is not the base
+BOTH_EDITED = [
+    ("signal_float_changed", [(CMD_RESERVED, LEVEL)], [(CMD_RESERVED, LEVEL.replace("len: 32}", "len: 32, float: true}"))],
+     {("signal_float_changed", "wire", "level")}),
+    ("message_brs_changed", [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")],
+     [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n    brs: false\n")], {("message_brs_changed", "compatible", None)}),
+    # a byte-aligned byte is the same field in either order: start 56 Intel and start 63 Motorola are byte 7
+    ("byte_order_of_a_whole_byte", [], [("start: 56, len: 8, range: [0, 255], role: checksum}",
+                                         "start: 63, len: 8, byte_order: big_endian, range: [0, 255], role: checksum}")],
+     set()),
+]
+
+
+@pytest.mark.parametrize("case, old_edits, new_edits, expected", BOTH_EDITED, ids=[c[0] for c in BOTH_EDITED])
+def test_change_kind_between_edited_revisions(tmp_path, case, old_edits, new_edits, expected):
+    old, new = edited(tmp_path, old_edits, "old.yaml"), edited(tmp_path, new_edits, "new.yaml")
+    assert {(c.kind, c.cls, c.signal) for c in diff_paths(old, new)} == expected
+    assert {(c.kind, c.cls, c.signal) for c in diff_paths(new, old)} == expected
+
+
 def test_every_kind_has_a_fixture():
     covered = {kind for _, _, expected in CASES for kind, _, _ in expected} | {"message_sender_changed", "message_multiframe_changed"}
+    covered |= {kind for *_, expected in BOTH_EDITED for kind, _, _ in expected}
     assert covered == set(KINDS)
+
+
+def test_the_change_record_schema_names_every_kind():
+    """A changelog entry may name any kind diff reports (plus `unreconstructed`): the schema's list is written by hand."""
+    schema = json.loads((ROOT / "spec" / "schema" / "canspec-spec.v1.schema.json").read_text(encoding="utf-8"))
+    lists = [v for v in _walk(schema) if isinstance(v, dict) and "message_added" in (v.get("enum") or ())]
+    assert len(lists) == 1 and set(lists[0]["enum"]) == set(KINDS) | {"unreconstructed"}
+
+
+def _walk(node):  # type: ignore[no-untyped-def]
+    yield node
+    for child in node.values() if isinstance(node, dict) else node if isinstance(node, list) else ():
+        yield from _walk(child)

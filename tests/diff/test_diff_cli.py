@@ -112,13 +112,15 @@ def test_directory_without_bundle(tmp_path):
     assert "no canspec.yaml" in _bad(run_cli, tmp_path, BASE)
 
 
-# What the comparison model cannot hold is refused, never compared as equal: each pair below
-# differs only in it, a wire break a diff that ignored it would report as "no differences".
+# What the comparison model cannot hold is refused, never compared as equal: two DBCs differing only
+# in a multiplexer value (a wire break a diff that ignored multiplexing would call "no differences").
+# Byte order, FD frames, BRS and IEEE floats it compares: each pair differs only in that.
 _DBC_HEAD = 'VERSION "tiny 1.0.0"\n\nNS_ :\n\nBS_:\n\nBU_: ECU LOGGER\n\nBO_ 256 status: 8 ECU\n'
 _DBC_FRAME_FORMAT = ('BA_DEF_ BO_ "VFrameFormat" ENUM "StandardCAN","ExtendedCAN"' + ',"reserved"' * 12 + ',"StandardCAN_FD","ExtendedCAN_FD";\n'
-                     'BA_DEF_DEF_ "VFrameFormat" "StandardCAN";\n')
+                     'BA_DEF_ BO_ "CANFD_BRS" ENUM "0","1";\nBA_DEF_DEF_ "VFrameFormat" "StandardCAN";\nBA_DEF_DEF_ "CANFD_BRS" "1";\n')
 _PLAIN_SIGNALS = ' SG_ speed : 0|16@1+ (0.1,0) [0|6553.5] "km/h" LOGGER\n SG_ level : 16|32@1- (1,0) [0|0] "" LOGGER\n'
 _MUX_SIGNALS = ' SG_ mode M : 0|8@1+ (1,0) [0|255] "" LOGGER\n SG_ speed m8 : 8|16@1+ (0.1,0) [0|6553.5] "km/h" LOGGER\n'
+_FD = 'BA_ "VFrameFormat" BO_ 256 14;\n'
 
 
 def _dbc(tmp_path, name: str, signals: str, tail: str = "") -> Path:
@@ -127,14 +129,24 @@ def _dbc(tmp_path, name: str, signals: str, tail: str = "") -> Path:
     return path
 
 
-@pytest.mark.parametrize(("old", "new", "refusal"), [
-    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " m9 "), ""), "old.dbc: message 'status': is multiplexed (multiplexer 'mode')"),
-    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, 'BA_ "VFrameFormat" BO_ 256 14;\n'), "new.dbc: message 'status': is a CAN FD frame (VFrameFormat)"),
-    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, "SIG_VALTYPE_ 256 level : 1;\n"), "new.dbc: message 'status': signal 'level' is an IEEE float (SIG_VALTYPE_)"),
-], ids=["multiplexer_value", "fd_frame", "float_signal"])
-def test_what_diff_cannot_compare_is_refused(tmp_path, old, new, refusal):
+@pytest.mark.parametrize("old, new", [(_MUX_SIGNALS, _MUX_SIGNALS.replace(" m8 ", " m9 ")), (_PLAIN_SIGNALS, _MUX_SIGNALS)], ids=["m8_to_m9", "plain_to_mux"])
+def test_multiplexed_dbcs_are_refused(tmp_path, old, new):
     plain = _dbc(tmp_path, "plain", _PLAIN_SIGNALS)
     code, out, _ = run_cli("diff", plain, plain)
     assert code == 0 and "no differences" in out  # the plain DBC is one diff compares
-    err = _bad(run_cli, _dbc(tmp_path, "old", *old), _dbc(tmp_path, "new", *new))
-    assert refusal in err and len(err.strip().splitlines()) == 1, err
+    err = _bad(run_cli, _dbc(tmp_path, "old", old), _dbc(tmp_path, "new", new))
+    which = "old" if "M :" in old else "new"
+    assert f"{which}.dbc: message 'status': is multiplexed (multiplexer 'mode'" in err and len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize(("old", "new", "expected"), [
+    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, _FD), {("message_fd_changed", "wire", None)}),
+    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, "SIG_VALTYPE_ 256 level : 1;\n"), {("signal_float_changed", "wire", "level")}),
+    ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS.replace("16|32@1-", "16|32@0-"), ""), {("signal_byte_order_changed", "wire", "level")}),
+    ((_PLAIN_SIGNALS, _FD), (_PLAIN_SIGNALS, _FD + 'BA_ "CANFD_BRS" BO_ 256 0;\n'), {("message_brs_changed", "compatible", None)}),
+], ids=["fd_frame", "float_signal", "byte_order", "brs"])
+def test_dbcs_differing_in_byte_order_fd_or_float_are_classified(tmp_path, old, new, expected):
+    old_dbc, new_dbc = _dbc(tmp_path, "old", *old), _dbc(tmp_path, "new", *new)
+    code, out, err = run_cli("diff", old_dbc, new_dbc, "--format", "json", "--fail-on", "wire")
+    assert {(c["kind"], c["class"], c["signal"]) for c in json.loads(out)["changes"]} == expected, err
+    assert code == (1 if any(cls == "wire" for _, cls, _ in expected) else 0)

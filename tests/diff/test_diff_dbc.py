@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+import cantools
 import pytest
-from diff_helpers import ROOT, diff_paths
-
-pytest.importorskip("cantools")
+from canspec.diff.inputs import load_model
+from diff_helpers import ROOT, diff_paths, run_cli
 
 DBC = ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
 SPEC = ROOT / "spec"
@@ -48,5 +48,47 @@ def test_dbc_choice_rename_is_source_breaking(tmp_path):
 
 
 def test_dbc_counter_role_from_sigtype(tmp_path):
-    dbc = _mutated(tmp_path, 'BA_ "SigType" SG_ 2550571184 counter_1806A0B0 11;', 'BA_ "SigType" SG_ 2550571184 counter_1806A0B0 1;')
+    dbc = _mutated(tmp_path, 'BA_ "SigType" SG_ 2550571184 counter 11;', 'BA_ "SigType" SG_ 2550571184 counter 1;')
     assert {(c.kind, c.cls, c.frame_id) for c in diff_paths(SPEC, dbc)} == {("signal_role_changed", "wire", 0x1806A0B0)}
+
+
+# A DBC written as vehicle DBCs in the wild are (opendbc's style): Motorola signals crossing bytes,
+# Intel ones among them, receivers XXX, no canspec attributes, an FD frame of 32 bytes with floats.
+MOTOROLA = ROOT / "tests" / "diff" / "fixtures" / "motorola_vehicle.dbc"
+
+
+def test_a_motorola_dbc_against_itself_has_no_differences():
+    assert diff_paths(MOTOROLA, MOTOROLA) == []
+    code, out, _ = run_cli("diff", MOTOROLA, MOTOROLA, "--fail-on", "any")
+    assert code == 0 and "no differences" in out
+
+
+def test_the_model_puts_motorola_fields_where_cantools_does():
+    """Each integer field's bits as diff's model holds them = the bits cantools sets encoding that field all ones."""
+    db = cantools.database.load_file(str(MOTOROLA), strict=True)
+    model = load_model(str(MOTOROLA))
+    checked = 0
+    for msg in db.messages:
+        for sig in msg.signals:
+            if sig.is_float:
+                continue
+            ones = -1 if sig.is_signed else (1 << sig.length) - 1
+            data = msg.encode({s.name: ones if s is sig else 0 for s in msg.signals}, scaling=False, strict=False)
+            set_bits = {8 * byte + bit for byte, value in enumerate(data) for bit in range(8) if value >> bit & 1}  # the DBC's numbering
+            assert model.by_name(msg.name).signal(sig.name).bits == set_bits, sig.name
+            checked += 1
+    assert checked == 19  # every integer field of the file
+
+
+@pytest.mark.parametrize(("old", "new", "expected"), [
+    (" SG_ WHEEL_SPEED_RL : 55|16@0+", " SG_ WHEEL_SPEED_RL : 55|16@1+", ("signal_byte_order_changed", "wire", "WHEEL_SPEED_RL")),
+    ("SIG_VALTYPE_ 1024 LAT_DIST : 1;\n", "", ("signal_float_changed", "wire", "LAT_DIST")),
+    ('BA_ "VFrameFormat" BO_ 1024 14;', 'BA_ "VFrameFormat" BO_ 1024 0;', ("message_fd_changed", "wire", None)),
+    ('BA_ "VFrameFormat" BO_ 1024 14;', 'BA_ "VFrameFormat" BO_ 1024 14;\nBA_ "CANFD_BRS" BO_ 1024 0;', ("message_brs_changed", "compatible", None)),
+], ids=["byte_order", "float", "fd", "brs"])
+def test_motorola_dbc_edits_are_classed(tmp_path, old, new, expected):
+    text = MOTOROLA.read_text(encoding="utf-8")
+    assert text.count(old) == 1
+    edited_dbc = tmp_path / "edited.dbc"
+    edited_dbc.write_text(text.replace(old, new), encoding="utf-8")
+    assert {(c.kind, c.cls, c.signal) for c in diff_paths(MOTOROLA, edited_dbc)} == {expected}

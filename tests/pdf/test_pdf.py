@@ -155,3 +155,31 @@ def test_a_spec_the_handbook_cannot_show_is_a_clear_error(tmp_path):
                        capture_output=True, text=True, timeout=300, check=False)
     assert r.returncode == 1 and "Traceback" not in r.stderr and "canspec pdf: the spec has errors" in r.stderr
     assert not (tmp_path / "x.pdf").exists()
+
+
+FD_FLOAT = ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.yaml"
+
+
+def test_a_motorola_fd_float_bus_prints_every_row_of_its_64_byte_frame(tmp_path):
+    """The handbook of a Motorola / CAN FD / float bus: the signals, their byte order and float type,
+    the FD lengths; the 64-byte frame's diagram in four parts, each on a page of its own with its
+    coloured spans, together printing the bit number of every one of the 512 cells (none cut off)."""
+    from canspec.targets.docs.svg import PALETTE
+
+    pdf = build(FD_FLOAT, tmp_path / "fd.pdf")
+    data = yaml.safe_load(FD_FLOAT.read_text(encoding="utf-8"))
+    texts = pages(pdf)
+    text = "\n".join(texts)
+    for needle in ("float32", "float64", "Motorola", "Intel", "64 bytes (DLC code 15)", "12 bytes (DLC code 9)", "2000 kbit/s",
+                   *(s["name"] for m in data["messages"] for s in m["signals"])):
+        assert needle in text, needle
+    toc = contents(pdf)
+    first, after = toc["0x2B0 radar_objects"], toc["0x3C0 body_status"]
+    tokens = set(" ".join(texts[first - 1:after - 1]).split())
+    assert {str(n) for n in range(512)} <= tokens
+    fills = [tuple(int(f[i:i + 2], 16) for i in (1, 3, 5)) for f, _ in PALETTE]
+    for number in range(first, first + 4):  # bytes 0–15, 16–31, 32–47, 48–63
+        img = _image(pdf, number, tmp_path)
+        spans = sum(n for n, px in img.getcolors(img.width * img.height) if any(all(abs(a - b) <= 6 for a, b in zip(px, f)) for f in fills))
+        assert spans > 0.002 * img.width * img.height, number
+        assert "bit 7" in texts[number - 1], number

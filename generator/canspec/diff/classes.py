@@ -1,10 +1,13 @@
 """The breaking-change ladder, strictest first, and the version bump each class suggests.
 
-wire       an old receiver would decode different values (layout, factor, offset, signedness,
-           unit, ID, DLC, enum meaning, checksum/counter roles, removed message or signal)
+wire       an old receiver would decode different values (layout, byte order, integer ↔ IEEE
+           float, factor, offset, signedness, unit, ID, DLC, classic ↔ CAN FD frame, enum meaning,
+           checksum/counter roles, removed message or signal)
 source     the wire is the same but generated identifiers change (renames)
 compatible old code keeps working (new message, new signal in formerly free bits, new enum
-           value, widened range, cycle time, sender/receivers)
+           value, widened range, cycle time, sender/receivers, bit-rate switching of an FD frame:
+           the data phase's speed changes, not its bits — an FD controller follows the frame's BRS
+           bit on receive, so only timing and bus load change)
 docs       names as printed, descriptions
 """
 
@@ -26,6 +29,8 @@ KINDS: dict[str, str] = {
     "message_receivers_changed": "compatible",
     "message_checksum_changed": "wire",
     "message_multiframe_changed": "wire",
+    "message_fd_changed": "wire",  # a classic controller cannot receive an FD frame (nor sends one where FD is expected)
+    "message_brs_changed": "compatible",  # timing only: see the ladder above
     "message_title_changed": "docs",
     "signal_added": "wire",  # compatible when its bits were free (reserved or unused) before
     "signal_removed": "wire",
@@ -34,6 +39,8 @@ KINDS: dict[str, str] = {
     "signal_resized": "wire",
     "signal_rescaled": "wire",
     "signal_signedness_changed": "wire",
+    "signal_byte_order_changed": "wire",
+    "signal_float_changed": "wire",  # integer ↔ IEEE float: the same bits, another value
     "signal_unit_changed": "wire",
     "signal_range_changed": "wire",  # compatible when only widened
     "signal_role_changed": "wire",

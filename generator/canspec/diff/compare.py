@@ -93,7 +93,13 @@ def _entries(c: _Collector, msg: MessageModel, sig: SignalModel, what: str, old:
 def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalModel) -> None:
     if o.name != n.name:
         c.add("signal_renamed", msg, n, f"{o.name} → {n.name}", o.name, n.name)
-    if o.start != n.start:
+    # The wire is the value bits' frame positions: a byte-aligned byte (or a single bit) is the same
+    # field in either order, and a byte-order change is reported as that, its start bits with it.
+    same_wire = o.positions == n.positions
+    if o.byte_order != n.byte_order and not same_wire:
+        c.add("signal_byte_order_changed", msg, n, f"byte order {_ORDER[o.byte_order]} → {_ORDER[n.byte_order]} (start bit {o.start} → {n.start})",
+              o.byte_order, n.byte_order)
+    elif o.start != n.start and not same_wire:
         c.add("signal_moved", msg, n, f"start bit {o.start} → {n.start}", o.start, n.start)
     if o.length != n.length:
         c.add("signal_resized", msg, n, f"length {o.length} → {n.length} bits", o.length, n.length)
@@ -108,9 +114,11 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         )
     if o.signed != n.signed:
         c.add("signal_signedness_changed", msg, n, f"{'signed' if o.signed else 'unsigned'} → {'signed' if n.signed else 'unsigned'}", o.signed, n.signed)
+    if o.is_float != n.is_float:
+        c.add("signal_float_changed", msg, n, f"{_number_type(o)} → {_number_type(n)}", o.is_float, n.is_float)
     if o.unit != n.unit:
         c.add("signal_unit_changed", msg, n, f"unit {o.unit or '(none)'} → {n.unit or '(none)'}", o.unit, n.unit)
-    if (o.minimum, o.maximum) != (n.minimum, n.maximum):
+    if (o.minimum, o.maximum) != (n.minimum, n.maximum) and o.is_float == n.is_float:  # integer ↔ float: reported above
         widened = n.minimum <= o.minimum and n.maximum >= o.maximum
         c.add(
             "signal_range_changed",
@@ -134,6 +142,15 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         c.add("signal_description_changed", msg, n, "description changed", o.desc, n.desc)
 
 
+_ORDER = {"little_endian": "Intel (little-endian)", "big_endian": "Motorola (big-endian)"}
+
+
+def _number_type(sig: SignalModel) -> str:
+    if sig.is_float:
+        return f"IEEE float{sig.length}"
+    return "signed integer" if sig.signed else "unsigned integer"
+
+
 def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[SignalModel, SignalModel]], list[SignalModel], list[SignalModel]]:
     pairs: list[tuple[SignalModel, SignalModel]] = []
     left_old, left_new = list(old.signals), list(new.signals)
@@ -147,7 +164,7 @@ def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[Sig
                 left_new.remove(cands[0])
 
     take(lambda o, n: o.name == n.name)
-    take(lambda o, n: (o.start, o.length) == (n.start, n.length))
+    take(lambda o, n: (o.start, o.length) == (n.start, n.length) or o.positions == n.positions)
     take(lambda o, n: bool(o.zh) and o.zh == n.zh)
     return pairs, left_old, left_new
 
@@ -159,6 +176,10 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_renamed", n, None, f"{o.name} → {n.name}", o.name, n.name)
     if o.dlc != n.dlc:
         c.add("message_dlc_changed", n, None, f"DLC {o.dlc} → {n.dlc}", o.dlc, n.dlc)
+    if o.fd != n.fd:
+        c.add("message_fd_changed", n, None, f"frame format {_frame_format(o.fd)} → {_frame_format(n.fd)}", o.fd, n.fd)
+    elif o.fd and _both(o.brs, n.brs) and o.brs != n.brs:
+        c.add("message_brs_changed", n, None, f"bit-rate switching {'on' if o.brs else 'off'} → {'on' if n.brs else 'off'}", o.brs, n.brs)
     if _both(o.cycle_ms, n.cycle_ms) and o.cycle_ms != n.cycle_ms:
         c.add("message_cycle_changed", n, None, f"cycle {o.cycle_ms} ms → {n.cycle_ms} ms", o.cycle_ms, n.cycle_ms)
     if _both(o.sender, n.sender) and o.sender != n.sender:
@@ -183,6 +204,10 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
     for a, b in pairs:
         _signal_pair(c, n, a, b)
+
+
+def _frame_format(fd: bool) -> str:
+    return "CAN FD" if fd else "classic CAN"
 
 
 def _checksum_text(m: MessageModel) -> str:

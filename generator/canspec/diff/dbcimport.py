@@ -6,9 +6,12 @@ renamed (targets/dbc/naming.py), so a spec and its own DBC compare equal. Specia
 back from the comments canspec writes ("0x3FF = no_obstacle (无障碍物)", "-0x4 = no_limit" for a
 negative raw value or a special without a Chinese label). Factors, offsets and ranges are taken
 as written in the SG_ lines: cantools reads them as doubles, which cannot hold 0.1 or a 64-bit
-field's 18446744073709551615 exactly. What the model cannot hold — Motorola signals, IEEE float
-signals, multiplexing, CAN FD frames — is refused (an InputError naming it): ignored, a change of
-it would read as "no differences"."""
+field's 18446744073709551615 exactly. Byte order (`@0` Motorola, `@1` Intel: the start bit means
+what it means in the spec), IEEE floats (SIG_VALTYPE_ 1/2; a float's [0|0] is "no range": every
+finite value), CAN FD frames (VFrameFormat 14/15, which cantools reads as is_fd) and their
+bit-rate switching (CANFD_BRS, else its BA_DEF_DEF_ default, else unknown: not compared) are read.
+What the model cannot hold — multiplexing (M/mN, SG_MUL_VAL_) — is refused (an InputError naming
+it): ignored, a change of it would read as "no differences"."""
 
 from __future__ import annotations
 
@@ -17,7 +20,7 @@ from fractions import Fraction
 from pathlib import Path
 
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
-from canspec.ir.encoding import raw_type_range
+from canspec.ir.encoding import FLOAT_MAX, raw_type_range
 from canspec.ir.model import to_physical
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
@@ -73,40 +76,54 @@ def _role(sig: object, attribute_definitions: dict) -> str:  # type: ignore[type
     return _SIG_TYPE_ROLES.get(str(value), "data")
 
 
+def _range(sig, written: Numbers | None, definitions) -> tuple[Fraction, Fraction, Fraction, Fraction]:  # type: ignore[no-untyped-def]
+    """factor, offset and the range, exactly as written; a missing range is what the bits can carry."""
+    if written is not None:
+        factor, offset, lo, hi = written
+        # [0|0] says "no range" in a DBC, but a range of exactly 0 … 0 in one canspec wrote (not for a float: it writes [0|0] for none).
+        no_range = lo == hi == 0 and (sig.is_float or SPEC_NAME_ATTRIBUTE not in definitions)
+    else:
+        factor, offset, lo, hi = _frac(sig.scale), _frac(sig.offset), _frac(sig.minimum), _frac(sig.maximum)
+        no_range = sig.minimum is None or sig.maximum is None
+    if no_range and sig.is_float:
+        if sig.length not in FLOAT_MAX:
+            raise InputError(f"signal {sig.name!r} is an IEEE float of {sig.length} bits (SIG_VALTYPE_ needs 32 or 64)")
+        return factor, offset, -FLOAT_MAX[sig.length], FLOAT_MAX[sig.length]
+    if no_range:
+        a, b = (to_physical(raw, factor, offset) for raw in raw_type_range(sig.length, bool(sig.is_signed)))
+        lo, hi = min(a, b), max(a, b)
+    return factor, offset, lo, hi
+
+
 def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: ignore[no-untyped-def]
-    if sig.byte_order != "little_endian":
-        raise InputError(f"signal {sig.name!r} is big-endian (Motorola); canspec compares Intel-order protocols only")
-    if sig.is_float:
-        raise InputError(f"signal {sig.name!r} is an IEEE float (SIG_VALTYPE_); canspec compares integer signals only")
     specials = {}
     for m in _SPECIAL.finditer(sig.comment or ""):
         specials[int(m.group(1) + m.group(2), 16)] = Entry(m.group(3), m.group(4))
     # canspec lists special values in VAL_ too (so tools show them); they are not enum entries.
     choices = {int(raw): str(getattr(v, "name", v)) for raw, v in (sig.choices or {}).items()}
     values = {raw: Entry(name, None) for raw, name in choices.items() if not (raw in specials and specials[raw].name == name)} or None
-    if written is not None:
-        factor, offset, lo, hi = written
-        # [0|0] says "no range" in a DBC, but a range of exactly 0 … 0 in one canspec wrote.
-        no_range = lo == hi == 0 and SPEC_NAME_ATTRIBUTE not in definitions
-    else:
-        factor, offset, lo, hi = _frac(sig.scale), _frac(sig.offset), _frac(sig.minimum), _frac(sig.maximum)
-        no_range = sig.minimum is None or sig.maximum is None
-    if no_range:  # what the bits can carry
-        a, b = (to_physical(raw, factor, offset) for raw in raw_type_range(sig.length, bool(sig.is_signed)))
-        lo, hi = min(a, b), max(a, b)
+    factor, offset, lo, hi = _range(sig, written, definitions)
     return SignalModel(
         name=str(_attr(sig, SPEC_NAME_ATTRIBUTE) or sig.name), start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,
         unit=sig.unit or "", minimum=lo, maximum=hi, role=_role(sig, definitions), values=values, values_table=None,
-        specials=specials, zh=None, desc=None,
+        specials=specials, zh=None, desc=None, byte_order=sig.byte_order, is_float=bool(sig.is_float),
     )
 
 
 def _check_frame(msg) -> None:  # type: ignore[no-untyped-def]
-    if msg.is_fd:
-        raise InputError("is a CAN FD frame (VFrameFormat); canspec compares classic CAN frames only")
     if msg.is_multiplexed():
         mux = next((s.name for s in msg.signals if s.is_multiplexer), "?")
-        raise InputError(f"is multiplexed (multiplexer {mux!r}); canspec compares messages without multiplexing only")
+        raise InputError(f"is multiplexed (multiplexer {mux!r}, M/mN); canspec diff does not compare multiplexed messages yet")
+
+
+def _brs(msg, definitions) -> bool | None:  # type: ignore[no-untyped-def]
+    """Bit-rate switching of an FD frame: its CANFD_BRS, else the attribute's default, else unknown."""
+    if not msg.is_fd:
+        return False
+    value = _attr(msg, "CANFD_BRS")
+    if value is None:
+        value = getattr(definitions.get("CANFD_BRS"), "default_value", None)
+    return None if value is None else str(value) == "1"
 
 
 def _read_text(path: Path, source: str) -> str:
@@ -149,6 +166,7 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
                 frame_id=msg.frame_id, extended=bool(msg.is_extended_frame), name=msg.name, title=None, zh=None,
                 dlc=msg.length, cycle_ms=msg.cycle_time, sender=senders[0] if senders else "ALL",
                 receivers=tuple(receivers) if receivers else None, signals=signals, checksum=None, multiframe=None,
+                fd=bool(msg.is_fd), brs=_brs(msg, definitions),
             )
         )
     version = (getattr(db, "version", None) or "").strip() or None

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
+from canspec.ir.bits import LITTLE, describe, positions
 from canspec.spec.problems import Loc
 
 # Value-table entries that only mark a raw value as unused ("保留") are not a meaning.
@@ -40,12 +41,21 @@ class SignalModel:
     zh: str | None
     desc: str | None
     loc: Loc | None = None
+    byte_order: str = LITTLE  # little_endian (Intel: start is the LSB) | big_endian (Motorola: start is the MSB)
+    is_float: bool = False  # an IEEE 754 field (the raw value is its bit pattern)
+
+    @property
+    def positions(self) -> tuple[int, ...]:
+        """The frame bits of value bits 0 (LSB) .. length - 1, in either byte order."""
+        return positions(self.start, self.length, self.byte_order)
 
     @property
     def bits(self) -> frozenset[int]:
-        return frozenset(range(self.start, self.start + self.length))
+        return frozenset(self.positions)
 
     def span(self) -> str:
+        if self.byte_order != LITTLE:
+            return f"Motorola, start bit {self.start}: {describe(self.start, self.length, self.byte_order)}"
         end = self.start + self.length - 1
         return f"bit {self.start}" if self.length == 1 else f"bits {self.start}..{end}"
 
@@ -65,6 +75,8 @@ class MessageModel:
     checksum: tuple[str, int, tuple[int, ...]] | None  # (algorithm, byte, covered bytes), spec only
     multiframe: tuple[object, ...] | None
     loc: Loc | None = None
+    fd: bool = False  # a CAN FD frame (FDF)
+    brs: bool | None = False  # bit-rate switching of an FD frame; None: the source does not say
 
     @property
     def used_bits(self) -> frozenset[int]:
@@ -109,9 +121,12 @@ def _signal(sig: ir.Signal) -> SignalModel:
     desc = " / ".join(t for t in (sig.desc, sig.desc_zh) if t)
     return SignalModel(
         name=sig.name, start=sig.start, length=sig.length, signed=sig.signed, factor=sig.factor, offset=sig.offset,
-        unit=sig.unit, minimum=sig.phys_min, maximum=sig.phys_max, role=sig.role, values=values,
+        # a float's range: the documented one, else every finite value (its raw range is a bit pattern's)
+        unit=sig.unit, minimum=sig.check_min if sig.is_float else sig.phys_min, maximum=sig.check_max if sig.is_float else sig.phys_max,
+        role=sig.role, values=values,
         values_table=sig.value_table.name if sig.value_table is not None else None,
         specials={s.raw: Entry(s.name, s.label_zh) for s in sig.specials}, zh=sig.zh, desc=desc, loc=sig.loc,
+        byte_order=sig.byte_order, is_float=sig.is_float,
     )
 
 
@@ -126,7 +141,7 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
                 frame_id=msg.frame_id, extended=msg.is_extended, name=msg.name, title=msg.title, zh=msg.zh, dlc=msg.dlc,
                 cycle_ms=msg.cycle_ms, sender=msg.sender, receivers=tuple(sorted(msg.receivers)),
                 signals=tuple(_signal(s) for s in msg.signals if not s.is_reserved), checksum=checksum,
-                multiframe=multiframe, loc=msg.loc,
+                multiframe=multiframe, loc=msg.loc, fd=msg.is_fd, brs=msg.brs,
             )
         )
     name = spec.can.name if spec.can is not None else spec.name

@@ -11,25 +11,35 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits, word_shift
-from canspec.ir.encoding import FLOAT_MAX, covering_decimal, decimal_text, decimals, fits_runtime, raw_range, raw_type_range, to_physical_runtime, to_raw_runtime
+from canspec.ir.encoding import (
+    FLOAT_MAX,
+    covering_decimal,
+    decimal_text,
+    decimals,
+    fits_runtime,
+    raw_range,
+    raw_type_range,
+    to_physical_runtime,
+    to_raw_runtime,
+)
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
 from canspec.ir.mux import MuxCondition, groups, ranges_of
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
-from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
+from canspec.spec.resolve import Resolved, ResolvedCan, label_dbc, label_pair
 from canspec.spec.yamlsource import LocDict
 
 MAX_DECIMALS = 15  # log texts print physical doubles with Signal.decimals places: a double holds no more significant digits
 
 
 def _value_table(name: str, table: LocDict) -> ir.ValueTable:
-    entries = sorted((r, label_pair(v)) for r, v in table.items())
-    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident), table.loc_of(raw)) for raw, (ident, zh) in entries), table.loc)
+    entries = sorted((r, label_pair(v), label_dbc(v)) for r, v in table.items())
+    return ir.ValueTable(name, tuple(ir.ValueEntry(raw, ident, zh, humanize(ident), table.loc_of(raw), text) for raw, (ident, zh), text in entries), table.loc)
 
 
 def _labels(table: ir.ValueTable | None, specials: tuple[ir.SpecialValue, ...]) -> tuple[ir.Label, ...]:
-    named = {e.raw: ir.Label(e.raw, e.name, e.label_zh, e.label, False) for e in (table.entries if table else ())}
+    named = {e.raw: ir.Label(e.raw, e.name, e.label_zh, e.label, False, e.dbc_text) for e in (table.entries if table else ())}
     for s in specials:
         named.setdefault(s.raw, ir.Label(s.raw, s.name, s.label_zh, s.label, True))
     return tuple(named[raw] for raw in sorted(named))
@@ -124,6 +134,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, mu
         is_float=is_float,
         mux=MuxCondition(sig["mux"]["by"], ranges_of(sig["mux"]["values"])) if "mux" in sig else None,
         is_multiplexer=sig["name"] in multiplexers,
+        dbc_name=sig.get("dbc_name", sig["name"]),
     )
 
 
@@ -199,6 +210,7 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         fingerprint=fingerprint,
         errata=tuple(msg.get("errata", ())),
         loc=msg.loc,
+        dbc_name=msg.get("dbc_name", msg["name"]),
         is_fd=fd,
         brs=fd and bool(msg.get("brs", bus.get("data_bitrate") is not None)),
         mux_groups=_mux_groups(signals),
@@ -230,7 +242,8 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
     data = can.doc.data
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
     nodes = tuple(
-        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc)
+        ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc,
+                dbc_name=n.get("dbc_name", n["name"]))
         for n in data["nodes"]
     )
     names = tuple(n.name for n in nodes)
@@ -248,6 +261,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         value_tables=tuple(tables.values()),
         fault_tables=_fault_tables(tables, messages),
         loc=p.loc_of("name"),
+        dbc_signal_names=p.get("dbc_signal_names", "per_message"),
     )
 
 

@@ -55,6 +55,7 @@ class ValueEntry:
     label_zh: str
     label: str  # English label derived from the identifier
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_text: str = ""  # the label the DBC writes where it is not `name` (a source's own text)
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,11 @@ class Label:
     label_zh: str
     label: str
     is_special: bool
+    dbc_text: str = ""  # ValueEntry.dbc_text
+
+    @property
+    def dbc_label(self) -> str:
+        return self.dbc_text or self.name
 
 
 @dataclass(frozen=True)
@@ -155,6 +161,7 @@ class Signal:
     # in every frame); a multiplexer is a field others name in their `mux`.
     mux: MuxCondition | None = None
     is_multiplexer: bool = False
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name` (a source's own spelling), else `name`
 
     @property
     def is_reserved(self) -> bool:
@@ -339,6 +346,7 @@ class Message:
         missing from it holds 0, as an encoder writes it), in frame order: the fields in every
         frame and those of the selected pages; the other pages' fields are absent."""
         return tuple(s for s in self.data_signals if all(c.holds(values.get(c.by, 0)) for c in self.mux_chain(s)))
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
     @property
     def is_classic_length(self) -> bool:
@@ -383,6 +391,7 @@ class Node:
     desc: str
     aliases: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
 
 @dataclass(frozen=True)
@@ -427,6 +436,7 @@ class CanProtocol:
     value_tables: tuple[ValueTable, ...]
     fault_tables: tuple[FaultTable, ...] = ()
     loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
+    dbc_signal_names: str = "per_message"  # or "unique" (targets/dbc/naming.py)
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

@@ -137,9 +137,17 @@ def resolve(spec: LoadedSpec) -> Resolved:
 
 
 def label_pair(value: Any) -> tuple[str, str]:
-    """A value's (identifier, Chinese label) from any of its written forms: `ident`, `[ident]`
-    or `[ident, 中文]` (the label is optional: an English-only spec names values by identifier)."""
+    """A value's (identifier, Chinese label) from any of its written forms: `ident`, `[ident]`,
+    `[ident, 中文]` (the label is optional: an English-only spec names values by identifier) or
+    `{name: ident, zh: 中文, dbc: text}`."""
     if isinstance(value, str):
         return value, ""
+    if isinstance(value, dict):
+        return str(value["name"]), str(value.get("zh", ""))
     return str(value[0]), str(value[1]) if len(value) > 1 else ""
 
+
+
+def label_dbc(value: Any) -> str:
+    """The label a DBC writes for a value when it is not the identifier (`{…, dbc: text}`), else ""."""
+    return str(value.get("dbc", "")) if isinstance(value, dict) else ""

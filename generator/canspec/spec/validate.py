@@ -229,7 +229,8 @@ def _float_shape(sig: LocDict) -> Iterator[Problem]:
     if not sig["float"]:
         return
     if sig["len"] not in (32, 64):
-        yield error(f"float signal {sig['name']!r} has {sig['len']} bits", sig.loc_of("len"), "IEEE floats are 32 (float32) or 64 (float64) bits", "float-field")
+        yield error(f"float signal {sig['name']!r} has {sig['len']} bits", sig.loc_of("len"), "IEEE floats are 32 (float32) or 64 (float64) bits",
+                    "float-field")
     for key, bad in (("signed", sig["signed"]), ("factor", sig["factor"] != 1), ("offset", sig["offset"] != 0), ("values", "values" in sig),
                      ("special", "special" in sig), ("role", sig["role"] != "data")):
         if bad:

@@ -39,7 +39,7 @@ def snapshot(path: Path, exact: bool = False) -> dict[str, Any]:
     for m in db.messages:
         dbc_id = m.frame_id | 0x80000000 if m.is_extended_frame else m.frame_id
         signals = {s.name: {
-            "start": s.start, "length": s.length, "order": s.byte_order, "signed": s.is_signed, "scale": s.scale,
+            "start": s.start, "length": s.length, "order": s.byte_order, "signed": s.is_signed, "float": s.is_float, "scale": s.scale,
             "offset": s.offset, "min": s.minimum, "max": s.maximum, "unit": s.unit or "",
             "choices": {int(k): str(v) for k, v in (s.choices or {}).items()}, "receivers": sorted(s.receivers),
             "comment": s.comment, "spec_name": attribute(s, SPEC_NAME_ATTRIBUTE),
@@ -48,9 +48,11 @@ def snapshot(path: Path, exact: bool = False) -> dict[str, Any]:
             if frame == dbc_id:
                 signals[name].update(zip(REWRITTEN, map(_decimal, numbers)))
         messages[(m.frame_id, m.is_extended_frame)] = {
-            "name": m.name, "dlc": m.length, "cycle": m.cycle_time, "senders": sorted(m.senders), "comment": m.comment, "signals": signals,
+            "name": m.name, "dlc": m.length, "fd": m.is_fd, "brs": attribute(m, "CANFD_BRS") if m.is_fd else None, "cycle": m.cycle_time,
+            "senders": sorted(m.senders), "comment": m.comment, "signals": signals,
         }
-    return {"nodes": {n.name: n.comment for n in db.nodes}, "messages": messages}
+    bus = {"type": attribute(db, "BusType"), "data_bitrate": attribute(db, "BaudrateCANFD")}
+    return {"bus": bus, "nodes": {n.name: n.comment for n in db.nodes}, "messages": messages}
 
 
 def _decimal(value: Fraction) -> Decimal:
@@ -165,8 +167,33 @@ def _one_decimal_scaling(sig: dict[str, Any]) -> None:
     sig["offset"] = Decimal(repr(round(float(sig["offset"]), 1)))
 
 
+def _classic_frames(snap: dict[str, Any]) -> None:
+    """SYM and KCD (both tools) have no CAN FD frame format: an FD frame comes back a classic frame of
+    the same length, without bit-rate switching; the bus type and the data-phase bitrate (DBC
+    attributes) are not written. Byte order and IEEE float types come back."""
+    snap["bus"] = {"type": None, "data_bitrate": None}
+    for m in snap["messages"].values():
+        m["fd"], m["brs"] = False, None
+
+
+def _canmatrix_arxml_fd(snap: dict[str, Any]) -> None:
+    """canmatrix's ARXML keeps the FD frame format (VFrameFormat comes back) and writes BusType "CAN FD"
+    for a matrix with an FD frame (none for a classic one), but not bit-rate switching (no CANFD_BRS
+    comes back) nor the data-phase bitrate; a float signal comes back signed (1.2; 1.3 makes every
+    signal unsigned, see _one_decimal_scaling)."""
+    snap["bus"] = {"type": "CAN FD" if any(m["fd"] for m in snap["messages"].values()) else None, "data_bitrate": None}
+    for m in snap["messages"].values():
+        m["brs"] = None
+        for s in m["signals"].values():
+            s["signed"] = s["signed"] or s["float"]
+
+
 def expected(tool: str, fmt: str, original: dict[str, Any]) -> dict[str, Any]:
     snap = copy.deepcopy(original)
+    if fmt != "arxml":
+        _classic_frames(snap)
+    else:
+        _canmatrix_arxml_fd(snap)
     if fmt == "sym":
         _no_nodes(snap)
         _one_line_comments(snap)
@@ -189,7 +216,7 @@ def _double(value: Any) -> float | None:
 
 def differences(want: dict[str, Any], got: dict[str, Any], as_doubles: bool) -> list[str]:
     """Every field of `want` that differs in `got` (spec names are DBC attributes: not compared)."""
-    out = [f"nodes: {want['nodes']} != {got['nodes']}"] if want["nodes"] != got["nodes"] else []
+    out = [f"{part}: {want[part]} != {got[part]}" for part in ("bus", "nodes") if want[part] != got[part]]
     if set(want["messages"]) != set(got["messages"]):
         return out + [f"messages: {sorted(want['messages'])} != {sorted(got['messages'])}"]
     for key, wm in want["messages"].items():

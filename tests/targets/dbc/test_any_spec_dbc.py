@@ -29,6 +29,10 @@ def test_the_fixtures_cover_the_any_spec_features():
     assert any(m.dlc == 0 for c in specs for m in c.messages)
     assert any(s.length == 64 and s.signed for c in specs for m in c.messages for s in m.signals)
     assert any(c.has_multiframe for c in specs) and any(not m.is_cyclic for c in specs for m in c.messages)
+    signals = [s for c in specs for m in c.messages for s in m.signals]
+    assert any(s.is_big_endian for s in signals) and any(s.is_float and s.length == n for s in signals for n in (32, 64))
+    fd = [m for c in specs for m in c.messages if m.is_fd]
+    assert any(m.brs for m in fd) and any(not m.brs for m in fd) and any(m.dlc > 8 for m in fd)
 
 
 def test_loads_in_canmatrix(case):
@@ -51,10 +55,16 @@ def test_messages_say_what_the_spec_says(case):
     spec, _, db = case
     can = spec.can
     assert (attribute(db, "ProtocolType") == "J1939") == can.bus.is_j1939
+    # Vector's bus attributes: "CAN FD" once a frame is FD; the data-phase bitrate only when the spec gives one
+    assert (attribute(db, "BusType"), db.buses[0].baudrate) == ("CAN FD" if can.has_fd else "CAN", can.bus.bitrate)
+    assert attribute(db, "BaudrateCANFD") == can.bus.data_bitrate
     for msg in can.messages:
         m = db.get_message_by_name(msg.name)
-        assert (m.frame_id, m.is_extended_frame, m.length) == (msg.frame_id, msg.is_extended, msg.dlc)
-        assert attribute(m, "VFrameFormat") == (3 if can.bus.is_j1939 else int(msg.is_extended))  # J1939PG / Extended / Standard
+        assert (m.frame_id, m.is_extended_frame, m.length, m.is_fd) == (msg.frame_id, msg.is_extended, msg.dlc, msg.is_fd)
+        assert attribute(m, "VFrameFormat") == _vframe_format(can.bus.is_j1939, msg)
+        # CANFD_BRS on every FD frame (0 or 1: tools differ on the default), never on a classic one
+        assert attribute(m, "CANFD_BRS") == (int(msg.brs) if msg.is_fd else None)
+        assert msg.is_fd or not msg.brs
         assert m.cycle_time == msg.cycle_ms
         assert m.send_type == ("cyclic" if msg.cycle_ms else "noMsgSendType")
         assert sorted(spec_names(m).values()) == sorted(s.name for s in msg.data_signals)
@@ -69,12 +79,21 @@ def test_signals_say_what_the_spec_says(case):
         m = db.get_message_by_name(msg.name)
         for s in m.signals:
             sig = msg.signal(spec_names(m)[s.name])
-            assert (s.start, s.length, s.is_signed, s.byte_order) == (sig.start, sig.length, sig.signed, "little_endian")
+            # the spec numbers a Motorola field's start as the DBC does (its MSB), so start is start in both orders
+            assert (s.start, s.length, s.is_signed, s.byte_order) == (sig.start, sig.length, sig.signed, sig.byte_order)
+            assert s.is_float == sig.is_float and (not sig.is_float or s.length in (32, 64))
             assert {int(k): str(v) for k, v in (s.choices or {}).items()} == {lb.raw: lb.name for lb in sig.labels}
             if msg.multiframe is not None and sig.name == msg.multiframe.payload_signal:
                 assert attribute(s, "SigType") == 3  # ASCII
             if s.name != sig.name:
                 assert len(s.name) <= MAX_NAME and s.name.endswith(msg.id_text[2:]) and attribute(s, "SpecSignalName") == sig.name
+
+
+def _vframe_format(j1939: bool, msg) -> int:
+    """Vector's VFrameFormat values: StandardCAN_FD 14 / ExtendedCAN_FD 15, J1939PG 3, ExtendedCAN 1 / StandardCAN 0."""
+    if msg.is_fd:
+        return 15 if msg.is_extended else 14
+    return 3 if j1939 else int(msg.is_extended)
 
 
 def test_no_chinese_where_the_spec_has_none_and_no_empty_comment_parts(case):

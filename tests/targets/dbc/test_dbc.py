@@ -4,7 +4,6 @@ the spec uses with different definitions are made unique, each naming its spec n
 
 from __future__ import annotations
 
-import re
 
 import canmatrix.formats
 from dbc_support import attribute, spec_names
@@ -54,25 +53,32 @@ def test_signals_units_ranges_receivers(raw_db):
     assert raw_db.get_message_by_name("device_id").senders == []  # sent by ALL: Vector__XXX
 
 
-def test_names_differing_definitions_apart(raw_db):
-    """The 4-bit counter of control command 1 and the 8-bit one of the EPS command, and the three
+def test_names_differing_definitions_apart(unique_db):
+    """With `dbc_signal_names: unique`: the 4-bit counter of control command 1 and the 8-bit one of the EPS command, and the three
     drive-mode tables, each get a name of their own; a name with one definition stays."""
-    c1 = raw_db.get_message_by_name("autocar_control_command_1")
+    c1 = unique_db.get_message_by_name("autocar_control_command_1")
     counter = c1.get_signal_by_name("counter_1805B0A0")
     assert counter.length == 4 and attribute(counter, "SpecSignalName") == "counter"
     assert "spec name: counter" in counter.comment
-    assert raw_db.get_message_by_name("autocar_eps_command").get_signal_by_name("counter_1801B0A0").length == 8
-    modes = {m: raw_db.get_message_by_name(m).get_signal_by_name(f"drive_mode_cmd_{i}").choices[1]
+    assert unique_db.get_message_by_name("autocar_eps_command").get_signal_by_name("counter_1801B0A0").length == 8
+    modes = {m: unique_db.get_message_by_name(m).get_signal_by_name(f"drive_mode_cmd_{i}").choices[1]
              for m, i in (("autocar_control_command_1", "1805B0A0"), ("rgate_control_command_1", "1805B0C0"))}
     assert modes == {"autocar_control_command_1": "autonomous", "rgate_control_command_1": "reserved_1"}
-    assert raw_db.get_message_by_name("autocar_eps_command").get_signal_by_name("max_angular_speed") is not None
+    assert unique_db.get_message_by_name("autocar_eps_command").get_signal_by_name("max_angular_speed") is not None
     definitions: dict[str, set[tuple[object, ...]]] = {}
-    for m in raw_db.messages:
+    for m in unique_db.messages:
         for s in m.signals:
             assert len(s.name) <= 32
             definitions.setdefault(s.name, set()).add((s.length, s.is_signed, s.scale, s.offset, s.minimum, s.maximum, s.unit,
                                                        tuple((int(k), str(v)) for k, v in (s.choices or {}).items()), s.comment, tuple(s.receivers)))
     assert all(len(d) == 1 for d in definitions.values()), {n: d for n, d in definitions.items() if len(d) > 1}
+
+
+def test_by_default_signals_keep_their_names(raw_db):
+    c1 = raw_db.get_message_by_name("autocar_control_command_1")
+    assert c1.get_signal_by_name("counter").length == 4
+    assert raw_db.get_message_by_name("autocar_eps_command").get_signal_by_name("counter").length == 8
+    assert not any("SpecSignalName" in (s.dbc.attributes if s.dbc else {}) for m in raw_db.messages for s in m.signals)
 
 
 def test_value_tables_and_comments(raw_db, can):
@@ -87,4 +93,4 @@ def test_value_tables_and_comments(raw_db, can):
     fault = raw_db.get_message_by_name("vehicle_fault")
     assert "无法进入无人驾驶故障状态" in fault.get_signal_by_name("unmanned_entry_fault").comment
     assert "车辆故障状态" in fault.comment
-    assert re.search(r'^CM_ ".*Signal names: .*<name>_<frame ID>.*SpecSignalName', DBC.read_text(encoding="utf-8"), re.MULTILINE)
+    assert "Signal names:" not in DBC.read_text(encoding="utf-8")  # per-message names: nothing renamed, nothing to say

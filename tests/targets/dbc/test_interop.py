@@ -4,7 +4,8 @@ converter loses (the README's DBC section lists the same). And the renaming is w
 
 from __future__ import annotations
 
-import re
+from dataclasses import replace
+
 from pathlib import Path
 
 import canmatrix
@@ -15,12 +16,16 @@ from dbc_support import can_fixtures, compiled, write_dbc
 from repo_paths import GENERATED, ROOT
 
 SHIPPED = GENERATED / "dbc" / "kaiwo_gateway.dbc"
-SOURCES = [SHIPPED, *can_fixtures()]
+SOURCES = [ROOT / "spec", *can_fixtures()]
 CORE = ("name", "dlc", "cycle", "start", "length", "order", "signed", "scale", "offset", "min", "max", "unit", "choices")
 
 
 def _dbc(source: Path, tmp_path: Path) -> Path:
-    return source if source.suffix == ".dbc" else write_dbc(compiled(source), tmp_path)
+    """The spec's DBC with `dbc_signal_names: unique`, as a team converting it to SYM, KCD or ARXML
+    writes it: those formats keep one definition per signal name."""
+    spec = compiled(source)
+    assert spec.can is not None
+    return write_dbc(replace(spec, can=replace(spec.can, dbc_signal_names="unique")), tmp_path)
 
 
 @pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
@@ -48,12 +53,43 @@ def test_sym_and_kcd_keep_every_message_and_signal_exactly(source, tool, fmt, tm
             assert {f: want["messages"][key]["signals"][name][f] for f in fields} == {f: s[f] for f in fields}
 
 
+# What each conversion keeps of the issue-24 features (the README's DBC table says the same); a
+# feature a converter drops must be taken out here, and in the README, before the test passes.
+FEATURES = ("byte order", "float", "fd", "length", "brs", "bus type", "data bitrate")
+KEEPS = {
+    ("canmatrix", "sym"): {"byte order", "float", "length"},
+    ("canmatrix", "kcd"): {"byte order", "float", "length"},
+    ("canmatrix", "arxml"): {"byte order", "float", "fd", "length", "bus type"},
+    ("cantools", "sym"): {"byte order", "float", "length"},
+    ("cantools", "kcd"): {"byte order", "float", "length"},
+}
+MOTOROLA_FD_FLOAT = ROOT / "tests" / "fixtures" / "valid" / "motorola_fd_float.yaml"
+
+
+def _features(snap: dict) -> dict[str, object]:
+    messages = [snap["messages"][k] for k in sorted(snap["messages"])]
+    signals = [(m["name"].removeprefix("FRAME_"), n, s) for m in messages for n, s in sorted(m["signals"].items())]
+    return {"byte order": [(m, n, s["order"]) for m, n, s in signals], "float": [(m, n, s["float"]) for m, n, s in signals],
+            "fd": [m["fd"] for m in messages], "length": [m["dlc"] for m in messages], "brs": [m["brs"] for m in messages],
+            "bus type": snap["bus"]["type"], "data bitrate": snap["bus"]["data_bitrate"]}
+
+
+@pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
+def test_each_conversion_keeps_what_the_table_says_of_byte_order_float_and_fd(tool, fmt, tmp_path):
+    dbc = write_dbc(compiled(MOTOROLA_FD_FLOAT), tmp_path)
+    before = _features(interop.snapshot(dbc))
+    # the fixture has every feature, so a lost one shows: both orders, floats, FD with and without BRS
+    assert {o for *_, o in before["byte order"]} == {"big_endian", "little_endian"} and {f for *_, f in before["float"]} == {True, False}
+    assert set(before["fd"]) == {True, False} and set(before["brs"]) == {None, 0, 1} and before["data bitrate"] and before["bus type"] == "CAN FD"
+    after = _features(interop.snapshot(interop.round_trip(tool, fmt, dbc, tmp_path)))
+    assert {f for f in FEATURES if before[f] == after[f]} == KEEPS[(tool, fmt)]
+
+
 def test_without_unique_names_canmatrix_mixes_definitions_up(tmp_path):
-    """The shipped DBC with the spec's names put back (what it was before): canmatrix's SYM shares
-    one value table per name and its ARXML one signal definition per name."""
+    """The shipped DBC as generated (per-message names, the default): canmatrix's SYM shares one
+    value table per name and its ARXML one signal definition per name — why `unique` exists."""
     text = SHIPPED.read_text(encoding="utf-8")
-    for dbc_name, spec_name in re.findall(r'^BA_ "SpecSignalName" SG_ \d+ (\w+) "(\w+)";$', text, re.MULTILINE):
-        text = re.sub(rf"\b{dbc_name}\b", spec_name, text)
+    assert "SpecSignalName\" SG_" not in text
     shared = tmp_path / "shared_names.dbc"
     shared.write_text(text, encoding="utf-8")
     original = interop.snapshot(shared, exact=True)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+import struct
 from fractions import Fraction
 from pathlib import Path
 
@@ -70,7 +71,10 @@ def expected_rows(can: ir.CanProtocol) -> list[tuple[ir.Message, ir.Signal | Non
 def check_message(row: dict, msg: ir.Message, can: ir.CanProtocol) -> None:
     assert row["Message name"] == msg.name
     assert int(row["Message ID"], 16) == msg.frame_id and len(row["Message ID"]) == (10 if msg.is_extended else 5)
-    assert row["Frame format"] == ("Extended" if msg.is_extended else "Standard")
+    assert row["Frame format"] == ("Extended" if msg.is_extended else "Standard") + (" FD" if msg.is_fd else "")
+    assert ("BRS" in row) == can.has_fd  # the column only on a bus with FD frames
+    if can.has_fd:
+        assert row["BRS"] == (("Yes" if msg.brs else "No") if msg.is_fd else None)
     assert (row["Send type"], row["Cycle time (ms)"]) == (("Cycle", msg.cycle_ms) if msg.cycle_ms else ("Event", None))
     assert row["DLC (bytes)"] == msg.dlc
     sender = next((n.label for n in can.nodes if n.name == msg.sender), msg.sender)
@@ -85,11 +89,15 @@ def check_message(row: dict, msg: ir.Message, can: ir.CanProtocol) -> None:
 def check_signal(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
     assert row["Signal name"] == sig.name
     assert (row["Start bit"], row["Start byte"], row["Length (bits)"]) == (sig.start, sig.start // 8, sig.length)
-    assert row["Byte order"] == "Intel" and row["Signedness"] == ("Signed" if sig.signed else "Unsigned")
-    for key, value in (("Factor", sig.factor), ("Offset", sig.offset), ("Physical min", sig.phys_min), ("Physical max", sig.phys_max)):
-        assert same_number(row[key], value), (msg.name, sig.name, key, row[key], value)
-    assert (raw_value(sig, row["Raw min (hex)"]), raw_value(sig, row["Raw max (hex)"])) == (sig.raw_min, sig.raw_max)
-    assert sig.phys_min == min(sig.physical(sig.raw_min), sig.physical(sig.raw_max))  # the pair is consistent
+    assert row["Byte order"] == {"little_endian": "Intel", "big_endian": "Motorola"}[sig.byte_order]  # the signal's, not the bus's
+    if sig.is_float:
+        check_float(row, msg, sig)
+    else:
+        assert row["Signedness"] == ("Signed" if sig.signed else "Unsigned")
+        for key, value in (("Factor", sig.factor), ("Offset", sig.offset), ("Physical min", sig.phys_min), ("Physical max", sig.phys_max)):
+            assert same_number(row[key], value), (msg.name, sig.name, key, row[key], value)
+        assert (raw_value(sig, row["Raw min (hex)"]), raw_value(sig, row["Raw max (hex)"])) == (sig.raw_min, sig.raw_max)
+        assert sig.phys_min == min(sig.physical(sig.raw_min), sig.physical(sig.raw_max))  # the pair is consistent
     assert row["Initial value (hex)"].startswith("0x0 (")
     assert (row["Unit"] or "") == sig.unit
     assert (row["Description"] or "") == "\n".join(t for t in (sig.desc, sig.desc_zh) if t)
@@ -99,6 +107,20 @@ def check_signal(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
         assert got == want, (msg.name, sig.name, key)
     if "Signal name (Chinese)" in row:
         assert (row["Signal name (Chinese)"] or "") == sig.zh
+
+
+def check_float(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
+    """An IEEE field: its type named; the documented range, else the format's largest finite values; raw
+    limits the bit patterns of those values (struct, the oracle, reads them back)."""
+    assert row["Signedness"] == f"Float{sig.length} (IEEE 754)" and (row["Factor"], row["Offset"]) == (1, 0)
+    largest = Fraction(struct.unpack(">f" if sig.length == 32 else ">d", bytes.fromhex("7F7FFFFF" if sig.length == 32 else "7FEFFFFFFFFFFFFF"))[0])
+    want = (sig.doc_min, sig.doc_max) if sig.doc_min is not None else (-largest, largest)
+    for key, raw_key, value in (("Physical min", "Raw min (hex)", want[0]), ("Physical max", "Raw max (hex)", want[1])):
+        cell = row[key]
+        assert (Fraction(float(cell)) == value) if isinstance(cell, str) else same_number(cell, value), (msg.name, sig.name, key, cell)
+        pattern = int(row[raw_key], 16).to_bytes(sig.length // 8, "big")
+        assert Fraction(struct.unpack(">f" if sig.length == 32 else ">d", pattern)[0]) == value, (msg.name, sig.name, raw_key)
+    assert ("NaN and ±Inf allowed" in (row["Notes"] or "")) == (sig.doc_min is None)
 
 
 def check_matrix(spec: ir.Spec, book: Book) -> None:
@@ -144,6 +166,7 @@ def check_companions(spec: ir.Spec, book: Book) -> None:
         assert "修订历史 History" not in book.wb.sheetnames
     about = {r["Item"]: r["Value"] for r in book.rows("说明 About")}
     assert about["规范哈希 Spec sha256"] == spec.sha256 and spec.version in about["规范 Spec"]
+    assert ("排列格式 Byte order" in about, "浮点 Float" in about, "CAN FD" in about) == (can.has_big_endian, can.has_float, can.has_fd)
 
 
 def edge_spec(tmp_path: Path) -> ir.Spec:
@@ -223,3 +246,26 @@ def test_shipped_matrix_agrees_with_the_dbc(spec, db):
         assert (s.unit or "") == (row["Unit"] or "") and set(s.receivers) == receivers
         named = [line.split(":")[0] for key in ("Value table", "Invalid / special values") for line in (row[key] or "").splitlines()]
         assert sorted(int(raw, 16) for raw in named) == sorted(int(raw) for raw in (s.choices or {})), s.name  # VAL_: table + specials
+
+
+def test_fd_matrix_agrees_with_its_dbc(tmp_path):
+    """The Motorola / FD / float fixture: cantools reading the DBC generated from the same spec gives
+    each row's byte order, start bit, length, float flag, FD flag and BRS (the DBC's CANFD_BRS)."""
+    import cantools
+    from canspec.targets import registry
+
+    spec = compiled(VALID / "motorola_fd_float.yaml")
+    (_, dbc_text), = registry()["dbc"].render(spec).items()
+    db = cantools.database.load_string(dbc_text.decode("utf-8"), database_format="dbc", strict=True)
+    rows = workbook(spec).rows(MATRIX)
+    orders = {"little_endian": "Intel", "big_endian": "Motorola"}
+    for row in rows:
+        m = db.get_message_by_name(row["Message name"])
+        brs = m.dbc.attributes.get("CANFD_BRS")
+        assert row["Frame format"].endswith(" FD") == m.is_fd and row["BRS"] == (("Yes" if brs.value else "No") if m.is_fd else None)
+        s = m.get_signal_by_name(row["Signal name"])
+        assert (orders[s.byte_order], s.start, s.start // 8, s.length) == (row["Byte order"], row["Start bit"], row["Start byte"], row["Length (bits)"])
+        assert s.is_float == row["Signedness"].startswith("Float")
+    assert {r["Byte order"] for r in rows} == {"Intel", "Motorola"} and {r["BRS"] for r in rows} == {None, "Yes", "No"}
+    about = {r["Item"]: r["Value"] for r in workbook(spec).rows("说明 About")}
+    assert "Motorola: the start bit is its most significant bit" in about["排列格式 Byte order"] and "CAN FD" in about

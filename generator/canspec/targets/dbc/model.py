@@ -39,10 +39,15 @@ class DbcSignal:
 
     @property
     def bounds(self) -> tuple[object, object]:
-        """[min|max]: the physical range; a float without a documented one writes [0|0], the DBC's 'none'."""
-        if self.sig.is_float and self.sig.doc_min is None:
-            return 0, 0
-        return self.sig.phys_min if not self.sig.is_float else self.sig.check_min, self.sig.phys_max if not self.sig.is_float else self.sig.check_max
+        """[min|max]: the physical range the encoders accept. [0|0] is the DBC's "no range", so a float
+        without a documented range writes it, and a field whose only allowed value is 0 writes its
+        documented range instead."""
+        sig = self.sig
+        if sig.is_float:
+            return (0, 0) if sig.doc_min is None else (sig.check_min, sig.check_max)
+        if sig.phys_min == sig.phys_max == 0 and sig.doc_min is not None:
+            return sig.doc_min, sig.doc_max
+        return sig.phys_min, sig.phys_max
 
 
 @dataclass(frozen=True)
@@ -116,11 +121,12 @@ def _message(can: ir.CanProtocol, msg: ir.Message, names: dict[tuple[str, str], 
     signals = []
     for sig in msg.data_signals:
         name = names[(msg.name, sig.name)]
-        spec_name = sig.name if name != sig.name else None
+        spec_name = sig.name if name != sig.dbc_name else None
         signals.append(DbcSignal(name, spec_name, sig, attributes.sig_type(msg, sig), comments.signal_comment(sig, spec_name)))
+    node = {n.name: n.dbc_name for n in can.nodes}
     return DbcMessage(
-        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else msg.sender,
-        receivers=",".join(msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
+        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else node.get(msg.sender, msg.sender),
+        receivers=",".join(node.get(r, r) for r in msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
         vframe_format=attributes.vframe_format(can.bus, msg), send_type=attributes.send_type(msg), signals=tuple(signals),
     )
 

@@ -1,17 +1,21 @@
 """Signal names in the DBC.
 
-A DBC names signals per message, but the formats a DBC is converted to, and the converters
-(canmatrix and cantools: SYM, KCD, ARXML), keep one definition per signal *name*: the value table
-a SYM enum is named after, the ARXML system signal, I-signal, compu method and unit, cantools'
-SYM signal list. Two messages with an 8-bit and a 4-bit `counter` come back as two 8-bit
-counters, and value tables are swapped. So a spec name that carries different definitions in
-different messages — anything the DBC says about the signal apart from where it sits in the
-frame: length, sign, scaling, range, unit, value labels, SigType, comment, receivers — is written
-`<name>_<frame ID>` (`counter_1805B0A0`, `mode_123`) in every message that has it; a name with
-one definition everywhere keeps the spec's name. A renamed name
-keeps to the 32 characters Vector's tools want (the spec's name is shortened, never the ID) and
-says the spec's name in the signal's comment and in its `SpecSignalName` attribute, which
-`canspec diff` reads. Only the DBC is renamed: the C, Python and Rust APIs keep the spec's names.
+By default (`protocol: {dbc_signal_names: per_message}`) the DBC names every signal as the spec
+does (its `dbc_name`, else its name), per message, as every DBC tool does: a cantools user types
+`counter`, whatever other messages call their counters.
+
+The formats a DBC is converted to, and the converters (canmatrix and cantools: SYM, KCD, ARXML),
+keep one definition per signal *name*: the value table a SYM enum is named after, the ARXML system
+signal, I-signal, compu method and unit, cantools' SYM signal list. Two messages with an 8-bit and
+a 4-bit `counter` come back as two 8-bit counters, and value tables are swapped. For those,
+`dbc_signal_names: unique` writes a name that carries different definitions in different messages
+(anything the DBC says about the signal apart from where it sits in the frame: length, sign,
+scaling, range, unit, value labels, SigType, comment, receivers) as `<name>_<frame ID>`
+(`counter_1805B0A0`, `mode_123`) in every message that has it; a name with one definition
+everywhere keeps its name. A renamed name keeps to the 32 characters Vector's tools want (the name
+is shortened, never the ID) and says the spec's name in the signal's comment and in its
+`SpecSignalName` attribute, which `canspec diff` reads. Only the DBC is renamed: the C, Python and
+Rust APIs keep the spec's names.
 """
 
 from __future__ import annotations
@@ -40,18 +44,20 @@ def _data_signals(can: ir.CanProtocol) -> Iterator[tuple[ir.Message, ir.Signal]]
 
 def signal_names(can: ir.CanProtocol) -> dict[tuple[str, str], str]:
     """(message name, spec signal name) → the signal's name in the DBC, for every data signal."""
+    if can.dbc_signal_names != "unique":
+        return {(msg.name, sig.name): sig.dbc_name for msg, sig in _data_signals(can)}
     definitions: dict[str, set[Hashable]] = defaultdict(set)
     for msg, sig in _data_signals(can):
-        definitions[sig.name].add(definition(msg, sig))
+        definitions[sig.dbc_name].add(definition(msg, sig))
     ambiguous = {name for name, defs in definitions.items() if len(defs) > 1}
     taken = set(definitions) - ambiguous
     names = {}
     for msg, sig in _data_signals(can):
-        if sig.name in ambiguous:
-            names[(msg.name, sig.name)] = _unique(sig.name, msg.id_text[2:], taken)
+        if sig.dbc_name in ambiguous:
+            names[(msg.name, sig.name)] = _unique(sig.dbc_name, msg.id_text[2:], taken)
             taken.add(names[(msg.name, sig.name)])
         else:
-            names[(msg.name, sig.name)] = sig.name
+            names[(msg.name, sig.name)] = sig.dbc_name
     return names
 
 

@@ -1,6 +1,6 @@
-"""The protocol handbook: Markdown pages (plus one bit-layout SVG per message) that MkDocs turns
-into the static site (`make docs`, config in the top-level `mkdocs.yml`), bilingual where the spec
-is and English-only where it is (lang.py).
+"""The protocol handbook: Markdown pages (plus each message's bit-layout SVG: one, or one per 16
+bytes of a long CAN FD frame) that MkDocs turns into the static site (`make docs`, config in the
+top-level `mkdocs.yml`), bilingual where the spec is and English-only where it is (lang.py).
 
 Python decides every number and every cell's content (cells.py, jsonpage.py, errata.py); the
 templates in `templates/docs/` only lay the pages out. Links between pages are relative and every
@@ -29,8 +29,10 @@ OUT = "docs/"
 NAV_FILE = "mkdocs.nav.yml"  # merged into the top-level mkdocs.yml by `INHERIT`
 
 
-def message_svg(msg: ir.Message) -> str:
-    return f"messages/{msg.name}.svg"
+def svg_parts(msg: ir.Message) -> list[tuple[str, range]]:
+    """The message's bit diagrams (file name beside its page, byte rows): one, or one per
+    svg.PART_ROWS bytes of a long FD frame; the first keeps the message's name."""
+    return [(f"{msg.name}.svg" if not rows[0] else f"{msg.name}.bytes-{rows[0]}-{rows[-1]}.svg", rows) for rows in svg.parts(msg)]
 
 
 def anchor(ident: str) -> str:
@@ -118,7 +120,9 @@ HELPERS: dict[str, Any] = {
     "id_kind": cells.id_kind, "cycle_text": cells.cycle_text, "doc_range": cells.doc_range, "enc_range": cells.enc_range,
     "range_note": cells.range_note, "value_cell": cells.value_cell, "special_cell": cells.special_cell, "role_cell": cells.role_cell,
     "bytes_cell": cells.bytes_cell, "byte_list": cells.byte_list, "node_label": cells.node_label, "receivers_text": cells.receivers_text,
-    "siblings": cells.siblings, "checksum_rule": cells.checksum_rule,
+    "siblings": cells.siblings, "checksum_rule": cells.checksum_rule, "order_cell": cells.order_cell, "type_cell": cells.type_cell,
+    "kbit": cells.kbit, "frame_cell": cells.frame_cell, "length_cell": cells.length_cell, "dlc_column": cells.dlc_column, "svg_parts": svg_parts,
+    "order_example": cells.order_example, "order_where": cells.order_where, "example_start": cells.EXAMPLE_START, "example_length": cells.EXAMPLE_LENGTH,
     "message_page": message_page, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor,
     "json_page": json_page, "vt_anchor": cells.vt_anchor, "erratum_anchor": erratum_anchor, "errata_links": errata_links, "id_link": id_link,
     "json_range": jsonpage.json_range, "json_values": jsonpage.json_values, "json_example": jsonpage.json_example,
@@ -146,13 +150,13 @@ def _can_pages(spec: ir.Spec, can: ir.CanProtocol, lg: Lang, load: busload.BusLo
     svg_head = "".join(f"<!-- {line.replace('--', '—')} -->\n" for line in header_lines(spec, "docs"))
     for msg in can.messages:
         files[message_page(msg)] = _page("message.md.j2", spec, lg, can=can, msg=msg)
-        if msg.dlc:  # a DLC-0 frame has no bits to draw
-            files[message_svg(msg)] = (svg_head + svg.bit_layout(msg, lg.zh)).encode("utf-8")
+        for name, rows in svg_parts(msg):  # a DLC-0 frame has no bits to draw
+            files[f"messages/{name}"] = (svg_head + svg.bit_layout(msg, lg.zh, rows)).encode("utf-8")
     files["value_tables.md"] = _page("value_tables.md.j2", spec, lg, can=can, users=value_table_users(can))
     g = busload.STUFFED_CONTROL_BITS[True]
     files["busload.md"] = _page("busload.md.j2", spec, lg, can=can, load=load, frame_bits=busload.frame_bits, g=g, g_minus_1=g - 1,
                                 g_standard=busload.STUFFED_CONTROL_BITS[False], trailer=busload.UNSTUFFED_TRAILER_BITS,
-                                fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS)
+                                fixed_bits=g + busload.UNSTUFFED_TRAILER_BITS, message_bits=busload.message_bits, fd=busload.fd_formula_facts())
     files["firmware.md"] = _page("firmware.md.j2", spec, lg, can=can, c=CNames.plain(can), example_node=_example_node(can),
                                  node_traffic=[(n.name, *nodeview.traffic(can, n.name)) for n in can.nodes])
     return files

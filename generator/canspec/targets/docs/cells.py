@@ -6,7 +6,9 @@ from __future__ import annotations
 from fractions import Fraction
 
 from canspec import ir
+from canspec.ir import bits
 from canspec.ir.encoding import round_half_away
+from canspec.ir.fd import CLASSIC_MAX, dlc_code
 from canspec.render.literals import hex_text, num
 from canspec.targets.docs.lang import Lang
 
@@ -54,12 +56,17 @@ def doc_range(sig: ir.Signal) -> str:
 
 
 def enc_range(sig: ir.Signal) -> str:
-    """What a physical encode can produce: the documented range cut to what the bits carry."""
+    """What a physical encode can produce: the documented range cut to what the bits carry. A float
+    field carries its value's IEEE 754 bit pattern: any float of its width, NaN and ±Inf too, unless
+    a range is documented (then that range, which a float always reaches)."""
+    if sig.is_float:
+        shown = doc_range(sig) if sig.doc_min is not None else f"any float{sig.length}, NaN, ±Inf"
+        return f"{shown}<br><small>raw: the IEEE 754 bit pattern</small>"
     return f"{num(sig.phys_min)} … {num(sig.phys_max)}<br><small>raw {sig.raw_min} … {sig.raw_max}</small>"
 
 
 def range_note(sig: ir.Signal, lang: Lang) -> str:
-    if sig.doc_min is None or sig.doc_max is None:
+    if sig.doc_min is None or sig.doc_max is None or sig.is_float:
         return ""
     if (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
         return "⚠ " + lang.en_zh("differs from the documented range", "与文档范围不同")
@@ -110,8 +117,46 @@ def byte_list(covers: tuple[int, ...]) -> str:
 
 
 def bytes_cell(sig: ir.Signal) -> str:
-    first, last = sig.segments[0].byte, sig.segments[-1].byte
+    """The bytes the field touches, in frame order (a Motorola field's least significant bits lie in its last byte)."""
+    touched = sorted(seg.byte for seg in sig.segments)
+    first, last = touched[0], touched[-1]
     return str(first) if first == last else f"{first}–{last}"
+
+
+def order_cell(sig: ir.Signal, lang: Lang) -> str:
+    return "Motorola" + lang.only_zh(" 大端") if sig.is_big_endian else "Intel" + lang.only_zh(" 小端")
+
+
+def type_cell(sig: ir.Signal) -> str:
+    if sig.is_float:
+        return f"float{sig.length}"
+    return "signed" if sig.signed else "unsigned"
+
+
+def kbit(bitrate: int) -> str:
+    return num(Fraction(bitrate, 1000)) + " kbit/s"
+
+
+def frame_cell(msg: ir.Message, bus: ir.Bus, lang: Lang) -> str:
+    """The frame format: classic CAN, or CAN FD with or without bit-rate switching."""
+    if not msg.is_fd:
+        return lang.en_zh("classic CAN", "经典 CAN")
+    if not msg.brs:
+        return lang.en_zh("CAN FD, no bit-rate switch: the data phase at the nominal bit rate", "CAN FD，不切换波特率")
+    phase = f": the data phase at {kbit(bus.data_bitrate)}" if bus.data_bitrate else ""
+    return lang.en_zh(f"CAN FD with bit-rate switch (BRS){phase}", "CAN FD，数据段切换波特率")
+
+
+def length_cell(msg: ir.Message) -> str:
+    """The data length; an FD length beyond 8 bytes with the DLC code that announces it."""
+    if msg.dlc <= CLASSIC_MAX:
+        return f"{msg.dlc} bytes"
+    return f"{msg.dlc} bytes (DLC code {dlc_code(msg.dlc)})"
+
+
+def dlc_column(msg: ir.Message) -> str:
+    """The overview's DLC column: the length, marked FD for an FD frame."""
+    return f"{msg.dlc} FD" + (" BRS" if msg.brs else "") if msg.is_fd else str(msg.dlc)
 
 
 def node_label(can: ir.CanProtocol, name: str, lang: Lang) -> str:
@@ -139,3 +184,18 @@ def checksum_rule(can: ir.CanProtocol) -> str:
         ((byte, covers),) = shapes
         return f"byte {byte} = XOR of bytes {byte_list(covers)}"
     return "the last byte = XOR of every other byte of the frame"
+
+
+# The handbook's worked example of the two byte orders: a 12-bit field at start bit 3.
+EXAMPLE_START, EXAMPLE_LENGTH = 3, 12
+
+
+def order_example(byte_order: str) -> list[tuple[int, list[str]]]:
+    """Per byte the field touches, its cells bit 7 … 0: the value bit held there (11 = MSB), or "·"."""
+    pos = bits.positions(EXAMPLE_START, EXAMPLE_LENGTH, byte_order)
+    return [(byte, [str(pos.index(8 * byte + k)) if 8 * byte + k in pos else "·" for k in range(7, -1, -1)])
+            for byte in sorted({p // 8 for p in pos})]
+
+
+def order_where(byte_order: str) -> str:
+    return bits.describe(EXAMPLE_START, EXAMPLE_LENGTH, byte_order)

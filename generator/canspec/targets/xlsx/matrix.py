@@ -5,16 +5,24 @@ rows), the signal's coding, and one column per node saying S (sends) or R (recei
 Reserved bits are not signals and get no row. A message without signals (DLC 0, or a layout the
 document leaves undefined) gets one row with its message columns only. Numbers are cells Excel
 holds exactly, else exact text (render.literals.sheet_number); raw values are the field's bits
-in hex, negative ones followed by their value: 0x200 (-512) for a 10-bit signed field."""
+in hex, negative ones followed by their value: 0x200 (-512) for a 10-bit signed field. Byte order is
+the signal's own (Intel / Motorola), its start bit and start byte the DBC's (a Motorola field starts
+at its most significant bit); an IEEE float field says so in the data-type column, its range is the
+documented one (else every finite value) and its raw limits are those values' bit patterns. A CAN FD
+frame says FD in its frame format, and the BRS column (only on a bus with FD frames) whether its data
+phase switches to the data bitrate."""
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 from canspec import ir
+from canspec.ir.encoding import bits_of_float
 from canspec.render.literals import hex_byte, hex_text, num, sheet_number
 from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
 NAME = "通信矩阵 Matrix"
-BYTE_ORDER = {"little_endian": "Intel"}
+BYTE_ORDER = {"little_endian": "Intel", "big_endian": "Motorola"}
 S, R = "S", "R"
 
 MESSAGE_COLUMNS = (
@@ -23,6 +31,7 @@ MESSAGE_COLUMNS = (
     Column("id", "报文标识符", "Message ID", 12),
     Column("pgn", "参数组编号", "PGN", 9, optional=True),
     Column("frame_format", "帧格式", "Frame format", 10),
+    Column("brs", "比特率切换", "BRS", 7, optional=True),
     Column("send_type", "发送类型", "Send type", 9),
     Column("cycle_ms", "周期时间 (ms)", "Cycle time (ms)", 10),
     Column("dlc", "报文长度 (字节)", "DLC (bytes)", 9),
@@ -86,7 +95,9 @@ def notes(msg: ir.Message, sig: ir.Signal) -> str:
         out.append(f"Frame index 帧序号: {mf.text_length} {mf.encoding.upper()} characters over {mf.frames} frames")
     if mf is not None and sig.name == mf.payload_signal:
         out.append(f"Text chunk 文本片段: {mf.bytes_per_frame} characters per frame, padding {hex_byte(mf.padding)}")
-    if sig.doc_min is not None and sig.doc_max is not None and (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
+    if sig.is_float:
+        out.append(f"IEEE 754 binary{sig.length}: raw = the bit pattern" + ("" if sig.doc_min is not None else "; NaN and ±Inf allowed"))
+    elif sig.doc_min is not None and sig.doc_max is not None and (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
         out.append(f"Documented range 文档范围 {num(sig.doc_min)} … {num(sig.doc_max)}; encodable 可编码 {num(sig.phys_min)} … {num(sig.phys_max)}")
     if sig.since:
         out.append(f"Since 新增于 V{sig.since}")
@@ -104,18 +115,36 @@ def message_cells(can: ir.CanProtocol, msg: ir.Message) -> list[Cell]:
     labels = {n.name: n.label for n in can.nodes}
     return [
         msg.name, msg.zh, msg.id_text, msg.j1939.pgn_text if msg.j1939 is not None else None,
-        "Extended" if msg.is_extended else "Standard", "Cycle" if msg.is_cyclic else "Event", msg.cycle_ms, msg.dlc,
-        labels.get(msg.sender, msg.sender),
+        ("Extended" if msg.is_extended else "Standard") + (" FD" if msg.is_fd else ""), ("Yes" if msg.brs else "No") if msg.is_fd else None,
+        "Cycle" if msg.is_cyclic else "Event", msg.cycle_ms, msg.dlc, labels.get(msg.sender, msg.sender),
     ]
 
 
-def signal_cells(can: ir.CanProtocol, msg: ir.Message, sig: ir.Signal) -> list[Cell]:
+def data_type(sig: ir.Signal) -> str:
+    if sig.is_float:
+        return f"Float{sig.length} (IEEE 754)"
+    return "Signed" if sig.signed else "Unsigned"
+
+
+def limits(sig: ir.Signal) -> tuple[Fraction, Fraction, str, str]:
+    """Physical min/max and their raw hex: a float's documented range (else its finite range) and those values' bit patterns."""
+    if sig.is_float:
+        lo, hi = sig.check_min, sig.check_max
+        return lo, hi, hex_text(bits_of_float(float(lo), sig.length)), hex_text(bits_of_float(float(hi), sig.length))
+    return sig.phys_min, sig.phys_max, raw_hex(sig, sig.raw_min), raw_hex(sig, sig.raw_max)
+
+
+def limit_cell(sig: ir.Signal, value: Fraction) -> Cell:
+    """A float's largest finite value as the shortest text naming that double (-3.4028234663852886e+38), not 39 digits."""
+    return repr(float(value)) if sig.is_float and sig.doc_min is None else sheet_number(value)
+
+
+def signal_cells(msg: ir.Message, sig: ir.Signal) -> list[Cell]:
+    lo, hi, raw_lo, raw_hi = limits(sig)
     return [
-        sig.name, sig.zh, "\n".join(t for t in (sig.desc, sig.desc_zh) if t), BYTE_ORDER[can.bus.byte_order],
-        sig.segments[0].byte, sig.start, sig.length, "Signed" if sig.signed else "Unsigned",
-        sheet_number(sig.factor), sheet_number(sig.offset), sheet_number(sig.phys_min), sheet_number(sig.phys_max),
-        raw_hex(sig, sig.raw_min), raw_hex(sig, sig.raw_max), initial_value(sig), label_lines(sig, True), sig.unit,
-        label_lines(sig, False), notes(msg, sig),
+        sig.name, sig.zh, "\n".join(t for t in (sig.desc, sig.desc_zh) if t), BYTE_ORDER[sig.byte_order],
+        sig.start // 8, sig.start, sig.length, data_type(sig), sheet_number(sig.factor), sheet_number(sig.offset), limit_cell(sig, lo), limit_cell(sig, hi),
+        raw_lo, raw_hi, initial_value(sig), label_lines(sig, True), sig.unit, label_lines(sig, False), notes(msg, sig),
     ]
 
 
@@ -137,7 +166,7 @@ def matrix(can: ir.CanProtocol) -> Sheet:
         head = message_cells(can, msg)
         roles: list[Cell] = [role(n, msg) for n in can.nodes]
         for sig in msg.data_signals:
-            rows.append(head + signal_cells(can, msg, sig) + roles)
+            rows.append(head + signal_cells(msg, sig) + roles)
         if not msg.data_signals:
             rows.append(head + no_signal_cells(msg) + roles)
         bands += [i % 2] * (len(msg.data_signals) or 1)

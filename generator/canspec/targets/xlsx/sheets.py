@@ -74,6 +74,21 @@ def history(log: ir.Changelog | None) -> Sheet | None:
     return sheet("修订历史 History", columns, rows, freeze="version", bands=bands)
 
 
+def _dialect_facts(can: ir.CanProtocol) -> list[tuple[str, Cell]]:
+    """How to read the byte-order, float and FD columns, on a bus that has them."""
+    facts: list[tuple[str, Cell]] = []
+    if can.has_big_endian:
+        facts.append(("排列格式 Byte order", ("Per signal. Bits are numbered as in the DBC: 8 × byte + bit (bit 0 = least significant bit of the byte). "
+                                            "Intel: the start bit is the field's least significant bit, the field runs upward. Motorola: the start bit "
+                                            "is its most significant bit; the field runs down to bit 0 of the byte, then on from bit 7 of the next byte.")))
+    if can.has_float:
+        facts.append(("浮点 Float", "Float32/Float64 (IEEE 754): the raw value is the bit pattern; raw min/max are the patterns of the physical limits."))
+    if can.has_fd:
+        rate = f" ({can.bus.data_bitrate} bit/s)" if can.bus.data_bitrate else ""
+        facts.append(("CAN FD", f"Frame format \"… FD\": a CAN FD frame. BRS Yes: its data phase runs at the data bitrate{rate}."))
+    return facts
+
+
 def about(spec: ir.Spec, can: ir.CanProtocol, sheet_names: list[str]) -> Sheet:
     bus = can.bus
     facts: list[tuple[str, Cell]] = [
@@ -92,6 +107,7 @@ def about(spec: ir.Spec, can: ir.CanProtocol, sheet_names: list[str]) -> Sheet:
             "物理范围 Physical range",
             "What a sender may encode: the documented range cut to what the bits carry; Notes show the documented range where it differs."),
         ("初始值 Initial value", INITIAL_VALUE_NOTE),
+        *_dialect_facts(can),
     ]
     columns = [Column("item", "项目", "Item", 24), Column("value", "内容", "Value", 110, wrap=True)]
     return sheet("说明 About", columns, [[k, v] for k, v in facts])

@@ -1,0 +1,46 @@
+"""Target names the imported spec must not share. A target refuses two spec names that become one
+identifier in its language (rules c-name-clash, rust-name-clash: `gas_pedal` beside
+`gas_pedal_raw`, `parkaid_data2` beside `parkaid_data_2`); in a spec someone wrote, which to rename
+is theirs to choose. Here the importer chose the spec names, so it renames the later one (`_2`,
+`_3`, …) and keeps the source's spelling as its `dbc_name`: the DBC is unchanged."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from canspec.importer.yamlout import dump_with_lines
+from canspec.pipeline import compile_spec
+
+CLASH_RULES = ("c-name-clash", "rust-name-clash")
+MAX_ROUNDS = 50
+
+
+def resolve_clashes(spec: dict[str, Any], warn: Any) -> None:
+    """Rename until no target reports a clash (at most MAX_ROUNDS rounds; what is left, check reports)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "spec.yaml"
+        for _ in range(MAX_ROUNDS):
+            text, where = dump_with_lines(spec, [])
+            path.write_text(text, encoding="utf-8")
+            clashes = [p for p in compile_spec(path).problems if p.rule in CLASH_RULES and p.loc is not None and p.loc.line in where]
+            if not clashes:
+                return
+            for line in sorted({p.loc.line for p in clashes if p.loc is not None}):
+                _rename(spec, where[line], warn)
+
+
+def _rename(spec: dict[str, Any], at: tuple[int, ...], warn: Any) -> None:
+    msg = spec["messages"][at[0]]
+    item, siblings = (msg, spec["messages"]) if len(at) == 1 else (msg["signals"][at[1]], msg["signals"])
+    taken = {s["name"] for s in siblings}
+    n = 2
+    while f"{item['name']}_{n}" in taken:
+        n += 1
+    old, item["name"] = item["name"], f"{item['name']}_{n}"
+    if "dbc_name" not in item:
+        item["dbc_name"] = old
+        item.update({k: item.pop(k) for k in list(item) if k not in ("name", "dbc_name")})  # dbc_name right after name
+    what = "message" if len(at) == 1 else f"signal of {msg.get('dbc_name', msg['name'])}"
+    warn(f"{what} {item['dbc_name']}: its C or Rust name clashes with another's: spec name {item['name']} (the DBC keeps {item['dbc_name']})")

@@ -1,0 +1,182 @@
+"""Read a DBC the way a good tool would: what cantools cannot parse is repaired line by line where
+one reading is sensible — each repair a warning with `file:line` and what was decided — and
+refused with `file:line` and a hint where none is. Repairs (the corpus of real files forced each):
+
+- a frame ID above 0x7FF without the extended flag: taken as 29-bit;
+- a number written `.25`: read as 0.25;
+- a name starting with a digit (`0_COUNTER`): kept as the DBC's name, parsed under a placeholder;
+- a statement (`CM_`, `VAL_`, `BA_`, …) without its closing `;`: closed; `CM_ 145 "…"` (no object
+  type): a message comment; `CM_ SG_ 304 "…"` (no signal name): dropped;
+- `VAL_` for a signal that does not exist: dropped;
+- a frame ID that does not fit 29 bits: that message left out (no reading of it is sensible).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+MAX_REPAIRS = 10_000
+PLACEHOLDER = "CANSPEC_DIGIT_"  # prefix of a digit-first name while cantools parses it
+
+_SYNTAX = re.compile(r"Invalid syntax at line (\d+), column (\d+)")
+_STANDARD_TOO_BIG = re.compile(r"Standard frame id 0x([0-9a-fA-F]+) is more than 11 bits in message (\S+?)\.")
+_EXTENDED_TOO_BIG = re.compile(r"Extended frame id 0x([0-9a-fA-F]+) is more than 29 bits in message (\S+?)\.")
+_STATEMENT = re.compile(r"^\s*(CM_|VAL_|BA_|BA_DEF_|BA_DEF_DEF_|VAL_TABLE_|SIG_VALTYPE_|SG_MUL_VAL_)\s")
+_UNUSED_VAL = re.compile(r"unused VAL_ entries in DBC")
+_BO = re.compile(r"^(\s*BO_\s+)(\d+)(\s+)(\w+)(\s*:)")
+_DOT_NUMBER = re.compile(r"(?<![\w.])\.(\d)")
+_CM_BARE = re.compile(r"^(\s*CM_\s+)(\d+)(\s+\")")
+_CM_SG_NO_NAME = re.compile(r"^\s*CM_\s+SG_\s+\d+\s+\"")
+_VAL = re.compile(r"^\s*VAL_\s+(\d+)\s+(\w+)\s")
+_SG = re.compile(r"^\s*SG_\s+(\w+)")
+
+
+class DbcError(Exception):
+    """A DBC no repair makes readable: `file:line: what` and a hint."""
+
+
+@dataclass
+class Repairs:
+    source: str
+    lines: list[str]
+    warnings: list[tuple[int, str]] = field(default_factory=list)  # (1-based line, text)
+    renamed: dict[str, str] = field(default_factory=dict)  # placeholder → the DBC's own name
+
+    @property
+    def text(self) -> str:
+        return "\n".join(self.lines) + "\n"
+
+    def warn(self, index: int, text: str) -> None:
+        self.warnings.append((index + 1, text))
+
+
+def repair_step(rep: Repairs, error: str) -> bool:
+    """Apply the repair cantools' `error` calls for; False when there is none."""
+    if (m := _STANDARD_TOO_BIG.search(error)) is not None:
+        return _extend_id(rep, int(m.group(1), 16), m.group(2))
+    if (m := _EXTENDED_TOO_BIG.search(error)) is not None:
+        return _drop_message(rep, int(m.group(1), 16) | 0x80000000, m.group(2))
+    if _UNUSED_VAL.search(error):
+        return _drop_unused_vals(rep)
+    if (m := _SYNTAX.search(error)) is not None:
+        return _repair_syntax(rep, int(m.group(1)) - 1, int(m.group(2)) - 1)
+    return False
+
+
+def _extend_id(rep: Repairs, frame_id: int, name: str) -> bool:
+    if frame_id > 0x1FFFFFFF:
+        return _drop_message(rep, frame_id, name)
+    for i, line in enumerate(rep.lines):
+        m = _BO.match(line)
+        if m and int(m.group(2)) == frame_id and m.group(4) == name:
+            rep.lines[i] = f"{m.group(1)}{frame_id | 0x80000000}{line[m.end(2):]}"
+            rep.warn(i, f"ID 0x{frame_id:X} of {name} is above 0x7FF but has no extended flag: taken as 29-bit")
+            return True
+    return False
+
+
+def _drop_message(rep: Repairs, dbc_id: int, name: str) -> bool:
+    for i, line in enumerate(rep.lines):
+        m = _BO.match(line)
+        if m and int(m.group(2)) in (dbc_id, dbc_id & 0x7FFFFFFF) and m.group(4) == name:
+            dbc_id = int(m.group(2))
+            rep.warn(i, f"ID 0x{dbc_id & 0x7FFFFFFF:X} of {name} does not fit 29 bits: message left out")
+            rep.lines[i] = ""
+            j = i + 1
+            while j < len(rep.lines) and _SG.match(rep.lines[j]):
+                rep.lines[j] = ""
+                j += 1
+            ref = re.compile(rf"^\s*(CM_\s+(BO_|SG_)|BA_\s+\"\w+\"\s+(BO_|SG_)|VAL_|SIG_VALTYPE_)\s+{dbc_id}\s")
+            for k, other in enumerate(rep.lines):
+                if ref.match(other):
+                    _drop_statement(rep, k, "", warn=False)
+            return True
+    return False
+
+
+def signal_names(lines: list[str]) -> dict[int, set[str]]:
+    """BO_ ID as written → the names of its SG_ lines."""
+    out: dict[int, set[str]] = {}
+    current = None
+    for line in lines:
+        if (m := _BO.match(line)) is not None:
+            current = out.setdefault(int(m.group(2)), set())
+        elif current is not None and (s := _SG.match(line)) is not None:
+            current.add(s.group(1))
+    return out
+
+
+def _drop_unused_vals(rep: Repairs) -> bool:
+    names = signal_names(rep.lines)
+    dropped = False
+    for i, line in enumerate(rep.lines):
+        m = _VAL.match(line)
+        if m and m.group(2) not in names.get(int(m.group(1)), set()):
+            rep.warn(i, f"VAL_ for signal {m.group(2)} of message {m.group(1)}, which has no such signal: dropped")
+            rep.lines[i] = ""
+            dropped = True
+    return dropped
+
+
+def _repair_syntax(rep: Repairs, index: int, column: int) -> bool:
+    if not 0 <= index < len(rep.lines):
+        return False
+    line = rep.lines[index]
+    if _DOT_NUMBER.search(line) and re.match(r"\s*SG_", line):
+        rep.lines[index] = _DOT_NUMBER.sub(r"0.\1", line)
+        rep.warn(index, "number written without a leading 0 (e.g. '.25'): read as 0.25")
+        return True
+    token = re.match(r"\d\w*", line[column:]) if 0 <= column < len(line) else None
+    if token is not None and not token.group(0).isdigit():  # a name where the grammar wants one: `0_COUNTER`
+        return _rename_digit_name(rep, index, token.group(0))
+    if (m := _CM_BARE.match(line)) is not None:
+        rep.lines[index] = f"{m.group(1)}BO_ {m.group(2)}{line[m.end(2):]}"
+        rep.warn(index, f"CM_ without an object type before ID {m.group(2)}: taken as the comment of message {m.group(2)}")
+        return True
+    if _CM_SG_NO_NAME.match(line):
+        return _drop_statement(rep, index, "CM_ SG_ without a signal name: dropped")
+    return _close_statement(rep, index if column > 0 else _previous_statement(rep.lines, index))
+
+
+def _rename_digit_name(rep: Repairs, index: int, name: str) -> bool:
+    placeholder = PLACEHOLDER + name
+    pattern = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])")
+    for i, line in enumerate(rep.lines):
+        head, quote, text = line.partition('"')  # a comment's or attribute's text is not a name
+        rep.lines[i] = pattern.sub(placeholder, head) + quote + text
+    rep.renamed[placeholder] = name
+    rep.warn(index, f"name {name!r} starts with a digit: kept as the DBC's name, with an identifier of its own in the spec")
+    return True
+
+
+def _previous_statement(lines: list[str], index: int) -> int:
+    i = index - 1
+    while i >= 0 and not lines[i].strip():
+        i -= 1
+    return i
+
+
+def _close_statement(rep: Repairs, index: int) -> bool:
+    """A statement whose closing `;` is missing (cantools then fails on the next line)."""
+    start = index
+    while start >= 0 and not _STATEMENT.match(rep.lines[start]):
+        start -= 1
+    if start < 0 or index < 0 or rep.lines[index].rstrip().endswith(";"):
+        return False
+    if rep.lines[index].rstrip().count('"') % 2 == 1 and start == index:
+        return False  # an unclosed quote: no sensible reading
+    rep.lines[index] = rep.lines[index].rstrip() + ";"
+    rep.warn(start, f"{rep.lines[start].split()[0]} without its closing ';': closed at the end of its line")
+    return True
+
+
+def _drop_statement(rep: Repairs, index: int, text: str, warn: bool = True) -> bool:
+    end = index
+    while end < len(rep.lines) and not rep.lines[end].rstrip().endswith(";"):
+        end += 1
+    for i in range(index, min(end + 1, len(rep.lines))):
+        rep.lines[i] = ""
+    if warn:
+        rep.warn(index, text)
+    return True

@@ -1,0 +1,83 @@
+"""The public corpus `canspec import` is measured on: the 115 DBCs of the `opendbc` package on PyPI
+(a test dependency, pinned in .ci/setup.d/45-opendbc.sh), read through cantools as the oracle."""
+
+from __future__ import annotations
+
+import importlib.util
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import cantools
+
+from canspec.importer.load import load
+from canspec.importer.run import import_sources
+from canspec.importer.yamlout import dump
+from canspec.pipeline import compile_spec
+from canspec.targets.dbc import render_dbc
+
+OPENDBC_FILES = 115  # opendbc 0.3.1
+
+
+def opendbc_files() -> list[Path]:
+    spec = importlib.util.find_spec("opendbc")
+    assert spec is not None and spec.submodule_search_locations, "the opendbc package is missing: bash .ci/setup.d/45-opendbc.sh"
+    root = Path(next(iter(spec.submodule_search_locations))) / "dbc"
+    files = sorted(root.rglob("*.dbc"))
+    assert len(files) == OPENDBC_FILES, f"opendbc holds {len(files)} DBCs, the corpus table counts {OPENDBC_FILES}"
+    return files
+
+
+@dataclass
+class Imported:
+    source: Path
+    warnings: list[tuple[str, int | None, str]]
+    spec_dir: Path
+    problems: list[str]  # canspec check's errors
+    dbc: str | None  # the DBC `canspec gen` writes from the imported spec
+    spec: Any = None
+    skipped: dict[str, str] = field(default_factory=dict)
+
+
+def import_one(path: Path, out: Path) -> Imported:
+    spec, report = import_sources([str(path)])
+    out.mkdir(parents=True, exist_ok=True)
+    name = spec["protocol"]["name"]
+    (out / f"{name}.yaml").write_text(dump(spec, ["corpus import"]), encoding="utf-8")
+    compiled = compile_spec(out / f"{name}.yaml")
+    if compiled.spec is None:
+        return Imported(path, report.warnings, out, [str(p) for p in compiled.errors], None)
+    dbc = render_dbc(compiled.spec)[f"dbc/{compiled.spec.can.name}.dbc"].decode()
+    return Imported(path, report.warnings, out, [], dbc, compiled.spec)
+
+
+def load_source(path: Path) -> tuple[Any, dict[str, str]]:
+    """The source as cantools reads it after canspec's repairs (the same text the importer read),
+    and the placeholders of its digit-first names."""
+    loaded = load(path, path.name)
+    return cantools.database.load_string(loaded.text, database_format="dbc", strict=False), loaded.renamed
+
+
+def load_generated(path: Path) -> tuple[Any, dict[str, str]]:
+    """The generated DBC, strictly — through the same repairs: it keeps a source's digit-first names."""
+    loaded = load(path, path.name)
+    return cantools.database.load_string(loaded.text, database_format="dbc", strict=True), loaded.renamed
+
+
+def _num(value: Any) -> Fraction | None:
+    return None if value is None else Fraction(str(value))
+
+
+def signal_facts(sig: Any) -> dict[str, Any]:
+    """What a signal means, as cantools reads it (names of value labels as written)."""
+    return {
+        "start": sig.start, "length": sig.length, "byte_order": sig.byte_order, "signed": bool(sig.is_signed) and not sig.is_float,
+        "float": sig.is_float, "scale": _num(sig.scale), "offset": _num(sig.offset), "minimum": _num(sig.minimum),
+        "maximum": _num(sig.maximum), "unit": sig.unit or "",
+        "choices": {int(k): str(getattr(v, "name", v)) for k, v in (sig.choices or {}).items()},
+    }
+
+
+def message_facts(msg: Any) -> dict[str, Any]:
+    return {"frame_id": msg.frame_id, "extended": bool(msg.is_extended_frame), "length": msg.length, "cycle_time": msg.cycle_time or None}
