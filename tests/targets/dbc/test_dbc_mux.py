@@ -12,10 +12,10 @@ import cantools
 import pytest
 from canspec import ir
 from canspec.ir import mux
+from canspec.pipeline import compile_spec
 from canspec.reference import codec
 from canspec_cli import assert_no_traceback, run_canspec
 from dbc_support import load_cantools, write_dbc
-from canspec.pipeline import compile_spec
 from repo_paths import ROOT
 
 MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
