@@ -76,3 +76,13 @@ def test_fingerprint_sees_a_page_change(can: ir.CanProtocol, tmp_path: Path) -> 
     assert other is not None and other.can is not None
     assert other.can.message("host_command").fingerprint != can.message("host_command").fingerprint
     assert other.can.message("sensor_report").fingerprint == can.message("sensor_report").fingerprint
+
+
+def test_page_selections_and_views(can: ir.CanProtocol) -> None:
+    msg = can.message("sensor_report")
+    assert msg.page_selections == ({"mode": 0}, {"mode": 1}, {"mode": 6}, {"mode": 2, "channel": 0}, {"mode": 2, "channel": 1}, {"mode": 2, "channel": 3})
+    page = msg.page({"mode": 2, "channel": 3})
+    assert not page.is_multiplexed and [s.name for s in page.data_signals] == ["mode", "status", "channel", "voltage", "counter"]
+    assert (page.signal("mode").raw_min, page.signal("mode").raw_max, page.signal("channel").raw_max) == (2, 2, 3)
+    assert page.signal("voltage").mux is None and page.signal("voltage").word_mask == msg.signal("voltage").word_mask
+    assert can.message("host_command").page_selections == ({"command": 0}, {"command": 20})

@@ -8,7 +8,7 @@ read it and templates only shape text.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from functools import cached_property
 
@@ -346,6 +346,34 @@ class Message:
         missing from it holds 0, as an encoder writes it), in frame order: the fields in every
         frame and those of the selected pages; the other pages' fields are absent."""
         return tuple(s for s in self.data_signals if all(c.holds(values.get(c.by, 0)) for c in self.mux_chain(s)))
+
+    @cached_property
+    def page_selections(self) -> tuple[dict[str, int], ...]:
+        """Multiplexer values that select each page in turn (its lowest and its highest value; a
+        multiplexer inside the page set to its first page's lowest): every field appears in one of
+        them. () without multiplexing."""
+        out: list[dict[str, int]] = []
+        for group in self.mux_groups:
+            chain = {c.by: c.first for c in self.mux_chain(self.signal(group.multiplexer))}
+            for value in sorted({group.ranges[0][0], group.ranges[-1][1]}):
+                values = chain | {group.multiplexer: value}
+                while unset := [s.name for s in self.present(values) if s.is_multiplexer and s.name not in values]:
+                    values[unset[0]] = next(g.ranges[0][0] for g in self.mux_groups if g.multiplexer == unset[0])
+                if values not in out:
+                    out.append(values)
+        return tuple(out)
+
+    def page(self, values: dict[str, int]) -> Message:
+        """The message as the frames that hold these multiplexer values see it: the fields of every
+        frame and of the selected pages, each multiplexer fixed to its value (raw_min = raw_max),
+        without multiplexing — a plain message whose frames are those of this page."""
+        present = {s.name for s in self.present(values)}
+        signals = tuple(
+            replace(s, mux=None, is_multiplexer=False, raw_min=values.get(s.name, 0), raw_max=values.get(s.name, 0)) if s.is_multiplexer
+            else replace(s, mux=None)
+            for s in self.signals if s.is_reserved or s.name in present
+        )
+        return replace(self, signals=signals, mux_groups=())
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
     @property
