@@ -42,6 +42,7 @@ from canspec.ir.model import (
     runtime_quotient,
     to_physical,
 )
+from canspec.ir.mux import MuxCondition, MuxGroup
 
 __all__ = [
     "EXACT_LIMIT",
@@ -70,6 +71,8 @@ __all__ = [
     "Label",
     "Message",
     "MultiFrame",
+    "MuxCondition",
+    "MuxGroup",
     "Node",
     "Segment",
     "Signal",

@@ -24,6 +24,7 @@ from canspec.ir.encoding import (
 )
 from canspec.ir.fingerprint import layout_fingerprint
 from canspec.ir.ids import id_text
+from canspec.ir.mux import MuxCondition, groups, ranges_of
 from canspec.ir.names import humanize
 from canspec.spec.loader import LoadedSpec
 from canspec.spec.resolve import Resolved, ResolvedCan, label_dbc, label_pair
@@ -63,7 +64,7 @@ def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fractio
     return lo, hi
 
 
-def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int) -> ir.Signal:
+def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, multiplexers: frozenset[str] = frozenset()) -> ir.Signal:
     length, signed, is_float = sig["len"], bool(sig["signed"]), bool(sig["float"])
     factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
     tmin, tmax = raw_type_range(length, signed)
@@ -131,6 +132,8 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int) ->
         loc=sig.loc,
         byte_order=order,
         is_float=is_float,
+        mux=MuxCondition(sig["mux"]["by"], ranges_of(sig["mux"]["values"])) if "mux" in sig else None,
+        is_multiplexer=sig["name"] in multiplexers,
         dbc_name=sig.get("dbc_name", sig["name"]),
     )
 
@@ -143,14 +146,27 @@ def _layout_fields(signals: tuple[ir.Signal, ...]) -> list[tuple[str, int, int, 
     """The fingerprint's fields; byte order and float marked only where they are not Intel integers,
     so that a fingerprint of an Intel integer message is what it was before either existed."""
     def role(s: ir.Signal) -> str:
-        return s.role + (":be" if s.is_big_endian else "") + (":float" if s.is_float else "")
+        return s.role + (":be" if s.is_big_endian else "") + (":float" if s.is_float else "") + (":M" if s.is_multiplexer else "") + _mux_tag(s)
 
     return [(role(s), s.start, s.length, s.signed, decimal_text(s.factor), decimal_text(s.offset)) for s in signals if not s.is_reserved]
 
 
+def _mux_tag(s: ir.Signal) -> str:
+    if s.mux is None:
+        return ""
+    return f":m{s.mux.by}=" + ",".join(f"{lo}-{hi}" for lo, hi in s.mux.ranges)
+
+
+def _mux_groups(signals: tuple[ir.Signal, ...]) -> tuple[ir.MuxGroup, ...]:
+    """Each multiplexer's pages, the top-level multiplexer's first (then the others in frame order)."""
+    muxes = sorted((s for s in signals if s.is_multiplexer), key=lambda s: s.mux is not None)
+    return tuple(g for m in muxes for g in groups(m.name, [(s.name, s.mux.ranges) for s in signals if s.mux is not None and s.mux.by == m.name]))
+
+
 def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], node_names: tuple[str, ...]) -> ir.Message:
     dlc = msg.get("dlc", 8)
-    signals = tuple(_signal(s, tables, dlc) for s in msg["signals"])
+    multiplexers = frozenset(s["mux"]["by"] for s in msg["signals"] if "mux" in s)
+    signals = tuple(_signal(s, tables, dlc, multiplexers) for s in msg["signals"])
     checksum = next((_checksum(s, dlc) for s in signals if s.role == "checksum"), None)
     counter = next((ir.Counter(s.name, s.length, 1 << s.length, s.word_shift, s.word_mask, s.word_order) for s in signals if s.role == "counter"), None)
     mf = msg.get("multiframe")
@@ -197,6 +213,7 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         dbc_name=msg.get("dbc_name", msg["name"]),
         is_fd=fd,
         brs=fd and bool(msg.get("brs", bus.get("data_bitrate") is not None)),
+        mux_groups=_mux_groups(signals),
     )
 
 

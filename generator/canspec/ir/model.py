@@ -9,10 +9,11 @@ read it and templates only shape text.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from functools import cached_property
 
+from canspec.ir.mux import MuxCondition, MuxGroup
 from canspec.spec.problems import Loc
 
 # Runtime rounding rule shared by every generated language (ir/encoding.py states what it guarantees):
@@ -157,6 +158,10 @@ class Signal:
     # its physical value the float those bits hold (factor 1, offset 0); the raw/phys ranges are the
     # float's finite range (or the documented one), and NaN/±Inf pass only without a documented range.
     is_float: bool = False
+    # Multiplexing (ir/mux.py): present only while its multiplexer holds one of some values (None:
+    # in every frame); a multiplexer is a field others name in their `mux`.
+    mux: MuxCondition | None = None
+    is_multiplexer: bool = False
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name` (a source's own spelling), else `name`
 
     @property
@@ -331,6 +336,59 @@ class Message:
     loc: Loc | None = field(default=None, compare=False, hash=False)
     is_fd: bool = False  # a CAN FD frame (FDF): up to 64 data bytes
     brs: bool = False  # CAN FD bit-rate switching: the data phase at the bus's data_bitrate
+    # The pages of each multiplexer, top-level multiplexer first (ir/mux.py): () without multiplexing.
+    mux_groups: tuple[MuxGroup, ...] = ()
+
+    @property
+    def is_multiplexed(self) -> bool:
+        return bool(self.mux_groups)
+
+    @property
+    def multiplexers(self) -> tuple[Signal, ...]:
+        """The multiplexers, in frame order; one of them is in every frame (the top-level one)."""
+        return tuple(s for s in self.signals if s.is_multiplexer)
+
+    def mux_chain(self, sig: Signal) -> tuple[MuxCondition, ...]:
+        """What a field's presence needs, top-level multiplexer first: () for a field in every frame."""
+        chain: list[MuxCondition] = []
+        while sig.mux is not None:
+            chain.insert(0, sig.mux)
+            sig = self.signal(sig.mux.by)
+        return tuple(chain)
+
+    def present(self, values: dict[str, int]) -> tuple[Signal, ...]:
+        """The data fields a frame holds when its multiplexers hold `values` (raw; a multiplexer
+        missing from it holds 0, as an encoder writes it), in frame order: the fields in every
+        frame and those of the selected pages; the other pages' fields are absent."""
+        return tuple(s for s in self.data_signals if all(c.holds(values.get(c.by, 0)) for c in self.mux_chain(s)))
+
+    @cached_property
+    def page_selections(self) -> tuple[dict[str, int], ...]:
+        """Multiplexer values that select each page in turn (its lowest and its highest value; a
+        multiplexer inside the page set to its first page's lowest): every field appears in one of
+        them. () without multiplexing."""
+        out: list[dict[str, int]] = []
+        for group in self.mux_groups:
+            chain = {c.by: c.first for c in self.mux_chain(self.signal(group.multiplexer))}
+            for value in sorted({group.ranges[0][0], group.ranges[-1][1]}):
+                values = chain | {group.multiplexer: value}
+                while unset := [s.name for s in self.present(values) if s.is_multiplexer and s.name not in values]:
+                    values[unset[0]] = next(g.ranges[0][0] for g in self.mux_groups if g.multiplexer == unset[0])
+                if values not in out:
+                    out.append(values)
+        return tuple(out)
+
+    def page(self, values: dict[str, int]) -> Message:
+        """The message as the frames that hold these multiplexer values see it: the fields of every
+        frame and of the selected pages, each multiplexer fixed to its value (raw_min = raw_max),
+        without multiplexing — a plain message whose frames are those of this page."""
+        present = {s.name for s in self.present(values)}
+        signals = tuple(
+            replace(s, mux=None, is_multiplexer=False, raw_min=values.get(s.name, 0), raw_max=values.get(s.name, 0)) if s.is_multiplexer
+            else replace(s, mux=None)
+            for s in self.signals if s.is_reserved or s.name in present
+        )
+        return replace(self, signals=signals, mux_groups=())
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
 
     @property
@@ -454,6 +512,10 @@ class CanProtocol:
     @property
     def max_dlc(self) -> int:
         return max((m.dlc for m in self.messages), default=0)
+
+    @property
+    def has_multiplexing(self) -> bool:
+        return any(m.is_multiplexed for m in self.messages)
 
     @property
     def has_multiframe(self) -> bool:

@@ -6,7 +6,12 @@ for bit (cantools, reading the generated DBC, checks it independently).
 A frame (up to 64 bytes) is handled as one integer, the frame word, read in the order of each
 field: every field is `(v & word_mask) >> word_shift` of the little-endian word (Intel) or of the
 big-endian one (Motorola), sign-extended with `sign_bit`; a float field's raw value is its bit
-pattern, and its physical value the float those bits hold."""
+pattern, and its physical value the float those bits hold.
+
+A multiplexed message (ir/mux.py) decodes to its multiplexers' values and the fields of the page
+they select, and nothing of the other pages: the multiplexer values in the decoded form say which
+page it holds. Packing writes the selected page's fields only (the other bits 0) and refuses a
+field of another page."""
 
 from __future__ import annotations
 
@@ -55,9 +60,11 @@ def checksum_ok(msg: ir.Message, data: bytes | bytearray) -> bool:
 
 
 def pack(msg: ir.Message, raw: dict[str, int], *, fill_checksum: bool = True) -> bytes:
-    """Raw values → frame bytes. Missing signals are 0, reserved bits 0, checksum computed."""
+    """Raw values → frame bytes. Missing signals are 0, reserved bits 0, checksum computed. In a
+    multiplexed message the multiplexers' values in `raw` (missing: 0) select the fields written;
+    a field of another page is an error."""
     v = big = 0
-    for sig in msg.data_signals:
+    for sig in _present(msg, raw):
         value = raw.get(sig.name, 0)
         if not sig.raw_type_min <= value <= sig.raw_type_max:
             raise CodecError(f"{msg.name}.{sig.name}: raw {value} does not fit {sig.length} bits ({sig.raw_type_min}..{sig.raw_type_max})")
@@ -72,13 +79,29 @@ def pack(msg: ir.Message, raw: dict[str, int], *, fill_checksum: bool = True) ->
     return v.to_bytes(msg.dlc, "little")
 
 
+def _present(msg: ir.Message, raw: dict[str, int]) -> tuple[ir.Signal, ...]:
+    if not msg.is_multiplexed:
+        return msg.data_signals
+    present = msg.present(raw)
+    names = {s.name for s in present}
+    stray = [s.name for s in msg.data_signals if s.name in raw and s.name not in names]
+    if stray:
+        selected = ", ".join(f"{m.name}={raw.get(m.name, 0)}" for m in msg.multiplexers if m.name in names)
+        raise CodecError(f"{msg.name}: {', '.join(stray)} not on the page {selected} selects")
+    return present
+
+
 def unpack(msg: ir.Message, data: bytes | bytearray) -> dict[str, int]:
-    """Frame bytes → raw values of every data signal."""
+    """Frame bytes → raw values of every data signal the frame holds (in a multiplexed message: the
+    multiplexers and the fields of the pages they select)."""
     if len(data) < msg.dlc:
         raise CodecError(f"{msg.name}: frame has {len(data)} bytes, needs {msg.dlc}")
     v = frame_word(data[: msg.dlc])
     big = int.from_bytes(data[: msg.dlc], "big")
-    return {sig.name: raw_value(sig, v, big) for sig in msg.data_signals}
+    if not msg.is_multiplexed:
+        return {sig.name: raw_value(sig, v, big) for sig in msg.data_signals}
+    values = {m.name: raw_value(m, v, big) for m in msg.multiplexers}
+    return {sig.name: raw_value(sig, v, big) for sig in msg.present(values)}
 
 
 def to_raw(sig: ir.Signal, physical: float | str | Fraction) -> int:
@@ -155,7 +178,10 @@ def signal_text(sig: ir.Signal, raw: int) -> str:
 
 def text_decoder(msg: ir.Message) -> Callable[[int], str]:
     """A function from the frame word to the text line's fields, compiled once per message:
-    straight-line code, with a precomputed text per raw value for narrow fields."""
+    straight-line code, with a precomputed text per raw value for narrow fields; a multiplexed
+    message prints its multiplexers and the selected pages' fields."""
+    if msg.is_multiplexed:
+        return _page_text_decoder(msg)
     env: dict[str, object] = {"signal_text": signal_text}
     pieces = []
     for i, s in enumerate(msg.data_signals):
@@ -182,3 +208,14 @@ def text_decoder(msg: ir.Message) -> Callable[[int], str]:
     big = f"    b = int.from_bytes(v.to_bytes({msg.dlc}, 'little'), 'big')\n" if msg.has_big_endian else ""
     exec(f"def fields(v):\n{big}    return {body}\n", env, namespace)  # noqa: S102 - source built from the IR's numbers and identifiers
     return namespace["fields"]  # type: ignore[return-value]
+
+
+def _page_text_decoder(msg: ir.Message) -> Callable[[int], str]:
+    """text_decoder for a multiplexed message: the fields unpack finds for the frame's pages."""
+    by_name = {s.name: s for s in msg.data_signals}
+
+    def fields(v: int) -> str:
+        raws = unpack(msg, v.to_bytes(msg.dlc, "little"))
+        return ", ".join(signal_text(by_name[name], raw) for name, raw in raws.items())
+
+    return fields

@@ -17,6 +17,7 @@ from canspec.ir.ids import max_id
 from canspec.ir.model import to_physical
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
+from canspec.spec.validate_mux import coexist, mux_rules
 from canspec.spec.yamlsource import LocDict, LocList
 
 MAX_CYCLE_MS = 600_000
@@ -185,6 +186,8 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
         dlc = msg.get("dlc", 8)
         frame_bytes = dlc if dlc in FD_LENGTHS else 64  # a bad DLC is reported by dlc-range
         owners: dict[int, str] = {}
+        together = coexist(_signals(msg))  # fields of different pages may overlap
+        placed: list[tuple[LocDict, frozenset[int]]] = []
         for sig in _signals(msg):
             start, length = sig["start"], sig["len"]
             if not 1 <= length <= 64 or start < 0:
@@ -200,7 +203,11 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                             sig.loc_of("start"), hint, "signal-beyond-dlc")
                 continue
             bits = positions(start, length, sig["byte_order"])
-            clash = {owners[b] for b in bits if b in owners}
+            if together is None:
+                clash = {owners[b] for b in bits if b in owners}
+            else:
+                clash = {other["name"] for other, taken in placed if together(sig, other) and not taken.isdisjoint(bits)}
+                placed.append((sig, frozenset(bits)))
             if clash:
                 yield error(
                     f"signal {sig['name']!r} ({_where(sig)}) overlaps {', '.join(sorted(clash))} in {msg['name']!r}",
@@ -230,6 +237,9 @@ def _float_shape(sig: LocDict) -> Iterator[Problem]:
             yield error(f"float signal {sig['name']!r} gives `{key}`", sig.loc_of(key),
                         "a float field holds its physical value itself: no sign flag, factor 1, offset 0, no value table or specials, role data",
                         "float-field")
+
+
+rule(mux_rules)
 
 
 @rule

@@ -27,6 +27,13 @@ class DbcSignal:
         return 0 if self.sig.is_big_endian else 1
 
     @property
+    def mux_marker(self) -> str:
+        """After the name: ` M` a multiplexer, ` mN` a field of the page N (its lowest value), ` mNM` both
+        (extended multiplexing); SG_MUL_VAL_ gives every value where one number cannot (Dbc.mux_values)."""
+        page = f" m{self.sig.mux.first}" if self.sig.mux is not None else ""
+        return page + ("M" if page else " M") if self.sig.is_multiplexer else page
+
+    @property
     def valtype(self) -> int:
         """SIG_VALTYPE_: 1 float32, 2 float64, 0 an integer."""
         return attributes.SIG_VALTYPES[self.sig.length] if self.sig.is_float else 0
@@ -84,8 +91,27 @@ class Dbc:
         return tuple((m, s) for m in self.messages for s in m.signals if s.valtype)
 
     @property
+    def mux_values(self) -> tuple[tuple[DbcMessage, DbcSignal, str, str], ...]:
+        """SG_MUL_VAL_ lines (message, field, its multiplexer's DBC name, "lo-hi, lo-hi"): for every
+        multiplexed field of a message with extended multiplexing or a page of more than one value,
+        where a reader takes each field's values from these lines alone (as cantools writes them)."""
+        out = []
+        for m in self.messages:
+            if not _needs_mux_values(m.msg):
+                continue
+            names = {s.sig.name: s.name for s in m.signals}
+            for s in m.signals:
+                if s.sig.mux is not None:
+                    out.append((m, s, names[s.sig.mux.by], ", ".join(f"{lo}-{hi}" for lo, hi in s.sig.mux.ranges)))
+        return tuple(out)
+
+    @property
     def renamed(self) -> tuple[tuple[DbcMessage, DbcSignal], ...]:
         return tuple((m, s) for m in self.messages for s in m.signals if s.spec_name is not None)
+
+
+def _needs_mux_values(msg: ir.Message) -> bool:
+    return len(msg.multiplexers) > 1 or any(s.mux is not None and not s.mux.is_single for s in msg.signals)
 
 
 def dbc_id(msg: ir.Message) -> int:

@@ -152,6 +152,15 @@ def _decoded(sig: ir.Signal) -> list[tuple[int, float]]:
 
 
 def message_cases(msg: ir.Message) -> list[dict[str, Any]]:
+    """The message's cases; a multiplexed message's, page by page (ir.Message.page_selections):
+    each page's cases as a plain message's, those with its multiplexer values (a value-table
+    entry of a multiplexer selects another page)."""
+    if not msg.is_multiplexed:
+        return _cases(msg)
+    return [c for values in msg.page_selections for c in _cases(msg.page(values)) if all(c["raw"][k] == v for k, v in values.items())]
+
+
+def _cases(msg: ir.Message) -> list[dict[str, Any]]:
     sigs = [s for s in msg.data_signals if s.role != "checksum"]
     case = functools.partial(_case, msg, scales=_scales(msg))
     base = {s.name: s.base_raw for s in sigs}
@@ -266,4 +275,4 @@ def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     return {"vectors/can.json": _json(build_vectors(spec)), "vectors/sequences.json": _json(build_sequences(spec))}
 
 
-TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2)
+TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2, multiplexing=True)

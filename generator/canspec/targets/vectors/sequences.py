@@ -31,7 +31,8 @@ TICK_WRAP = 1 << 32
 
 
 def frame(msg: ir.Message, counter: int = 0, **raw: int) -> bytes:
-    values = {s.name: s.base_raw for s in msg.data_signals if s.role != "checksum"}
+    base = {m.name: m.base_raw for m in msg.multiplexers}  # a multiplexed message: the page its multiplexers' base values select
+    values = {s.name: s.base_raw for s in msg.present(base) if s.role != "checksum"}
     if msg.counter is not None:
         values[msg.counter.signal] = counter % msg.counter.modulo
     values.update(raw)

@@ -30,7 +30,7 @@ def frames_of(msg: ir.Message, text: bytes, **keys: int) -> list[bytes]:
     data = text.ljust(mf.frames * mf.bytes_per_frame, bytes([mf.padding]))
     out = []
     for i in range(mf.frames):
-        raw = {s.name: s.base_raw for s in msg.data_signals if s.role != "checksum"}
+        raw = {s.name: s.base_raw for s in msg.present({m.name: m.base_raw for m in msg.multiplexers}) if s.role != "checksum"}
         raw.update(keys)
         raw[mf.index_signal] = i
         payload = int.from_bytes(data[i * mf.bytes_per_frame : (i + 1) * mf.bytes_per_frame], "little")
