@@ -166,8 +166,8 @@ def _rename_digit_name(rep: Repairs, index: int, name: str) -> bool:
     placeholder = PLACEHOLDER + name
     pattern = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])")
     for i, line in enumerate(rep.lines):
-        head, quote, text = line.partition('"')  # a comment's or attribute's text is not a name
-        rep.lines[i] = pattern.sub(placeholder, head) + quote + text
+        parts = line.split('"')  # a comment's or attribute's text (odd parts) is not a name
+        rep.lines[i] = '"'.join(pattern.sub(placeholder, part) if k % 2 == 0 else part for k, part in enumerate(parts))
     rep.renamed[placeholder] = name
     rep.warn(index, f"name {name!r} starts with a digit: kept as the DBC's name, with an identifier of its own in the spec")
     return True

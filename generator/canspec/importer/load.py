@@ -52,7 +52,8 @@ def load_dbc(path: Path, source: str) -> Loaded:
             break
         except Exception as exc:  # noqa: BLE001 - cantools raises many kinds; each is read for a repair
             last = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            if not repair_step(rep, str(exc)):
+            before = list(rep.lines)
+            if not repair_step(rep, str(exc)) or rep.lines == before:  # no repair, or one that changed nothing
                 raise DbcError(f"{source}:{_line_of(last)}: not a readable DBC: {last}"
                                " (hint: fix the line; canspec import repairs only what has one sensible reading)") from None
     else:
