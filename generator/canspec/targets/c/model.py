@@ -114,6 +114,8 @@ class CModel:
     format_arg: bool  # the protocol has 11-bit IDs: lookups by ID take the frame's format too
     bitrate: str
     cycle_type: str  # of msg_info_t.cycle_ms
+    counter_start_type: str  # of msg_info_t.counter_start (a counter past bit 255 of an FD frame needs 16 bits)
+    big_endian_counters: bool  # some counter is Motorola: msg_info_t says which are (counter_big_endian)
     state_slots: str  # length of per-message arrays (1 without messages: C has no empty arrays)
     timeout_cycles: str
     counter_tolerance: str
@@ -247,6 +249,8 @@ def build_model(spec: ir.Spec) -> CModel:
         format_arg=can.has_standard,
         bitrate=C.unsigned(can.bus.bitrate),
         cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
+        counter_start_type="uint8_t" if max((m.counter.start for m in can.messages if m.counter), default=0) <= 0xFF else "uint16_t",
+        big_endian_counters=any(m.counter.word_order == "big" for m in can.messages if m.counter),
         state_slots=names.const("msg_count") if messages else C.unsigned(1),
         timeout_cycles=C.unsigned(ir.MONITOR_TIMEOUT_CYCLES),
         counter_tolerance=C.unsigned(ir.MONITOR_COUNTER_TOLERANCE),
