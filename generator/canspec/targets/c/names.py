@@ -35,7 +35,7 @@ HEADERS = (
 RUNTIME_FUNCTIONS = (
     "status_t", "round_abs", "round_half_away", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
     "mul_wide", "mul64_u", "mul64", "mul_hi64", "shr64", "div_round_u64_mulhi", "div_round_u64_mulrem", "div_round64_mulhi", "div_round64_mulrem",
-    "phys_t", "phys_q", "phys_round", "phys_encode", "copy_bits",
+    "phys_t", "phys_q", "phys_round", "phys_encode", "copy_bits", "bits_differ",
     *(f"phys_encode_{s}{bits}" for s in "ui" for bits in (8, 16, 32, 64)),
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
