@@ -115,6 +115,7 @@ class CModel:
     phys_q_max: str
     format_arg: bool  # the protocol has 11-bit IDs: lookups by ID take the frame's format too
     bitrate: str
+    data_bitrate: str  # the CAN FD data phase's ("" where the bus gives none)
     cycle_type: str  # of msg_info_t.cycle_ms
     counter_start_type: str  # of msg_info_t.counter_start (a counter past bit 255 of an FD frame needs 16 bits)
     big_endian_counters: bool  # some counter is Motorola: msg_info_t says which are (counter_big_endian)
@@ -253,6 +254,7 @@ def build_model(spec: ir.Spec) -> CModel:
         phys_q_max=C.double(2**63),
         format_arg=can.has_standard,
         bitrate=C.unsigned(can.bus.bitrate),
+        data_bitrate=C.unsigned(can.bus.data_bitrate) if can.bus.data_bitrate else "",
         cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
         counter_start_type="uint8_t" if max((m.counter.start for m in can.messages if m.counter), default=0) <= 0xFF else "uint16_t",
         big_endian_counters=any(m.counter.word_order == "big" for m in can.messages if m.counter),
