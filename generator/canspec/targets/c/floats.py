@@ -11,7 +11,9 @@ reference codec's exact one; float32 narrows it with a cast (rounding to nearest
 defined because the range never exceeds the largest float32 (beyond it the conversion is
 undefined behaviour, so such a value is a range error). NaN and ±Inf pass only where no range is
 documented, written as the format's bit patterns (a NaN as the canonical quiet NaN, as every
-canspec language encodes it) without a floating-point conversion.
+canspec language encodes it) without a floating-point conversion. Whether a value is finite is
+read from its binary64 bit pattern, not by comparing it with the largest double: static analysers
+(cppcheck) take such a compare for one whose outcome is known (MISRA C:2012 rule 14.3).
 """
 
 from __future__ import annotations
@@ -38,14 +40,14 @@ class CFloat:
     narrows: bool  # float32: encode converts the double to float
     check_min: str  # the _MIN / _MAX macros: the documented range, else the format's finite one
     check_max: str
-    low: str  # encode's compare bounds: the accepted range as the doubles inside it
-    high: str
+    low: str  # encode's compare bounds: the accepted range as the doubles inside it (a float64 without a
+    high: str  # range compares with none: every finite value passes)
     specials: bool  # NaN and ±Inf encode (no documented range)
-    finite_max: str  # the largest finite double: beyond it (either sign) a value is ±Inf
-    finite_test: bool  # a finite value can lie outside [low, high] while specials pass (float32 without a range)
     inf: str  # the bit patterns NaN and ±Inf encode to
     neg_inf: str
     nan: str
+    exponent64: str  # a double's exponent bits (all set: ±Inf or NaN) and fraction bits (then set: NaN)
+    fraction64: str
 
 
 def shortest(value: float) -> str:
@@ -83,9 +85,9 @@ def float_path(names: CNames, sig: ir.Signal, field: str) -> CFloat:
         low=shortest(low),
         high=shortest(high),
         specials=specials,
-        finite_max=shortest(float(FLOAT_MAX[64])),
-        finite_test=specials and bits == 32,
         inf=C.hex(inf, bits=bits),
         neg_inf=C.hex(inf | 1 << (bits - 1), bits=bits),
         nan=C.hex(nan, bits=bits),
+        exponent64=C.hex(0x7FF << 52, bits=64),
+        fraction64=C.hex((1 << 52) - 1, bits=64),
     )
