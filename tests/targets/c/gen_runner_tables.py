@@ -69,7 +69,8 @@ def _physical_checks(s: CSignal) -> list[str]:
 
 
 def _message_check(c: CModel, cm: CMessage) -> list[str]:
-    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", f"    uint8_t buf[{max(1, cm.msg.dlc)}] = {{0}};", "    int bad = 0, st;"]
+    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", f"    uint8_t buf[{max(1, cm.msg.dlc)}] = {{0}};",
+           "    int bad = 0, st;"]
     out += [
         "    memset(&s, 0, sizeof s);",
         f"    st = (int){cm.fn}_unpack(&s, vc->data, vc->len);",

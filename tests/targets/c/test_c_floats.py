@@ -98,9 +98,11 @@ def _roundtrip_program(c, msg_frames) -> str:  # type: ignore[no-untyped-def]
     lines = [f'#include "{c.prefix}.h"', "#include <stdio.h>", "", "int main(void) {", "    size_t k;"]
     for cm, frames in msg_frames:
         data = ", ".join("{" + ", ".join(str(b) for b in f) + "}" for f in frames)
-        lines += ["    {", f"        static const uint8_t in[{len(frames)}][{cm.msg.dlc}] = {{{data}}};", "        for (k = 0; k < sizeof in / sizeof in[0]; k++) {",
-                  f"            {cm.type} v;", f"            uint8_t out[{cm.msg.dlc}];", "            size_t j;",
-                  f"            const int u = (int){cm.fn}_unpack(&v, in[k], sizeof in[k]);", f"            const int p = (int){cm.fn}_pack(out, sizeof out, &v);",
+        lines += ["    {", f"        static const uint8_t in[{len(frames)}][{cm.msg.dlc}] = {{{data}}};",
+                  "        for (k = 0; k < sizeof in / sizeof in[0]; k++) {", f"            {cm.type} v;", f"            uint8_t out[{cm.msg.dlc}];",
+                  "            size_t j;",
+                  f"            const int u = (int){cm.fn}_unpack(&v, in[k], sizeof in[k]);",
+                  f"            const int p = (int){cm.fn}_pack(out, sizeof out, &v);",
                   f'            printf("R {cm.msg.name} %d %d ", u, p);', '            for (j = 0; j < sizeof out; j++) printf("%02X", out[j]);',
                   '            printf("\\n");', "        }", "    }"]
     return "\n".join([*lines, "    return 0;", "}", ""])

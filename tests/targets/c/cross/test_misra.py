@@ -175,7 +175,8 @@ def test_float_fields_meet_the_full_gate(tmp_path):
 
     spec = misra.cross.cbuild.HERE / "floats" / "float_fields.yaml"
     env = {**os.environ, "PYTHONPATH": str(misra.cross.cbuild.ROOT / "generator")}
-    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(spec), "-o", str(tmp_path), "-t", "c"], capture_output=True, text=True, env=env, check=False)
+    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(spec), "-o", str(tmp_path), "-t", "c"],
+                          capture_output=True, text=True, env=env, check=False)
     assert proc.returncode == 0, proc.stderr
     macro = misra.cross.header_prefix(tmp_path / "c").upper()
     findings = misra.unique(misra.analyse(tmp_path / "c", f"{macro}_STRATEGY=0,3", jobs=2))
