@@ -1,4 +1,4 @@
-"""IEEE float fields in C (floats/float_fields.yaml: float32 and float64, both byte orders, with and
+"""IEEE float fields in C (corners/c_corners.yaml: float32 and float64, both byte orders, with and
 without a documented range, classic and FD frames), against the reference codec: every encode of
 the doubles around each boundary (the documented range, the largest float32, ±Inf, NaN, subnormals)
 gives the reference codec's bit pattern or refuses where it refuses, a NaN giving the canonical
@@ -23,7 +23,7 @@ from canspec.reference.codec import CodecError
 from canspec.targets import registry
 from canspec.targets.c.model import build_model
 
-SPEC = Path(__file__).resolve().parent / "floats" / "float_fields.yaml"
+SPEC = Path(__file__).resolve().parent / "corners" / "c_corners.yaml"
 FLT_MAX = struct.unpack("<f", b"\xff\xff\x7f\x7f")[0]
 QUIET_NAN = {32: 0x7FC00000, 64: 0x7FF8000000000000}
 
@@ -128,7 +128,7 @@ def _run(work: Path, name: str, source: str, cc: str, strategy: str) -> str:
     src = work / f"{name}.c"
     src.write_text(source, encoding="utf-8")
     exe = work / f"{name}-{cc}-{strategy}"
-    cmd = [cc, "-std=c99", "-O2", *WARN, *SANITIZE, f"-DFLOAT_CORNERS_STRATEGY={strategy}", f"-I{work / 'c'}", str(src), "-o", str(exe)]
+    cmd = [cc, "-std=c99", "-O2", *WARN, *SANITIZE, f"-DC_CORNERS_STRATEGY={strategy}", f"-I{work / 'c'}", str(src), "-o", str(exe)]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
     proc = subprocess.run([str(exe)], capture_output=True, text=True, check=False)
     assert proc.returncode == 0 and "runtime error" not in proc.stderr, proc.stderr[-3000:]

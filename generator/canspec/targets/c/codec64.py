@@ -128,7 +128,8 @@ def _placed(s: CSignal) -> str:
 def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, order: str) -> list[str]:
     out = [*float_copies(sigs, "&{local}", "&src->{field}"), "w = " + " | ".join(_placed(s) for s in sigs) + ";"]
     if checksum is not None:
-        out += [*FOLD, f"w |= (x & 0xFFu) << {byte_at(checksum, dlc, order)}u;"]
+        at = byte_at(checksum, dlc, order)
+        out += [*FOLD, f"w |= (x & 0xFFu) << {at}u;" if at else "w |= x & 0xFFu;"]
     out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" for k in range(dlc)]
     return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
 

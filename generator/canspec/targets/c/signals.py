@@ -43,7 +43,6 @@ class CSignal:
     fn: str  # <prefix>_<message>_<signal>
     type: str  # the struct field's type
     length: int
-    start: int
     word_shift: int  # the field's LSB in the frame word of its byte order (ir.Signal.word_shift)
     where: str  # its bits, for the struct's comment
     value: str  # pack: its raw value (the field, or for a float the local holding its bit pattern)
@@ -87,7 +86,6 @@ def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dic
         fn=fn,
         type=flt.type if flt is not None else ctype(bits, sig.signed),
         length=sig.length,
-        start=sig.start,
         word_shift=sig.word_shift,
         where=_where(sig),
         value=flt.local if flt is not None else f"src->{field}",

@@ -166,14 +166,14 @@ def test_every_valid_fixture_meets_misra_required_rules(fixture, tmp_path):
 
 
 def test_float_fields_meet_the_full_gate(tmp_path):
-    """IEEE float fields (tests/targets/c/floats/float_fields.yaml) under the shipped headers' gate:
+    """IEEE float fields (tests/targets/c/corners/c_corners.yaml) under the shipped headers' gate:
     no Mandatory or Required finding, and no finding, not even a cppcheck style one (a compare
     with the largest double reads to cppcheck as one whose outcome is known), that the headers'
     own deviation record does not cover."""
     _need_cppcheck()
     import subprocess
 
-    spec = misra.cross.cbuild.HERE / "floats" / "float_fields.yaml"
+    spec = misra.cross.cbuild.HERE / "corners" / "c_corners.yaml"
     env = {**os.environ, "PYTHONPATH": str(misra.cross.cbuild.ROOT / "generator")}
     proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(spec), "-o", str(tmp_path), "-t", "c"],
                           capture_output=True, text=True, env=env, check=False)
