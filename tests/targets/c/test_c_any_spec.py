@@ -13,7 +13,8 @@ import pytest
 import speccheck
 
 # the valid fixtures, and the C target's own corners (Motorola-only frames, float keys of a text, ...)
-FIXTURES = [*sorted((Path(__file__).resolve().parents[2] / "fixtures" / "valid").glob("*.yaml")), Path(__file__).resolve().parent / "corners" / "c_corners.yaml"]
+HERE = Path(__file__).resolve().parent
+FIXTURES = [*sorted((HERE.parents[1] / "fixtures" / "valid").glob("*.yaml")), HERE / "corners" / "c_corners.yaml"]
 WORKERS = 2  # the machine is shared
 
 
