@@ -202,6 +202,7 @@ def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> 
         body += [*FOLD, "x &= 0xFFu;"]
     local = [f"uint32_t b{k};" for k in sorted(held)]
     local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
+    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if s not in words) else []  # codec.store's halves
     # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
     narrow = {s.sig.name: (32 if s in words else 33) for s in sigs if s.sig.signed}
     local += ["uint32_t t;"] if any(s.length < narrow[s.sig.name] for s in sigs if s.sig.signed) else []
