@@ -23,10 +23,30 @@ def _bits(signed: bool, expr: str) -> str:
     return f"(uint64_t)(int64_t){expr}" if signed else f"(uint64_t){expr}"
 
 
+def _raw_bits(s: CSignal, expr: str) -> str:
+    """A struct field's raw value as uint64_t: an integer's two's complement bits, a float's bit pattern."""
+    if s.float is not None:
+        return f"{'float' if s.float.narrows else 'double'}_bits({expr})"
+    return _bits(s.sig.signed, expr)
+
+
+def _from_raw(s: CSignal, expr: str) -> str:
+    """A case's raw value (uint64_t) as the struct field's value."""
+    if s.float is not None:
+        return f"{'float' if s.float.narrows else 'double'}_of_bits({expr})"
+    return f"({s.type}){expr}"
+
+
 def _physical_checks(s: CSignal) -> list[str]:
     """Decode and encode of one data signal, both paths (where the header has them)."""
     name, signed = s.sig.name, int(s.sig.signed)
     out = ["    {", f'        const phys_t *ph = phys_of(vc, "{name}");', f"        {s.type} r = 0;", "        (void)r;", "        if (ph != NULL) {"]
+    if s.float is not None:  # decode gives the float itself; encode what the reference codec gives (vectors_to_lines.py)
+        out += [
+            f"            bad += check_float_decode(vc, ph, {s.fn}_decode(s.{s.field}));",
+            f"            st = (int){s.fn}_encode(ph->value, &r);",
+            f"            bad += check_double_encode(vc, ph, st, {_raw_bits(s, 'r')}, 0);",
+        ]
     if s.double is not None:
         out += [
             f"            bad += check_decode(vc, ph, {s.fn}_decode(s.{s.field}), {s.macro}_FACTOR);",
@@ -49,14 +69,15 @@ def _physical_checks(s: CSignal) -> list[str]:
 
 
 def _message_check(c: CModel, cm: CMessage) -> list[str]:
-    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", "    uint8_t buf[8] = {0};", "    int bad = 0, st;"]
+    out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", f"    uint8_t buf[{max(1, cm.msg.dlc)}] = {{0}};",
+           "    int bad = 0, st;"]
     out += [
         "    memset(&s, 0, sizeof s);",
         f"    st = (int){cm.fn}_unpack(&s, vc->data, vc->len);",
         '    if (st != 0) bad += fail(vc, "unpack returned %d", st);',
     ]
-    out += [f'    bad += check_raw(vc, "{s.sig.name}", {_bits(s.sig.signed, "s." + s.field)}, {int(s.sig.signed)});' for s in cm.signals]
-    out += ["    memset(&p, 0, sizeof p);"] + [f'    p.{s.field} = ({s.type})raw_of(vc, "{s.sig.name}");' for s in cm.signals]
+    out += [f'    bad += check_raw(vc, "{s.sig.name}", {_raw_bits(s, "s." + s.field)}, {int(s.sig.signed)});' for s in cm.signals]
+    out += ["    memset(&p, 0, sizeof p);"] + [f'    p.{s.field} = {_from_raw(s, f"raw_of(vc, {chr(34)}{s.sig.name}{chr(34)})")};' for s in cm.signals]
     out += [f"    st = (int){cm.fn}_pack(buf, sizeof buf, &p);", "    bad += check_bytes(vc, st, buf);"]
     if cm.msg.dlc > 0:  # a DLC-0 frame has no shorter buffer
         out += [

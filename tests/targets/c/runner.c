@@ -54,7 +54,7 @@ typedef struct {
     unsigned long frame_id;
     char *text;
     int nframes;
-    uint8_t (*frames)[8];
+    uint8_t (*frames)[64];
 } vtext_t;
 
 MAYBE_UNUSED static int fail(const vcase_t *vc, const char *fmt, ...) {
@@ -164,6 +164,39 @@ MAYBE_UNUSED static int check_fixed_decode(const vcase_t *vc, const phys_t *ph, 
     return 0;
 }
 
+/* A float field's bit pattern and back (memcpy: the one conversion C defines for every pattern). */
+MAYBE_UNUSED static uint64_t float_bits(float f) {
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+MAYBE_UNUSED static uint64_t double_bits(double d) {
+    uint64_t b;
+    memcpy(&b, &d, sizeof b);
+    return b;
+}
+
+MAYBE_UNUSED static float float_of_bits(uint64_t bits) {
+    const uint32_t b = (uint32_t)bits;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
+MAYBE_UNUSED static double double_of_bits(uint64_t bits) {
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+/* A float field decodes to the value the case's text reads as: the same double (-0 apart from 0),
+ * or NaN for NaN. */
+MAYBE_UNUSED static int check_float_decode(const vcase_t *vc, const phys_t *ph, double got) {
+    if (isnan(ph->value) ? !isnan(got) : double_bits(got) != double_bits(ph->value)) return fail(vc, "%s: decoded %.17g, expected %s", ph->name, got, ph->text);
+    return 0;
+}
+
 #include "runner_tables.h"
 
 static int hex_bytes(const char *hex, uint8_t *out, size_t cap, size_t *len) {
@@ -227,7 +260,7 @@ static int parse_text_line(char *line, unsigned long lineno, vtext_t *vt) {
             vt->frames = calloc((size_t)(vt->nframes > 0 ? vt->nframes : 1), sizeof *vt->frames);
             if (vt->frames == NULL) return 0;
         } else if (field - 3 < vt->nframes) {
-            if (!hex_bytes(tok, vt->frames[field - 3], 8, &n)) return 0;
+            if (!hex_bytes(tok, vt->frames[field - 3], sizeof vt->frames[0], &n)) return 0;
         }
     }
     return field == vt->nframes + 3 && vt->text != NULL;

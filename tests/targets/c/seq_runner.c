@@ -109,11 +109,11 @@ int main(int argc, char **argv) {
         } else if (line[0] == 'F') {
             unsigned long t, id;
             int ext, recovered, msg, used;
-            char hex[64], faults[128], state[16];
-            uint8_t data[16];
+            char hex[160], faults[128], state[16];
+            uint8_t data[72]; /* a CAN FD frame (64 bytes) and one more: a frame too long */
             size_t n;
             uint32_t got, want;
-            sscanf(rest, "%lu %lu %d %63s %127s %d %d %15s%n", &t, &id, &ext, hex, faults, &recovered, &msg, state, &used);
+            sscanf(rest, "%lu %lu %d %159s %127s %d %d %15s%n", &t, &id, &ext, hex, faults, &recovered, &msg, state, &used);
             rest += used;
             n = hex_bytes(hex, data, sizeof data);
             got = seq_frame(&mon, (uint32_t)id, ext, data, n, (uint32_t)t);
@@ -183,11 +183,11 @@ int main(int argc, char **argv) {
             seq_text_init(&rx, which);
             texts++;
         } else if (line[0] == 'X') {
-            char hex[64], result[32], text[256], got_text[256];
-            uint8_t data[16];
+            char hex[160], result[32], text[256], got_text[256];
+            uint8_t data[72]; /* a CAN FD frame (64 bytes) and one more: a frame too long */
             size_t n;
             int got;
-            sscanf(rest, "%63s %31s %255s", hex, result, text);
+            sscanf(rest, "%159s %31s %255s", hex, result, text);
             n = hex_bytes(hex, data, sizeof data);
             if (seq_text_feed(&rx, which, data, n) != seq_status(result)) {
                 fail("feed result differs", line);

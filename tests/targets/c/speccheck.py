@@ -24,6 +24,9 @@ from canspec.targets.c.names import declared
 from vectors_to_lines import convert
 
 MODES = (("gcc", ["-std=c99"]), ("clang", ["-std=c99"]), ("g++", ["-x", "c++", "-std=c++11"]), ("clang++", ["-x", "c++", "-std=c++11"]))
+# The headers' own flags on top of the strict ones: float fields convert only where the code says so
+# (no implicit float -> double promotion, no narrowing, no == on floating values).
+HEADER_FLAGS = [*cbuild.STRICT, "-Wdouble-promotion", "-Wfloat-conversion", "-Wfloat-equal"]
 
 
 # What the headers declare at file scope: macros, typedef names, enumerators, functions.
@@ -54,12 +57,12 @@ def compile_matrix(headers: Path, work: Path) -> list[str]:
         units.append(unit)
     failures = []
     for cc, std in MODES:
-        proc = cbuild.run([cc, *std, *cbuild.STRICT, f"-I{headers}", "-fsyntax-only", *map(str, units)])
+        proc = cbuild.run([cc, *std, *HEADER_FLAGS, f"-I{headers}", "-fsyntax-only", *map(str, units)])
         if proc.returncode != 0:
             failures.append(f"{cc} {' '.join(std)}, each header alone:\n{proc.stderr[-4000:]}")
     umbrella = min(units, key=lambda u: len(u.name))
     for cc in ("gcc", "clang"):
-        proc = cbuild.run([cc, "-std=c99", "-O2", *cbuild.STRICT, f"-I{headers}", "-c", str(umbrella), "-o", str(work / f"umbrella-{cc}.o")])
+        proc = cbuild.run([cc, "-std=c99", "-O2", *HEADER_FLAGS, f"-I{headers}", "-c", str(umbrella), "-o", str(work / f"umbrella-{cc}.o")])
         if proc.returncode != 0:
             failures.append(f"{cc} -O2 {umbrella.name}:\n{proc.stderr[-4000:]}")
     return failures

@@ -31,18 +31,23 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "generator"))
 from canspec import ir
 from canspec.ir.encoding import to_raw_runtime
 from canspec.pipeline import compile_spec
+from canspec.reference.codec import CodecError, float_raw
 from canspec.targets.c.names import CNames
 from canspec.targets.c.physical import fixed_path
 
 # Kinds whose physical values a physical encode must refuse (raw_only) or that do not survive
-# doubles (beyond_double): decode and raw pack only.
-NOT_ENCODABLE = ("raw_only", "beyond_double")
+# doubles (beyond_double) or the encode (nan_payload: a NaN encodes to the canonical one): decode and raw pack only.
+NOT_ENCODABLE = ("raw_only", "beyond_double", "nan_payload")
+# A float field's physical value that is no JSON number (the vectors' format), as C's strtod reads it.
+FLOAT_WORDS = {"NaN": "NaN", "Infinity": "Infinity", "-Infinity": "-Infinity"}
 # The vectors write the shortest text of the nearest double: it is the exact value only up to
 # this many significant digits.
 DOUBLE_DIGITS = 15
 
 
 def number_text(value: object) -> str:
+    if isinstance(value, str) and value in FLOAT_WORDS:
+        return FLOAT_WORDS[value]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise TypeError(f"not a number: {value!r}")
     return repr(value)
@@ -56,7 +61,13 @@ def int64_text(value: int) -> str:
 
 
 def double_rule(sig: ir.Signal, x: float) -> int | None:
-    """The raw value a double encode of `x` gives under the shared rules, or None if it refuses."""
+    """The raw value a double encode of `x` gives under the shared rules, or None if it refuses (a
+    float field: the reference codec's bit pattern)."""
+    if sig.is_float:
+        try:
+            return float_raw(sig, x)
+        except CodecError:
+            return None
     q = (x - float(sig.offset)) / float(sig.factor)
     if not sig.raw_type_min - 1 < q < sig.raw_type_max + 1:  # exact comparisons (float with int); NaN fails
         return None
@@ -120,7 +131,7 @@ def data_signals(can: ir.CanProtocol) -> dict[str, dict[str, tuple[ir.Signal, in
     names = CNames.of(can)
     out: dict[str, dict[str, tuple[ir.Signal, int | None]]] = {}
     for msg in can.messages:
-        paths = {s.name: (s, fixed_path(names, s)) for s in msg.signals if s.role == "data"}
+        paths = {s.name: (s, None if s.is_float else fixed_path(names, s)) for s in msg.signals if s.role == "data"}
         out[msg.name] = {n: (s, None if f is None else f.scale) for n, (s, f) in paths.items()}
     return out
 

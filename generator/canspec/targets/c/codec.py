@@ -1,10 +1,13 @@
 """Pack and unpack of one message as C statements, byte by byte.
 
-Every signal is Intel (little-endian): the IR gives each signal's share of each frame byte (its
-segments: value bits [value_shift, value_shift + width) at byte bits [byte_shift, ...)). The C
-follows those segments literally, so a reviewer reads each field's byte, shift and mask next to
-its name, and every core runs it well: only 32-bit arithmetic (a 64-bit field is two 32-bit
-halves), no unaligned access, no helper calls, the same arithmetic on either byte order.
+The IR gives each signal's share of each frame byte (its segments: value bits [value_shift,
+value_shift + width) at byte bits [byte_shift, ...)), in either byte order: a Motorola field's
+segments run from its last byte (least significant) back to its first. The C follows those
+segments literally, so a reviewer reads each field's byte, shift and mask next to its name, and
+every core runs it well: only 32-bit arithmetic (a 64-bit field is two 32-bit halves), no
+unaligned access, no helper calls, the same arithmetic on either host byte order, any frame
+length (CAN FD's 64 bytes too). A float field's bit pattern goes through a local of its width
+(floats.py).
 
 Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits 0, no memset,
 no read-modify-write), with the check that the fields starting in it fit their bits. Unpack reads each frame
@@ -76,7 +79,7 @@ def ored(terms: list[str]) -> str:
 def _halves(s: CSignal, wide: bool) -> tuple[str, str]:
     """The field's value: its low 32 bits (the field itself where it is unsigned and `wide` is
     not asked for) and, for 64-bit fields, its high 32 bits (as uint32_t)."""
-    field, bits = f"src->{s.field}", s.sig.storage_bits
+    field, bits = s.value, s.sig.storage_bits
     cast = s.sig.signed or bits == 64 or (wide and bits < 32)  # two's complement bits / the low half / no int promotion
     high = f"((uint64_t){field} >> 32u)" if s.sig.signed else f"({field} >> 32u)"  # no shift of a signed value (MISRA 10.1)
     return (f"(uint32_t){field}" if cast else field), (f"(uint32_t){high}" if bits == 64 else "")
@@ -121,12 +124,17 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
 HELD_FIELDS = 4  # checked fields a byte's check may keep in registers for the byte (Cortex-M0+: 8 low registers)
 
 
+def first_byte(s: CSignal) -> int:
+    """The frame byte a field starts in: its least significant (Intel) or most significant (Motorola) one."""
+    return min(seg.byte for seg in s.sig.segments)
+
+
 def byte_pieces(sigs: tuple[CSignal, ...]) -> tuple[dict[int, list[str]], dict[int, list[CSignal]]]:
     """Per frame byte: its fields' pieces (pack), and the fields that start in it."""
     pieces: dict[int, list[str]] = {}
     starting: dict[int, list[CSignal]] = {}
     for s in sigs:
-        starting.setdefault(s.sig.segments[0].byte, []).append(s)
+        starting.setdefault(first_byte(s), []).append(s)
         for seg in s.sig.segments:
             pieces.setdefault(seg.byte, []).append(piece(s, seg))
     return pieces, starting
@@ -139,7 +147,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
     (the fields are read again: a store to dst may alias src; cheaper than spilling them). On
     ERR_RANGE the frame's bytes are unspecified."""
     pieces, starting = byte_pieces(sigs)
-    out = []
+    out = float_copies(sigs, "&{local}", "&src->{field}")
     for k in range(dlc):
         checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)
         check = [f"if ({_range_check(checked)}) {{", f"return {err};", "}"] if checked else []
@@ -190,9 +198,28 @@ def negate64(bits: str, temp: str, field: str) -> str:
             f"else {{ {temp} = ~{bits}; {field} = -(int64_t){temp} - 1; }}")
 
 
+def float_copies(sigs: tuple[CSignal, ...], to: str, source: str) -> list[str]:
+    """The statements copying the float fields' bit patterns (`to`, `source`: formats of `local`
+    and `field`): pack's, from each field into its local."""
+    return [f"{s.float.copy_fn}({to.format(local=s.float.local, field=s.field)}, {source.format(local=s.float.local, field=s.field)}, sizeof {s.float.local});"
+            for s in sigs if s.float is not None]
+
+
+def float_locals(sigs: tuple[CSignal, ...]) -> list[str]:
+    return [f"{s.float.bits_type} {s.float.local};" for s in sigs if s.float is not None]
+
+
+def store_bits(s: CSignal, bits: str) -> list[str]:
+    """Unpack: the float field's bit pattern `bits` into its local, then into the field."""
+    assert s.float is not None
+    return [f"{s.float.local} = {bits};", *float_copies((s,), "&dst->{field}", "&{local}")]
+
+
 def store(s: CSignal) -> list[str]:
     stmts, bits = _assemble(s)
     field, n, t = f"dst->{s.field}", s.length, s.type
+    if s.float is not None:
+        return [*stmts, *store_bits(s, bits)]
     if not s.sig.signed:
         return [*stmts, f"{field} = ({t}){paren(bits)};"]
     if n == 64:
@@ -222,7 +249,7 @@ def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[
     local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs) else []
     local += ["uint32_t t;"] if any(s.sig.signed and s.length <= 32 for s in sigs) else []
     local += ["uint64_t t64;"] if any(s.sig.signed and s.length > 32 for s in sigs) else []
-    return tuple(local), tuple(body)
+    return (*local, *float_locals(sigs)), tuple(body)
 
 
 def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
@@ -230,4 +257,4 @@ def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
     locals_, unpack = _unpack(sigs, msg.dlc, ck is not None)
-    return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack)
+    return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))

@@ -21,13 +21,19 @@ byte's store (a memory operand on x86), a lone field compared in the check itsel
 Unpack reads a field that crosses bytes off byte boundaries (and every 64-bit field) from `w` by
 its start bit and mask, every field from `w` where all of them cross bytes, the others from their
 byte as codec.py does; with `w` loaded the XOR checksum is folded from it.
+
+The frame word's byte order is its fields' (ir.Signal.word_order): read big-endian (byte 0 its
+most significant) where most fields are Motorola, in which each of them is contiguous at its
+word_shift; a field of the other order is taken from its bytes as codec.py does, and pack uses
+the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) has no
+word: the byte form.
 """
 
 from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, byte_pieces, negate64, paren, shl, shr, store
+from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, paren, shl, shr, store, store_bits
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -82,9 +88,20 @@ def _accumulate(sigs: tuple[CSignal, ...], shared: set[int], seen: set[int]) -> 
     return out
 
 
+def byte_at(k: int, dlc: int, order: str) -> int:
+    """Where frame byte k lies in the frame word of that order: its lowest bit."""
+    return 8 * k if order == "little" else 8 * (dlc - 1 - k)
+
+
+def word_order(sigs: tuple[CSignal, ...]) -> str:
+    """The frame word's order: the order of most fields (little where as many are Intel)."""
+    big = sum(s.sig.is_big_endian for s in sigs)
+    return "big" if 2 * big > len(sigs) else "little"
+
+
 def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
     pieces, starting = byte_pieces(sigs)
-    out: list[str] = []
+    out: list[str] = float_copies(sigs, "&{local}", "&src->{field}")
     seen: set[int] = set()
     shared = _shared(sigs)
     for k in range(dlc):
@@ -102,17 +119,18 @@ def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: 
 
 def _placed(s: CSignal) -> str:
     """The field's bits at their place in the frame word (a signed field cut to its bits)."""
-    v = f"(uint64_t)src->{s.field}"
+    v = f"(uint64_t){s.value}"
     if s.sig.signed and s.length < 64:
         v = f"({v} & {C.hex(s.sig.mask, bits=64)})"
-    return v if s.start == 0 else f"({v} << {s.start}u)"
+    return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
 
 
-def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
-    out = ["w = " + " | ".join(_placed(s) for s in sigs) + ";"]
+def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, order: str) -> list[str]:
+    out = [*float_copies(sigs, "&{local}", "&src->{field}"), "w = " + " | ".join(_placed(s) for s in sigs) + ";"]
     if checksum is not None:
-        out += [*FOLD, f"w |= (x & 0xFFu) << {8 * checksum}u;"]
-    out += [f"dst[{k}] = (uint8_t){shr('w', 8 * k)};" for k in range(dlc)]
+        at = byte_at(checksum, dlc, order)
+        out += [*FOLD, f"w |= (x & 0xFFu) << {at}u;" if at else "w |= x & 0xFFu;"]
+    out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" for k in range(dlc)]
     return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
 
 
@@ -130,28 +148,31 @@ def _cost_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> in
 def _cost_word(sigs: tuple[CSignal, ...], checksum: int | None) -> int:
     """Per field a load, a shift (but at bit 0), an OR (but the first), a mask (signed fields);
     one store; the checksum's fold."""
-    cost = sum(2 + (s.start > 0) + (s.sig.signed and s.length < 64) for s in sigs)
+    cost = sum(2 + (s.word_shift > 0) + (s.sig.signed and s.length < 64) for s in sigs)
     return cost + (FOLD_COST if checksum is not None else 0)
 
 
 # ---- unpack ----------------------------------------------------------------------------------
 
-def word_fields(sigs: tuple[CSignal, ...]) -> tuple[CSignal, ...]:
-    """The fields unpack reads from the frame word: the 64-bit ones and those that cross bytes off
-    byte boundaries; all of them where every field crosses bytes (the compiler then merges their
-    stores too). A byte-aligned field of whole bytes among others is read from its bytes, whose
-    reads the compiler merges into one load itself."""
+def word_fields(sigs: tuple[CSignal, ...], order: str) -> tuple[CSignal, ...]:
+    """The fields unpack reads from the frame word (of their order): the 64-bit ones and those that
+    cross bytes off byte boundaries; all of them where every field crosses bytes (the compiler then
+    merges their stores too). A byte-aligned field of whole bytes among others is read from its
+    bytes, whose reads the compiler merges into one load itself."""
     crossing = [s for s in sigs if len(s.sig.segments) > 1]
-    if sigs and len(crossing) == len(sigs):
+    if sigs and len(crossing) == len(sigs) and all(s.sig.word_order == order for s in sigs):
         return tuple(sigs)
-    return tuple(s for s in sigs if s.sig.storage_bits == 64 or (s in crossing and (s.start % 8 or s.length % 8)))
+    same = (s for s in sigs if s.sig.word_order == order)
+    return tuple(s for s in same if s.sig.storage_bits == 64 or (s in crossing and (s.word_shift % 8 or s.length % 8)))
 
 
 def _word_store(s: CSignal) -> list[str]:
     field, n, t = f"dst->{s.field}", s.length, s.type
-    at = "w" if s.start == 0 else f"(w >> {s.start}u)"
+    at = "w" if s.word_shift == 0 else f"(w >> {s.word_shift}u)"
     exact = n == 64 or (n == s.sig.storage_bits and not s.sig.signed)  # the store's conversion cuts the rest
     bits = at if exact else f"({at} & {C.hex(s.sig.mask, bits=64)})"
+    if s.float is not None:
+        return store_bits(s, at if n == 64 else f"(uint32_t){paren(at)}")
     if not s.sig.signed:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
@@ -162,13 +183,13 @@ def _word_store(s: CSignal) -> list[str]:
     return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
-def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """None where no field is read from the word (the byte form of codec.py then)."""
-    words = word_fields(sigs)
+    words = word_fields(sigs, order)
     if not words:
         return None
     held: list[int] = []
-    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", 8 * k) for k in range(dlc)) + ";"]
+    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in range(dlc)) + ";"]
     for s in sigs:
         if s in words:
             body += _word_store(s)
@@ -181,9 +202,12 @@ def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[
         body += [*FOLD, "x &= 0xFFu;"]
     local = [f"uint32_t b{k};" for k in sorted(held)]
     local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
-    local += ["uint32_t t;"] if any(s.sig.signed and s.length < 32 for s in sigs) else []
-    local += ["uint64_t t64;"] if any(s.sig.signed and s.length >= 32 for s in sigs) else []
-    return tuple(local), tuple(body)
+    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if s not in words) else []  # codec.store's halves
+    # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
+    narrow = {s.sig.name: (32 if s in words else 33) for s in sigs if s.sig.signed}
+    local += ["uint32_t t;"] if any(s.length < narrow[s.sig.name] for s in sigs if s.sig.signed) else []
+    local += ["uint64_t t64;"] if any(s.length >= narrow[s.sig.name] for s in sigs if s.sig.signed) else []
+    return (*local, *float_locals(sigs)), tuple(body)
 
 
 def _struct_run(fields: tuple[CSignal, ...]) -> bool:
@@ -195,15 +219,16 @@ def _struct_run(fields: tuple[CSignal, ...]) -> bool:
     if all(f.length == f.sig.storage_bits for f in fields):
         return False
     offset = 0
-    ends: dict[int, int] = {}  # struct offset just past a field that fills its type -> its frame end bit
+    ends: dict[int, tuple[int, int]] = {}  # struct offset just past a field that fills its type -> its frame word bits
     for f in fields:
         size = f.sig.storage_bits // 8
         offset += -offset % size  # natural alignment
-        if ends.get(offset) == f.start:
+        lo, hi = ends.get(offset, (-1, -1))
+        if f.word_shift == hi or f.word_shift + f.length == lo:  # next to it in the word, above or below
             return True
         offset += size
         if f.length == f.sig.storage_bits:
-            ends[offset] = f.start + f.length
+            ends[offset] = (f.word_shift, f.word_shift + f.length)
     return False
 
 
@@ -213,19 +238,22 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
     the byte form."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     locals_ = _check_locals(sigs)
-    if sigs and _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields):
-        return (*locals_, "uint64_t w;", *(["uint64_t x;"] if ck is not None else [])), tuple(_pack_word(sigs, msg.dlc, ck, err))
+    order = word_order(sigs)
+    one_order = all(s.sig.word_order == order for s in sigs)
+    if sigs and one_order and _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields):
+        locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
+        return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
     if _shared(sigs):
-        return tuple(locals_), tuple(_pack_bytes(sigs, msg.dlc, ck, err))
+        return (*locals_, *float_locals(sigs)), tuple(_pack_bytes(sigs, msg.dlc, ck, err))
     return bytewise.pack_locals, bytewise.pack
 
 
 def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
     """The message's pack/unpack under <PREFIX>_STRATEGY 3, or None where it is the byte form.
     `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
-    if not msg.dlc:
+    if not msg.dlc or not msg.is_classic_length:
         return None
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
-    unpack_locals, unpack = _unpack(sigs, msg.dlc, msg.checksum is not None) or (bytewise.unpack_locals, bytewise.unpack)
+    unpack_locals, unpack = _unpack(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
     return None if out == bytewise else out

@@ -1,8 +1,8 @@
 """The C view of one message: its facts as C literals, its struct and its pack/unpack (codec.py).
 
 The struct holds every data signal, the counter and the checksum as raw values, in frame order,
-each in the narrowest integer type that holds its bits; reserved bits have no field (pack sends
-them as 0).
+each in the narrowest integer type that holds its bits (an IEEE float field: a float or double,
+see floats.py); reserved bits have no field (pack sends them as 0).
 """
 
 from __future__ import annotations

@@ -86,6 +86,7 @@ class CVin:
     type: str
     macro: str
     others: tuple[CSignal, ...]  # other fields every frame of one text carries alike (e.g. device_type)
+    has_float_others: bool  # some of them are floats: compared by bit pattern (NaN equals itself; -0 is not 0)
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,7 @@ class CModel:
     status: str
     is_j1939: bool
     j1939: tuple[tuple[str, str], ...]  # (macro suffix, C literal): the J1939 constants of ir/j1939.py
+    has_bits_differ: bool  # a multi-frame text compares float fields (`<prefix>_bits_differ`)
     has_phys: bool  # some signal encodes through the runtime's `<prefix>_phys_*` functions
     has_phys_round: bool  # ... one with special values or with a q beyond phys_encode's domain (through `<prefix>_phys_round`)
     phys_stores: tuple[tuple[str, str], ...]  # (function, field type): the `<prefix>_phys_encode_<type>` encoders used
@@ -113,7 +115,10 @@ class CModel:
     phys_q_max: str
     format_arg: bool  # the protocol has 11-bit IDs: lookups by ID take the frame's format too
     bitrate: str
+    data_bitrate: str  # the CAN FD data phase's ("" where the bus gives none)
     cycle_type: str  # of msg_info_t.cycle_ms
+    counter_start_type: str  # of msg_info_t.counter_start (a counter past bit 255 of an FD frame needs 16 bits)
+    big_endian_counters: bool  # some counter is Motorola: msg_info_t says which are (counter_big_endian)
     state_slots: str  # length of per-message arrays (1 without messages: C has no empty arrays)
     timeout_cycles: str
     counter_tolerance: str
@@ -184,6 +189,7 @@ def _vin(names: CNames, cm: CMessage, mf: ir.MultiFrame) -> CVin:
         type=names.fn(base, "text", "rx_t"),
         macro=names.const(base, "text"),
         others=tuple(s for s in cm.signals if s.sig.name not in varying),
+        has_float_others=any(s.float is not None for s in cm.signals if s.sig.name not in varying),
     )
 
 
@@ -222,6 +228,7 @@ def build_model(spec: ir.Spec) -> CModel:
     messages = _share_descriptors(names, tuple(build_message(names, m, enum_types) for m in can.messages))
     faults = _fault_tables(names, can, enums, messages)
     phys_users = [s for cm in messages for s in cm.signals if s.double is not None and s.double.phys]
+    vins = tuple(_vin(names, cm, cm.msg.multiframe) for cm in messages if cm.msg.multiframe is not None)
     return CModel(
         prefix=names.prefix,
         macro=names.macro,
@@ -233,7 +240,8 @@ def build_model(spec: ir.Spec) -> CModel:
         standard=tuple(cm for cm in messages if not cm.msg.is_extended),
         enums=tuple(enums.values()),
         fault_tables=faults,
-        vins=tuple(_vin(names, cm, cm.msg.multiframe) for cm in messages if cm.msg.multiframe is not None),
+        vins=vins,
+        has_bits_differ=any(v.has_float_others for v in vins),
         msg_type=names.fn("msg_t"),
         msg_none=names.const("msg_none"),
         status=names.fn("status_t"),
@@ -246,7 +254,10 @@ def build_model(spec: ir.Spec) -> CModel:
         phys_q_max=C.double(2**63),
         format_arg=can.has_standard,
         bitrate=C.unsigned(can.bus.bitrate),
+        data_bitrate=C.unsigned(can.bus.data_bitrate) if can.bus.data_bitrate else "",
         cycle_type="uint16_t" if max((m.cycle_ms or 0 for m in can.messages), default=0) <= 0xFFFF else "uint32_t",
+        counter_start_type="uint8_t" if max((m.counter.start for m in can.messages if m.counter), default=0) <= 0xFF else "uint16_t",
+        big_endian_counters=any(m.counter.word_order == "big" for m in can.messages if m.counter),
         state_slots=names.const("msg_count") if messages else C.unsigned(1),
         timeout_cycles=C.unsigned(ir.MONITOR_TIMEOUT_CYCLES),
         counter_tolerance=C.unsigned(ir.MONITOR_COUNTER_TOLERANCE),

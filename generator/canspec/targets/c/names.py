@@ -35,7 +35,7 @@ HEADERS = (
 RUNTIME_FUNCTIONS = (
     "status_t", "round_abs", "round_half_away", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
     "mul_wide", "mul64_u", "mul64", "mul_hi64", "shr64", "div_round_u64_mulhi", "div_round_u64_mulrem", "div_round64_mulhi", "div_round64_mulrem",
-    "phys_t", "phys_q", "phys_round", "phys_encode",
+    "phys_t", "phys_q", "phys_round", "phys_encode", "copy_bits", "bits_differ",
     *(f"phys_encode_{s}{bits}" for s in "ui" for bits in (8, 16, 32, 64)),
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
@@ -43,7 +43,7 @@ RUNTIME_FUNCTIONS = (
     "monitor_count_up", "monitor_invalidate", "monitor_expire", "monitor_counter_fault",  # the monitor's helpers
 )
 RUNTIME_MACROS = (
-    "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "STRATEGY", "PHYS_NOINLINE",
+    "SPEC_NAME", "SPEC_VERSION", "SPEC_SHA256", "BITRATE", "DATA_BITRATE", "STRATEGY", "PHYS_NOINLINE",
     "OK", "ERR_LENGTH", "ERR_CHECKSUM", "ERR_RANGE", "ERR_UNKNOWN_ID", "ERR_INDEX", "ERR_INCOMPLETE", "ERR_INCONSISTENT",
     "J1939_PDU2_MIN_PF", "J1939_GLOBAL_ADDRESS", "J1939_ID_MASK", "J1939_PRIORITY_MASK", "MSG_NONE", "MSG_COUNT",
     "MONITOR_TIMEOUT_CYCLES", "MONITOR_COUNTER_TOLERANCE", "MONITOR_VALID_AFTER", "RX_NO_DATA", "RX_INIT", "RX_VALID", "RX_INVALID",
@@ -52,7 +52,7 @@ RUNTIME_MACROS = (
 )
 # Per message (after <prefix>_<message>_ / <PREFIX>_<MESSAGE>_), per signal, per multi-frame text.
 MESSAGE_FUNCTIONS = ("t", "pack", "unpack", "init", "counter_next")
-MESSAGE_MACROS = ("FRAME_ID", "IS_EXTENDED", "DLC", "CYCLE_MS", "PRIORITY", "PGN", "SA", "DA", "FINGERPRINT")
+MESSAGE_MACROS = ("FRAME_ID", "IS_EXTENDED", "DLC", "IS_FD", "BRS", "CYCLE_MS", "PRIORITY", "PGN", "SA", "DA", "FINGERPRINT")
 SIGNAL_FUNCTIONS = ("decode", "encode", "decode_fixed", "encode_fixed", "phys")  # `phys`: its encoder's descriptor
 SIGNAL_MACROS = ("FACTOR", "OFFSET", "MIN", "MAX", "FIXED_SCALE")
 TEXT_FUNCTIONS = ("split", "rx_t", "rx_init", "rx_complete", "rx_feed", "rx_get")

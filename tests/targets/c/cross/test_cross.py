@@ -160,3 +160,41 @@ def test_64_bit_integer_path_calls_no_helper(tmp_path, core, opt):
             (headers / Path(rel).name).write_bytes(data)
         assert "int64_t value" in "".join(h.read_text(encoding="utf-8") for h in headers.glob("*_messages.h")), spec.name
         assert _helpers(headers, headers, core, opt) == [], spec.name
+
+
+def _new_dialect(path: Path) -> bool:
+    from canspec.pipeline import compile_spec
+
+    can = getattr(compile_spec(path).spec, "can", None)
+    return can is not None and (can.has_big_endian or can.has_fd or can.has_float)
+
+
+DIALECT_FIXTURES = [p for p in sorted(FIXTURES.glob("*.yaml")) if _new_dialect(p)] + [Path(__file__).resolve().parents[1] / "corners" / "c_corners.yaml"]
+
+
+def test_the_dialect_fixtures_are_there():
+    assert "motorola_fd_float" in [p.stem for p in DIALECT_FIXTURES]
+
+
+@pytest.mark.parametrize("spec", DIALECT_FIXTURES, ids=[p.stem for p in DIALECT_FIXTURES])
+def test_motorola_fd_float_fixture_vectors_on_every_target(spec, tmp_path):
+    """Motorola fields, CAN FD frames and IEEE floats where byte order, word size and float ABI
+    differ: the fixture's own vectors on big-endian PowerPC, Cortex-M0+ and M4 (soft float) and
+    x86-64, at every strategy of its headers."""
+    from canspec.pipeline import compile_spec
+    from canspec.targets import registry
+
+    compiled = compile_spec(spec).spec
+    for target in ("c", "vectors"):
+        for rel, data in registry()[target].render(compiled).items():
+            (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+            (tmp_path / rel).write_bytes(data)
+    headers, vectors = tmp_path / "c", tmp_path / "vectors" / "can.json"
+    targets = [t for t in TARGETS if t.name in ("x86-64", "ppc", "cortex-m0plus", "cortex-m4")]
+    for t in targets:
+        _need(t)
+    strategies = cross.parse_strategies(f"{cross.header_prefix(headers).upper()}_STRATEGY=0,1,2,3")
+    results = cross.check_all(targets, strategies, tmp_path / "build", headers, spec, vectors, jobs=2)
+    cases = len(json.loads(vectors.read_text(encoding="utf-8"))["cases"])
+    assert len(results) == len(targets) * 5
+    assert all(r.ok and r.cases == cases for r in results), "\n".join(f"{r.target} {r.strategy}: {r.error}" for r in results if not r.ok)

@@ -7,7 +7,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     kaiwo_gateway_any_t a, b;
-    uint8_t one[8], two[8];
+    uint8_t one[64] = {0}, two[64] = {0}; /* any frame, CAN FD's 64 bytes too */
     const kaiwo_gateway_msg_info_t *info;
     kaiwo_gateway_status_t st;
     if (size < 1) return 0;
