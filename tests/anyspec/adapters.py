@@ -39,9 +39,10 @@ NODE_MODULES = ROOT / "build" / "json-node" / "node_modules"
 TSC = NODE_MODULES / "typescript" / "bin" / "tsc"
 
 
-def load_dbc_with_spec_names(dbc: Path) -> Any:
-    """cantools (strict) on a generated DBC, its DBC-unique signal names read back as the spec's."""
-    return _load(TESTS / "dbc_names.py", "anyspec_dbc_names").load_with_spec_names(dbc, strict=True)
+def load_dbc_with_spec_names(dbc: Path, can: Any = None) -> Any:
+    """cantools (strict) on a generated DBC, its DBC-unique signal names (and, given the spec's IR,
+    its `dbc_name`s) read back as the spec's."""
+    return _load(TESTS / "dbc_names.py", "anyspec_dbc_names").load_with_spec_names(dbc, strict=True, can=can)
 
 
 def _load(path: Path, name: str) -> ModuleType:

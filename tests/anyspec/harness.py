@@ -329,6 +329,14 @@ def _bits(values: dict[str, Any]) -> dict[str, Any]:
     return {k: struct.pack("<d", v) if isinstance(v, float) else v for k, v in values.items()}
 
 
+def _ir(ctx: Ctx) -> Any:
+    """The spec's CAN IR (for its `dbc_name`s), or None."""
+    from canspec.pipeline import compile_spec
+
+    compiled = compile_spec(ctx.spec)
+    return compiled.spec.can if compiled.spec is not None else None
+
+
 def stage_cantools(ctx: Ctx) -> None:
     import canmatrix.formats
 
@@ -339,7 +347,7 @@ def stage_cantools(ctx: Ctx) -> None:
         return
     ctx.res.checked.append("cantools")
     try:
-        db = adapters.load_dbc_with_spec_names(dbc)  # cantools, strict; DBC-unique names read back as the spec's
+        db = adapters.load_dbc_with_spec_names(dbc, _ir(ctx))  # cantools, strict; DBC names read back as the spec's
     except Exception as exc:  # noqa: BLE001
         ctx.fail("cantools", "load_file(strict=True)", f"{type(exc).__name__}: {exc}")
         db = None
