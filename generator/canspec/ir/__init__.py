@@ -5,6 +5,7 @@ and the encoding rules every language shares (encoding). Targets read it; they n
 `from canspec import ir` gives the model's classes (`ir.Spec`, `ir.Message`, ...): they are public API (a
 compiled spec is made of them); the modules of ir/ that compute them are internal."""
 
+from canspec.ir.json_model import JsonEnumValue, JsonField, JsonMessage, JsonParty, JsonProtocol
 from canspec.ir.model import (
     EXACT_LIMIT,
     EXACT_LIMIT_TEXT,
@@ -17,25 +18,16 @@ from canspec.ir.model import (
     TIE_EPSILON_TEXT,
     Bus,
     CanProtocol,
-    ChangeItem,
-    Changelog,
-    ChangeVersion,
     Checksum,
     Counter,
     FaultTable,
     J1939Id,
-    JsonEnumValue,
-    JsonField,
-    JsonMessage,
-    JsonParty,
-    JsonProtocol,
     Label,
     Message,
     MultiFrame,
     Node,
     Segment,
     Signal,
-    Spec,
     SpecialValue,
     ValueEntry,
     ValueTable,
@@ -43,6 +35,7 @@ from canspec.ir.model import (
     to_physical,
 )
 from canspec.ir.mux import MuxCondition, MuxGroup
+from canspec.ir.spec_model import ChangeItem, Changelog, ChangeVersion, Spec
 
 __all__ = [
     "EXACT_LIMIT",

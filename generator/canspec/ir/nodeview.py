@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from canspec.ir.model import CanProtocol, Message, Spec
+from canspec.ir.model import CanProtocol, Message
+from canspec.ir.spec_model import Spec
 
 
 def node_names(spec: Spec) -> tuple[str, ...]:
