@@ -153,6 +153,8 @@ def decimal_text(value: Fraction | int) -> str:
 # --- IEEE 754 fields ------------------------------------------------------------------------
 
 FLOAT_FORMATS = {32: "f", 64: "d"}  # struct codes of binary32 / binary64
+FLOAT_INF_BITS = {32: 0x7F800000, 64: 0x7FF0000000000000}  # +Inf; also the exponent field's mask
+FLOAT_NAN_BITS = {32: 0x7FC00000, 64: 0x7FF8000000000000}  # the canonical quiet NaN every encoder writes
 FLOAT_MAX = {32: Fraction(struct.unpack("<f", b"\xff\xff\x7f\x7f")[0]), 64: Fraction(sys.float_info.max)}
 
 

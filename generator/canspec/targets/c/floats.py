@@ -23,12 +23,12 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import FLOAT_MAX
+from canspec.ir.encoding import FLOAT_INF_BITS, FLOAT_MAX, FLOAT_NAN_BITS
 from canspec.render.literals import C
 from canspec.targets.c.names import CNames
 
 # (C type, bit-pattern type, +Inf, quiet NaN) per field length; -Inf is +Inf with the sign bit
-FORMATS = {32: ("float", "uint32_t", 0x7F800000, 0x7FC00000), 64: ("double", "uint64_t", 0x7FF0000000000000, 0x7FF8000000000000)}
+FORMATS = {32: ("float", "uint32_t", FLOAT_INF_BITS[32], FLOAT_NAN_BITS[32]), 64: ("double", "uint64_t", FLOAT_INF_BITS[64], FLOAT_NAN_BITS[64])}
 
 
 @dataclass(frozen=True)
@@ -88,6 +88,6 @@ def float_path(names: CNames, sig: ir.Signal, field: str) -> CFloat:
         inf=C.hex(inf, bits=bits),
         neg_inf=C.hex(inf | 1 << (bits - 1), bits=bits),
         nan=C.hex(nan, bits=bits),
-        exponent64=C.hex(0x7FF << 52, bits=64),
+        exponent64=C.hex(FLOAT_INF_BITS[64], bits=64),
         fraction64=C.hex((1 << 52) - 1, bits=64),
     )
