@@ -94,7 +94,7 @@ class PySignal:
 
 
 def _paren(expr: str) -> str:
-    atomic = expr.isidentifier() or (expr.startswith("_from_bytes(") and expr.count("(") == 1)  # a name, or one call
+    atomic = expr.isidentifier() or (expr.startswith("_from_bytes(") and expr.count("(") == 1 and expr.endswith(")"))  # a name, or one call
     return expr if atomic else f"({expr})"
 
 
