@@ -70,6 +70,7 @@ def _line_of(error: str) -> str:
 
 
 def load(path: Path, source: str) -> Loaded:
+    _cantools()  # the reader first: without it, the command names the extra to install
     kind = FORMATS.get(path.suffix.lower())
     if kind is None:
         raise DbcError(f"{source}: unknown format {path.suffix!r} (canspec import reads {', '.join(sorted(FORMATS))})")

@@ -188,8 +188,18 @@ def _canmatrix_arxml_fd(snap: dict[str, Any]) -> None:
             s["signed"] = s["signed"] or s["float"]
 
 
+def _unindented_comments(snap: dict[str, Any]) -> None:
+    """canmatrix strips the indentation of a comment's lines (a multi-line description's list)."""
+    for m in snap["messages"].values():
+        for item in (m, *m["signals"].values()):
+            if item["comment"]:
+                item["comment"] = "\n".join(line.lstrip() for line in item["comment"].split("\n"))
+
+
 def expected(tool: str, fmt: str, original: dict[str, Any]) -> dict[str, Any]:
     snap = copy.deepcopy(original)
+    if tool == "canmatrix":
+        _unindented_comments(snap)
     if fmt != "arxml":
         _classic_frames(snap)
     else:

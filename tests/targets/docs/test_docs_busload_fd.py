@@ -22,8 +22,8 @@ def test_busload_page_of_an_fd_bus_states_both_phases():
     assert "500 kbit/s bus (CAN FD data phase: 2000000 bit/s)" in page
     # 0x1A0 classic 8 bytes, 11-bit: 135 bits; 0x2B0 64 bytes with BRS: 33 + 679 / 4; 0x3C0 12 bytes without BRS: 33 + 154
     assert "| 8 | 10 ms | 1 | 135 | 100.0 | 13500.0 | 2.70 % |" in page
-    assert "| 64 | 50 ms | 1 | 33 + 679 (BRS) = 202.75 | 20.0 | 4055.0 | 0.81 % |" in page
-    assert "| 12 | 100 ms | 1 | 33 + 154 = 187 | 10.0 | 1870.0 | 0.37 % |" in page
+    assert "| 64 FD BRS | 50 ms | 1 | 33 + 679 (BRS) = 202.75 | 20.0 | 4055.0 | 0.81 % |" in page
+    assert "| 12 FD | 100 ms | 1 | 33 + 154 = 187 | 10.0 | 1870.0 | 0.37 % |" in page
     # 13500 + 4055 + 1870 = 19425 bit/s of 500000: 3.885 % rounds half up to 3.89 %
     assert "19425.0 bit/s = **3.89 %** of 500000 bit/s" in page
     assert "### CAN FD" in page and "17-bit CRC (*n* ≤ 16) or the 21-bit CRC (*n* > 16)" in page and ": 27 or 32 bits." in page
@@ -41,4 +41,4 @@ def test_an_event_driven_fd_frame_is_listed_with_its_length(tmp_path):
     path.write_text(text.replace("    cycle_ms: 50\n", ""), encoding="utf-8")
     page = _busload(path)
     # radar_objects, 64 bytes with BRS: 33 + 679 / 4 = 202.75 nominal bit times; the figures lose its 4055 bit/s
-    assert "| radar_objects | ADAS | 64 | 202.75 |" in page and "15370.0 bit/s" in page
+    assert "| radar_objects | ADAS | 64 FD BRS | 202.75 |" in page and "15370.0 bit/s" in page
