@@ -109,6 +109,12 @@ def check_signal(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
         assert (row["Signal name (Chinese)"] or "") == sig.zh
 
 
+def _floats_between(a: Fraction, b: Fraction, fmt: str) -> list[Fraction]:
+    """The format's floats nearest each of a and b (by struct's rounding): a float strictly between
+    the raw end and its bound would be one of them."""
+    return [Fraction(struct.unpack(fmt, struct.pack(fmt, float(x)))[0]) for x in (a, b)]
+
+
 def check_float(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
     """An IEEE field: its type named; the documented range, else the format's largest finite values; raw
     limits the bit patterns of those values (struct, the oracle, reads them back)."""
@@ -118,8 +124,12 @@ def check_float(row: dict, msg: ir.Message, sig: ir.Signal) -> None:
     for key, raw_key, value in (("Physical min", "Raw min (hex)", want[0]), ("Physical max", "Raw max (hex)", want[1])):
         cell = row[key]
         assert (Fraction(float(cell)) == value) if isinstance(cell, str) else same_number(cell, value), (msg.name, sig.name, key, cell)
-        pattern = int(row[raw_key], 16).to_bytes(sig.length // 8, "big")
-        assert Fraction(struct.unpack(">f" if sig.length == 32 else ">d", pattern)[0]) == value, (msg.name, sig.name, raw_key)
+        # the raw end: the format's float nearest the bound on the range's side (the bound itself where it is one)
+        fmt, up = (">f" if sig.length == 32 else ">d"), key == "Physical min"
+        got = Fraction(struct.unpack(fmt, int(row[raw_key], 16).to_bytes(sig.length // 8, "big"))[0])
+        assert (got >= value) if up else (got <= value), (msg.name, sig.name, raw_key)
+        assert got == Fraction(struct.unpack(fmt, struct.pack(fmt, float(got)))[0])  # a float of the format
+        assert not any(value <= f <= got if up else got <= f <= value for f in _floats_between(got, value, fmt) if f != got), (msg.name, sig.name)
     assert ("NaN and ±Inf allowed" in (row["Notes"] or "")) == (sig.doc_min is None)
 
 

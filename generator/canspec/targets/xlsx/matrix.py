@@ -17,7 +17,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 from canspec import ir
-from canspec.ir.encoding import bits_of_float
+from canspec.ir.encoding import float_inside
 from canspec.render.literals import hex_byte, hex_text, num, sheet_number
 from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
@@ -130,7 +130,7 @@ def limits(sig: ir.Signal) -> tuple[Fraction, Fraction, str, str]:
     """Physical min/max and their raw hex: a float's documented range (else its finite range) and those values' bit patterns."""
     if sig.is_float:
         lo, hi = sig.check_min, sig.check_max
-        return lo, hi, hex_text(bits_of_float(float(lo), sig.length)), hex_text(bits_of_float(float(hi), sig.length))
+        return lo, hi, hex_text(float_inside(lo, sig.length, up=True)), hex_text(float_inside(hi, sig.length, up=False))  # raw ends inside the range
     return sig.phys_min, sig.phys_max, raw_hex(sig, sig.raw_min), raw_hex(sig, sig.raw_max)
 
 
