@@ -3,7 +3,6 @@ message) and an invalid fixture under tests/fixtures/invalid/ that triggers it."
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Iterator
 from decimal import Decimal
 from fractions import Fraction
@@ -15,8 +14,10 @@ from canspec.ir.encoding import FLOAT_MAX, raw_range, raw_type_range
 from canspec.ir.fd import FD_LENGTHS
 from canspec.ir.ids import max_id
 from canspec.ir.model import to_physical
+from canspec.spec.finite import finite
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
+from canspec.spec.validate_json import check_changelog, json_rules
 from canspec.spec.validate_mux import coexist, mux_rules
 from canspec.spec.yamlsource import LocDict, LocList
 
@@ -28,20 +29,6 @@ CAN_RULES: list[Rule] = []
 def rule(fn: Rule) -> Rule:
     CAN_RULES.append(fn)
     return fn
-
-
-def version_key(text: str) -> tuple[int, ...]:
-    return tuple(int(p) for p in str(text).split("."))
-
-
-def _finite(value: Any) -> bool:
-    """A finite number that a double can hold (generated code computes in doubles): not
-    infinite or NaN, not beyond the double range, and not so small it becomes 0."""
-    try:
-        as_double = float(value)
-    except OverflowError:  # an int beyond the double range
-        return False
-    return math.isfinite(as_double) and (as_double != 0 or value == 0)
 
 
 def _signals(msg: LocDict) -> LocList:
@@ -216,9 +203,9 @@ def signal_shapes(can: ResolvedCan) -> Iterator[Problem]:
                 owners.setdefault(b, sig["name"])
             yield from _float_shape(sig)
             for key in ("factor", "offset"):
-                if not _finite(sig[key]):
+                if not finite(sig[key]):
                     yield error(f"signal {sig['name']!r}: {key} must be a finite number within the range of a double", sig.loc_of(key), None, "nonfinite")
-            if _finite(sig["factor"]) and sig["factor"] == 0:
+            if finite(sig["factor"]) and sig["factor"] == 0:
                 yield error(
                     f"signal {sig['name']!r} has factor 0", sig.loc_of("factor"), "physical = raw * factor + offset needs a non-zero factor", "factor-zero"
                 )
@@ -247,9 +234,9 @@ def ranges(can: ResolvedCan) -> Iterator[Problem]:
     for msg in can.messages:
         for sig in _signals(msg):
             rng = sig.get("range")
-            if rng is None or not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]):
+            if rng is None or not 1 <= sig["len"] <= 64 or not finite(sig["factor"]) or sig["factor"] == 0 or not finite(sig["offset"]):
                 continue
-            if not all(_finite(v) for v in rng):
+            if not all(finite(v) for v in rng):
                 yield error(f"signal {sig['name']!r}: range must be finite numbers within the range of a double", sig.loc_of("range"), None, "nonfinite")
                 continue
             lo, hi = Fraction(rng[0]), Fraction(rng[1])
@@ -283,15 +270,15 @@ def physical_doubles(can: ResolvedCan) -> Iterator[Problem]:
     """Every physical value a field may carry is a double: each target computes them in doubles."""
     for msg in can.messages:
         for sig in _signals(msg):
-            if not 1 <= sig["len"] <= 64 or not _finite(sig["factor"]) or sig["factor"] == 0 or not _finite(sig["offset"]) or sig["float"]:
+            if not 1 <= sig["len"] <= 64 or not finite(sig["factor"]) or sig["factor"] == 0 or not finite(sig["offset"]) or sig["float"]:
                 continue
             factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
             rng = sig.get("range")
-            documented = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None and all(_finite(v) for v in rng) else None
+            documented = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None and all(finite(v) for v in rng) else None
             raw_min, raw_max = raw_range(sig["len"], sig["signed"], factor, offset, documented)
             for raw, where in ((raw_min, "factor"), (raw_max, "factor"), *((r, "special") for r in sig.get("special", {}))):
                 physical = to_physical(raw, factor, offset)
-                if raw_min <= raw_max and not _finite(physical):
+                if raw_min <= raw_max and not finite(physical):
                     about = format(Decimal(physical.numerator) / Decimal(physical.denominator), ".4g")
                     yield error(f"signal {sig['name']!r}: raw {raw} is the physical value {about}, beyond the range of a double",
                                 sig.loc_of(where), "give the signal a documented `range`, or a smaller factor or offset", "physical-range")
@@ -364,7 +351,7 @@ def counters_and_checksums(can: ResolvedCan) -> Iterator[Problem]:
                 yield error(f"{role} {sig['name']!r} must be unsigned with factor 1 and offset 0", sig.loc_of("role"), None, f"{role}-shape")
             full = [0, (1 << sig["len"]) - 1] if 1 <= sig["len"] <= 64 else None
             rng = sig.get("range")
-            if rng is not None and full is not None and all(_finite(v) for v in rng) and [Fraction(rng[0]), Fraction(rng[1])] != full:
+            if rng is not None and full is not None and all(finite(v) for v in rng) and [Fraction(rng[0]), Fraction(rng[1])] != full:
                 yield error(
                     f"{role} {sig['name']!r} claims range [{rng[0]}, {rng[1]}] but its {sig['len']} bits count {full[0]}..{full[1]}", sig.loc_of("range"),
                     f"a rolling {role} covers its whole field: use [0, {full[1]}]" if role == "counter" else "a checksum byte covers 0..255", f"{role}-shape")
@@ -413,88 +400,13 @@ def multiframes(can: ResolvedCan) -> Iterator[Problem]:
             )
 
 
-def _json_rules(doc: Any) -> Iterator[Problem]:
-    data = doc.data
-    types = data["types"]
-    shared = data.get("fields", LocDict())
-    parties = {p["name"] for p in data["parties"]}
-    for tname, tdef in types.items():
-        for key in ("min", "max"):
-            if key in tdef and not _finite(tdef[key]):
-                yield error(f"type {tname!r}: {key} must be a finite number within the range of a double", tdef.loc_of(key), None, "nonfinite")
-    for fname, fdef in shared.items():
-        if fdef["type"] not in types:
-            yield error(f"field {fname!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type")
-    by_name: dict[str, Any] = {}
-    for msg in data["messages"]:
-        if msg["name"] in by_name:
-            yield error(f"JSON message {msg['name']!r} is defined twice", msg.loc_of("name"), None, "json-duplicate-message")
-        by_name[msg["name"]] = msg
-        for key in ("from", "to"):
-            if msg[key] not in parties:
-                yield error(
-                    f"message {msg['name']!r}: `{key}` {msg[key]!r} is not a party", msg.loc_of(key), f"parties: {', '.join(sorted(parties))}",
-                    "json-unknown-party")
-        keys: dict[str, Any] = {}
-        fields = msg["fields"]
-        for i, ref in enumerate(fields):
-            if isinstance(ref, str):
-                if ref not in shared:
-                    yield error(
-                        f"message {msg['name']!r} refers to unknown field {ref!r}", fields.loc_of(i), f"shared fields: {', '.join(shared)}",
-                        "json-unknown-field")
-                    continue
-                fdef, default_key = shared[ref], ref
-            else:
-                fdef, default_key = ref, ref["name"]
-                if fdef["type"] not in types:
-                    yield error(
-                        f"field {default_key!r} has unknown type {fdef['type']!r}", fdef.loc_of("type"), f"known types: {', '.join(types)}", "json-unknown-type"
-                    )
-            key = fdef.get("json_name", default_key)
-            if key in keys:
-                yield error(f"message {msg['name']!r} has JSON key {key!r} twice", fields.loc_of(i), None, "json-duplicate-field")
-            keys[key] = fdef
-        if ("cmd" in msg) != ("role" in msg):
-            yield error(f"message {msg['name']!r}: a command message needs both `cmd` and `role`", msg.loc, None, "json-command")
-    for msg in data["messages"]:
-        if msg.get("role") == "reply":
-            req = by_name.get(msg.get("reply_to", ""))
-            if req is None or req.get("role") != "request":
-                yield error(
-                    f"reply {msg['name']!r} must name its request in `reply_to`", msg.loc_of("reply_to") if "reply_to" in msg else msg.loc,
-                    "reply_to: <a message with role: request>", "json-reply-to")
-            elif req.get("cmd") != msg.get("cmd"):
-                yield error(
-                    f"reply {msg['name']!r} (cmd {msg.get('cmd')}) answers {req['name']!r} (cmd {req.get('cmd')})", msg.loc_of("cmd"),
-                    "a reply carries its request's cmd", "json-reply-to")
-
-
-def check_changelog(res: Resolved) -> Iterator[Problem]:
-    if res.changelog is None:
-        return
-    versions = res.changelog.data["versions"]
-    for prev, cur in zip(versions, versions[1:]):
-        if version_key(cur["version"]) <= version_key(prev["version"]):
-            yield error(
-                f"changelog version {cur['version']} does not come after {prev['version']}", cur.loc_of("version"), "list versions oldest first",
-                "changelog-order")
-    if res.can is not None:
-        protocol_version = str(res.can.doc.data["protocol"]["version"])
-        newest = str(versions[-1]["version"])
-        if newest != protocol_version:
-            yield error(
-                f"the changelog ends at {newest} but the protocol is version {protocol_version}", versions.loc_of(len(versions) - 1),
-                "add the protocol's current version to the changelog", "changelog-current")
-
-
 def validate(res: Resolved) -> list[Problem]:
     problems = list(res.problems)
     if res.can is not None and not any(p.severity == "error" for p in problems):
         for fn in CAN_RULES:
             problems.extend(fn(res.can))
     for doc in res.json:
-        problems.extend(_json_rules(doc))
+        problems.extend(json_rules(doc))
     problems.extend(check_changelog(res))
     unique: dict[tuple[object, str], Problem] = {}
     for p in problems:  # a shared layout reports once, not once per variant
