@@ -6,6 +6,7 @@ and the encoding rules every language shares (encoding). Targets read it; they n
 compiled spec is made of them); the modules of ir/ that compute them are internal."""
 
 from canspec.ir.json_model import JsonEnumValue, JsonField, JsonMessage, JsonParty, JsonProtocol
+from canspec.ir.labels import Label, SpecialValue, ValueEntry, ValueTable
 from canspec.ir.model import (
     EXACT_LIMIT,
     EXACT_LIMIT_TEXT,
@@ -16,25 +17,18 @@ from canspec.ir.model import (
     MONITOR_VALID_AFTER,
     TIE_EPSILON,
     TIE_EPSILON_TEXT,
-    Bus,
-    CanProtocol,
     Checksum,
     Counter,
-    FaultTable,
     J1939Id,
-    Label,
     Message,
     MultiFrame,
-    Node,
     Segment,
     Signal,
-    SpecialValue,
-    ValueEntry,
-    ValueTable,
     runtime_quotient,
     to_physical,
 )
 from canspec.ir.mux import MuxCondition, MuxGroup
+from canspec.ir.protocol_model import Bus, CanProtocol, FaultTable, Node
 from canspec.ir.spec_model import ChangeItem, Changelog, ChangeVersion, Spec
 
 __all__ = [

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from canspec.ir.model import CanProtocol, Message
+from canspec.ir.model import Message
+from canspec.ir.protocol_model import CanProtocol
 from canspec.ir.spec_model import Spec
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec.ir.json_model import JsonProtocol
-from canspec.ir.model import CanProtocol
+from canspec.ir.protocol_model import CanProtocol
 
 # --- change record -----------------------------------------------------------------------
 

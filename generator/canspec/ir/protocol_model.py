@@ -1,0 +1,113 @@
+"""The IR of a CAN protocol as a whole: its bus, its nodes, its messages and its fault codes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from canspec.ir.labels import ValueTable
+from canspec.ir.model import Message
+from canspec.spec.problems import Loc
+
+
+@dataclass(frozen=True)
+class Node:
+    name: str
+    label: str
+    sa: int | None  # J1939 source address (None on a bus without J1939 addressing)
+    zh: str
+    desc: str
+    aliases: tuple[str, ...]
+    loc: Loc | None = field(default=None, compare=False, hash=False)
+    dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
+
+
+@dataclass(frozen=True)
+class Bus:
+    bitrate: int
+    id_format: str  # "extended" | "standard": the messages' default
+    addressing: str  # "j1939" | "none"
+    byte_order: str  # the signals' default: "little_endian" | "big_endian"
+    data_bitrate: int | None = None  # CAN FD data phase (frames with bit-rate switching)
+
+    @property
+    def is_j1939(self) -> bool:
+        return self.addressing == "j1939"
+
+    @property
+    def kbit(self) -> int | float:
+        return self.bitrate // 1000 if self.bitrate % 1000 == 0 else self.bitrate / 1000
+
+
+@dataclass(frozen=True)
+class FaultTable:
+    """A value table of receive-fault codes (the shipped spec's unmanned_entry_fault of 0x1813A0B0):
+    its entry `message_timeout` is the code for a message timeout, `<layout>_xor_error` the code for
+    a checksum failure of the messages of that layout, raw 0 no fault. Receive monitors report in it."""
+
+    table: str
+    none: int  # 0
+    timeout: int
+    checksum: tuple[tuple[str, int], ...]  # (message name, code), messages with a checksum, in document order
+
+
+@dataclass(frozen=True)
+class CanProtocol:
+    name: str
+    title: str
+    title_zh: str
+    version: str
+    document: str
+    bus: Bus
+    nodes: tuple[Node, ...]
+    messages: tuple[Message, ...]  # in document order
+    value_tables: tuple[ValueTable, ...]
+    fault_tables: tuple[FaultTable, ...] = ()
+    loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
+    dbc_signal_names: str = "per_message"  # or "unique" (targets/dbc/naming.py)
+
+    def message(self, name: str) -> Message:
+        return next(m for m in self.messages if m.name == name)
+
+    # What the protocol uses at all: targets leave out the helpers of what it does not.
+    @property
+    def has_standard(self) -> bool:
+        return any(not m.is_extended for m in self.messages)
+
+    @property
+    def has_counters(self) -> bool:
+        return any(m.counter is not None for m in self.messages)
+
+    @property
+    def has_checksums(self) -> bool:
+        return any(m.checksum is not None for m in self.messages)
+
+    @property
+    def has_fd(self) -> bool:
+        return any(m.is_fd for m in self.messages)
+
+    @property
+    def has_big_endian(self) -> bool:
+        return any(m.has_big_endian for m in self.messages)
+
+    @property
+    def has_float(self) -> bool:
+        return any(m.has_float for m in self.messages)
+
+    @property
+    def max_dlc(self) -> int:
+        return max((m.dlc for m in self.messages), default=0)
+
+    @property
+    def has_multiplexing(self) -> bool:
+        return any(m.is_multiplexed for m in self.messages)
+
+    @property
+    def has_multiframe(self) -> bool:
+        return any(m.multiframe is not None for m in self.messages)
+
+    @property
+    def has_cyclic(self) -> bool:
+        return any(m.is_cyclic for m in self.messages)
+
+    def by_id(self, frame_id: int) -> Message | None:
+        return next((m for m in self.messages if m.frame_id == frame_id), None)
