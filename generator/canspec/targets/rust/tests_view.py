@@ -138,6 +138,7 @@ def build_tests(crate: RustCrate) -> CrateTests:
     types = [m.name for m in crate.messages]
     texts = [m.text.assembler for m in crate.messages if m.text]
     enums = sorted({f.enum.name for m in crate.messages for f in m.fields if f.enum is not None})
+    mux_values = [m.values for m in crate.messages if m.is_multiplexed]  # the vector test fills them with sentinels
     return CrateTests(
         messages=tuple(tests), kinds=crate.kinds, has_fields=any(m.fields for m in crate.messages),
         has_classic=any(not m.is_fd_frame for m in crate.messages),
@@ -145,7 +146,7 @@ def build_tests(crate: RustCrate) -> CrateTests:
         has_scaled=bool(crate.kinds & {"float", "scaled_int"}),
         has_checksums=any(m.msg.checksum for m in crate.messages), has_texts=bool(texts),
         picks_range=any(not p.values for p in used), picks_values=any(p.values for p in used),
-        vector_imports=", ".join(["Messages", *(["EXTENDED_ID_FLAG"] if any(m.flagged for m in crate.messages) else []), *types, *(m.values for m in crate.messages if m.is_multiplexed), *enums, *texts]),
+        vector_imports=", ".join(["Messages", *(["EXTENDED_ID_FLAG"] if any(m.flagged for m in crate.messages) else []), *types, *mux_values, *enums, *texts]),
         property_imports=", ".join(["Error", "Messages", "EXTENDED_ID_FLAG", *types, *texts]),
         strategy_shadowed="Strategy" in types, has_mux=any(m.is_multiplexed for m in crate.messages),
     )
