@@ -1,4 +1,5 @@
-"""The Rust crate of every valid fixture (tests/fixtures/valid/*.yaml with a CAN protocol), held
+"""The Rust crate of every valid fixture (tests/fixtures/valid/*.yaml with a CAN protocol, and the
+multiplexed specs of tests/targets/rust/specs/ and tests/fixtures/mux/ that the Rust target carries), held
 to the toolchain's strict checks: clippy with warnings denied on every target, a no_std build,
 rustdoc with warnings denied, and the crate's own tests — its vector test on that fixture's
 vectors and its property tests. One cargo workspace, one target directory, offline (the
@@ -18,6 +19,8 @@ from repo_paths import ROOT
 from rust_workspace import add_member, write_workspace
 
 FIXTURES = ROOT / "tests" / "fixtures" / "valid"
+# Multiplexed specs: those other targets may still refuse (tests/fixtures/mux/ until every target carries them).
+MUX_SPECS = (ROOT / "tests" / "targets" / "rust" / "specs", ROOT / "tests" / "fixtures" / "mux")
 TARGET_DIR = ROOT / "build" / "rust" / "target"
 VECTORS_LINE = re.compile(r"rust vectors: (\d+) cases \+ (\d+) multi-frame texts from (\S+), (\d+) mismatches")
 
@@ -25,7 +28,7 @@ VECTORS_LINE = re.compile(r"rust vectors: (\d+) cases \+ (\d+) multi-frame texts
 def _crate(path: Path, root: Path) -> str | None:
     """Generate the fixture's crate and vectors under `root/<stem>/`; the member path, or None
     for a fixture without a CAN protocol."""
-    compiled = compile_spec(path)
+    compiled = compile_spec(path, ["rust", "vectors"])
     assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
     files = {**registry()["rust"].render(compiled.spec), **registry()["vectors"].render(compiled.spec)}
     return add_member(files, root, path.stem, "fixture") if files else None
@@ -34,7 +37,8 @@ def _crate(path: Path, root: Path) -> str | None:
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[str]]:
     root = tmp_path_factory.mktemp("rust_fixtures")
-    members = [m for p in sorted(FIXTURES.glob("*.yaml")) if (m := _crate(p, root)) is not None]
+    specs = sorted(FIXTURES.glob("*.yaml")) + sorted(p for folder in MUX_SPECS for p in folder.glob("*.yaml"))
+    members = [m for p in specs if (m := _crate(p, root)) is not None]
     write_workspace(root, members)
     return root, members
 

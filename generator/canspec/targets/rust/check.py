@@ -1,6 +1,7 @@
 """What the Rust target cannot express, refused by `canspec check` (Target.check): spec names
 that meet as Rust names, a value table no Rust integer type can hold, and multi-frame text
-over more frames than its reassembler tracks."""
+over more frames than its reassembler tracks or whose frame index, payload or key fields are
+multiplexed (the reassembler reads them from every frame)."""
 
 from __future__ import annotations
 
@@ -23,3 +24,9 @@ def problems(spec: ir.Spec) -> Iterator[Problem]:
         if msg.multiframe and msg.multiframe.frames > MAX_TEXT_FRAMES:
             yield error(f"multi-frame text of {msg.name!r} takes {msg.multiframe.frames} frames; the Rust reassembler tracks at most {MAX_TEXT_FRAMES}",
                         msg.loc, f"carry the text in at most {MAX_TEXT_FRAMES} frames (longer payloads need fewer)", "rust-text-frames")
+        if msg.multiframe and msg.is_multiplexed:
+            m = msg.multiframe
+            for name in (m.index_signal, m.payload_signal, *m.key_signals):
+                if msg.signal(name).mux is not None:
+                    yield error(f"multi-frame text of {msg.name!r} reads {name!r}, which only some pages hold; the Rust reassembler reads it from every frame",
+                                msg.signal(name).loc or msg.loc, "take the text's index, payload and keys from fields in every frame", "rust-text-mux")

@@ -31,6 +31,7 @@ from canspec.targets.rust.bits import (
 )
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
 from canspec.targets.rust.ieee import IeeeEncoding, ieee_encoding
+from canspec.targets.rust.mux import RustMuxField, mux_field
 from canspec.targets.rust.naming import FieldNames, enum_type_names, field_names, special_const, stored_signals, type_name
 from canspec.targets.rust.values import RustEnum, build_enum, enum_users
 
@@ -77,6 +78,19 @@ class RustField:
     unit_note: str  # " (unit)" or ""
     tolerance: str  # vector test: |factor| as an f64 literal (a tie decodes within half a step)
     offset_abs: str  # and |offset| (the size of the decode's rounding)
+    mux: RustMuxField | None = None  # in a multiplexed message: when it is present
+    loaded_phys: str = ""  # multiplexed messages: the physical value of the frame's bits (`load`), present or not
+    zero_phys: str = ""  # and of raw 0: what the values of a frame without the field hold
+
+    @property
+    def is_paged(self) -> bool:
+        """Present only in some frames: its getters return an `Option`."""
+        return self.mux is not None and bool(self.mux.frame_cond)
+
+    @property
+    def is_settable(self) -> bool:
+        """Has public setters: not a multiplexer nor a multiplexed field (those change which bits mean what)."""
+        return self.mux is None or not (self.is_paged or self.sig.is_multiplexer)
 
     @property
     def name(self) -> str:
@@ -149,6 +163,15 @@ class RustMessage:
     def is_fd_frame(self) -> bool:
         """Held as its bytes (`bytes: [u8; DLC]`), not as the u64 frame word."""
         return not self.msg.is_classic_length
+
+    @property
+    def is_multiplexed(self) -> bool:
+        return self.msg.is_multiplexed
+
+    @property
+    def set_order(self) -> tuple[RustField, ...]:
+        """The fields as `new` sets them: each multiplexer before the fields it selects."""
+        return tuple(sorted(self.fields, key=lambda f: f.mux.depth if f.mux else 0))
 
     @property
     def needs_word(self) -> bool:
@@ -256,6 +279,9 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
         tolerance=RUST.double(float(abs(sig.factor))),
         offset_abs=RUST.double(float(abs(sig.offset))),
         unit_note=f" ({docs.doc_text(sig.unit)})" if sig.unit else "",
+        mux=mux_field(msg, sig),
+        loaded_phys=_phys_expr(sig, kind, f"self.{names.load}()", phys_type, enum) if msg.is_multiplexed else "",
+        zero_phys=_phys_expr(sig, kind, f"Self::ZERO.{names.load}()", phys_type, enum) if msg.is_multiplexed else "",
     )
 
 

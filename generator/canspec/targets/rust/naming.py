@@ -58,9 +58,13 @@ class FieldNames:
     raw_setter: str
     store: str  # private: puts a raw value into the frame word
     const: str  # UPPER_SNAKE prefix of its associated constants
+    load: str  # multiplexed messages, private: the field's bits in the frame, present or not
+    has: str  # multiplexed fields: whether the field is present (its page is selected)
 
-    def members(self) -> tuple[str, ...]:
-        return (self.getter, self.raw_getter, self.setter, self.raw_setter, self.store)
+    def members(self, sig: ir.Signal, multiplexed: bool) -> tuple[str, ...]:
+        """The methods of the message type; `multiplexed`: the message is."""
+        mux = (self.load, *((self.has,) if sig.mux is not None else ())) if multiplexed else ()
+        return (self.getter, self.raw_getter, self.setter, self.raw_setter, self.store, *mux)
 
 
 # The methods every message type has (or may have): a signal of that name gets a getter with a `_`.
@@ -70,7 +74,8 @@ FIXED_METHODS = frozenset({"new", "from_raw", "from_values", "values", "encode",
 def field_names(sig: ir.Signal) -> FieldNames:
     base = snake(sig.name)
     getter = f"{base}_" if base in FIXED_METHODS else rust_ident(base)
-    return FieldNames(base, rust_ident(base), getter, rust_ident(f"{base}_raw"), f"set_{base}", f"set_{base}_raw", f"store_{base}", upper_snake(base))
+    return FieldNames(base, rust_ident(base), getter, rust_ident(f"{base}_raw"), f"set_{base}", f"set_{base}_raw", f"store_{base}", upper_snake(base),
+                      f"load_{base}", f"has_{base}")
 
 
 def stored_signals(msg: ir.Message) -> tuple[ir.Signal, ...]:
@@ -112,7 +117,8 @@ def _bare(name: str) -> str:
 
 
 TYPE_HINT = "rename one of them in the spec (Rust type names drop underscores: `x_1` and `x1` are both `X1`)"
-MEMBER_HINT = "rename one of them in the spec (a signal `x` has the methods `x`, `x_raw`, `set_x`, `set_x_raw` and the constants `X_MIN`, `X_MAX`)"
+MEMBER_HINT = ("rename one of them in the spec (a signal `x` has the methods `x`, `x_raw`, `set_x`, `set_x_raw`, in a multiplexed message also `load_x` "
+               "and `has_x`, and the constants `X_MIN`, `X_MAX`)")
 
 
 def _clashes(entries: Iterable[tuple[str, str, Loc | None]], scope: str, hint: str) -> Iterator[Problem]:
@@ -147,6 +153,6 @@ def problems(can: ir.CanProtocol, enum_users: dict[str, list[ir.Signal]], scaled
         sigs = [(s, field_names(s)) for s in stored_signals(msg)]
         scope = f"type {type_name(msg.name)}"
         yield from _clashes([*((n, f"the method {n}", None) for n in message_methods(msg)),
-                             *((m, f"signal {s.name!r}", s.loc) for s, names in sigs for m in names.members())], scope, MEMBER_HINT)
+                             *((m, f"signal {s.name!r}", s.loc) for s, names in sigs for m in names.members(s, msg.is_multiplexed))], scope, MEMBER_HINT)
         yield from _clashes([*((n, f"the constant {n}", None) for n in message_consts(msg)),
                              *((c, f"signal {s.name!r}", s.loc) for s, names in sigs for c in signal_consts(s, names, scaled(s)))], scope, MEMBER_HINT)

@@ -6,7 +6,7 @@ crate's view: which helpers a spec's messages use, and the raw values whose phys
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 from canspec import ir
@@ -77,6 +77,9 @@ class MessageTests:
     picks: tuple[Pick, ...] | None  # per field; None: some field has no raw value that round-trips
     checksum_arg: str  # `frame`'s checksum argument: Some((byte, cover mask)) or None
     fd_checksum_arg: str  # `fd_frame`'s: Some(byte) or None
+    sentinel: dict[str, str] = field(default_factory=dict)  # multiplexed: per field, what the values hold before `update`
+    zero: dict[str, str] = field(default_factory=dict)  # and raw 0's physical value, the document's (raw × factor + offset)
+    absent: dict[str, str] = field(default_factory=dict)  # and what `new` is given for a field the frame does not hold
 
     @property
     def fields_picks(self) -> tuple[tuple[RustField, Pick], ...]:
@@ -90,6 +93,18 @@ class MessageTests:
     def uses_physical(self) -> bool:
         """The vector check reads the case's physical values (enums compare raw values)."""
         return any(f.kind != "enum" for f in self.msg.fields)
+
+
+def _mux_literals(f: RustField) -> tuple[str, str, str]:
+    """Sentinel, raw 0's value and the value `new` must ignore, as literals of the field's physical type."""
+    if f.enum is not None:
+        return f"{f.enum.name}::from_raw({f.enum.repr}::MAX)", f"{f.enum.name}::from_raw(0)", f"{f.enum.name}::from_raw({f.enum.repr}::MAX)"
+    if f.kind == "int":
+        return f"{f.raw_type}::MAX", "0", f"{f.raw_type}::MAX"
+    if f.kind == "scaled_int":
+        return f"{f.phys_type}::MAX", RUST.integer(int(f.sig.offset)), f"{f.phys_type}::MAX"
+    zero = "0.0" if f.kind == "ieee" else RUST.double(f.sig.runtime_physical(0))
+    return "-1234.5", zero, f"{f.phys_type}::NAN"
 
 
 @dataclass(frozen=True)
@@ -107,6 +122,7 @@ class CrateTests:
     vector_imports: str  # the crate's items tests/vectors.rs names
     property_imports: str  # and tests/properties.rs
     strategy_shadowed: bool  # a message type is named like proptest's Strategy trait
+    has_mux: bool  # some message is multiplexed
 
 
 def build_tests(crate: RustCrate) -> CrateTests:
@@ -115,11 +131,14 @@ def build_tests(crate: RustCrate) -> CrateTests:
         picks = tuple(pick(f) for f in m.fields)
         ck = f"Some(({m.msg.checksum.byte}, {m.cover_mask}))" if m.msg.checksum else "None"
         fd_ck = f"Some({m.msg.checksum.byte})" if m.msg.checksum else "None"
-        tests.append(MessageTests(m, None if any(p is None for p in picks) else picks, ck, fd_ck))  # type: ignore[arg-type]
+        lits = {f.name: _mux_literals(f) for f in m.fields} if m.is_multiplexed else {}
+        tests.append(MessageTests(m, None if any(p is None for p in picks) else picks, ck, fd_ck,  # type: ignore[arg-type]
+                                  *({name: lit[i] for name, lit in lits.items()} for i in range(3))))
     used = [p for t in tests if t.msg.fields for p in t.picks or ()]
     types = [m.name for m in crate.messages]
     texts = [m.text.assembler for m in crate.messages if m.text]
     enums = sorted({f.enum.name for m in crate.messages for f in m.fields if f.enum is not None})
+    mux_values = [m.values for m in crate.messages if m.is_multiplexed]  # the vector test fills them with sentinels
     return CrateTests(
         messages=tuple(tests), kinds=crate.kinds, has_fields=any(m.fields for m in crate.messages),
         has_classic=any(not m.is_fd_frame for m in crate.messages),
@@ -127,7 +146,7 @@ def build_tests(crate: RustCrate) -> CrateTests:
         has_scaled=bool(crate.kinds & {"float", "scaled_int"}),
         has_checksums=any(m.msg.checksum for m in crate.messages), has_texts=bool(texts),
         picks_range=any(not p.values for p in used), picks_values=any(p.values for p in used),
-        vector_imports=", ".join(["Messages", *(["EXTENDED_ID_FLAG"] if any(m.flagged for m in crate.messages) else []), *types, *enums, *texts]),
+        vector_imports=", ".join(["Messages", *(["EXTENDED_ID_FLAG"] if any(m.flagged for m in crate.messages) else []), *types, *mux_values, *enums, *texts]),
         property_imports=", ".join(["Error", "Messages", "EXTENDED_ID_FLAG", *types, *texts]),
-        strategy_shadowed="Strategy" in types,
+        strategy_shadowed="Strategy" in types, has_mux=any(m.is_multiplexed for m in crate.messages),
     )
