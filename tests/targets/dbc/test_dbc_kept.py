@@ -52,7 +52,7 @@ def test_values_of_every_object(db, source) -> None:
     assert _values(db)["Manufacturer"] == source["dbc_attributes"]["Manufacturer"]["value"]
     body = next(n for n in db.nodes if n.name == "BODY")
     assert _values(body) == {"NodeLayer": 2} and body.comment == 'Body "controller"'
-    msg = db.get_message_by_name("DOOR_STATUS")
+    msg = db.get_message_by_name("door_status")
     want = source["messages"][0]
     assert msg.send_type == want["dbc_attributes"]["GenMsgSendType"]
     assert _values(msg)["GenMsgDelayTime"] == want["dbc_attributes"]["GenMsgDelayTime"]
@@ -61,7 +61,7 @@ def test_values_of_every_object(db, source) -> None:
 
 
 def test_senders_receivers_comments_and_ranges(db, source) -> None:
-    msg, want = db.get_message_by_name("DOOR_STATUS"), source["messages"][0]
+    msg, want = db.get_message_by_name("door_status"), source["messages"][0]
     assert msg.senders == [want["sender"], *want["dbc_senders"]]
     door, speed = msg.get_signal_by_name("door_fl"), msg.get_signal_by_name("speed")
     assert door.receivers == want["signals"][0]["receivers"] and sorted(speed.receivers) == sorted(want["receivers"])
