@@ -13,6 +13,7 @@ import cantools
 from canspec.importer.load import load
 from canspec.importer.run import import_loaded
 from canspec.importer.yamlout import dump
+from canspec.ir.dbc_attributes import COMPUTED
 from canspec.targets.dbc import render_dbc
 
 OPENDBC_FILES = 115  # opendbc 0.3.1
@@ -61,9 +62,17 @@ def _num(value: Any) -> Fraction | None:
     return None if value is None else Fraction(str(value))
 
 
+def kept_attributes(obj: Any) -> dict[str, Any]:
+    """An object's attribute values but those canspec computes from the spec's fields (compared as the
+    facts they give: cycle time, frame format, ...)."""
+    attributes = getattr(getattr(obj, "dbc", None), "attributes", None) or {}
+    return {name: a.value for name, a in attributes.items() if name not in COMPUTED}
+
+
 def signal_facts(sig: Any) -> dict[str, Any]:
     """What a signal means, as cantools reads it (names of value labels as written)."""
     return {
+        "receivers": sorted(sig.receivers), "comment": sig.comment or None, "attributes": kept_attributes(sig),
         "start": sig.start, "length": sig.length, "byte_order": sig.byte_order, "signed": bool(sig.is_signed) and not sig.is_float,
         "float": sig.is_float, "scale": _num(sig.scale), "offset": _num(sig.offset), "minimum": _num(sig.minimum),
         "maximum": _num(sig.maximum), "unit": sig.unit or "",
@@ -72,4 +81,11 @@ def signal_facts(sig: Any) -> dict[str, Any]:
 
 
 def message_facts(msg: Any) -> dict[str, Any]:
-    return {"frame_id": msg.frame_id, "extended": bool(msg.is_extended_frame), "length": msg.length, "cycle_time": msg.cycle_time or None}
+    return {"frame_id": msg.frame_id, "extended": bool(msg.is_extended_frame), "length": msg.length, "cycle_time": msg.cycle_time or None,
+            "fd": bool(msg.is_fd), "senders": sorted(msg.senders), "send_type": msg.send_type, "comment": msg.comment or None,
+            "attributes": kept_attributes(msg)}
+
+
+def network_facts(db: Any) -> dict[str, Any]:
+    """The nodes (name → comment, attributes) and the network's own attributes."""
+    return {"nodes": {n.name: (n.comment or None, kept_attributes(n)) for n in db.nodes}, "attributes": kept_attributes(db)}

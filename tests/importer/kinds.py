@@ -22,7 +22,8 @@ KINDS = (  # (kind, words its message holds), first match wins
     ("no FD data bit rate: assumed", "no data bit rate"),
     ("range holding no value: dropped", "holds no value of the field"),
     ("C/Rust name clash: spec name renamed", "name clashes"),
-    ("several senders: first taken", "senders:"),
+    ("attribute value its definition refuses: left out", "is refused by its definition"),
+    ("attribute of other objects: left out", "objects: left out"),
     ("scaled float: scaling dropped", "scaling dropped"),
     ("not a frame length: message left out", "not a CAN frame length"),
 )

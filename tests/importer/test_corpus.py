@@ -7,10 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from canspec.importer.tospec import NO_NODE
 from canspec.ir.encoding import raw_range, raw_type_range
 from repo_paths import ROOT
 
-from importer.corpus import Imported, import_one, load_generated, message_facts, opendbc_files, signal_facts
+from importer.corpus import Imported, import_one, load_generated, message_facts, network_facts, opendbc_files, signal_facts
 from importer.kinds import KINDS, kind_of
 
 FILES = opendbc_files()
@@ -24,6 +25,17 @@ def _allowed(f: dict, minimum, maximum) -> tuple[int, int] | None:
         return raw_type_range(f["length"], f["signed"])
     lo, hi = raw_range(f["length"], f["signed"], f["scale"], f["offset"], (min(minimum, maximum), max(minimum, maximum)))
     return (lo, hi) if lo <= hi else raw_type_range(f["length"], f["signed"])
+
+
+def _changed(a: dict, b: dict) -> dict:
+    """What differs between two dictionaries of dictionaries, key by key."""
+    return {k: ({n: (v, b[k].get(n)) for n, v in a[k].items() if b[k].get(n) != v} | {n: (None, v) for n, v in b[k].items() if n not in a[k]}
+                if isinstance(a[k], dict) else (a[k], b[k])) for k in a if a[k] != b[k]}
+
+
+def _named(warnings, words: str) -> set[str]:
+    """The second word (a message's or node's name) of each warning holding `words`."""
+    return {text.split()[1] for _, _, text in warnings if words in text}
 
 
 def _left_out(warnings) -> set[str]:
@@ -55,15 +67,20 @@ def test_import_is_faithful(path: Path, imports, tmp_path: Path) -> None:
     assert not imported.problems, f"canspec check refuses the import of {path.name}:\n" + "\n".join(imported.problems[:10])
     (tmp_path / "generated.dbc").write_text(imported.dbc, encoding="utf-8")
     (source, source_names), (ours, our_names) = (imported.loaded.db, imported.loaded.renamed), load_generated(tmp_path / "generated.dbc")
-    left_out = _left_out(imported.warnings)
+    left_out, taken_fd = _left_out(imported.warnings), _named(imported.warnings, "no CAN FD frame format")
     dropped_values = {w[2] for w in imported.warnings if w[2].startswith("value ")}
-    mismatches = []
+    mine_net, source_net = network_facts(ours), network_facts(source)
+    source_net["nodes"].pop(NO_NODE, None)  # a DBC's "no node", not a node
+    for name in _named(imported.warnings, "not declared in BU_"):  # added to the nodes, with a word
+        mine_net["nodes"].pop(name, None)
+    mismatches = [f"network: {_changed(source_net, mine_net)}"] if mine_net != source_net else []
     for msg in source.messages:
         if msg.name in left_out or msg.is_multiplexed():
             continue
-        mine = ours.get_message_by_frame_id(msg.frame_id)
-        if message_facts(mine) != message_facts(msg) or our_names.get(mine.name, mine.name) != source_names.get(msg.name, msg.name):
-            mismatches.append(f"{msg.name}: {message_facts(msg)} became {mine.name} {message_facts(mine)}")
+        mine, facts = ours.get_message_by_frame_id(msg.frame_id), message_facts(msg)
+        facts["fd"] |= source_names.get(msg.name, msg.name) in taken_fd
+        if message_facts(mine) != facts or our_names.get(mine.name, mine.name) != source_names.get(msg.name, msg.name):
+            mismatches.append(f"{msg.name}: {facts} became {mine.name} {message_facts(mine)}")
             continue
         for sig in msg.signals:
             if f"{msg.name}.{sig.name}" in left_out:
@@ -102,4 +119,4 @@ def corpus_table(imports) -> str:
 def test_the_readme_table_is_what_the_corpus_gives(imports) -> None:
     table = corpus_table(imports)
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    assert table in readme, "README's corpus table is stale; it should read:\n" + table
+    assert table + "\n\n" in readme, "README's corpus table is stale; it should read:\n" + table

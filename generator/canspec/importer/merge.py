@@ -31,11 +31,17 @@ def merge(specs: list[tuple[str, dict[str, Any]]]) -> dict[str, Any]:
             out["messages"].append(msg)
         known = {n["name"] for n in out["nodes"]}
         out["nodes"] += [n for n in spec["nodes"] if n["name"] not in known]
+        kept = out.setdefault("dbc_attributes", {})
+        for name, d in spec.get("dbc_attributes", {}).items():
+            if name in kept and kept[name] != d:
+                raise DbcError(f"{source}: attribute {name} is defined otherwise than in {first_source}: {d} against {kept[name]}")
+            kept[name] = d
         for name, table in spec.get("value_tables", {}).items():
             if name in out["value_tables"] and out["value_tables"][name] != table:
                 raise DbcError(f"{source}: value table {name} differs from the one in {first_source}")
             out["value_tables"][name] = table
-    if not out["value_tables"]:
-        del out["value_tables"]
+    for key in ("value_tables", "dbc_attributes"):
+        if not out.get(key, True):
+            del out[key]
     out["messages"].sort(key=lambda m: (m["id"], m["name"]))
     return out

@@ -9,6 +9,7 @@ from fractions import Fraction
 from typing import Any
 
 from canspec.diff.dbcimport import written_numbers
+from canspec.importer.attributes import kept_definitions, kept_values
 from canspec.importer.load import Loaded
 from canspec.importer.names import Namer, identifier
 from canspec.ir.bits import positions
@@ -84,28 +85,44 @@ def _brs(msg: Any) -> bool:
 def build_spec(loaded: Loaded, report: Report) -> dict[str, Any]:
     db = loaded.db
     bus = _bus(loaded, report)
-    nodes = _nodes(loaded, report)
+    kept = kept_definitions(loaded, lambda text: report.warn(loaded.source, None, text))
+    nodes = _nodes(loaded, report, kept)
     spec: dict[str, Any] = {"schema_version": 1, "kind": "can_protocol", "protocol": _protocol(loaded), "bus": bus, "nodes": list(nodes.values())}
     tables: dict[str, dict[int, str]] = {}
     messages, names = [], Namer()
     written, lines = written_numbers(loaded.text or ""), _lines(loaded.text)
     for msg in sorted(db.messages, key=lambda m: (m.frame_id, m.name)):
-        converted = _message(loaded, msg, bus, names, tables, written, lines, report)
+        converted = _message(loaded, msg, bus, names, tables, written, lines, report, kept)
         if converted is not None:
-            converted["sender"] = nodes[converted["sender"]]["name"] if converted["sender"] != "ALL" else "ALL"
-            converted["receivers"] = sorted({nodes[r]["name"] for r in converted["receivers"]} - {converted["sender"]})
-        if converted is not None:
-            messages.append(converted)
+            messages.append(_node_names(converted, nodes))
     if tables:
         spec["value_tables"] = tables
+    if kept:
+        spec["dbc_attributes"] = kept
     spec["messages"] = messages
     return spec
+
+
+def _node_names(msg: dict[str, Any], nodes: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """The source's node names in a converted message as the spec's; a signal's receivers only where
+    they are not its message's."""
+    msg["sender"] = nodes[msg["sender"]]["name"] if msg["sender"] != "ALL" else "ALL"
+    msg["receivers"] = sorted({nodes[r]["name"] for r in msg["receivers"]} - {msg["sender"]})
+    if "dbc_senders" in msg:
+        msg["dbc_senders"] = [nodes[s]["name"] for s in msg["dbc_senders"]]
+    for sig in msg["signals"]:
+        own = sorted(nodes[r]["name"] for r in sig.pop("receivers"))
+        if own != msg["receivers"]:
+            sig["receivers"] = own
+            if "dbc_attributes" in sig:  # keep the attributes last on the line
+                sig["dbc_attributes"] = sig.pop("dbc_attributes")
+    return msg
 
 
 NODE_NAME = __import__("re").compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
-def _nodes(loaded: Loaded, report: Report) -> dict[str, dict[str, Any]]:
+def _nodes(loaded: Loaded, report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
     """Source node name → the spec's node: BU_'s nodes, then those only senders and receivers name."""
     db, out, taken = loaded.db, {}, set()
 
@@ -119,6 +136,8 @@ def _nodes(loaded: Loaded, report: Report) -> dict[str, dict[str, Any]]:
     for node in db.nodes:
         if node.name != NO_NODE and node.name not in out:
             add(node.name, node.comment)
+            if values := kept_values(node, kept, lambda text: report.warn(loaded.source, None, text), f"node {node.name}"):
+                out[node.name]["dbc_attributes"] = values
     used = sorted({s for m in db.messages for s in m.senders} | {r for m in db.messages for sig in m.signals for r in sig.receivers})
     for name in used:
         if name != NO_NODE and name not in out:
@@ -137,12 +156,12 @@ def _protocol(loaded: Loaded) -> dict[str, Any]:
     parts = version.split(".")
     if not (len(parts) == 3 and all(p.isdigit() for p in parts)):
         version = "0.0.0"
-    return {"name": name, "version": version, "title": PurePath(loaded.source).name}
+    return {"name": name, "version": version, "title": PurePath(loaded.source).name, "dbc_as_imported": True}
 
 
 def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables: dict[str, dict[int, str]],
              written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
-             report: Report) -> dict[str, Any] | None:
+             report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, Any] | None:
     dbc_id = msg.frame_id | DBC_EXTENDED_FLAG if msg.is_extended_frame else msg.frame_id
     line = lines.get((dbc_id, ""))
     source_name = loaded.renamed.get(msg.name, msg.name)
@@ -160,9 +179,9 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
     if bool(msg.is_extended_frame) != (bus["id_format"] == "extended"):
         out["extended"] = bool(msg.is_extended_frame)
     senders = [s for s in msg.senders if s != NO_NODE]
-    if len(senders) > 1:
-        report.warn(loaded.source, line, f"message {source_name} has {len(senders)} senders: {senders[0]} taken, {', '.join(senders[1:])} dropped")
     out["sender"] = senders[0] if senders else "ALL"
+    if len(senders) > 1:  # BO_TX_BU_: the DBC keeps them all, the other targets know the first
+        out["dbc_senders"] = senders[1:]
     receivers = sorted({r for s in msg.signals for r in s.receivers if r != NO_NODE} - {out["sender"]})
     out["receivers"] = receivers
     if msg.cycle_time:
@@ -176,15 +195,17 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
             out["brs"] = False
     if msg.comment:
         out["desc"] = str(msg.comment)
-    out["signals"] = _signals(loaded, msg, bus["byte_order"], dbc_id, source_name, name, tables, written, lines, report)
+    out["signals"] = _signals(loaded, msg, bus["byte_order"], dbc_id, source_name, name, tables, written, lines, report, kept)
     if not out["signals"] and msg.length:
         out["layout_undefined"] = True
+    if values := kept_values(msg, kept, lambda text: report.warn(loaded.source, line, text), f"message {source_name}"):
+        out["dbc_attributes"] = values
     return out
 
 
 def _signals(loaded: Loaded, msg: Any, default_order: str, dbc_id: int, source_msg: str, msg_name: str, tables: dict[str, dict[int, str]],
              written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
-             report: Report) -> list[dict[str, Any]]:
+             report: Report, kept: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
     out, names, owners = [], Namer(), {}
     for sig in msg.signals:  # in the file's order: the first of two overlapping signals stays
         source_name = loaded.renamed.get(sig.name, sig.name)
@@ -199,6 +220,9 @@ def _signals(loaded: Loaded, msg: Any, default_order: str, dbc_id: int, source_m
             continue
         owners.update((b, source_name) for b in bits)
         converted = _signal(loaded, sig, default_order, names, written.get((dbc_id, sig.name)), f"{msg_name}_", tables, line, report)
+        converted["receivers"] = [r for r in sig.receivers if r != NO_NODE]  # the spec's names and whether to keep them: _node_names
+        if values := kept_values(sig, kept, lambda text, at=line: report.warn(loaded.source, at, text), f"signal {sig.name} of {source_msg}"):
+            converted["dbc_attributes"] = values
         out.append(converted)
     return out
 

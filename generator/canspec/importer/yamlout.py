@@ -20,6 +20,8 @@ def scalar(value: Any, key: str = "") -> str:
         return "true" if value else "false"
     if isinstance(value, int):
         return f"0x{value:X}" if key == "id" else str(value)
+    if isinstance(value, float):
+        return repr(value)
     if isinstance(value, Fraction):
         return decimal_text(value)
     if isinstance(value, list):
@@ -49,6 +51,9 @@ def dump_with_lines(spec: dict[str, Any], header: list[str]) -> tuple[str, dict[
         for name, table in spec["value_tables"].items():
             out.append(f"  {name}:")
             out += [f"    {raw}: {scalar(label)}" for raw, label in table.items()]
+    if spec.get("dbc_attributes"):
+        out.append("dbc_attributes:")
+        out += [f"  {name}: {scalar(d)}" for name, d in spec["dbc_attributes"].items()]
     out.append("messages:" + ("" if spec["messages"] else " []"))
     for mi, msg in enumerate(spec["messages"]):
         first = True

@@ -11,6 +11,7 @@ from typing import Any
 from canspec import __version__, ir
 from canspec.ir import j1939
 from canspec.ir.bits import segments, storage_bits, word_shift
+from canspec.ir.dbc_attributes import Attributes, AttributeValue, DbcAttributeDef
 from canspec.ir.encoding import (
     FLOAT_MAX,
     covering_decimal,
@@ -135,6 +136,8 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, mu
         mux=MuxCondition(sig["mux"]["by"], ranges_of(sig["mux"]["values"])) if "mux" in sig else None,
         is_multiplexer=sig["name"] in multiplexers,
         dbc_name=sig.get("dbc_name", sig["name"]),
+        receivers=tuple(sig["receivers"]) if "receivers" in sig else None,
+        dbc_attributes=_attributes(sig),
     )
 
 
@@ -214,6 +217,8 @@ def _message(msg: LocDict, can: ResolvedCan, tables: dict[str, ir.ValueTable], n
         is_fd=fd,
         brs=fd and bool(msg.get("brs", bus.get("data_bitrate") is not None)),
         mux_groups=_mux_groups(signals),
+        dbc_senders=tuple(msg.get("dbc_senders", ())),
+        dbc_attributes=_attributes(msg),
     )
 
 
@@ -243,7 +248,7 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
     tables = {name: _value_table(name, t) for name, t in sorted(can.value_tables.items())}
     nodes = tuple(
         ir.Node(n["name"], n.get("label", n["name"]), n.get("sa"), n.get("zh", ""), n.get("desc", ""), tuple(n.get("aliases", [])), loc=n.loc,
-                dbc_name=n.get("dbc_name", n["name"]))
+                dbc_name=n.get("dbc_name", n["name"]), dbc_attributes=_attributes(n))
         for n in data["nodes"]
     )
     names = tuple(n.name for n in nodes)
@@ -262,7 +267,27 @@ def build_can(can: ResolvedCan) -> ir.CanProtocol:
         fault_tables=_fault_tables(tables, messages),
         loc=p.loc_of("name"),
         dbc_signal_names=p.get("dbc_signal_names", "per_message"),
+        dbc_as_imported=bool(p.get("dbc_as_imported", False)),
+        dbc_attribute_defs=tuple(_attribute_def(name, d) for name, d in data.get("dbc_attributes", {}).items()),
     )
+
+
+def _attributes(obj: LocDict) -> Attributes:
+    return tuple((name, _plain_number(v)) for name, v in obj.get("dbc_attributes", {}).items())
+
+
+def _plain_number(v: Any) -> AttributeValue:
+    """A YAML number (the loader may give Decimal) as an int where it is whole, else a float."""
+    if isinstance(v, str | int):
+        return v
+    return int(v) if Fraction(v).denominator == 1 else float(v)
+
+
+def _attribute_def(name: str, d: LocDict) -> DbcAttributeDef:
+    def get(key: str) -> AttributeValue | None:
+        return _plain_number(d[key]) if key in d else None
+
+    return DbcAttributeDef(name, d["object"], d["type"], get("min"), get("max"), tuple(d.get("values", ())), get("default"), get("value"))
 
 
 def _enum(table: LocDict | None) -> tuple[ir.JsonEnumValue, ...]:

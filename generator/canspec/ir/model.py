@@ -13,6 +13,7 @@ from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from functools import cached_property
 
+from canspec.ir.dbc_attributes import Attributes
 from canspec.ir.labels import Label, SpecialValue, ValueTable
 from canspec.ir.mux import MuxCondition, MuxGroup
 from canspec.spec.problems import Loc
@@ -118,6 +119,8 @@ class Signal:
     mux: MuxCondition | None = None
     is_multiplexer: bool = False
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name` (a source's own spelling), else `name`
+    receivers: tuple[str, ...] | None = None  # the nodes that read it where not all its message's receivers do (DBC only)
+    dbc_attributes: Attributes = ()  # a source DBC's own attribute values (ir/dbc_attributes.py)
 
     @property
     def is_reserved(self) -> bool:
@@ -345,6 +348,8 @@ class Message:
         )
         return replace(self, signals=signals, mux_groups=())
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
+    dbc_senders: tuple[str, ...] = ()  # further senders the DBC lists (BO_TX_BU_); every other target knows `sender` only
+    dbc_attributes: Attributes = ()  # a source DBC's own attribute values (ir/dbc_attributes.py)
 
     @property
     def is_classic_length(self) -> bool:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from canspec.ir.dbc_attributes import Attributes, DbcAttributeDef
 from canspec.ir.labels import ValueTable
 from canspec.ir.model import Message
 from canspec.spec.problems import Loc
@@ -19,6 +20,7 @@ class Node:
     aliases: tuple[str, ...]
     loc: Loc | None = field(default=None, compare=False, hash=False)
     dbc_name: str = ""  # the name the DBC writes: the spec's `dbc_name`, else `name`
+    dbc_attributes: Attributes = ()  # a source DBC's own attribute values (ir/dbc_attributes.py)
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,8 @@ class CanProtocol:
     fault_tables: tuple[FaultTable, ...] = ()
     loc: Loc | None = field(default=None, compare=False, hash=False)  # of the protocol's name
     dbc_signal_names: str = "per_message"  # or "unique" (targets/dbc/naming.py)
+    dbc_as_imported: bool = False  # the DBC says what the imported source said (protocol.dbc_as_imported)
+    dbc_attribute_defs: tuple[DbcAttributeDef, ...] = ()  # a source DBC's own attributes (ir/dbc_attributes.py)
 
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)

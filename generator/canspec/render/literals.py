@@ -243,8 +243,9 @@ TYPESCRIPT = TypeScriptLiterals()
 
 
 def dbc_string(text: str) -> str:
-    """DBC strings cannot escape quotes: replace them."""
-    return '"' + text.replace("\\", "/").replace('"', "'") + '"'
+    """A DBC string: a quote escaped as \\" (cantools and canmatrix read it back as a quote); a
+    backslash, which no reader unescapes, written as "/"."""
+    return '"' + text.replace("\\", "/").replace('"', '\\"') + '"'
 
 
 # --- Markdown ----------------------------------------------------------------------------------

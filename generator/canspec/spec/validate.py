@@ -17,6 +17,7 @@ from canspec.ir.model import to_physical
 from canspec.spec.finite import finite
 from canspec.spec.problems import Problem, error, warning
 from canspec.spec.resolve import Resolved, ResolvedCan, label_pair
+from canspec.spec.validate_dbc import dbc_rules
 from canspec.spec.validate_json import check_changelog, json_rules
 from canspec.spec.validate_mux import coexist, mux_rules
 from canspec.spec.yamlsource import LocDict, LocList
@@ -227,6 +228,7 @@ def _float_shape(sig: LocDict) -> Iterator[Problem]:
 
 
 rule(mux_rules)
+rule(dbc_rules)
 
 
 @rule

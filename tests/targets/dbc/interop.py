@@ -42,17 +42,25 @@ def snapshot(path: Path, exact: bool = False) -> dict[str, Any]:
             "start": s.start, "length": s.length, "order": s.byte_order, "signed": s.is_signed, "float": s.is_float, "scale": s.scale,
             "offset": s.offset, "min": s.minimum, "max": s.maximum, "unit": s.unit or "",
             "choices": {int(k): str(v) for k, v in (s.choices or {}).items()}, "receivers": sorted(s.receivers),
-            "comment": s.comment, "spec_name": attribute(s, SPEC_NAME_ATTRIBUTE),
+            "comment": s.comment, "spec_name": attribute(s, SPEC_NAME_ATTRIBUTE), "attributes": _texts(s),
         } for s in m.signals}
         for (frame, name), numbers in written.items():
             if frame == dbc_id:
                 signals[name].update(zip(REWRITTEN, map(_decimal, numbers)))
         messages[(m.frame_id, m.is_extended_frame)] = {
             "name": m.name, "dlc": m.length, "fd": m.is_fd, "brs": attribute(m, "CANFD_BRS") if m.is_fd else None, "cycle": m.cycle_time,
-            "senders": sorted(m.senders), "comment": m.comment, "signals": signals,
+            "senders": list(m.senders), "comment": m.comment, "signals": signals,
         }
     bus = {"type": attribute(db, "BusType"), "data_bitrate": attribute(db, "BaudrateCANFD")}
     return {"bus": bus, "nodes": {n.name: n.comment for n in db.nodes}, "messages": messages}
+
+
+def _texts(sig: Any) -> dict[str, str]:
+    """A signal's attributes other than canspec's own, but ENUMs, as text: canmatrix's KCD writer appends
+    these to the notes (its attempt to append an ENUM's text fails, and it skips it)."""
+    attributes = sig.dbc.attributes if sig.dbc else {}
+    return {name: str(a.value) for name, a in attributes.items()
+            if a.definition.type_name != "ENUM" and name not in ("SigType", SPEC_NAME_ATTRIBUTE)}
 
 
 def _decimal(value: Fraction) -> Decimal:
@@ -107,7 +115,7 @@ def _six_digit_scaling(sig: dict[str, Any]) -> None:
 def _canmatrix_kcd(snap: dict[str, Any]) -> None:
     """canmatrix writes slope and intercept with 6 significant digits ("%g"), min and max with 16,
     leaves out a minimum of 0 and a maximum of 0 or 1 (reading back the bits' range instead), and
-    appends the signal's string attributes to its notes; KCD nodes have no comments."""
+    appends the signal's attributes but ENUMs to its notes (by name); KCD nodes have no comments."""
     snap["nodes"] = dict.fromkeys(snap["nodes"])
     for m in snap["messages"].values():
         for s in m["signals"].values():
@@ -115,8 +123,9 @@ def _canmatrix_kcd(snap: dict[str, Any]) -> None:
             bits_lo, bits_hi = _bits_range(s)
             s["min"] = bits_lo if s["min"] == 0 else Decimal(f"{s['min']:.16g}")
             s["max"] = bits_hi if s["max"] in (0, 1) else Decimal(f"{s['max']:.16g}")
-            if s["spec_name"]:
-                s["comment"] = f"{s['comment']}\n\n{SPEC_NAME_ATTRIBUTE}: {s['spec_name']}"
+            notes = s["attributes"] | ({SPEC_NAME_ATTRIBUTE: s["spec_name"]} if s["spec_name"] else {})
+            if notes:
+                s["comment"] = (s["comment"] or "") + "\n" + "".join(f"\n{name}: {text}" for name, text in sorted(notes.items()))
 
 
 class _Lost:
@@ -132,7 +141,7 @@ LOST = _Lost()
 def _canmatrix_arxml(snap: dict[str, Any]) -> None:
     """canmatrix's ARXML: frames come back named after their FRAME element (`FRAME_<name>`), no
     cycle times, factor and offset to 6 significant digits, signal ranges as the bits' range (it
-    writes none), and only the nodes that send a message or receive a signal. A message named like
+    writes none), only the BO_ line's sender (not BO_TX_BU_'s further ones), and only the nodes that send a message or receive a signal. A message named like
     a signal, and such a signal, get their sender and receivers wrongly (an ECU's frame and signal ports share names)."""
     used = set()
     signal_names = {name for m in snap["messages"].values() for name in m["signals"]}
@@ -144,6 +153,7 @@ def _canmatrix_arxml(snap: dict[str, Any]) -> None:
             if m["name"] in signal_names or name in message_names:
                 s["receivers"] = LOST
         m["name"], m["cycle"] = f"FRAME_{m['name']}", None
+        m["senders"] = m["senders"][:1] if m["senders"] is not LOST else LOST  # the BO_ line's; BO_TX_BU_'s are lost
         used.update(m["senders"] if m["senders"] is not LOST else ())
         for s in m["signals"].values():
             if CANMATRIX < (1, 3):
@@ -225,7 +235,7 @@ def _double(value: Any) -> float | None:
 
 
 def differences(want: dict[str, Any], got: dict[str, Any], as_doubles: bool) -> list[str]:
-    """Every field of `want` that differs in `got` (spec names are DBC attributes: not compared)."""
+    """Every field of `want` that differs in `got` (spec names and other attributes are DBC attributes: not compared)."""
     out = [f"{part}: {want[part]} != {got[part]}" for part in ("bus", "nodes") if want[part] != got[part]]
     if set(want["messages"]) != set(got["messages"]):
         return out + [f"messages: {sorted(want['messages'])} != {sorted(got['messages'])}"]
@@ -238,7 +248,7 @@ def differences(want: dict[str, Any], got: dict[str, Any], as_doubles: bool) -> 
         for name, ws in wm["signals"].items():
             gs = gm["signals"][name]
             for f in ws:
-                if f == "spec_name" or ws[f] is LOST:
+                if f in ("spec_name", "attributes") or ws[f] is LOST:
                     continue
                 same = _double(ws[f]) == _double(gs[f]) if as_doubles and f in REWRITTEN else (ws[f] == gs[f] and type(ws[f]) is type(gs[f]))
                 if not same:

@@ -21,10 +21,11 @@ def special_text(s: ir.SpecialValue) -> str:
     return f"{hex_text(s.raw)} = {s.name}" + (f" ({s.label_zh})" if s.label_zh else "")
 
 
-def signal_comment(sig: ir.Signal, spec_name: str | None) -> str:
-    """`spec_name`: the spec's name of a signal the DBC renamed (see naming.py), else None."""
+def signal_comment(sig: ir.Signal, spec_name: str | None, as_imported: bool = False) -> str:
+    """`spec_name`: the spec's name of a signal the DBC renamed (see naming.py), else None. A DBC as
+    imported writes the documented range as its [min|max] itself (model.DbcSignal.bounds)."""
     parts = [sig.zh, sig.desc, sig.desc_zh]
-    if sig.doc_min is not None and sig.doc_max is not None and (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
+    if not as_imported and sig.doc_min is not None and sig.doc_max is not None and (sig.doc_min, sig.doc_max) != (sig.phys_min, sig.phys_max):
         parts.append(f"Documented range [{num(sig.doc_min)}, {num(sig.doc_max)}]")
     parts += [special_text(s) for s in sig.specials]
     parts.append("; ".join(f"{lb.raw}: {lb.label_zh}" for lb in sig.labels if not lb.is_special and lb.label_zh))
@@ -33,10 +34,11 @@ def signal_comment(sig: ir.Signal, spec_name: str | None) -> str:
     return joined(parts)
 
 
-def message_comment(msg: ir.Message) -> str:
-    """A title that is only the message's name (the default) says nothing the BO_ line does not."""
+def message_comment(msg: ir.Message, as_imported: bool = False) -> str:
+    """A title that is only the message's name (the default) says nothing the BO_ line does not. A
+    source DBC's message without signals said nothing of its layout: as imported, it still says nothing."""
     return joined([msg.zh, msg.title if msg.title != msg.name else "", msg.desc, f"§{msg.section}" if msg.section else "",
-                   "layout not defined by the document" if msg.layout_undefined else ""])
+                   "layout not defined by the document" if msg.layout_undefined and not as_imported else ""])
 
 
 def node_comment(node: ir.Node) -> str:

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from canspec import ir
 from canspec.ir.ids import DBC_EXTENDED_FLAG
 from canspec.render.environment import header_lines
-from canspec.targets.dbc import attributes, comments, naming
+from canspec.targets.dbc import attributes, comments, kept, naming
 
 UNKNOWN_NODE = "Vector__XXX"  # a DBC's "no node": sender ALL, or no receiver
 
@@ -20,6 +20,9 @@ class DbcSignal:
     sig: ir.Signal
     sig_type: int
     comment: str
+    receivers: str  # its own (ir.Signal.receivers), else its message's
+    kept: tuple[tuple[str, str], ...]  # the source's own attributes (kept.py)
+    as_imported: bool  # ir.CanProtocol.dbc_as_imported
 
     @property
     def byte_order(self) -> int:
@@ -44,6 +47,8 @@ class DbcSignal:
         without a documented range writes it, and a field whose only allowed value is 0 writes its
         documented range instead."""
         sig = self.sig
+        if self.as_imported:  # the source's own [min|max]: its documented range, [0|0] where it gave none
+            return (sig.doc_min, sig.doc_max) if sig.doc_min is not None else (0, 0)
         if sig.is_float:
             return (0, 0) if sig.doc_min is None else (sig.check_min, sig.check_max)
         if sig.phys_min == sig.phys_max == 0 and sig.doc_min is not None:
@@ -56,17 +61,20 @@ class DbcMessage:
     msg: ir.Message
     dbc_id: int  # the frame ID, with bit 31 set for a 29-bit identifier
     sender: str
+    senders: str  # BO_TX_BU_'s list where the spec gives further senders (ir.Message.dbc_senders), else ""
     receivers: str
     comment: str
     vframe_format: int
     send_type: int
     signals: tuple[DbcSignal, ...]
+    kept: tuple[tuple[str, str], ...]
 
 
 @dataclass(frozen=True)
 class DbcNode:
     node: ir.Node
     comment: str
+    kept: tuple[tuple[str, str], ...]
 
 
 @dataclass(frozen=True)
@@ -77,6 +85,9 @@ class Dbc:
     messages: tuple[DbcMessage, ...]
     protocol_type: str  # "J1939" on a J1939 bus, else ""
     default_vframe_format: str
+    kept_definitions: tuple[kept.KeptDefinition, ...]
+    kept_values: tuple[tuple[str, str], ...]  # the network's
+    own: frozenset[str]  # the replaceable attributes it writes itself (kept.own)
 
     @property
     def vframe_formats(self) -> tuple[str, ...]:
@@ -119,16 +130,20 @@ def dbc_id(msg: ir.Message) -> int:
 
 
 def _message(can: ir.CanProtocol, msg: ir.Message, names: dict[tuple[str, str], str]) -> DbcMessage:
+    node = {n.name: n.dbc_name for n in can.nodes}
+    receivers = ",".join(node.get(r, r) for r in msg.receivers) or UNKNOWN_NODE
     signals = []
     for sig in msg.data_signals:
         name = names[(msg.name, sig.name)]
         spec_name = sig.name if name != sig.dbc_name else None
-        signals.append(DbcSignal(name, spec_name, sig, attributes.sig_type(msg, sig), comments.signal_comment(sig, spec_name)))
-    node = {n.name: n.dbc_name for n in can.nodes}
+        own = receivers if sig.receivers is None else ",".join(node.get(r, r) for r in sig.receivers) or UNKNOWN_NODE
+        signals.append(DbcSignal(name, spec_name, sig, attributes.sig_type(msg, sig), comments.signal_comment(sig, spec_name, can.dbc_as_imported),
+                                 own, kept.values(can, sig.dbc_attributes), can.dbc_as_imported))
+    sender = UNKNOWN_NODE if msg.sender == "ALL" else node.get(msg.sender, msg.sender)
     return DbcMessage(
-        msg=msg, dbc_id=dbc_id(msg), sender=UNKNOWN_NODE if msg.sender == "ALL" else node.get(msg.sender, msg.sender),
-        receivers=",".join(node.get(r, r) for r in msg.receivers) or UNKNOWN_NODE, comment=comments.message_comment(msg),
-        vframe_format=attributes.vframe_format(can.bus, msg), send_type=attributes.send_type(msg), signals=tuple(signals),
+        msg=msg, dbc_id=dbc_id(msg), sender=sender, senders=",".join([sender, *(node.get(s, s) for s in msg.dbc_senders)]) if msg.dbc_senders else "",
+        receivers=receivers, comment=comments.message_comment(msg, can.dbc_as_imported), vframe_format=attributes.vframe_format(can.bus, msg),
+        send_type=attributes.send_type(msg), signals=tuple(signals), kept=kept.values(can, msg.dbc_attributes),
     )
 
 
@@ -148,6 +163,7 @@ def build(spec: ir.Spec, can: ir.CanProtocol) -> Dbc:
     else:
         default_vframe = "ExtendedCAN" if can.bus.id_format == "extended" else "StandardCAN"
     return Dbc(
-        can=can, comment=network_comment(spec, messages), nodes=tuple(DbcNode(n, comments.node_comment(n)) for n in can.nodes),
+        can=can, comment=network_comment(spec, messages), nodes=tuple(DbcNode(n, comments.node_comment(n), kept.values(can, n.dbc_attributes)) for n in can.nodes),
         messages=messages, protocol_type="J1939" if can.bus.is_j1939 else "", default_vframe_format=default_vframe,
+        kept_definitions=kept.definitions(can), kept_values=kept.network_values(can), own=kept.own(can),
     )
