@@ -11,6 +11,9 @@ BENCH_TARGETS :=
 TEST_PREREQS :=
 ROUNDTRIP_TARGETS :=
 VECTORS ?= $(OUT)/vectors/can.json
+# The suite runs in one worker per core (pytest-xdist); a test file stays in one worker, so its
+# module fixtures are built once. TEST_WORKERS=0 runs it in this process.
+TEST_WORKERS ?= 2
 
 .PHONY: help setup gen check test bench roundtrip
 .DEFAULT_GOAL := help
@@ -26,7 +29,7 @@ check:  ## validate the spec and verify generated/ is up to date
 	$(CANSPEC) gen $(SPEC) -o $(OUT) --check
 
 test: $(TEST_PREREQS)  ## run the whole test suite
-	$(PYTHON) -m pytest $(PYTEST_ARGS)
+	$(PYTHON) -m pytest $(if $(filter-out 0,$(TEST_WORKERS)),-n $(TEST_WORKERS) --dist loadfile) $(PYTEST_ARGS)
 
 -include mk/*.mk
 

@@ -3,7 +3,7 @@
 # the type checker and hatchling the tests run, python-can for the bus integration test.
 set -euo pipefail
 RUFF_VERSION=0.17.6   # keep equal to RUFF_VERSION in generator/canspec/render/formatters.py
-want=("ruff==$RUFF_VERSION" "mypy>=1.8" "hypothesis>=6.90" "python-can>=4.3" "hatchling>=1.18")
+want=("ruff==$RUFF_VERSION" "mypy>=1.8" "hypothesis>=6.90" "pytest-xdist>=3.5" "python-can>=4.3" "hatchling>=1.18")
 missing=()
 for spec in "${want[@]}"; do
   python3 - "$spec" <<'PY' || missing+=("$spec")
