@@ -163,7 +163,8 @@ def build(spec: ir.Spec, can: ir.CanProtocol) -> Dbc:
     else:
         default_vframe = "ExtendedCAN" if can.bus.id_format == "extended" else "StandardCAN"
     return Dbc(
-        can=can, comment=network_comment(spec, messages), nodes=tuple(DbcNode(n, comments.node_comment(n), kept.values(can, n.dbc_attributes)) for n in can.nodes),
+        can=can, comment=network_comment(spec, messages),
+        nodes=tuple(DbcNode(n, comments.node_comment(n), kept.values(can, n.dbc_attributes)) for n in can.nodes),
         messages=messages, protocol_type="J1939" if can.bus.is_j1939 else "", default_vframe_format=default_vframe,
         kept_definitions=kept.definitions(can), kept_values=kept.network_values(can), own=kept.own(can),
     )
