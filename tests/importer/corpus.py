@@ -89,3 +89,11 @@ def message_facts(msg: Any) -> dict[str, Any]:
 def network_facts(db: Any) -> dict[str, Any]:
     """The nodes (name → comment, attributes) and the network's own attributes."""
     return {"nodes": {n.name: (n.comment or None, kept_attributes(n)) for n in db.nodes}, "attributes": kept_attributes(db)}
+
+
+def one_signal(message: Any, name: str) -> Any:
+    """cantools' decoder of one source signal alone: a source message whose signals overlap (kept
+    by cantools' non-strict reading, left out by the import with a warning) does not decode whole."""
+    sig = message.get_signal_by_name(name)
+    return cantools.database.can.Message(frame_id=message.frame_id, name=message.name, length=message.length, signals=[sig],
+                                         is_extended_frame=message.is_extended_frame, strict=False)

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from anyspec import harness
 
-from importer.corpus import import_one, opendbc_files
+from importer.corpus import import_one, one_signal, opendbc_files
 
 SAMPLE = ("chrysler_cusw.dbc", "mazda_2017.dbc", "gwm_haval_h6_phev_2024.dbc")
 
@@ -41,16 +41,6 @@ def test_every_target_passes_its_own_checks(results, index: int) -> None:
     assert not res.failures, "\n".join(f"{f.target} / {f.stage}: {f.message[:800]}" for f in res.failures)
 
 
-def _one_signal(message, name: str):  # type: ignore[no-untyped-def]
-    """cantools' decoder of one source signal alone: a source message whose signals overlap (kept
-    by cantools' non-strict reading, left out by the import with a warning) does not decode whole."""
-    import cantools
-
-    sig = message.get_signal_by_name(name)
-    return cantools.database.can.Message(frame_id=message.frame_id, name=message.name, length=message.length, signals=[sig],
-                                         is_extended_frame=message.is_extended_frame, strict=False)
-
-
 @pytest.mark.parametrize("index", range(len(SAMPLE)), ids=SAMPLE)
 def test_the_vectors_agree_with_the_source(results, index: int) -> None:
     """Each vector's frame decodes in cantools, reading the source DBC's signal definitions, to the
@@ -70,6 +60,6 @@ def test_the_vectors_agree_with_the_source(results, index: int) -> None:
         for sig in msg.data_signals:
             key = (msg.name, sig.name)
             if key not in decoders:
-                decoders[key] = _one_signal(theirs, placeholder.get(sig.dbc_name, sig.dbc_name))
+                decoders[key] = one_signal(theirs, placeholder.get(sig.dbc_name, sig.dbc_name))
             (value,) = decoders[key].decode(data, decode_choices=False, scaling=False).values()  # type: ignore[attr-defined]
             assert value == case["raw"][sig.name], (case["message"], sig.name, case["kind"])
