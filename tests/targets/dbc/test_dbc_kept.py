@@ -1,7 +1,7 @@
 """What a spec keeps only for its DBC (tests/fixtures/valid/dbc_kept_facts.yaml), read back by
 cantools from the generated DBC and compared with the fixture's YAML read on its own: the source's
 attributes with their definitions and values, a further sender, a signal's own receivers, comments
-with quotes, and `dbc_as_imported` ([min|max] the documented range, [0|0] without one; none of
+with quotes, and `dbc_as_imported` ([min|max] the documented range as written; none of
 canspec's own GenMsgSendType, ProtocolType and DBName)."""
 
 from __future__ import annotations
@@ -67,5 +67,5 @@ def test_senders_receivers_comments_and_ranges(db, source) -> None:
     assert door.receivers == want["signals"][0]["receivers"] and sorted(speed.receivers) == sorted(want["receivers"])
     assert door.comment == 'front left, "driver"' and msg.comment == want["desc"]
     assert (door.minimum, door.maximum) == tuple(want["signals"][0]["range"])
-    assert (speed.minimum, speed.maximum) == (None, None)  # no range in the source: [0|0], which cantools reads as none
+    assert (speed.minimum, speed.maximum) == (0, 655.35)  # no range: what the bits carry ([0|0] in a source, the same values)
     assert db.get_message_by_name("tester_request").comment is None  # no layout note as imported

@@ -47,8 +47,8 @@ class DbcSignal:
         without a documented range writes it, and a field whose only allowed value is 0 writes its
         documented range instead."""
         sig = self.sig
-        if self.as_imported:  # the source's own [min|max]: its documented range, [0|0] where it gave none
-            return (sig.doc_min, sig.doc_max) if sig.doc_min is not None else (0, 0)
+        if self.as_imported and sig.doc_min is not None:  # the source's own [min|max], as it wrote it
+            return sig.doc_min, sig.doc_max
         if sig.is_float:
             return (0, 0) if sig.doc_min is None else (sig.check_min, sig.check_max)
         if sig.phys_min == sig.phys_max == 0 and sig.doc_min is not None:
