@@ -356,11 +356,11 @@ class Message:
         """At most 8 data bytes: the whole frame fits one 64-bit word."""
         return self.dlc <= 8
 
-    @property
+    @cached_property
     def has_big_endian(self) -> bool:
         return any(s.is_big_endian for s in self.signals)
 
-    @property
+    @cached_property
     def has_float(self) -> bool:
         return any(s.is_float for s in self.signals)
 
@@ -372,12 +372,12 @@ class Message:
     def is_cyclic(self) -> bool:
         return self.cycle_ms is not None
 
-    @property
+    @cached_property
     def data_signals(self) -> tuple[Signal, ...]:
         """Signals that carry values (everything but reserved bits)."""
         return tuple(s for s in self.signals if not s.is_reserved)
 
-    @property
+    @cached_property
     def reserved_signals(self) -> tuple[Signal, ...]:
         return tuple(s for s in self.signals if s.is_reserved)
 

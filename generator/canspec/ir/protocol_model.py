@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from canspec.ir.dbc_attributes import Attributes, DbcAttributeDef
 from canspec.ir.labels import ValueTable
@@ -72,44 +73,45 @@ class CanProtocol:
     def message(self, name: str) -> Message:
         return next(m for m in self.messages if m.name == name)
 
-    # What the protocol uses at all: targets leave out the helpers of what it does not.
-    @property
+    # What the protocol uses at all: targets leave out the helpers of what it does not. Cached:
+    # templates read them per row.
+    @cached_property
     def has_standard(self) -> bool:
         return any(not m.is_extended for m in self.messages)
 
-    @property
+    @cached_property
     def has_counters(self) -> bool:
         return any(m.counter is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_checksums(self) -> bool:
         return any(m.checksum is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_fd(self) -> bool:
         return any(m.is_fd for m in self.messages)
 
-    @property
+    @cached_property
     def has_big_endian(self) -> bool:
         return any(m.has_big_endian for m in self.messages)
 
-    @property
+    @cached_property
     def has_float(self) -> bool:
         return any(m.has_float for m in self.messages)
 
-    @property
+    @cached_property
     def max_dlc(self) -> int:
         return max((m.dlc for m in self.messages), default=0)
 
-    @property
+    @cached_property
     def has_multiplexing(self) -> bool:
         return any(m.is_multiplexed for m in self.messages)
 
-    @property
+    @cached_property
     def has_multiframe(self) -> bool:
         return any(m.multiframe is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_cyclic(self) -> bool:
         return any(m.is_cyclic for m in self.messages)
 
