@@ -336,6 +336,19 @@ class Message:
                     out.append(values)
         return tuple(out)
 
+    @cached_property
+    def page_layouts(self) -> tuple[dict[str, int], ...]:
+        """One selection per distinct set of fields a frame can hold (what one bit diagram shows):
+        page_selections, each layout once, in order. () without multiplexing."""
+        seen: set[tuple[str, ...]] = set()
+        out = []
+        for values in self.page_selections:
+            fields = tuple(s.name for s in self.present(values))
+            if fields not in seen:
+                seen.add(fields)
+                out.append(values)
+        return tuple(out)
+
     def page(self, values: dict[str, int]) -> Message:
         """The message as the frames that hold these multiplexer values see it: the fields of every
         frame and of the selected pages, each multiplexer fixed to its value (raw_min = raw_max),

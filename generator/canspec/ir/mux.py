@@ -24,6 +24,11 @@ def ranges_of(values: Iterable[int | Iterable[int]]) -> Ranges:
     return tuple((lo, hi) for lo, hi in merged)
 
 
+def ranges_text(ranges: Ranges) -> str:
+    """`1, 4…6`: values as every target's text writes them, single values and inclusive runs."""
+    return ", ".join(str(lo) if lo == hi else f"{lo}…{hi}" for lo, hi in ranges)
+
+
 def holds(ranges: Ranges, value: int) -> bool:
     return any(lo <= value <= hi for lo, hi in ranges)
 

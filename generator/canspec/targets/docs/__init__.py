@@ -29,10 +29,26 @@ OUT = "docs/"
 NAV_FILE = "mkdocs.nav.yml"  # merged into the top-level mkdocs.yml by `INHERIT`
 
 
-def svg_parts(msg: ir.Message) -> list[tuple[str, range]]:
-    """The message's bit diagrams (file name beside its page, byte rows): one, or one per
-    svg.PART_ROWS bytes of a long FD frame; the first keeps the message's name."""
-    return [(f"{msg.name}.svg" if not rows[0] else f"{msg.name}.bytes-{rows[0]}-{rows[-1]}.svg", rows) for rows in svg.parts(msg)]
+def svg_parts(msg: ir.Message) -> list[tuple[str, range, str]]:
+    """The message's bit diagrams (file name beside its page, byte rows, the page they show): one,
+    or one per svg.PART_ROWS bytes of a long FD frame; the first keeps the message's name. A
+    multiplexed message has them for each page layout (ir.Message.page_layouts), `.page-N` named."""
+    if not msg.is_multiplexed:
+        return [(f"{msg.name}.svg" if not rows[0] else f"{msg.name}.bytes-{rows[0]}-{rows[-1]}.svg", rows, "") for rows in svg.parts(msg)]
+    out = []
+    for n, values in enumerate(msg.page_layouts, 1):
+        caption = cells.page_caption(msg, values)
+        out += [(f"{msg.name}.page-{n}.svg" if not rows[0] else f"{msg.name}.page-{n}.bytes-{rows[0]}-{rows[-1]}.svg", rows, caption)
+                for rows in svg.parts(msg)]
+    return out
+
+
+def drawn(msg: ir.Message, file: str) -> ir.Message:
+    """The message a diagram file shows: a page of a multiplexed one (svg_parts' naming)."""
+    if not msg.is_multiplexed:
+        return msg
+    n = int(file.split(".page-")[1].split(".")[0])
+    return msg.page(msg.page_layouts[n - 1])
 
 
 def anchor(ident: str) -> str:
@@ -120,7 +136,7 @@ HELPERS: dict[str, Any] = {
     "id_kind": cells.id_kind, "cycle_text": cells.cycle_text, "doc_range": cells.doc_range, "enc_range": cells.enc_range,
     "range_note": cells.range_note, "value_cell": cells.value_cell, "special_cell": cells.special_cell, "role_cell": cells.role_cell,
     "bytes_cell": cells.bytes_cell, "byte_list": cells.byte_list, "node_label": cells.node_label, "receivers_text": cells.receivers_text,
-    "siblings": cells.siblings, "checksum_rule": cells.checksum_rule, "order_cell": cells.order_cell, "type_cell": cells.type_cell,
+    "siblings": cells.siblings, "presence_cell": cells.presence_cell, "checksum_rule": cells.checksum_rule, "order_cell": cells.order_cell, "type_cell": cells.type_cell,
     "kbit": cells.kbit, "frame_cell": cells.frame_cell, "length_cell": cells.length_cell, "dlc_column": cells.dlc_column, "svg_parts": svg_parts,
     "order_example": cells.order_example, "order_where": cells.order_where, "example_start": cells.EXAMPLE_START, "example_length": cells.EXAMPLE_LENGTH,
     "message_page": message_page, "anchor": anchor, "json_anchor": json_anchor, "version_anchor": version_anchor,
@@ -150,8 +166,8 @@ def _can_pages(spec: ir.Spec, can: ir.CanProtocol, lg: Lang, load: busload.BusLo
     svg_head = "".join(f"<!-- {line.replace('--', '—')} -->\n" for line in header_lines(spec, "docs"))
     for msg in can.messages:
         files[message_page(msg)] = _page("message.md.j2", spec, lg, can=can, msg=msg)
-        for name, rows in svg_parts(msg):  # a DLC-0 frame has no bits to draw
-            files[f"messages/{name}"] = (svg_head + svg.bit_layout(msg, lg.zh, rows)).encode("utf-8")
+        for name, rows, _ in svg_parts(msg):  # a DLC-0 frame has no bits to draw
+            files[f"messages/{name}"] = (svg_head + svg.bit_layout(drawn(msg, name), lg.zh, rows)).encode("utf-8")
     files["value_tables.md"] = _page("value_tables.md.j2", spec, lg, can=can, users=value_table_users(can))
     g = busload.STUFFED_CONTROL_BITS[True]
     files["busload.md"] = _page("busload.md.j2", spec, lg, can=can, load=load, frame_bits=busload.frame_bits, g=g, g_minus_1=g - 1,
@@ -188,4 +204,4 @@ def render_docs(spec: ir.Spec) -> dict[str, bytes]:
 
 
 TARGET = Target("docs", "protocol handbook: Markdown + SVG bit diagrams for MkDocs, bilingual where the spec is", OUT, render_docs,
-                order=80, cost=2)
+                order=80, cost=2, multiplexing=True)

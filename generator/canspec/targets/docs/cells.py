@@ -9,6 +9,7 @@ from canspec import ir
 from canspec.ir import bits
 from canspec.ir.encoding import round_half_away
 from canspec.ir.fd import CLASSIC_MAX, dlc_code
+from canspec.ir.mux import ranges_text
 from canspec.render.literals import hex_text, num
 from canspec.targets.docs.lang import Lang
 
@@ -199,3 +200,22 @@ def order_example(byte_order: str) -> list[tuple[int, list[str]]]:
 
 def order_where(byte_order: str) -> str:
     return bits.describe(EXAMPLE_START, EXAMPLE_LENGTH, byte_order)
+
+
+# --- multiplexing ----------------------------------------------------------------------------
+
+
+def page_caption(msg: ir.Message, values: dict[str, int]) -> str:
+    """What selects a page: each multiplexer with the values of its page holding `values`."""
+    parts = []
+    for name, value in values.items():
+        group = next((g for g in msg.mux_groups if g.multiplexer == name and any(lo <= value <= hi for lo, hi in g.ranges)), None)
+        parts.append(f"{name} = {ranges_text(group.ranges) if group else value}")
+    return ", ".join(parts)
+
+
+def presence_cell(msg: ir.Message, sig: ir.Signal, lang: Lang) -> str:
+    """When a field is in the frame: always, or while its multiplexers (the whole chain) hold these values."""
+    chain = msg.mux_chain(sig)
+    when = " and ".join(f"`{c.by}` = {ranges_text(c.ranges)}" for c in chain) if chain else lang.en_zh("every frame", "每帧")
+    return f"{lang.en_zh('multiplexer', '多路复用器')}; {when}" if sig.is_multiplexer else when

@@ -18,6 +18,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import float_inside
+from canspec.ir.mux import ranges_text
 from canspec.render.literals import hex_byte, hex_text, num, sheet_number
 from canspec.targets.xlsx.model import Cell, Column, Sheet, joined, sheet
 
@@ -42,6 +43,7 @@ SIGNAL_COLUMNS = (
     Column("signal_zh", "信号中文名称", "Signal name (Chinese)", 20, optional=True),
     Column("description", "信号描述", "Description", 36, wrap=True),
     Column("byte_order", "排列格式", "Byte order", 8),
+    Column("multiplexing", "多路复用", "Multiplexing", 22, wrap=True, optional=True),
     Column("start_byte", "起始字节", "Start byte", 7),
     Column("start_bit", "起始位", "Start bit", 7),
     Column("length", "信号长度 (位)", "Length (bits)", 8),
@@ -142,10 +144,19 @@ def limit_cell(sig: ir.Signal, value: Fraction) -> Cell:
 def signal_cells(msg: ir.Message, sig: ir.Signal) -> list[Cell]:
     lo, hi, raw_lo, raw_hi = limits(sig)
     return [
-        sig.name, sig.zh, "\n".join(t for t in (sig.desc, sig.desc_zh) if t), BYTE_ORDER[sig.byte_order],
+        sig.name, sig.zh, "\n".join(t for t in (sig.desc, sig.desc_zh) if t), BYTE_ORDER[sig.byte_order], multiplexing(msg, sig),
         sig.start // 8, sig.start, sig.length, data_type(sig), sheet_number(sig.factor), sheet_number(sig.offset), limit_cell(sig, lo), limit_cell(sig, hi),
         raw_lo, raw_hi, initial_value(sig), label_lines(sig, True), sig.unit, label_lines(sig, False), notes(msg, sig),
     ]
+
+
+def multiplexing(msg: ir.Message, sig: ir.Signal) -> str | None:
+    """`Multiplexer` and/or the values that put the field in the frame (`mode = 1, 4…6`, the whole
+    chain of multiplexers); none for a field of every frame of a message without multiplexing."""
+    when = " and ".join(f"{c.by} = {ranges_text(c.ranges)}" for c in msg.mux_chain(sig))
+    if sig.is_multiplexer:
+        return "多路复用器 Multiplexer" + (f"; {when}" if when else "")
+    return when or None
 
 
 def no_signal_cells(msg: ir.Message) -> list[Cell]:
