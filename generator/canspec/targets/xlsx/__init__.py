@@ -44,4 +44,5 @@ def render_xlsx(spec: ir.Spec) -> dict[str, bytes]:
     return {f"{OUT}{can.name}.xlsx": workbook(sheets, properties, release_date(spec))}
 
 
-TARGET = Target("xlsx", "communication matrix spreadsheet (通信矩阵): signals × node S/R, value tables, nodes, history, errata", OUT, render_xlsx, order=85, multiplexing=True)
+TARGET = Target("xlsx", "communication matrix spreadsheet (通信矩阵): signals × node S/R, value tables, nodes, history, errata", OUT, render_xlsx,
+                order=85, multiplexing=True)
