@@ -80,6 +80,9 @@ def covering_decimal(x: float, up: bool) -> Fraction:
     return exact_x
 
 
+_EPS = Fraction(TIE_EPSILON)
+
+
 def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     """The runtime rule's field check: the double quotient q lies in the field's raw range
     widened by TIE_EPSILON (exactly, in real arithmetic), as the documented range is widened to
@@ -88,8 +91,9 @@ def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     NaN fails."""
     if math.isnan(q) or math.isinf(q):
         return False
-    eps = Fraction(TIE_EPSILON)
-    return type_min - eps <= Fraction(q) <= type_max + eps
+    if float(type_min) + 1.0 < q < float(type_max) - 1.0:  # well inside: decided in doubles (the ends are powers of two ± 1)
+        return True
+    return type_min - _EPS <= Fraction(q) <= type_max + _EPS
 
 
 def raw_range(length: int, signed: bool, factor: Fraction, offset: Fraction, documented: tuple[Fraction, Fraction] | None) -> tuple[int, int]:
