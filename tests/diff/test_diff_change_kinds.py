@@ -125,12 +125,16 @@ def test_sender_and_multiframe_changes_on_the_model():
 
 
 LEVEL = "      - {name: level, start: 16, len: 32}\n      - {role: reserved, start: 48, len: 16}\n"
+PAGED = ("      - {name: mode, start: 16, len: 8}\n      - {name: level, start: 24, len: 16, mux: {by: mode, values: [1]}}\n"
+         "      - {role: reserved, start: 40, len: 24}\n")
 # (case id, edits of the old revision, edits of the new one, expected): pairs whose old side is not the base
 BOTH_EDITED = [
     ("signal_float_changed", [(CMD_RESERVED, LEVEL)], [(CMD_RESERVED, LEVEL.replace("len: 32}", "len: 32, float: true}"))],
      {("signal_float_changed", "wire", "level")}),
     ("message_brs_changed", [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")],
      [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n    brs: false\n")], {("message_brs_changed", "compatible", None)}),
+    ("signal_mux_changed", [(CMD_RESERVED, PAGED)], [(CMD_RESERVED, PAGED.replace("values: [1]", "values: [1, [4, 6]]"))],
+     {("signal_mux_changed", "wire", "level")}),
     # a byte-aligned byte is the same field in either order: start 56 Intel and start 63 Motorola are byte 7
     ("byte_order_of_a_whole_byte", [], [("start: 56, len: 8, range: [0, 255], role: checksum}",
                                          "start: 63, len: 8, byte_order: big_endian, range: [0, 255], role: checksum}")],

@@ -112,9 +112,8 @@ def test_directory_without_bundle(tmp_path):
     assert "no canspec.yaml" in _bad(run_cli, tmp_path, BASE)
 
 
-# What the comparison model cannot hold is refused, never compared as equal: two DBCs differing only
-# in a multiplexer value (a wire break a diff that ignored multiplexing would call "no differences").
-# Byte order, FD frames, BRS and IEEE floats it compares: each pair differs only in that.
+# Byte order, FD frames, BRS, IEEE floats and multiplexing are compared: each pair differs only in
+# that (a multiplexer value m8 → m9 is a wire break a diff that ignored multiplexing would miss).
 _DBC_HEAD = 'VERSION "tiny 1.0.0"\n\nNS_ :\n\nBS_:\n\nBU_: ECU LOGGER\n\nBO_ 256 status: 8 ECU\n'
 _DBC_FRAME_FORMAT = ('BA_DEF_ BO_ "VFrameFormat" ENUM "StandardCAN","ExtendedCAN"' + ',"reserved"' * 12 + ',"StandardCAN_FD","ExtendedCAN_FD";\n'
                      'BA_DEF_ BO_ "CANFD_BRS" ENUM "0","1";\nBA_DEF_DEF_ "VFrameFormat" "StandardCAN";\nBA_DEF_DEF_ "CANFD_BRS" "1";\n')
@@ -129,22 +128,15 @@ def _dbc(tmp_path, name: str, signals: str, tail: str = "") -> Path:
     return path
 
 
-@pytest.mark.parametrize("old, new", [(_MUX_SIGNALS, _MUX_SIGNALS.replace(" m8 ", " m9 ")), (_PLAIN_SIGNALS, _MUX_SIGNALS)], ids=["m8_to_m9", "plain_to_mux"])
-def test_multiplexed_dbcs_are_refused(tmp_path, old, new):
-    plain = _dbc(tmp_path, "plain", _PLAIN_SIGNALS)
-    code, out, _ = run_cli("diff", plain, plain)
-    assert code == 0 and "no differences" in out  # the plain DBC is one diff compares
-    err = _bad(run_cli, _dbc(tmp_path, "old", old), _dbc(tmp_path, "new", new))
-    which = "old" if "M :" in old else "new"
-    assert f"{which}.dbc: message 'status': is multiplexed (multiplexer 'mode'" in err and len(err.strip().splitlines()) == 1, err
-
-
 @pytest.mark.parametrize(("old", "new", "expected"), [
     ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, _FD), {("message_fd_changed", "wire", None)}),
     ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS, "SIG_VALTYPE_ 256 level : 1;\n"), {("signal_float_changed", "wire", "level")}),
     ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS.replace("16|32@1-", "16|32@0-"), ""), {("signal_byte_order_changed", "wire", "level")}),
     ((_PLAIN_SIGNALS, _FD), (_PLAIN_SIGNALS, _FD + 'BA_ "CANFD_BRS" BO_ 256 0;\n'), {("message_brs_changed", "compatible", None)}),
-], ids=["fd_frame", "float_signal", "byte_order", "brs"])
+    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " m9 "), ""), {("signal_mux_changed", "wire", "speed")}),
+    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " "), ""), {("signal_mux_changed", "wire", "speed")}),
+    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS, "SG_MUL_VAL_ 256 speed mode 8-9;\n"), {("signal_mux_changed", "wire", "speed")}),
+], ids=["fd_frame", "float_signal", "byte_order", "brs", "m8_to_m9", "page_to_every_frame", "page_widened"])
 def test_dbcs_differing_in_byte_order_fd_or_float_are_classified(tmp_path, old, new, expected):
     old_dbc, new_dbc = _dbc(tmp_path, "old", *old), _dbc(tmp_path, "new", *new)
     code, out, err = run_cli("diff", old_dbc, new_dbc, "--format", "json", "--fail-on", "wire")

@@ -2,7 +2,7 @@
 
 wire       an old receiver would decode different values (layout, byte order, integer ↔ IEEE
            float, factor, offset, signedness, unit, ID, DLC, classic ↔ CAN FD frame, enum meaning,
-           checksum/counter roles, removed message or signal)
+           checksum/counter roles, removed message or signal, the page a field is in)
 source     the wire is the same but generated identifiers change (renames)
 compatible old code keeps working (new message, new signal in formerly free bits, new enum
            value, widened range, cycle time, sender/receivers, bit-rate switching of an FD frame:
@@ -41,6 +41,7 @@ KINDS: dict[str, str] = {
     "signal_signedness_changed": "wire",
     "signal_byte_order_changed": "wire",
     "signal_float_changed": "wire",  # integer ↔ IEEE float: the same bits, another value
+    "signal_mux_changed": "wire",  # another multiplexer, other values, or a multiplexer no more: frames mean other fields
     "signal_unit_changed": "wire",
     "signal_range_changed": "wire",  # compatible when only widened
     "signal_role_changed": "wire",

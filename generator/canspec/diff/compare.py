@@ -13,6 +13,7 @@ from fractions import Fraction
 
 from canspec.diff.classes import KINDS, LADDER
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, meaningful_entries
+from canspec.ir.mux import ranges_text
 from canspec.spec.problems import Loc
 
 
@@ -116,6 +117,8 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         c.add("signal_signedness_changed", msg, n, f"{'signed' if o.signed else 'unsigned'} → {'signed' if n.signed else 'unsigned'}", o.signed, n.signed)
     if o.is_float != n.is_float:
         c.add("signal_float_changed", msg, n, f"{_number_type(o)} → {_number_type(n)}", o.is_float, n.is_float)
+    if (o.mux, o.is_multiplexer) != (n.mux, n.is_multiplexer):
+        c.add("signal_mux_changed", msg, n, f"{_presence(o)} → {_presence(n)}", _presence(o), _presence(n))
     if o.unit != n.unit:
         c.add("signal_unit_changed", msg, n, f"unit {o.unit or '(none)'} → {n.unit or '(none)'}", o.unit, n.unit)
     if (o.minimum, o.maximum) != (n.minimum, n.maximum) and o.is_float == n.is_float:  # integer ↔ float: reported above
@@ -143,6 +146,12 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
 
 
 _ORDER = {"little_endian": "Intel (little-endian)", "big_endian": "Motorola (big-endian)"}
+
+
+def _presence(sig: SignalModel) -> str:
+    """`present while mode = 1, 4…6`, `in every frame`; `multiplexer, ...` for a multiplexer."""
+    when = f"present while {sig.mux[0]} = {ranges_text(sig.mux[1])}" if sig.mux is not None else "in every frame"
+    return f"multiplexer, {when}" if sig.is_multiplexer else when
 
 
 def _number_type(sig: SignalModel) -> str:

@@ -10,8 +10,9 @@ field's 18446744073709551615 exactly. Byte order (`@0` Motorola, `@1` Intel: the
 what it means in the spec), IEEE floats (SIG_VALTYPE_ 1/2; a float's [0|0] is "no range": every
 finite value), CAN FD frames (VFrameFormat 14/15, which cantools reads as is_fd) and their
 bit-rate switching (CANFD_BRS, else its BA_DEF_DEF_ default, else unknown: not compared) are read.
-What the model cannot hold — multiplexing (M/mN, SG_MUL_VAL_) — is refused (an InputError naming
-it): ignored, a change of it would read as "no differences"."""
+Multiplexing (M/mN, SG_MUL_VAL_) is read as each field's multiplexer and values. What the model
+cannot hold is refused (an InputError naming it): ignored, a change of it would read as "no
+differences"."""
 
 from __future__ import annotations
 
@@ -23,6 +24,7 @@ from canspec.commands.extras import install_hint
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel
 from canspec.ir.encoding import FLOAT_MAX, raw_type_range
 from canspec.ir.model import to_physical
+from canspec.ir.mux import ranges_of
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
 
@@ -96,7 +98,8 @@ def _range(sig, written: Numbers | None, definitions) -> tuple[Fraction, Fractio
     return factor, offset, lo, hi
 
 
-def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: ignore[no-untyped-def]
+def _signal(sig, definitions, written: Numbers | None, names: dict[str, str]) -> SignalModel:  # type: ignore[no-untyped-def]
+    """`names`: the message's DBC signal names → the spec's (a multiplexer is named by its spec name)."""
     specials = {}
     for m in _SPECIAL.finditer(sig.comment or ""):
         specials[int(m.group(1) + m.group(2), 16)] = Entry(m.group(3), m.group(4))
@@ -108,13 +111,9 @@ def _signal(sig, definitions, written: Numbers | None) -> SignalModel:  # type: 
         name=str(_attr(sig, SPEC_NAME_ATTRIBUTE) or sig.name), start=sig.start, length=sig.length, signed=bool(sig.is_signed), factor=factor, offset=offset,
         unit=sig.unit or "", minimum=lo, maximum=hi, role=_role(sig, definitions), values=values, values_table=None,
         specials=specials, zh=None, desc=None, byte_order=sig.byte_order, is_float=bool(sig.is_float),
+        mux=(names.get(sig.multiplexer_signal, sig.multiplexer_signal), ranges_of(sig.multiplexer_ids)) if sig.multiplexer_ids else None,
+        is_multiplexer=bool(sig.is_multiplexer),
     )
-
-
-def _check_frame(msg) -> None:  # type: ignore[no-untyped-def]
-    if msg.is_multiplexed():
-        mux = next((s.name for s in msg.signals if s.is_multiplexer), "?")
-        raise InputError(f"is multiplexed (multiplexer {mux!r}, M/mN); canspec diff does not compare multiplexed messages yet")
 
 
 def _brs(msg, definitions) -> bool | None:  # type: ignore[no-untyped-def]
@@ -156,8 +155,8 @@ def load_dbc(path: Path, source: str) -> ProtocolModel:
     for msg in db.messages:
         dbc_id = msg.frame_id | 0x80000000 if msg.is_extended_frame else msg.frame_id
         try:
-            _check_frame(msg)
-            signals = tuple(sorted((_signal(s, definitions, written.get((dbc_id, s.name))) for s in msg.signals), key=lambda s: (s.start, s.length)))
+            names = {s.name: str(_attr(s, SPEC_NAME_ATTRIBUTE) or s.name) for s in msg.signals}
+            signals = tuple(sorted((_signal(s, definitions, written.get((dbc_id, s.name)), names) for s in msg.signals), key=lambda s: (s.start, s.length)))
         except InputError as exc:
             raise InputError(f"{source}: message {msg.name!r}: {exc}") from exc
         senders = [s for s in msg.senders if s != _NO_NODE]

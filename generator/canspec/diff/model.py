@@ -9,6 +9,7 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.bits import LITTLE, describe, positions
+from canspec.ir.mux import Ranges
 from canspec.spec.problems import Loc
 
 # Value-table entries that only mark a raw value as unused ("保留") are not a meaning.
@@ -43,6 +44,8 @@ class SignalModel:
     loc: Loc | None = None
     byte_order: str = LITTLE  # little_endian (Intel: start is the LSB) | big_endian (Motorola: start is the MSB)
     is_float: bool = False  # an IEEE 754 field (the raw value is its bit pattern)
+    mux: tuple[str, Ranges] | None = None  # multiplexed: its multiplexer and the raw values that select it (ir/mux.py)
+    is_multiplexer: bool = False
 
     @property
     def positions(self) -> tuple[int, ...]:
@@ -126,7 +129,8 @@ def _signal(sig: ir.Signal) -> SignalModel:
         role=sig.role, values=values,
         values_table=sig.value_table.name if sig.value_table is not None else None,
         specials={s.raw: Entry(s.name, s.label_zh) for s in sig.specials}, zh=sig.zh, desc=desc, loc=sig.loc,
-        byte_order=sig.byte_order, is_float=sig.is_float,
+        byte_order=sig.byte_order, is_float=sig.is_float, mux=(sig.mux.by, sig.mux.ranges) if sig.mux is not None else None,
+        is_multiplexer=sig.is_multiplexer,
     )
 
 
