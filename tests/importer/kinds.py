@@ -26,6 +26,8 @@ KINDS = (  # (kind, words its message holds), first match wins
     ("attribute of other objects: left out", "objects: left out"),
     ("scaled float: scaling dropped", "scaling dropped"),
     ("not a frame length: message left out", "not a CAN frame length"),
+    ("signal over 64 bits: left out", "bits long: left out"),
+    ("value labels of a float signal: dropped", "has value labels: dropped"),
 )
 
 

@@ -210,6 +210,9 @@ def _signals(loaded: Loaded, msg: Any, default_order: str, dbc_id: int, source_m
     for sig in msg.signals:  # in the file's order: the first of two overlapping signals stays
         source_name = loaded.renamed.get(sig.name, sig.name)
         line = lines.get((dbc_id, sig.name))
+        if not 1 <= sig.length <= 64:
+            report.warn(loaded.source, line, f"signal {source_name} of {source_msg} is {sig.length} bits long: left out (a field has 1 to 64 bits)")
+            continue
         bits = positions(sig.start, sig.length, sig.byte_order)
         if any(b >= 8 * msg.length for b in bits):
             report.warn(loaded.source, line, f"signal {source_name} of {source_msg} leaves its {msg.length}-byte frame: left out")
@@ -286,6 +289,8 @@ def _sig_type(loaded: Loaded, sig: Any) -> Any:
 
 def _choices(loaded: Loaded, sig: Any, source_name: str, line: int | None, report: Report) -> list[tuple[int, str]]:
     """The value table's entries that fit the field; the others dropped with a warning."""
+    if sig.choices and sig.is_float:
+        report.warn(loaded.source, line, f"float signal {source_name} has value labels: dropped (a float field has no value table)")
     if not sig.choices or sig.is_float:
         return []
     lo, hi = (-(1 << (sig.length - 1)), (1 << (sig.length - 1)) - 1) if sig.is_signed else (0, (1 << sig.length) - 1)

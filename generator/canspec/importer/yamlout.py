@@ -12,6 +12,7 @@ from typing import Any
 from canspec.ir.encoding import decimal_text
 
 _PLAIN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_CONTROL = re.compile("[\x7f-\x9f]")
 _YAML_WORDS = {"y", "n", "yes", "no", "true", "false", "on", "off", "null"}
 
 
@@ -31,7 +32,7 @@ def scalar(value: Any, key: str = "") -> str:
     text = str(value)
     if _PLAIN.match(text) and text.lower() not in _YAML_WORDS:
         return text
-    return json.dumps(text, ensure_ascii=False)
+    return _CONTROL.sub(lambda m: f"\\u{ord(m.group()):04x}", json.dumps(text, ensure_ascii=False))  # YAML refuses DEL and C1 raw
 
 
 def dump(spec: dict[str, Any], header: list[str]) -> str:
