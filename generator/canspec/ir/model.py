@@ -339,11 +339,11 @@ class Message:
     # The pages of each multiplexer, top-level multiplexer first (ir/mux.py): () without multiplexing.
     mux_groups: tuple[MuxGroup, ...] = ()
 
-    @property
+    @cached_property
     def is_multiplexed(self) -> bool:
         return bool(self.mux_groups)
 
-    @property
+    @cached_property
     def multiplexers(self) -> tuple[Signal, ...]:
         """The multiplexers, in frame order; one of them is in every frame (the top-level one)."""
         return tuple(s for s in self.signals if s.is_multiplexer)
@@ -396,11 +396,11 @@ class Message:
         """At most 8 data bytes: the whole frame fits one 64-bit word."""
         return self.dlc <= 8
 
-    @property
+    @cached_property
     def has_big_endian(self) -> bool:
         return any(s.is_big_endian for s in self.signals)
 
-    @property
+    @cached_property
     def has_float(self) -> bool:
         return any(s.is_float for s in self.signals)
 
@@ -412,12 +412,12 @@ class Message:
     def is_cyclic(self) -> bool:
         return self.cycle_ms is not None
 
-    @property
+    @cached_property
     def data_signals(self) -> tuple[Signal, ...]:
         """Signals that carry values (everything but reserved bits)."""
         return tuple(s for s in self.signals if not s.is_reserved)
 
-    @property
+    @cached_property
     def reserved_signals(self) -> tuple[Signal, ...]:
         return tuple(s for s in self.signals if s.is_reserved)
 
@@ -485,43 +485,43 @@ class CanProtocol:
         return next(m for m in self.messages if m.name == name)
 
     # What the protocol uses at all: targets leave out the helpers of what it does not.
-    @property
+    @cached_property
     def has_standard(self) -> bool:
         return any(not m.is_extended for m in self.messages)
 
-    @property
+    @cached_property
     def has_counters(self) -> bool:
         return any(m.counter is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_checksums(self) -> bool:
         return any(m.checksum is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_fd(self) -> bool:
         return any(m.is_fd for m in self.messages)
 
-    @property
+    @cached_property
     def has_big_endian(self) -> bool:
         return any(m.has_big_endian for m in self.messages)
 
-    @property
+    @cached_property
     def has_float(self) -> bool:
         return any(m.has_float for m in self.messages)
 
-    @property
+    @cached_property
     def max_dlc(self) -> int:
         return max((m.dlc for m in self.messages), default=0)
 
-    @property
+    @cached_property
     def has_multiplexing(self) -> bool:
         return any(m.is_multiplexed for m in self.messages)
 
-    @property
+    @cached_property
     def has_multiframe(self) -> bool:
         return any(m.multiframe is not None for m in self.messages)
 
-    @property
+    @cached_property
     def has_cyclic(self) -> bool:
         return any(m.is_cyclic for m in self.messages)
 
