@@ -88,6 +88,8 @@ def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     NaN fails."""
     if math.isnan(q) or math.isinf(q):
         return False
+    if type_min <= q <= type_max:  # inside the field itself (Python compares an int with a double exactly): no Fraction needed
+        return True
     eps = Fraction(TIE_EPSILON)
     return type_min - eps <= Fraction(q) <= type_max + eps
 

@@ -239,9 +239,14 @@ class Signal:
         """(physical - offset) / factor, exactly: the raw value (a fraction between two) of a physical one."""
         return (physical - self.offset) / self.factor
 
+    @cached_property
+    def runtime_scale(self) -> tuple[float, float]:
+        """factor and offset as the doubles the generated code holds (converted once: vectors ask per case)."""
+        return float(self.factor), float(self.offset)
+
     def runtime_quotient(self, physical: float) -> float:
         """q as the generated code computes it, in doubles."""
-        return runtime_quotient(physical, float(self.factor), float(self.offset))
+        return runtime_quotient(physical, *self.runtime_scale)
 
     @property
     def reciprocal(self) -> float:
