@@ -91,7 +91,7 @@ def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     NaN fails."""
     if math.isnan(q) or math.isinf(q):
         return False
-    if float(type_min) + 1.0 < q < float(type_max) - 1.0:  # well inside: decided in doubles (the ends are powers of two ± 1)
+    if type_min <= q <= type_max:  # inside the field itself (Python compares an int with a double exactly): no Fraction needed
         return True
     return type_min - _EPS <= Fraction(q) <= type_max + _EPS
 

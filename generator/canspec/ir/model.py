@@ -197,9 +197,14 @@ class Signal:
         """(physical - offset) / factor, exactly: the raw value (a fraction between two) of a physical one."""
         return (physical - self.offset) / self.factor
 
+    @cached_property
+    def runtime_scale(self) -> tuple[float, float]:
+        """factor and offset as the doubles the generated code holds (converted once: vectors ask per case)."""
+        return float(self.factor), float(self.offset)
+
     def runtime_quotient(self, physical: float) -> float:
         """q as the generated code computes it, in doubles."""
-        return runtime_quotient(physical, float(self.factor), float(self.offset))
+        return runtime_quotient(physical, *self.runtime_scale)
 
     @property
     def reciprocal(self) -> float:
@@ -297,11 +302,11 @@ class Message:
     # The pages of each multiplexer, top-level multiplexer first (ir/mux.py): () without multiplexing.
     mux_groups: tuple[MuxGroup, ...] = ()
 
-    @property
+    @cached_property
     def is_multiplexed(self) -> bool:
         return bool(self.mux_groups)
 
-    @property
+    @cached_property
     def multiplexers(self) -> tuple[Signal, ...]:
         """The multiplexers, in frame order; one of them is in every frame (the top-level one)."""
         return tuple(s for s in self.signals if s.is_multiplexer)

@@ -14,7 +14,6 @@ ends, ±0, subnormals, NaN (quiet and with a payload), ±Inf and random finite v
 from __future__ import annotations
 
 import functools
-import json
 import random
 import zlib
 from fractions import Fraction
@@ -22,7 +21,10 @@ from typing import Any
 
 from canspec import ir
 from canspec.ir.encoding import fits_runtime, float_of_bits, to_physical_runtime, to_raw_exact, to_raw_runtime
+from canspec.ir.model import runtime_quotient
 from canspec.reference import codec
+from canspec.render import jsontext
+from canspec.render.jsontext import Streamed
 from canspec.targets import Target
 from canspec.targets.vectors import floats, sequences, texts
 
@@ -100,8 +102,8 @@ def _survives_doubles(sig: ir.Signal, raw: int, physical: float | int, ranged: b
     field's maximum has no double of its own). Every language encodes an identity field
     (raw = physical) in integers; scaled ones are asked, integer-scaled too: a wide one's physical
     value may be an integer no double holds, and C's and Rust's encode of it takes a double."""
-    x, f, o = float(physical), float(sig.factor), float(sig.offset)
-    if not fits_runtime(sig.runtime_quotient(x), sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
+    x, (f, o) = float(physical), sig.runtime_scale
+    if not fits_runtime(runtime_quotient(x, f, o), sig.raw_type_min, sig.raw_type_max) or to_raw_runtime(x, f, o) != raw:
         return False
     return not ranged or any(s.raw == raw for s in sig.specials) or float(sig.accept_min) <= x <= float(sig.accept_max)
 
@@ -226,9 +228,12 @@ def _about(spec: ir.Spec) -> dict[str, Any]:
     return {"format": VECTOR_FORMAT, "spec": spec.name, "version": spec.version, "sha256": spec.sha256, "generated_by": f"canspec {spec.generator_version}"}
 
 
-def build_vectors(spec: ir.Spec) -> dict[str, Any]:
+def build_vectors(spec: ir.Spec, *, stream: bool = False) -> dict[str, Any]:
+    """The vectors file's data; `stream`: its cases as a jsontext.Streamed list, produced message by
+    message while the text is written (a large spec's cases never all exist at once)."""
     assert spec.can is not None
-    cases = [c for m in spec.can.messages for c in message_cases(m)]
+    can = spec.can
+    cases = Streamed(c for m in can.messages for c in message_cases(m)) if stream else [c for m in can.messages for c in message_cases(m)]
     return {
         **_about(spec),
         "rules": {
@@ -266,13 +271,13 @@ def build_sequences(spec: ir.Spec) -> dict[str, Any]:
 
 
 def _json(data: dict[str, Any]) -> bytes:
-    return (json.dumps(data, indent=1, sort_keys=True, ensure_ascii=False) + "\n").encode("utf-8")
+    return (jsontext.dumps(data, indent=1) + "\n").encode("utf-8")
 
 
 def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
-    return {"vectors/can.json": _json(build_vectors(spec)), "vectors/sequences.json": _json(build_sequences(spec))}
+    return {"vectors/can.json": _json(build_vectors(spec, stream=True)), "vectors/sequences.json": _json(build_sequences(spec))}
 
 
 TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2, multiplexing=True)
