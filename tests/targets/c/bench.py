@@ -41,6 +41,7 @@ import cbuild
 sys.path.insert(0, str(cbuild.ROOT / "generator"))
 from canspec.pipeline import compile_spec
 from canspec.targets.c.names import CNames
+from canspec.targets.dbc.naming import signal_names
 
 FRAMES_PER_MESSAGE = 16
 REPS = 61
@@ -57,7 +58,7 @@ def frames_for(cases: list[dict], name: str) -> list[str]:  # type: ignore[type-
 
 
 def c_bytes(hexdata: str) -> str:
-    return "{" + ", ".join(f"0x{hexdata[i:i + 2]}" for i in range(0, 16, 2)) + "}"
+    return "{" + ", ".join(f"0x{hexdata[i:i + 2]}" for i in range(0, len(hexdata), 2)) + "}"
 
 
 XOR_HELPERS = """#include <string.h>
@@ -81,17 +82,13 @@ def range_checks(spec: Path, dbc: Path, access: str = "s->") -> dict[str, str]:
     """message → the condition a cantools user adds to refuse a field that does not fit its bits
     (cantools' pack silently drops the excess bits; canspec's refuses with ERR_RANGE): the same
     form as canspec's, one compare per width of the unsigned fields narrower than their type."""
-    import cantools
     from cantools.database.can.c_source import camel_to_snake_case
 
     can = compile_spec(spec).spec.can  # type: ignore[union-attr]
-    db = cantools.database.load_file(str(dbc), strict=False)
+    dbc_names = signal_names(can)  # the DBC target's own naming: the signal names cantools' C is generated from
     out = {}
     for m in can.messages:
-        members = {}
-        for sig in db.get_message_by_frame_id(m.frame_id).signals:
-            attr = (sig.dbc.attributes if sig.dbc is not None else {}).get("SpecSignalName")
-            members[attr.value if attr is not None else sig.name] = camel_to_snake_case(sig.name)
+        members = {spec: camel_to_snake_case(dbc_name) for (msg, spec), dbc_name in dbc_names.items() if msg == m.name}
         groups: dict[tuple[int, int], list[str]] = {}
         terms = []
         for s in m.data_signals:
