@@ -27,6 +27,8 @@ from canspec.targets.dbc.naming import signal_names
 from canspec.targets.rust.model import RustMessage, build_crate
 
 BUILD = ROOT / "build" / "rust-bench"
+# `--spec DIR --generated DIR`: another spec (the second benchmark spec, bench/spec2.py) and its generated outputs
+SPEC, GENERATED = ROOT / "spec", ROOT / "generated"
 DBC_CODEGEN_VERSION = "0.4.0"
 
 
@@ -298,7 +300,7 @@ fn time_pair<T, U>(frames: usize, mut a: impl FnMut() -> T, mut b: impl FnMut() 
 
 
 def main() -> int:
-    compiled = compile_spec(ROOT / "spec")
+    compiled = compile_spec(SPEC)
     spec: ir.Spec | None = compiled.spec
     if spec is None or spec.can is None:
         print("bench-rust: the spec does not compile", file=sys.stderr)
@@ -307,14 +309,14 @@ def main() -> int:
         print("bench-rust: cargo not found", file=sys.stderr)
         return 1
     crate = build_crate(spec.can)
-    vectors = json.loads((ROOT / "generated" / "vectors" / "can.json").read_text(encoding="utf-8"))
+    vectors = json.loads((GENERATED / "vectors" / "can.json").read_text(encoding="utf-8"))
     src = BUILD / "crate" / "src"
     src.mkdir(parents=True, exist_ok=True)
     gen_out = BUILD / "dbc-codegen-out"
     shutil.rmtree(gen_out, ignore_errors=True)
     gen_out.mkdir(parents=True)
     try:
-        run([str(dbc_codegen()), str(ROOT / "generated" / "dbc" / f"{spec.can.name}.dbc"), str(gen_out)], stdout=subprocess.DEVNULL)
+        run([str(dbc_codegen()), str(GENERATED / "dbc" / f"{spec.can.name}.dbc"), str(gen_out)], stdout=subprocess.DEVNULL)
     except subprocess.CalledProcessError as exc:
         print(f"bench-rust: dbc-codegen failed on the generated DBC (exit {exc.returncode})", file=sys.stderr)
         return 1
@@ -397,7 +399,7 @@ edition = "2021"
 publish = false
 
 [dependencies]
-{crate.package} = {{ path = {json.dumps(str(ROOT / "generated" / "rust"))}, default-features = false }}
+{crate.package} = {{ path = {json.dumps(str(GENERATED / "rust"))}, default-features = false }}
 bitvec = {{ version = "1", default-features = false }}
 embedded-can = "0.4"
 
@@ -458,5 +460,18 @@ def instruction_counts(exe: Path, rows: list[tuple[str, int, bool]]) -> None:
           + (", ".join(more) if more else "none"))
 
 
+def parse_args() -> None:
+    global SPEC, GENERATED, BUILD
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--spec", type=Path, default=SPEC)
+    ap.add_argument("--generated", type=Path, default=GENERATED, help="the spec's generated outputs (dbc/, vectors/, rust/)")
+    ap.add_argument("--build", type=Path, default=BUILD)
+    args = ap.parse_args()
+    SPEC, GENERATED, BUILD = args.spec.resolve(), args.generated.resolve(), args.build.resolve()
+
+
 if __name__ == "__main__":
+    parse_args()
     sys.exit(main())
