@@ -54,7 +54,7 @@ def parse_dbc_code(text: str) -> tuple[dict[str, list[tuple[str, str]]], dict[st
         new = re.search(r"    pub fn new\(\n?(.*?)\) -> Result<Self, CanError>", body, re.DOTALL)
         if new is None:
             continue
-        params = re.findall(r"(\w+): ([\w:]+),", new.group(1))
+        params = re.findall(r"(\w+): ([\w:]+)(?:,|$)", new.group(1).strip())  # rustfmt: one line (no trailing comma) or one per line
         news[m.group(1)] = params
         for g in re.finditer(r"    pub fn (\w+)\(\s*&self,?\s*\) -> ([\w:]+) \{", body):  # rustfmt wraps long ones
             getters[(m.group(1), g.group(1))] = g.group(2)
