@@ -87,7 +87,7 @@ def range_checks(spec: Path, dbc: Path, access: str = "s->") -> dict[str, str]:
     form as canspec's, one compare per width of the unsigned fields narrower than their type."""
     from cantools.database.can.c_source import camel_to_snake_case
 
-    can = compile_spec(spec, ["c", "dbc"]).spec.can  # only the targets benchmarked check the spec; type: ignore[union-attr]
+    can = compile_spec(spec, ["c", "dbc"]).spec.can  # type: ignore[union-attr]  # only the benchmarked targets check the spec
     dbc_names = signal_names(can)  # the DBC target's own naming: the signal names cantools' C is generated from
     out = {}
     for m in can.messages:

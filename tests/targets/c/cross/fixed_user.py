@@ -28,7 +28,7 @@ def fixed_user_source(spec: Path, dbc: Path) -> tuple[str, list[str]]:
     from canspec.targets.c.physical import fixed_path
     from canspec.targets.dbc.naming import signal_names
 
-    can = compile_spec(spec, ["c", "dbc"]).spec.can  # only the targets benchmarked check the spec; type: ignore[union-attr]
+    can = compile_spec(spec, ["c", "dbc"]).spec.can  # type: ignore[union-attr]  # only the benchmarked targets check the spec
     names = CNames.of(can)
     dbc_names = signal_names(can)  # the DBC target's naming: what cantools' C is generated from
     db = cantools.database.load_file(str(dbc), strict=False)
