@@ -5,3 +5,28 @@ BENCH_GEN_SIZES ?= 10 100 300 1000
 
 bench-gen:  ## canspec gen per target: seconds and peak MB over spec sizes (goal: 1,000 messages in 10 s / 500 MB)
 	$(PYTHON) bench/bench_gen.py --sizes $(BENCH_GEN_SIZES)
+
+# The second benchmark spec (issue 24 item 4): bench/motorola_fd, imported from public opendbc DBCs — Motorola-heavy,
+# CAN FD frames up to 64 bytes, two multiplexed messages. Until every target carries multiplexing the benches run it
+# without its multiplexed messages (BENCH_SPEC2_PAGES=--no-pages); set BENCH_SPEC2_PAGES= once they do.
+BENCH_SPEC2_PAGES ?= --no-pages
+BENCH_SPEC2_DIR := build/bench-spec2/$(if $(BENCH_SPEC2_PAGES),no-pages,pages)
+BENCH_SPEC2 := $(if $(BENCH_SPEC2_PAGES),$(BENCH_SPEC2_DIR)/spec,bench/motorola_fd)
+BENCH_SPEC2_GEN := $(BENCH_SPEC2_DIR)/generated
+BENCH_SPEC2_C_ARGS = --spec $(BENCH_SPEC2) --headers $(BENCH_SPEC2_GEN)/c --dbc $(BENCH_SPEC2_GEN)/dbc/gwm.dbc --vectors $(BENCH_SPEC2_GEN)/vectors/can.json
+.PHONY: bench-spec2 bench-c-spec2 bench-c-cross-spec2 bench-python-spec2 bench-rust-spec2
+
+bench-spec2:  ## generate the second benchmark spec's C, DBC, vectors, Python and Rust into build/bench-spec2/
+	$(PYTHON) bench/spec2.py $(BENCH_SPEC2_PAGES)
+
+bench-c-spec2: bench-spec2  ## bench-c (x86-64 -O2) on the second benchmark spec
+	$(PYTHON) tests/targets/c/bench.py build/c-bench-spec2 $(BENCH_SPEC2_C_ARGS)
+
+bench-c-cross-spec2: bench-spec2  ## bench-c-cross (Cortex-M0+/M4) on the second benchmark spec
+	$(PYTHON) tests/targets/c/cross/bench_cross.py --build build/c-bench-cross-spec2 $(BENCH_SPEC2_C_ARGS)
+
+bench-python-spec2: bench-spec2  ## bench-python on the second benchmark spec
+	$(PYTHON) tests/targets/python/bench.py --log-frames 0 --spec $(BENCH_SPEC2)
+
+bench-rust-spec2: bench-spec2  ## bench-rust (against dbc-codegen) on the second benchmark spec
+	$(PYTHON) tests/targets/rust/bench.py --spec $(BENCH_SPEC2) --generated $(BENCH_SPEC2_GEN) --build build/rust-bench-spec2

@@ -10,6 +10,7 @@ bench-c:  ## canspec C vs cantools generate_c_source: x86-64 ns + callgrind (cal
 	$(PYTHON) tests/targets/c/bench.py build/c-bench
 	$(MAKE) --no-print-directory bench-c-cross
 	$(PYTHON) tests/examples/ecu_bench.py --build build/ecu
+	$(MAKE) --no-print-directory bench-c-spec2 bench-c-cross-spec2  # the second benchmark spec (mk/bench.mk)
 
 FUZZ_SECONDS ?= 60
 .PHONY: fuzz-c

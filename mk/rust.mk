@@ -14,3 +14,4 @@ roundtrip-rust:  ## the Rust crate's vector test on $(VECTORS); fails on any mis
 
 bench-rust:  ## canspec's crate vs dbc-codegen on the generated DBC: ns/frame and ratio per message
 	$(PYTHON) tests/targets/rust/bench.py
+	$(MAKE) --no-print-directory bench-rust-spec2

@@ -158,7 +158,7 @@ def log_table(vectors: dict[str, Any], frames: int) -> None:
     print(f"  ratio (cantools / canspec): wall {theirs / ours:.1f}x, CPU {theirs_cpu / ours_cpu:.1f}x")
 
 
-def generated_for(spec_path: Path, tmp: Path) -> tuple[Any, Path, Path]:
+def generated_for(spec_path: Path, tmp: Path) -> tuple[Any, Path, Path, Any]:
     """The package, DBC and vectors of another spec, generated into `tmp`."""
     from canspec.pipeline import compile_spec
     from canspec.targets.dbc import render_dbc
@@ -173,7 +173,7 @@ def generated_for(spec_path: Path, tmp: Path) -> tuple[Any, Path, Path]:
         (tmp / rel).write_bytes(data)
     (package,) = [p for p in (tmp / "python").iterdir() if (p / "__init__.py").is_file()]
     (dbc,) = (tmp / "dbc").glob("*.dbc")
-    return load_package(package), dbc, tmp / "vectors" / "can.json"
+    return load_package(package), dbc, tmp / "vectors" / "can.json", compiled.spec.can
 
 
 def main() -> int:
@@ -185,11 +185,11 @@ def main() -> int:
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         if args.spec is not None:
-            gw, dbc, vectors_path = generated_for(args.spec.resolve(), Path(tmp))
+            gw, dbc, vectors_path, can = generated_for(args.spec.resolve(), Path(tmp))
         else:
-            gw, dbc, vectors_path = shipped_package(), pkgpath.DBC, pkgpath.DEFAULT_VECTORS
+            gw, dbc, vectors_path, can = shipped_package(), pkgpath.DBC, pkgpath.DEFAULT_VECTORS, None
         vectors = json.loads((args.vectors or vectors_path).read_text(encoding="utf-8"))
-        db = load_with_spec_names(dbc)  # the DBC-unique signal names read back as the spec's
+        db = load_with_spec_names(dbc, can=can)  # the DBC's signal names (unique, or an imported `dbc_name`) read back as the spec's
         CHECKSUMS.update(cls.NAME for cls in gw.MESSAGES if hasattr(cls, "CHECKSUM_BYTE"))
         print(f"python {sys.version.split()[0]}, cantools {cantools.__version__}; generated {gw.PROTOCOL} {gw.VERSION}")
         print("cantools +xor: cantools plus the XOR checksum check (decode) / fill (encode) the generated code does; ratio against that\n")

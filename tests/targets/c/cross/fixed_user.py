@@ -26,18 +26,17 @@ def fixed_user_source(spec: Path, dbc: Path) -> tuple[str, list[str]]:
     from canspec.pipeline import compile_spec
     from canspec.targets.c.names import CNames
     from canspec.targets.c.physical import fixed_path
+    from canspec.targets.dbc.naming import signal_names
 
-    can = compile_spec(spec).spec.can  # type: ignore[union-attr]
+    can = compile_spec(spec, ["c", "dbc"]).spec.can  # type: ignore[union-attr]  # only the benchmarked targets check the spec
     names = CNames.of(can)
+    dbc_names = signal_names(can)  # the DBC target's naming: what cantools' C is generated from
     db = cantools.database.load_file(str(dbc), strict=False)
     out = [f'#include "{dbc.stem}.h"', "#include <stdint.h>"]
     fns: list[str] = []
     for m in can.messages:
         dm = db.get_message_by_frame_id(m.frame_id)
-        by_spec = {}
-        for sig in dm.signals:
-            attr = (sig.dbc.attributes if sig.dbc is not None else {}).get("SpecSignalName")
-            by_spec[attr.value if attr is not None else sig.name] = camel_to_snake_case(sig.name)
+        by_spec = {spec: camel_to_snake_case(dbc_name) for (msg, spec), dbc_name in dbc_names.items() if msg == m.name}
         for s in m.data_signals:
             fixed = fixed_path(names, s) if s.role == "data" else None
             if fixed is None or fixed.type != "int32_t":
