@@ -231,7 +231,7 @@ def store(s: CSignal) -> list[str]:
     return [*stmts, f"{wide} = {bits} ^ {C.hex(sign, bits=64 if n > 32 else 32)};", f"{field} = ({t})((int64_t){wide} - {C.integer(sign, 64)});"]
 
 
-def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
+def unpack_parts(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     held: list[int] = []  # frame bytes read into locals, in the order read
     body: list[str] = []
     for s in sigs:
@@ -256,5 +256,5 @@ def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
     """`sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
-    locals_, unpack = _unpack(sigs, msg.dlc, ck is not None)
+    locals_, unpack = unpack_parts(sigs, msg.dlc, ck is not None)
     return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))

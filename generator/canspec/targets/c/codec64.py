@@ -183,7 +183,7 @@ def _word_store(s: CSignal) -> list[str]:
     return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
-def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """None where no field is read from the word (the byte form of codec.py then)."""
     words = word_fields(sigs, order)
     if not words:
@@ -254,6 +254,6 @@ def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise
     if not msg.dlc or not msg.is_classic_length:
         return None
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
-    unpack_locals, unpack = _unpack(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
+    unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
     return None if out == bytewise else out
