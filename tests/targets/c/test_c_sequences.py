@@ -25,7 +25,7 @@ def test_shipped_sequences(cc, tmp_path):
 
 @pytest.mark.parametrize("path", FIXTURES, ids=[p.stem for p in FIXTURES])
 def test_fixture_sequences(path, tmp_path):
-    compiled = compile_spec(path)
+    compiled = compile_spec(path, seq.C_TARGETS)
     assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
     if compiled.spec.can is None:  # a JSON-only spec: no sequences to run
         assert registry()["vectors"].render(compiled.spec) == {}

@@ -165,7 +165,7 @@ def test_64_bit_integer_path_calls_no_helper(tmp_path, core, opt):
 def _new_dialect(path: Path) -> bool:
     from canspec.pipeline import compile_spec
 
-    can = getattr(compile_spec(path).spec, "can", None)
+    can = getattr(compile_spec(path, cross.cbuild.C_TARGETS).spec, "can", None)
     return can is not None and (can.has_big_endian or can.has_fd or can.has_float)
 
 
@@ -184,7 +184,7 @@ def test_motorola_fd_float_fixture_vectors_on_every_target(spec, tmp_path):
     from canspec.pipeline import compile_spec
     from canspec.targets import registry
 
-    compiled = compile_spec(spec).spec
+    compiled = compile_spec(spec, cross.cbuild.C_TARGETS).spec
     for target in ("c", "vectors"):
         for rel, data in registry()[target].render(compiled).items():
             (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)

@@ -138,7 +138,7 @@ def test_generated_headers_meet_misra_with_the_deviation_record(capsys):
 
 
 VALID = misra.cross.cbuild.ROOT / "tests" / "fixtures" / "valid"
-CAN_FIXTURES = [p.stem for p in sorted(VALID.glob("*.yaml")) if getattr(compile_spec(p).spec, "can", None) is not None]
+CAN_FIXTURES = [p.stem for p in sorted(VALID.glob("*.yaml")) if getattr(compile_spec(p, misra.cross.cbuild.C_TARGETS).spec, "can", None) is not None]
 
 
 def test_the_fixture_list_holds_the_can_specs():
