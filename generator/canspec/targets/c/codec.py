@@ -111,7 +111,7 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
     signed = []
     for s in sigs:
         bits, field = s.sig.storage_bits, f"src->{s.field}"
-        if s.length == bits:
+        if not s.checked:
             continue
         if s.sig.signed:
             signed += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
@@ -149,7 +149,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
     pieces, starting = byte_pieces(sigs)
     out = float_copies(sigs, "&{local}", "&src->{field}")
     for k in range(dlc):
-        checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)
+        checked = tuple(s for s in starting.get(k, ()) if s.checked)
         check = [f"if ({_range_check(checked)}) {{", f"return {err};", "}"] if checked else []
         before = len(checked) <= HELD_FIELDS
         out += check if before else []

@@ -44,7 +44,7 @@ MARGIN = 2  # the word form where its estimate is at least this much lower (near
 def _checked(sigs: tuple[CSignal, ...]) -> list[CSignal]:
     """The unsigned fields narrower than their type (their OR exceeds their bit count's maximum
     exactly when one of them does)."""
-    return [s for s in sigs if not s.sig.signed and s.length != s.sig.storage_bits]
+    return [s for s in sigs if not s.sig.signed and s.checked]
 
 
 def _ored(sigs: tuple[CSignal, ...]) -> dict[int, list[str]]:
@@ -66,7 +66,7 @@ def _check(sigs: tuple[CSignal, ...], err: str) -> list[str]:
     shared = _shared(sigs)
     terms = [f"({f'ored{n}' if n in shared else f[0]} > {C.unsigned((1 << n) - 1)})" for n, f in sorted(_ored(sigs).items())]
     for s in sigs:
-        if s.sig.signed and s.length != s.sig.storage_bits:
+        if s.sig.signed and s.checked:
             bits, field = s.sig.storage_bits, f"src->{s.field}"
             terms += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
     return [f"if ({' || '.join(terms)}) {{", f"return {err};", "}"] if terms else []

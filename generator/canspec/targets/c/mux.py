@@ -17,10 +17,10 @@ holds. Fields of different pages may share bits, so no one set of byte pieces se
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from canspec import ir
-from canspec.ir.mux import Ranges
+from canspec.ir.mux import Ranges, ranges_of
 from canspec.render.literals import C
 from canspec.targets.c.codec import CCodec, build_codec, unpack_parts
 from canspec.targets.c.codec64 import build_codec64, unpack_parts64, word_order
@@ -42,18 +42,24 @@ def _literal(s: CSignal, value: int) -> str:
     return C.integer(value, bits) if s.sig.signed else C.unsigned(value, bits)
 
 
-def holds(s: CSignal, ranges: Ranges, access: str) -> str:
-    """C condition: the multiplexer `s` (read as `access` + field) holds one of `ranges`; "" when
-    every value of its type does. A bound at its type's end is left out (gcc -Wtype-limits). Not
-    parenthesised as a whole (an `if` adds them; clang -Wparentheses-equality)."""
+def holds(s: CSignal, ranges: Ranges, access: str, excluded: Ranges = ()) -> str:
+    """C condition: the multiplexer `s` (read as `access` + field) holds one of `ranges`, where it
+    is known to hold none of `excluded` (the earlier branches' values); "" when every other value
+    of its type does. A bound is left out where every value beyond it is excluded or beyond its
+    type (gcc -Wtype-limits; MISRA C:2012 rule 14.3: cppcheck knows what the earlier branches
+    excluded). Not parenthesised as a whole (an `if` adds them; clang -Wparentheses-equality)."""
     field, bits = f"{access}{s.field}", s.sig.storage_bits
     low, high = (-(2 ** (bits - 1)), 2 ** (bits - 1) - 1) if s.sig.signed else (0, 2**bits - 1)
+    gone = ranges_of([*excluded, *ranges])  # what no other value is: these and the excluded ones
+
+    def beyond(lo: int, hi: int) -> bool:  # every value of [lo, hi] excluded (or none there)
+        return lo > hi or any(a <= lo and hi <= b for a, b in gone)
+
     terms = []
     for lo, hi in ranges:
-        if lo == hi:
-            terms.append(f"{field} == {_literal(s, lo)}")
-            continue
-        ends = ([f"({field} >= {_literal(s, lo)})"] if lo > low else []) + ([f"({field} <= {_literal(s, hi)})"] if hi < high else [])
+        ends = ([f"({field} >= {_literal(s, lo)})"] if not beyond(low, lo - 1) else []) + ([f"({field} <= {_literal(s, hi)})"] if not beyond(hi + 1, high) else [])
+        if lo == hi and ends:
+            ends = [f"({field} == {_literal(s, lo)})"]
         if not ends:
             return ""
         terms.append(ends[0][1:-1] if len(ends) == 1 else " && ".join(ends))
@@ -67,18 +73,22 @@ def _branches(msg: ir.Message, sigs: tuple[CSignal, ...], present: frozenset[str
     """The statements for the frames whose fields include `present`: an if / else if / else on
     the first multiplexer among them not decided yet, each branch starting with what `step` writes
     for the fields its page adds; at the bottom (every multiplexer decided) what `step` writes for
-    no added field."""
+    no added field. The fields `step` gets are those of `sigs`, a multiplexer inside one of its
+    pages' branches marked as known to fit its bits."""
     def of(names: frozenset[str] | tuple[str, ...]) -> tuple[CSignal, ...]:
         return tuple(s for s in sigs if s.sig.name in names)
 
     by = next((s for s in sigs if s.sig.is_multiplexer and s.sig.name in present and s.sig.name not in decided), None)
     if by is None:
         return step(of(present), ())
+    inside = tuple(replace(s, range_known=True) if s is by else s for s in sigs)
     out: list[str] = []
+    excluded: Ranges = ()
     for group in (g for g in msg.mux_groups if g.multiplexer == by.sig.name):
-        test = holds(by, group.ranges, access)
-        inner = [*step(of(present), of(group.signals)), *_branches(msg, sigs, present | set(group.signals), decided | {by.sig.name}, access, step)]
-        if not test:  # the page holds every value: no other branch
+        test = holds(by, group.ranges, access, excluded)
+        excluded = ranges_of([*excluded, *group.ranges])
+        inner = [*step(of(present), of(group.signals)), *_branches(msg, inside, present | set(group.signals), decided | {by.sig.name}, access, step)]
+        if not test:  # every value left: the last branch
             return [*out, "} else {", *inner, "}"] if out else ["{", *inner, "}"]
         out += [f"{'} else if' if out else 'if'} ({test}) {{", *inner]
     rest = _branches(msg, sigs, present, decided | {by.sig.name}, access, step)
