@@ -12,7 +12,9 @@ from canspec.targets import registry
 from repo_paths import GENERATED, ROOT
 
 SUMMARY = re.compile(r"c sequences: (\d+) monitor sequences \((\d+) steps\), (\d+) text sequences \((\d+) steps\), (\d+) mismatches")
-FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")), ROOT / "tests" / "targets" / "c" / "corners" / "c_corners.yaml"]
+# the valid fixtures, the multiplexed ones (until they join valid/), the C target's corners
+FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")), *sorted((ROOT / "tests" / "fixtures" / "mux").glob("*.yaml")),
+            ROOT / "tests" / "targets" / "c" / "corners" / "c_corners.yaml"]
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])

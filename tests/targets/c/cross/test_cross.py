@@ -169,7 +169,9 @@ def _new_dialect(path: Path) -> bool:
     return can is not None and (can.has_big_endian or can.has_fd or can.has_float)
 
 
-DIALECT_FIXTURES = [p for p in sorted(FIXTURES.glob("*.yaml")) if _new_dialect(p)] + [Path(__file__).resolve().parents[1] / "corners" / "c_corners.yaml"]
+# with the multiplexed fixtures (tests/fixtures/mux/, until they join valid/: one has a Motorola field)
+DIALECT_FIXTURES = [p for p in sorted([*FIXTURES.glob("*.yaml"), *(FIXTURES.parent / "mux").glob("*.yaml")]) if _new_dialect(p)]
+DIALECT_FIXTURES += [Path(__file__).resolve().parents[1] / "corners" / "c_corners.yaml"]
 
 
 def test_the_dialect_fixtures_are_there():
