@@ -5,8 +5,9 @@ holds. Fields of different pages may share bits, so no one set of byte pieces se
 
 - pack branches on the multiplexers (top-level first, then the multiplexers a page holds) down to
   one set of present fields, and packs that set as a plain message (codec.py / codec64.py, each
-  leaf in its own block with its own locals). The other pages' fields are neither checked nor
-  written. A multiplexer value no page holds leaves only the fields of every frame;
+  leaf in its own block with its own locals; a multiplexer whose branch holds only values of its
+  bits is not checked again: MISRA C:2012 rule 14.3). The other pages' fields are neither checked
+  nor written. A multiplexer value no page holds leaves only the fields of every frame;
 - unpack writes the fields of every frame (and checks the checksum over the whole frame), then
   branches on the multiplexer values just written and writes the selected page's fields the same
   way. Every other field of *dst keeps its value (cantools #193 wipes them).
@@ -57,7 +58,8 @@ def holds(s: CSignal, ranges: Ranges, access: str, excluded: Ranges = ()) -> str
 
     terms = []
     for lo, hi in ranges:
-        ends = ([f"({field} >= {_literal(s, lo)})"] if not beyond(low, lo - 1) else []) + ([f"({field} <= {_literal(s, hi)})"] if not beyond(hi + 1, high) else [])
+        ends = [f"({field} >= {_literal(s, lo)})"] if not beyond(low, lo - 1) else []
+        ends += [f"({field} <= {_literal(s, hi)})"] if not beyond(hi + 1, high) else []
         if lo == hi and ends:
             ends = [f"({field} == {_literal(s, lo)})"]
         if not ends:
