@@ -28,7 +28,7 @@ sys.path.insert(0, str(HERE))
 
 from canspec.pipeline import compile_spec
 from canspec.targets.c.model import CModel, build_model
-from cbuild import SANITIZE, STRICT, compile_c, run
+from cbuild import C_TARGETS, SANITIZE, STRICT, compile_c, run
 
 STATS = ("frames", "accepted", "length_errors", "checksum_errors", "counter_repeats", "counter_jumps", "lost_frames", "timeouts")
 RESULTS = {"ok": "OK", "length": "ERR_LENGTH", "checksum": "ERR_CHECKSUM", "index": "ERR_INDEX", "inconsistent": "ERR_INCONSISTENT"}
@@ -119,7 +119,7 @@ def lines(doc: dict, c: CModel) -> str:
 
 def run_sequences(sequences: Path, spec: Path, headers: Path, build: Path, cc: str = "gcc", sanitize: bool = True) -> tuple[int, str]:
     """Build and run the runner: (exit code, its output)."""
-    compiled = compile_spec(spec)
+    compiled = compile_spec(spec, C_TARGETS)
     if compiled.spec is None or compiled.spec.can is None:
         return 1, "no CAN protocol in the spec"
     c = build_model(compiled.spec)

@@ -22,7 +22,7 @@ CASES_RE = re.compile(r"c runner: (\d+) cases, (\d+) multi-frame texts checked, 
 sys.path.insert(0, str(HERE))
 from canspec import ir
 from canspec.pipeline import compile_spec
-from gen_runner_tables import tables
+from gen_runner_tables import C_TARGETS, tables
 from vectors_to_lines import convert
 
 
@@ -54,7 +54,7 @@ def build_runner(
 
 def spec_can(spec: Path) -> ir.CanProtocol:
     """The CAN protocol of `spec`'s IR (what vectors_lines needs)."""
-    compiled = compile_spec(spec)
+    compiled = compile_spec(spec, C_TARGETS)
     if compiled.spec is None or compiled.spec.can is None:
         raise ValueError(f"{spec}: no CAN protocol (canspec check {spec} tells why)")
     return compiled.spec.can

@@ -17,6 +17,9 @@ from canspec.targets.c.messages import CMessage
 from canspec.targets.c.model import CModel, CVin, build_model
 from canspec.targets.c.signals import CSignal
 
+# whose refusals a C test run applies: the C target's and those of the vectors it reads
+C_TARGETS = ("c", "vectors")
+
 
 def _bits(signed: bool, expr: str) -> str:
     """An integer's two's complement bits as uint64_t (what the runner compares)."""
@@ -68,16 +71,46 @@ def _physical_checks(s: CSignal) -> list[str]:
     return out + ["        }", "    }"]
 
 
+SENTINEL = "0xA5"  # every byte of a multiplexed message's struct before unpack / pack: what an absent field must keep
+
+
+def _page_checks(cm: CMessage) -> list[str]:
+    """A multiplexed message: each field the case holds is unpacked (and its `_is_present` says so);
+    every other field still holds the sentinel bytes (unpack left it alone) and is absent."""
+    out = []
+    for s in cm.signals:
+        if s.sig.mux is None:
+            out.append(f'    bad += check_raw(vc, "{s.sig.name}", {_raw_bits(s, "s." + s.field)}, {int(s.sig.signed)});')
+            continue
+        name = s.sig.name
+        out += [
+            f'    if (find_raw(vc, "{name}", &rv)) {{',
+            f'        bad += check_raw(vc, "{name}", {_raw_bits(s, "s." + s.field)}, {int(s.sig.signed)});',
+            f'        if (!{s.fn}_is_present(&s)) bad += fail(vc, "{name}: in the case, but _is_present says absent");',
+            "    } else {",
+            f'        if (memcmp(&s.{s.field}, &sentinel.{s.field}, sizeof s.{s.field}) != 0) bad += fail(vc, "{name}: absent, but unpack overwrote it");',
+            f'        if ({s.fn}_is_present(&s)) bad += fail(vc, "{name}: not in the case, but _is_present says present");',
+            "    }",
+        ]
+    out += [f"    memset(&p, {SENTINEL}, sizeof p); /* an absent field is out of its range: pack must neither check nor write it */"]
+    return out + [f'    if (find_raw(vc, "{s.sig.name}", &rv)) p.{s.field} = {_from_raw(s, "rv")};' for s in cm.signals]
+
+
 def _message_check(c: CModel, cm: CMessage) -> list[str]:
     out = [f"static int check_{cm.name}(const vcase_t *vc) {{", f"    {cm.type} s, p;", f"    uint8_t buf[{max(1, cm.msg.dlc)}] = {{0}};",
            "    int bad = 0, st;"]
+    mux = bool(cm.presence)
+    out += [f"    {cm.type} sentinel;", "    uint64_t rv = 0;", f"    memset(&sentinel, {SENTINEL}, sizeof sentinel);"] if mux else []
     out += [
-        "    memset(&s, 0, sizeof s);",
+        f"    memset(&s, {SENTINEL if mux else 0}, sizeof s);",
         f"    st = (int){cm.fn}_unpack(&s, vc->data, vc->len);",
         '    if (st != 0) bad += fail(vc, "unpack returned %d", st);',
     ]
-    out += [f'    bad += check_raw(vc, "{s.sig.name}", {_raw_bits(s, "s." + s.field)}, {int(s.sig.signed)});' for s in cm.signals]
-    out += ["    memset(&p, 0, sizeof p);"] + [f'    p.{s.field} = {_from_raw(s, f"raw_of(vc, {chr(34)}{s.sig.name}{chr(34)})")};' for s in cm.signals]
+    if mux:
+        out += _page_checks(cm)
+    else:
+        out += [f'    bad += check_raw(vc, "{s.sig.name}", {_raw_bits(s, "s." + s.field)}, {int(s.sig.signed)});' for s in cm.signals]
+        out += ["    memset(&p, 0, sizeof p);"] + [f'    p.{s.field} = {_from_raw(s, f"raw_of(vc, {chr(34)}{s.sig.name}{chr(34)})")};' for s in cm.signals]
     out += [f"    st = (int){cm.fn}_pack(buf, sizeof buf, &p);", "    bad += check_bytes(vc, st, buf);"]
     if cm.msg.dlc > 0:  # a DLC-0 frame has no shorter buffer
         out += [
@@ -140,7 +173,7 @@ def _text_check(c: CModel, v: CVin) -> list[str]:
 
 
 def tables(spec_path: str) -> str:
-    compiled = compile_spec(spec_path)
+    compiled = compile_spec(spec_path, C_TARGETS)
     if compiled.spec is None:
         raise ValueError("\n".join(p.format() for p in compiled.problems))
     c = build_model(compiled.spec)

@@ -100,7 +100,7 @@ def undeclared(headers: Path, can: ir.CanProtocol) -> list[str]:
 def check_spec(spec_path: Path, work: Path) -> list[str]:
     """Every C check of one spec (the C target writes nothing for a spec without a CAN
     protocol); the failures (empty: all passed)."""
-    compiled = compile_spec(spec_path)
+    compiled = compile_spec(spec_path, cbuild.C_TARGETS)
     if compiled.spec is None:
         return ["canspec check refuses it:\n" + "\n".join(p.format() for p in compiled.errors)]
     if compiled.spec.can is None:

@@ -12,7 +12,9 @@ from canspec.targets import registry
 from repo_paths import GENERATED, ROOT
 
 SUMMARY = re.compile(r"c sequences: (\d+) monitor sequences \((\d+) steps\), (\d+) text sequences \((\d+) steps\), (\d+) mismatches")
-FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")), ROOT / "tests" / "targets" / "c" / "corners" / "c_corners.yaml"]
+# the valid fixtures, the multiplexed ones (until they join valid/), the C target's corners
+FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")), *sorted((ROOT / "tests" / "fixtures" / "mux").glob("*.yaml")),
+            ROOT / "tests" / "targets" / "c" / "corners" / "c_corners.yaml"]
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
@@ -25,7 +27,7 @@ def test_shipped_sequences(cc, tmp_path):
 
 @pytest.mark.parametrize("path", FIXTURES, ids=[p.stem for p in FIXTURES])
 def test_fixture_sequences(path, tmp_path):
-    compiled = compile_spec(path)
+    compiled = compile_spec(path, seq.C_TARGETS)
     assert compiled.spec is not None, "\n".join(p.format() for p in compiled.problems)
     if compiled.spec.can is None:  # a JSON-only spec: no sequences to run
         assert registry()["vectors"].render(compiled.spec) == {}

@@ -111,7 +111,7 @@ def _range_check(sigs: tuple[CSignal, ...]) -> str:
     signed = []
     for s in sigs:
         bits, field = s.sig.storage_bits, f"src->{s.field}"
-        if s.length == bits:
+        if not s.checked:
             continue
         if s.sig.signed:
             signed += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
@@ -149,7 +149,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
     pieces, starting = byte_pieces(sigs)
     out = float_copies(sigs, "&{local}", "&src->{field}")
     for k in range(dlc):
-        checked = tuple(s for s in starting.get(k, ()) if s.length != s.sig.storage_bits)
+        checked = tuple(s for s in starting.get(k, ()) if s.checked)
         check = [f"if ({_range_check(checked)}) {{", f"return {err};", "}"] if checked else []
         before = len(checked) <= HELD_FIELDS
         out += check if before else []
@@ -231,7 +231,7 @@ def store(s: CSignal) -> list[str]:
     return [*stmts, f"{wide} = {bits} ^ {C.hex(sign, bits=64 if n > 32 else 32)};", f"{field} = ({t})((int64_t){wide} - {C.integer(sign, 64)});"]
 
 
-def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
+def unpack_parts(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     held: list[int] = []  # frame bytes read into locals, in the order read
     body: list[str] = []
     for s in sigs:
@@ -256,5 +256,5 @@ def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
     """`sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
-    locals_, unpack = _unpack(sigs, msg.dlc, ck is not None)
+    locals_, unpack = unpack_parts(sigs, msg.dlc, ck is not None)
     return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))

@@ -44,7 +44,7 @@ MARGIN = 2  # the word form where its estimate is at least this much lower (near
 def _checked(sigs: tuple[CSignal, ...]) -> list[CSignal]:
     """The unsigned fields narrower than their type (their OR exceeds their bit count's maximum
     exactly when one of them does)."""
-    return [s for s in sigs if not s.sig.signed and s.length != s.sig.storage_bits]
+    return [s for s in sigs if not s.sig.signed and s.checked]
 
 
 def _ored(sigs: tuple[CSignal, ...]) -> dict[int, list[str]]:
@@ -66,7 +66,7 @@ def _check(sigs: tuple[CSignal, ...], err: str) -> list[str]:
     shared = _shared(sigs)
     terms = [f"({f'ored{n}' if n in shared else f[0]} > {C.unsigned((1 << n) - 1)})" for n, f in sorted(_ored(sigs).items())]
     for s in sigs:
-        if s.sig.signed and s.length != s.sig.storage_bits:
+        if s.sig.signed and s.checked:
             bits, field = s.sig.storage_bits, f"src->{s.field}"
             terms += [f"({field} < {C.integer(s.sig.raw_type_min, bits)})", f"({field} > {C.integer(s.sig.raw_type_max, bits)})"]
     return [f"if ({' || '.join(terms)}) {{", f"return {err};", "}"] if terms else []
@@ -183,7 +183,7 @@ def _word_store(s: CSignal) -> list[str]:
     return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
-def _unpack(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """None where no field is read from the word (the byte form of codec.py then)."""
     words = word_fields(sigs, order)
     if not words:
@@ -254,6 +254,6 @@ def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise
     if not msg.dlc or not msg.is_classic_length:
         return None
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
-    unpack_locals, unpack = _unpack(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
+    unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
     return None if out == bytewise else out

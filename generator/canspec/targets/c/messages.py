@@ -15,6 +15,7 @@ from canspec.ir.names import snake
 from canspec.render.literals import C
 from canspec.targets.c.codec import CCodec, build_codec
 from canspec.targets.c.codec64 import build_codec64
+from canspec.targets.c.mux import CPresence, build_mux_codecs, presence
 from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal, build_signal
 
@@ -51,6 +52,7 @@ class CMessage:
     codec: CCodec  # the byte form: every core
     pack64: CCodec | None  # the form of <PREFIX>_STRATEGY 3 (64-bit registers), where its pack differs
     unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
+    presence: tuple[CPresence, ...]  # a multiplexed message's `<field>_is_present` tests (mux.py)
     counter: CSignal | None
     counter_mask: str
     comment: str
@@ -79,8 +81,12 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     counter = next((s for s in sigs if msg.counter and s.sig.name == msg.counter.signal), None)
     base = names.message(msg.name)
     err = names.const("err_range")
-    codec = build_codec(msg, sigs, err)
-    pack64, unpack64 = _word64(codec, build_codec64(msg, sigs, err, codec))
+    if msg.is_multiplexed:
+        codec, codec64 = build_mux_codecs(msg, sigs, err)
+    else:
+        codec = build_codec(msg, sigs, err)
+        codec64 = build_codec64(msg, sigs, err, codec)
+    pack64, unpack64 = _word64(codec, codec64)
     return CMessage(
         msg=msg,
         name=snake(msg.name),
@@ -101,6 +107,7 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
         codec=codec,
         pack64=pack64,
         unpack64=unpack64,
+        presence=presence(msg, sigs),
         counter=counter,
         counter_mask=C.hex(msg.counter.modulo - 1) if msg.counter else "",
         comment=f"{msg.title} / {msg.zh}" if msg.title and msg.zh else msg.title or msg.zh,

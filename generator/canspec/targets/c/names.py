@@ -177,6 +177,8 @@ def _message_names(n: CNames, msg: ir.Message, base: str) -> Iterator[tuple[str,
         if sig.role == "data":  # counters and checksums have no physical functions
             yield from ((f"{sig_fn}_{w}", where) for w in SIGNAL_FUNCTIONS)
             yield from ((f"{sig_const}_{w}", where) for w in SIGNAL_MACROS)
+        if sig.mux is not None:  # a field some multiplexer selects (targets/c/mux.py)
+            yield f"{sig_fn}_is_present", where
         yield from ((n.special(base, sig.c_name, sp.name), (f"special value {sp.name!r} of signal {sig.name!r}", sig.loc)) for sp in sig.specials)
 
 

@@ -60,6 +60,12 @@ class CSignal:
     float: CFloat | None  # an IEEE float field: its bit pattern's type and its decode/encode
     unit: str
     comment: str  # its Chinese name (or English description) and unit
+    range_known: bool = False  # a multiplexer inside a branch on its values (mux.py): pack need not check it
+
+    @property
+    def checked(self) -> bool:
+        """Pack checks that it fits its bits: narrower than its type, its value not known to fit."""
+        return self.length != self.sig.storage_bits and not self.range_known
 
 
 def build_signal(names: CNames, msg: ir.Message, sig: ir.Signal, enum_types: dict[str, str]) -> CSignal:

@@ -138,15 +138,19 @@ def test_generated_headers_meet_misra_with_the_deviation_record(capsys):
 
 
 VALID = misra.cross.cbuild.ROOT / "tests" / "fixtures" / "valid"
-CAN_FIXTURES = [p.stem for p in sorted(VALID.glob("*.yaml")) if getattr(compile_spec(p).spec, "can", None) is not None]
+# with the multiplexed fixtures (tests/fixtures/mux/, until they join valid/) and the C target's multiplexing corners
+CAN_PATHS = [p for p in sorted([*VALID.glob("*.yaml"), *(VALID.parent / "mux").glob("*.yaml")])
+             if getattr(compile_spec(p, misra.cross.cbuild.C_TARGETS).spec, "can", None) is not None]
+CAN_PATHS.append(misra.cross.cbuild.HERE / "corners" / "c_mux_corners.yaml")  # pages with a checksum, in an FD frame
+CAN_FIXTURES = [p.stem for p in CAN_PATHS]
 
 
 def test_the_fixture_list_holds_the_can_specs():
     assert len(CAN_FIXTURES) >= 20 and {"wide_and_signed_fields", "no_messages", "mixed_id_formats"} <= set(CAN_FIXTURES)
 
 
-@pytest.mark.parametrize("fixture", CAN_FIXTURES)
-def test_every_valid_fixture_meets_misra_required_rules(fixture, tmp_path):
+@pytest.mark.parametrize("path", CAN_PATHS, ids=CAN_FIXTURES)
+def test_every_valid_fixture_meets_misra_required_rules(path, tmp_path):
     """Not only the shipped spec: every valid fixture's headers, under strategy 0 (the byte form,
     16-bit multiplies) and 3 (the 64-bit forms), between them every branch of every #if. Among
     them: signed 64-bit fields (pack takes the high half from the value as unsigned, rule 10.1;
@@ -156,7 +160,7 @@ def test_every_valid_fixture_meets_misra_required_rules(fixture, tmp_path):
     import subprocess
 
     env = {**os.environ, "PYTHONPATH": str(misra.cross.cbuild.ROOT / "generator")}
-    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(VALID / f"{fixture}.yaml"), "-o", str(tmp_path), "-t", "c"],
+    proc = subprocess.run([sys.executable, "-m", "canspec", "gen", str(path), "-o", str(tmp_path), "-t", "c"],
                           capture_output=True, text=True, env=env, check=False)
     assert proc.returncode == 0, proc.stderr
     macro = misra.cross.header_prefix(tmp_path / "c").upper()

@@ -1,0 +1,155 @@
+"""Pack and unpack of a multiplexed message (ir/mux.py), in every form codec.py and codec64.py write.
+
+The struct holds every field of every page; the multiplexers' values in it say which pages a frame
+holds. Fields of different pages may share bits, so no one set of byte pieces serves every frame:
+
+- pack branches on the multiplexers (top-level first, then the multiplexers a page holds) down to
+  one set of present fields, and packs that set as a plain message (codec.py / codec64.py, each
+  leaf in its own block with its own locals; a multiplexer whose branch holds only values of its
+  bits is not checked again: MISRA C:2012 rule 14.3). The other pages' fields are neither checked
+  nor written. A multiplexer value no page holds leaves only the fields of every frame;
+- unpack writes the fields of every frame (and checks the checksum over the whole frame), then
+  branches on the multiplexer values just written and writes the selected page's fields the same
+  way. Every other field of *dst keeps its value (cantools #193 wipes them).
+
+`<field>_is_present()` asks the same conditions of a struct (CPresence).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from canspec import ir
+from canspec.ir.mux import Ranges, ranges_of
+from canspec.render.literals import C
+from canspec.targets.c.codec import CCodec, build_codec, unpack_parts
+from canspec.targets.c.codec64 import build_codec64, unpack_parts64, word_order
+from canspec.targets.c.signals import CSignal
+
+
+@dataclass(frozen=True)
+class CPresence:
+    """`fn(const T *m)`: whether field `s` is present in a frame holding m's multiplexer values."""
+
+    s: CSignal
+    fn: str
+    test: str  # over `m->`
+    where: str  # the condition as the spec says it, for the comment
+
+
+def _literal(s: CSignal, value: int) -> str:
+    bits = s.sig.storage_bits
+    return C.integer(value, bits) if s.sig.signed else C.unsigned(value, bits)
+
+
+def holds(s: CSignal, ranges: Ranges, access: str, excluded: Ranges = ()) -> str:
+    """C condition: the multiplexer `s` (read as `access` + field) holds one of `ranges`, where it
+    is known to hold none of `excluded` (the earlier branches' values); "" when every other value
+    of its type does. A bound is left out where every value beyond it is excluded or beyond its
+    type (gcc -Wtype-limits; MISRA C:2012 rule 14.3: cppcheck knows what the earlier branches
+    excluded). Not parenthesised as a whole (an `if` adds them; clang -Wparentheses-equality)."""
+    field, bits = f"{access}{s.field}", s.sig.storage_bits
+    low, high = (-(2 ** (bits - 1)), 2 ** (bits - 1) - 1) if s.sig.signed else (0, 2**bits - 1)
+    gone = ranges_of([*excluded, *ranges])  # what no other value is: these and the excluded ones
+
+    def beyond(lo: int, hi: int) -> bool:  # every value of [lo, hi] excluded (or none there)
+        return lo > hi or any(a <= lo and hi <= b for a, b in gone)
+
+    terms = []
+    for lo, hi in ranges:
+        ends = [f"({field} >= {_literal(s, lo)})"] if not beyond(low, lo - 1) else []
+        ends += [f"({field} <= {_literal(s, hi)})"] if not beyond(hi + 1, high) else []
+        if lo == hi and ends:
+            ends = [f"({field} == {_literal(s, lo)})"]
+        if not ends:
+            return ""
+        terms.append(ends[0][1:-1] if len(ends) == 1 else " && ".join(ends))
+    return terms[0] if len(terms) == 1 else " || ".join(f"({t})" for t in terms)
+
+
+Step = Callable[[tuple[CSignal, ...], tuple[CSignal, ...]], list[str]]  # (fields present, fields a branch adds) -> statements
+
+
+def _branches(msg: ir.Message, sigs: tuple[CSignal, ...], present: frozenset[str], decided: frozenset[str], access: str, step: Step) -> list[str]:
+    """The statements for the frames whose fields include `present`: an if / else if / else on
+    the first multiplexer among them not decided yet, each branch starting with what `step` writes
+    for the fields its page adds; at the bottom (every multiplexer decided) what `step` writes for
+    no added field. The fields `step` gets are those of `sigs`, a multiplexer inside one of its
+    pages' branches marked as known to fit its bits."""
+    def of(names: frozenset[str] | tuple[str, ...]) -> tuple[CSignal, ...]:
+        return tuple(s for s in sigs if s.sig.name in names)
+
+    by = next((s for s in sigs if s.sig.is_multiplexer and s.sig.name in present and s.sig.name not in decided), None)
+    if by is None:
+        return step(of(present), ())
+    inside = tuple(replace(s, range_known=True) if s is by else s for s in sigs)
+    out: list[str] = []
+    excluded: Ranges = ()
+    for group in (g for g in msg.mux_groups if g.multiplexer == by.sig.name):
+        test = holds(by, group.ranges, access, excluded)
+        excluded = ranges_of([*excluded, *group.ranges])
+        inner = [*step(of(present), of(group.signals)), *_branches(msg, inside, present | set(group.signals), decided | {by.sig.name}, access, step)]
+        if not test:  # every value left: the last branch
+            return [*out, "} else {", *inner, "}"] if out else ["{", *inner, "}"]
+        out += [f"{'} else if' if out else 'if'} ({test}) {{", *inner]
+    rest = _branches(msg, sigs, present, decided | {by.sig.name}, access, step)
+    return [*out, "} else {", *(rest or ["/* no page: the fields of every frame only */"]), "}"]
+
+
+def _every_frame(sigs: tuple[CSignal, ...]) -> frozenset[str]:
+    return frozenset(s.sig.name for s in sigs if s.sig.mux is None)
+
+
+def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool) -> tuple[str, ...]:
+    def leaf(present: tuple[CSignal, ...], added: tuple[CSignal, ...]) -> list[str]:
+        if added:  # a branch: its leaves pack
+            return []
+        codec = build_codec(msg, present, err)
+        form = (build_codec64(msg, present, err, codec) or codec) if wide else codec
+        return [*form.pack_locals, *form.pack]
+
+    return tuple(_branches(msg, sigs, _every_frame(sigs), frozenset(), "src->", leaf))
+
+
+def _unpack(msg: ir.Message, sigs: tuple[CSignal, ...], wide: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    declared: list[str] = []
+
+    def part(fields: tuple[CSignal, ...], checksum: bool) -> list[str]:
+        found = unpack_parts64(fields, msg.dlc, checksum, word_order(fields)) if wide and fields else None
+        locals_, body = found or unpack_parts(fields, msg.dlc, checksum)
+        declared.extend(line for line in locals_ if line not in declared)
+        return list(body)
+
+    every = tuple(s for s in sigs if s.sig.mux is None)
+    body = [*part(every, msg.checksum is not None), *_branches(msg, sigs, _every_frame(sigs), frozenset(), "dst->", lambda _, added: part(added, False))]
+    return tuple(declared), tuple(body)
+
+
+def build_mux_codecs(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> tuple[CCodec, CCodec | None]:
+    """The byte form (every core) and the form of <PREFIX>_STRATEGY 3 (None where there is none)."""
+    byte_locals, byte_unpack = _unpack(msg, sigs, False)
+    bytewise = CCodec(_pack(msg, sigs, err, False), byte_locals, byte_unpack)
+    if not msg.dlc or not msg.is_classic_length:
+        return bytewise, None
+    word_locals, word_unpack = _unpack(msg, sigs, True)
+    return bytewise, CCodec(_pack(msg, sigs, err, True), word_locals, word_unpack)
+
+
+def presence(msg: ir.Message, sigs: tuple[CSignal, ...]) -> tuple[CPresence, ...]:
+    """The presence test of each field some multiplexer selects."""
+    by_name = {s.sig.name: s for s in sigs}
+    out = []
+    for s in sigs:
+        chain = msg.mux_chain(s.sig)
+        if not chain:
+            continue
+        tests = [t for c in chain if (t := holds(by_name[c.by], c.ranges, "m->"))]
+        where = " and ".join(f"{c.by} in {_ranges_text(c.ranges)}" for c in chain)
+        test = tests[0] if len(tests) == 1 else " && ".join(f"({t})" for t in tests)
+        out.append(CPresence(s, f"{s.fn}_is_present", test or "true", where))
+    return tuple(out)
+
+
+def _ranges_text(ranges: Ranges) -> str:
+    return "{" + ", ".join(str(lo) if lo == hi else f"{lo}..{hi}" for lo, hi in ranges) + "}"
