@@ -30,10 +30,11 @@ class Target:
 
 def multiplexing_refusals(spec: ir.Spec, who: str) -> Iterator[Problem]:
     """`who` (a target, a command) does not carry multiplexing yet: each multiplexed message is refused."""
+    carry = " ".join(f"--target {t.name}" for t in registry().values() if t.multiplexing)
     for msg in spec.can.messages if spec.can is not None else ():
         if msg.is_multiplexed:
             yield error(f"{who}: multiplexed message {msg.name!r} is not supported yet", msg.loc,
-                        "the DBC carries multiplexing (`canspec gen --target dbc`); the other outputs do not yet", "mux-unsupported")
+                        f"generate the targets that carry multiplexing: canspec gen {carry}", "mux-unsupported")
 
 
 def target_problems(spec: ir.Spec, names: Iterable[str] | None = None) -> list[Problem]:
