@@ -55,9 +55,8 @@ def test_python_docstring_and_comment_text():
         assert ast.parse(f"x = 1  # {comment}\n")
 
 
-def test_dbc_strings_escape_quotes():
-    # cantools and canmatrix read \" back as a quote (tests/targets/dbc/test_dbc_kept.py reads one); no reader unescapes \\
-    assert literals.dbc_string('say "hi" \\ now') == '"say \\"hi\\" / now"'
+def test_dbc_strings_never_hold_a_quote():
+    assert literals.dbc_string('say "hi" \\ now') == "\"say 'hi' / now\""
 
 
 def test_sheet_numbers_are_exact_or_text():
