@@ -55,8 +55,15 @@ def test_python_docstring_and_comment_text():
         assert ast.parse(f"x = 1  # {comment}\n")
 
 
-def test_dbc_strings_never_hold_a_quote():
-    assert literals.dbc_string('say "hi" \\ now') == "\"say 'hi' / now\""
+def test_dbc_strings_read_back_by_cantools():
+    # The oracle is cantools reading a DBC comment written with the literal: a quote survives as a
+    # quote, a backslash (which no reader unescapes) arrives as "/".
+    import cantools
+
+    text = literals.dbc_string('say "hi" \\ now')
+    dbc = f'VERSION ""\n\nBU_: N\n\nBO_ 1 M: 8 N\n SG_ s : 0|8@1+ (1,0) [0|0] "" N\n\nCM_ BO_ 1 {text};\n'
+    db = cantools.database.load_string(dbc, database_format="dbc")
+    assert db.messages[0].comment == 'say "hi" / now'
 
 
 def test_sheet_numbers_are_exact_or_text():

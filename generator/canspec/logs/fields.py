@@ -92,5 +92,6 @@ def _gather_bits(data: np.ndarray, shift: int, length: int) -> np.ndarray:
 def float_column(sig: ir.Signal, raw: np.ndarray) -> np.ndarray:
     """A float field's values (float64) from its bit patterns."""
     if sig.length == 32:
-        return raw.astype(np.uint32).view(np.float32).astype(np.float64)
+        with np.errstate(invalid="ignore"):  # a signalling-NaN pattern widens to a quiet NaN
+            return raw.astype(np.uint32).view(np.float32).astype(np.float64)
     return np.ascontiguousarray(raw, dtype=np.uint64).view(np.float64)
