@@ -19,6 +19,7 @@ from ._runtime import SignalSpec as _SignalSpec
 from ._runtime import check_raw as _check_raw
 from ._runtime import lookup as _lookup
 from ._runtime import physical_to_raw as _to_raw
+from ._runtime import update as _update
 from .enums import (
     AcCmd,
     AcState,
@@ -558,6 +559,30 @@ class AutocarEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_autocar_eps_command(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarEpsCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_autocar_eps_command(data, verify_checksum),
+            (
+                "eps_ctrl_mode",
+                "counter",
+                "max_angular_speed",
+                "steering_angle_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _AUTOCAR_EPS_COMMAND_SIGNALS:
+            raise UnknownSignalError("autocar_eps_command", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -758,6 +783,32 @@ class EpsState:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_eps_state(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> EpsState:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_eps_state(data, verify_checksum),
+            (
+                "eps_ctrl_state",
+                "steering_torque",
+                "eps_output_torque",
+                "steering_angle",
+                "controller_temp",
+                "eps_fault_level",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _EPS_STATE_SIGNALS:
+            raise UnknownSignalError("eps_state", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -953,6 +1004,31 @@ class AutocarSpeedCommand:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_autocar_speed_command(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarSpeedCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_autocar_speed_command(data, verify_checksum),
+            (
+                "accel_cmd",
+                "epb_cmd",
+                "gear_cmd",
+                "counter",
+                "emergency_brake_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _AUTOCAR_SPEED_COMMAND_SIGNALS:
+            raise UnknownSignalError("autocar_speed_command", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -1164,6 +1240,34 @@ class DrivingState:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> DrivingState:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_driving_state(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> DrivingState:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_driving_state(data, verify_checksum),
+            (
+                "epb_state",
+                "gear_state",
+                "emergency_brake_state",
+                "uss_brake_state",
+                "motor_speed",
+                "motor_torque",
+                "motor_speed_ratio",
+                "current_accel",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _DRIVING_STATE_SIGNALS:
+            raise UnknownSignalError("driving_state", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -1450,6 +1554,50 @@ class AutocarControlCommand1:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_autocar_control_command_1(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_autocar_control_command_1(data, verify_checksum),
+            (
+                "drive_mode_cmd",
+                "door_cmd",
+                "horn_cmd",
+                "drl_cmd",
+                "left_turn_cmd",
+                "right_turn_cmd",
+                "hazard_cmd",
+                "position_light_cmd",
+                "headlight_cmd",
+                "rear_fog_cmd",
+                "left_fog_cmd",
+                "right_fog_cmd",
+                "dome_light_cmd",
+                "ambient_light_cmd",
+                "drive_mode_reset",
+                "system_state",
+                "system_reliability",
+                "system_fault_level",
+                "lock_cmd",
+                "ac_cmd",
+                "ac_set_temp",
+                "protocol_version_a",
+                "protocol_version_b",
+                "protocol_version_c",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _AUTOCAR_CONTROL_COMMAND_1_SIGNALS:
+            raise UnknownSignalError("autocar_control_command_1", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -1882,6 +2030,47 @@ class VehicleState1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_1(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_vehicle_state_1(data, verify_checksum),
+            (
+                "drive_mode_state",
+                "door_state",
+                "drl_state",
+                "left_turn_state",
+                "right_turn_state",
+                "hazard_state",
+                "position_light_state",
+                "headlight_state",
+                "rear_fog_state",
+                "left_fog_state",
+                "right_fog_state",
+                "dome_light_state",
+                "ambient_light_state",
+                "door_button_state",
+                "vehicle_speed",
+                "soc",
+                "system_power_cmd",
+                "charge_state",
+                "charge_connection",
+                "vehicle_fault_level",
+                "odometer",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_STATE_1_SIGNALS:
+            raise UnknownSignalError("vehicle_state_1", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -2238,6 +2427,35 @@ class AutocarControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_autocar_control_command_2(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_autocar_control_command_2(data, verify_checksum),
+            (
+                "downhill_regen_enable",
+                "cargo_lift",
+                "cargo_lift_speed",
+                "pto_enable",
+                "downhill_regen_speed",
+                "chassis_pitch",
+                "chassis_roll",
+                "cargo_pitch",
+                "cargo_roll",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _AUTOCAR_CONTROL_COMMAND_2_SIGNALS:
+            raise UnknownSignalError("autocar_control_command_2", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -2453,6 +2671,29 @@ class VehicleState2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_2(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_vehicle_state_2(data, verify_checksum),
+            (
+                "battery_voltage",
+                "battery_current",
+                "battery_charge_energy",
+                "battery_discharge_energy",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_STATE_2_SIGNALS:
+            raise UnknownSignalError("vehicle_state_2", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -2612,6 +2853,31 @@ class VehicleState3:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState3:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_3(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState3:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_vehicle_state_3(data, verify_checksum),
+            (
+                "battery_max_temp",
+                "battery_min_temp",
+                "max_cell_voltage",
+                "min_cell_voltage",
+                "motor_temp",
+                "motor_controller_temp",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_STATE_3_SIGNALS:
+            raise UnknownSignalError("vehicle_state_3", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -2808,6 +3074,37 @@ class VehicleState4:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState4:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_4(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState4:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_vehicle_state_4(data, verify_checksum),
+            (
+                "outside_temp",
+                "inside_temp",
+                "ac_state",
+                "vehicle_power_state",
+                "hill_hold_state",
+                "regen_brake_state",
+                "remaining_range",
+                "manual_takeover_state",
+                "remote_driving_allowed",
+                "ac_set_temp",
+                "pto_state",
+                "battery_power",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_STATE_4_SIGNALS:
+            raise UnknownSignalError("vehicle_state_4", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -3146,6 +3443,54 @@ class VehicleFault:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleFault:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_fault(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleFault:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_vehicle_fault(data, verify_checksum),
+            (
+                "insulation_fault_level",
+                "dc_fault",
+                "soc_low",
+                "cell_undervoltage",
+                "brake_boost_pressure_fault",
+                "vacuum_pump_fault",
+                "vehicle_system_fault",
+                "battery_overheat",
+                "motor_overheat",
+                "traction_battery_fault",
+                "motor_fault",
+                "battery_comm_fault",
+                "motor_comm_fault",
+                "eps_fault",
+                "ac_fault",
+                "aux_battery_fault",
+                "epb_fault",
+                "brake_by_wire_fault",
+                "key_not_detected",
+                "tire_pressure_low",
+                "body_motor_fault",
+                "body_motor_overheat",
+                "battery_system_fault_level",
+                "motor_system_fault_level",
+                "unmanned_entry_fault",
+                "protocol_version_a",
+                "protocol_version_b",
+                "protocol_version_c",
+                "remote_entry_fault",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_FAULT_SIGNALS:
+            raise UnknownSignalError("vehicle_fault", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -3513,6 +3858,20 @@ class VehicleState5:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_5(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState5:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(self, _decode_vehicle_state_5(data, verify_checksum), ())
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _VEHICLE_STATE_5_SIGNALS:
+            raise UnknownSignalError("vehicle_state_5", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -3627,6 +3986,30 @@ class RgateEpsCommand:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_rgate_eps_command(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateEpsCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rgate_eps_command(data, verify_checksum),
+            (
+                "eps_ctrl_mode",
+                "counter",
+                "max_angular_speed",
+                "steering_angle_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _RGATE_EPS_COMMAND_SIGNALS:
+            raise UnknownSignalError("rgate_eps_command", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -3825,6 +4208,31 @@ class RgateSpeedCommand:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_rgate_speed_command(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateSpeedCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rgate_speed_command(data, verify_checksum),
+            (
+                "accel_cmd",
+                "epb_cmd",
+                "gear_cmd",
+                "counter",
+                "emergency_brake_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _RGATE_SPEED_COMMAND_SIGNALS:
+            raise UnknownSignalError("rgate_speed_command", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -4100,6 +4508,50 @@ class RgateControlCommand1:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rgate_control_command_1(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rgate_control_command_1(data, verify_checksum),
+            (
+                "drive_mode_cmd",
+                "door_cmd",
+                "horn_cmd",
+                "drl_cmd",
+                "left_turn_cmd",
+                "right_turn_cmd",
+                "hazard_cmd",
+                "position_light_cmd",
+                "headlight_cmd",
+                "rear_fog_cmd",
+                "left_fog_cmd",
+                "right_fog_cmd",
+                "dome_light_cmd",
+                "ambient_light_cmd",
+                "drive_mode_reset",
+                "system_state",
+                "system_reliability",
+                "system_fault_level",
+                "lock_cmd",
+                "ac_cmd",
+                "ac_set_temp",
+                "protocol_version_a",
+                "protocol_version_b",
+                "protocol_version_c",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _RGATE_CONTROL_COMMAND_1_SIGNALS:
+            raise UnknownSignalError("rgate_control_command_1", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -4469,6 +4921,31 @@ class RgateControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rgate_control_command_2(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rgate_control_command_2(data, verify_checksum),
+            (
+                "downhill_regen_enable",
+                "cargo_lift",
+                "cargo_lift_speed",
+                "pto_enable",
+                "downhill_regen_speed",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _RGATE_CONTROL_COMMAND_2_SIGNALS:
+            raise UnknownSignalError("rgate_control_command_2", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -4638,6 +5115,28 @@ class DeviceId:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_device_id(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> DeviceId:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_device_id(data, verify_checksum),
+            (
+                "device_type",
+                "id_frame_index",
+                "id_chars",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _DEVICE_ID_SIGNALS:
+            raise UnknownSignalError("device_id", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -4797,6 +5296,32 @@ class FrontSensorDistance1:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_front_sensor_distance_1(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_front_sensor_distance_1(data, verify_checksum),
+            (
+                "sensor_1_distance",
+                "sensor_2_distance",
+                "sensor_3_distance",
+                "sensor_4_distance",
+                "sensor_5_distance",
+                "sensor_6_distance",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _FRONT_SENSOR_DISTANCE_1_SIGNALS:
+            raise UnknownSignalError("front_sensor_distance_1", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -5018,6 +5543,39 @@ class FrontSensorDistance2:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_front_sensor_distance_2(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_front_sensor_distance_2(data, verify_checksum),
+            (
+                "sensor_7_distance",
+                "sensor_8_distance",
+                "sensor_9_distance",
+                "uss_system_state",
+                "sensor_1_fault",
+                "sensor_2_fault",
+                "sensor_3_fault",
+                "sensor_4_fault",
+                "sensor_5_fault",
+                "sensor_6_fault",
+                "sensor_7_fault",
+                "sensor_8_fault",
+                "sensor_9_fault",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _FRONT_SENSOR_DISTANCE_2_SIGNALS:
+            raise UnknownSignalError("front_sensor_distance_2", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -5294,6 +5852,32 @@ class RearSensorDistance1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rear_sensor_distance_1(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rear_sensor_distance_1(data, verify_checksum),
+            (
+                "sensor_1_distance",
+                "sensor_2_distance",
+                "sensor_3_distance",
+                "sensor_4_distance",
+                "sensor_5_distance",
+                "sensor_6_distance",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _REAR_SENSOR_DISTANCE_1_SIGNALS:
+            raise UnknownSignalError("rear_sensor_distance_1", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -5514,6 +6098,39 @@ class RearSensorDistance2:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rear_sensor_distance_2(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_rear_sensor_distance_2(data, verify_checksum),
+            (
+                "sensor_7_distance",
+                "sensor_8_distance",
+                "sensor_9_distance",
+                "uss_system_state",
+                "sensor_1_fault",
+                "sensor_2_fault",
+                "sensor_3_fault",
+                "sensor_4_fault",
+                "sensor_5_fault",
+                "sensor_6_fault",
+                "sensor_7_fault",
+                "sensor_8_fault",
+                "sensor_9_fault",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _REAR_SENSOR_DISTANCE_2_SIGNALS:
+            raise UnknownSignalError("rear_sensor_distance_2", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -5779,6 +6396,30 @@ class TeleEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_tele_eps_command(data, verify_checksum)
 
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleEpsCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_tele_eps_command(data, verify_checksum),
+            (
+                "eps_ctrl_mode",
+                "counter",
+                "max_angular_speed",
+                "steering_angle_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _TELE_EPS_COMMAND_SIGNALS:
+            raise UnknownSignalError("tele_eps_command", [name])
+        return True
+
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
         """Whether the frame's checksum is right (True when the message has none); never raises."""
@@ -5976,6 +6617,31 @@ class TeleSpeedCommand:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_tele_speed_command(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleSpeedCommand:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_tele_speed_command(data, verify_checksum),
+            (
+                "throttle_brake_cmd",
+                "epb_cmd",
+                "gear_cmd",
+                "counter",
+                "emergency_brake_cmd",
+                "checksum",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _TELE_SPEED_COMMAND_SIGNALS:
+            raise UnknownSignalError("tele_speed_command", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -6251,6 +6917,50 @@ class TeleControlCommand1:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_tele_control_command_1(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand1:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_tele_control_command_1(data, verify_checksum),
+            (
+                "drive_mode_cmd",
+                "door_cmd",
+                "horn_cmd",
+                "drl_cmd",
+                "left_turn_cmd",
+                "right_turn_cmd",
+                "hazard_cmd",
+                "position_light_cmd",
+                "headlight_cmd",
+                "rear_fog_cmd",
+                "left_fog_cmd",
+                "right_fog_cmd",
+                "dome_light_cmd",
+                "ambient_light_cmd",
+                "drive_mode_reset",
+                "system_state",
+                "system_reliability",
+                "system_fault_level",
+                "lock_cmd",
+                "ac_cmd",
+                "ac_set_temp",
+                "protocol_version_a",
+                "protocol_version_b",
+                "protocol_version_c",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _TELE_CONTROL_COMMAND_1_SIGNALS:
+            raise UnknownSignalError("tele_control_command_1", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:
@@ -6619,6 +7329,31 @@ class TeleControlCommand2:
     def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_tele_control_command_2(data, verify_checksum)
+
+    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand2:
+        """Decode a frame into this message and return it: the fields the frame holds are set."""
+        return _update(
+            self,
+            _decode_tele_control_command_2(data, verify_checksum),
+            (
+                "downhill_regen_enable",
+                "cargo_lift",
+                "cargo_lift_speed",
+                "pto_enable",
+                "downhill_regen_speed",
+                "counter",
+            ),
+        )
+
+    def present_signals(self) -> tuple[str, ...]:
+        """The spec names of the fields a frame holds: all of them (no multiplexing)."""
+        return self.SIGNALS
+
+    def is_present(self, name: str) -> bool:
+        """Whether the field `name` (its spec name) is in a frame with these multiplexer values; UnknownSignalError for another name."""
+        if name not in _TELE_CONTROL_COMMAND_2_SIGNALS:
+            raise UnknownSignalError("tele_control_command_2", [name])
+        return True
 
     @staticmethod
     def checksum_ok(data: Buffer) -> bool:

@@ -13,9 +13,8 @@ from dataclasses import dataclass, field
 from typing import IO, Any
 
 from canspec import ir
-from canspec.commands.common import compile_or_report, print_problems
+from canspec.commands.common import compile_or_report
 from canspec.commands.extras import install_hint
-from canspec.targets import multiplexing_refusals
 
 PROBLEM_KINDS = ("malformed", "unknown_id", "wrong_length", "checksum")
 LOG_FORMATS = ("candump", "asc", "blf", "trc", "mf4")
@@ -36,10 +35,6 @@ def load_protocol(command: str, spec: str | None) -> ir.CanProtocol | None:
         return None
     if compiled.spec.can is None:
         print(f"canspec {command}: the spec has no CAN protocol", file=sys.stderr)
-        return None
-    refused = list(multiplexing_refusals(compiled.spec, f"canspec {command}"))
-    if refused:
-        print_problems(refused)
         return None
     return compiled.spec.can
 

@@ -307,6 +307,13 @@ class Message:
         return bool(self.mux_groups)
 
     @cached_property
+    def text_fields_in_pages(self) -> tuple[str, ...]:
+        """The multi-frame text's index, payload and key fields that only some pages hold (a
+        reassembler that reads them from every frame cannot take the text)."""
+        m = self.multiframe
+        return () if m is None else tuple(n for n in (m.index_signal, m.payload_signal, *m.key_signals) if self.signal(n).mux is not None)
+
+    @cached_property
     def multiplexers(self) -> tuple[Signal, ...]:
         """The multiplexers, in frame order; one of them is in every frame (the top-level one)."""
         return tuple(s for s in self.signals if s.is_multiplexer)

@@ -6,7 +6,7 @@ formula — so it maps over log files in Dask or Spark (see README) and gives th
 a single process.
 
 A message's table: `timestamp` (float64 s), `channel` (dictionary string), per data signal its
-physical value (float64), `<signal>_label` (dictionary string, null where the raw value has no
+physical value (float64; null in the frames of a multiplexed message that hold another page), `<signal>_label` (dictionary string, null where the raw value has no
 label) for signals with labels, `<signal>_raw` when asked (the field's storage type:
 uint64/int64 for wide fields, so raw values above 2^53 stay exact), and `checksum_ok` (bool)
 for messages with a checksum. A derived column whose name a signal already has gets a leading
@@ -110,14 +110,16 @@ def physical_column(sig: ir.Signal, raw: np.ndarray) -> np.ndarray:
     return np.array([float(ir.to_physical(r, factor, offset)) for r in raw.tolist()], dtype=np.float64)
 
 
-def label_column(sig: ir.Signal, raw: np.ndarray) -> pa.DictionaryArray:
+def label_column(sig: ir.Signal, raw: np.ndarray, absent: np.ndarray | None = None) -> pa.DictionaryArray:
     import pyarrow as pa
 
     labels = sorted(sig.labels, key=lambda lb: lb.raw)
     keys = np.array([lb.raw for lb in labels], dtype=raw.dtype)
     at = np.minimum(np.searchsorted(keys, raw), len(keys) - 1)
-    hit = keys[at] == raw
-    return pa.DictionaryArray.from_arrays(pa.array(at.astype(np.int32), mask=~hit), pa.array([lb.name for lb in labels], pa.string()))
+    miss = keys[at] != raw
+    if absent is not None:
+        miss |= absent
+    return pa.DictionaryArray.from_arrays(pa.array(at.astype(np.int32), mask=miss), pa.array([lb.name for lb in labels], pa.string()))
 
 
 def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
@@ -128,12 +130,13 @@ def message_table(layout: Layout, batch: fr.Batch) -> pa.Table:
     channel = pa.DictionaryArray.from_arrays(pa.array(batch.channel, mask=batch.channel < 0), pa.array(batch.channels, pa.string()))
     cols: list[pa.Array] = [pa.array(batch.timestamp), channel]
     for s in layout.msg.data_signals:
-        raw = frames.raw(s)
-        cols.append(pa.array(physical_column(s, raw)))
+        raw, present = frames.raw(s), frames.present(s)
+        absent = None if present is None else ~present  # null where the frame holds another page
+        cols.append(pa.array(physical_column(s, raw), mask=absent))
         if s.labels:
-            cols.append(label_column(s, raw))
+            cols.append(label_column(s, raw, absent))
         if layout.raw:
-            cols.append(pa.array(raw.astype(f"{'int' if s.signed else 'uint'}{s.storage_bits}")))
+            cols.append(pa.array(raw.astype(f"{'int' if s.signed else 'uint'}{s.storage_bits}"), mask=absent))
     if layout.msg.checksum is not None:
         cols.append(pa.array(frames.checksum_ok()))
     return pa.Table.from_arrays(cols, schema=layout.schema())

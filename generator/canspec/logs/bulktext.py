@@ -53,10 +53,25 @@ def _numbers(sig: ir.Signal, raw: np.ndarray) -> list[str]:
 
 
 def message_texts(frames: MessageFrames, tables: dict[str, np.ndarray]) -> list[str]:
-    """The fields text of every frame of one message."""
+    """The fields text of every frame of one message (of a multiplexed one: the fields each frame holds)."""
     columns = [signal_texts(s, frames, tables) for s in frames.msg.data_signals]
+    if frames.msg.is_multiplexed:
+        return _page_texts(frames, columns)
     if not columns:
         return [""] * len(frames)
     if len(columns) == 1:
         return columns[0]
     return list(map(", ".join, zip(*columns)))
+
+
+def _page_texts(frames: MessageFrames, columns: list[list[str]]) -> list[str]:
+    """The texts joined per page layout: the frames that hold the same fields at once."""
+    every = np.ones(len(frames), bool)
+    held = np.stack([every if (p := frames.present(s)) is None else p for s in frames.msg.data_signals])
+    layouts, which = np.unique(held.T, axis=0, return_inverse=True)
+    out = np.empty(len(frames), dtype=object)
+    for k, layout in enumerate(layouts):
+        rows = np.flatnonzero(which.ravel() == k)
+        picked = [np.asarray(columns[i], dtype=object)[rows].tolist() for i in np.flatnonzero(layout)]
+        out[rows] = list(map(", ".join, zip(*picked)))
+    return out.tolist()  # type: ignore[no-any-return]

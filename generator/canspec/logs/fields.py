@@ -57,6 +57,18 @@ class MessageFrames:
             return bits
         return ((bits ^ U64(sig.sign_bit)) - U64(sig.sign_bit)).view(np.int64)
 
+    def present(self, sig: ir.Signal) -> np.ndarray | None:
+        """Per frame, whether it holds the field: its whole chain of multiplexers holds selecting values
+        (ir.Message.mux_chain); None for a field of every frame."""
+        chain = self.msg.mux_chain(sig)
+        if not chain:
+            return None
+        out = np.ones(len(self), bool)
+        for cond in chain:
+            raw = self.raw(self.msg.signal(cond.by))  # a multiplexer is unsigned
+            out &= np.logical_or.reduce([(raw >= U64(lo)) & (raw <= U64(hi)) for lo, hi in cond.ranges])
+        return out
+
     def checksum_ok(self) -> np.ndarray:
         """Whether the checksum byte equals the XOR of the bytes cover_mask selects."""
         check = self.msg.checksum

@@ -98,7 +98,9 @@ def json_value(sig: ir.Signal, raw: int) -> str | float | int:
 
 
 def raw_values(msg: ir.Message, data: bytes) -> list[tuple[ir.Signal, int]]:
-    """Each data signal with its raw value in the frame (the reference codec's reading)."""
+    """Each data signal the frame holds with its raw value (the reference codec's reading)."""
+    if msg.is_multiplexed:
+        return [(msg.signal(name), raw) for name, raw in codec.unpack(msg, data).items()]
     v = int.from_bytes(data, "little")
     big = int.from_bytes(data, "big") if msg.has_big_endian else None
     return [(s, codec.raw_value(s, v, big)) for s in msg.data_signals]

@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from functools import lru_cache
 
 from canspec import ir
-from canspec.spec.problems import Problem, error
+from canspec.spec.problems import Problem
 
 
 @dataclass(frozen=True)
@@ -25,24 +25,13 @@ class Target:
     order: int = 50  # generation order; lower first
     cost: int = 1  # relative render time, to schedule slow targets first
     check: Callable[[ir.Spec], Iterable[Problem]] | None = None  # what this target cannot express
-    multiplexing: bool = False  # it carries multiplexed messages (or reads no CAN protocol); else it refuses them
-
-
-def multiplexing_refusals(spec: ir.Spec, who: str) -> Iterator[Problem]:
-    """`who` (a target, a command) does not carry multiplexing yet: each multiplexed message is refused."""
-    carry = " ".join(f"--target {t.name}" for t in registry().values() if t.multiplexing)
-    for msg in spec.can.messages if spec.can is not None else ():
-        if msg.is_multiplexed:
-            yield error(f"{who}: multiplexed message {msg.name!r} is not supported yet", msg.loc,
-                        f"generate the targets that carry multiplexing: canspec gen {carry}", "mux-unsupported")
 
 
 def target_problems(spec: ir.Spec, names: Iterable[str] | None = None) -> list[Problem]:
     """The refusals of a spec the spec rules accept, by the named targets (default: all)."""
     targets = registry()
     chosen = [targets[n] for n in names] if names is not None else list(targets.values())
-    found = [p for target in chosen if target.check is not None for p in target.check(spec)]
-    return found + [p for target in chosen if not target.multiplexing for p in multiplexing_refusals(spec, f"target {target.name}")]
+    return [p for target in chosen if target.check is not None for p in target.check(spec)]
 
 
 @lru_cache(maxsize=1)

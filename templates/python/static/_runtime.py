@@ -13,6 +13,7 @@ from ._rules import EXACT_LIMIT, TIE_EPSILON
 from .errors import RangeError, RawRangeError
 
 E = TypeVar("E")
+T = TypeVar("T")
 M = TypeVar("M", bound=IntEnum)
 
 
@@ -110,3 +111,12 @@ def lookup(enum: type[M], bits: int) -> tuple[M | int, ...]:
     """Every raw value of a `bits`-wide field → its enum member, or the raw value when there is none."""
     members = {member.value: member for member in enum}
     return tuple(members.get(raw, raw) for raw in range(1 << bits))
+
+
+def update(message: T, decoded: T, attrs: tuple[str, ...]) -> T:
+    """`message` with the attributes `decoded` holds copied in; None (a page the frame does not hold) is skipped."""
+    for name in attrs:
+        value = getattr(decoded, name)
+        if value is not None:
+            setattr(message, name, value)
+    return message

@@ -12,11 +12,9 @@ from pathlib import Path
 import pytest
 import speccheck
 
-# the valid fixtures, the multiplexed ones (tests/fixtures/mux/, until they join valid/), and the C
-# target's own corners (Motorola-only frames, float keys of a text, pages with a checksum or in FD frames, ...)
+# the valid fixtures and the C target's own corners (Motorola-only frames, float keys of a text, pages with a checksum or in FD frames, ...)
 HERE = Path(__file__).resolve().parent
-FIXTURES = [*sorted((HERE.parents[1] / "fixtures" / "valid").glob("*.yaml")), *sorted((HERE.parents[1] / "fixtures" / "mux").glob("*.yaml")),
-            HERE / "corners" / "c_corners.yaml", HERE / "corners" / "c_mux_corners.yaml"]
+FIXTURES = [*sorted((HERE.parents[1] / "fixtures" / "valid").glob("*.yaml")), HERE / "corners" / "c_corners.yaml", HERE / "corners" / "c_mux_corners.yaml"]
 WORKERS = 2  # the machine is shared
 
 

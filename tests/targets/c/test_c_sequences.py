@@ -12,8 +12,8 @@ from canspec.targets import registry
 from repo_paths import GENERATED, ROOT
 
 SUMMARY = re.compile(r"c sequences: (\d+) monitor sequences \((\d+) steps\), (\d+) text sequences \((\d+) steps\), (\d+) mismatches")
-# the valid fixtures, the multiplexed ones (until they join valid/), the C target's corners
-FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")), *sorted((ROOT / "tests" / "fixtures" / "mux").glob("*.yaml")),
+# the valid fixtures and the C target's corners
+FIXTURES = [*sorted((ROOT / "tests" / "fixtures" / "valid").glob("*.yaml")),
             ROOT / "tests" / "targets" / "c" / "corners" / "c_corners.yaml"]
 
 

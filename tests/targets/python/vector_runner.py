@@ -85,17 +85,19 @@ def check_case(gw: ModuleType, case: dict[str, Any]) -> list[str]:
             # `expected` is the tie input: the decoded value is the raw step it rounded to, half a step
             # away (up to the doubles' own spacing there, in the step's measurement and in the decode)
             slack = 4 * math.ulp(max(abs(got), abs(expected)))
-            ok = abs(got - expected) <= 0.5 * _step(gw, cls, sig, case["raw"][sig]) * (1 + 1e-9) + slack
+            ok = abs(got - expected) <= 0.5 * _step(gw, cls, sig, case["raw"]) * (1 + 1e-9) + slack
         else:
             ok = same_value(got, expected)
         if not ok:
             errors.append(f"decode: {sig} = {got!r}, expected {expected!r}")
+    errors += check_pages(gw, cls, case, message)
     # encode
     if gw.encode_raw(frame_id, case["raw"]) != data:
         errors.append(f"encode_raw gives {gw.encode_raw(frame_id, case['raw']).hex().upper()}, expected {case['data']}")
     if case["kind"] in DECODE_ONLY_KINDS:
         return errors
-    built = cls(**{names[s]: v for s, v in physical.items()})
+    # a page the frame does not hold: its fields hold a sentinel that encode must neither check nor write
+    built = cls(**{names[s]: v for s, v in physical.items()}, **dict.fromkeys((names[s] for s in absent_signals(cls, case)), SENTINEL))
     if case["kind"] in PHYSICAL_KINDS:
         try:
             encoded = gw.encode(built)
@@ -113,14 +115,44 @@ def check_case(gw: ModuleType, case: dict[str, Any]) -> list[str]:
     return errors
 
 
-def _step(gw: ModuleType, cls: type, sig: str, raw: int) -> float:
-    """The physical size of one raw step of a signal, measured through the package itself."""
-    name = attr_names(cls)[sig]
-    here = float(getattr(cls.from_raw({sig: raw}), name))
+SENTINEL = object()  # no field's value: any use of it by encode raises
+OUT_OF_RANGE_RAW = -(2**70)  # no field's raw value
+
+
+def absent_signals(cls: type, case: dict[str, Any]) -> list[str]:
+    """The fields of the pages the case's frame does not hold (none for a message without multiplexing)."""
+    return [s for s in cls.SIGNALS if s not in case["raw"]]
+
+
+def check_pages(gw: ModuleType, cls: type, case: dict[str, Any], message: Any) -> list[str]:
+    """Multiplexing: decode gives None for the other pages' fields, `update` leaves them alone, the presence
+    query names the case's fields, and the raw packer ignores the other pages' values."""
+    absent, names, errors = absent_signals(cls, case), attr_names(cls), []
+    if [getattr(message, names[s]) for s in absent] != [None] * len(absent):
+        errors.append(f"decode: the absent fields {absent} are not all None")
+    present = [s for s in cls.SIGNALS if s in case["raw"]]
+    if list(message.present_signals()) != present or not all(message.is_present(s) for s in present) or any(message.is_present(s) for s in absent):
+        errors.append(f"present_signals() = {message.present_signals()}, expected {present}")
+    held = cls(**dict.fromkeys(names.values(), SENTINEL))
+    if held.update(bytes.fromhex(case["data"])) is not held:
+        errors.append("update does not return the message it updates")
+    kept = [s for s in absent if getattr(held, names[s]) is not SENTINEL]
+    if kept or not all(same_value(getattr(held, names[s]), getattr(message, names[s])) for s in present):
+        errors.append(f"update: the absent fields {kept} lost their values, or a present one differs from decode")
+    extra = dict.fromkeys(absent, OUT_OF_RANGE_RAW)
+    if absent and gw.encode_raw(case["frame_id"], {**case["raw"], **extra}) != bytes.fromhex(case["data"]):
+        errors.append("encode_raw wrote or checked an absent page's raw value")
+    return errors
+
+
+def _step(gw: ModuleType, cls: type, sig: str, raws: dict[str, int]) -> float:
+    """The physical size of one raw step of a signal at the case's raw values, measured through the package itself."""
+    name, raw = attr_names(cls)[sig], raws[sig]
+    here = float(getattr(cls.from_raw({**raws, sig: raw}), name))
     try:
-        there = float(getattr(cls.from_raw({sig: raw - 1}), name))
+        there = float(getattr(cls.from_raw({**raws, sig: raw - 1}), name))
     except gw.RawRangeError:
-        there = float(getattr(cls.from_raw({sig: raw + 1}), name))
+        there = float(getattr(cls.from_raw({**raws, sig: raw + 1}), name))
     return abs(here - there)
 
 

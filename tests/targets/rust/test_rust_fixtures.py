@@ -1,5 +1,5 @@
 """The Rust crate of every valid fixture (tests/fixtures/valid/*.yaml with a CAN protocol, and the
-multiplexed specs of tests/targets/rust/specs/ and tests/fixtures/mux/ that the Rust target carries), held
+multiplexed specs of tests/targets/rust/specs/), held
 to the toolchain's strict checks: clippy with warnings denied on every target, a no_std build,
 rustdoc with warnings denied, and the crate's own tests — its vector test on that fixture's
 vectors and its property tests. One cargo workspace, one target directory, offline (the
@@ -19,8 +19,7 @@ from repo_paths import ROOT
 from rust_workspace import add_member, write_workspace
 
 FIXTURES = ROOT / "tests" / "fixtures" / "valid"
-# Multiplexed specs: those other targets may still refuse (tests/fixtures/mux/ until every target carries them).
-MUX_SPECS = (ROOT / "tests" / "targets" / "rust" / "specs", ROOT / "tests" / "fixtures" / "mux")
+RUST_SPECS = ROOT / "tests" / "targets" / "rust" / "specs"  # the Rust target's own multiplexing specs
 TARGET_DIR = ROOT / "build" / "rust" / "target"
 VECTORS_LINE = re.compile(r"rust vectors: (\d+) cases \+ (\d+) multi-frame texts from (\S+), (\d+) mismatches")
 
@@ -37,7 +36,7 @@ def _crate(path: Path, root: Path) -> str | None:
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[str]]:
     root = tmp_path_factory.mktemp("rust_fixtures")
-    specs = sorted(FIXTURES.glob("*.yaml")) + sorted(p for folder in MUX_SPECS for p in folder.glob("*.yaml"))
+    specs = sorted(FIXTURES.glob("*.yaml")) + sorted(RUST_SPECS.glob("*.yaml"))
     members = [m for p in specs if (m := _crate(p, root)) is not None]
     write_workspace(root, members)
     return root, members

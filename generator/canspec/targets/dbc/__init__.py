@@ -29,4 +29,4 @@ def render_dbc(spec: ir.Spec) -> dict[str, bytes]:
     return {f"dbc/{spec.can.name}.dbc": text.encode("utf-8")}
 
 
-TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10, check=refusals.problems, multiplexing=True)
+TARGET = Target("dbc", "DBC database (Vector J1939 attributes, UTF-8)", "dbc/", render_dbc, order=10, check=refusals.problems)

@@ -205,4 +205,4 @@ def render_docs(spec: ir.Spec) -> dict[str, bytes]:
 
 
 TARGET = Target("docs", "protocol handbook: Markdown + SVG bit diagrams for MkDocs, bilingual where the spec is", OUT, render_docs,
-                order=80, cost=2, multiplexing=True)
+                order=80, cost=2)

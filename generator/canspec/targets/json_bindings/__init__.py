@@ -24,5 +24,4 @@ def render_bindings(spec: ir.Spec) -> dict[str, bytes]:
     return out
 
 
-TARGET = Target("json_bindings", "typed bindings of the JSON protocol (Python, Rust, TypeScript)", "json/", render_bindings, order=41, cost=3, check=problems,
-                multiplexing=True)  # JSON only: no CAN messages to refuse
+TARGET = Target("json_bindings", "typed bindings of the JSON protocol (Python, Rust, TypeScript)", "json/", render_bindings, order=41, cost=3, check=problems)

@@ -261,5 +261,4 @@ def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     return {"vectors/json.json": text.encode("utf-8")}
 
 
-TARGET = Target("json_vectors", "shared JSON-protocol test vectors", "vectors/", render_vectors, order=21,
-                multiplexing=True)  # JSON only: no CAN messages to refuse
+TARGET = Target("json_vectors", "shared JSON-protocol test vectors", "vectors/", render_vectors, order=21)

@@ -240,5 +240,4 @@ def render_schemas(spec: ir.Spec) -> dict[str, bytes]:
     return {f"jsonschema/{rel}": (json.dumps(s, indent=2, sort_keys=True, ensure_ascii=False) + "\n").encode("utf-8") for rel, s in build_schemas(spec).items()}
 
 
-TARGET = Target("jsonschema", "JSON Schemas (draft 2020-12) of the JSON protocol", "jsonschema/", render_schemas, order=40, check=problems,
-                multiplexing=True)  # JSON only: no CAN messages to refuse
+TARGET = Target("jsonschema", "JSON Schemas (draft 2020-12) of the JSON protocol", "jsonschema/", render_schemas, order=40, check=problems)

@@ -8,10 +8,12 @@ under templates/python/static/, copied with the generated header — and the rec
 from __future__ import annotations
 
 import importlib.resources
+from collections.abc import Iterator
 
 from canspec import ir
 from canspec.render.environment import render, static_file, with_header
 from canspec.render.formatters import ruff_format
+from canspec.spec.problems import Problem, error
 from canspec.targets import Target
 from canspec.targets.python.model import PyPackage, build_package
 
@@ -67,4 +69,13 @@ def render_python(spec: ir.Spec) -> dict[str, bytes]:
     return files
 
 
-TARGET = Target(TARGET_NAME, "Python package (typed dataclasses, stdlib only; python-can optional)", "python/", render_python, order=30, cost=8)
+def problems(spec: ir.Spec) -> Iterator[Problem]:
+    """Multi-frame text whose index, payload or key fields only some pages hold: the text assembler reads them from every frame."""
+    for msg in spec.can.messages if spec.can is not None else ():
+        for name in msg.text_fields_in_pages:
+            yield error(f"multi-frame text of {msg.name!r} reads {name!r}, which only some pages hold; the Python text assembler reads it from every frame",
+                        msg.signal(name).loc or msg.loc, "take the text's index, payload and keys from fields in every frame", "python-text-mux")
+
+
+TARGET = Target(TARGET_NAME, "Python package (typed dataclasses, stdlib only; python-can optional)", "python/", render_python, order=30, cost=8,
+                check=problems)

@@ -9,10 +9,12 @@ rule and raises the documented errors.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from canspec import ir
 from canspec.render.literals import PYTHON
+from canspec.targets.python import pages
 from canspec.targets.python.fields import PySignal
 
 TIE = ir.TIE_EPSILON_TEXT
@@ -160,10 +162,22 @@ def pack_tail(f: Frame) -> tuple[str, ...]:
     return (*lines, f'return {word}.to_bytes({f.dlc}, "{ORDERS[word]}")')
 
 
+def _paged(f: Frame, convert: Callable[[PySignal], list[str]]) -> list[str]:
+    """`convert` of every value, a page's under its condition on the multiplexers' raw locals (0 where absent)."""
+    by_name = {s.name: s for s in f.values}
+    lines: list[str] = []
+    for chain, group in pages.grouped(f.values):
+        if chain:
+            lines.append(" = ".join([*(s.raw_var for s in group), "0"]))
+        lines += pages.under(chain, lambda n: by_name[n].raw_var, [line for s in group for line in convert(s)])
+    return lines
+
+
 def pack(f: Frame, names_var: str) -> tuple[str, ...]:
-    """The body of the raw packer: unknown names refused, every raw value checked against its field."""
+    """The body of the raw packer: unknown names refused, every raw value checked against its field (of a
+    multiplexed message: every value of the pages its multiplexers select; the others are ignored)."""
     lines = [f"if not raw.keys() <= {names_var}:", f'{IND}raise UnknownSignalError("{f.name}", sorted(raw.keys() - {names_var}))']
-    lines += [f'{s.raw_var} = _check_raw(raw.get("{s.name}", 0), {s.descriptor})' for s in f.values]
+    lines += _paged(f, lambda s: [f'{s.raw_var} = _check_raw(raw.get("{s.name}", 0), {s.descriptor})'])
     return (*lines, *pack_tail(f))
 
 
@@ -182,15 +196,18 @@ def _rounded(s: PySignal, q: str) -> list[str]:
 def _to_raw(s: PySignal) -> list[str]:
     """`raw_var` from the attribute: inline inside the range, the runtime's full rule otherwise."""
     r, slow = s.raw_var, f"_to_raw({s.var}, {s.descriptor})"
+    # a page's field is typed `T | None`; None is only for absent pages, and here raises TypeError (the slow path's error)
+    read = f'{s.var} = cast("{s.py_type.removesuffix(" | None")}", m.{s.attr})' if s.chain else f"{s.var} = m.{s.attr}"
     if s.sig.is_float:  # the double's bit pattern in the format (NaN, ±Inf and what lies outside: the slow path)
         bits = f'_from_bytes(_pack_f{s.sig.length}({s.var}), "little")'
-        return [f"{s.var} = m.{s.attr}", f"{r} = {bits} if {s.lo_lit} <= {s.var} <= {s.hi_lit} else {slow}"]
+        return [read, f"{r} = {bits} if {s.lo_lit} <= {s.var} <= {s.hi_lit} else {slow}"]
     if s.direct:  # integers convert exactly: the raw range check is the whole check
-        return [f"{r} = {s.q_expr}", f"if not {s.sig.raw_min} <= {r} <= {s.sig.raw_max}:", f"{IND}{r} = _to_raw(m.{s.attr}, {s.descriptor})"]
+        lines = [f"{r} = {s.q_expr}", f"if not {s.sig.raw_min} <= {r} <= {s.sig.raw_max}:", f"{IND}{r} = _to_raw(m.{s.attr}, {s.descriptor})"]
+        return [read, *lines] if s.chain else lines
     in_range = f"{s.lo_lit} <= {s.var} <= {s.hi_lit}"
     if s.q_nonneg and not s.exact_branch and not s.raw_check:
-        return [f"{s.var} = m.{s.attr}", f"{r} = int({s.q_expr} + 0.5 + {TIE}) if {in_range} else {slow}"]
-    lines = [f"{s.var} = m.{s.attr}", f"if {in_range}:", *(IND + line for line in _rounded(s, s.q_expr))]
+        return [read, f"{r} = int({s.q_expr} + 0.5 + {TIE}) if {in_range} else {slow}"]
+    lines = [read, f"if {in_range}:", *(IND + line for line in _rounded(s, s.q_expr))]
     if s.raw_check:
         lines += [f"{IND}if not {s.sig.raw_min} <= {r} <= {s.sig.raw_max}:", f"{IND * 2}{r} = {slow}"]
     return [*lines, "else:", f"{IND}{r} = {slow}"]
@@ -201,11 +218,22 @@ def encode(f: Frame, pack_func: str) -> tuple[str, ...]:
     code cannot take (a float for an integer signal, not a number) re-runs through the slow path."""
     if not f.values:
         return pack_tail(f)
-    body = [line for s in f.values for line in _to_raw(s)] + list(pack_tail(f))
-    retry = ", ".join(f'"{s.name}": _to_raw(m.{s.attr}, {s.descriptor})' for s in f.values)
+    body = _paged(f, _to_raw) + list(pack_tail(f))
     return (
         "try:",
         *(IND + line for line in body),
         "except (TypeError, AttributeError):  # a float for an integer signal (rounded by the rule), or not a number at all",
-        f"{IND}return {pack_func}({{{retry}}})",
+        *(IND + line for line in _retry(f, pack_func)),
     )
+
+
+def _retry(f: Frame, pack_func: str) -> list[str]:
+    """Every value (of a multiplexed message: of the selected pages) through the slow path, then the raw packer."""
+    groups = pages.grouped(f.values)
+    first = ", ".join(f'"{s.name}": _to_raw(m.{s.attr}, {s.descriptor})' for s in (groups[0][1] if not groups[0][0] else []))
+    if len(groups) == 1 and not groups[0][0]:
+        return [f"return {pack_func}({{{first}}})"]
+    lines = [f"raw: dict[str, int] = {{{first}}}"]
+    for chain, group in groups[1:] if not groups[0][0] else groups:
+        lines += pages.under(chain, lambda n: f'raw["{n}"]', [f'raw["{s.name}"] = _to_raw(m.{s.attr}, {s.descriptor})' for s in group])
+    return [*lines, f"return {pack_func}(raw)"]

@@ -16,11 +16,13 @@ from fractions import Fraction
 
 from canspec import ir
 from canspec.ir.encoding import FLOAT_MAX, decimal_text
+from canspec.ir.mux import ranges_text
 from canspec.render.literals import PYTHON
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 
 # Method names of every message class: an attribute never takes one of these.
-METHODS = frozenset({"encode", "decode", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter"})
+METHODS = frozenset({"encode", "decode", "update", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter",
+                     "present_signals", "is_present"})
 ATTRIBUTE_RESERVED = METHODS | CLASS_SCOPE_BUILTINS
 
 
@@ -70,6 +72,10 @@ class PySignal:
     q_nonneg: bool  # q >= 0 for every value passing the range check: no sign branch
     exact_branch: bool  # |q| may reach EXACT_LIMIT inside the range: the rule's 2^52 branch is needed
     raw_check: bool  # a value passing the range check may still round outside raw_min..raw_max
+    # multiplexing: what the field's presence needs, top-level multiplexer first (ir.Message.mux_chain; () in every frame)
+    chain: tuple[ir.MuxCondition, ...] = ()
+    key_var: str = ""  # a multiplexer: the decode local holding its raw value
+    phys_from_key: str = ""  # and its physical value from that local
 
     @property
     def is_checksum(self) -> bool:
@@ -228,8 +234,10 @@ def label_comment(label: str, label_zh: str) -> str:
     return PYTHON.comment(f"{label_zh} ({label})" if label_zh else label)
 
 
-def doc_line(sig: ir.Signal, enum: str | None) -> str:
+def doc_line(sig: ir.Signal, enum: str | None, chain: tuple[ir.MuxCondition, ...] = ()) -> str:
     parts = [sig.zh] if sig.zh else []
+    if chain:  # None in a decoded message whose multiplexers select another page
+        parts.append("present when " + " and ".join(f"{c.by} = {ranges_text(c.ranges)}" for c in chain) + ", else None")
     if sig.unit:
         parts.append(f"unit {sig.unit}")
     if sig.is_float:
@@ -309,6 +317,7 @@ class SignalContext:
     enum: str | None  # the enum class of its value table, when it decodes to one
     members: dict[int, str]  # raw → member name of that enum
     lookup: PyLookup | None
+    chain: tuple[ir.MuxCondition, ...] = ()  # ir.Message.mux_chain of the signal
 
 
 def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecial, ...]:
@@ -319,13 +328,19 @@ def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecia
     )
 
 
+def _phys(sig: ir.Signal, raw: str, kind: str, ctx: SignalContext) -> str:
+    """The physical value from the raw expression `raw`: scaled, or the enum member."""
+    if ctx.lookup is not None:
+        return f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
+    return phys_expr(sig, raw, kind, ctx.frame_bits // 8)
+
+
 def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     kind = _kind(sig, ctx.enum)
     as_int = kind != "float"
     raw = raw_expr(sig, ctx.frame_bits)
-    phys = phys_expr(sig, raw, kind, ctx.frame_bits // 8)
-    if ctx.lookup is not None:
-        phys = f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
+    phys = _phys(sig, raw, kind, ctx)
+    key_var = f"k{ctx.index}" if sig.is_multiplexer else ""
     direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)
     lo_lit = PYTHON.number(lo, as_int and lo.denominator == 1)
@@ -335,13 +350,15 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
         lo_lit, hi_lit = PYTHON.double(double_within(lo, up=True)), PYTHON.double(double_within(hi, up=False))
         tail = f", {sig.length}, {sig.doc_min is None}"
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
+    in_page = bool(ctx.chain)
     return PySignal(
-        sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind],
+        sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum, ctx.chain), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind] + (" | None" if in_page else ""),
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
         frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64,
         phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,
-        q_expr=q_expr(sig, direct, f"m.{attr}" if direct else var), lo_lit=lo_lit, hi_lit=hi_lit,
+        q_expr=q_expr(sig, direct, f"m.{attr}" if direct and not in_page else var), lo_lit=lo_lit, hi_lit=hi_lit,
         q_nonneg=sig.factor > 0 and float(lo) >= float(sig.offset), exact_branch=exact_branch(sig), raw_check=raw_check(sig, direct),
+        chain=ctx.chain, key_var=key_var, phys_from_key=_phys(sig, key_var, kind, ctx) if key_var else "",
     )

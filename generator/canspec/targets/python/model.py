@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import textwrap
 from dataclasses import dataclass
+from typing import Any
 
 from canspec import ir
 from canspec.ir.names import pascal, snake
 from canspec.render.literals import PYTHON
-from canspec.targets.python import code
+from canspec.targets.python import code, pages
 from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, float_offset, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 
@@ -24,7 +25,7 @@ PACKAGE_NAMES = frozenset({
     "UnknownSignalError", "TextError", "TextIndexError", "InconsistentTextError", "InvalidTextError", "new_monitor", "TEXT_ASSEMBLERS", "FaultTable",
     "MessageRule", "CounterRule", "ChecksumRule", "Monitor", "BY_ID", "MESSAGES", "Buffer", "Message", "checksum_ok", "decode", "decode_raw", "encode",
     "encode_raw", "Callable", "Mapping", "ClassVar", "Protocol", "TypeAlias", "TypedDict", "cast", "dataclass", "dataclasses", "Iterable", "IntEnum",
-    "_new", "_from_bytes", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
+    "_new", "_from_bytes", "_update", "_SignalSpec", "_check_raw", "_member", "_lookup", "_to_raw", "_DECODERS", "_UNPACKERS", "_PACKERS",
     "_unpack_f32", "_unpack_f64", "_pack_f32", "_pack_f64", "_unpack_f32_le", "_unpack_f32_be", "_unpack_f64_le", "_unpack_f64_be",
     "_FD_BUS"})
 # The package's modules, as its docstring introduces them.
@@ -121,6 +122,11 @@ class PyMessage:
     encode_lines: tuple[str, ...]
     pack_lines: tuple[str, ...]
     checksum_ok_lines: tuple[str, ...]
+    # multiplexing (pages.py): decode's assignments, unpack's body, and `_present_<message>`'s body, or () without it
+    decode_lines: tuple[str, ...]
+    unpack_lines: tuple[str, ...]
+    present_func: str
+    present_lines: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -199,7 +205,7 @@ class _Builder:
             lookup = self.lookup(sig)
             enum = lookup.enum if lookup is not None else None
             members = self.members[sig.value_table.name] if lookup is not None and sig.value_table is not None else {}
-            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup)
+            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup, msg.mux_chain(sig))
             out.append(build_signal(sig, ctx))
         return tuple(out)
 
@@ -223,8 +229,9 @@ class _Builder:
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
         funcs = {kind: self.module.take(f"_{kind}_{msg.name}") for kind in ("decode", "encode", "unpack")}
+        raw_class = self.module.take(f"{cls}Raw")
         return PyMessage(
-            name=msg.name, class_name=cls, raw_class=self.module.take(f"{cls}Raw"), heading=_heading(msg), frame_line=_frame_line(msg),
+            name=msg.name, class_name=cls, raw_class=raw_class, heading=_heading(msg), frame_line=_frame_line(msg),
             desc=PYTHON.doc(msg.desc), id_lit=msg.id_text, is_extended=msg.is_extended, dlc=msg.dlc, cycle_ms=msg.cycle_ms, j1939=msg.j1939,
             fingerprint=PYTHON.hex(msg.fingerprint, 8), signals=signals, checksum=checksum,
             counter=by_name[msg.counter.signal] if msg.counter is not None else None, counter_modulo=msg.counter.modulo if msg.counter is not None else 0,
@@ -236,8 +243,14 @@ class _Builder:
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
             decode_checks=code.frame_checks(frame, True), unpack_checks=code.frame_checks(frame, False),
             encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
-            checksum_ok_lines=code.checksum_ok(frame),
+            checksum_ok_lines=code.checksum_ok(frame), **self.pages(msg, signals, raw_class),
         )
+
+    def pages(self, msg: ir.Message, signals: tuple[PySignal, ...], raw_class: str) -> dict[str, Any]:
+        if not msg.is_multiplexed:
+            return {"decode_lines": (), "unpack_lines": (), "present_func": "", "present_lines": ()}
+        return {"decode_lines": pages.decode(signals), "unpack_lines": pages.unpack(signals, raw_class),
+                "present_func": self.module.take(f"_present_{msg.name}"), "present_lines": pages.present(signals)}
 
 
 def _float_helpers(can: ir.CanProtocol) -> tuple[str, ...]:

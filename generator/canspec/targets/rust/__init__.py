@@ -54,4 +54,4 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     return {f"rust/{rel}": (rustfmt(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
 
 
-TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems, multiplexing=True)
+TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems)

@@ -24,9 +24,6 @@ def problems(spec: ir.Spec) -> Iterator[Problem]:
         if msg.multiframe and msg.multiframe.frames > MAX_TEXT_FRAMES:
             yield error(f"multi-frame text of {msg.name!r} takes {msg.multiframe.frames} frames; the Rust reassembler tracks at most {MAX_TEXT_FRAMES}",
                         msg.loc, f"carry the text in at most {MAX_TEXT_FRAMES} frames (longer payloads need fewer)", "rust-text-frames")
-        if msg.multiframe and msg.is_multiplexed:
-            m = msg.multiframe
-            for name in (m.index_signal, m.payload_signal, *m.key_signals):
-                if msg.signal(name).mux is not None:
-                    yield error(f"multi-frame text of {msg.name!r} reads {name!r}, which only some pages hold; the Rust reassembler reads it from every frame",
-                                msg.signal(name).loc or msg.loc, "take the text's index, payload and keys from fields in every frame", "rust-text-mux")
+        for name in msg.text_fields_in_pages:
+            yield error(f"multi-frame text of {msg.name!r} reads {name!r}, which only some pages hold; the Rust reassembler reads it from every frame",
+                        msg.signal(name).loc or msg.loc, "take the text's index, payload and keys from fields in every frame", "rust-text-mux")

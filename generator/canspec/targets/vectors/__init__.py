@@ -280,4 +280,4 @@ def render_vectors(spec: ir.Spec) -> dict[str, bytes]:
     return {"vectors/can.json": _json(build_vectors(spec, stream=True)), "vectors/sequences.json": _json(build_sequences(spec))}
 
 
-TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2, multiplexing=True)
+TARGET = Target("vectors", "shared CAN test vectors (JSON)", "vectors/", render_vectors, order=20, cost=2)

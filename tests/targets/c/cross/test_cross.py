@@ -169,8 +169,7 @@ def _new_dialect(path: Path) -> bool:
     return can is not None and (can.has_big_endian or can.has_fd or can.has_float)
 
 
-# with the multiplexed fixtures (tests/fixtures/mux/, until they join valid/: one has a Motorola field)
-DIALECT_FIXTURES = [p for p in sorted([*FIXTURES.glob("*.yaml"), *(FIXTURES.parent / "mux").glob("*.yaml")]) if _new_dialect(p)]
+DIALECT_FIXTURES = [p for p in sorted(FIXTURES.glob("*.yaml")) if _new_dialect(p)]
 DIALECT_FIXTURES += [Path(__file__).resolve().parents[1] / "corners" / name for name in ("c_corners.yaml", "c_mux_corners.yaml")]
 
 
