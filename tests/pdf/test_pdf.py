@@ -183,3 +183,17 @@ def test_a_motorola_fd_float_bus_prints_every_row_of_its_64_byte_frame(tmp_path)
         spans = sum(n for n, px in img.getcolors(img.width * img.height) if any(all(abs(a - b) <= 6 for a, b in zip(px, f)) for f in fills))
         assert spans > 0.002 * img.width * img.height, number
         assert "bit 7" in texts[number - 1], number
+
+
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
+
+
+def test_a_multiplexed_message_prints_one_diagram_per_page_and_when_each_field_is_present(tmp_path):
+    """The mux fixture's handbook: every signal, and the pages' conditions (the Present column and the
+    diagrams' captions) as the fixture's comment states them (mode 0; 1, 4…6; channel 0 or 1…3 under mode 2)."""
+    pdf = build(MUX, tmp_path / "mux.pdf")
+    text = " ".join(" ".join(pages(pdf)).split())
+    data = yaml.safe_load(MUX.read_text(encoding="utf-8"))
+    for needle in (*(s["name"] for m in data["messages"] for s in m["signals"]), "mode = 0", "mode = 1, 4…6", "mode = 2 and channel = 0",
+                   "mode = 2 and channel = 1…3", "every frame"):
+        assert needle in text, needle

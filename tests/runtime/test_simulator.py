@@ -190,3 +190,28 @@ def test_fd_frames_go_out_as_fd_and_a_motorola_counter_counts():
         assert not mon.feed(round(frame.timestamp * 1000), frame.arbitration_id, frame.is_extended_id, frame.data).faults
     assert {m.name for m in spec.can.messages if m.is_fd} <= {by_id[f.arbitration_id].name for f in frames}
     assert mon.stats("wheel_speeds").accepted == 3 and mon.stats("wheel_speeds").lost_frames == 0
+
+
+def test_a_multiplexed_message_sends_the_page_its_multiplexers_select():
+    """The mux fixture's SENSOR: values of every page are kept, each frame holds the pages the multiplexers
+    select (cantools reading the generated DBC decodes exactly them), and the monitor sees no fault."""
+    import cantools
+    from canspec.generation import generate
+
+    spec = spec_ir(ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml")
+    db = cantools.database.load_string(generate(spec, ["dbc"])["dbc"]["dbc/mux_bus.dbc"].decode("utf-8"), database_format="dbc")
+    ch = channel()
+    with can.Bus(interface="virtual", channel=ch) as tx, can.Bus(interface="virtual", channel=ch) as rx:
+        sim = RestBus(spec.can, "SENSOR", tx)
+        mon = supervision.new_monitor(spec.can)
+        sim.set("sensor_report", temperature=-12.5, pressure=1000.5, level=7, gain=3, voltage=12.34)
+        seen = []
+        for mode, channel_ in ((0, 0), (5, 0), (2, 0), (2, 3)):
+            sim.set("sensor_report", mode=mode, channel=channel_)
+            sim.send("sensor_report")
+            frame = rx.recv(1.0)
+            assert not mon.feed(round(frame.timestamp * 1000), frame.arbitration_id, frame.is_extended_id, frame.data).faults
+            seen.append(db.decode_message(frame.arbitration_id, frame.data, decode_choices=False))
+    assert [set(s) - {"mode", "status", "counter"} for s in seen] == [{"temperature"}, {"pressure", "level"}, {"channel", "gain"}, {"channel", "voltage"}]
+    assert (seen[0]["temperature"], seen[1]["pressure"], seen[1]["level"], seen[2]["gain"]) == (-12.5, 1000.5, 7, 3)
+    assert seen[3]["voltage"] == pytest.approx(12.34) and seen[3]["channel"] == 3

@@ -10,7 +10,9 @@ with live rolling counters and checksums, values settable while it runs, and del
 Frames are built by the reference codec from raw values (physical values go through the shared
 encoding rules, range-checked); each cyclic message is scheduled on its own grid of absolute
 deadlines (no drift). A CAN FD message goes out as an FD frame, with bit-rate switching where the
-spec asks for it. Event-driven messages are sent when `set` changes them or on `send`.
+spec asks for it. Event-driven messages are sent when `set` changes them or on `send`. A multiplexed
+message keeps the values of every page and sends the pages its multiplexers select (set the
+multiplexer to send another page).
 Needs python-can (`pip install python-can`).
 """
 
@@ -150,6 +152,8 @@ class RestBus:
             if entry.fault is not SimFault.FREEZE_COUNTER:
                 entry.counter = (entry.counter + 1) % msg.counter.modulo
             raw[msg.counter.signal] = entry.counter
+        if msg.is_multiplexed:  # every page's values are kept; a frame sends the pages its multiplexers select
+            raw = {s.name: raw[s.name] for s in msg.present(raw) if s.name in raw}
         data = bytearray(codec.pack(msg, raw))
         if entry.fault is SimFault.CORRUPT_CHECKSUM and msg.checksum is not None:
             data[msg.checksum.byte] ^= 0xFF
