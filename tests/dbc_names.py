@@ -31,17 +31,25 @@ def load_with_spec_names(path: Path | str, strict: bool = True, can: Any = None)
     db = cantools.database.load_string(_readable(Path(path).read_text(encoding="utf-8")), database_format="dbc", strict=strict)
     for msg in db.messages:
         msg.name = msg.name.removeprefix(PREFIX)
+        names = {}
         for sig in msg.signals:
             spec_name = (sig.dbc.attributes if sig.dbc is not None else {}).get("SpecSignalName")
-            sig.name = spec_name.value if spec_name is not None else sig.name.removeprefix(PREFIX)
+            names[sig.name] = spec_name.value if spec_name is not None else sig.name.removeprefix(PREFIX)
+        _rename(msg, names)
     if can is not None:
         for m in can.messages:
             msg = next((x for x in db.messages if x.frame_id == m.frame_id and bool(x.is_extended_frame) == m.is_extended), None)
             if msg is None:
                 continue
             msg.name = m.name
-            by_dbc = {s.dbc_name: s.name for s in m.data_signals}
-            for sig in msg.signals:
-                sig.name = by_dbc.get(sig.name, sig.name)
+            _rename(msg, {s.dbc_name: s.name for s in m.data_signals})
     db.refresh()  # rebuild the lookups by name
     return db
+
+
+def _rename(msg: Any, names: dict[str, str]) -> None:
+    """The message's signals renamed (old → new, all at once), and the multiplexer each page names."""
+    for sig in msg.signals:
+        sig.name = names.get(sig.name, sig.name)
+        if sig.multiplexer_signal is not None:
+            sig.multiplexer_signal = names.get(sig.multiplexer_signal, sig.multiplexer_signal)
