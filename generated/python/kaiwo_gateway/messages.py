@@ -625,9 +625,10 @@ class AutocarEpsCommand:
 
 
 def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -642,9 +643,10 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
 
 
 def _unpack_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_eps_command", 0x1801B0A0, 8, len(data), id_text="0x1801B0A0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -845,9 +847,10 @@ class EpsState:
 
 
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
-    if len(data) != 8:
-        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0") from None
     m = _new(EpsState)  # slot stores are faster than a call of __init__
     m.eps_ctrl_state = _EPS_MODE_STATE_8[d0]
     m.steering_torque = d1 * 0.1 - 12.8
@@ -860,9 +863,10 @@ def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
 
 
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
-    if len(data) != 8:
-        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0") from None
     return {
         "eps_ctrl_state": d0,
         "steering_torque": d1,
@@ -1072,9 +1076,10 @@ class AutocarSpeedCommand:
 
 
 def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1090,9 +1095,10 @@ def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
 
 
 def _unpack_autocar_speed_command(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_speed_command", 0x1803B0A0, 8, len(data), id_text="0x1803B0A0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1301,9 +1307,10 @@ class DrivingState:
 
 
 def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingState:
-    if len(data) != 8:
-        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1322,9 +1329,10 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
 
 
 def _unpack_driving_state(data: Buffer, verify_checksum: bool = True) -> DrivingStateRaw:
-    if len(data) != 8:
-        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("driving_state", 0x1804A0B0, 8, len(data), id_text="0x1804A0B0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -1635,9 +1643,10 @@ class AutocarControlCommand1:
 
 
 def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0") from None
     m = _new(AutocarControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_AUTOCAR_2[d0 & 0x3]
     m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
@@ -1668,9 +1677,10 @@ def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
 
 
 def _unpack_autocar_control_command_1(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_control_command_1", 0x1805B0A0, 8, len(data), id_text="0x1805B0A0") from None
     return {
         "drive_mode_cmd": d0 & 0x3,
         "door_cmd": (d0 >> 2) & 0x3,
@@ -2107,9 +2117,10 @@ class VehicleState1:
 
 
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0") from None
     m = _new(VehicleState1)  # slot stores are faster than a call of __init__
     m.drive_mode_state = _DRIVE_MODE_STATE_2[d0 & 0x3]
     m.door_state = _OFF_ON_1[(d0 >> 2) & 0x1]
@@ -2137,9 +2148,10 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0") from None
     return {
         "drive_mode_state": d0 & 0x3,
         "door_state": (d0 >> 2) & 0x1,
@@ -2492,9 +2504,10 @@ class AutocarControlCommand2:
 
 
 def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0") from None
     m = _new(AutocarControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
@@ -2510,9 +2523,10 @@ def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
 
 
 def _unpack_autocar_control_command_2(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("autocar_control_command_2", 0x1807B0A0, 8, len(data), id_text="0x1807B0A0") from None
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,
@@ -2720,9 +2734,10 @@ class VehicleState2:
 
 
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0") from None
     m = _new(VehicleState2)  # slot stores are faster than a call of __init__
     m.battery_voltage = (d0 | d1 << 8) * 0.2
     m.battery_current = (d2 | d3 << 8) * 0.02 - 500.0
@@ -2732,9 +2747,10 @@ def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0") from None
     return {
         "battery_voltage": d0 | d1 << 8,
         "battery_current": d2 | d3 << 8,
@@ -2905,9 +2921,10 @@ class VehicleState3:
 
 
 def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    d0, d1, d2, d3, d4, d5, d6, _ = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0") from None
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
     m.battery_max_temp = d0 - 40
     m.battery_min_temp = d1 - 40
@@ -2919,9 +2936,10 @@ def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _unpack_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0")
-    d0, d1, d2, d3, d4, d5, d6, _ = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0") from None
     return {
         "battery_max_temp": d0,
         "battery_min_temp": d1,
@@ -3132,9 +3150,10 @@ class VehicleState4:
 
 
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
     m.outside_temp = d0 * 0.5 - 30.0
     m.inside_temp = d1 * 0.5 - 30.0
@@ -3152,9 +3171,10 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
 
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     return {
         "outside_temp": d0,
         "inside_temp": d1,
@@ -3518,9 +3538,10 @@ class VehicleFault:
 
 
 def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFault:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
-    d0, d1, d2, d3, d4, d5, _, _ = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0") from None
     m = _new(VehicleFault)  # slot stores are faster than a call of __init__
     m.insulation_fault_level = _INSULATION_FAULT_LEVEL_2[d0 & 0x3]
     m.dc_fault = _NORMAL_FAULT_1[(d0 >> 2) & 0x1]
@@ -3555,9 +3576,10 @@ def _decode_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> Vehicle
 
 
 def _unpack_vehicle_fault(data: Buffer, verify_checksum: bool = True) -> VehicleFaultRaw:
-    if len(data) != 8:
-        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0")
-    d0, d1, d2, d3, d4, d5, _, _ = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("vehicle_fault", 0x1813A0B0, 8, len(data), id_text="0x1813A0B0") from None
     return {
         "insulation_fault_level": d0 & 0x3,
         "dc_fault": (d0 >> 2) & 0x1,
@@ -4053,9 +4075,10 @@ class RgateEpsCommand:
 
 
 def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -4070,9 +4093,10 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
 
 
 def _unpack_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_eps_command", 0x1801B0C0, 8, len(data), id_text="0x1801B0C0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -4276,9 +4300,10 @@ class RgateSpeedCommand:
 
 
 def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -4294,9 +4319,10 @@ def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
 
 
 def _unpack_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_speed_command", 0x1803B0C0, 8, len(data), id_text="0x1803B0C0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -4589,9 +4615,10 @@ class RgateControlCommand1:
 
 
 def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0") from None
     m = _new(RgateControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_RGATE_2[d0 & 0x3]
     m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
@@ -4622,9 +4649,10 @@ def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
 
 
 def _unpack_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_control_command_1", 0x1805B0C0, 8, len(data), id_text="0x1805B0C0") from None
     return {
         "drive_mode_cmd": d0 & 0x3,
         "door_cmd": (d0 >> 2) & 0x3,
@@ -4982,9 +5010,10 @@ class RgateControlCommand2:
 
 
 def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
-    d0, d1, _, _, _, _, _, d7 = data
+    try:
+        d0, d1, _, _, _, _, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0") from None
     m = _new(RgateControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
@@ -4996,9 +5025,10 @@ def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
 
 
 def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
-    d0, d1, _, _, _, _, _, d7 = data
+    try:
+        d0, d1, _, _, _, _, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0") from None
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,
@@ -5163,9 +5193,10 @@ class DeviceId:
 
 
 def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
-    if len(data) != 8:
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
-    d0, _, _, _, _, _, _, _ = data
+    try:
+        d0, _, _, _, _, _, _, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00") from None
     v = _from_bytes(data, "little")
     m = _new(DeviceId)  # slot stores are faster than a call of __init__
     m.device_type = _DEVICE_TYPE_6[d0 & 0x3F]
@@ -5175,9 +5206,10 @@ def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
 
 
 def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
-    if len(data) != 8:
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
-    d0, _, _, _, _, _, _, _ = data
+    try:
+        d0, _, _, _, _, _, _, _ = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00") from None
     v = _from_bytes(data, "little")
     return {
         "device_type": d0 & 0x3F,
@@ -5359,9 +5391,10 @@ class FrontSensorDistance1:
 
 
 def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
-    if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123") from None
     m = _new(FrontSensorDistance1)  # slot stores are faster than a call of __init__
     m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
     m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
@@ -5374,9 +5407,10 @@ def _decode_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) 
 
 
 def _unpack_front_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("front_sensor_distance_1", 0x18FF0123, 8, len(data), id_text="0x18FF0123") from None
     return {
         "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
         "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
@@ -5613,9 +5647,10 @@ class FrontSensorDistance2:
 
 
 def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
-    if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    d0, d1, d2, d3, d4, d5, _, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223") from None
     m = _new(FrontSensorDistance2)  # slot stores are faster than a call of __init__
     m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
     m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
@@ -5635,9 +5670,10 @@ def _decode_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) 
 
 
 def _unpack_front_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223")
-    d0, d1, d2, d3, d4, d5, _, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("front_sensor_distance_2", 0x18FF0223, 8, len(data), id_text="0x18FF0223") from None
     return {
         "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
         "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
@@ -5914,9 +5950,10 @@ class RearSensorDistance1:
 
 
 def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
-    if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323") from None
     m = _new(RearSensorDistance1)  # slot stores are faster than a call of __init__
     m.sensor_1_distance = (d0 | d1 << 8) & 0x3FF
     m.sensor_2_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
@@ -5929,9 +5966,10 @@ def _decode_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -
 
 
 def _unpack_rear_sensor_distance_1(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rear_sensor_distance_1", 0x18FF0323, 8, len(data), id_text="0x18FF0323") from None
     return {
         "sensor_1_distance": (d0 | d1 << 8) & 0x3FF,
         "sensor_2_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
@@ -6168,9 +6206,10 @@ class RearSensorDistance2:
 
 
 def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
-    if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    d0, d1, d2, d3, d4, d5, _, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423") from None
     m = _new(RearSensorDistance2)  # slot stores are faster than a call of __init__
     m.sensor_7_distance = (d0 | d1 << 8) & 0x3FF
     m.sensor_8_distance = ((d1 | d2 << 8) >> 2) & 0x3FF
@@ -6190,9 +6229,10 @@ def _decode_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -
 
 
 def _unpack_rear_sensor_distance_2(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423")
-    d0, d1, d2, d3, d4, d5, _, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("rear_sensor_distance_2", 0x18FF0423, 8, len(data), id_text="0x18FF0423") from None
     return {
         "sensor_7_distance": (d0 | d1 << 8) & 0x3FF,
         "sensor_8_distance": ((d1 | d2 << 8) >> 2) & 0x3FF,
@@ -6462,9 +6502,10 @@ class TeleEpsCommand:
 
 
 def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
-    if len(data) != 8:
-        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -6479,9 +6520,10 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
 
 
 def _unpack_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_eps_command", 0x1801B0D0, 8, len(data), id_text="0x1801B0D0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -6685,9 +6727,10 @@ class TeleSpeedCommand:
 
 
 def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
-    if len(data) != 8:
-        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -6703,9 +6746,10 @@ def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
 
 
 def _unpack_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
-    if len(data) != 8:
-        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_speed_command", 0x1803B0D0, 8, len(data), id_text="0x1803B0D0") from None
     if verify_checksum:
         c = d0 ^ d1 ^ d2 ^ d3 ^ d4 ^ d5 ^ d6 ^ d7
         if c:
@@ -6998,9 +7042,10 @@ class TeleControlCommand1:
 
 
 def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
-    if len(data) != 8:
-        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0") from None
     m = _new(TeleControlCommand1)  # slot stores are faster than a call of __init__
     m.drive_mode_cmd = _DRIVE_MODE_CMD_TELE_2[d0 & 0x3]
     m.door_cmd = _DOOR_CMD_2[(d0 >> 2) & 0x3]
@@ -7031,9 +7076,10 @@ def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
 
 
 def _unpack_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1Raw:
-    if len(data) != 8:
-        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0")
-    d0, d1, d2, d3, d4, d5, d6, d7 = data
+    try:
+        d0, d1, d2, d3, d4, d5, d6, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_control_command_1", 0x1805B0D0, 8, len(data), id_text="0x1805B0D0") from None
     return {
         "drive_mode_cmd": d0 & 0x3,
         "door_cmd": (d0 >> 2) & 0x3,
@@ -7391,9 +7437,10 @@ class TeleControlCommand2:
 
 
 def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
-    if len(data) != 8:
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
-    d0, d1, _, _, _, _, _, d7 = data
+    try:
+        d0, d1, _, _, _, _, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0") from None
     m = _new(TeleControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
@@ -7405,9 +7452,10 @@ def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
 
 
 def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
-    if len(data) != 8:
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
-    d0, d1, _, _, _, _, _, d7 = data
+    try:
+        d0, d1, _, _, _, _, _, d7 = data
+    except ValueError:  # not 8 bytes
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0") from None
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,

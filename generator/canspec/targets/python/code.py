@@ -110,11 +110,13 @@ def _byte_names(f: Frame, physical: bool, every: bool) -> str:
 def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
     """Length check, frame bytes `dN` / words `v` / `b`, checksum check: the start of decode (`physical`) and unpack.
     Where decode reads the bytes anyway, an XOR checksum of every other byte is their XOR (small ints)."""
-    lines = [f"if len(data) != {f.dlc}:", f'{IND}raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")']
+    wrong = f'raise FrameLengthError("{f.name}", {f.id_lit}, {f.dlc}, len(data), id_text="{f.id_lit}")'
     reads, ck = f.reads(physical), f.checksum
     by_bytes = ck is not None and ck.whole and "d" in reads
-    if "d" in reads:
-        lines.append(_byte_names(f, physical, by_bytes))
+    if "d" in reads:  # unpacking the bytes checks the length (a try costs nothing until it raises)
+        lines = ["try:", IND + _byte_names(f, physical, by_bytes), f"except ValueError:  # not {f.dlc} bytes", f"{IND}{wrong} from None"]
+    else:
+        lines = [f"if len(data) != {f.dlc}:", IND + wrong]
     words = reads | ({ck.word} if ck is not None and not by_bytes else set())
     lines += [f'{w} = _from_bytes(data, "{order}")' for w, order in ORDERS.items() if w in words]
     if ck is None:
