@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -66,6 +67,32 @@ def test_gen_check_reports_stale_and_missing(tmp_path):
     r = canspec("gen", str(SPEC), "-o", str(out), "-t", "dbc", "-t", "vectors", "--check")
     assert r.returncode == 1 and "stale:" in r.stdout and "missing:" in r.stdout
     assert dbc.read_text() == "edited\n"  # --check writes nothing
+
+
+def test_gen_check_answers_from_the_last_gen_without_compiling(tmp_path, monkeypatch, capsys):
+    """After a gen, --check on unchanged inputs does not compile (a pre-commit hook's case); a hand-edited
+    output (even of the same size and time) or a changed spec file goes to the full check."""
+    from canspec import cli
+    from canspec.commands import gen
+
+    spec, out = tmp_path / "spec", tmp_path / "out"
+    shutil.copytree(SPEC, spec)
+    args = ["gen", str(spec), "-o", str(out), "-t", "dbc", "-t", "vectors"]
+    assert cli.main(args) == 0
+    compiles = []
+    real = gen.compile_or_report
+    monkeypatch.setattr(gen, "compile_or_report", lambda *a, **k: compiles.append(1) or real(*a, **k))
+    assert cli.main([*args, "--check"]) == 0 and compiles == []
+    dbc = out / "dbc" / "kaiwo_gateway.dbc"
+    stat = dbc.stat()
+    dbc.write_bytes(dbc.read_bytes().replace(b"BO_ ", b"BO_X", 1)[: stat.st_size])
+    os.utime(dbc, ns=(stat.st_atime_ns, stat.st_mtime_ns))  # same size and time, other bytes
+    assert cli.main([*args, "--check"]) == 1 and compiles == [1]
+    assert cli.main(args) == 0 and cli.main([*args, "--check"]) == 0 and compiles == [1, 1]
+    gw = spec / "can" / "gateway.yaml"
+    gw.write_text(gw.read_text(encoding="utf-8") + "\n", encoding="utf-8")  # another spec hash: every output names it
+    assert cli.main([*args, "--check"]) == 1 and compiles == [1, 1, 1]
+    capsys.readouterr()
 
 
 def test_bad_spec_writes_nothing(tmp_path):

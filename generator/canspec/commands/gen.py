@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from canspec import depfile
+from canspec import depfile, gen_record
 from canspec.commands.common import compile_or_report
 from canspec.generation import GenerationError, generate
 from canspec.ir.nodeview import for_node, node_names
@@ -21,6 +21,11 @@ def run(args: argparse.Namespace) -> int:
     if unknown:
         print(f"canspec gen: unknown target {', '.join(unknown)} (known: {', '.join(known)})", file=sys.stderr)
         return 2
+    out = Path(args.output)
+    options = [f"targets={','.join(names)}", f"node={args.node}", f"strict={args.strict}"]
+    if args.check and (count := gen_record.up_to_date(args.spec, out, options)) is not None:  # unchanged since the last gen: no compile
+        print(f"canspec gen --check: {count} file(s) up to date", file=sys.stderr)
+        return 0
     compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True, targets=names)  # only these targets' refusals
     if compiled.spec is None:
         print("canspec gen: nothing written (fix the errors above)", file=sys.stderr)
@@ -33,7 +38,6 @@ def run(args: argparse.Namespace) -> int:
             )
             return 2
         spec = for_node(spec, args.node)
-    out = Path(args.output)
     try:
         outputs = generate(spec, names)
     except GenerationError as exc:
@@ -51,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
         if plan.stale:
             print(f"canspec gen --check: {len(plan.stale)} file(s) out of date; run `canspec gen`", file=sys.stderr)
             return 1
+        gen_record.write(args.spec, out, options, compiled.files, plan.unchanged)
         print(f"canspec gen --check: {len(plan.unchanged)} file(s) up to date", file=sys.stderr)
         return 0
     try:
@@ -59,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
         writer.apply(out, plan)
         if args.depfile is not None:
             depfile.write(Path(args.depfile), out / writer.MANIFEST, compiled.files)
+        gen_record.write(args.spec, out, options, compiled.files, [*plan.unchanged, *plan.write])
     except OSError as exc:
         print(f"canspec gen: cannot write {exc.filename or out}: {exc.strerror}; previous files left unchanged", file=sys.stderr)
         return 1
