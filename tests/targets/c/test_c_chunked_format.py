@@ -8,7 +8,8 @@ from canspec import resources
 from canspec.pipeline import compile_spec
 from canspec.render.environment import render
 from canspec.render.formatters import clang_format
-from canspec.targets.c import _chunks, _format
+from canspec.render.formatters import chunks
+from canspec.targets.c import _format
 from canspec.targets.c.model import build_model
 from canspec.targets.c.names import HEADERS
 
@@ -19,5 +20,5 @@ def test_chunked_format_equals_whole(template: str, suffix: str) -> None:
     text = render(template, spec, "c", c=build_model(spec))
     style = resources.templates_dir() / "c" / ".clang-format"
     if suffix == "_messages.h":
-        assert len(_chunks(text, 4000)) > 10  # the shipped messages header really is cut
+        assert len(chunks(text, 4000)) > 10  # the shipped messages header really is cut
     assert _format(text, suffix, style, size=4000) == clang_format(text, suffix, style)

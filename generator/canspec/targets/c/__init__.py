@@ -5,14 +5,12 @@ generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
-import os
-import re
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from canspec import ir, resources
 from canspec.render.environment import render
-from canspec.render.formatters import clang_format
+from canspec.render.formatters import CHUNK_CHARS, clang_format, in_chunks
 from canspec.targets import Target
 from canspec.targets.c.check import c_problems
 from canspec.targets.c.model import build_model
@@ -20,31 +18,10 @@ from canspec.targets.c.names import HEADERS
 
 STYLE_FILE = ".clang-format"
 MISRA_RECORD = "MISRA.md"  # the deviation record firmware teams file with the headers
-# clang-format's time and memory grow faster than the text (a 22 MB header took 30 s and 2 GB), so a
-# large header is formatted in chunks cut after a top-level function: a closing brace in column 0
-# and one blank line. The style aligns only consecutive lines and indents no preprocessor lines,
-# so nothing it does reaches across such a cut; headers below CHUNK_CHARS are formatted whole.
-CHUNK_CHARS = 256 * 1024
-_CUT = re.compile(r"\n}\n\n(?=\S)")
-
-
-def _chunks(text: str, size: int) -> list[str]:
-    """The text cut into pieces of about `size` characters, each ending in a function's '}\\n'
-    (the blank line after it is dropped and restored by the join)."""
-    pieces, start = [], 0
-    for cut in _CUT.finditer(text):
-        if cut.start() - start >= size:
-            pieces.append(text[start : cut.start() + 3])
-            start = cut.end()
-    return [*pieces, text[start:]]
 
 
 def _format(text: str, name: str, style: Path, size: int = CHUNK_CHARS) -> str:
-    pieces = _chunks(text, size) if len(text) > size else [text]
-    if len(pieces) == 1:
-        return clang_format(text, name, style)
-    with ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
-        return "\n".join(pool.map(lambda piece: clang_format(piece, name, style), pieces))
+    return in_chunks(text, lambda piece: clang_format(piece, name, style), size)
 
 
 def render_c(spec: ir.Spec) -> dict[str, bytes]:

@@ -2,15 +2,15 @@
 
 The spec-independent modules (`codec`, `fd`, `ieee`, `j1939`, `monitor`) are real Rust files under
 templates/rust/static/, copied with the generated header; the constants they read come from
-the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory,
-so the committed files are exactly what `make gen` writes. The view model is `model.py`.
+the IR in the generated `constants` module. Every `.rs` file is formatted by rustfmt in memory
+(a large one in chunks, render/formatters.py), so the committed files are exactly what `make gen` writes. The view model is `model.py`.
 """
 
 from __future__ import annotations
 
 from canspec import ir
 from canspec.render.environment import render, static_file
-from canspec.render.formatters import rustfmt
+from canspec.render.formatters import CHUNK_CHARS, in_chunks, rustfmt
 from canspec.targets import Target
 from canspec.targets.rust.check import problems
 from canspec.targets.rust.model import RustCrate, build_crate
@@ -51,7 +51,11 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
         rel: render(template, spec, TARGET_NAME, can=spec.can, crate=crate, tests=tests, sup=sup) for rel, template in TEMPLATES.items() if _wanted(rel, crate)
     }
     sources.update({rel: static_file(spec, TARGET_NAME, f"rust/static/{rel}") for rel in STATIC if _wanted(rel, crate)})
-    return {f"rust/{rel}": (rustfmt(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
+    return {f"rust/{rel}": (_format(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
+
+
+def _format(text: str, rel: str, size: int = CHUNK_CHARS) -> str:
+    return in_chunks(text, lambda piece: rustfmt(piece, rel), size)
 
 
 TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems)
