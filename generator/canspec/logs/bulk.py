@@ -6,7 +6,8 @@ formula — so it maps over log files in Dask or Spark (see README) and gives th
 a single process.
 
 A message's table: `timestamp` (float64 s), `channel` (dictionary string), per data signal its
-physical value (float64; null in the frames of a multiplexed message that hold another page), `<signal>_label` (dictionary string, null where the raw value has no
+physical value (float64; null in the frames of a multiplexed message that hold another page),
+`<signal>_label` (dictionary string, null where the raw value has no
 label) for signals with labels, `<signal>_raw` when asked (the field's storage type:
 uint64/int64 for wide fields, so raw values above 2^53 stay exact), and `checksum_ok` (bool)
 for messages with a checksum. A derived column whose name a signal already has gets a leading

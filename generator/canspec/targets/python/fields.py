@@ -352,7 +352,8 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     attr, var = ctx.attrs.take(sig.name), f"x{ctx.index}"
     in_page = bool(ctx.chain)
     return PySignal(
-        sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum, ctx.chain), py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind] + (" | None" if in_page else ""),
+        sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum, ctx.chain),
+        py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind] + (" | None" if in_page else ""),
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
         frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64,
         phys_expr=phys,
