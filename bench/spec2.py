@@ -3,8 +3,8 @@ DBC and vectors generated into build/bench-spec2/<variant>/.
 
     python3 bench/spec2.py [--no-pages] [--out DIR]   → prints the generated directory
 
-`--no-pages` benchmarks the spec without its multiplexed messages, for targets that still refuse
-multiplexing (rule mux-unsupported); drop it once every target carries pages.
+`--no-pages` benchmarks the spec without its multiplexed messages (every target carries pages now;
+the variant stays for comparing with earlier figures).
 """
 
 from __future__ import annotations

@@ -26,6 +26,7 @@ from pathlib import Path
 import canspec
 from canspec import resources
 from canspec.render.formatters import FORMATTERS
+from canspec.spec_cache import _file_hash as _sha
 from canspec.spec_cache import cache_dir
 
 FORMAT = 1
@@ -55,13 +56,6 @@ def _entry(spec: str | None, output: Path, options: Iterable[str]) -> Path | Non
     key = [str(FORMAT), canspec.__version__, _tree_hash(Path(canspec.__file__).parent, resources.templates_dir()), *_formatters(), sys.version,
            os.path.abspath(spec) if spec is not None else "", os.path.abspath(output), os.getcwd(), *options]
     return folder / f"gen-{hashlib.sha256(chr(0).join(key).encode()).hexdigest()}.json"
-
-
-def _sha(path: Path) -> str | None:
-    try:
-        return hashlib.sha256(path.read_bytes()).hexdigest()
-    except FileNotFoundError:
-        return None
 
 
 def write(spec: str | None, output: Path, options: Iterable[str], inputs: Iterable[Path], outputs: Iterable[str]) -> None:
