@@ -171,8 +171,24 @@ class Ctx:
         self.res.failures.append(Failure(self.res.sid, self.res.seed, target, stage, clip(message), self.res.spec_dir, self.res.features))
 
 
+def carrying_targets(spec: Path) -> tuple[str, ...]:
+    """The targets a spec is checked and generated with: every one, but for a spec with a multiplexed
+    message only those that carry multiplexing (`Target.multiplexing`); the others refuse it
+    (`mux-unsupported`) until they carry it, and then they join here with no switch to flip."""
+    from canspec.pipeline import compile_spec
+    from canspec.targets import registry
+
+    compiled = compile_spec(spec, targets=())  # the spec rules only: no target's refusals
+    can = compiled.spec.can if compiled.spec is not None else None
+    if can is None or not any(m.is_multiplexed for m in can.messages):
+        return CANSPEC_TARGETS
+    return tuple(t for t in CANSPEC_TARGETS if registry()[t].multiplexing)
+
+
 def stage_check(ctx: Ctx) -> bool:
-    rc, out, err = canspec("check", str(ctx.spec))
+    targets = carrying_targets(ctx.spec)
+    ctx.res.facts["targets"] = list(targets)
+    rc, out, err = canspec("check", str(ctx.spec), *(() if targets == CANSPEC_TARGETS else (x for t in targets for x in ("--target", t))))
     if rc != 0:
         ctx.fail("check", "canspec check", err or out)
         return False
@@ -333,7 +349,7 @@ def _ir(ctx: Ctx) -> Any:
     """The spec's CAN IR (for its `dbc_name`s), or None."""
     from canspec.pipeline import compile_spec
 
-    compiled = compile_spec(ctx.spec)
+    compiled = compile_spec(ctx.spec, targets=())
     return compiled.spec.can if compiled.spec is not None else None
 
 
@@ -370,10 +386,10 @@ def stage_cantools(ctx: Ctx) -> None:
                 if enc != data:
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools encodes {enc.hex().upper()}, vectors say {case['data']}")
                 phys = msg.decode(data, decode_choices=False, scaling=True)
-                for sig in msg.signals:
-                    if sig.name not in case["physical"]:
-                        bad.append(f"case {i} ({case['message']}): DBC signal {sig.name} is not in the vector's physical values")
-                        continue
+                if set(phys) != set(case["physical"]):  # a multiplexed frame: only the selected pages' fields
+                    bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools decodes fields {sorted(phys)}, vectors give {sorted(case['physical'])}")
+                    continue
+                for sig in (s for s in msg.signals if s.name in phys):
                     expected = case["physical"][sig.name]
                     if sig.is_float:  # the float itself, bit for bit ("NaN" any NaN; -0.0 keeps its sign)
                         x = phys[sig.name]
@@ -509,11 +525,11 @@ def run_spec(job: Job) -> SpecResult:
         return want is None or bool(want & set(names))
 
     if stage_check(ctx) and (want is None or want - {"check"}):
-        gen_targets = None
+        gen_targets = ctx.res.facts["targets"]
         if want is not None:
             needs = {"c": ["c", "vectors"], "python": ["python", "vectors"], "cantools": ["dbc", "vectors"], "canmatrix": ["dbc", "vectors"],
                      "json": ["jsonschema", "json_vectors", "json_bindings"], "typescript": ["json_bindings", "json_vectors"], "rust": ["rust", "vectors"]}
-            gen_targets = sorted({t for w in want for t in needs.get(w, [w.split(":", 1)[-1]]) if t in CANSPEC_TARGETS})
+            gen_targets = sorted({t for w in want for t in needs.get(w, [w.split(":", 1)[-1]]) if t in gen_targets})
         stage_gen(ctx, gen_targets)
         g = set(res.generated)
         if not (ctx.out / "vectors" / "can.json").is_file():  # a JSON-only spec: no CAN outputs to check
