@@ -66,10 +66,10 @@ const TWO_POW_63: f64 = 9_223_372_036_854_775_808.0;
 
 /// The field check of the shared rule (ir/encoding.py `fits_runtime`): `q` rounds to `raw`, a
 /// value the field's bits hold. The rounding saturates beyond ±2^63 and NaN gives 0, so `q`
-/// is first held to where the rounding is exact (NaN fails both comparisons).
+/// is first held to where the rounding is exact (NaN lies in no range).
 #[inline(always)]
 fn lands_in_field(q: f64, raw: i64, type_min: i64, type_max: i64) -> bool {
-    (q >= -TWO_POW_63) & (q < TWO_POW_63) & (raw >= type_min) & (raw <= type_max)
+    (-TWO_POW_63..TWO_POW_63).contains(&q) & (type_min..=type_max).contains(&raw)
 }
 
 /// Physical → raw with the shared rules, or `None` when the value may not be sent: NaN,
@@ -362,9 +362,9 @@ mod tests {
             Some(18_446_744_073_709_549_568)
         );
         assert_eq!(to_raw_u64(1.0, &wide, &[]), Some(1)); // the tie 0.5 rounds away from zero
-        assert_eq!(to_raw_u64(-0.5, &wide, &[]), None);
-        assert_eq!(to_raw_u64(-1e-10, &wide, &[]), Some(0)); // rounds to the field's 0
-        assert_eq!(to_raw_u64(-0.999_999_98, &wide, &[]), Some(0)); // q = -0.49999999 too
+        assert_eq!(to_raw_u64(-1.0, &wide, &[]), None); // q = -0.5 rounds to -1
+        assert_eq!(to_raw_u64(-0.999_999_98, &wide, &[]), Some(0)); // q = -0.49999999 rounds to 0
+        assert_eq!(to_raw_u64(-1e-10, &wide, &[]), Some(0));
         assert_eq!(to_raw_u64(f64::NAN, &wide, &[]), None);
     }
 
