@@ -20,6 +20,7 @@ from canspec.logs.fields import MessageFrames
 from canspec.logs.loghealth import HealthReport
 from canspec.pipeline import compile_spec
 from canspec.reference import codec
+from canspec.targets import target_problems
 from hypothesis import HealthCheck, given, settings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -49,9 +50,18 @@ def same(a, b):
 @given(strategy.specs())
 def test_bulk_decoding_of_any_spec_equals_the_reference_codec(tmp_path_factory, spec):
     path = spec.write(tmp_path_factory.mktemp("spec"))
-    compiled = compile_spec(path)
+    compiled = compile_spec(path, targets=())
     assert compiled.spec is not None, [p.format() for p in compiled.problems]
-    check_decoding(compiled.spec.can, random.Random(len(spec.text())))
+    check_decoding(compiled.spec.can, random.Random(len(spec.text())), decodable(compiled.spec))
+
+
+def decodable(spec):
+    """The messages decode takes: it is built on the Python bindings, so not those their target
+    refuses for what it does not carry yet (rule mux-unsupported, multiplexing), which join as soon
+    as that refusal goes. Any other refusal of a drawn (valid) spec fails."""
+    refused = [p for p in target_problems(spec, ["python"]) if p.severity == "error"]
+    assert all(p.rule == "mux-unsupported" for p in refused), [p.format() for p in refused]
+    return [m for m in spec.can.messages if m.loc not in {p.loc for p in refused}]
 
 
 def test_bulk_decoding_of_motorola_fd_and_floats_equals_the_reference_codec():
@@ -87,8 +97,10 @@ def test_bulk_decoding_of_motorola_fields_in_short_frames(tmp_path):
     check_decoding(compiled.spec.can, random.Random(5))
 
 
-def check_decoding(can, rng):
-    msgs = can.messages
+def check_decoding(can, rng, msgs=None):
+    msgs = can.messages if msgs is None else msgs
+    if not msgs:  # every message refused (above): nothing decode takes
+        return
     picks, payloads, batch = random_batch(msgs, 400, rng)
     decoder = Decoder(msgs, raw=True)
     decoded = decoder.decode(batch)

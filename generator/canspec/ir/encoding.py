@@ -85,9 +85,6 @@ def covering_decimal(x: float, up: bool) -> Fraction:
     return exact_x
 
 
-_EPS = Fraction(TIE_EPSILON)
-
-
 def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
     """The runtime rule's field check: the double quotient q rounds (round_runtime) to a raw value
     the field's type holds. Every language rounds first and compares the raw value, so the decoded
