@@ -93,7 +93,7 @@ def c_vectors_lines(doc: dict[str, Any], spec_path: Path) -> str:
     physical value with what its encodes and fixed-point decode must give (from the spec's IR)."""
     from canspec.pipeline import compile_spec
 
-    spec = compile_spec(spec_path).spec
+    spec = compile_spec(spec_path, _c_helpers()[1].C_TARGETS).spec  # the C runner's targets: another's refusal is not its concern
     if spec is None or spec.can is None:
         raise RuntimeError(f"{spec_path}: no CAN protocol to convert the vectors with")
     return str(_c_helpers()[2].convert(doc, spec.can))

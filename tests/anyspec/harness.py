@@ -171,8 +171,18 @@ class Ctx:
         self.res.failures.append(Failure(self.res.sid, self.res.seed, target, stage, clip(message), self.res.spec_dir, self.res.features))
 
 
+def multiplexed(spec: Path) -> bool:
+    """Whether the spec multiplexes a message (the runners' counts report those apart)."""
+    from canspec.pipeline import compile_spec
+
+    compiled = compile_spec(spec, targets=())  # the spec rules only: `canspec check` reports a problem there
+    can = compiled.spec.can if compiled.spec is not None else None
+    return can is not None and any(m.is_multiplexed for m in can.messages)
+
+
 def stage_check(ctx: Ctx) -> bool:
-    rc, out, err = canspec("check", str(ctx.spec))
+    ctx.res.facts.update(multiplexed=multiplexed(ctx.spec))
+    rc, out, err = canspec("check", str(ctx.spec))  # every target's refusals: a drawn (valid) spec must pass them all
     if rc != 0:
         ctx.fail("check", "canspec check", err or out)
         return False
@@ -333,7 +343,7 @@ def _ir(ctx: Ctx) -> Any:
     """The spec's CAN IR (for its `dbc_name`s), or None."""
     from canspec.pipeline import compile_spec
 
-    compiled = compile_spec(ctx.spec)
+    compiled = compile_spec(ctx.spec, targets=("dbc", "vectors"))  # the targets this runner reads
     return compiled.spec.can if compiled.spec is not None else None
 
 
@@ -370,10 +380,10 @@ def stage_cantools(ctx: Ctx) -> None:
                 if enc != data:
                     bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools encodes {enc.hex().upper()}, vectors say {case['data']}")
                 phys = msg.decode(data, decode_choices=False, scaling=True)
-                for sig in msg.signals:
-                    if sig.name not in case["physical"]:
-                        bad.append(f"case {i} ({case['message']}): DBC signal {sig.name} is not in the vector's physical values")
-                        continue
+                if set(phys) != set(case["physical"]):  # a multiplexed frame: only the selected pages' fields
+                    bad.append(f"case {i} ({case['message']}, {case['kind']}): cantools decodes fields {sorted(phys)}, vectors give {sorted(case['physical'])}")
+                    continue
+                for sig in (s for s in msg.signals if s.name in phys):
                     expected = case["physical"][sig.name]
                     if sig.is_float:  # the float itself, bit for bit ("NaN" any NaN; -0.0 keeps its sign)
                         x = phys[sig.name]
@@ -509,11 +519,11 @@ def run_spec(job: Job) -> SpecResult:
         return want is None or bool(want & set(names))
 
     if stage_check(ctx) and (want is None or want - {"check"}):
-        gen_targets = None
+        gen_targets = list(CANSPEC_TARGETS)
         if want is not None:
             needs = {"c": ["c", "vectors"], "python": ["python", "vectors"], "cantools": ["dbc", "vectors"], "canmatrix": ["dbc", "vectors"],
                      "json": ["jsonschema", "json_vectors", "json_bindings"], "typescript": ["json_bindings", "json_vectors"], "rust": ["rust", "vectors"]}
-            gen_targets = sorted({t for w in want for t in needs.get(w, [w.split(":", 1)[-1]]) if t in CANSPEC_TARGETS})
+            gen_targets = sorted({t for w in want for t in needs.get(w, [w.split(":", 1)[-1]]) if t in gen_targets})
         stage_gen(ctx, gen_targets)
         g = set(res.generated)
         if not (ctx.out / "vectors" / "can.json").is_file():  # a JSON-only spec: no CAN outputs to check
@@ -711,8 +721,15 @@ class Batch:
     def failures(self) -> list[Failure]:
         return [f for r in self.results for f in r.failures]
 
-    def count(self, what: str) -> int:
-        return sum(1 for r in self.results if what in r.checked)
+    def count(self, what: str, multiplexed: bool = False) -> int:
+        """Specs `what` ran on (only the multiplexed ones: `multiplexed`)."""
+        return sum(1 for r in self.results if what in r.checked and (r.facts.get("multiplexed") or not multiplexed))
+
+    def runners(self) -> str:
+        """What each runner ran on: `C 100 (31 multiplexed)`."""
+        names = {"c": "C", "python": "Python", "python-mypy": "mypy", "cantools": "cantools", "canmatrix": "canmatrix", "json": "JSON",
+                 "json-mypy": "JSON mypy", "typescript": "TypeScript", "rust": "Rust"}
+        return ", ".join(f"{label} {self.count(k)} ({self.count(k, multiplexed=True)} multiplexed)" for k, label in names.items())
 
 
 def prepare(spec: strategy.GeneratedSpec, sid: str, run_dir: Path) -> Job:
@@ -753,7 +770,8 @@ def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, r
     timings["per-spec stages"] = time.monotonic() - t1
     ts_specs = [r for r in results if r.accepted and "json_bindings" in r.generated and r.facts.get("has_json")]
     timings["typescript"] = stage_typescript(ts_specs, run_dir)
-    rust_specs = [r for r in results if r.accepted and "rust" in r.generated][: max(rust, 0)]
+    crates = [r for r in results if r.accepted and "rust" in r.generated]
+    rust_specs = interleave([r for r in crates if r.facts.get("multiplexed")], [r for r in crates if not r.facts.get("multiplexed")])[: max(rust, 0)]
     timings["rust"] = stage_rust(rust_specs, run_dir)
     log(f"anyspec: Rust workspace of {len(rust_specs)} crates in {timings['rust']:.0f} s; tsc over {len(ts_specs)} specs in {timings['typescript']:.0f} s")
     for r in results:
@@ -763,6 +781,13 @@ def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, r
     batch = Batch(base_seed, n, features, results, time.monotonic() - t0, timings)
     save_failures(batch)
     return batch
+
+
+def interleave(a: list[SpecResult], b: list[SpecResult]) -> list[SpecResult]:
+    """a[0], b[0], a[1], b[1], …, then the rest of the longer one: the Rust workspace takes
+    multiplexed and plain specs alike."""
+    out = [x for pair in zip(a, b) for x in pair]
+    return out + a[len(b):] + b[len(a):]
 
 
 def repro_command(f: Failure | SpecResult, features: frozenset[str] | list[str] | None = None) -> str:
@@ -795,9 +820,8 @@ def report(batch: Batch, verbose_specs: int = 3) -> str:
     out = []
     accepted = sum(r.accepted for r in batch.results)
     out.append(f"anyspec: {batch.n} specs (seeds {batch.base_seed}..{batch.base_seed + batch.n - 1}) in {batch.seconds:.0f} s; "
-               f"{accepted} accepted by canspec check; checked: C {batch.count('c')}, Python {batch.count('python')} (mypy {batch.count('python-mypy')}), "
-               f"cantools {batch.count('cantools')}, canmatrix {batch.count('canmatrix')}, JSON {batch.count('json')} (mypy {batch.count('json-mypy')}), "
-               f"TypeScript {batch.count('typescript')}, Rust {batch.count('rust')}")
+               f"{accepted} accepted by canspec check, {sum(bool(r.facts.get('multiplexed')) for r in batch.results)} multiplexed; "
+               f"checked: {batch.runners()}")
     out.append("timings: " + ", ".join(f"{k} {v:.0f} s" for k, v in batch.timings.items()))
     groups: dict[str, list[Failure]] = {}
     for f in batch.failures:

@@ -551,7 +551,11 @@ class Builder:
             m["signals"] = []
             return m
         mf = None
-        if 2 <= dlc <= 8 and self.multiframes < 2 and self.p(0.12):
+        if self.p(0.15):  # a multiplexed message (strategy_mux)
+            from anyspec import strategy_mux
+
+            sigs = strategy_mux.signals(self, dlc)
+        elif 2 <= dlc <= 8 and self.multiframes < 2 and self.p(0.12):
             self.multiframes += 1
             sigs, mf = self.multiframe_signals(dlc)
         else:

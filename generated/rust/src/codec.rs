@@ -63,31 +63,16 @@ pub fn round_half_away(q: f64) -> i64 {
     }
 }
 
-/// `q >= bound - ε` in exact arithmetic, the field check of the shared rule (the field's raw
-/// range widened by the tie epsilon, as the documented range is: the double quotient of a
-/// value at the field's end may land a hair beyond it). Where `bound` is a double, `bound - q`
-/// is exact near it (Sterbenz); beyond 2^53 `bound as f64` rounds, no double lies between
-/// `bound` and its rounding and the epsilon is below their spacing, so only equality with a
-/// rounded bound needs a second look.
-#[inline(always)]
-fn at_least(q: f64, bound: i64) -> bool {
-    let rounded = bound as f64;
-    if rounded as i128 == i128::from(bound) {
-        rounded - q <= TIE_EPSILON
-    } else {
-        (q > rounded) | ((q == rounded) & (rounded as i128 >= i128::from(bound)))
-    }
-}
+/// 2^63: the doubles in [-2^63, 2^63) are those whose rounding (an integer double from
+/// [`EXACT_LIMIT`] up) an `i64` holds.
+const TWO_POW_63: f64 = 9_223_372_036_854_775_808.0;
 
-/// `q <= bound + ε` in exact arithmetic (see [`at_least`]).
+/// The field check of the shared rule (ir/encoding.py `fits_runtime`): `q` rounds to `raw`, a
+/// value the field's bits hold. The rounding saturates beyond ±2^63 and NaN gives 0, so `q`
+/// is first held to where the rounding is exact (NaN lies in no range).
 #[inline(always)]
-fn at_most(q: f64, bound: i64) -> bool {
-    let rounded = bound as f64;
-    if rounded as i128 == i128::from(bound) {
-        q - rounded <= TIE_EPSILON
-    } else {
-        (q < rounded) | ((q == rounded) & (rounded as i128 <= i128::from(bound)))
-    }
+fn lands_in_field(q: f64, raw: i64, type_min: i64, type_max: i64) -> bool {
+    (-TWO_POW_63..TWO_POW_63).contains(&q) & (type_min..=type_max).contains(&raw)
 }
 
 /// Physical → raw with the shared rules, or `None` when the value may not be sent: NaN,
@@ -96,10 +81,10 @@ fn at_most(q: f64, bound: i64) -> bool {
 #[inline(always)]
 pub fn to_raw(value: f64, scale: &Scale, specials: &[i64]) -> Option<i64> {
     let q = (value - scale.offset) / scale.factor;
-    // Within the field's raw range (NaN fails both comparisons); then `raw` is too.
-    let fits = at_least(q, scale.type_min) & at_most(q, scale.type_max);
-    // Saturating casts keep `raw` defined when `q` is not in range; `fits` rejects it then.
+    // The rounding first, then whether it lands in the field: a decoded value at the field's
+    // end encodes back however far a double's step puts its quotient beyond the end.
     let raw = round_half_away(q);
+    let fits = lands_in_field(q, raw, scale.type_min, scale.type_max);
     let documented = (value >= scale.check_min)
         & (value <= scale.check_max)
         & (raw >= scale.raw_min)
@@ -129,16 +114,22 @@ pub struct ScaleU64 {
     pub raw_max: u64,
 }
 
-/// 2^64: the doubles below it are exactly those of at most `u64::MAX` plus the tie epsilon
-/// (none lies between).
+/// 2^64: the doubles below it are exactly those whose rounding a `u64` holds (none lies
+/// between `u64::MAX` and it).
 const TWO_POW_64: f64 = 18_446_744_073_709_551_616.0;
 
 /// [`to_raw`] for a [`ScaleU64`] field (it holds every `u64`).
 #[inline]
 pub fn to_raw_u64(value: f64, scale: &ScaleU64, specials: &[u64]) -> Option<u64> {
     let q = (value - scale.offset) / scale.factor;
-    let fits = (-TIE_EPSILON..TWO_POW_64).contains(&q);
-    // For a `q` that fits, rounding it is `round_half_away` (a negative `q` that fits rounds to 0).
+    // The rounding lands in the field (see [`lands_in_field`]): a negative `q` must round to 0
+    // by the rule's own steps on |q| (NaN fails `q < TWO_POW_64`, -∞ rounds to `i64::MIN`).
+    let fits = if q < 0.0 {
+        round_half_away(q) == 0
+    } else {
+        q < TWO_POW_64
+    };
+    // For a `q` that fits, this is `round_half_away` (a negative `q` that fits gives 0 too).
     let raw = if q >= EXACT_LIMIT {
         q as u64
     } else {
@@ -183,9 +174,10 @@ pub struct IntScale {
 #[inline(always)]
 pub fn to_raw_int(value: i64, scale: &IntScale, specials: &[i64]) -> Option<i64> {
     let n = value - scale.offset;
-    let fits = (n >= scale.type_min * scale.factor) & (n <= scale.type_max * scale.factor);
     let magnitude = (2 * n.abs() + scale.factor) / (2 * scale.factor);
     let raw = if n >= 0 { magnitude } else { -magnitude };
+    // The rounding lands in the field (the shared rule's field check, exact here).
+    let fits = (raw >= scale.type_min) & (raw <= scale.type_max);
     let documented = (value >= scale.check_min)
         & (value <= scale.check_max)
         & (raw >= scale.raw_min)
@@ -373,15 +365,18 @@ mod tests {
             Some(18_446_744_073_709_549_568)
         );
         assert_eq!(to_raw_u64(1.0, &wide, &[]), Some(1)); // the tie 0.5 rounds away from zero
-        assert_eq!(to_raw_u64(-0.5, &wide, &[]), None);
-        assert_eq!(to_raw_u64(-1e-10, &wide, &[]), Some(0)); // within the tie epsilon of the field
+        assert_eq!(to_raw_u64(-1.0, &wide, &[]), None); // q = -0.5 rounds to -1
+        assert_eq!(to_raw_u64(-0.999_999_98, &wide, &[]), Some(0)); // q = -0.49999999 rounds to 0
+        assert_eq!(to_raw_u64(-1e-10, &wide, &[]), Some(0));
         assert_eq!(to_raw_u64(f64::NAN, &wide, &[]), None);
     }
 
     #[test]
-    fn the_field_check_allows_the_tie_epsilon() {
+    fn the_field_check_is_the_rounding_landing_in_the_field() {
         // 15 bits signed, factor 0.01, offset -5: the double quotient of the field's largest
-        // value 158.83 is 16383.000000000002, a hair beyond the field.
+        // value 158.83 is 16383.000000000002, a hair beyond the field, and rounds into it; a
+        // special value outside the documented range passes while its quotient rounds to it.
+        // (Expected values: ir/encoding.py fits_runtime and to_raw_runtime.)
         let scale = Scale {
             factor: 0.01,
             offset: -5.0,
@@ -394,11 +389,28 @@ mod tests {
         };
         assert_eq!(to_raw(158.83, &scale, &[]), Some(16383));
         assert_eq!(to_raw(-168.84, &scale, &[]), Some(-16384));
-        assert_eq!(to_raw(158.835, &scale, &[16383]), None); // half a step beyond is not in the field
-        assert!(at_most(16_383.000_000_000_9, 16383) && !at_most(16_383.000_000_001_1, 16383));
-        assert!(
-            at_least(-16_384.000_000_000_9, -16384) && !at_least(-16_384.000_000_001_1, -16384)
+        assert_eq!(to_raw(158.834, &scale, &[16383]), Some(16383)); // q = 16383.4 rounds in
+        assert_eq!(to_raw(158.835, &scale, &[16383]), None); // half a step beyond rounds out of it
+        assert_eq!(to_raw(-168.844, &scale, &[-16384]), Some(-16384));
+        assert_eq!(to_raw(-168.845, &scale, &[-16384]), None);
+        // 48 bits, factor 1e-6, offset -0.05: the decoded double of raw 2^48 - 1 (a special
+        // value) divides to 281474976710655.03 and encodes back; the next decimal does not.
+        let wide = Scale {
+            factor: 1e-6,
+            offset: -0.05,
+            check_min: -0.049_848_000_000_001,
+            check_max: 281_474_976.660_249,
+            raw_min: 152,
+            raw_max: 0xFFFF_FFFF_FE69,
+            type_min: 0,
+            type_max: 0xFFFF_FFFF_FFFF,
+        };
+        let special = [0xFFFF_FFFF_FFFF];
+        assert_eq!(
+            to_raw(281_474_976.660_655, &wide, &special),
+            Some(0xFFFF_FFFF_FFFF)
         );
+        assert_eq!(to_raw(281_474_976.660_655_5, &wide, &special), None);
     }
 
     #[test]

@@ -108,7 +108,7 @@ impl AutocarEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000000998,
+        check_min: -1080.0000000001,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -508,8 +508,8 @@ impl EpsState {
     const STEERING_TORQUE_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -12.8,
-        check_min: -12.800000000099999,
-        check_max: 12.700000000099998,
+        check_min: -12.8000000001,
+        check_max: 12.7000000001,
         raw_min: 0,
         raw_max: 255,
         type_min: 0,
@@ -536,7 +536,7 @@ impl EpsState {
     const STEERING_ANGLE_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000000998,
+        check_min: -1080.0000000001,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -1085,7 +1085,7 @@ impl AutocarSpeedCommand {
     const ACCEL_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.000000000019998,
+        check_min: -9.00000000002,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -2300,7 +2300,7 @@ impl AutocarControlCommand1 {
     const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.999999999500002,
+        check_min: 15.9999999995,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -5291,7 +5291,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_PITCH_SCALE: codec::Scale = codec::Scale {
         factor: 0.05,
         offset: -25.0,
-        check_min: -25.000000000049997,
+        check_min: -25.00000000005,
         check_max: 25.00000000005,
         raw_min: 0,
         raw_max: 1000,
@@ -5305,7 +5305,7 @@ impl AutocarControlCommand2 {
     const CHASSIS_ROLL_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.000000000099995,
+        check_min: -40.0000000001,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -5319,7 +5319,7 @@ impl AutocarControlCommand2 {
     const CARGO_PITCH_SCALE: codec::Scale = codec::Scale {
         factor: 0.2,
         offset: -30.0,
-        check_min: -30.000000000199996,
+        check_min: -30.0000000002,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 650,
@@ -5333,7 +5333,7 @@ impl AutocarControlCommand2 {
     const CARGO_ROLL_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -40.0,
-        check_min: -40.000000000099995,
+        check_min: -40.0000000001,
         check_max: 40.0000000001,
         raw_min: 0,
         raw_max: 800,
@@ -6062,7 +6062,7 @@ impl VehicleState2 {
     const BATTERY_CURRENT_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -500.0,
-        check_min: -500.00000000001995,
+        check_min: -500.00000000002,
         check_max: 800.00000000002,
         raw_min: 0,
         raw_max: 65000,
@@ -7036,7 +7036,7 @@ impl VehicleState4 {
     const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.999999999500002,
+        check_min: 15.9999999995,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -7050,7 +7050,7 @@ impl VehicleState4 {
     const BATTERY_POWER_SCALE: codec::Scale = codec::Scale {
         factor: 0.01,
         offset: -325.0,
-        check_min: -325.00000000000995,
+        check_min: -325.00000000001,
         check_max: 325.00000000001,
         raw_min: 0,
         raw_max: 65000,
@@ -9824,7 +9824,7 @@ impl RgateEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000000998,
+        check_min: -1080.0000000001,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -10216,7 +10216,7 @@ impl RgateSpeedCommand {
     const ACCEL_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.02,
         offset: -9.0,
-        check_min: -9.000000000019998,
+        check_min: -9.00000000002,
         check_max: 3.60000000002,
         raw_min: 0,
         raw_max: 630,
@@ -10759,7 +10759,7 @@ impl RgateControlCommand1 {
     const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.999999999500002,
+        check_min: 15.9999999995,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,
@@ -16302,7 +16302,7 @@ impl TeleEpsCommand {
     const STEERING_ANGLE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.1,
         offset: -1080.0,
-        check_min: -1080.0000000000998,
+        check_min: -1080.0000000001,
         check_max: 1080.0000000001,
         raw_min: 0,
         raw_max: 21600,
@@ -16694,7 +16694,7 @@ impl TeleSpeedCommand {
     const THROTTLE_BRAKE_CMD_SCALE: codec::Scale = codec::Scale {
         factor: 0.2,
         offset: -100.0,
-        check_min: -100.00000000019999,
+        check_min: -100.0000000002,
         check_max: 100.0000000002,
         raw_min: 0,
         raw_max: 1000,
@@ -17237,7 +17237,7 @@ impl TeleControlCommand1 {
     const AC_SET_TEMP_SCALE: codec::Scale = codec::Scale {
         factor: 0.5,
         offset: 16.0,
-        check_min: 15.999999999500002,
+        check_min: 15.9999999995,
         check_max: 30.0000000005,
         raw_min: 0,
         raw_max: 28,

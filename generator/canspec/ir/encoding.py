@@ -54,7 +54,12 @@ def to_raw_exact(physical: float | str | Decimal | Fraction, factor: Fraction, o
 
 def to_raw_runtime(physical: float, factor: float, offset: float) -> int:
     """The generated code's rule, step for step (see model.TIE_EPSILON, model.EXACT_LIMIT)."""
-    q = runtime_quotient(physical, factor, offset)
+    return round_runtime(runtime_quotient(physical, factor, offset))
+
+
+def round_runtime(q: float) -> int:
+    """The runtime rule's rounding of the double quotient q: half away from zero, TIE_EPSILON
+    included, below EXACT_LIMIT; q itself (an integer double) from there on."""
     a = abs(q)
     r = int(a) if a >= EXACT_LIMIT else math.floor((a + 0.5) + TIE_EPSILON)
     return -r if q < 0 else r
@@ -80,20 +85,15 @@ def covering_decimal(x: float, up: bool) -> Fraction:
     return exact_x
 
 
-_EPS = Fraction(TIE_EPSILON)
-
-
 def fits_runtime(q: float, type_min: int, type_max: int) -> bool:
-    """The runtime rule's field check: the double quotient q lies in the field's raw range
-    widened by TIE_EPSILON (exactly, in real arithmetic), as the documented range is widened to
-    accept_min/accept_max: so the quotient of a decimal at the field's end (the exact rule's q is
-    the end itself) passes although its double lands a hair beyond, and q rounds into the field.
-    NaN fails."""
+    """The runtime rule's field check: the double quotient q rounds (round_runtime) to a raw value
+    the field's type holds. Every language rounds first and compares the raw value, so the decoded
+    double of a raw at the type's end encodes back however far a double's step puts its quotient
+    beyond the end (0x7FFFFFFF × 0.1 of a 32-bit field: q = 2147483647.0000002), while a value
+    rounding one step beyond the field is refused. NaN and ±Inf fail."""
     if math.isnan(q) or math.isinf(q):
         return False
-    if type_min <= q <= type_max:  # inside the field itself (Python compares an int with a double exactly): no Fraction needed
-        return True
-    return type_min - _EPS <= Fraction(q) <= type_max + _EPS
+    return type_min <= round_runtime(q) <= type_max
 
 
 def raw_range(length: int, signed: bool, factor: Fraction, offset: Fraction, documented: tuple[Fraction, Fraction] | None) -> tuple[int, int]:

@@ -89,6 +89,7 @@ def check_oracle(db: Any, vectors_: dict[str, Any]) -> int:
                 assert math.isnan(phys[sig.name]) if expected == "NaN" else same_values({0: phys[sig.name]}, {0: float(expected)}), (case, sig.name)
                 continue
             tolerance = abs(sig.scale) / 2 * (1 + 1e-9) if case["kind"] == "tie" else 1e-9 * max(1.0, abs(expected))
+            tolerance += 4 * math.ulp(float(expected))  # the double arithmetic of both sides (a tie 0.05 from 1838860.7000000002)
             assert math.isclose(phys[sig.name], expected, abs_tol=tolerance), (case, sig.name)
     return len(vectors_["cases"])
 

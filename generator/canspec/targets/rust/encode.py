@@ -183,7 +183,7 @@ def float_encoding(sig: ir.Signal) -> Encoding:
     if sig.specials:
         return Encoding("to_raw_documented_or_special", "Scale", scale, _specials(sig), "i64")
     # The unsigned paths compute floor((q + 0.5) + ε): round_half_away(q) for q below 2^52 that
-    # is non-negative or rounds to 0 (the field check lets q reach −ε below a field's 0).
+    # is non-negative or rounds to 0 (the accepted range lets q reach −ε below a field's 0).
     if not (ROUNDS_TO_ZERO < short.q_min and short.q_max < ir.EXACT_LIMIT):
         return Encoding("to_raw_documented", "Scale", scale, "", "i64")
     # Quotients below 2^17 and a factor that is not a power of two (whose division the
