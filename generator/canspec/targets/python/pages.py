@@ -20,7 +20,10 @@ Chain = tuple[ir.MuxCondition, ...]
 
 def holds(cond: ir.MuxCondition, var: str) -> str:
     """`var` (a multiplexer's raw value) is one of the condition's values."""
-    parts = [f"{var} == {lo}" if lo == hi else f"{lo} <= {var} <= {hi}" for lo, hi in cond.ranges]
+    singles = [str(lo) for lo, hi in cond.ranges if lo == hi]
+    # several single values are one membership test (ruff PLR1714 refuses `k == 2 or k == 4`)
+    parts = [f"{var} == {singles[0]}" if len(singles) == 1 else f"{var} in {{{', '.join(singles)}}}"] if singles else []
+    parts += [f"{lo} <= {var} <= {hi}" for lo, hi in cond.ranges if lo != hi]
     return parts[0] if len(parts) == 1 else "(" + " or ".join(parts) + ")"
 
 
