@@ -87,13 +87,13 @@ def test_missing_input(tmp_path):
 def test_unreadable_dbc(tmp_path):
     bad = tmp_path / "bad.dbc"
     bad.write_text("BO_ this is not a dbc\n", encoding="utf-8")
-    assert "bad.dbc: not a readable DBC file" in _bad(run_cli, SPEC, bad)
+    assert "bad.dbc:1: not a readable DBC" in _bad(run_cli, SPEC, bad)  # with the line, as canspec import says it
 
 
 def test_wrong_file_type(tmp_path):
     other = tmp_path / "notes.txt"
     other.write_text("hello\n", encoding="utf-8")
-    assert "not a spec (.yaml) or DBC (.dbc) file" in _bad(run_cli, other, SPEC)
+    assert "not a spec (.yaml) or database (.dbc, .arxml, .kcd, .sym) file" in _bad(run_cli, other, SPEC)
 
 
 def test_spec_with_errors(tmp_path):
@@ -134,7 +134,8 @@ def _dbc(tmp_path, name: str, signals: str, tail: str = "") -> Path:
     ((_PLAIN_SIGNALS, ""), (_PLAIN_SIGNALS.replace("16|32@1-", "16|32@0-"), ""), {("signal_byte_order_changed", "wire", "level")}),
     ((_PLAIN_SIGNALS, _FD), (_PLAIN_SIGNALS, _FD + 'BA_ "CANFD_BRS" BO_ 256 0;\n'), {("message_brs_changed", "compatible", None)}),
     ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " m9 "), ""), {("signal_mux_changed", "wire", "speed")}),
-    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " "), ""), {("signal_mux_changed", "wire", "speed")}),
+    # the page's field in every frame, and `mode`, marked M but selecting nothing, a plain field (the import warns)
+    ((_MUX_SIGNALS, ""), (_MUX_SIGNALS.replace(" m8 ", " "), ""), {("signal_mux_changed", "wire", "speed"), ("signal_mux_changed", "wire", "mode")}),
     ((_MUX_SIGNALS, ""), (_MUX_SIGNALS, "SG_MUL_VAL_ 256 speed mode 8-9;\n"), {("signal_mux_changed", "wire", "speed")}),
 ], ids=["fd_frame", "float_signal", "byte_order", "brs", "m8_to_m9", "page_to_every_frame", "page_widened"])
 def test_dbcs_differing_in_byte_order_fd_or_float_are_classified(tmp_path, old, new, expected):

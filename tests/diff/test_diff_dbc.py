@@ -81,14 +81,37 @@ def test_the_model_puts_motorola_fields_where_cantools_does():
 
 
 @pytest.mark.parametrize(("old", "new", "expected"), [
-    (" SG_ WHEEL_SPEED_RL : 55|16@0+", " SG_ WHEEL_SPEED_RL : 55|16@1+", ("signal_byte_order_changed", "wire", "WHEEL_SPEED_RL")),
+    # the same two bytes, the other order (Motorola start 55 is byte 6's MSB; Intel starts at byte 6's LSB)
+    (" SG_ WHEEL_SPEED_RL : 55|16@0+", " SG_ WHEEL_SPEED_RL : 48|16@1+", ("signal_byte_order_changed", "wire", "WHEEL_SPEED_RL")),
     ("SIG_VALTYPE_ 1024 LAT_DIST : 1;\n", "", ("signal_float_changed", "wire", "LAT_DIST")),
-    ('BA_ "VFrameFormat" BO_ 1024 14;', 'BA_ "VFrameFormat" BO_ 1024 0;', ("message_fd_changed", "wire", None)),
     ('BA_ "VFrameFormat" BO_ 1024 14;', 'BA_ "VFrameFormat" BO_ 1024 14;\nBA_ "CANFD_BRS" BO_ 1024 0;', ("message_brs_changed", "compatible", None)),
-], ids=["byte_order", "float", "fd", "brs"])
+], ids=["byte_order", "float", "brs"])
 def test_motorola_dbc_edits_are_classed(tmp_path, old, new, expected):
     text = MOTOROLA.read_text(encoding="utf-8")
     assert text.count(old) == 1
     edited_dbc = tmp_path / "edited.dbc"
     edited_dbc.write_text(text.replace(old, new), encoding="utf-8")
     assert {(c.kind, c.cls, c.signal) for c in diff_paths(MOTOROLA, edited_dbc)} == {expected}
+
+
+def test_a_long_frame_without_its_fd_flag_is_refused(tmp_path):
+    """32 bytes and VFrameFormat 0: the import takes it as CAN FD (no classic frame is that long), so
+    a change of that flag is one diff could not see: it refuses the file, naming the message."""
+    edited = _mutated_text(MOTOROLA, tmp_path, 'BA_ "VFrameFormat" BO_ 1024 14;', 'BA_ "VFrameFormat" BO_ 1024 0;')
+    code, _, err = run_cli("diff", MOTOROLA, edited)
+    assert code == 2 and "cannot compare" in err and "RADAR_TRACK_FD has 32 bytes but no CAN FD frame format" in err, err
+
+
+def test_a_signal_the_import_leaves_out_is_refused(tmp_path):
+    """Intel from bit 55 leaves the 8-byte frame: the import leaves the signal out, so diff refuses."""
+    edited = _mutated_text(MOTOROLA, tmp_path, " SG_ WHEEL_SPEED_RL : 55|16@0+", " SG_ WHEEL_SPEED_RL : 55|16@1+")
+    code, _, err = run_cli("diff", MOTOROLA, edited)
+    assert code == 2 and "edited.dbc:48: signal WHEEL_SPEED_RL of WHEEL_SPEEDS leaves its 8-byte frame: left out" in err, err
+
+
+def _mutated_text(source, tmp_path, old: str, new: str):
+    text = source.read_text(encoding="utf-8")
+    assert text.count(old) == 1
+    path = tmp_path / "edited.dbc"
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    return path

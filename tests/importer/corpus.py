@@ -77,6 +77,7 @@ def signal_facts(sig: Any) -> dict[str, Any]:
         "float": sig.is_float, "scale": _num(sig.scale), "offset": _num(sig.offset), "minimum": _num(sig.minimum),
         "maximum": _num(sig.maximum), "unit": sig.unit or "",
         "choices": {int(k): str(getattr(v, "name", v)) for k, v in (sig.choices or {}).items()},
+        "multiplexer": bool(sig.is_multiplexer), "page": (sig.multiplexer_signal, sorted(sig.multiplexer_ids)) if sig.multiplexer_ids else None,
     }
 
 

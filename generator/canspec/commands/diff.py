@@ -21,8 +21,7 @@ import sys
 
 from canspec.diff.classes import FAIL_ON
 from canspec.diff.compare import compare
-from canspec.diff.dbcimport import InputError
-from canspec.diff.inputs import load_model
+from canspec.diff.inputs import InputError, load_model
 from canspec.diff.report import FORMATS as TEXT_FORMATS
 from canspec.diff.report_html import html
 
@@ -47,10 +46,10 @@ def run(args: argparse.Namespace) -> int:
 
 
 def register(sub) -> None:  # type: ignore[no-untyped-def]
-    p = sub.add_parser("diff", help="semantic diff of two protocol revisions (specs or DBC files), classed wire/source/compatible/docs",
+    p = sub.add_parser("diff", help="semantic diff of two protocol revisions (specs or DBC/ARXML/KCD/SYM files), classed wire/source/compatible/docs",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("old", help="old revision: spec bundle, directory or file, or a .dbc file")
-    p.add_argument("new", help="new revision: spec bundle, directory or file, or a .dbc file")
+    p.add_argument("old", help="old revision: spec bundle, directory or file, or a .dbc, .arxml, .kcd or .sym file")
+    p.add_argument("new", help="new revision: spec bundle, directory or file, or a .dbc, .arxml, .kcd or .sym file")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
     p.add_argument("--fail-on", choices=list(FAIL_ON), help="exit 1 if any change is of this class or stricter (any: every change)")
     p.set_defaults(func=run)

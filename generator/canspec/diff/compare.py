@@ -113,7 +113,7 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
             [o.factor, o.offset],
             [n.factor, n.offset],
         )
-    if o.signed != n.signed:
+    if o.signed != n.signed and o.is_float == n.is_float:  # integer ↔ float (a float's sign is its own): reported below
         c.add("signal_signedness_changed", msg, n, f"{'signed' if o.signed else 'unsigned'} → {'signed' if n.signed else 'unsigned'}", o.signed, n.signed)
     if o.is_float != n.is_float:
         c.add("signal_float_changed", msg, n, f"{_number_type(o)} → {_number_type(n)}", o.is_float, n.is_float)

@@ -1,27 +1,82 @@
-"""Turn a diff argument (spec file/directory or DBC file) into a comparison model."""
+"""Turn a diff argument into a comparison model: a spec (bundle, directory or file), or a database
+file — DBC, ARXML, KCD or SYM — read the way `canspec import` reads it (one reading of a source,
+not two: its repairs, its names, multiplexing, FD, floats and exact SG_ numbers) and compiled like
+any spec. What the import leaves out or reinterprets, diff could not compare: it refuses the file
+and names what."""
 
 from __future__ import annotations
 
+import sys
+import tempfile
 from pathlib import Path
 
-from canspec.diff.dbcimport import InputError, load_dbc
+from canspec.commands.extras import install_hint
+from canspec.diff.fromdb import from_database
 from canspec.diff.model import ProtocolModel, from_spec
 from canspec.pipeline import compile_spec
+
+DATABASES = (".dbc", ".arxml", ".kcd", ".sym")
+# Import warnings that lose or reinterpret what diff compares: a message or signal left out, a float's
+# scaling, a page's counter or checksum role, a long frame's missing FD flag (a change of that flag
+# would go unseen).
+_UNCOMPARABLE = ("left out", "scaling dropped", "role dropped", "taken as CAN FD")
+
+
+class InputError(Exception):
+    """A diff input that cannot be read: the message says what and how to fix it."""
 
 
 def load_model(arg: str) -> ProtocolModel:
     path = Path(arg)
     if not path.exists():
-        raise InputError(f"{arg}: no such file or directory (pass a spec bundle, spec directory or .dbc file)")
-    if path.is_file() and path.suffix.lower() == ".dbc":
-        return load_dbc(path, arg)
+        raise InputError(f"{arg}: no such file or directory (pass a spec bundle, spec directory or a {', '.join(DATABASES)} file)")
+    if path.is_file() and path.suffix.lower() in DATABASES:
+        return _database(path, arg)
     if path.is_file() and path.suffix.lower() not in (".yaml", ".yml"):
-        raise InputError(f"{arg}: not a spec (.yaml) or DBC (.dbc) file")
+        raise InputError(f"{arg}: not a spec (.yaml) or database ({', '.join(DATABASES)}) file")
+    return from_spec(_compiled(path, arg, f"run `canspec check {arg}`"), arg)
+
+
+def _compiled(path: Path, arg: str, hint: str):  # type: ignore[no-untyped-def]
     compiled = compile_spec(path, targets=[])  # a revision is compared as the spec rules read it: what a target refuses is that target's concern
     if compiled.spec is None:
         shown = "\n".join(p.format() for p in compiled.errors[:10])
         more = f"\n  ... and {len(compiled.errors) - 10} more" if len(compiled.errors) > 10 else ""
-        raise InputError(f"{arg}: the spec has errors (run `canspec check {arg}`):\n{shown}{more}")
+        raise InputError(f"{arg}: the spec has errors ({hint}):\n{shown}{more}")
     if compiled.spec.can is None:
         raise InputError(f"{arg}: the spec has no CAN protocol to compare")
-    return from_spec(compiled.spec, arg)
+    return compiled.spec
+
+
+def _database(path: Path, arg: str) -> ProtocolModel:
+    try:
+        import cantools  # noqa: F401 - the import extra: reading databases needs it
+    except ImportError as exc:
+        raise InputError(f"{arg}: reading {path.suffix} files needs cantools; {install_hint('import')}") from exc
+    from canspec.importer import tospec
+    from canspec.importer.dbctext import DbcError
+    from canspec.importer.load import load
+    from canspec.importer.yamlout import dump_with_lines
+
+    try:
+        loaded = load(path, arg)
+    except DbcError as exc:
+        raise InputError(str(exc)) from None
+    report = tospec.Report([(arg, line, text) for line, text in loaded.warnings])
+    spec = tospec.build_spec(loaded, report)
+    lost = [_where(w) for w in report.warnings if any(words in w[2] for words in _UNCOMPARABLE)]
+    if lost:
+        shown = "\n  ".join(lost[:10]) + (f"\n  ... and {len(lost) - 10} more" if len(lost) > 10 else "")
+        raise InputError(f"{arg}: canspec diff cannot compare what reading it leaves out or changes (see `canspec import {arg}`):\n  {shown}")
+    for warning in report.warnings:  # decisions diff compares as taken (an assumed bit rate, a 29-bit ID): said, not fatal
+        print(f"canspec diff: warning: {_where(warning)}", file=sys.stderr)
+    with tempfile.TemporaryDirectory() as tmp:
+        yaml_path = Path(tmp) / "spec.yaml"
+        yaml_path.write_text(dump_with_lines(spec, [])[0], encoding="utf-8")
+        ir_spec = _compiled(yaml_path, arg, f"run `canspec import {arg}` and `canspec check` on the result")
+    return from_database(ir_spec, loaded, arg)
+
+
+def _where(warning: tuple[str, int | None, str]) -> str:
+    source, line, text = warning
+    return f"{source}:{line}: {text}" if line else f"{source}: {text}"

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 from canspec.ir.ids import DBC_EXTENDED_FLAG, MAX_EXTENDED_ID, MAX_STANDARD_ID
 
@@ -32,10 +33,32 @@ _CM_BARE = re.compile(r"^(\s*CM_\s+)(\d+)(\s+\")")
 _CM_SG_NO_NAME = re.compile(r"^\s*CM_\s+SG_\s+\d+\s+\"")
 _VAL = re.compile(r"^\s*VAL_\s+(\d+)\s+(\w+)\s")
 _SG = re.compile(r"^\s*SG_\s+(\w+)")
+# SG_ name [multiplexing] : start|length@order sign (factor,offset) [minimum|maximum]
+_SG_NUMBERS = re.compile(r"^\s*SG_\s+(\w+)[^:]*:\s*\d+\|\d+@[01][+-]\s*\(([^,()]+),([^,()]+)\)\s*\[([^|\]]+)\|([^\]]+)\]")
+_BO_ID = re.compile(r"^\s*BO_\s+(\d+)\s")
+
+Numbers = tuple[Fraction, Fraction, Fraction, Fraction]  # factor, offset, minimum, maximum
 
 
 class DbcError(Exception):
     """A DBC no repair makes readable: `file:line: what` and a hint."""
+
+
+def written_numbers(text: str) -> dict[tuple[int, str], Numbers]:
+    """(BO_ ID as written, signal name) → the SG_ line's factor, offset and range, exactly as
+    written: cantools reads doubles, which cannot hold 0.1 or a 64-bit field's 18446744073709551615."""
+    out: dict[tuple[int, str], Numbers] = {}
+    frame = None
+    for line in text.splitlines():
+        if (bo := _BO_ID.match(line)) is not None:
+            frame = int(bo.group(1))
+        elif frame is not None and (sg := _SG_NUMBERS.match(line)) is not None:
+            try:
+                f, o, lo, hi = (Fraction(g.strip()) for g in sg.groups()[1:])
+            except (ValueError, ZeroDivisionError):
+                continue  # cantools' reading stands
+            out[(frame, sg.group(1))] = (f, o, lo, hi)
+    return out
 
 
 @dataclass

@@ -8,19 +8,16 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from canspec.diff.dbcimport import written_numbers
 from canspec.importer.attributes import kept_definitions, kept_values
+from canspec.importer.dbctext import written_numbers
 from canspec.importer.load import Loaded
 from canspec.importer.names import Namer, identifier
-from canspec.ir.bits import positions
-from canspec.ir.encoding import raw_range
+from canspec.importer.signals import NO_NODE, Where, convert_signals
 from canspec.ir.fd import FD_LENGTHS
 from canspec.ir.ids import DBC_EXTENDED_FLAG
 
 DEFAULT_BITRATE = 500_000
 DEFAULT_DATA_BITRATE = 2_000_000
-NO_NODE = "Vector__XXX"
-SIG_TYPE_ROLES = {"MessageCounter": "counter", "MessageChecksum": "checksum"}
 
 
 @dataclass
@@ -88,7 +85,7 @@ def build_spec(loaded: Loaded, report: Report) -> dict[str, Any]:
     kept = kept_definitions(loaded, lambda text: report.warn(loaded.source, None, text))
     nodes = _nodes(loaded, report, kept)
     spec: dict[str, Any] = {"schema_version": 1, "kind": "can_protocol", "protocol": _protocol(loaded), "bus": bus, "nodes": list(nodes.values())}
-    tables: dict[str, dict[int, str]] = {}
+    tables: dict[str, dict[int, Any]] = {}
     messages, names = [], Namer()
     written, lines = written_numbers(loaded.text or ""), _lines(loaded.text)
     for msg in sorted(db.messages, key=lambda m: (m.frame_id, m.name)):
@@ -159,15 +156,12 @@ def _protocol(loaded: Loaded) -> dict[str, Any]:
     return {"name": name, "version": version, "title": PurePath(loaded.source).name, "dbc_as_imported": True}
 
 
-def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables: dict[str, dict[int, str]],
+def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables: dict[str, dict[int, Any]],
              written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
              report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, Any] | None:
     dbc_id = msg.frame_id | DBC_EXTENDED_FLAG if msg.is_extended_frame else msg.frame_id
     line = lines.get((dbc_id, ""))
     source_name = loaded.renamed.get(msg.name, msg.name)
-    if msg.is_multiplexed():
-        report.warn(loaded.source, line, f"message {source_name} is multiplexed: left out (canspec import does not read multiplexing yet)")
-        return None
     if msg.length not in FD_LENGTHS:
         report.warn(loaded.source, line, f"message {source_name} has {msg.length} bytes, not a CAN frame length: left out")
         return None
@@ -195,109 +189,13 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
             out["brs"] = False
     if msg.comment:
         out["desc"] = str(msg.comment)
-    out["signals"] = _signals(loaded, msg, bus["byte_order"], dbc_id, source_name, name, tables, written, lines, report, kept)
+    where = Where(loaded, dbc_id, source_name, name, lines, lambda at, text: report.warn(loaded.source, at, text))
+    signals = convert_signals(where, msg, bus["byte_order"], tables, written, kept)
+    if signals is None:
+        return None
+    out["signals"] = signals
     if not out["signals"] and msg.length:
         out["layout_undefined"] = True
     if values := kept_values(msg, kept, lambda text: report.warn(loaded.source, line, text), f"message {source_name}"):
         out["dbc_attributes"] = values
     return out
-
-
-def _signals(loaded: Loaded, msg: Any, default_order: str, dbc_id: int, source_msg: str, msg_name: str, tables: dict[str, dict[int, str]],
-             written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
-             report: Report, kept: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
-    out, names, owners = [], Namer(), {}
-    for sig in msg.signals:  # in the file's order: the first of two overlapping signals stays
-        source_name = loaded.renamed.get(sig.name, sig.name)
-        line = lines.get((dbc_id, sig.name))
-        if not 1 <= sig.length <= 64:
-            report.warn(loaded.source, line, f"signal {source_name} of {source_msg} is {sig.length} bits long: left out (a field has 1 to 64 bits)")
-            continue
-        bits = positions(sig.start, sig.length, sig.byte_order)
-        if any(b >= 8 * msg.length for b in bits):
-            report.warn(loaded.source, line, f"signal {source_name} of {source_msg} leaves its {msg.length}-byte frame: left out")
-            continue
-        clash = sorted({owners[b] for b in bits if b in owners})
-        if clash:
-            report.warn(loaded.source, line, f"signal {source_name} of {source_msg} overlaps {', '.join(clash)}: left out (a field owns its bits)")
-            continue
-        owners.update((b, source_name) for b in bits)
-        converted = _signal(loaded, sig, default_order, names, written.get((dbc_id, sig.name)), f"{msg_name}_", tables, line, report)
-        converted["receivers"] = [r for r in sig.receivers if r != NO_NODE]  # the spec's names and whether to keep them: _node_names
-        if values := kept_values(sig, kept, lambda text, at=line: report.warn(loaded.source, at, text), f"signal {sig.name} of {source_msg}"):
-            converted["dbc_attributes"] = values
-        out.append(converted)
-    return out
-
-
-def _signal(loaded: Loaded, sig: Any, default_order: str, names: Namer, numbers: tuple[Fraction, Fraction, Fraction, Fraction] | None, table_prefix: str,
-            tables: dict[str, dict[int, str]], line: int | None, report: Report) -> dict[str, Any]:
-    source_name = loaded.renamed.get(sig.name, sig.name)
-    name = names.name(source_name, "signal")
-    out: dict[str, Any] = {"name": name}
-    if name != source_name:
-        out["dbc_name"] = source_name
-    out["start"], out["len"] = sig.start, sig.length
-    if sig.byte_order != default_order:
-        out["byte_order"] = sig.byte_order
-    if sig.is_float:
-        out["float"] = True
-    elif sig.is_signed:
-        out["signed"] = True
-    factor, offset, lo, hi = numbers if numbers is not None else (
-        Fraction(str(sig.scale)), Fraction(str(sig.offset)), Fraction(str(sig.minimum or 0)), Fraction(str(sig.maximum or 0)))
-    if not sig.is_float:
-        if factor != 1:
-            out["factor"] = _number(factor)
-        if offset != 0:
-            out["offset"] = _number(offset)
-    elif factor != 1 or offset != 0:
-        report.warn(loaded.source, line, f"float signal {source_name} is scaled ({factor}, {offset}): scaling dropped (a float field holds its value)")
-    if not (lo == hi == 0):
-        lo, hi = min(lo, hi), max(lo, hi)
-        if not sig.is_float and factor and raw_range(sig.length, bool(sig.is_signed), factor, offset, (lo, hi))[0] > \
-                raw_range(sig.length, bool(sig.is_signed), factor, offset, (lo, hi))[1]:
-            report.warn(loaded.source, line, f"signal {source_name}: range [{_number(lo)}|{_number(hi)}] holds no value of the field: dropped")
-        else:
-            out["range"] = [_number(lo), _number(hi)]
-    if sig.unit:
-        out["unit"] = str(sig.unit)
-    if sig.comment:
-        out["desc"] = str(sig.comment)
-    choices = _choices(loaded, sig, source_name, line, report)
-    if choices:
-        table, labels = f"{table_prefix}{name}", Namer()
-        tables[table] = {raw: _label(labels.name(text, f"value_{raw}"), text) for raw, text in choices}
-        out["values"] = table
-    role = SIG_TYPE_ROLES.get(str(_sig_type(loaded, sig)))
-    if role is not None:
-        out["role"] = role
-    return out
-
-
-def _label(ident: str, text: str) -> str | dict[str, str]:
-    """A value label: the identifier, with the source's own text where that differs."""
-    return ident if ident == text else {"name": ident, "dbc": text}
-
-
-def _sig_type(loaded: Loaded, sig: Any) -> Any:
-    value = _attr(sig, "SigType")
-    definitions = getattr(getattr(loaded.db, "dbc", None), "attribute_definitions", None) or {}
-    choices = getattr(definitions.get("SigType"), "choices", None)
-    return choices[value] if isinstance(value, int) and choices and 0 <= value < len(choices) else value
-
-
-def _choices(loaded: Loaded, sig: Any, source_name: str, line: int | None, report: Report) -> list[tuple[int, str]]:
-    """The value table's entries that fit the field; the others dropped with a warning."""
-    if sig.choices and sig.is_float:
-        report.warn(loaded.source, line, f"float signal {source_name} has value labels: dropped (a float field has no value table)")
-    if not sig.choices or sig.is_float:
-        return []
-    lo, hi = (-(1 << (sig.length - 1)), (1 << (sig.length - 1)) - 1) if sig.is_signed else (0, (1 << sig.length) - 1)
-    kept = []
-    for raw, value in sorted(sig.choices.items()):
-        if lo <= int(raw) <= hi:
-            kept.append((int(raw), str(getattr(value, "name", value))))
-        else:
-            report.warn(loaded.source, line, f"value {raw} of signal {source_name} does not fit its {sig.length} bits: dropped")
-    return kept

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 import canmatrix.formats
-from canspec.diff.dbcimport import written_numbers
+from canspec.importer.dbctext import written_numbers
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 from dbc_support import ENCODINGS, attribute, load_cantools
 

@@ -3,7 +3,8 @@ range, special values, Chinese value labels), parts joined by " | ". A part the 
 left out, never written empty, so an English-only spec gives English-only comments.
 
 Special values are written `0x3FF = no_obstacle (无障碍物)` (`-0x4` for a negative raw value, the
-label only where the spec gives one): `canspec diff` reads them back from there (diff/dbcimport.py)."""
+label only where the spec gives one): `canspec import` (and `canspec diff`
+through it) reads them back from there (importer/signals.py)."""
 
 from __future__ import annotations
 

@@ -1,0 +1,54 @@
+"""The comparison model of a database file, from the spec `canspec import` made of it. Names are
+the file's own (a DBC's `WHEEL_SPEED_RL`, not the spec's `wheel_speed_rl`), except a signal
+canspec renamed in a DBC it wrote, whose `SpecSignalName` gives the spec's name back, so a spec
+and its own DBC compare equal. What a database cannot say (Chinese names, titles, descriptions,
+checksum algorithms, multi-frame text, value labels as printed, receivers it leaves to
+Vector__XXX) is None and not compared."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+from canspec import ir
+from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, from_spec
+from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
+
+
+def _spec_named(db: Any) -> set[tuple[int, str]]:
+    """(frame ID, DBC signal name) of the signals whose DBC carries the spec's name."""
+    out = set()
+    for msg in db.messages:
+        for sig in msg.signals:
+            attrs = getattr(getattr(sig, "dbc", None), "attributes", None) or {}
+            if SPEC_NAME_ATTRIBUTE in attrs:
+                out.add((msg.frame_id, sig.name))
+    return out
+
+
+def _signal(model: SignalModel, sig: ir.Signal, names: dict[str, str]) -> SignalModel:
+    values = None
+    if sig.value_table is not None:
+        values = {e.raw: Entry(e.dbc_text or e.name, None) for e in sig.value_table.entries}
+    mux = (names[model.mux[0]], model.mux[1]) if model.mux is not None else None
+    return replace(model, name=names[sig.name], values=values, values_table=None, zh=None, desc=None, loc=None, mux=mux)
+
+
+def _message(model: MessageModel, msg: ir.Message, spec_named: set[tuple[int, str]], renamed: dict[str, str]) -> MessageModel:
+    own = {s.name: renamed.get(s.dbc_name, s.dbc_name) for s in msg.signals}
+    names = {s.name: s.name if (msg.frame_id, s.dbc_name) in spec_named else own[s.name] for s in msg.signals}
+    by_name = {s.name: s for s in msg.signals}
+    return replace(
+        model, name=renamed.get(msg.dbc_name, msg.dbc_name), title=None, zh=None, checksum=None, multiframe=None, loc=None,
+        receivers=model.receivers or None, signals=tuple(_signal(m, by_name[m.name], names) for m in model.signals),
+    )
+
+
+def from_database(spec: ir.Spec, loaded: Any, source: str) -> ProtocolModel:
+    """`loaded`: the import's source (importer/load.py), for the names cantools read."""
+    model = from_spec(spec, source)
+    assert spec.can is not None
+    spec_named = _spec_named(loaded.db)
+    messages = tuple(_message(m, msg, spec_named, loaded.renamed) for m, msg in zip(model.messages, spec.can.messages))
+    version = spec.can.version if spec.can.version != "0.0.0" else None
+    return replace(model, kind="dbc", messages=messages, version=version, changelog=None)
