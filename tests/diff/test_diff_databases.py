@@ -8,8 +8,8 @@ from dataclasses import replace
 
 import cantools
 import pytest
-from cantools.database.conversion import BaseConversion
 from canspec.pipeline import compile_spec
+from cantools.database.conversion import BaseConversion
 from diff_helpers import ROOT, diff_paths, run_cli
 
 DBC = ROOT / "generated" / "dbc" / "kaiwo_gateway.dbc"
