@@ -6,6 +6,7 @@ reason (canspec's DbcError); nothing ends in another exception."""
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -23,6 +24,15 @@ def _left_out(warnings) -> set[str]:
     return {t.split()[1] for _, _, t in warnings if "left out" in t and t.startswith("message ")}
 
 
+def _spelt(warnings) -> dict[str, str]:
+    """Source name → the DBC's, from the warnings `name 'Switch Outputs' is not a DBC identifier: the DBC writes Switch_Outputs`."""
+    out = {}
+    for _, _, text in warnings:
+        if (m := re.match(r"name '(.*)' is not a DBC identifier: the DBC writes (\w+)$", text)) is not None:
+            out[m.group(1)] = m.group(2)
+    return out
+
+
 def _compare(imported, tmp_path: Path) -> list[str]:
     (tmp_path / "generated.dbc").write_text(imported.dbc, encoding="utf-8")
     ours, _ = load_generated(tmp_path / "generated.dbc")
@@ -36,15 +46,20 @@ def _compare(imported, tmp_path: Path) -> list[str]:
                 out.append(f"{msg.name}: missing without a warning")
             continue
         a, b = message_facts(msg), message_facts(mine)
+        spelt = _spelt(imported.warnings)  # a name a DBC cannot write, as the warning says the DBC writes it
+        a["senders"] = sorted(spelt.get(n, n) for n in a["senders"])
         for key in ("fd", "send_type", "attributes"):  # a KCD/SYM/ARXML source has no DBC attributes; FD: compared by the opendbc corpus
             a.pop(key), b.pop(key)
         if a != b:
             out.append(f"{msg.name}: {a} became {b}")
         kept = {s.name for s in mine.signals}
         for sig in msg.signals:
-            if sig.name not in kept or any(f" {sig.name} " in f" {text} " for _, _, text in imported.warnings):
+            name = spelt.get(sig.name, sig.name)
+            if name not in kept or any(f" {sig.name} " in f" {text} " for _, _, text in imported.warnings):
                 continue  # left out, or changed with a word (a float's scaling, a label outside the field)
-            x, y = signal_facts(sig), signal_facts(mine.get_signal_by_name(sig.name))
+            x, y = signal_facts(sig), signal_facts(mine.get_signal_by_name(name))
+            if x["page"] is not None:
+                x["page"] = (spelt.get(x["page"][0], x["page"][0]), x["page"][1])
             for key in ("minimum", "maximum", "attributes", "receivers"):
                 x.pop(key), y.pop(key)
             if x != y:

@@ -6,8 +6,10 @@ from __future__ import annotations
 KINDS = (  # (kind, words its message holds), first match wins
     ("29-bit ID without the extended flag", "no extended flag: taken as 29-bit"),
     ("ID wider than 29 bits: message left out", "does not fit 29 bits"),
+    ("frame ID used twice (two buses): message left out", "another bus of the file"),
     ("number written `.25`", "without a leading 0"),
     ("name starting with a digit", "starts with a digit"),
+    ("name not a DBC identifier: `_` for each other sign", "is not a DBC identifier"),
     ("statement without `;`", "without its closing ';'"),
     ("`CM_` without object type", "CM_ without an object type"),
     ("`CM_ SG_` without signal name: dropped", "CM_ SG_ without a signal name"),

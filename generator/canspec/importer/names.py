@@ -5,8 +5,10 @@ the DBC's name (`dbc_name`), so the DBC generated from the imported spec says wh
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 _NOT_IDENT = re.compile(r"[^a-z0-9]+")
+_NOT_DBC = re.compile(r"[^A-Za-z0-9_]")
 
 
 def identifier(text: str, fallback: str) -> str:
@@ -18,10 +20,25 @@ def identifier(text: str, fallback: str) -> str:
 
 
 class Namer:
-    """Unique identifiers within one scope (a message's signals, a spec's messages, a table's labels)."""
+    """Unique identifiers within one scope (a message's signals, a spec's messages, a table's labels),
+    and the DBC's spellings of the scope's source names (`sources`)."""
 
-    def __init__(self) -> None:
+    def __init__(self, sources: tuple[str, ...] = ()) -> None:
         self.taken: set[str] = set()
+        self.spelt = {n for n in sources if not _NOT_DBC.search(n)}
+
+    def dbc(self, text: str, warn: Callable[[str], None]) -> str:
+        """The source's name as a DBC can write it: itself, or (a KCD, SYM or ARXML name with spaces
+        or signs, `Switch Outputs`) each other character as `_`, made unique in the scope, with a warning."""
+        if not _NOT_DBC.search(text):
+            return text
+        base = _NOT_DBC.sub("_", text)
+        fixed, n = base, 2
+        while fixed in self.spelt:
+            fixed, n = f"{base}_{n}", n + 1
+        self.spelt.add(fixed)
+        warn(f"name {text!r} is not a DBC identifier: the DBC writes {fixed}")
+        return fixed
 
     def name(self, text: str, fallback: str) -> str:
         base = identifier(text, fallback)

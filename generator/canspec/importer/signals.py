@@ -51,7 +51,7 @@ def convert_signals(at: Where, msg: Any, default_order: str, tables: dict[str, d
                     kept: dict[str, dict[str, Any]]) -> list[dict[str, Any]] | None:
     """The message's fields in the file's order (the first of two that can be in one frame keeps
     its bits); None when its multiplexing cannot be expressed (warned)."""
-    out, names, pages = [], Namer(), Pages(msg, at.source_msg)
+    out, names, pages = [], Namer(tuple(at.loaded.renamed.get(s.name, s.name) for s in msg.signals)), Pages(msg, at.source_msg)
     if (refusal := pages.refusal()) is not None:
         at.warn(at.lines.get((at.dbc_id, "")), f"message {at.source_msg}: {refusal}: left out")
         return None
@@ -94,7 +94,7 @@ def _signal(at: Where, sig: Any, default_order: str, names: Namer, numbers: Numb
     name = names.name(str(spec_name or source_name), "signal")
     out: dict[str, Any] = {"name": name}
     if name != source_name:
-        out["dbc_name"] = source_name
+        out["dbc_name"] = names.dbc(source_name, lambda text: at.warn(line, text))
     out["start"], out["len"] = sig.start, sig.length
     if sig.byte_order != default_order:
         out["byte_order"] = sig.byte_order

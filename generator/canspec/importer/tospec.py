@@ -86,9 +86,16 @@ def build_spec(loaded: Loaded, report: Report) -> dict[str, Any]:
     nodes = _nodes(loaded, report, kept)
     spec: dict[str, Any] = {"schema_version": 1, "kind": "can_protocol", "protocol": _protocol(loaded), "bus": bus, "nodes": list(nodes.values())}
     tables: dict[str, dict[int, Any]] = {}
-    messages, names = [], Namer()
+    messages, names = [], Namer(tuple(loaded.renamed.get(m.name, m.name) for m in db.messages))
     written, lines = written_numbers(loaded.text or ""), _lines(loaded.text)
+    seen: dict[tuple[int, bool], str] = {}
     for msg in sorted(db.messages, key=lambda m: (m.frame_id, m.name)):
+        key, name = (msg.frame_id, bool(msg.is_extended_frame)), loaded.renamed.get(msg.name, msg.name)
+        if key in seen:  # a KCD or ARXML file of several buses: a spec is one bus
+            report.warn(loaded.source, None, f"message {name} has the frame ID 0x{msg.frame_id:X} of {seen[key]} (another bus of the file?): left out "
+                        "(a spec is one bus: import each bus into a spec of its own)")
+            continue
+        seen[key] = name
         converted = _message(loaded, msg, bus, names, tables, written, lines, report, kept)
         if converted is not None:
             messages.append(_node_names(converted, nodes))
@@ -122,13 +129,15 @@ NODE_NAME = __import__("re").compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 def _nodes(loaded: Loaded, report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
     """Source node name → the spec's node: BU_'s nodes, then those only senders and receivers name."""
     db, out, taken = loaded.db, {}, set()
+    spellings = Namer(tuple(n.name for n in db.nodes))
 
     def add(name: str, comment: str | None) -> None:
         ident = name if NODE_NAME.match(name) and name != "ALL" else "N" + __import__("re").sub(r"\W", "_", name)
         while ident in taken:
             ident += "_"
         taken.add(ident)
-        out[name] = {"name": ident, **({"dbc_name": name} if ident != name else {}), **({"desc": str(comment)} if comment else {})}
+        spelt = spellings.dbc(name, lambda text: report.warn(loaded.source, None, text))
+        out[name] = {"name": ident, **({"dbc_name": spelt} if ident != spelt else {}), **({"desc": str(comment)} if comment else {})}
 
     for node in db.nodes:
         if node.name != NO_NODE and node.name not in out:
@@ -168,7 +177,7 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
     name = names.name(source_name, f"message_{msg.frame_id:x}")
     out: dict[str, Any] = {"name": name}
     if name != source_name:
-        out["dbc_name"] = source_name
+        out["dbc_name"] = names.dbc(source_name, lambda text: report.warn(loaded.source, line, text))
     out["id"] = msg.frame_id
     if bool(msg.is_extended_frame) != (bus["id_format"] == "extended"):
         out["extended"] = bool(msg.is_extended_frame)
