@@ -7,9 +7,9 @@ bench-gen:  ## canspec gen per target: seconds and peak MB over spec sizes (goal
 	$(PYTHON) bench/bench_gen.py --sizes $(BENCH_GEN_SIZES)
 
 # The second benchmark spec (issue 24 item 4): bench/motorola_fd, imported from public opendbc DBCs — Motorola-heavy,
-# CAN FD frames up to 64 bytes, two multiplexed messages. Until every target carries multiplexing the benches run it
-# without its multiplexed messages (BENCH_SPEC2_PAGES=--no-pages); set BENCH_SPEC2_PAGES= once they do.
-BENCH_SPEC2_PAGES ?= --no-pages
+# CAN FD frames up to 64 bytes, two multiplexed messages (every target carries them; BENCH_SPEC2_PAGES=--no-pages
+# runs the spec without them).
+BENCH_SPEC2_PAGES ?=
 BENCH_SPEC2_DIR := build/bench-spec2/$(if $(BENCH_SPEC2_PAGES),no-pages,pages)
 BENCH_SPEC2 := $(if $(BENCH_SPEC2_PAGES),$(BENCH_SPEC2_DIR)/spec,bench/motorola_fd)
 BENCH_SPEC2_GEN := $(BENCH_SPEC2_DIR)/generated

@@ -125,12 +125,25 @@ def _placed(s: CSignal) -> str:
     return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
 
 
+def span(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> range:
+    """The frame bytes the word covers: every byte, or first to last byte of these fields where
+    that takes fewer loads and stores (a run of n bytes is one access per set bit of n: 8 bytes
+    one, 7 bytes three). Bytes outside are 0 on pack and never read on unpack, so a 7-byte frame
+    whose fields lie in bytes 1-3 moves 3 bytes, not 7. A checksum folds every byte."""
+    touched = [seg.byte for s in sigs for seg in s.sig.segments]
+    if checksum or not touched:
+        return range(dlc)
+    inner = range(min(touched), max(touched) + 1)
+    return inner if bin(len(inner)).count("1") < bin(dlc).count("1") else range(dlc)
+
+
 def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, order: str) -> list[str]:
     out = [*float_copies(sigs, "&{local}", "&src->{field}"), "w = " + " | ".join(_placed(s) for s in sigs) + ";"]
     if checksum is not None:
         at = byte_at(checksum, dlc, order)
         out += [*FOLD, f"w |= (x & 0xFFu) << {at}u;" if at else "w |= x & 0xFFu;"]
-    out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" for k in range(dlc)]
+    covered = span(sigs, dlc, checksum is not None)
+    out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" if k in covered else f"dst[{k}] = 0u;" for k in range(dlc)]
     return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
 
 
@@ -189,7 +202,7 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
     if not words:
         return None
     held: list[int] = []
-    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in range(dlc)) + ";"]
+    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in span(words, dlc, checksum)) + ";"]
     for s in sigs:
         if s in words:
             body += _word_store(s)
