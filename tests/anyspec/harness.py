@@ -30,7 +30,7 @@ HERE = Path(__file__).resolve().parent
 if str(HERE.parent) not in sys.path:
     sys.path.insert(0, str(HERE.parent))
 
-from anyspec import adapters, strategy
+from anyspec import adapters, cross_stage, strategy
 
 ROOT = adapters.ROOT
 BUILD = ROOT / "build" / "anyspec"
@@ -136,7 +136,7 @@ def canspec(*args: str) -> tuple[int, str, str]:
 
 def missing_tools() -> list[str]:
     """Toolchains the harness needs and cannot find (each one fails the run, never skips it)."""
-    out = [f"{t} (not on PATH)" for t in TOOLS if shutil.which(t) is None]
+    out = [f"{t} (not on PATH)" for t in TOOLS if shutil.which(t) is None] + cross_stage.missing_tools()
     if shutil.which("cargo") and sh(["cargo", "clippy", "--version"])[0] != 0:
         out.append("cargo clippy (rustup component add clippy)")
     for mod in ("cantools", "canmatrix", "jsonschema", "mypy", "hypothesis", "yaml"):
@@ -488,6 +488,7 @@ class Job:
     features: list[str]
     facts: dict[str, Any]
     mypy: bool = False
+    cross: bool = False  # also the C vector runner on PowerPC and Cortex-M under qemu
     only: list[str] | None = None  # restrict to these targets (the shrinker)
     stage_filter: str | None = None  # and to this sub-stage
     bytewise: bool = True  # also the C runner with the word path off
@@ -531,6 +532,8 @@ def run_spec(job: Job) -> SpecResult:
             res.facts["has_json"] = True
         if wanted("c") and {"c", "vectors"} <= g:
             guarded(ctx, "c", stage_c, ctx)
+            if job.cross:
+                guarded(ctx, "c", cross_stage.stage_c_cross, ctx)
         if wanted("python") and {"python", "vectors"} <= g:
             guarded(ctx, "python", stage_python, ctx, job.mypy)
         if wanted("cantools", "canmatrix") and {"dbc", "vectors"} <= g:
@@ -727,7 +730,7 @@ class Batch:
 
     def runners(self) -> str:
         """What each runner ran on: `C 100 (31 multiplexed)`."""
-        names = {"c": "C", "python": "Python", "python-mypy": "mypy", "cantools": "cantools", "canmatrix": "canmatrix", "json": "JSON",
+        names = {"c": "C", "c-cross": "C on PowerPC/Cortex-M", "python": "Python", "python-mypy": "mypy", "cantools": "cantools", "canmatrix": "canmatrix", "json": "JSON",
                  "json-mypy": "JSON mypy", "typescript": "TypeScript", "rust": "Rust"}
         return ", ".join(f"{label} {self.count(k)} ({self.count(k, multiplexed=True)} multiplexed)" for k, label in names.items())
 
@@ -740,8 +743,8 @@ def prepare(spec: strategy.GeneratedSpec, sid: str, run_dir: Path) -> Job:
     return Job(sid, spec.seed, str(d / "spec"), spec.entry, str(d / "out"), sorted(spec.features), dict(spec.facts))
 
 
-def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, rust: int = 12, mypy_every: int = 10, jobs: int | None = None,
-              run_dir: Path | None = None, log: Any = print) -> Batch:
+def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, rust: int = 12, mypy_every: int = 10, cross_every: int = 10,
+              jobs: int | None = None, run_dir: Path | None = None, log: Any = print) -> Batch:
     t0 = time.monotonic()
     run_dir = run_dir or BUILD / "run"
     if run_dir.exists():
@@ -754,6 +757,7 @@ def run_batch(n: int, base_seed: int, features: frozenset[str] = strategy.ALL, r
         spec = strategy.example(base_seed + i, features)
         job = prepare(spec, f"s{i:04d}", run_dir)
         job.mypy = mypy_every > 0 and i % mypy_every == 0
+        job.cross = cross_every > 0 and i % cross_every == cross_every // 2  # other specs than mypy's
         job.bytewise = i % 4 == 0
         jobs_list.append(job)
     timings["draw specs"] = time.monotonic() - t0

@@ -33,6 +33,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--features", default="all", help="all (default) | current | comma list of " + ", ".join(sorted(strategy.ALL)))
     ap.add_argument("--rust", type=int, default=12, help="specs whose crates go through cargo clippy + test (default 12)")
     ap.add_argument("--mypy-every", type=int, default=10, help="mypy --strict on every k-th spec (default 10; 0: never)")
+    ap.add_argument("--cross-every", type=int, default=10, help="the C runner on PowerPC/Cortex-M (qemu) on every k-th spec (default 10; 0: never)")
     ap.add_argument("--jobs", type=int, default=None, help="worker processes (default: CPU count)")
     ap.add_argument("--shrink", action="store_true", help="with --seed: shrink each distinct failure")
     ap.add_argument("--shrink-seconds", type=float, default=900)
@@ -58,13 +59,14 @@ def main(argv: list[str]) -> int:
         if args.print:
             print(spec.text(), end="")
             return 0
-        batch = harness.run_batch(1, args.seed, features, rust=1, mypy_every=1, jobs=1, run_dir=harness.BUILD / "one")
+        batch = harness.run_batch(1, args.seed, features, rust=1, mypy_every=1, cross_every=1, jobs=1, run_dir=harness.BUILD / "one")
         print(harness.report(batch, verbose_specs=1))
         if args.shrink and batch.failures:
             return shrink(spec, features, batch, args.shrink_seconds)
         return 1 if batch.failures else 0
     base = args.base_seed if args.base_seed is not None else random.randrange(1_000_000_000)
-    batch = harness.run_batch(args.n, base, features, rust=args.rust, mypy_every=args.mypy_every, jobs=args.jobs, run_dir=args.run_dir)
+    batch = harness.run_batch(args.n, base, features, rust=args.rust, mypy_every=args.mypy_every, cross_every=args.cross_every, jobs=args.jobs,
+                              run_dir=args.run_dir)
     print(harness.report(batch))
     if args.json:
         args.json.write_text(json.dumps(harness.to_json(batch), indent=1, default=str), encoding="utf-8")
@@ -92,7 +94,7 @@ def run_spec_path(path: Path) -> int:
         pass
     root = harness.BUILD / "one" / f"p{os.getpid()}"  # several --spec runs may share the machine
     work = root / "s0000"
-    job = harness.Job("s0000", None, str(spec_dir), entry, str(work / "out"), [], facts, mypy=True)
+    job = harness.Job("s0000", None, str(spec_dir), entry, str(work / "out"), [], facts, mypy=True, cross=True)
     res = harness.run_spec(job)
     if res.accepted and "rust" in res.generated and (Path(res.out_dir) / "vectors" / "can.json").is_file():
         harness.stage_rust([res], root)

@@ -217,7 +217,7 @@ def test_the_batch_reached_every_toolchain(batch):
     muxed = sum(bool(r.facts.get("multiplexed")) for r in batch.results)
     want = {"c": (N, muxed), "cantools": (N, muxed), "canmatrix": (N, muxed), "python": (N, muxed),
             "rust": (MIN_RUST, min(muxed, MIN_RUST // 2)), "json": (min(MIN_JSON, N), 0), "typescript": (min(MIN_JSON, N), 0),
-            "python-mypy": (max(1, N // 20), 0)}  # mypy: every 10th spec
+            "python-mypy": (max(1, N // 20), 0), "c-cross": (N // 10, 0)}  # mypy and qemu: every 10th spec
     short = {k: f"{batch.count(k)} < {n} or {batch.count(k, multiplexed=True)} < {m} multiplexed" for k, (n, m) in want.items()
              if batch.count(k) < n or batch.count(k, multiplexed=True) < m}
     assert muxed >= N // 10, f"only {muxed} of {N} specs multiplex a message"
