@@ -156,7 +156,7 @@ def test_a_multiplexed_dbc_comes_back_as_it_was(tmp_path: Path) -> None:
     """The multiplexed fixture's DBC (a nested multiplexer, pages of ranges through SG_MUL_VAL_,
     overlapping pages, a Motorola page field) imported and generated again: cantools reads the same
     multiplexers, pages and fields, and decodes every page's frame alike."""
-    assert run_canspec("gen", FIXTURES / "mux" / "multiplexed.yaml", "-o", tmp_path / "gen", "--target", "dbc").returncode == 0
+    assert run_canspec("gen", FIXTURES / "valid" / "multiplexed.yaml", "-o", tmp_path / "gen", "--target", "dbc").returncode == 0
     (source,) = (tmp_path / "gen" / "dbc").glob("*.dbc")
     r = run_canspec("import", source, "-o", tmp_path / "spec")
     assert r.returncode == 0 and "0 warning(s)" in r.stderr + r.stdout, r.stderr

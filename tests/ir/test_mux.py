@@ -1,4 +1,4 @@
-"""Multiplexing in the IR: the pages of tests/fixtures/mux/multiplexed.yaml as its signal table
+"""Multiplexing in the IR: the pages of tests/fixtures/valid/multiplexed.yaml as its signal table
 states them (expected values written from the document, not from the build), which fields a
 frame holds for given multiplexer values, and fingerprints that see a page change."""
 
@@ -12,7 +12,7 @@ from canspec.ir.mux import exclusive, groups, ranges_of
 from canspec.pipeline import compile_spec
 from repo_paths import ROOT
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""`canspec decode` on a multiplexed message (tests/fixtures/mux/multiplexed.yaml): every output
+"""`canspec decode` on a multiplexed message (tests/fixtures/valid/multiplexed.yaml): every output
 holds a frame's multiplexers and the fields of the pages they select, and nothing of the other
 pages. The oracle is cantools reading the generated DBC (it decodes exactly the selected pages); for
 a frame whose multiplexer value selects no page, which cantools refuses, the reference codec."""
@@ -22,7 +22,7 @@ from canspec.reference import codec
 from oracle import decode
 from repo_paths import CANSPEC_ENV, ROOT
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 
 
 def expected(msg, db, data: bytes, **options) -> dict[str, object]:  # type: ignore[no-untyped-def]

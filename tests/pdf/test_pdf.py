@@ -185,7 +185,7 @@ def test_a_motorola_fd_float_bus_prints_every_row_of_its_64_byte_frame(tmp_path)
         assert "bit 7" in texts[number - 1], number
 
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 
 
 def test_a_multiplexed_message_prints_one_diagram_per_page_and_when_each_field_is_present(tmp_path):

@@ -198,7 +198,7 @@ def test_a_multiplexed_message_sends_the_page_its_multiplexers_select():
     import cantools
     from canspec.generation import generate
 
-    spec = spec_ir(ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml")
+    spec = spec_ir(ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml")
     db = cantools.database.load_string(generate(spec, ["dbc"])["dbc"]["dbc/mux_bus.dbc"].decode("utf-8"), database_format="dbc")
     ch = channel()
     with can.Bus(interface="virtual", channel=ch) as tx, can.Bus(interface="virtual", channel=ch) as rx:

@@ -84,6 +84,8 @@ def check_oracle(db: Any, vectors_: dict[str, Any]) -> int:
         assert msg.encode(raw, scaling=False, strict=False) == data, case
         phys = msg.decode(data, decode_choices=False, scaling=True)
         for sig in msg.signals:
+            if sig.name not in phys:  # another page's field: the raw comparison above holds the frame's fields exactly
+                continue
             expected = case["physical"][spec_names(msg)[sig.name]]
             if sig.is_float:  # a number, -0.0 with its sign, or "NaN" / "Infinity" / "-Infinity"
                 assert math.isnan(phys[sig.name]) if expected == "NaN" else same_values({0: phys[sig.name]}, {0: float(expected)}), (case, sig.name)

@@ -18,7 +18,7 @@ from canspec_cli import assert_no_traceback, run_canspec
 from dbc_support import load_cantools, vectors, write_dbc
 from repo_paths import ROOT
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 ROUNDS = 60
 
 

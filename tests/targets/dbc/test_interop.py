@@ -1,6 +1,7 @@
 """DBC → SYM / KCD / ARXML → DBC through canmatrix and cantools, for the shipped DBC and every
 valid fixture's: exactly the original comes back, minus exactly what interop.py says each
-converter loses (the README's DBC section lists the same). And the renaming is what makes it so."""
+converter loses (the README's DBC section lists the same). And the renaming is what makes it so.
+Multiplexed messages, which no converter keeps, are compared apart: what each does with them."""
 
 from __future__ import annotations
 
@@ -20,12 +21,14 @@ SOURCES = [ROOT / "spec", *can_fixtures()]
 CORE = ("name", "dlc", "cycle", "start", "length", "order", "signed", "scale", "offset", "min", "max", "unit", "choices")
 
 
-def _dbc(source: Path, tmp_path: Path) -> Path:
+def _dbc(source: Path, tmp_path: Path, pages: bool = False) -> Path:
     """The spec's DBC with `dbc_signal_names: unique`, as a team converting it to SYM, KCD or ARXML
-    writes it: those formats keep one definition per signal name."""
+    writes it: those formats keep one definition per signal name. Without its multiplexed messages
+    unless `pages`: no converter keeps those (test_what_each_conversion_does_with_pages)."""
     spec = compiled(source)
     assert spec.can is not None
-    return write_dbc(replace(spec, can=replace(spec.can, dbc_signal_names="unique")), tmp_path)
+    messages = spec.can.messages if pages else tuple(m for m in spec.can.messages if not m.is_multiplexed)
+    return write_dbc(replace(spec, can=replace(spec.can, dbc_signal_names="unique", messages=messages)), tmp_path)
 
 
 @pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
@@ -107,3 +110,52 @@ def test_canmatrix_is_the_pinned_version():
     extra = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]["test"]
     (pin,) = [d for d in extra if d.startswith("canmatrix")]
     assert pin.endswith(f"=={canmatrix.__version__}"), f"installed canmatrix {canmatrix.__version__}, pyproject's test extra: {pin} (run `make setup`)"
+
+
+# What each conversion does with multiplexing (canmatrix 1.2, cantools 45.1; the README's DBC section
+# says the same), on tests/fixtures/valid/multiplexed.yaml: a nested multiplexer (`channel`, under
+# `mode` = 2), pages of several values and ranges (`pressure`: 1, 4..6; `voltage`: channel 1..3),
+# fields of every frame (`status`, `counter`). Per message: signal → (multiplexer?, its
+# multiplexer, the values that select it), as cantools reads the DBC that comes back.
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
+PAGES_BACK = {
+    # the multiplexer renamed <message>_MUX, pages numbered 0, 1, ... in order (not their values), the
+    # nested multiplexer dropped and its pages put under the top one, every frame's fields copied per page
+    ("canmatrix", "sym"): {"sensor_report": {
+        "sensor_report_MUX": (True, None, ()), "status0": (False, "sensor_report_MUX", (0,)), "status1": (False, "sensor_report_MUX", (1,)),
+        "temperature": (False, "sensor_report_MUX", (0,)), "gain": (False, "sensor_report_MUX", (0,)), "counter0": (False, "sensor_report_MUX", (0,)),
+        "pressure": (False, "sensor_report_MUX", (1,)), "voltage": (False, "sensor_report_MUX", (1,)), "level": (False, "sensor_report_MUX", (1,)),
+        "counter1": (False, "sensor_report_MUX", (1,))},
+        "host_command": {"host_command_MUX": (True, None, ()), "argument": (False, "host_command_MUX", (0,))}},
+    # the nested multiplexer replaces the top one (`mode` dropped), pages numbered 0, 1, ... in order
+    ("canmatrix", "kcd"): {"sensor_report": {
+        "status": (False, None, ()), "channel": (True, None, ()), "temperature": (False, "channel", (0,)), "pressure": (False, "channel", (1,)),
+        "gain": (False, "channel", (0,)), "voltage": (False, "channel", (1,)), "level": (False, "channel", (1,)), "counter": (False, None, ())},
+        "host_command": {"command": (True, None, ()), "argument": (False, "command", (0,))}},
+    ("canmatrix", "arxml"): {},  # multiplexed messages are left out
+    # single values kept; a page of several values or a range keeps its first; the nested multiplexer is no multiplexer
+    ("cantools", "kcd"): {"sensor_report": {
+        "mode": (True, None, ()), "status": (False, None, ()), "channel": (False, "mode", (2,)), "temperature": (False, "mode", (0,)),
+        "pressure": (False, "mode", (1,)), "gain": (False, "channel", (0,)), "voltage": (False, "channel", (1,)), "level": (False, "mode", (1,)),
+        "counter": (False, None, ())},
+        "host_command": {"command": (True, None, ()), "argument": (False, "command", (0,))}},
+}
+
+
+def _pages(path: Path) -> dict[str, dict[str, tuple]]:  # type: ignore[type-arg]
+    db = interop.load_cantools(path, strict=False)
+    return {m.name: {s.name: (s.is_multiplexer, s.multiplexer_signal, tuple(s.multiplexer_ids or ())) for s in m.signals} for m in db.messages}
+
+
+@pytest.mark.parametrize("tool,fmt", interop.PATHS, ids=lambda v: v)
+def test_what_each_conversion_does_with_pages(tool, fmt, tmp_path):
+    """No conversion keeps multiplexing: each does what PAGES_BACK says (cantools' SYM writer fails)."""
+    dbc = _dbc(MUX, tmp_path, pages=True)
+    before = _pages(dbc)
+    assert before["sensor_report"]["channel"] == (True, "mode", (2,)) and before["sensor_report"]["pressure"] == (False, "mode", (1, 4, 5, 6))
+    if (tool, fmt) == ("cantools", "sym"):
+        with pytest.raises(TypeError, match="unhashable"):  # cantools' SYM writer on extended multiplexing
+            interop.round_trip(tool, fmt, dbc, tmp_path)
+        return
+    after = _pages(interop.round_trip(tool, fmt, dbc, tmp_path))
+    assert after == PAGES_BACK[(tool, fmt)] and after != before

@@ -76,7 +76,9 @@ def test_can_facts_follow_the_spec(path):
         assert (link in _section(load, "per-message")) == msg.is_cyclic  # event-driven: not in the figures …
         assert (link in _section(load, "event-driven")) == (not msg.is_cyclic)  # … but listed apart
         assert (f"| {msg.cycle_ms} ms |" if msg.is_cyclic else "| event-driven") in row
-        assert (f"messages/{msg.name}.svg" in pages) == (msg.dlc > 0)
+        # one diagram, or one per page layout of a multiplexed message (ir.Message.page_layouts), each linked from the page
+        diagrams = [f"{msg.name}.svg"] if not msg.is_multiplexed else [f"{msg.name}.page-{n}.svg" for n in range(1, len(msg.page_layouts) + 1)]
+        assert all((f"messages/{d}" in pages) == (msg.dlc > 0) and (d in page) == (msg.dlc > 0) for d in diagrams), diagrams
         for sig in msg.signals:
             for lb in sig.labels:
                 assert (f"{lb.raw} = " if not lb.is_special else f"0x{lb.raw:X} = " if lb.raw >= 0 else f"-0x{-lb.raw:X} = ") in page

@@ -1,4 +1,4 @@
-"""Multiplexing in the handbook and the matrix (tests/fixtures/mux/multiplexed.yaml): one bit
+"""Multiplexing in the handbook and the matrix (tests/fixtures/valid/multiplexed.yaml): one bit
 diagram per page layout, each drawing exactly the fields a frame of that page holds, and a column
 saying when each field is present — both checked against the page structure the fixture's own
 comment states (mode 0: temperature; mode 1 or 4…6: pressure and level; mode 2: the multiplexer
@@ -14,7 +14,7 @@ import pytest
 from canspec_cli import run_canspec
 from repo_paths import ROOT
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 EVERY_FRAME = {"mode", "status", "counter"}
 PAGES = {  # caption → fields drawn
     "mode = 0": EVERY_FRAME | {"temperature"},

@@ -1,4 +1,4 @@
-"""The Python bindings of tests/fixtures/mux/multiplexed.yaml against its vectors (the vector runner's
+"""The Python bindings of tests/fixtures/valid/multiplexed.yaml against its vectors (the vector runner's
 page checks: None for another page's field, `update` keeps it, encode and pack_raw ignore it), and
 mypy --strict on the package."""
 
@@ -12,7 +12,7 @@ from canspec.pipeline import compile_spec
 from repo_paths import ROOT
 from targets.python.vector_runner import load_package, run
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 
 
 def test_every_vector_and_page_round_trips(tmp_path):

@@ -14,7 +14,7 @@ from canspec.targets.rust.tests_view import build_tests
 from repo_paths import ROOT
 
 
-@pytest.mark.parametrize("spec_path", [None, ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"], ids=["shipped", "multiplexed"])
+@pytest.mark.parametrize("spec_path", [None, ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"], ids=["shipped", "multiplexed"])
 @pytest.mark.parametrize("rel", ["src/messages.rs", "tests/vectors.rs"])
 def test_chunked_format_equals_whole(spec_path, rel: str) -> None:
     spec = compile_spec(spec_path).spec

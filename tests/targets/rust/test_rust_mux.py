@@ -15,9 +15,9 @@ from canspec.targets.rust import check
 from canspec.targets.rust import model as rm
 from repo_paths import ROOT
 
-MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 if not MUX.exists():  # the lead moves it into valid/ once every target carries multiplexing
-    MUX = ROOT / "tests" / "fixtures" / "mux" / "multiplexed.yaml"
+    MUX = ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"
 
 
 def _spec() -> ir.Spec:
