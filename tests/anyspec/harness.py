@@ -731,8 +731,7 @@ class Batch:
     def runners(self) -> str:
         """What each runner ran on: `C 100 (31 multiplexed)`."""
         names = {"c": "C", "c-cross": "C on PowerPC/Cortex-M", "python": "Python", "python-mypy": "mypy", "cantools": "cantools", "canmatrix": "canmatrix",
-                 "json": "JSON",
-                 "json-mypy": "JSON mypy", "typescript": "TypeScript", "rust": "Rust"}
+                 "json": "JSON", "json-mypy": "JSON mypy", "typescript": "TypeScript", "rust": "Rust"}
         return ", ".join(f"{label} {self.count(k)} ({self.count(k, multiplexed=True)} multiplexed)" for k, label in names.items())
 
 
