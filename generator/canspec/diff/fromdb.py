@@ -12,18 +12,13 @@ from typing import Any
 
 from canspec import ir
 from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, from_spec
+from canspec.importer.signals import attribute
 from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
 
 def _spec_named(db: Any) -> set[tuple[int, str]]:
     """(frame ID, DBC signal name) of the signals whose DBC carries the spec's name."""
-    out = set()
-    for msg in db.messages:
-        for sig in msg.signals:
-            attrs = getattr(getattr(sig, "dbc", None), "attributes", None) or {}
-            if SPEC_NAME_ATTRIBUTE in attrs:
-                out.add((msg.frame_id, sig.name))
-    return out
+    return {(msg.frame_id, sig.name) for msg in db.messages for sig in msg.signals if attribute(sig, SPEC_NAME_ATTRIBUTE) is not None}
 
 
 def _signal(model: SignalModel, sig: ir.Signal, names: dict[str, str]) -> SignalModel:

@@ -42,7 +42,8 @@ def _number(value: Fraction) -> int | Fraction:
     return value.numerator if value.denominator == 1 else value
 
 
-def _attr(obj: Any, name: str) -> Any:
+def attribute(obj: Any, name: str) -> Any:
+    """A cantools object's DBC attribute value, or None."""
     attrs = getattr(getattr(obj, "dbc", None), "attributes", None) or {}
     return getattr(attrs.get(name), "value", None)
 
@@ -90,7 +91,7 @@ def _unfit(sig: Any, msg: Any, pages: Pages) -> str | None:
 def _signal(at: Where, sig: Any, default_order: str, names: Namer, numbers: Numbers | None, tables: dict[str, dict[int, Any]],
             line: int | None) -> dict[str, Any]:
     source_name = at.loaded.renamed.get(sig.name, sig.name)
-    spec_name = _attr(sig, SPEC_NAME_ATTRIBUTE)  # canspec renamed it in the DBC (targets/dbc/naming.py): the spec's name comes back
+    spec_name = attribute(sig, SPEC_NAME_ATTRIBUTE)  # canspec renamed it in the DBC (targets/dbc/naming.py): the spec's name comes back
     name = names.name(str(spec_name or source_name), "signal")
     out: dict[str, Any] = {"name": name}
     if name != source_name:
@@ -169,7 +170,7 @@ def _label(ident: str, text: str) -> str | dict[str, str]:
 
 
 def _sig_type(loaded: Loaded, sig: Any) -> Any:
-    value = _attr(sig, "SigType")
+    value = attribute(sig, "SigType")
     definitions = getattr(getattr(loaded.db, "dbc", None), "attribute_definitions", None) or {}
     choices = getattr(definitions.get("SigType"), "choices", None)
     return choices[value] if isinstance(value, int) and choices and 0 <= value < len(choices) else value

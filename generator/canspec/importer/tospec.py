@@ -5,14 +5,13 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass, field
-from fractions import Fraction
 from typing import Any
 
 from canspec.importer.attributes import kept_definitions, kept_values
-from canspec.importer.dbctext import written_numbers
+from canspec.importer.dbctext import Numbers, written_numbers
 from canspec.importer.load import Loaded
 from canspec.importer.names import Namer, identifier
-from canspec.importer.signals import NO_NODE, Where, convert_signals
+from canspec.importer.signals import NO_NODE, Where, attribute, convert_signals
 from canspec.ir.fd import FD_LENGTHS
 from canspec.ir.ids import DBC_EXTENDED_FLAG
 
@@ -26,11 +25,6 @@ class Report:
 
     def warn(self, source: str, line: int | None, text: str) -> None:
         self.warnings.append((source, line, text))
-
-
-def _attr(obj: Any, name: str) -> Any:
-    attrs = getattr(getattr(obj, "dbc", None), "attributes", None) or {}
-    return getattr(attrs.get(name), "value", None)
 
 
 def _lines(text: str | None) -> dict[tuple[int, str], int]:
@@ -47,13 +41,9 @@ def _lines(text: str | None) -> dict[tuple[int, str], int]:
     return out
 
 
-def _number(value: Fraction) -> int | Fraction:
-    return value.numerator if value.denominator == 1 else value
-
-
 def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
     db = loaded.db
-    rate = _attr(db, "Baudrate") or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
+    rate = attribute(db, "Baudrate") or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
     if not rate:
         rate = DEFAULT_BITRATE
         report.warn(loaded.source, None, f"no bit rate given: {rate // 1000} kbit/s assumed")
@@ -65,7 +55,7 @@ def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
         "addressing": "none",
         "byte_order": "big_endian" if orders["big_endian"] > orders["little_endian"] else "little_endian",
     }
-    data_rate = _attr(db, "BaudrateCANFD") or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
+    data_rate = attribute(db, "BaudrateCANFD") or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
     if data_rate:
         bus["data_bitrate"] = int(data_rate)
     elif any(m.is_fd and _brs(m) for m in db.messages):
@@ -75,7 +65,7 @@ def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
 
 
 def _brs(msg: Any) -> bool:
-    value = _attr(msg, "CANFD_BRS")
+    value = attribute(msg, "CANFD_BRS")
     return True if value is None else str(value) in ("1", "True")
 
 
@@ -166,7 +156,7 @@ def _protocol(loaded: Loaded) -> dict[str, Any]:
 
 
 def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables: dict[str, dict[int, Any]],
-             written: dict[tuple[int, str], tuple[Fraction, Fraction, Fraction, Fraction]], lines: dict[tuple[int, str], int],
+             written: dict[tuple[int, str], Numbers], lines: dict[tuple[int, str], int],
              report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, Any] | None:
     dbc_id = msg.frame_id | DBC_EXTENDED_FLAG if msg.is_extended_frame else msg.frame_id
     line = lines.get((dbc_id, ""))
