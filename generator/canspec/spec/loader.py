@@ -14,6 +14,7 @@ from typing import Any
 import jsonschema
 
 from canspec import resources
+from canspec.spec import fastschema
 from canspec.spec.problems import Loc, Problem, SpecError, error
 from canspec.spec.yamlsource import LocDict, LocList, load_yaml
 
@@ -128,6 +129,9 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
         return [error(
             f"unsupported schema_version {version} (this canspec reads {', '.join(map(str, SUPPORTED_SCHEMA_VERSIONS))})", data.loc_of("schema_version"),
             hint, "schema-version")]
+    fast = fastschema.checker(resources.spec_schema_path(version))
+    if fast is not None and fast(data):
+        return []
     problems = []
     errors = sorted(_validator(version).iter_errors(data), key=lambda e: (list(map(str, e.absolute_path)), str(e.validator)))
     seen = set()
