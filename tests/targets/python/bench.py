@@ -194,7 +194,8 @@ def main() -> int:
         print(f"python {sys.version.split()[0]}, cantools {cantools.__version__}; generated {gw.PROTOCOL} {gw.VERSION}")
         print("cantools +xor: cantools plus the XOR checksum check (decode) / fill (encode) the generated code does; ratio against that\n")
         dec, cdec, xdec, enc, cenc, xenc = codec_table(gw, vectors, db, args.loops)
-    print(f"\ndecode: {xdec / dec:.1f}x faster than cantools with the checksum check ({cdec / dec:.1f}x against cantools alone; target 6x)")
+    goal = 6 if args.spec is None else 5  # issue 24: 6x on the shipped spec, 5x on the Motorola benchmark spec
+    print(f"\ndecode: {xdec / dec:.1f}x faster than cantools with the checksum check ({cdec / dec:.1f}x against cantools alone; target {goal}x)")
     print(f"encode: {xenc / enc:.1f}x faster than cantools with the checksum fill ({cenc / enc:.1f}x against cantools alone; target 10x)")
     if args.log_frames and args.spec is None:
         log_table(vectors, args.log_frames)

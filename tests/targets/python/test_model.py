@@ -43,10 +43,15 @@ def test_number_literals():
 def test_raw_expressions_extract_every_raw(can):
     sig = sig_of(can, "driving_state", "motor_speed")  # start 8, len 16
     classic, fd = fields.raw_expr(sig, 64), fields.raw_expr(sig, 72)
-    assert classic == "d1 | d2 << 8" and fd == "data[1] | data[2] << 8"  # from the frame's bytes, in a classic or an FD frame
+    assert classic == fd == "d1 | d2 << 8"  # from the frame's bytes, in a classic or an FD frame (a struct unpacks those)
     for raw in (0, 1, 0x7FFF, 0xFFFF):
         frame = (raw << 8 | 0xFF | 0xFF << 24).to_bytes(9, "little")
-        assert eval(classic, {f"d{i}": b for i, b in enumerate(frame)}) == raw and eval(fd, {"data": frame}) == raw
+        assert eval(classic, {f"d{i}": b for i, b in enumerate(frame)}) == raw
+    wide_fd = dataclasses.replace(sig, length=40, word_mask=2**40 - 1)  # wider than MAX_BYTE_SPAN bytes: a slice of its own
+    assert fields.raw_expr(wide_fd, 128) == '_from_bytes(data[1:6], "little")'
+    for raw in (0, 1, 2**40 - 1, 0x123456789A):
+        frame = (raw << 8 | 0xFF | 0xFF << 48).to_bytes(16, "little")
+        assert eval(fields.raw_expr(wide_fd, 128), {"data": frame, "_from_bytes": int.from_bytes}) == raw
     wide = _wide(can, False, Fraction(1))
     assert fields.raw_expr(wide, 64) == "v" and fields.raw_expr(dataclasses.replace(wide, length=40, word_mask=2**40 - 1), 64) == "v & 0xFFFFFFFFFF"
     top = sig_of(can, "autocar_eps_command", "checksum")
@@ -57,7 +62,8 @@ def test_raw_expressions_extract_every_raw(can):
     signed = dataclasses.replace(sig, signed=True, sign_bit=0x8000, raw_type_min=-32768, raw_type_max=32767)
     sexpr = fields.raw_expr(signed, 72)
     for raw in (-32768, -1, 0, 1, 32767):
-        assert eval(sexpr, {"data": ((raw & 0xFFFF) << 8 | 0xAB | 0xCD << 24).to_bytes(9, "little")}) == raw
+        frame = ((raw & 0xFFFF) << 8 | 0xAB | 0xCD << 24).to_bytes(9, "little")
+        assert eval(sexpr, {f"d{i}": b for i, b in enumerate(frame)}) == raw
 
 
 def test_physical_and_quotient_expressions(can):

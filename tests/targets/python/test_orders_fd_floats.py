@@ -122,3 +122,20 @@ def test_monitor_reads_a_motorola_counter(pkg):
         data = codec.pack(msg, {msg.counter.signal: counter})
         faults.append(mon.feed(t * 10, msg.frame_id, msg.is_extended, data).faults)
     assert [tuple(f.value for f in fs) for fs in faults] == [(), (), ("counter_repeat",), (), ("counter_jump",)]
+
+
+def test_fd_frames_of_another_length_are_refused_and_any_buffer_is_read(pkg):
+    """An FD message's bytes come out of one struct unpack: a frame one byte short or long is a
+    FrameLengthError (not struct's error), and bytes, bytearray and memoryview decode alike."""
+    rng = random.Random(7)
+    fd = [m for m in CAN.messages if m.dlc > 8]
+    assert fd
+    for msg in fd:
+        data = codec.pack(msg, {s.name: rng.randint(s.raw_type_min, s.raw_type_max) for s in msg.data_signals if s.role != "checksum"})
+        for wrong in (data[:-1], data + b"\0", b""):
+            for call in (pkg.decode, pkg.decode_raw):
+                with pytest.raises(pkg.FrameLengthError):
+                    call(msg.frame_id, wrong)
+        want = pkg.decode_raw(msg.frame_id, data)
+        assert want == codec.unpack(msg, data)
+        assert pkg.decode_raw(msg.frame_id, bytearray(data)) == want == pkg.decode_raw(msg.frame_id, memoryview(data))

@@ -18,6 +18,7 @@ from canspec.targets.python import pages
 from canspec.targets.python.fields import PySignal
 
 TIE = ir.TIE_EPSILON_TEXT
+CLASSIC_BYTES = 8
 EXACT = ir.EXACT_LIMIT_TEXT
 IND = "    "
 
@@ -42,6 +43,7 @@ class Frame:
     dlc: int
     signals: tuple[PySignal, ...]
     checksum: PyChecksum | None
+    byte_struct: str = ""  # a CAN FD frame: the module's struct.Struct that unpacks the bytes read as `dN` (byte_format)
 
     @property
     def values(self) -> tuple[PySignal, ...]:
@@ -54,6 +56,30 @@ class Frame:
 
     def bytes_used(self, physical: bool) -> set[int]:
         return {i for s in self.signals if s.frame_bytes is not None and (s.decode_word if physical else s.read) == "d" for i, _ in s.frame_bytes}
+
+
+def struct_bytes(f: Frame) -> tuple[int, ...]:
+    """The bytes of a CAN FD frame that decode or unpack read as `dN` (every byte where decode XORs them for the
+    checksum): a struct unpacks them in one call, where indexing the data once per byte costs a step each."""
+    if f.dlc <= CLASSIC_BYTES or not ("d" in f.reads(True) or "d" in f.reads(False)):
+        return ()
+    if f.checksum is not None and f.checksum.whole:
+        return tuple(range(f.dlc))
+    return tuple(sorted(f.bytes_used(True) | f.bytes_used(False)))
+
+
+def byte_format(f: Frame) -> str:
+    """The struct format of struct_bytes: `B` for a byte read, `x` (counted) for the bytes between."""
+    wanted, out, gap = set(struct_bytes(f)), ["<"], 0
+    for i in range(f.dlc):
+        if i in wanted:
+            out.append(f"{gap}x" if gap > 1 else "x" * gap)
+            out.append("B")
+            gap = 0
+        else:
+            gap += 1
+    out.append(f"{gap}x" if gap > 1 else "x" * gap)
+    return "".join(out)
 
 
 def pack_word(values: tuple[PySignal, ...]) -> str:
@@ -101,10 +127,12 @@ def _checksum_byte(checksum: PyChecksum) -> str:
 
 
 def _byte_names(f: Frame, physical: bool, every: bool) -> str:
-    """`d0, _, d2 = data`: the frame's bytes decode reads (every one where the checksum XORs them)."""
+    """`d0, _, d2 = data`: the frame's bytes decode reads (every one where the checksum XORs them); of a
+    CAN FD frame, those its struct unpacks."""
     used = f.bytes_used(physical)
-    names = [f"d{i}" if every or i in used else "_" for i in range(f.dlc)]
-    return f"({names[0]},) = data" if f.dlc == 1 else f"{', '.join(names)} = data"
+    at, source = (struct_bytes(f), f"{f.byte_struct}.unpack(data)") if f.byte_struct else (range(f.dlc), "data")
+    names = [f"d{i}" if every or i in used else "_" for i in at]
+    return f"({names[0]},) = {source}" if len(names) == 1 else f"{', '.join(names)} = {source}"
 
 
 def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
@@ -114,7 +142,8 @@ def frame_checks(f: Frame, physical: bool) -> tuple[str, ...]:
     reads, ck = f.reads(physical), f.checksum
     by_bytes = ck is not None and ck.whole and "d" in reads
     if "d" in reads:  # unpacking the bytes checks the length (a try costs nothing until it raises)
-        lines = ["try:", IND + _byte_names(f, physical, by_bytes), f"except ValueError:  # not {f.dlc} bytes", f"{IND}{wrong} from None"]
+        error = "_StructError" if f.byte_struct else "ValueError"
+        lines = ["try:", IND + _byte_names(f, physical, by_bytes), f"except {error}:  # not {f.dlc} bytes", f"{IND}{wrong} from None"]
     else:
         lines = [f"if len(data) != {f.dlc}:", IND + wrong]
     words = reads | ({ck.word} if ck is not None and not by_bytes else set())

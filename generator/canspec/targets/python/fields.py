@@ -113,10 +113,11 @@ MAX_BYTE_SPAN = 3  # bytes a field read from the frame's bytes may span: their c
 
 
 def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] | None:
-    """(frame byte, its left shift) of a non-float field of a classic frame (at most 8 bytes) that spans at most
-    MAX_BYTE_SPAN bytes, else None: decode reads it from those bytes (`d3 | d4 << 8`, small ints), not from the
-    frame word. The bytes are taken in the order of the field's word: a Motorola field's first byte is its highest."""
-    if frame_bits > 64 or sig.is_float:
+    """(frame byte, its left shift) of a non-float field that spans at most MAX_BYTE_SPAN bytes, else None:
+    decode reads it from those bytes (`d3 | d4 << 8`, small ints), not from the frame word (nor, in a CAN FD
+    frame, from a slice of its own bytes). The bytes are taken in the order of the field's word: a Motorola
+    field's first byte is its highest."""
+    if sig.is_float:
         return None
     lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8  # in the word, from its least significant byte
     if hi - lo >= MAX_BYTE_SPAN:
@@ -126,16 +127,12 @@ def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] 
 
 
 def own_bytes(sig: ir.Signal, frame_bits: int) -> tuple[str, int, int]:
-    """A field of a CAN FD frame (more than 8 bytes) read from its own bytes, not from a word of up to 512 bits:
-    (the integer of those bytes in the field's order, the field's shift in it, its bits)."""
+    """A field wider than MAX_BYTE_SPAN bytes of a CAN FD frame (more than 8 bytes) read from its own bytes, not from a
+    word of up to 512 bits: (the integer of those bytes in the field's order, the field's shift in it, its bits)."""
     lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8
     last = frame_bits // 8 - 1
     at = [last - p if sig.is_big_endian else p for p in range(lo, hi + 1)]
-    if hi - lo < MAX_BYTE_SPAN:
-        var = " | ".join(f"data[{i}]" if p == lo else f"data[{i}] << {8 * (p - lo)}" for p, i in zip(range(lo, hi + 1), at))
-    else:
-        var = f'_from_bytes(data[{min(at)}:{max(at) + 1}], "{sig.word_order}")'
-    return var, sig.word_shift - 8 * lo, 8 * len(at)
+    return f'_from_bytes(data[{min(at)}:{max(at) + 1}], "{sig.word_order}")', sig.word_shift - 8 * lo, 8 * len(at)
 
 
 def raw_expr(sig: ir.Signal, frame_bits: int) -> str:

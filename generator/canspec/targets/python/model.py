@@ -5,7 +5,7 @@ of encode/decode in `code.py`, identifiers in `naming.py`."""
 from __future__ import annotations
 
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from canspec import ir
@@ -127,6 +127,7 @@ class PyMessage:
     unpack_lines: tuple[str, ...]
     present_func: str
     present_lines: tuple[str, ...]
+    byte_struct: tuple[str, str] | None  # a CAN FD frame read as bytes: its struct.Struct (name, format), see code.struct_bytes
 
 
 @dataclass(frozen=True)
@@ -155,6 +156,7 @@ class PyPackage:
     tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
     dict_lookups: bool  # some through a dict (`_member`)
     float_helpers: tuple[str, ...]  # the struct helpers of _runtime its IEEE float fields use (imported with a leading `_`)
+    byte_structs: bool  # a CAN FD message reads its bytes through a struct.Struct (PyMessage.byte_struct)
     fault_tables: tuple[ir.FaultTable, ...]
 
 
@@ -226,6 +228,8 @@ class _Builder:
         by_name = {s.name: s for s in signals}
         checksum = code.make_checksum(msg, tuple(s for s in signals if not s.is_checksum))
         frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
+        if code.struct_bytes(frame):
+            frame = replace(frame, byte_struct=self.module.take(f"_{msg.name.upper()}_BYTES"))
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
         funcs = {kind: self.module.take(f"_{kind}_{msg.name}") for kind in ("decode", "encode", "unpack")}
@@ -243,7 +247,8 @@ class _Builder:
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
             decode_checks=code.frame_checks(frame, True), unpack_checks=code.frame_checks(frame, False),
             encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
-            checksum_ok_lines=code.checksum_ok(frame), **self.pages(msg, signals, raw_class),
+            checksum_ok_lines=code.checksum_ok(frame), byte_struct=(frame.byte_struct, code.byte_format(frame)) if frame.byte_struct else None,
+            **self.pages(msg, signals, raw_class),
         )
 
     def pages(self, msg: ir.Message, signals: tuple[PySignal, ...], raw_class: str) -> dict[str, Any]:
@@ -293,5 +298,5 @@ def build_package(spec: ir.Spec) -> PyPackage:
         has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
         has_checksums=can.has_checksums, has_counters=can.has_counters, has_multiframe=can.has_multiframe,
         tuple_lookups=any(lk.is_tuple for lk in lookups), dict_lookups=any(not lk.is_tuple for lk in lookups), fault_tables=can.fault_tables,
-        float_helpers=_float_helpers(can),
+        float_helpers=_float_helpers(can), byte_structs=any(m.byte_struct for m in messages),
     )
