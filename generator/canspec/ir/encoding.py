@@ -27,6 +27,7 @@ import struct
 import sys
 from decimal import Decimal, localcontext
 from fractions import Fraction
+from functools import lru_cache
 
 from canspec.ir.model import EXACT_LIMIT, TIE_EPSILON, runtime_quotient
 
@@ -138,6 +139,7 @@ def decimal_scaling(factor: Fraction, offset: Fraction, bounds: tuple[Fraction, 
     return scale, int(factor * scale), int(offset * scale)
 
 
+@lru_cache(maxsize=1 << 16)  # a spec repeats its factors, offsets and ranges: every literal of them comes here
 def decimal_text(value: Fraction | int) -> str:
     """Shortest exact decimal text of a value with a finite decimal expansion (0.02, -1080, 1e-3 → 0.001)."""
     value = Fraction(value)

@@ -8,6 +8,7 @@ import json
 import re
 from abc import ABC, abstractmethod
 from fractions import Fraction
+from functools import lru_cache
 
 from canspec.ir.encoding import decimal_text
 
@@ -29,7 +30,8 @@ def hex_text(value: int, digits: int = 0) -> str:
     return f"-0x{-value:0{digits}X}" if value < 0 else f"0x{value:0{digits}X}"
 
 
-def _exact_decimal(value: Fraction | int) -> str:
+@lru_cache(maxsize=1 << 16)  # the same factors, offsets and bounds recur in every message
+def _exact_decimal(value: Fraction | float) -> str:
     """A floating-point literal of an exact decimal: 0.1, -1080.0, 0.0015 (each parses to the nearest double)."""
     text = decimal_text(Fraction(value))
     return text if any(c in text for c in ".eE") else f"{text}.0"
@@ -130,7 +132,7 @@ class CLiterals(Literals):
         return f"UINT64_C({value})" if bits > 32 or value > 0xFFFFFFFF else f"{value}u"
 
     def double(self, value: Fraction | float) -> str:
-        return _exact_decimal(Fraction(value))
+        return _exact_decimal(value)
 
     def string(self, text: str) -> str:
         """UTF-8 kept; other control characters as 3-digit octal escapes (which, unlike hex escapes,

@@ -6,6 +6,8 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
@@ -53,10 +55,20 @@ def display_name(path: Path) -> str:
         return str(path)
 
 
+_UNESCAPED_DOLLAR = re.compile(r"(?<!\\)\$")
+
+
+def _ecma_pattern(validator: Any, pattern: str, instance: Any, schema: Any) -> Iterator[jsonschema.ValidationError]:
+    """`pattern` as JSON Schema means it (ECMA-262): `$` is the end of the text. Python's `$` also matches
+    before a final newline, so jsonschema would take the name "brake\\n" as an identifier."""
+    if validator.is_type(instance, "string") and not re.search(_UNESCAPED_DOLLAR.sub(r"\\Z", pattern), instance):
+        yield jsonschema.ValidationError(f"{instance!r} does not match {pattern!r}")
+
+
 @cache
 def _validator(version: int) -> jsonschema.protocols.Validator:
     schema = json.loads(resources.spec_schema_path(version).read_text(encoding="utf-8"))
-    cls = jsonschema.validators.validator_for(schema)
+    cls = jsonschema.validators.extend(jsonschema.validators.validator_for(schema), {"pattern": _ecma_pattern})
     return cls(schema)
 
 

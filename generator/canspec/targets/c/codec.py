@@ -50,11 +50,15 @@ def paren(expr: str) -> str:
 
 
 def _closing(expr: str) -> int:
+    """The index of the parenthesis that closes the one `expr` starts with (-1: none)."""
     depth = 0
     for i, ch in enumerate(expr):
-        depth += {"(": 1, ")": -1}.get(ch, 0)
-        if depth == 0:
-            return i
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth -= 1
+            if depth == 0:
+                return i
     return -1
 
 
