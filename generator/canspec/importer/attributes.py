@@ -12,7 +12,7 @@ from canspec.ir.dbc_attributes import COMPUTED
 from canspec.spec.validate_dbc import refusal
 
 KINDS = {None: "network", "BU_": "node", "BO_": "message", "SG_": "signal"}
-NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")  # fullmatch: "$" would also match before a final newline
 
 
 def _number(value: Any) -> int | float:
@@ -27,7 +27,7 @@ def kept_definitions(loaded: Loaded, warn: Any) -> dict[str, dict[str, Any]]:
     for name, d in (getattr(dbc, "attribute_definitions", None) or {}).items():
         if name in COMPUTED:
             continue
-        if d.kind not in KINDS or not NAME.match(name):
+        if d.kind not in KINDS or not NAME.fullmatch(name):
             warn(f"attribute {name} of {d.kind} objects: left out (canspec keeps network, node, message and signal attributes named as identifiers)")
             continue
         spec: dict[str, Any] = {"object": KINDS[d.kind], "type": d.type_name}

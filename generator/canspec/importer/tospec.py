@@ -3,6 +3,7 @@ with a warning for every decision a source did not make for us."""
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any
@@ -113,7 +114,7 @@ def _node_names(msg: dict[str, Any], nodes: dict[str, dict[str, Any]]) -> dict[s
     return msg
 
 
-NODE_NAME = __import__("re").compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+NODE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")  # fullmatch: "$" would also match before a final newline
 
 
 def _nodes(loaded: Loaded, report: Report, kept: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
@@ -122,7 +123,7 @@ def _nodes(loaded: Loaded, report: Report, kept: dict[str, dict[str, Any]]) -> d
     spellings = Namer(tuple(n.name for n in db.nodes))
 
     def add(name: str, comment: str | None) -> None:
-        ident = name if NODE_NAME.match(name) and name != "ALL" else "N" + __import__("re").sub(r"\W", "_", name)
+        ident = name if NODE_NAME.fullmatch(name) and name != "ALL" else "N" + re.sub(r"\W", "_", name)
         while ident in taken:
             ident += "_"
         taken.add(ident)

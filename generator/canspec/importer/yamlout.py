@@ -11,7 +11,7 @@ from typing import Any
 
 from canspec.ir.encoding import decimal_text
 
-_PLAIN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_PLAIN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")  # fullmatch: "$" would also match before a final newline
 _CONTROL = re.compile("[\x7f-\x9f]")
 _YAML_WORDS = {"y", "n", "yes", "no", "true", "false", "on", "off", "null"}
 
@@ -30,7 +30,7 @@ def scalar(value: Any, key: str = "") -> str:
     if isinstance(value, dict):
         return "{" + ", ".join(f"{k}: {scalar(v, k)}" for k, v in value.items()) + "}"
     text = str(value)
-    if _PLAIN.match(text) and text.lower() not in _YAML_WORDS:
+    if _PLAIN.fullmatch(text) and text.lower() not in _YAML_WORDS:
         return text
     return _CONTROL.sub(lambda m: f"\\u{ord(m.group()):04x}", json.dumps(text, ensure_ascii=False))  # YAML refuses DEL and C1 raw
 
