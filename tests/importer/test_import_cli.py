@@ -97,6 +97,21 @@ def test_unreadable_input_is_one_line_with_its_place(tmp_path: Path) -> None:
         assert r.returncode == 1 and r.stderr.count("\n") == 1 and str(path) in r.stderr, r.stderr
 
 
+@pytest.mark.parametrize(("line", "says"), [
+    ("BO_ 12 X: 99999999 A", "message X is 99999999 bytes long; a CAN frame holds at most 64"),
+    ("BO_ 12 X: 8 A\n SG_ S : 0|9999999999@1+ (1,0) [0|1] \"\" A", "signal S: start bit 0, 9999999999 bits: no CAN frame has these bits"),
+    ("BO_ 12 X: 8 A\n SG_ S : 999999999|8@0+ (1,0) [0|1] \"\" A", "signal S: start bit 999999999, 8 bits: no CAN frame has these bits"),
+])
+def test_sizes_no_frame_has_are_refused_before_the_reader_takes_them(tmp_path: Path, line: str, says: str) -> None:
+    """cantools builds its codec bit by bit: a fuzzed length of 10^10 bits took 24 GB before the kernel killed it."""
+    bad = tmp_path / "huge.dbc"
+    bad.write_text(f'VERSION ""\n\nBU_: A\n\n{line}\n', encoding="utf-8")
+    r = run_canspec("import", bad, "-o", tmp_path / "out", timeout=60)
+    at = 5 + line.count("\n")
+    assert r.returncode == 1 and r.stderr.startswith(f"canspec import: {bad}:{at}: {says}") and "hint:" in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()
+
+
 def test_two_sources_merge_and_a_clash_names_both(tmp_path: Path) -> None:
     a, b = tmp_path / "a.dbc", tmp_path / "b.dbc"
     a.write_text('VERSION ""\nBU_: X\nBO_ 16 ONE: 1 X\n SG_ S : 0|8@1+ (1,0) [0|0] "" X\n', encoding="utf-8")

@@ -77,11 +77,28 @@ class Repairs:
 
 
 _SG_OR_BO_NAME = re.compile(r"^\s*(?:SG_|BO_\s+\d+)\s+(\w+)")
+_BO_SIZE = re.compile(r"^\s*BO_\s+\d+\s+(\w+)\s*:\s*(\d+)")
+_SG_BITS = re.compile(r"^\s*SG_\s+(\w+)[^:]*:\s*(\d+)\|(\d+)@")
+MAX_FRAME_BYTES = 64  # a CAN FD frame
+
+
+def _check_sizes(rep: Repairs) -> None:
+    """Refuse lengths and bit positions no CAN frame has before cantools reads them: it builds its
+    codec bit by bit and byte by byte (a signal of 10^10 bits took 24 GB and was killed)."""
+    bits = 8 * MAX_FRAME_BYTES
+    for i, line in enumerate(rep.lines):
+        if (m := _BO_SIZE.match(line)) is not None and int(m.group(2)) > MAX_FRAME_BYTES:
+            raise DbcError(f"{rep.source}:{i + 1}: message {m.group(1)} is {m.group(2)} bytes long; a CAN frame holds at most "
+                           f"{MAX_FRAME_BYTES} (hint: correct the length on its BO_ line)")
+        if (m := _SG_BITS.match(line)) is not None and (int(m.group(2)) >= bits or not 0 < int(m.group(3)) <= bits):
+            raise DbcError(f"{rep.source}:{i + 1}: signal {m.group(1)}: start bit {m.group(2)}, {m.group(3)} bits: no CAN frame has "
+                           f"these bits (at most {bits}, numbered 0..{bits - 1}; hint: correct the SG_ line's start|length)")
 
 
 def prepass(rep: Repairs) -> None:
     """The repairs a scan of the lines finds, made before cantools first parses the text: each
     would otherwise cost a parse of the whole file to discover (a large DBC takes seconds)."""
+    _check_sizes(rep)
     for i, line in enumerate(rep.lines):
         if (m := _SG_OR_BO_NAME.match(line)) is not None and m.group(1)[0].isdigit() and not m.group(1).isdigit():
             _rename_digit_name(rep, i, m.group(1))
