@@ -8,10 +8,12 @@ one line saying what is wrong."""
 
 from __future__ import annotations
 
+import gc
 import gzip
 import io
 import os
 import sys
+import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import IO, Any
@@ -105,11 +107,11 @@ def read_log(path: str, fmt: str | None = None) -> Iterator[Chunk]:
         stream = io.BufferedReader(stream)  # type: ignore[arg-type]
     try:
         _head(stream, fmt)
-        reader = {"candump": _candump, "mf4": _mf4, "blf": _blf}.get(fmt, _python_can)
+        reader = {"candump": _candump, "mf4": _binary(_mf4), "blf": _binary(_blf)}.get(fmt, _python_can)
         for chunk in reader(stream, fmt):
             chunk.position = raw.tell() if raw is not None and not raw.closed else None
             yield chunk
-    except (OSError, EOFError, gzip.BadGzipFile, ValueError) as exc:
+    except (OSError, EOFError, gzip.BadGzipFile, ValueError, zlib.error) as exc:
         raise InputError(f"cannot read: {exc}") from None
     finally:
         if raw is not None:
@@ -140,6 +142,33 @@ def _candump(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
             line += lines
         if not block:
             return
+
+
+def _binary(reader: Any) -> Any:
+    """A binary reader whose file is damaged: asammdf and the BLF reader fail in their own ways
+    (MdfException, zlib.error, struct.error, ...). Before the first record it is not a readable file
+    (InputError); after, the records read so far count and the rest is one problem, as for a text log."""
+
+    def guarded(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
+        records = 0
+        unraisable = sys.unraisablehook  # asammdf's MDF4.__del__ fails again on a half-opened file: not the user's concern
+        sys.unraisablehook = lambda _: None
+        try:
+            for chunk in reader(stream, fmt):
+                records += chunk.lines
+                yield chunk
+        except InputError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - whatever the reader raised on damaged data
+            what = f"{type(exc).__name__}: {str(exc).strip()}"
+            if not records:
+                raise InputError(f"not a readable {fmt.upper()} file ({what})") from None
+            yield Chunk(fr.from_frames([], []), [(records + 1, f"unreadable {fmt.upper()} record ({what}); the rest of the file is not read")])
+        finally:
+            gc.collect()
+            sys.unraisablehook = unraisable
+
+    return guarded
 
 
 def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
@@ -228,7 +257,14 @@ def _mf4(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
 
     # process_bus_logging=False: asammdf would otherwise decode every frame on opening (0.2 s per
     # million records) for the DBC-less bus views canspec never asks for.
-    mdf = MDF(io.BytesIO(stream.read()) if not stream.seekable() else stream, process_bus_logging=False)
+    failed = ""
+    try:
+        mdf = MDF(io.BytesIO(stream.read()) if not stream.seekable() else stream, process_bus_logging=False)
+    except Exception as exc:  # noqa: BLE001 - a damaged file; raised below, once the half-opened MDF is gone with `exc`
+        failed = f"{type(exc).__name__}: {str(exc).strip()}"
+    if failed:
+        gc.collect()
+        raise InputError(f"not a readable MF4 file ({failed})")
     start = mdf.header.start_time.timestamp()
     record = 0
     try:
