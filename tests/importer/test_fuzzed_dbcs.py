@@ -1,8 +1,9 @@
 """Dirty input beyond the corpus: real DBCs with a few lines mutated (a character dropped or added, a
 line cut, doubled or removed, a number turned huge, negative, zero or non-finite). Each import ends
 in a spec that `canspec check` judges, or in DbcError (one line with its place) — never in another
-exception; a spec the check accepts generates the DBC, C, Python and vectors. The first run of this fuzzer found a 10^10-bit signal that made cantools take 24 GB; the
-seeds are fixed, so a failure here reproduces with its case number."""
+exception; a spec the check accepts generates the DBC, C, Python and vectors. The first run of this
+fuzzer found a 10^10-bit signal that made cantools take 24 GB; the seeds are fixed, so a failure
+here reproduces with its case number."""
 
 from __future__ import annotations
 

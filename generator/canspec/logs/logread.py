@@ -157,7 +157,7 @@ def _binary(reader: Any) -> Any:
             for chunk in reader(stream, fmt):
                 records += chunk.lines
                 yield chunk
-        except InputError:
+        except (InputError, ImportError):  # a missing reader is the extra to install (cli.py names it), not a damaged file
             raise
         except Exception as exc:  # noqa: BLE001 - whatever the reader raised on damaged data
             what = f"{type(exc).__name__}: {str(exc).strip()}"
