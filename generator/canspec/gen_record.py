@@ -19,7 +19,6 @@ import hashlib
 import json
 import os
 import sys
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -27,7 +26,7 @@ import canspec
 from canspec import resources
 from canspec.render.formatters import FORMATTERS
 from canspec.spec_cache import _file_hash as _sha
-from canspec.spec_cache import cache_dir
+from canspec.spec_cache import cache_dir, store
 
 FORMAT = 1
 
@@ -66,11 +65,7 @@ def write(spec: str | None, output: Path, options: Iterable[str], inputs: Iterab
             return
         files = {str(p): _sha(p) for p in inputs}
         made = {rel: _sha(output / rel) for rel in outputs}
-        entry.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-        fd, temp = tempfile.mkstemp(dir=entry.parent, prefix=".gen-")
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            json.dump({"inputs": files, "outputs": made}, f)
-        os.replace(temp, entry)
+        store(entry, json.dumps({"inputs": files, "outputs": made}).encode("utf-8"), ".gen-")
 
 
 def up_to_date(spec: str | None, output: Path, options: Iterable[str]) -> int | None:

@@ -93,6 +93,23 @@ def _read(entry: Path) -> Compiled | None:
         return None
 
 
+def store(entry: Path, data: bytes, prefix: str) -> None:
+    """A small cache file written atomically (a temporary file renamed over it), its directory private
+    to the user; an unwritable cache is only slower, so nothing here raises."""
+    try:
+        entry.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+        fd, temp = tempfile.mkstemp(dir=entry.parent, prefix=prefix)
+    except OSError:
+        return
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(temp, entry)
+    except OSError:
+        with contextlib.suppress(OSError):
+            os.unlink(temp)
+
+
 def _write(entry: Path, compiled: Compiled, started: int) -> None:
     """Stores the entry atomically (a temporary file renamed over it). A file modified after the
     compile started may not be what it read: then nothing is stored."""

@@ -16,9 +16,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import marshal
-import os
 import sys
-import tempfile
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
@@ -42,7 +40,7 @@ def _code(schema: dict[str, Any], schema_text: str) -> Any:
     """The validator module's code object, from the cache or generated (and then cached)."""
     import fastjsonschema
 
-    from canspec.spec_cache import cache_dir
+    from canspec.spec_cache import cache_dir, store
 
     key = hashlib.sha256(f"{schema_text}\0{fastjsonschema.VERSION}\0{sys.version}".encode()).hexdigest()[:24]
     folder = cache_dir()
@@ -53,24 +51,8 @@ def _code(schema: dict[str, Any], schema_text: str) -> Any:
     source = fastjsonschema.compile_to_code(_draft07(schema), use_default=False, use_formats=False)
     code = compile(source, "<canspec spec schema>", "exec")
     if entry is not None:
-        _store(entry, marshal.dumps(code))
+        store(entry, marshal.dumps(code), ".schema-")
     return code
-
-
-def _store(entry: Path, data: bytes) -> None:
-    """Written atomically (a temporary file renamed over it); an unwritable cache is only slower."""
-    try:
-        entry.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-        fd, temp = tempfile.mkstemp(dir=entry.parent, prefix=".schema-")
-    except OSError:
-        return
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(temp, entry)
-    except OSError:
-        with contextlib.suppress(OSError):
-            os.unlink(temp)
 
 
 @cache
