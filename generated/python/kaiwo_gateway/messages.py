@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from struct import Struct as _Struct
+from struct import error as _StructError
 from typing import ClassVar, TypeAlias, TypedDict, cast
 
 from ._runtime import SignalSpec as _SignalSpec
@@ -214,6 +216,7 @@ _EPS_STATE__CONTROLLER_TEMP = _SignalSpec("eps_state", "controller_temp", False,
 _EPS_STATE__EPS_FAULT_LEVEL = _SignalSpec("eps_state", "eps_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _EPS_STATE__COUNTER = _SignalSpec("eps_state", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _EPS_STATE_SIGNALS: frozenset[str] = frozenset(("eps_ctrl_state", "steering_torque", "eps_output_torque", "steering_angle", "controller_temp", "eps_fault_level", "counter",))
+_EPS_STATE_BYTES = _Struct("<BBBHBBB")  # the frame bytes and 16-bit words decode reads
 _AUTOCAR_SPEED_COMMAND__ACCEL_CMD = _SignalSpec("autocar_speed_command", "accel_cmd", False, 0.02, -9.0, 0, -9.00000000002, 3.60000000002, 0, 630, 0, 1023, frozenset(()), "[-9, 3.6] m/s²")
 _AUTOCAR_SPEED_COMMAND__EPB_CMD = _SignalSpec("autocar_speed_command", "epb_cmd", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_SPEED_COMMAND__GEAR_CMD = _SignalSpec("autocar_speed_command", "gear_cmd", True, 1.0, 0.0, 0, 0, 2, 0, 2, 0, 15, frozenset(()), "[0, 2]")
@@ -280,6 +283,7 @@ _VEHICLE_STATE_1__VEHICLE_FAULT_LEVEL = _SignalSpec("vehicle_state_1", "vehicle_
 _VEHICLE_STATE_1__ODOMETER = _SignalSpec("vehicle_state_1", "odometer", False, 2.0, 0.0, 0, 0, 120000, 0, 60000, 0, 65535, frozenset(()), "[0, 120000] km")
 _VEHICLE_STATE_1__COUNTER = _SignalSpec("vehicle_state_1", "counter", True, 1.0, 0.0, 0, 0, 255, 0, 255, 0, 255, frozenset(()), "[0, 255]")
 _VEHICLE_STATE_1_SIGNALS: frozenset[str] = frozenset(("drive_mode_state", "door_state", "drl_state", "left_turn_state", "right_turn_state", "hazard_state", "position_light_state", "headlight_state", "rear_fog_state", "left_fog_state", "right_fog_state", "dome_light_state", "ambient_light_state", "door_button_state", "vehicle_speed", "soc", "system_power_cmd", "charge_state", "charge_connection", "vehicle_fault_level", "odometer", "counter",))
+_VEHICLE_STATE_1_BYTES = _Struct("<BBBBBHB")  # the frame bytes and 16-bit words decode reads
 _AUTOCAR_CONTROL_COMMAND_2__DOWNHILL_REGEN_ENABLE = _SignalSpec("autocar_control_command_2", "downhill_regen_enable", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT = _SignalSpec("autocar_control_command_2", "cargo_lift", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _AUTOCAR_CONTROL_COMMAND_2__CARGO_LIFT_SPEED = _SignalSpec("autocar_control_command_2", "cargo_lift_speed", True, 1.0, 0.0, 0, 0, 10, 0, 10, 0, 15, frozenset(()), "[0, 10]")
@@ -296,6 +300,7 @@ _VEHICLE_STATE_2__BATTERY_CURRENT = _SignalSpec("vehicle_state_2", "battery_curr
 _VEHICLE_STATE_2__BATTERY_CHARGE_ENERGY = _SignalSpec("vehicle_state_2", "battery_charge_energy", True, 1.0, 0.0, 0, 0, 65535, 0, 65535, 0, 65535, frozenset(()), "[0, 65535] kWh")
 _VEHICLE_STATE_2__BATTERY_DISCHARGE_ENERGY = _SignalSpec("vehicle_state_2", "battery_discharge_energy", True, 1.0, 0.0, 0, 0, 65535, 0, 65535, 0, 65535, frozenset(()), "[0, 65535] kWh")
 _VEHICLE_STATE_2_SIGNALS: frozenset[str] = frozenset(("battery_voltage", "battery_current", "battery_charge_energy", "battery_discharge_energy",))
+_VEHICLE_STATE_2_BYTES = _Struct("<HHHH")  # the frame bytes and 16-bit words decode reads
 _VEHICLE_STATE_3__BATTERY_MAX_TEMP = _SignalSpec("vehicle_state_3", "battery_max_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
 _VEHICLE_STATE_3__BATTERY_MIN_TEMP = _SignalSpec("vehicle_state_3", "battery_min_temp", True, 1.0, -40.0, -40, -40, 215, 0, 255, 0, 255, frozenset(()), "[-40, 215] °C")
 _VEHICLE_STATE_3__MAX_CELL_VOLTAGE = _SignalSpec("vehicle_state_3", "max_cell_voltage", False, 0.0015, 0.0, 0, -1.5e-12, 6.0000000000015, 0, 4000, 0, 4095, frozenset(()), "[0, 6] V")
@@ -316,6 +321,7 @@ _VEHICLE_STATE_4__AC_SET_TEMP = _SignalSpec("vehicle_state_4", "ac_set_temp", Fa
 _VEHICLE_STATE_4__PTO_STATE = _SignalSpec("vehicle_state_4", "pto_state", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _VEHICLE_STATE_4__BATTERY_POWER = _SignalSpec("vehicle_state_4", "battery_power", False, 0.01, -325.0, 0, -325.00000000001, 325.00000000001, 0, 65000, 0, 65535, frozenset(()), "[-325, 325] kW")
 _VEHICLE_STATE_4_SIGNALS: frozenset[str] = frozenset(("outside_temp", "inside_temp", "ac_state", "vehicle_power_state", "hill_hold_state", "regen_brake_state", "remaining_range", "manual_takeover_state", "remote_driving_allowed", "ac_set_temp", "pto_state", "battery_power",))
+_VEHICLE_STATE_4_BYTES = _Struct("<BBBHBH")  # the frame bytes and 16-bit words decode reads
 _VEHICLE_FAULT__INSULATION_FAULT_LEVEL = _SignalSpec("vehicle_fault", "insulation_fault_level", True, 1.0, 0.0, 0, 0, 3, 0, 3, 0, 3, frozenset(()), "[0, 3]")
 _VEHICLE_FAULT__DC_FAULT = _SignalSpec("vehicle_fault", "dc_fault", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
 _VEHICLE_FAULT__SOC_LOW = _SignalSpec("vehicle_fault", "soc_low", True, 1.0, 0.0, 0, 0, 1, 0, 1, 0, 1, frozenset(()), "[0, 1]")
@@ -848,14 +854,14 @@ class EpsState:
 
 def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, h3, d5, d6, d7 = _EPS_STATE_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0") from None
     m = _new(EpsState)  # slot stores are faster than a call of __init__
     m.eps_ctrl_state = _EPS_MODE_STATE_8[d0]
     m.steering_torque = d1 * 0.1 - 12.8
     m.eps_output_torque = d2 * 0.3 - 38.4
-    m.steering_angle = (d3 | d4 << 8) * 0.1 - 1080.0
+    m.steering_angle = h3 * 0.1 - 1080.0
     m.controller_temp = (d5 & 0x3F) * 2
     m.eps_fault_level = _EPS_FAULT_LEVEL_2[d6 & 0x3]
     m.counter = d7
@@ -864,14 +870,14 @@ def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
 
 def _unpack_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, h3, d5, d6, d7 = _EPS_STATE_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0") from None
     return {
         "eps_ctrl_state": d0,
         "steering_torque": d1,
         "eps_output_torque": d2,
-        "steering_angle": d3 | d4 << 8,
+        "steering_angle": h3,
         "controller_temp": d5 & 0x3F,
         "eps_fault_level": d6 & 0x3,
         "counter": d7,
@@ -2118,8 +2124,8 @@ class VehicleState1:
 
 def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, d3, d4, h5, d7 = _VEHICLE_STATE_1_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0") from None
     m = _new(VehicleState1)  # slot stores are faster than a call of __init__
     m.drive_mode_state = _DRIVE_MODE_STATE_2[d0 & 0x3]
@@ -2142,15 +2148,15 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.charge_state = _CHARGE_STATE_2[(d4 >> 2) & 0x3]
     m.charge_connection = _CHARGE_CONNECTION_2[(d4 >> 4) & 0x3]
     m.vehicle_fault_level = _VEHICLE_FAULT_LEVEL_2[d4 >> 6]
-    m.odometer = (d5 | d6 << 8) * 2
+    m.odometer = h5 * 2
     m.counter = d7
     return m
 
 
 def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, d3, d4, h5, d7 = _VEHICLE_STATE_1_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_1", 0x1806A0B0, 8, len(data), id_text="0x1806A0B0") from None
     return {
         "drive_mode_state": d0 & 0x3,
@@ -2173,7 +2179,7 @@ def _unpack_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
         "charge_state": (d4 >> 2) & 0x3,
         "charge_connection": (d4 >> 4) & 0x3,
         "vehicle_fault_level": d4 >> 6,
-        "odometer": d5 | d6 << 8,
+        "odometer": h5,
         "counter": d7,
     }
 
@@ -2735,27 +2741,27 @@ class VehicleState2:
 
 def _decode_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        h0, h2, h4, h6 = _VEHICLE_STATE_2_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0") from None
     m = _new(VehicleState2)  # slot stores are faster than a call of __init__
-    m.battery_voltage = (d0 | d1 << 8) * 0.2
-    m.battery_current = (d2 | d3 << 8) * 0.02 - 500.0
-    m.battery_charge_energy = d4 | d5 << 8
-    m.battery_discharge_energy = d6 | d7 << 8
+    m.battery_voltage = h0 * 0.2
+    m.battery_current = h2 * 0.02 - 500.0
+    m.battery_charge_energy = h4
+    m.battery_discharge_energy = h6
     return m
 
 
 def _unpack_vehicle_state_2(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        h0, h2, h4, h6 = _VEHICLE_STATE_2_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_2", 0x1810A0B0, 8, len(data), id_text="0x1810A0B0") from None
     return {
-        "battery_voltage": d0 | d1 << 8,
-        "battery_current": d2 | d3 << 8,
-        "battery_charge_energy": d4 | d5 << 8,
-        "battery_discharge_energy": d6 | d7 << 8,
+        "battery_voltage": h0,
+        "battery_current": h2,
+        "battery_charge_energy": h4,
+        "battery_discharge_energy": h6,
     }
 
 
@@ -3151,8 +3157,8 @@ class VehicleState4:
 
 def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, h3, d5, h6 = _VEHICLE_STATE_4_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
     m.outside_temp = d0 * 0.5 - 30.0
@@ -3161,19 +3167,19 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.vehicle_power_state = _POWER_STATE_2[(d2 >> 4) & 0x3]
     m.hill_hold_state = _INACTIVE_ACTIVE_1[(d2 >> 6) & 0x1]
     m.regen_brake_state = _INACTIVE_ACTIVE_1[d2 >> 7]
-    m.remaining_range = (d3 | d4 << 8) & 0xFFF
-    m.manual_takeover_state = _TAKEOVER_STATE_1[(d4 >> 4) & 0x1]
-    m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[d4 >> 7]
+    m.remaining_range = h3 & 0xFFF
+    m.manual_takeover_state = _TAKEOVER_STATE_1[(h3 >> 12) & 0x1]
+    m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[h3 >> 15]
     m.ac_set_temp = (d5 & 0x1F) * 0.5 + 16.0
     m.pto_state = _PTO_STATE_1[(d5 >> 5) & 0x1]
-    m.battery_power = (d6 | d7 << 8) * 0.01 - 325.0
+    m.battery_power = h6 * 0.01 - 325.0
     return m
 
 
 def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
     try:
-        d0, d1, d2, d3, d4, d5, d6, d7 = data
-    except ValueError:  # not 8 bytes
+        d0, d1, d2, h3, d5, h6 = _VEHICLE_STATE_4_BYTES.unpack(data)
+    except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     return {
         "outside_temp": d0,
@@ -3182,12 +3188,12 @@ def _unpack_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
         "vehicle_power_state": (d2 >> 4) & 0x3,
         "hill_hold_state": (d2 >> 6) & 0x1,
         "regen_brake_state": d2 >> 7,
-        "remaining_range": (d3 | d4 << 8) & 0xFFF,
-        "manual_takeover_state": (d4 >> 4) & 0x1,
-        "remote_driving_allowed": d4 >> 7,
+        "remaining_range": h3 & 0xFFF,
+        "manual_takeover_state": (h3 >> 12) & 0x1,
+        "remote_driving_allowed": h3 >> 15,
         "ac_set_temp": d5 & 0x1F,
         "pto_state": (d5 >> 5) & 0x1,
-        "battery_power": d6 | d7 << 8,
+        "battery_power": h6,
     }
 
 
@@ -5010,10 +5016,11 @@ class RgateControlCommand2:
 
 
 def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
-    try:
-        d0, d1, _, _, _, _, _, d7 = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0") from None
+    if len(data) != 8:
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
+    d0 = data[0]
+    d1 = data[1]
+    d7 = data[7]
     m = _new(RgateControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
@@ -5025,10 +5032,11 @@ def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
 
 
 def _unpack_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
-    try:
-        d0, d1, _, _, _, _, _, d7 = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0") from None
+    if len(data) != 8:
+        raise FrameLengthError("rgate_control_command_2", 0x1807B0C0, 8, len(data), id_text="0x1807B0C0")
+    d0 = data[0]
+    d1 = data[1]
+    d7 = data[7]
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,
@@ -5193,10 +5201,9 @@ class DeviceId:
 
 
 def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
-    try:
-        d0, _, _, _, _, _, _, _ = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00") from None
+    if len(data) != 8:
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
+    d0 = data[0]
     v = _from_bytes(data, "little")
     m = _new(DeviceId)  # slot stores are faster than a call of __init__
     m.device_type = _DEVICE_TYPE_6[d0 & 0x3F]
@@ -5206,10 +5213,9 @@ def _decode_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceId:
 
 
 def _unpack_device_id(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
-    try:
-        d0, _, _, _, _, _, _, _ = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00") from None
+    if len(data) != 8:
+        raise FrameLengthError("device_id", 0x18FFAF00, 8, len(data), id_text="0x18FFAF00")
+    d0 = data[0]
     v = _from_bytes(data, "little")
     return {
         "device_type": d0 & 0x3F,
@@ -7437,10 +7443,11 @@ class TeleControlCommand2:
 
 
 def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
-    try:
-        d0, d1, _, _, _, _, _, d7 = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0") from None
+    if len(data) != 8:
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
+    d0 = data[0]
+    d1 = data[1]
+    d7 = data[7]
     m = _new(TeleControlCommand2)  # slot stores are faster than a call of __init__
     m.downhill_regen_enable = _DOWNHILL_REGEN_ENABLE_1[d0 & 0x1]
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
@@ -7452,10 +7459,11 @@ def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
 
 
 def _unpack_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
-    try:
-        d0, d1, _, _, _, _, _, d7 = data
-    except ValueError:  # not 8 bytes
-        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0") from None
+    if len(data) != 8:
+        raise FrameLengthError("tele_control_command_2", 0x1807B0D0, 8, len(data), id_text="0x1807B0D0")
+    d0 = data[0]
+    d1 = data[1]
+    d7 = data[7]
     return {
         "downhill_regen_enable": d0 & 0x1,
         "cargo_lift": (d0 >> 1) & 0x3,

@@ -1,9 +1,10 @@
 """The Python view of one signal: its attribute, type, default, docstring line, and the
 expressions and decisions its decode and encode need (`code.py` turns them into statements).
 
-Decode reads the whole frame as one integer, little-endian `v` for Intel fields and big-endian
-`b` for Motorola ones (ir.Signal.word_order), so every field is a shift by its `word_shift`, a mask
-and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
+Decode reads a field of up to three bytes from those bytes (`d3 | d4 << 8`, small ints), or from a 16-bit word
+`hN` when it spans exactly two bytes that no other field shares (word_pairs); a wider one from the whole frame as
+one integer, little-endian `v` for Intel fields and big-endian `b` for Motorola ones (ir.Signal.word_order). Each is
+a shift, a mask and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
 literals are the shortest repr of the nearest double of the exact decimal. An IEEE float field's
 raw value is its bit pattern, turned into the float and back by `struct` (`_unpack_f32`, ...).
 """
@@ -19,6 +20,7 @@ from canspec.ir.encoding import FLOAT_MAX, decimal_text
 from canspec.ir.mux import ranges_text
 from canspec.render.literals import PYTHON
 from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
+from canspec.targets.python.reads import frame_bytes, own_bytes, pair_of
 
 # Method names of every message class: an attribute never takes one of these.
 METHODS = frozenset({"encode", "decode", "update", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter",
@@ -74,6 +76,7 @@ class PySignal:
     raw_check: bool  # a value passing the range check may still round outside raw_min..raw_max
     # multiplexing: what the field's presence needs, top-level multiplexer first (ir.Message.mux_chain; () in every frame)
     chain: tuple[ir.MuxCondition, ...] = ()
+    pair: int | None = None  # read from the 16-bit word `hN` of frame bytes N, N + 1 (word_pairs), not from `frame_bytes`
     key_var: str = ""  # a multiplexer: the decode local holding its raw value
     phys_from_key: str = ""  # and its physical value from that local
 
@@ -89,7 +92,7 @@ class PySignal:
     def read(self) -> str | None:
         """What unpack reads first: the frame's bytes (`d`, see `frame_bytes`), a frame word (`v`, `b`), or
         nothing (None: a field of a CAN FD frame, read from its own bytes, see `own_bytes`)."""
-        if self.frame_bytes is not None:
+        if self.frame_bytes is not None:  # or its 16-bit word `pair`
             return "d"
         return None if self.own_bytes else self.word
 
@@ -109,36 +112,13 @@ def word_var(sig: ir.Signal) -> str:
     return "b" if sig.is_big_endian else "v"
 
 
-MAX_BYTE_SPAN = 3  # bytes a field read from the frame's bytes may span: their combination stays a one-digit int (< 2^30)
-
-
-def frame_bytes(sig: ir.Signal, frame_bits: int) -> tuple[tuple[int, int], ...] | None:
-    """(frame byte, its left shift) of a non-float field that spans at most MAX_BYTE_SPAN bytes, else None:
-    decode reads it from those bytes (`d3 | d4 << 8`, small ints), not from the frame word (nor, in a CAN FD
-    frame, from a slice of its own bytes). The bytes are taken in the order of the field's word: a Motorola
-    field's first byte is its highest."""
-    if sig.is_float:
-        return None
-    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8  # in the word, from its least significant byte
-    if hi - lo >= MAX_BYTE_SPAN:
-        return None
-    last = frame_bits // 8 - 1
-    return tuple((last - p if sig.is_big_endian else p, 8 * (p - lo)) for p in range(lo, hi + 1))
-
-
-def own_bytes(sig: ir.Signal, frame_bits: int) -> tuple[str, int, int]:
-    """A field wider than MAX_BYTE_SPAN bytes of a CAN FD frame (more than 8 bytes) read from its own bytes, not from a
-    word of up to 512 bits: (the integer of those bytes in the field's order, the field's shift in it, its bits)."""
-    lo, hi = sig.word_shift // 8, (sig.word_shift + sig.length - 1) // 8
-    last = frame_bits // 8 - 1
-    at = [last - p if sig.is_big_endian else p for p in range(lo, hi + 1)]
-    return f'_from_bytes(data[{min(at)}:{max(at) + 1}], "{sig.word_order}")', sig.word_shift - 8 * lo, 8 * len(at)
-
-
-def raw_expr(sig: ir.Signal, frame_bits: int) -> str:
-    """The raw value from its frame bytes or word: shift, mask, sign-extend (no outer parentheses)."""
+def raw_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None = None) -> str:
+    """The raw value from its frame bytes, 16-bit word (`pair`: its first byte and the field's shift, see pair_of) or
+    frame word: shift, mask, sign-extend (no outer parentheses)."""
     parts = frame_bytes(sig, frame_bits)
-    if parts is not None:
+    if pair is not None:
+        var, shift, bits = f"h{pair[0]}", pair[1], 16
+    elif parts is not None:
         var = " | ".join(f"d{i}" if up == 0 else f"d{i} << {up}" for i, up in parts)
         shift, bits = sig.word_shift % 8, 8 * len(parts)
     elif frame_bits > 64:
@@ -315,6 +295,7 @@ class SignalContext:
     members: dict[int, str]  # raw → member name of that enum
     lookup: PyLookup | None
     chain: tuple[ir.MuxCondition, ...] = ()  # ir.Message.mux_chain of the signal
+    pairs: tuple[str, frozenset[int]] = ("<", frozenset())  # word_pairs of the message
 
 
 def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecial, ...]:
@@ -335,7 +316,8 @@ def _phys(sig: ir.Signal, raw: str, kind: str, ctx: SignalContext) -> str:
 def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     kind = _kind(sig, ctx.enum)
     as_int = kind != "float"
-    raw = raw_expr(sig, ctx.frame_bits)
+    pair = pair_of(sig, ctx.frame_bits, ctx.pairs)
+    raw = raw_expr(sig, ctx.frame_bits, pair)
     phys = _phys(sig, raw, kind, ctx)
     key_var = f"k{ctx.index}" if sig.is_multiplexer else ""
     direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float
@@ -352,7 +334,7 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
         sig=sig, name=sig.name, attr=attr, doc=doc_line(sig, ctx.enum, ctx.chain),
         py_type={"enum": f"{ctx.enum} | int", "int": "int", "float": "float"}[kind] + (" | None" if in_page else ""),
         const_type="float" if kind == "float" else "int", default=_default(sig, kind, ctx.enum, ctx.members), raw_expr=raw,
-        frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64,
+        frame_bytes=frame_bytes(sig, ctx.frame_bits), own_bytes=ctx.frame_bits > 64, pair=None if pair is None else pair[0],
         phys_expr=phys,
         specials=_specials(sig, ctx.consts, as_int), allowed=PYTHON.string(range_text(sig)), descriptor=ctx.module.take(f"_{ctx.message}__{sig.name}".upper()),
         descriptor_args=_descriptor_args(sig, direct, lo_lit, hi_lit), descriptor_tail=tail, var=var, raw_var=f"r{ctx.index}", direct=direct,

@@ -14,6 +14,7 @@ from canspec.render.literals import PYTHON
 from canspec.targets.python import code, pages
 from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, float_offset, label_comment
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
+from canspec.targets.python.reads import word_pairs
 
 # How many raws a decode lookup tuple may cover; wider enum fields use a dict lookup.
 MAX_TUPLE_LOOKUP_BITS = 8
@@ -127,7 +128,7 @@ class PyMessage:
     unpack_lines: tuple[str, ...]
     present_func: str
     present_lines: tuple[str, ...]
-    byte_struct: tuple[str, str] | None  # a CAN FD frame read as bytes: its struct.Struct (name, format), see code.struct_bytes
+    byte_struct: tuple[str, str] | None  # the struct.Struct (name, format) decode reads bytes and 16-bit words by, see code.struct_items
 
 
 @dataclass(frozen=True)
@@ -156,7 +157,7 @@ class PyPackage:
     tuple_lookups: bool  # some enum field decodes through a tuple (`_lookup`)
     dict_lookups: bool  # some through a dict (`_member`)
     float_helpers: tuple[str, ...]  # the struct helpers of _runtime its IEEE float fields use (imported with a leading `_`)
-    byte_structs: bool  # a CAN FD message reads its bytes through a struct.Struct (PyMessage.byte_struct)
+    byte_structs: bool  # a message reads its frame through a struct.Struct (PyMessage.byte_struct)
     fault_tables: tuple[ir.FaultTable, ...]
 
 
@@ -188,26 +189,26 @@ class _Builder:
             for t in can.value_tables
         )
         self.members = {e.table: {m.raw: m.name for m in e.members} for e in self.enums}
-        self.lookups: dict[tuple[str, int], PyLookup] = {}
+        self.lookups: dict[tuple[str, int, bool], PyLookup] = {}
 
     def lookup(self, sig: ir.Signal) -> PyLookup | None:
         if sig.value_table is None or not sig.is_identity:
             return None
-        key = (sig.value_table.name, sig.length)
+        key = (sig.value_table.name, sig.length, sig.signed)  # a signed field's raw may be negative: never a tuple index
         if key not in self.lookups:
             is_tuple = not sig.signed and sig.length <= MAX_TUPLE_LOOKUP_BITS
-            var = self.module.take(f"_{sig.value_table.name}_{sig.length}".upper())
+            var = self.module.take(f"_{sig.value_table.name}_{'s' if sig.signed else ''}{sig.length}".upper())
             self.lookups[key] = PyLookup(var, self.enum_names[sig.value_table.name], sig.length, is_tuple)
         return self.lookups[key]
 
-    def signals(self, msg: ir.Message) -> tuple[PySignal, ...]:
+    def signals(self, msg: ir.Message, pairs: tuple[str, frozenset[int]]) -> tuple[PySignal, ...]:
         attrs, consts = Namespace(ATTRIBUTE_RESERVED), Namespace(CLASS_CONSTANTS)
         out = []
         for i, sig in enumerate(msg.data_signals):
             lookup = self.lookup(sig)
             enum = lookup.enum if lookup is not None else None
             members = self.members[sig.value_table.name] if lookup is not None and sig.value_table is not None else {}
-            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup, msg.mux_chain(sig))
+            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup, msg.mux_chain(sig), pairs)
             out.append(build_signal(sig, ctx))
         return tuple(out)
 
@@ -224,11 +225,12 @@ class _Builder:
         )
 
     def message(self, msg: ir.Message) -> PyMessage:
-        signals = self.signals(msg)
+        pairs = word_pairs(msg)
+        signals = self.signals(msg, pairs)
         by_name = {s.name: s for s in signals}
         checksum = code.make_checksum(msg, tuple(s for s in signals if not s.is_checksum))
-        frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum)
-        if code.struct_bytes(frame):
+        frame = code.Frame(msg.name, msg.id_text, msg.dlc, signals, checksum, pair_order=pairs[0])
+        if code.struct_items(frame):
             frame = replace(frame, byte_struct=self.module.take(f"_{msg.name.upper()}_BYTES"))
         cls = self.classes[msg.name]
         names_var, pack_func = self.module.take(f"_{msg.name.upper()}_SIGNALS"), self.module.take(f"_pack_{msg.name}")
@@ -247,7 +249,7 @@ class _Builder:
             unpack_func=funcs["unpack"], names_var=names_var, raw_functional=any(s.name in HARD_KEYWORDS for s in signals),
             decode_checks=code.frame_checks(frame, True), unpack_checks=code.frame_checks(frame, False),
             encode_lines=code.encode(frame, pack_func), pack_lines=code.pack(frame, names_var),
-            checksum_ok_lines=code.checksum_ok(frame), byte_struct=(frame.byte_struct, code.byte_format(frame)) if frame.byte_struct else None,
+            checksum_ok_lines=code.checksum_ok(frame), byte_struct=(frame.byte_struct, code.struct_format(frame)) if frame.byte_struct else None,
             **self.pages(msg, signals, raw_class),
         )
 
