@@ -25,12 +25,14 @@ The specs use the relaxed spec format of this issue. `NEW_FEATURES` names each r
 `features=CURRENT` restricts the strategy to what the current checker accepts (so the
 generator can be tested before the relaxations land), `features=ALL` (the default) may use
 every one of them.
+
+The parts: `pools.py` (the relaxations, name and number pools, bit helpers), `choosers.py` (the
+three choice streams), `strategy_fields.py` (a message's fields), `strategy_mux.py` (its pages),
+`strategy_json.py` (the JSON protocol), `yamltext.py` (the YAML text); this module builds the spec.
 """
 
 from __future__ import annotations
 
-import json
-import random
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from decimal import Decimal
@@ -38,116 +40,31 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-# The relaxations of the spec format (this issue). The harness classifies a refusal by the
-# current checker under the feature that explains it (see harness.classify_refusal).
-NEW_FEATURES = {
-    "j1939_derived": "a message under `addressing: j1939` without a `j1939:` block (derived from the ID)",
-    "event_driven": "`cycle_ms: 0` or no `cycle_ms` (an event-driven message)",
-    "empty_signals": "a message with `signals: []` (DLC 0) and no `layout_undefined`",
-    "optional_signal_zh": "a signal without `zh`",
-    "bare_value_ident": "a value-table entry `raw: ident` (no Chinese label)",
-    "optional_node_sa": "a node without `sa` under `addressing: none`",
-}
-ALL = frozenset(NEW_FEATURES)
-CURRENT: frozenset[str] = frozenset()
-
-KEYWORDS = ("type", "match", "class", "int", "for", "async", "self", "default")
-# Disjoint word pools, so that generated C/Rust/Python identifiers built from two names
-# (message + signal, table + value) never collide by accident; keywords are whole names only.
-MSG_WORDS = ("engine", "brake", "steer", "door", "lamp", "motor", "battery", "radar", "wiper", "seat", "horn", "pump", "valve", "charger")
-MSG_SUFFIX = ("cmd", "state", "info", "status", "req", "data")
-SIG_WORDS = (
-    "speed", "mode", "temp", "level", "angle", "torque", "voltage", "current", "pressure", "flag", "fault", "position", "rate", "count", "value", "enable",
-    "target", "limit")
-TABLE_WORDS = ("mode", "state", "switch", "fault_level", "gear", "onoff", "status", "fault")
-VALUE_IDENTS = (
-    "off", "on", "idle", "active", "fault", "error", "ok", "low", "high", "open", "closed", "none", "auto", "manual", "unknown", "init", "invalid", "standby",
-    "true", "false")
-SPECIAL_IDENTS = ("not_available", "no_limit", "invalid_value", "error_value", "init_value", "no_obstacle")
-NODE_NAMES = ("ECU", "VCU", "BMS", "GW", "CTRL", "EPS", "Tester", "node_a", "Radar1", "HMI")
-PROTOCOL_NAMES = ("fixture", "demo_bus", "body_can", "chassis", "truck_j1939", "pt_can")
-JSON_PROTOCOL_NAMES = ("remote", "tele_json", "cloud_link", "ops_api")
-PARTIES = ("vehicle", "server", "autonomous", "client", "station")
-JSON_FIELD_WORDS = ("speed", "mode", "angle", "level", "temp", "flag", "label", "gear", "ratio", "lat", "lng", "satCnt", "powerLevel", "note")
-ZH_WORDS = ("车速", "模式", "温度", "状态", "故障", "开关", "角度", "扭矩", "电压", "心跳", "校验", "保留位", "档位")
-TEXTS = (
-    "A plain description.",
-    "带中文的说明",
-    'Percent % and "quotes"',
-    "Back\\slash and 'single' quotes",
-    "Comment closer */ inside",
-    "Colon: and {braces} and #hash",
-    "Line one.\nLine two.",
-    "Ampersand & <angle> brackets",
+from anyspec.choosers import Chooser, DrawChooser, RandomChooser, ReplayChooser
+from anyspec.pools import (
+    ALL,
+    BIG,
+    CLASSIC_DLCS,
+    CURRENT,
+    DATA_BITRATES,
+    FD_DLCS,
+    KEYWORDS,
+    LITTLE,
+    MSG_SUFFIX,
+    MSG_WORDS,
+    NODE_NAMES,
+    PROTOCOL_NAMES,
+    SIG_WORDS,
+    TEXTS,
+    UNITS,
+    ZH_WORDS,
+    _Names,
+    frame_bits,
+    raw_range,
 )
-UNITS = ("km/h", "%", "°C", "m/s²", "rpm", "V", "A", "deg", "Nm", "bar", "rpm/(km/h)", "1/min")
-INT_FACTORS = (2, 10, 3, -1, 5, 100, 7)
-INT_OFFSETS = (0, -40, 1, -1000, 250, -32768, 100000)
-DEC_FACTORS = ("0.1", "0.05", "0.001", "2.5", "-0.5", "0.000001", "0.5", "0.02", "0.25", "0.3", "0.125", "0.01")
-DEC_OFFSETS = ("0", "-12.8", "0.5", "-40", "1000000", "-1080", "-0.05", "1.5", "-273.15")
-LENGTHS = (8, 1, 2, 4, 16, 3, 12, 10, 5, 7, 32, 24, 6, 20, 64, 48, 33, 63, 40, 11)
-CLASSIC_DLCS = (8, 8, 4, 2, 1, 0, 3, 5, 6, 7)
-FD_DLCS = (8, 12, 64, 16, 20, 24, 32, 48, 2, 5)  # a CAN FD frame: every FD length, and short ones
-DATA_BITRATES = (2000000, 4000000, 5000000, 8000000, 1000000)
-FLOAT_RANGES = (("-100", "100"), ("0", "250"), ("-1000.5", "1000.5"), ("0.1", "3.3"), ("-40", "125"), ("-1e+20", "1e+20"))
-LITTLE, BIG = "little_endian", "big_endian"
-
-
-# --- choosers ------------------------------------------------------------------------------
-
-
-class Chooser:
-    """A source of integer choices; `integer(lo, hi)` shrinks towards `lo`."""
-
-    def integer(self, lo: int, hi: int) -> int:
-        raise NotImplementedError
-
-    def boolean(self, p: float) -> bool:
-        """True with probability `p`; shrinks to False."""
-        return self.integer(0, 999) >= round(1000 * (1 - p))
-
-    def choice(self, seq: Sequence[Any]) -> Any:
-        """An element of `seq`; shrinks to the first."""
-        return seq[self.integer(0, len(seq) - 1)]
-
-
-class RandomChooser(Chooser):
-    def __init__(self, seed: int) -> None:
-        self.rnd = random.Random(seed)
-        self.choices: list[int] = []
-
-    def integer(self, lo: int, hi: int) -> int:
-        v = self.rnd.randint(lo, hi)
-        self.choices.append(v - lo)
-        return v
-
-
-class ReplayChooser(Chooser):
-    """Replays recorded offsets (value - lo); out of range → clamped, exhausted → lo."""
-
-    def __init__(self, choices: Sequence[int]) -> None:
-        self.source = list(choices)
-        self.i = 0
-        self.choices: list[int] = []
-
-    def integer(self, lo: int, hi: int) -> int:
-        off = self.source[self.i] if self.i < len(self.source) else 0
-        self.i += 1
-        v = lo + max(0, min(off, hi - lo))
-        self.choices.append(v - lo)
-        return v
-
-
-class DrawChooser(Chooser):
-    def __init__(self, draw: Any) -> None:
-        self.draw, self.st = draw, st
-        self.choices: list[int] = []
-
-    def integer(self, lo: int, hi: int) -> int:
-        v = self.draw(self.st.integers(lo, hi))
-        self.choices.append(v - lo)
-        return v
-
+from anyspec.strategy_fields import FieldDraws
+from anyspec.strategy_json import JsonBuilder
+from anyspec.yamltext import Hex, _scalar, block, flow
 
 # --- the result ----------------------------------------------------------------------------
 
@@ -176,129 +93,13 @@ class GeneratedSpec:
         return d / self.entry
 
 
-# --- YAML text -----------------------------------------------------------------------------
-
-
-class Hex(int):
-    """An integer written in hex."""
-
-
-_PLAIN_OK = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_")
-_YAML_SPECIAL = {"true", "false", "True", "False", "TRUE", "FALSE", "null", "Null", "NULL", "~", "y", "n", "yes", "no", "on", "off"}
-
-
-def _scalar(v: Any) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, Hex):
-        return f"0x{int(v):X}"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, Decimal):
-        return dec_text(v)
-    if isinstance(v, str):
-        if v and set(v) <= _PLAIN_OK and v[0].isalpha() and v not in _YAML_SPECIAL:
-            return v
-        return json.dumps(v, ensure_ascii=False)
-    raise TypeError(f"no YAML form for {v!r}")
-
-
-def dec_text(d: Decimal) -> str:
-    """Decimal → YAML number text the spec loader reads back exactly (a '.' marks a decimal;
-    exponents need a sign in YAML 1.1)."""
-    if d == d.to_integral_value() and abs(d) < Decimal("1e15"):
-        return str(int(d))
-    if abs(d) >= Decimal("1e15"):
-        sign, digits, exp = d.normalize().as_tuple()
-        mant = format(Decimal((0, digits, -(len(digits) - 1))), "f")
-        return f"{'-' if sign else ''}{mant if '.' in mant else mant + '.0'}e+{exp + len(digits) - 1}"
-    if abs(d) < Decimal("0.0001"):
-        sign, digits, exp = d.as_tuple()
-        mant = Decimal((0, digits, -(len(digits) - 1)))
-        e = exp + len(digits) - 1
-        m = format(mant, "f")
-        if "." not in m:
-            m += ".0"
-        return f"{'-' if sign else ''}{m}e{'+' if e >= 0 else '-'}{abs(e)}"
-    return format(d.normalize(), "f")
-
-
-def flow(v: Any) -> str:
-    if isinstance(v, dict):
-        return "{" + ", ".join(f"{_scalar(k)}: {flow(x)}" for k, x in v.items()) + "}"
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(flow(x) for x in v) + "]"
-    return _scalar(v)
-
-
-def block(v: Any, indent: int = 0, flow_depth: int = 99) -> str:
-    """Block-style YAML; mappings/lists deeper than `flow_depth` are written in flow style."""
-    pad = " " * indent
-    out = []
-    if isinstance(v, dict):
-        for k, x in v.items():
-            key = _scalar(k)
-            if isinstance(x, (dict, list)) and x and flow_depth > 0:
-                out.append(f"{pad}{key}:\n{block(x, indent + 2, flow_depth - 1)}")
-            else:
-                out.append(f"{pad}{key}: {flow(x)}\n")
-    elif isinstance(v, list):
-        for x in v:
-            if isinstance(x, dict) and x and flow_depth > 0:
-                inner = block(x, indent + 2, flow_depth - 1)
-                out.append(f"{pad}- {inner[indent + 2:]}")
-            else:
-                out.append(f"{pad}- {flow(x)}\n")
-    return "".join(out)
-
-
 # --- the builder ---------------------------------------------------------------------------
 
 
-def raw_range(length: int, signed: bool) -> tuple[int, int]:
-    return (-(1 << (length - 1)), (1 << (length - 1)) - 1) if signed else (0, (1 << length) - 1)
+class Builder(FieldDraws):
+    """One spec from one chooser: nodes, messages, layouts, the JSON protocol and the changelog (the fields
+    of each message: strategy_fields.FieldDraws)."""
 
-
-class _Names:
-    """Unique names within one scope, compared by their word sequence (snake/pascal safe)."""
-
-    def __init__(self, taken: Sequence[str] = ()) -> None:
-        self.seen = {self.key(n) for n in taken}
-
-    @staticmethod
-    def key(name: str) -> str:
-        return name.replace("_", "").lower()
-
-    def free(self, name: str) -> bool:
-        return self.key(name) not in self.seen
-
-    def take(self, name: str) -> str:
-        base, n = name, 2
-        while not self.free(name):
-            name = f"{base}_{n}"
-            n += 1
-        self.seen.add(self.key(name))
-        return name
-
-
-def occupied_all(occupied: set[int] | None) -> set[int]:
-    return set(occupied or ())
-
-
-def seq_bit(k: int, order: str) -> int:
-    """The frame bit (DBC numbering, 8 × byte + bit) at place k of a field's run in this order: an
-    Intel field's bits run upward from its LSB; a Motorola field's run from its MSB down to bit 0 of
-    a byte, then on from bit 7 of the next, so place k is bit 7 - k % 8 of byte k // 8."""
-    return k if order == LITTLE else 8 * (k // 8) + 7 - k % 8
-
-
-def frame_bits(start: int, length: int, order: str) -> set[int]:
-    """The frame bits of a field (`start` its LSB in Intel order, its MSB in Motorola order)."""
-    first = seq_bit(start, order)  # seq_bit is its own inverse
-    return {seq_bit(k, order) for k in range(first, first + length)}
-
-
-class Builder:
     def __init__(self, ch: Chooser, features: frozenset[str]) -> None:
         self.ch = ch
         self.features = frozenset(features)
@@ -589,222 +390,6 @@ class Builder:
         if order != self.order or self.p(0.05):
             s["byte_order"] = order
 
-    def signals(self, dlc: int, occupied: set[int] | None = None, names: _Names | None = None, counter: bool = True, checksum: bool = True,
-                first_needed: bool = True) -> list[dict[str, Any]]:
-        bits = 8 * dlc
-        occ = set(occupied or ())
-        names = names or _Names()
-        out: list[dict[str, Any]] = []
-        if checksum and dlc >= 2 and not set(range(bits - 8, bits)) & occ and self.p(0.25):
-            out.append(self.checksum(dlc, names))
-            occ |= set(range(bits - 8, bits))
-        want_counter = counter and self.p(0.3)
-        last = 0  # the previous field's length: rows of one width (wheel speeds, cell voltages), signed and unsigned mixed
-        while (not out and first_needed) or self.p(0.8):
-            order = self.field_order()
-            # the field's first place (Intel: its LSB, Motorola: its MSB) and the free run from there, in its order's run of bits
-            first = next((k for k in range(bits) if seq_bit(k, order) not in occ), None)
-            if first is None:
-                break
-            run = 0
-            while first + run < bits and seq_bit(first + run, order) not in occ:
-                run += 1
-            start = seq_bit(first, order)
-            if self.p(0.2):  # a gap: free, or a reserved field
-                gap = min(run, self.pick((1, 2, 3, 4, 8, 5, 7, 16)))
-                if self.p(0.5):
-                    out.append(self.reserved(start, gap, order))
-                occ |= frame_bits(start, gap, order)
-                continue
-            if run >= 32 and self.p(0.2):  # an IEEE float
-                length = 64 if run >= 64 and self.p(0.4) else 32
-                out.append(self.float_field(start, length, names, order))
-            else:
-                length = min(run, last if last and self.p(0.3) else self.pick(LENGTHS))
-                last = length
-                if want_counter and length <= 8 and self.p(0.5):
-                    want_counter = False
-                    out.append(self.counter(start, length, names, order))
-                else:
-                    out.append(self.data(start, length, names, order=order))
-            occ |= frame_bits(start, length, order)
-        if first_needed and not out:  # every bit went to a free gap: one field after all
-            start = min(b for b in range(bits) if b not in occupied_all(occupied))
-            out.append(self.data(start, min(8, bits - start), names, order=LITTLE))
-        return out
-
-    def reserved(self, start: int, length: int, order: str) -> dict[str, Any]:
-        s: dict[str, Any] = {"role": "reserved", "start": start, "len": length}
-        self.orient(s, order)
-        if self.p(0.2):
-            s["desc_zh"] = "保留"
-        return s
-
-    def checksum(self, dlc: int, names: _Names) -> dict[str, Any]:
-        s: dict[str, Any] = {"name": names.take("checksum" if self.p(0.8) else self.pick(("xor", "crc_byte", "check")))}
-        self.sig_zh(s, "校验")
-        order = self.field_order()
-        s.update({"start": 8 * (dlc - 1) + (7 if order == BIG else 0), "len": 8})  # the last byte: its MSB is bit 7 in Motorola order
-        self.orient(s, order)
-        if self.p(0.5):
-            s["range"] = [0, 255]
-        s["role"] = "checksum"
-        return s
-
-    def counter(self, start: int, length: int, names: _Names, order: str) -> dict[str, Any]:
-        s: dict[str, Any] = {"name": names.take("counter" if self.p(0.7) else self.pick(("alive", "rolling_counter", "heartbeat")))}
-        self.sig_zh(s, "心跳")
-        s.update({"start": start, "len": length})
-        self.orient(s, order)
-        if self.p(0.5):
-            s["range"] = [0, (1 << length) - 1]
-        s["role"] = "counter"
-        return s
-
-    def sig_zh(self, s: dict[str, Any], default: str | None = None) -> None:
-        if not self.feature("optional_signal_zh", 0.3):
-            s["zh"] = default if default and self.p(0.5) else self.zh()
-
-    def scaling(self, length: int, signed: bool) -> dict[str, Any]:
-        """factor / offset / range for a data field (range: None or reachable, within the field)."""
-        out: dict[str, Any] = {}
-        kind = self.pick(("identity", "integer", "decimal"))
-        if kind == "integer":
-            factor, offset = Decimal(self.pick(INT_FACTORS)), Decimal(self.pick(INT_OFFSETS))
-        elif kind == "decimal":
-            factor, offset = Decimal(self.pick(DEC_FACTORS)), Decimal(self.pick(DEC_OFFSETS))
-        else:
-            factor, offset = Decimal(1), Decimal(0)
-        if factor != 1 or self.p(0.1):
-            out["factor"] = factor
-        if offset != 0 or self.p(0.1):
-            out["offset"] = offset
-        tmin, tmax = raw_range(length, signed)
-        if self.p(0.6):
-            lo_raw, hi_raw = tmin, tmax
-            span = tmax - tmin
-            if span >= 2 and self.p(0.5):
-                lo_raw = tmin + self.ch.integer(0, min(span // 2, 1000))
-                hi_raw = tmax - self.ch.integer(0, min(span // 2, 1000))
-            a, b = sorted((lo_raw * factor + offset, hi_raw * factor + offset))
-            if hi_raw - lo_raw >= 2 and self.p(0.1):  # bounds between two steps
-                a, b = a + abs(factor) / 2, b - abs(factor) / 4
-            out["range"] = [a, b]
-            out["_raw"] = (lo_raw, hi_raw) if factor > 0 else (lo_raw, hi_raw)
-        return out
-
-    def data(self, start: int, length: int, names: _Names, name: str | None = None, order: str = LITTLE) -> dict[str, Any]:
-        s: dict[str, Any] = {"name": names.take(name) if name else self.ident(SIG_WORDS, names, 0.1)}
-        self.sig_zh(s)
-        s.update({"start": start, "len": length})
-        self.orient(s, order)
-        signed = self.p(0.25)
-        if signed:
-            s["signed"] = True
-        elif self.p(0.05):
-            s["signed"] = False
-        tmin, tmax = raw_range(length, signed)
-        with_values = length <= 16 and self.p(0.25)
-        sc = self.scaling(length, signed) if not with_values else {}
-        if with_values:  # a value table on an identity field, its raws inside the range
-            lo, hi = tmin, tmax
-            if self.p(0.5):
-                hi = min(tmax, max(lo, self.ch.integer(lo, min(tmax, lo + 15))))
-                s["range"] = [lo, hi]
-            s["values"] = self.table_for(lo, hi)
-        raw_lo, raw_hi = sc.pop("_raw", (tmin, tmax))
-        s.update(sc)
-        if self.p(0.4):
-            s["unit"] = self.pick(UNITS)
-        if self.p(0.15):
-            self.specials(s, tmin, tmax, raw_lo, raw_hi)
-        if self.p(0.1):
-            s["desc"] = self.text()
-        if self.p(0.1):
-            s["desc_zh"] = self.zh()
-        return s
-
-    def float_field(self, start: int, length: int, names: _Names, order: str) -> dict[str, Any]:
-        """An IEEE 754 float32/float64 field: no scaling, sign flag or tables; a range or none (NaN, ±Inf pass)."""
-        s: dict[str, Any] = {"name": self.ident(SIG_WORDS, names, 0.1)}
-        self.sig_zh(s)
-        s.update({"start": start, "len": length, "float": True})
-        self.orient(s, order)
-        if self.p(0.5):
-            s["range"] = [Decimal(v) for v in self.pick(FLOAT_RANGES)]
-        if self.p(0.4):
-            s["unit"] = self.pick(UNITS)
-        return s
-
-    def specials(self, s: dict[str, Any], tmin: int, tmax: int, raw_lo: int, raw_hi: int) -> None:
-        taken = set(self.tables[s["values"]]) if "values" in s else set()
-        idents = _Names([ident for ident, _ in self.tables[s["values"]].values()] if "values" in s else ())
-        candidates = [tmax, tmin, 0, raw_hi + 1 if raw_hi < tmax else tmax, raw_lo - 1 if raw_lo > tmin else tmin]
-        special: dict[Any, Any] = {}
-        for _ in range(1 + (1 if self.p(0.3) else 0)):
-            raw = self.pick(candidates)
-            if raw in taken or raw in special:
-                continue
-            ident = self.pick(SPECIAL_IDENTS) if not self.p(0.1) else self.pick(KEYWORDS)
-            if not idents.free(ident):
-                continue
-            idents.take(ident)
-            special[Hex(raw) if raw >= 0 and self.p(0.5) else raw] = [ident, self.zh()]
-        if special:
-            s["special"] = special
-
-    # --- value tables
-    def new_table(self, lo: int, hi: int) -> str:
-        name = self.table_names.take(self.pick(TABLE_WORDS) if not self.p(0.08) else self.pick(KEYWORDS))
-        k = 1 + self.ch.integer(0, min(4, hi - lo))
-        base = 0 if lo <= 0 <= hi - k else lo
-        raws: list[int] = []
-        for i in range(k):
-            r = base + i if self.p(0.7) else self.ch.integer(lo, hi)
-            if r not in raws:
-                raws.append(r)
-        idents = _Names()
-        entries: dict[int, tuple[str, str | None]] = {}
-        for r in sorted(raws):
-            ident = self.ident(VALUE_IDENTS, idents, 0.1)
-            zh = None if self.feature("bare_value_ident", 0.3) else self.zh()
-            entries[r] = (ident, zh)
-        self.tables[name] = entries
-        return name
-
-    def table_for(self, lo: int, hi: int) -> str:
-        fitting = [t for t, e in self.tables.items() if all(lo <= r <= hi for r in e)]
-        if fitting and self.p(0.5):
-            return self.pick(fitting)
-        return self.new_table(lo, hi)
-
-    # --- multiframe text
-    def multiframe_signals(self, dlc: int) -> tuple[list[dict[str, Any]], dict[str, Any]]:
-        names = _Names()
-        index_len = self.pick((2, 8, 1, 3, 4))
-        index: dict[str, Any] = {"name": names.take(self.pick(("frame_index", "index", "seq")))}
-        self.sig_zh(index, "序号")
-        index.update({"start": 0, "len": index_len})
-        self.orient(index, LITTLE)  # whole bytes from bit 0 of a byte: Intel fields
-        if self.p(0.5):
-            index["range"] = [0, (1 << index_len) - 1]
-        first_byte = (index_len + 7) // 8
-        if first_byte >= dlc:
-            first_byte = dlc - 1
-        max_bytes = dlc - first_byte
-        nbytes = 1 + self.ch.integer(0, max_bytes - 1)
-        payload: dict[str, Any] = {"name": names.take(self.pick(("text_chars", "chars", "payload")))}
-        self.sig_zh(payload, "字符")
-        payload.update({"start": 8 * first_byte, "len": 8 * nbytes})
-        self.orient(payload, LITTLE)
-        frames = 1 + self.ch.integer(0, min((1 << index_len), 8) - 1)
-        text_length = 1 + self.ch.integer(0, frames * nbytes - 1)
-        mf = {"index": index["name"], "payload": payload["name"], "encoding": "ascii", "text_length": text_length, "frames": frames,
-              "padding": Hex(self.pick((0x00, 0x20, 0xFF, 0x2A)))}
-        occ = set(range(index_len)) | set(range(8 * first_byte, 8 * (first_byte + nbytes)))
-        rest = self.signals(dlc, occ, names, counter=True, checksum=True, first_needed=False) if self.p(0.5) else []
-        return [index, payload, *rest], mf
-
     # --- shared layouts
     def layout(self) -> tuple[str, list[dict[str, Any]], int, int]:
         name = self.pick(("command", "sensor_block", "status_block", "common"))
@@ -897,200 +482,6 @@ class Builder:
             versions.append(entry)
         doc = {"schema_version": 1, "kind": "changelog", "protocol": protocol, "versions": versions}
         return block(doc, 0, 2)
-
-
-class JsonBuilder:
-    """A JSON protocol that satisfies the documented dispatch model (canspec/jsonmodel.py):
-    commands are told apart by `cmd` (a reply by `res`), other messages by a key only they have."""
-
-    TYPES: dict[str, dict[str, Any]] = {
-        "U8": {"json": "integer", "min": 0, "max": 255},
-        "S8": {"json": "integer", "min": -128, "max": 127},
-        "U16": {"json": "integer", "min": 0, "max": 65535},
-        "S16": {"json": "integer", "min": -32768, "max": 32767},
-        "U32": {"json": "integer", "min": 0, "max": 4294967295},
-        "U64": {"json": "integer", "min": 0, "max": 9007199254740991},
-        "Float32": {"json": "number", "min": Decimal("-3.4028234663852886e+38"), "max": Decimal("3.4028234663852886e+38")},
-        "Float64": {"json": "number"},
-        "BOOL": {"json": "boolean"},
-        "ASCII": {"json": "string", "min_length": 1, "max_length": 1},
-        "TEXT": {"json": "string", "min_length": 0, "max_length": 16},
-    }
-
-    def __init__(self, b: Builder, can_name: str) -> None:
-        self.b = b
-        self.can_name = can_name
-        self.types_used: dict[str, dict[str, Any]] = {}
-
-    def type(self, name: str) -> str:
-        self.types_used[name] = self.TYPES[name]
-        return name
-
-    def render(self) -> str:
-        b = self.b
-        name = b.pick(JSON_PROTOCOL_NAMES)
-        parties = [b.pick(PARTIES)]
-        others = [p for p in PARTIES if p != parties[0]]
-        parties.append(b.pick(others))
-        if b.p(0.2):
-            parties.append(b.pick([p for p in PARTIES if p not in parties]))
-        shared: dict[str, Any] = {
-            "ts": {"type": self.type("U64"), "unit": "ms", "zh": "时间戳"},
-            "bn": {"type": self.type("U64"), "zh": "流水号"},
-        }
-        messages: list[dict[str, Any]] = []
-        msg_names = _Names()
-        markers = _Names(["ts", "bn", "cmd", "res"])
-        plain = 1 + b.ch.integer(0, 2)
-        for i in range(plain):
-            frm, to = self.direction(parties)
-            fields: list[Any] = []
-            if b.p(0.6):
-                fields.append("ts")
-            if b.p(0.4):
-                fields.append("bn")
-            keys = _Names(["ts", "bn"])
-            marker = self.field(markers, keys)
-            fields.append(marker)
-            for _ in range(b.ch.integer(0, 2)):
-                fields.append(self.field(markers, keys))
-            messages.append(self.message(msg_names, frm, to, fields, None))
-        ncmd = b.ch.integer(0, 2)
-        if ncmd:
-            shared["cmd"] = {"type": self.type("U16"), "zh": "消息类型"}
-            shared["res"] = {"type": self.type("S8"), "zh": "结果", "enum": {0: ["ok", "成功"], -1: ["failed", "失败"]}}
-            if b.p(0.5):
-                shared["reply_bn"] = {"name": "bn", "json_name": "bn", "type": "U64", "zh": "请求流水号"}
-        for c in range(ncmd):
-            cmd = c + 1 if b.p(0.7) else b.ch.integer(1, 65535)
-            if any(m.get("cmd") == cmd for m in messages):
-                cmd = max(m.get("cmd", 0) for m in messages) + 1
-            frm, to = self.direction(parties)
-            keys = _Names(["cmd", "bn", "res"])
-            extra = [self.field(_Names(["ts", "bn", "cmd", "res"]), keys)] if b.p(0.4) else []
-            req = self.message(msg_names, frm, to, ["cmd", "bn", *extra], cmd, "request")
-            messages.append(req)
-            if b.p(0.85):
-                bn = "reply_bn" if "reply_bn" in shared else "bn"
-                rextra = [self.field(_Names(["ts", "bn", "cmd", "res"]), _Names(["cmd", "bn", "res"]))] if b.p(0.3) else []
-                rep = self.message(msg_names, to, frm, ["cmd", "res", bn, *rextra], cmd, "reply", req["name"])
-                messages.append(rep)
-        doc: dict[str, Any] = {"schema_version": 1, "kind": "json_protocol", "protocol": {"name": name, "version": f"1.{b.ch.integer(0, 3)}.0"}}
-        doc["parties"] = [{"name": p, **({"zh": b.zh()} if b.p(0.5) else {})} for p in parties]
-        doc["types"] = self.types_used
-        doc["fields"] = shared
-        doc["messages"] = messages
-        out = block({k: doc[k] for k in ("schema_version", "kind", "protocol")}, 0, 0)
-        out += "parties:\n" + "".join(f"  - {flow(p)}\n" for p in doc["parties"])
-        out += "types:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["types"].items())
-        out += "fields:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["fields"].items())
-        out += "messages:\n"
-        for m in messages:
-            out += "  - " + "\n    ".join(f"{_scalar(k)}: {flow(v)}" for k, v in m.items()) + "\n"
-        self.shared = shared
-        return out
-
-    def direction(self, parties: list[str]) -> tuple[str, str]:
-        frm = self.b.pick(parties)
-        to = self.b.pick([p for p in parties if p != frm])
-        return frm, to
-
-    def field(self, markers: _Names, keys: _Names) -> dict[str, Any]:
-        """An inline field whose JSON key is new to the protocol (`markers`) and message (`keys`)."""
-        b = self.b
-        pool = JSON_FIELD_WORDS
-        while True:
-            base = b.pick(pool) if not b.p(0.1) else b.pick(KEYWORDS)
-            key = markers.take(base)
-            if keys.free(key):
-                keys.take(key)
-                break
-        f: dict[str, Any] = {"name": key}
-        kind = b.pick(("U8", "Float32", "BOOL", "S16", "ASCII", "Float64", "U64", "TEXT", "S8", "U32"))
-        f["type"] = self.type(kind)
-        t = self.TYPES[kind]
-        f["zh"] = b.zh()
-        if b.p(0.3):
-            f["unit"] = b.pick(UNITS)
-        if t["json"] == "integer":
-            lo, hi = t["min"], t["max"]
-            if b.p(0.25):
-                n = 1 + b.ch.integer(0, 3)
-                vals = sorted({lo + i if b.p(0.5) else max(lo, min(hi, i * 3 - 1)) for i in range(n)})
-                idents = _Names()
-                f["enum"] = {v: [b.ident(VALUE_IDENTS, idents, 0.1), b.zh()] for v in vals}
-            elif b.p(0.5):
-                rlo = max(lo, 0) + b.ch.integer(0, 10)
-                rhi = rlo + b.ch.integer(0, 100)
-                rhi = min(rhi, hi)
-                f["range"] = [rlo, rhi]
-                if lo < rlo and b.p(0.4):
-                    f["sentinel"] = {rlo - 1: ["unknown", "未知"]}
-        elif t["json"] == "number":
-            if b.p(0.5):
-                f["range"] = [Decimal(b.pick(("0", "-100", "-180", "-0.5"))), Decimal(b.pick(("100", "180", "0.5", "1000")))]
-            if b.p(0.4):
-                f["decimals"] = b.ch.integer(0, 6)
-        elif t["json"] == "string" and kind == "ASCII" and b.p(0.5):
-            letters = sorted({b.pick("NDRP-xyz") for _ in range(1 + b.ch.integer(0, 3))})
-            idents = _Names()
-            f["enum"] = {c: [b.ident(VALUE_IDENTS, idents, 0.1), b.zh()] for c in letters}
-        if b.p(0.2):
-            f["desc"] = b.text()
-        if b.p(0.15) and key[0].islower():
-            f["json_name"] = key
-            f["name"] = key + "_value" if b.p(0.5) else key
-        return f
-
-    def message(self, names: _Names, frm: str, to: str, fields: list[Any], cmd: int | None, role: str | None = None,
-                reply_to: str | None = None) -> dict[str, Any]:
-        b = self.b
-        m: dict[str, Any] = {"name": b.ident(("control", "status", "report", "ping", "query", "notice"), names, 0.05, ("request", "reply", "msg"))}
-        if cmd is not None:
-            m["cmd"] = cmd
-            m["role"] = role
-            if reply_to:
-                m["reply_to"] = reply_to
-        m["zh"] = b.zh()
-        if b.p(0.3):
-            m["desc"] = b.text()
-        m["from"], m["to"] = frm, to
-        m["fields"] = fields
-        if b.p(0.7):
-            m["examples"] = [self.example(fields, cmd) for _ in range(1 + b.ch.integer(0, 1))]
-        return m
-
-    def example(self, fields: list[Any], cmd: int | None) -> dict[str, Any]:
-        shared = {
-            "ts": {"type": "U64"}, "bn": {"type": "U64"}, "cmd": {"type": "U16"},
-            "res": {"type": "S8", "enum": {0: 1, -1: 1}}, "reply_bn": {"type": "U64", "json_name": "bn"},
-        }
-        out: dict[str, Any] = {}
-        for ref in fields:
-            f = shared[ref] if isinstance(ref, str) else ref
-            key = f.get("json_name", ref if isinstance(ref, str) else ref["name"])
-            out[key] = cmd if key == "cmd" else self.value(f)
-        return out
-
-    def value(self, f: dict[str, Any]) -> Any:
-        b = self.b
-        t = self.TYPES[f["type"]]
-        if "enum" in f:
-            return b.pick(list(f["enum"]))
-        if "sentinel" in f and b.p(0.3):
-            return b.pick(list(f["sentinel"]))
-        if t["json"] == "boolean":
-            return b.p(0.5)
-        if t["json"] == "string":
-            return "x" * b.ch.integer(t["min_length"], min(t["max_length"], 4))
-        if "range" in f:
-            lo, hi = f["range"]
-        else:
-            lo, hi = max(t.get("min", -1000), -1000), min(t.get("max", 1000), 1000)
-        if t["json"] == "integer":
-            return b.ch.integer(int(lo), int(min(hi, lo + 1000)))
-        v = Decimal(lo) + Decimal(b.ch.integer(0, 1000)) / 100
-        return min(v, Decimal(hi))
 
 
 # --- entry points --------------------------------------------------------------------------

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from anyspec.strategy import Builder, _Names, frame_bits, seq_bit
+from anyspec.pools import _Names, frame_bits, seq_bit
+from anyspec.strategy import Builder
 
 SELECTOR_LENGTHS = (4, 2, 8, 3, 1, 6, 5)
 

@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable
 from decimal import Decimal
 from fractions import Fraction
-from typing import Any
+from typing import Any, NamedTuple
 
 from canspec import __version__, ir
 from canspec.ir import j1939
@@ -65,25 +65,44 @@ def _accepted(lo: Fraction, hi: Fraction, raws: tuple[int, int], factor: Fractio
     return lo, hi
 
 
+class _Ranges(NamedTuple):
+    """A field's ranges (ir.Signal): raw, physical, as documented or derived, and as encode accepts them."""
+
+    raw_min: int
+    raw_max: int
+    phys_min: Fraction
+    phys_max: Fraction
+    check_min: Fraction
+    check_max: Fraction
+    accept_min: Fraction
+    accept_max: Fraction
+
+
+def _ranges(sig: LocDict, factor: Fraction, offset: Fraction, doc: tuple[Fraction | None, Fraction | None]) -> _Ranges:
+    length, signed, (doc_min, doc_max) = sig["len"], bool(sig["signed"]), doc
+    tmin, tmax = raw_type_range(length, signed)
+    if sig["float"]:  # the bit pattern is the raw value; ranges are the float's own (ir.Signal.is_float)
+        phys_min, phys_max = -FLOAT_MAX[length], FLOAT_MAX[length]
+        check_min = doc_min if doc_min is not None else phys_min
+        check_max = doc_max if doc_max is not None else phys_max
+        return _Ranges(tmin, tmax, phys_min, phys_max, check_min, check_max, check_min, check_max)
+    raw_min, raw_max = raw_range(length, signed, factor, offset, doc if sig.get("range") is not None else None)
+    phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
+    phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
+    check_min = doc_min if doc_min is not None else phys_min
+    check_max = doc_max if doc_max is not None else phys_max
+    tolerance = Fraction(0) if _is_integer(factor, offset) else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
+    accept = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
+    return _Ranges(raw_min, raw_max, phys_min, phys_max, check_min, check_max, *accept)
+
+
 def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, multiplexers: frozenset[str] = frozenset()) -> ir.Signal:
     length, signed, is_float = sig["len"], bool(sig["signed"]), bool(sig["float"])
     factor, offset = Fraction(sig["factor"]), Fraction(sig["offset"])
     tmin, tmax = raw_type_range(length, signed)
     rng = sig.get("range")
     doc_min, doc_max = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None else (None, None)
-    if is_float:  # the bit pattern is the raw value; ranges are the float's own (ir.Signal.is_float)
-        raw_min, raw_max = tmin, tmax
-        phys_min, phys_max = -FLOAT_MAX[length], FLOAT_MAX[length]
-        check_min = accept_min = doc_min if doc_min is not None else phys_min
-        check_max = accept_max = doc_max if doc_max is not None else phys_max
-    else:
-        raw_min, raw_max = raw_range(length, signed, factor, offset, (doc_min, doc_max) if rng is not None else None)
-        phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
-        phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
-        check_min = doc_min if doc_min is not None else phys_min
-        check_max = doc_max if doc_max is not None else phys_max
-        tolerance = Fraction(0) if _is_integer(factor, offset) else abs(factor) * Fraction(ir.TIE_EPSILON_TEXT)
-        accept_min, accept_max = _accepted(check_min - tolerance, check_max + tolerance, (raw_min, raw_max), factor, offset, (tmin, tmax))
+    ranges = _ranges(sig, factor, offset, (doc_min, doc_max))
     is_integer = _is_integer(factor, offset) and not is_float
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))
@@ -109,14 +128,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, mu
         doc_max=doc_max,
         raw_type_min=tmin,
         raw_type_max=tmax,
-        raw_min=raw_min,
-        raw_max=raw_max,
-        phys_min=phys_min,
-        phys_max=phys_max,
-        check_min=check_min,
-        check_max=check_max,
-        accept_min=accept_min,
-        accept_max=accept_max,
+        **ranges._asdict(),
         storage_bits=storage_bits(length),
         value_table=table,
         specials=specials,
