@@ -16,6 +16,7 @@ from canspec import ir
 from canspec.render.literals import PYTHON
 from canspec.targets.python import pages
 from canspec.targets.python.fields import PySignal
+from canspec.targets.python.reads import checksums_every_byte
 
 TIE = ir.TIE_EPSILON_TEXT
 CLASSIC_BYTES = 8
@@ -120,7 +121,7 @@ def make_checksum(msg: ir.Message, values: tuple[PySignal, ...]) -> PyChecksum |
     word, mask, byte = pack_word(values), msg.checksum.cover_mask, msg.checksum.byte
     if word == "b":  # the same bytes, numbered from the frame's end
         mask, byte = int.from_bytes(mask.to_bytes(msg.dlc, "little"), "big"), msg.dlc - 1 - byte
-    whole = set(msg.checksum.covers) | {msg.checksum.byte} == set(range(msg.dlc))
+    whole = checksums_every_byte(msg)
     return PyChecksum(word, byte * 8, PYTHON.hex(mask), xor_folds(msg.dlc if whole else (mask.bit_length() + 7) // 8), whole)
 
 

@@ -34,13 +34,18 @@ def _pair_shift(sig: ir.Signal, pair: int, order: str, frame_bits: int) -> int |
     return 8 * (pair + 1 - low if order == ">" else low - pair) + sig.word_shift % 8
 
 
+def checksums_every_byte(msg: ir.Message) -> bool:
+    """The message's XOR checksum and the bytes it covers are the whole frame (its XOR is then 0 when intact)."""
+    return msg.checksum is not None and set(msg.checksum.covers) | {msg.checksum.byte} == set(range(msg.dlc))
+
+
 def word_pairs(msg: ir.Message) -> tuple[str, frozenset[int]]:
     """The 16-bit words decode reads whole (`hN`, N the first of their two frame bytes, by a struct `H` in the
     returned order), where it would otherwise join two bytes: each is a pair of bytes some field spans exactly and every
     field read from those bytes lies in, in the order of most such pairs. None where the checksum XORs every byte
     (decode reads them one by one)."""
     frame_bits = msg.dlc * 8
-    if msg.checksum is not None and set(msg.checksum.covers) | {msg.checksum.byte} == set(range(msg.dlc)):
+    if checksums_every_byte(msg):
         return "<", frozenset()
     readers = [s for s in msg.data_signals if frame_bytes(s, frame_bits) is not None]
     found: dict[str, set[int]] = {"<": set(), ">": set()}
