@@ -45,7 +45,9 @@ class Failure:
 
 
 @dataclass
-class SpecResult:
+class SpecRef:
+    """One drawn spec of a batch: where it is written and what it uses (a job's input, its result's head)."""
+
     sid: str
     seed: int | None
     spec_dir: str
@@ -53,6 +55,10 @@ class SpecResult:
     out_dir: str
     features: list[str]
     facts: dict[str, Any]
+
+
+@dataclass
+class SpecResult(SpecRef):
     accepted: bool = False
     generated: list[str] = field(default_factory=list)
     checked: list[str] = field(default_factory=list)  # toolchains that ran on this spec

@@ -23,6 +23,7 @@ from anyspec.harness_base import (
     C_MODES,
     CANSPEC_TARGETS,
     Failure,
+    SpecRef,
     SpecResult,
     canspec,
     clip,
@@ -363,14 +364,7 @@ def stage_json(ctx: Ctx, mypy: bool) -> None:
 
 
 @dataclass
-class Job:
-    sid: str
-    seed: int | None
-    spec_dir: str
-    entry: str
-    out_dir: str
-    features: list[str]
-    facts: dict[str, Any]
+class Job(SpecRef):
     mypy: bool = False
     cross: bool = False  # also the C vector runner on PowerPC and Cortex-M under qemu
     only: list[str] | None = None  # restrict to these targets (the shrinker)
