@@ -135,3 +135,22 @@ def missing_tools() -> list[str]:
     if not (adapters.NODE_MODULES / "ajv").is_dir() or not adapters.TSC.is_file():
         out.append(f"ajv/typescript in {adapters.NODE_MODULES} (run `make setup`: .ci/setup.d/60-json.sh)")
     return out
+
+
+class Ctx:
+    def __init__(self, res: SpecResult) -> None:
+        self.res = res
+        self.spec = Path(res.spec_dir) / res.entry
+        self.out = Path(res.out_dir)
+        self.stage_filter: str | None = None
+        self.bytewise = True
+        self.work = Path(res.out_dir).parent / "work"
+        self.work.mkdir(parents=True, exist_ok=True)
+
+    def want(self, *labels: str) -> bool:
+        """Whether to run a sub-stage (the shrinker re-runs only the one that failed)."""
+        f = self.stage_filter
+        return f is None or any(label.startswith(f) or f.startswith(label) for label in labels)
+
+    def fail(self, target: str, stage: str, message: str) -> None:
+        self.res.failures.append(Failure(self.res.sid, self.res.seed, target, stage, clip(message), self.res.spec_dir, self.res.features))

@@ -22,38 +22,19 @@ from anyspec.harness_base import (
     BUILD,
     C_MODES,
     CANSPEC_TARGETS,
-    Failure,
+    Ctx,
     SpecRef,
     SpecResult,
     canspec,
-    clip,
     sh,
 )
+from anyspec.stages_json import stage_json
 
 HERE = Path(__file__).resolve().parent
 
 
 
 # --- per-spec stages -----------------------------------------------------------------------
-
-
-class Ctx:
-    def __init__(self, res: SpecResult) -> None:
-        self.res = res
-        self.spec = Path(res.spec_dir) / res.entry
-        self.out = Path(res.out_dir)
-        self.stage_filter: str | None = None
-        self.bytewise = True
-        self.work = Path(res.out_dir).parent / "work"
-        self.work.mkdir(parents=True, exist_ok=True)
-
-    def want(self, *labels: str) -> bool:
-        """Whether to run a sub-stage (the shrinker re-runs only the one that failed)."""
-        f = self.stage_filter
-        return f is None or any(label.startswith(f) or f.startswith(label) for label in labels)
-
-    def fail(self, target: str, stage: str, message: str) -> None:
-        self.res.failures.append(Failure(self.res.sid, self.res.seed, target, stage, clip(message), self.res.spec_dir, self.res.features))
 
 
 def multiplexed(spec: Path) -> bool:
@@ -115,9 +96,32 @@ def stage_c(ctx: Ctx) -> None:
         ctx.fail("c", "headers", f"no headers in {cdir}")
         return
     ctx.res.checked.append("c")
-    strict = adapters.c_strict_flags()
     work = ctx.work / "c"
     work.mkdir(exist_ok=True)
+    _c_compiles(ctx, cdir, headers, work)
+    doc = _vectors(ctx)
+    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/targets/c/gen_runner_tables.py"):
+        return
+    try:
+        (work / "runner_tables.h").write_text(adapters.c_runner_tables(ctx.spec), encoding="utf-8")
+    except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
+        ctx.fail("c", "tests/targets/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
+        return
+    _c_vector_runners(ctx, cdir, headers, work, doc)
+    sequences = ctx.out / "vectors" / "sequences.json"
+    if ctx.want("C sequence runner"):
+        try:
+            rc, out = adapters.c_sequences(ctx.spec, cdir, sequences, work / "sequences")
+        except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
+            rc, out = 1, f"{type(exc).__name__}: {exc}"
+        if rc != 0 or ", 0 mismatches" not in out:
+            ctx.fail("c", "C sequence runner", f"exit {rc}: {out[-4000:]}")
+
+
+def _c_compiles(ctx: Ctx, cdir: Path, headers: list[str], work: Path) -> None:
+    """Each header alone (included twice) under every compiler and standard, strict; the umbrella
+    header optimised by gcc and clang (the middle-end warnings)."""
+    strict = adapters.c_strict_flags()
     units = []
     for h in headers:
         unit = work / f"only_{h}.c"
@@ -132,20 +136,19 @@ def stage_c(ctx: Ctx) -> None:
             ctx.fail("c", f"{cc} {label} strict, each header alone ({', '.join(bad)})", err)
     umbrella = next((u for u in units if u.name == f"only_{ctx.res.facts.get('c_prefix', '')}.h.c"), None)
     umbrella = umbrella or min(units, key=lambda u: len(u.name))
-    for cc in ("gcc", "clang"):  # optimised code generation: the middle-end warnings
+    for cc in ("gcc", "clang"):
         if not ctx.want(f"{cc} -O2 -c"):
             continue
         rc, out, err = sh([cc, "-std=c99", *strict, "-O2", f"-I{cdir}", "-c", str(umbrella), "-o", os.devnull])
         if rc != 0:
             ctx.fail("c", f"{cc} -O2 -c {umbrella.name[5:-2]}", err)
-    doc = _vectors(ctx)
-    if doc is None or not ctx.want("build vector runner", "C vector runner", "tests/targets/c/gen_runner_tables.py"):
-        return
-    try:
-        (work / "runner_tables.h").write_text(adapters.c_runner_tables(ctx.spec), encoding="utf-8")
-    except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
-        ctx.fail("c", "tests/targets/c/gen_runner_tables.py", f"{type(exc).__name__}: {exc}")
-        return
+
+
+def _c_vector_runners(ctx: Ctx, cdir: Path, headers: list[str], work: Path, doc: dict[str, Any]) -> None:
+    """The C vector runner on every case, with the default strategy and, on every 4th spec (and
+    whenever the shrinker asks for it), Cortex-M0+'s (fieldless frames zeroed byte by byte vs
+    memset, 64-bit products from 16-bit halves)."""
+    strict = adapters.c_strict_flags()
     lines = work / "vectors.lines.txt"
     lines.write_text(adapters.c_vectors_lines(doc, ctx.spec), encoding="ascii")
     macro = None
@@ -154,8 +157,6 @@ def stage_c(ctx: Ctx) -> None:
         if m:
             macro = m.group(1)
             break
-    # the other strategy, Cortex-M0+'s (fieldless frames zeroed byte by byte vs memset, 64-bit
-    # products from 16-bit halves), on every 4th spec (and whenever the shrinker asks for it)
     other = macro is not None and (ctx.bytewise or ctx.stage_filter is not None)
     variants = [("runner", [])] + ([("runner-bytes", [f"-D{macro}_STRATEGY=0"])] if other else [])
     for name, extra in variants:
@@ -168,14 +169,6 @@ def stage_c(ctx: Ctx) -> None:
         m = adapters.c_cases_re().search(out)
         if rc != 0 or not m or int(m.group(3)) != 0 or int(m.group(1)) != len(doc["cases"]):
             ctx.fail("c", f"C vector runner{' (byte-wise path)' if extra else ''}", f"exit {rc}: {out.strip()}\n{err[-4000:]}")
-    sequences = ctx.out / "vectors" / "sequences.json"
-    if ctx.want("C sequence runner"):
-        try:
-            rc, out = adapters.c_sequences(ctx.spec, cdir, sequences, work / "sequences")
-        except Exception as exc:  # noqa: BLE001 — a helper's failure is reported, never swallowed
-            rc, out = 1, f"{type(exc).__name__}: {exc}"
-        if rc != 0 or ", 0 mismatches" not in out:
-            ctx.fail("c", "C sequence runner", f"exit {rc}: {out[-4000:]}")
 
 
 def _python_package(pydir: Path) -> str | None:
@@ -292,75 +285,6 @@ def stage_cantools(ctx: Ctx) -> None:
             ctx.fail("canmatrix", "loadp", f"canmatrix reads {len(cm.frames)} frames; the spec has {ctx.res.facts.get('messages')} messages")
     except Exception as exc:  # noqa: BLE001
         ctx.fail("canmatrix", "loadp", f"{type(exc).__name__}: {exc}")
-
-
-def stage_json(ctx: Ctx, mypy: bool) -> None:
-    import jsonschema
-
-    vec_path = ctx.out / "vectors" / "json.json"
-    if not vec_path.is_file():
-        ctx.fail("json", "vectors", f"no {vec_path}")
-        return
-    doc = json.loads(vec_path.read_text(encoding="utf-8"))
-    ctx.res.checked.append("json")
-    schema_root = ctx.out / "jsonschema"
-    for proto in doc["protocols"]:
-        name = proto["protocol"]
-        sdir = schema_root / name
-        try:
-            schemas = {p.name.removesuffix(".schema.json"): json.loads(p.read_text(encoding="utf-8")) for p in sorted(sdir.glob("*.schema.json"))}
-            validators = {}
-            for sname, s in schemas.items():
-                jsonschema.Draft202012Validator.check_schema(s)
-                validators[sname] = jsonschema.Draft202012Validator(s)
-        except Exception as exc:  # noqa: BLE001
-            ctx.fail("json", "jsonschema: schemas", f"{type(exc).__name__}: {exc}")
-            continue
-        bad = []
-        for c in proto["cases"]:
-            try:
-                if validators[c["message"]].is_valid(c["json"]) != c["valid"]:
-                    bad.append(f"{c['id']}: own schema says {not c['valid']} ({c.get('note', '')})")
-                if validators[f"to_{c['receiver']}"].is_valid(c["json"]) != (c["as_received"] is not None):
-                    bad.append(f"{c['id']}: to_{c['receiver']} schema disagrees (expected {c['as_received']})")
-                if validators["protocol"].is_valid(c["json"]) != (c["as_any"] is not None):
-                    bad.append(f"{c['id']}: protocol schema disagrees (expected {c['as_any']})")
-            except KeyError as exc:
-                bad.append(f"{c['id']}: no schema {exc}")
-        if bad:
-            ctx.fail("json", "jsonschema vs vectors/json.json", f"{len(bad)} case(s) disagree; first: " + "\n".join(bad[:8]))
-        rc, out, err = sh(["node", str(adapters.AJV_CHECK), str(schema_root), str(vec_path)], env=adapters.node_env())
-        if rc != 0:
-            ctx.fail("json", "ajv", out[-3000:] + err[-3000:])
-        else:
-            results = {r["id"]: r for r in json.loads(out)}
-            bad = []
-            for c in proto["cases"]:
-                r = results.get(c["id"])
-                if r is None:
-                    bad.append(f"{c['id']}: not checked by ajv")
-                elif r["own"] != c["valid"] or r["received"] != (c["as_received"] is not None) or r["any"] != (c["as_any"] is not None):
-                    bad.append(f"{c['id']}: ajv own={r['own']} received={r['received']} any={r['any']}, "
-                               f"vectors valid={c['valid']} as_received={c['as_received']} as_any={c['as_any']}")
-            if bad:
-                ctx.fail("json", "ajv vs vectors/json.json", f"{len(bad)} case(s) disagree; first: " + "\n".join(bad[:8]))
-        pkg_dir = ctx.out / "json" / "python" / name
-        if not (pkg_dir / name / "__init__.py").is_file():
-            ctx.fail("json", "python bindings", f"no package {pkg_dir / name}")
-            continue
-        rc, out, err = sh([sys.executable, str(HERE / "py_json.py"), str(pkg_dir), name, str(vec_path)])
-        if rc != 0:
-            ctx.fail("json", "python bindings: import + vectors", f"exit {rc}\n{out[-4000:]}\n{err[-4000:]}")
-        # The bindings declare no ruff configuration: ruff's defaults, isolated from whatever
-        # configuration an ancestor directory or the user may have.
-        rc, out, err = sh(["ruff", "check", "--no-cache", "--isolated", "--target-version", "py310", "."], cwd=pkg_dir)
-        if rc != 0:
-            ctx.fail("json", "python bindings: ruff check", out + err)
-        if mypy:
-            ctx.res.checked.append("json-mypy")
-            rc, out, err = sh([sys.executable, "-m", "mypy", "--strict", f"--cache-dir={BUILD / 'mypy-cache' / str(os.getpid())}", name], cwd=pkg_dir)
-            if rc != 0:
-                ctx.fail("json", "python bindings: mypy --strict", out + err)
 
 
 @dataclass
