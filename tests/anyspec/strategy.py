@@ -35,7 +35,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any
 
 from hypothesis import strategies as st
@@ -54,19 +53,19 @@ from anyspec.pools import (
     MSG_WORDS,
     NODE_NAMES,
     PROTOCOL_NAMES,
-    SIG_WORDS,
     TEXTS,
-    UNITS,
     ZH_WORDS,
     _Names,
-    frame_bits,
-    raw_range,
 )
 from anyspec.strategy_fields import FieldDraws
 from anyspec.strategy_json import JsonBuilder
+from anyspec.strategy_layouts import LayoutDraws
 from anyspec.yamltext import Hex, _scalar, block, flow
 
 # --- the result ----------------------------------------------------------------------------
+
+
+HEADER = "# A spec drawn by tests/anyspec/strategy.py.\n"
 
 
 @dataclass
@@ -96,7 +95,7 @@ class GeneratedSpec:
 # --- the builder ---------------------------------------------------------------------------
 
 
-class Builder(FieldDraws):
+class Builder(FieldDraws, LayoutDraws):
     """One spec from one chooser: nodes, messages, layouts, the JSON protocol and the changelog (the fields
     of each message: strategy_fields.FieldDraws)."""
 
@@ -140,16 +139,7 @@ class Builder(FieldDraws):
     def build(self) -> GeneratedSpec:
         bundle = self.p(0.45)
         name = self.pick(PROTOCOL_NAMES) if not self.p(0.04) else self.pick(KEYWORDS)
-        fmt = self.pick(("extended", "standard"))
-        addressing = self.pick(("j1939", "none")) if fmt == "extended" else "none"
-        bitrate = (
-            self.pick((250000, 500000, 125000, 1000000, 10000, 20000, 50000, 100000, 800000, 83333)) if not self.p(0.2) else self.ch.integer(10000, 1000000)
-        )
-        self.order = BIG if self.p(0.3) else LITTLE  # the signals' default; each field may take the other
-        self.bus = {"bitrate": bitrate, "id_format": fmt, "addressing": addressing, "byte_order": self.order}
-        if self.p(0.3):  # a CAN FD bus: its data phase's bit rate (the FD frames' bit-rate switching)
-            self.bus = {"bitrate": bitrate, "data_bitrate": self.pick(DATA_BITRATES), **{k: v for k, v in self.bus.items() if k != "bitrate"}}
-        self.j1939 = addressing == "j1939"
+        fmt, addressing = self.draw_bus()
         nodes = self.nodes()
         self.node_list = nodes
         messages, layouts = self.messages(nodes)
@@ -170,36 +160,50 @@ class Builder(FieldDraws):
             t: {Hex(r) if r >= 0 and self.p(0.3) else r: (ident if zh is None else [ident, zh]) for r, (ident, zh) in entries.items()}
             for t, entries in self.tables.items()
         }
-        files: dict[str, str] = {}
         facts: dict[str, Any] = {"bundle": bundle, "protocol": name, "messages": len(messages), "addressing": addressing, "id_format": fmt}
         separate_tables = bundle and tables and self.p(0.6)
         if tables and not separate_tables:
             can["value_tables"] = tables
-        header = "# A spec drawn by tests/anyspec/strategy.py.\n"
-        can_text = header + self.render_can(can)
+        can_text = HEADER + self.render_can(can)
         if not bundle:
-            files["spec.yaml"] = can_text
             facts["has_json"] = False
-            return GeneratedSpec(files, "spec.yaml", frozenset(self.used), facts=facts)
+            return GeneratedSpec({"spec.yaml": can_text}, "spec.yaml", frozenset(self.used), facts=facts)
+        return self.bundle(name, version, can_text, tables if separate_tables else {}, [m["id"] for m in messages], facts)
+
+    def draw_bus(self) -> tuple[str, str]:
+        """The bus (`self.bus`, its default byte order `self.order`): (id format, addressing)."""
+        fmt = self.pick(("extended", "standard"))
+        addressing = self.pick(("j1939", "none")) if fmt == "extended" else "none"
+        bitrate = (
+            self.pick((250000, 500000, 125000, 1000000, 10000, 20000, 50000, 100000, 800000, 83333)) if not self.p(0.2) else self.ch.integer(10000, 1000000)
+        )
+        self.order = BIG if self.p(0.3) else LITTLE  # the signals' default; each field may take the other
+        self.bus = {"bitrate": bitrate, "id_format": fmt, "addressing": addressing, "byte_order": self.order}
+        if self.p(0.3):  # a CAN FD bus: its data phase's bit rate (the FD frames' bit-rate switching)
+            self.bus = {"bitrate": bitrate, "data_bitrate": self.pick(DATA_BITRATES), **{k: v for k, v in self.bus.items() if k != "bitrate"}}
+        self.j1939 = addressing == "j1939"
+        return fmt, addressing
+
+    def bundle(self, name: str, version: str, can_text: str, tables: dict[str, Any], ids: list[int], facts: dict[str, Any]) -> GeneratedSpec:
+        """A bundle of the CAN file, the value tables apart when `tables`, and maybe a JSON protocol and a changelog."""
         listed = ["can.yaml"]
-        files["can.yaml"] = can_text
-        if separate_tables:
-            files["value_tables.yaml"] = header + block({"schema_version": 1, "kind": "value_tables", "value_tables": tables}, 0, 1)
+        files = {"can.yaml": can_text}
+        if tables:
+            files["value_tables.yaml"] = HEADER + block({"schema_version": 1, "kind": "value_tables", "value_tables": tables}, 0, 1)
             listed.append("value_tables.yaml")
         has_json = self.p(0.6)
         if has_json:
-            files["json.yaml"] = header + JsonBuilder(self, name).render()
+            files["json.yaml"] = HEADER + JsonBuilder(self, name).render()
             listed.append("json.yaml")
         if self.p(0.5):
-            files["changelog.yaml"] = header + self.changelog(name, version, [m["id"] for m in messages])
+            files["changelog.yaml"] = HEADER + self.changelog(name, version, ids)
             listed.append("changelog.yaml")
         bundle_doc: dict[str, Any] = {"schema_version": 1, "kind": "bundle"}
         if self.p(0.7):
             bundle_doc["name"] = name if self.p(0.5) else f"{name}_bundle"
         bundle_doc["files"] = listed
-        files = {"canspec.yaml": header + block(bundle_doc), **files}
         facts["has_json"] = has_json
-        return GeneratedSpec(files, "canspec.yaml", frozenset(self.used), facts=facts)
+        return GeneratedSpec({"canspec.yaml": HEADER + block(bundle_doc), **files}, "canspec.yaml", frozenset(self.used), facts=facts)
 
     def render_can(self, can: dict[str, Any]) -> str:
         out = block({k: can[k] for k in ("schema_version", "kind", "protocol", "bus")}, 0, 0)
@@ -312,32 +316,7 @@ class Builder(FieldDraws):
             m["zh"] = self.zh()
         if self.p(0.15):
             m["desc"] = self.text()
-        bus_ext = self.bus["id_format"] == "extended"
-        extended = bus_ext
-        if not self.j1939 and self.p(0.2):
-            extended = self.p(0.5)
-            m["extended"] = extended
-        sender_all = self.p(0.05)
-        sender = None if sender_all else nodes[self.ch.integer(0, len(nodes) - 1)]
-        if self.j1939 and sender is not None and "sa" not in sender:
-            sender = None
-        fid, decl = self.frame_id(sender, extended)
-        m["id"] = Hex(fid)
-        if decl is not None and not self.feature("j1939_derived", 0.5):
-            m["j1939"] = decl
-        m["sender"] = "ALL" if sender is None else sender["name"]
-        others = [n["name"] for n in nodes if sender is None or n["name"] != sender["name"]]
-        if self.p(0.3):
-            m["receivers"] = "ALL"
-        elif not others or self.p(0.05):
-            m["receivers"] = []
-        else:
-            m["receivers"] = others[: 1 + self.ch.integer(0, len(others) - 1)]
-        if self.feature("event_driven", 0.2):
-            if self.p(0.5):
-                m["cycle_ms"] = 0
-        else:
-            m["cycle_ms"] = self.pick((20, 100, 10, 50, 1000, 1, 10000, 500)) if not self.p(0.2) else self.ch.integer(1, 10000)
+        self.identity(m, nodes)
         if layout is not None:
             return self.layout_user(m, *layout)
         fd = self.p(0.2)
@@ -369,6 +348,34 @@ class Builder(FieldDraws):
             m["multiframe"] = mf
         return m
 
+    def identity(self, m: dict[str, Any], nodes: list[dict[str, Any]]) -> None:
+        """The message's ID format, ID, sender, receivers and cycle."""
+        extended = self.bus["id_format"] == "extended"
+        if not self.j1939 and self.p(0.2):
+            extended = self.p(0.5)
+            m["extended"] = extended
+        sender_all = self.p(0.05)
+        sender = None if sender_all else nodes[self.ch.integer(0, len(nodes) - 1)]
+        if self.j1939 and sender is not None and "sa" not in sender:
+            sender = None
+        fid, decl = self.frame_id(sender, extended)
+        m["id"] = Hex(fid)
+        if decl is not None and not self.feature("j1939_derived", 0.5):
+            m["j1939"] = decl
+        m["sender"] = "ALL" if sender is None else sender["name"]
+        others = [n["name"] for n in nodes if sender is None or n["name"] != sender["name"]]
+        if self.p(0.3):
+            m["receivers"] = "ALL"
+        elif not others or self.p(0.05):
+            m["receivers"] = []
+        else:
+            m["receivers"] = others[: 1 + self.ch.integer(0, len(others) - 1)]
+        if self.feature("event_driven", 0.2):
+            if self.p(0.5):
+                m["cycle_ms"] = 0
+        else:
+            m["cycle_ms"] = self.pick((20, 100, 10, 50, 1000, 1, 10000, 500)) if not self.p(0.2) else self.ch.integer(1, 10000)
+
     def fd_frame(self, m: dict[str, Any]) -> None:
         """`fd: true`, and `brs` where it is not the default (switching when the bus gives a data bit rate)."""
         m["fd"] = True
@@ -391,97 +398,6 @@ class Builder(FieldDraws):
             s["byte_order"] = order
 
     # --- shared layouts
-    def layout(self) -> tuple[str, list[dict[str, Any]], int, int]:
-        name = self.pick(("command", "sensor_block", "status_block", "common"))
-        dlc = self.pick((8, 4, 6, 2))
-        sigs = self.signals(dlc)
-        users = 2 + self.ch.integer(0, 1)
-        return name, sigs, dlc, users
-
-    def layout_user(self, m: dict[str, Any], lname: str, lay: list[dict[str, Any]], dlc: int) -> dict[str, Any]:
-        if dlc != 8 or self.p(0.2):
-            m["dlc"] = dlc
-        m["layout"] = lname
-        by_name = {s.get("name", f"reserved_{s['start']}"): s for s in lay}
-        final_names = _Names(list(by_name))
-        removed: list[str] = []
-        if len(lay) > 1 and self.p(0.3):
-            victim = self.pick(list(by_name))
-            removed.append(victim)
-        overrides: dict[str, Any] = {}
-        for _ in range(self.ch.integer(0, 2)):
-            target = self.pick(list(by_name))
-            sig = by_name[target]
-            if target in removed or target in overrides or sig.get("role") == "reserved":
-                continue
-            what = self.pick(("zh", "desc", "unit", "name", "scaling"))
-            if what == "zh":
-                overrides[target] = {"zh": self.zh()}
-            elif what == "desc":
-                overrides[target] = {"desc": self.text()}
-            elif what == "unit" and sig.get("role", "data") == "data":
-                overrides[target] = {"unit": self.pick(UNITS)}
-            elif what == "name":
-                new = self.ident(SIG_WORDS, final_names, 0.1)
-                overrides[target] = {"name": new}
-            elif what == "scaling" and sig.get("role", "data") == "data" and "values" not in sig and "special" not in sig and not sig.get("float"):
-                sc = self.scaling(sig["len"], bool(sig.get("signed")))
-                sc.pop("_raw", None)
-                sc.setdefault("factor", Decimal(1))
-                sc.setdefault("offset", Decimal(0))
-                if "range" in sig and "range" not in sc:
-                    lo, hi = raw_range(sig["len"], bool(sig.get("signed")))
-                    a, b = sorted((lo * sc["factor"] + sc["offset"], hi * sc["factor"] + sc["offset"]))
-                    sc["range"] = [a, b]
-                overrides[target] = sc
-        occ: set[int] = set()
-        has_counter = has_checksum = False
-        for s in lay:
-            key = s.get("name", f"reserved_{s['start']}")
-            if key in removed:
-                continue
-            occ |= frame_bits(s["start"], s["len"], s.get("byte_order", self.order))
-            has_counter |= s.get("role") == "counter"
-            has_checksum |= s.get("role") == "checksum"
-        adds: list[dict[str, Any]] = []
-        if self.p(0.4):
-            names = _Names([*by_name, *(o["name"] for o in overrides.values() if "name" in o)])
-            adds = self.signals(dlc, occ, names, counter=not has_counter, checksum=not has_checksum, first_needed=False)
-        if overrides:
-            m["override"] = overrides
-        if removed:
-            m["remove"] = removed
-        if adds:
-            m["add"] = adds
-        return m
-
-    # --- change record
-    def changelog(self, protocol: str, version: str, ids: list[int]) -> str:
-        major, minor, patch = (int(x) for x in version.split("."))
-        versions = []
-        older = []
-        if patch > 0 and self.p(0.6):
-            older.append(f"{major}.{minor}.{patch - 1}")
-        if (minor > 0 or major > 0) and self.p(0.4):
-            older.insert(0, f"{major}.{minor - 1}.0" if minor > 0 else f"{major - 1}.9.0")
-        for v in [*older, version]:
-            entry: dict[str, Any] = {"version": v}
-            if self.p(0.5):
-                entry["date"] = f"20{self.ch.integer(10, 29)}-0{self.ch.integer(1, 9)}-1{self.ch.integer(0, 9)}"
-            if self.p(0.3):
-                entry["authors"] = [self.zh()]
-            items = []
-            for _ in range(1 + self.ch.integer(0, 1)):
-                item: dict[str, Any] = {"zh": self.zh()}
-                if self.p(0.6):
-                    item["en"] = self.text()
-                if ids and self.p(0.3):
-                    item["ids"] = [Hex(self.pick(ids))]
-                items.append(item)
-            entry["items"] = items
-            versions.append(entry)
-        doc = {"schema_version": 1, "kind": "changelog", "protocol": protocol, "versions": versions}
-        return block(doc, 0, 2)
 
 
 # --- entry points --------------------------------------------------------------------------
