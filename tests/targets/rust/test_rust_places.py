@@ -131,3 +131,26 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
     assert lint.returncode == 0, lint.stderr[-6000:]
     run = subprocess.run([str(tmp_path / "places")], capture_output=True, text=True, check=False)
     assert run.returncode == 0 and run.stdout.strip() == f"ok {len(cases)}", run.stdout + run.stderr[-3000:]
+
+
+def test_each_field_is_read_as_the_narrowest_integer_that_holds_its_bytes() -> None:
+    """An FD frame's field is read as u8, u16, u32, u64 or u128, the narrowest that holds the bytes
+    its bits lie in (from the bit positions, not the segments the place is computed from); a
+    Motorola field inside one byte of a classic frame is read from the frame word unswapped, like an
+    Intel one (the two orders agree within a byte)."""
+    seen = set()
+    for sig, dlc in fields():
+        at = place(sig, dlc)
+        touched = {p // 8 for p in positions(sig.start, sig.length, sig.byte_order)}
+        span = max(touched) - min(touched) + 1
+        if dlc > 8:
+            want = next(n for n in (1, 2, 4, 8, 16) if n >= span)
+            assert at.bits == 8 * want and at.read.startswith(f"u{8 * want}::from_"), (sig.start, sig.length, sig.byte_order, dlc, at)
+            assert at.window is not None and at.window[0] == min(touched)
+            seen.add(want)
+        elif span == 1:
+            assert not at.swapped and at.read == "self.bits", (sig.start, sig.length, dlc, at)
+            seen.add("classic byte")
+        else:
+            assert at.swapped, (sig.start, sig.length, dlc, at)
+    assert seen == {1, 2, 4, 8, 16, "classic byte"}

@@ -129,7 +129,9 @@ def raw_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None = Non
     if shift + sig.length < bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
     if sig.signed:
-        expr = f"({expr} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
+        # Bytes joined by `|` bind looser than `^`: parenthesized, so the sign flip applies to the whole value.
+        value = f"({expr})" if expr == var and " | " in var else expr
+        expr = f"({value} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
     return expr
 
 

@@ -2,9 +2,10 @@
 
 A classic frame (at most 8 bytes) is held as one little-endian `u64` (`self.bits`): an Intel
 field is `(bits >> word_shift) & mask`, a Motorola one the same over `bits.swap_bytes()` (the
-frame read big-endian), its shift moved up by the bytes the frame lacks to 8. An FD frame is held
-as its bytes: a field is read from the 8 (or, for a field over 9 bytes, 16) bytes from its first
-byte as one integer in its own order (`Place`). Each expression is written for its exact widths,
+frame read big-endian), its shift moved up by the bytes the frame lacks to 8 — unless it lies in
+one byte, where the orders agree and no swap is needed. An FD frame is held as its bytes: a field
+is read from its first byte as the narrowest integer (u8 … u128) that holds the bytes it lies in,
+in its own order (`Place`): a flag costs a byte load, not an 8-byte load and a byte swap. Each expression is written for its exact widths,
 so no cast is a no-op and no mask or shift is an identity (clippy rejects both).
 """
 
@@ -18,6 +19,7 @@ from canspec.render.literals import RUST
 WORD_BITS = 64
 WORD_MASK = (1 << WORD_BITS) - 1
 CLASSIC_BYTES = 8  # a classic frame fits the u64 frame word
+WINDOW_BYTES = (1, 2, 4, 8, 16)  # the integers an FD frame's field is read as
 
 
 @dataclass(frozen=True)
@@ -35,14 +37,16 @@ class Place:
 
 def place(sig: ir.Signal, dlc: int) -> Place:
     """The field's place in a message of `dlc` bytes."""
+    first, last = min(s.byte for s in sig.segments), max(s.byte for s in sig.segments)
     if dlc <= CLASSIC_BYTES:
         if not sig.is_big_endian:
             return Place("self.bits", WORD_BITS, sig.word_shift)
+        if first == last:  # within one byte the orders agree: no byte swap
+            return Place("self.bits", WORD_BITS, 8 * first + sig.segments[0].byte_shift)
         return Place("self.bits.swap_bytes()", WORD_BITS, sig.word_shift + 8 * (CLASSIC_BYTES - dlc), swapped=True)
-    first, last = min(s.byte for s in sig.segments), max(s.byte for s in sig.segments)
-    size = 8 if last - first < 8 else 16
+    size = next(n for n in WINDOW_BYTES if n > last - first)  # the narrowest integer that holds the field's bytes
     lsb = sig.segments[0]  # least significant value bits first
-    order = "be" if sig.is_big_endian else "le"
+    order = "be" if sig.is_big_endian and size > 1 else "le"
     shift = 8 * (first + size - 1 - lsb.byte) + lsb.byte_shift if sig.is_big_endian else 8 * (lsb.byte - first) + lsb.byte_shift
     read = f"u{8 * size}::from_{order}_bytes(fd::window::<{size}>(&self.bytes, {first}))"
     return Place(read, 8 * size, shift, window=(first, order))
