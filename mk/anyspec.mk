@@ -1,6 +1,6 @@
 # The "any valid spec" harness (tests/anyspec/): random valid specs through check, gen and every
 # target's toolchain. `make test` runs 100 specs (tests/anyspec/test_anyspec.py); the long run:
-#   make test-any-spec N=1000 [SEED=first-seed] [ANYSPEC_FEATURES=all|current] [ANYSPEC_RUST=crates]
+#   make test-any-spec N=1000 [SEED=first-seed] [ANYSPEC_FEATURES=all|current] [ANYSPEC_RUST=<how many crates through cargo clippy + test, default 12>]
 N ?= 1000
 ANYSPEC_FEATURES ?= all
 ANYSPEC_RUST ?= 12
