@@ -163,6 +163,99 @@ _Loader.add_constructor("tag:yaml.org,2002:seq", _construct_sequence)
 _Loader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 
 
+# --- the fast path -----------------------------------------------------------------------------
+# Building the data straight from libyaml's events, without PyYAML's node graph and its Python
+# composer and constructor, halves the load of a large spec. It takes the YAML specs are written in:
+# one document of mappings, sequences and scalars, without anchors, aliases, merge keys, explicit
+# tags other than the core schema's, repeated keys or deep nesting. On anything else it gives up
+# and the loader above reads the file, so errors and their messages come from one place
+# (tests/spec/test_yaml_fast_path.py: both give the same data and locations).
+
+FAST_DEPTH = 48  # deeper documents go to the loader above (its nesting limit and message)
+_STR, _MAP, _SEQ = "tag:yaml.org,2002:str", "tag:yaml.org,2002:map", "tag:yaml.org,2002:seq"
+_SCALARS = {"tag:yaml.org,2002:int", "tag:yaml.org,2002:float", "tag:yaml.org,2002:bool", "tag:yaml.org,2002:null"}
+
+
+class _Unsupported(Exception):
+    """The fast path does not take this document."""
+
+
+class _EventBuilder:
+    def __init__(self, loader: _Loader, name: str) -> None:
+        self.loader, self.name, self.next = loader, name, loader.get_event
+
+    def document(self) -> Any:
+        kinds = [type(self.next()) for _ in range(2)]
+        if kinds != [yaml.StreamStartEvent, yaml.DocumentStartEvent]:
+            raise _Unsupported
+        data = self.node(self.next(), 0)
+        if [type(self.next()) for _ in range(2)] != [yaml.DocumentEndEvent, yaml.StreamEndEvent]:
+            raise _Unsupported  # a second document: the loader above says so
+        return data
+
+    def loc(self, event: yaml.Event) -> Loc:
+        return Loc(self.name, event.start_mark.line + 1, event.start_mark.column + 1)
+
+    def node(self, event: yaml.Event, depth: int) -> Any:
+        kind = type(event)
+        if kind is yaml.ScalarEvent:
+            return self.scalar(event)
+        if kind not in (yaml.MappingStartEvent, yaml.SequenceStartEvent) or event.anchor is not None or depth > FAST_DEPTH:
+            raise _Unsupported
+        if event.tag not in (None, "!", _MAP if kind is yaml.MappingStartEvent else _SEQ):
+            raise _Unsupported
+        return self.mapping(event, depth) if kind is yaml.MappingStartEvent else self.sequence(event, depth)
+
+    def mapping(self, start: yaml.Event, depth: int) -> LocDict:
+        data = LocDict()
+        data.loc, data.key_locs, data.value_locs, data.key_nodes = self.loc(start), {}, {}, {}
+        while type(key_event := self.next()) is not yaml.MappingEndEvent:
+            if type(key_event) is not yaml.ScalarEvent:
+                raise _Unsupported  # a collection as key: the loader above refuses it
+            key = self.scalar(key_event)
+            if key in data:
+                raise _Unsupported  # a repeated key: the loader above refuses it
+            value_event = self.next()
+            data[key] = self.node(value_event, depth + 1)
+            data.key_locs[key], data.value_locs[key] = self.loc(key_event), self.loc(value_event)
+            data.key_nodes[key] = len(data.key_nodes)
+        return data
+
+    def sequence(self, start: yaml.Event, depth: int) -> LocList:
+        data, locs = LocList(), []
+        while type(event := self.next()) is not yaml.SequenceEndEvent:
+            data.append(self.node(event, depth + 1))
+            locs.append(self.loc(event))
+        data.loc, data.item_locs = self.loc(start), locs
+        return data
+
+    def scalar(self, event: yaml.ScalarEvent) -> Any:
+        if event.anchor is not None:
+            raise _Unsupported
+        tag = event.tag
+        if tag is None or tag == "!":
+            tag = self.loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+        if tag == _STR:
+            return event.value
+        if tag not in _SCALARS:
+            raise _Unsupported  # merge keys, binary, timestamps, local tags
+        node = yaml.ScalarNode(tag, event.value, event.start_mark, event.end_mark, event.style)
+        return self.loader.yaml_constructors[tag](self.loader, node)
+
+
+def fast_load(text: str, name: str) -> Any:
+    """The data of `text` built from libyaml's events; raises _Unsupported where the loader above must read it."""
+    if _CParser is None:
+        raise _Unsupported
+    loader = _Loader(text)
+    try:
+        return _EventBuilder(loader, name).document()
+    except yaml.YAMLError:
+        raise _Unsupported from None
+    finally:
+        loader.dispose()
+
+
 def _line_col_of_offset(raw: bytes, offset: int) -> tuple[int, int]:
     before = raw[:offset]
     line = before.count(b"\n") + 1
@@ -210,6 +303,10 @@ def load_yaml(path: Path, display_name: str | None = None) -> Any:
     text = text.removeprefix("\ufeff")
     if not text.strip():
         raise SpecError([error("file is empty", Loc(name), "a spec file starts with `schema_version:` and `kind:`")])
+    try:
+        return fast_load(text, name)
+    except _Unsupported:
+        pass
     loader = None
     try:
         loader = _Loader(text)
