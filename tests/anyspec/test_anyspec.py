@@ -20,6 +20,7 @@ import yaml
 from hypothesis import given, settings
 
 from anyspec import fixture, harness, shrink, strategy
+from anyspec.pools import frame_bits
 
 N = int(os.environ.get("ANYSPEC_N", "100"))
 SEED = int(os.environ.get("ANYSPEC_SEED", "20261201"))
@@ -90,7 +91,7 @@ def test_the_batch_draws_every_dimension_of_issue_24():
                     seen |= {("fd", m.get("dlc", 8)), ("brs", m.get("brs", "data_bitrate" in doc["bus"]))}
                 for s in sigs:
                     order = s.get("byte_order", default)
-                    crosses = len({b // 8 for b in strategy.frame_bits(s["start"], s["len"], order)}) > 1
+                    crosses = len({b // 8 for b in frame_bits(s["start"], s["len"], order)}) > 1
                     seen.add((s.get("role", "data"), order, crosses))
                     if s.get("float"):
                         seen.add(("float", s["len"], order, "range" in s))
@@ -114,7 +115,7 @@ def mux_dimensions(sigs: list[dict], seen: set[tuple[object, ...]]) -> None:  # 
         seen |= {("mux", "float")} if s.get("float") else set()
     seen |= {("mux", "nested")} if {s["mux"]["by"] for s in muxed} & {s["name"] for s in muxed} else set()
     seen |= {("mux", "fd")} if max(s["start"] + s["len"] for s in sigs) > 64 else set()
-    bits = [(s, strategy.frame_bits(s["start"], s["len"], s.get("byte_order", "little_endian"))) for s in muxed]
+    bits = [(s, frame_bits(s["start"], s["len"], s.get("byte_order", "little_endian"))) for s in muxed]
     if any(a["mux"] != b["mux"] and x & y for a, x in bits for b, y in bits):
         seen.add(("mux", "overlap"))
 
