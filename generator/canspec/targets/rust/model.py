@@ -144,7 +144,8 @@ class RustMessage:
     frame_id: str
     da: str  # J1939 destination address as an Option<u8>
     defined_mask: str  # frame bits the message defines (not reserved, not undefined): a u64, or per byte for FD frames
-    fields_mask: str  # frame bits of the fields the type stores (no checksum, no reserved)
+    fields_mask: str  # frame bits of the fields the type stores (no checksum, no reserved): a u64, or per byte for FD frames
+    kept_bytes: tuple[tuple[int, str], ...]  # FD frames: each byte a field lies in, and its value as decode keeps it (the fields' bits)
     frame_bytes: int  # what `encode` returns: 8 bytes (a classic frame, the u64 frame word), or an FD frame's dlc
     checksum_shift: int  # bit position of the checksum byte in the frame word
     cover_mask: str  # frame-word bits the checksum covers
@@ -337,6 +338,18 @@ def build_text(msg: ir.Message, fields: tuple[RustField, ...]) -> RustText | Non
     )
 
 
+def kept_bytes(mask: int, dlc: int) -> tuple[tuple[int, str], ...]:
+    """The bytes an FD frame's decode copies, each with the expression it keeps (`bytes[i]`, masked
+    where the fields hold part of it): the others stay 0, so decode does work for the bytes its
+    fields lie in, not for the whole frame."""
+    out = []
+    for i in range(dlc):
+        byte = (mask >> (8 * i)) & 0xFF
+        if byte:
+            out.append((i, f"bytes[{i}]" if byte == 0xFF else f"bytes[{i}] & {RUST.hex(byte, 2)}"))
+    return tuple(out)
+
+
 def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: bool) -> RustMessage:
     name = type_name(msg.name)
     flagged = id_flag_matters and msg.is_extended
@@ -356,7 +369,9 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
         text=build_text(msg, fields), doc=docs.message_doc(msg),
         table=(*docs.table_head(table_bilingual), *(f.table_row for f in fields)) if fields else (),
         frame_id=msg.id_text, da="None" if j is None or j.da is None else f"Some({RUST.hex(j.da, 2)})",
-        defined_mask=masks(defined), fields_mask=masks(stored), frame_bytes=CLASSIC_BYTES if msg.is_classic_length else msg.dlc,
+        defined_mask=masks(defined), fields_mask=masks(stored),
+        frame_bytes=CLASSIC_BYTES if msg.is_classic_length else msg.dlc,
+        kept_bytes=() if msg.is_classic_length else kept_bytes(stored, msg.dlc),
         checksum_shift=8 * msg.checksum.byte if msg.checksum else 0, cover_mask=RUST.integer(msg.checksum.cover_mask) if msg.checksum else "",
         many_arguments=len(fields) > MAX_ARGUMENTS, local="msg_" if any(f.names.field == "msg" for f in fields) else "msg",
     )
