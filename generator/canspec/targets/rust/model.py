@@ -198,6 +198,7 @@ class RustCrate:
     kinds: frozenset[str]  # the field kinds that occur
     frame_bytes: int  # the longest frame `encode` returns (8 without FD frames over 8 bytes)
     has_fd_frames: bool  # some message is held as its bytes (module `fd`)
+    messages_use_fd: bool  # messages.rs calls into `fd`: an FD message with a field (its window reads) or a checksum
 
 
 def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEnum | None) -> str:
@@ -394,6 +395,7 @@ def build_crate(can: ir.CanProtocol) -> RustCrate:
         id_flag_matters=id_flag_matters, max_standard_id=RUST.integer(MAX_STANDARD_ID),
         uses_codec=bool(kinds & {"scaled_int", "float"}) or can.has_counters or any(m.checksum and not m.is_fd_frame for m in messages), kinds=kinds,
         frame_bytes=max((m.frame_bytes for m in messages), default=CLASSIC_BYTES), has_fd_frames=any(m.is_fd_frame for m in messages),
+        messages_use_fd=any(m.is_fd_frame and (m.fields or m.checksum) for m in messages),
     )
 
 
