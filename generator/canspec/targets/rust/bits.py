@@ -5,8 +5,9 @@ field is `(bits >> word_shift) & mask`, a Motorola one the same over `bits.swap_
 frame read big-endian), its shift moved up by the bytes the frame lacks to 8 — unless it lies in
 one byte, where the orders agree and no swap is needed. An FD frame is held as its bytes: a field
 is read from its first byte as the narrowest integer (u8 … u128) that holds the bytes it lies in,
-in its own order (`Place`): a flag costs a byte load, not an 8-byte load and a byte swap. Each expression is written for its exact widths,
-so no cast is a no-op and no mask or shift is an identity (clippy rejects both).
+in its own order (`Place`): a flag costs a byte load, not an 8-byte load and a byte swap. Each
+expression is written for its exact widths, so no cast is a no-op and no mask or shift is an
+identity (clippy rejects both).
 """
 
 from __future__ import annotations
