@@ -3,13 +3,14 @@ messages); the oracle is clang-format run on the whole text, which must give the
 
 from __future__ import annotations
 
+import os
+
 import pytest
 from canspec import resources
 from canspec.pipeline import compile_spec
+from canspec.render import formatters
 from canspec.render.environment import render
-from canspec.render.formatters import clang_format
-from canspec.render.formatters import chunks
-from canspec.targets.c import _format
+from canspec.render.formatters import chunks, clang_format, clang_format_files
 from canspec.targets.c.model import build_model
 from canspec.targets.c.names import HEADERS
 
@@ -21,4 +22,31 @@ def test_chunked_format_equals_whole(template: str, suffix: str) -> None:
     style = resources.templates_dir() / "c" / ".clang-format"
     if suffix == "_messages.h":
         assert len(chunks(text, 4000)) > 10  # the shipped messages header really is cut
-    assert _format(text, suffix, style, size=4000) == clang_format(text, suffix, style)
+    assert clang_format_files({suffix: text}, style, size=4000) == {suffix: clang_format(text, suffix, style)}
+
+
+def test_headers_formatted_together_in_one_process_per_core_equal_each_alone(monkeypatch):
+    """Every header of the shipped spec in one call, cut in 4,000-character chunks spread over
+    two clang-format processes: the same bytes as clang-format on each whole header."""
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    spec = compile_spec(None).spec
+    model = build_model(spec)
+    texts = {f"x{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
+    style = resources.templates_dir() / "c" / ".clang-format"
+    calls = []
+    real_run = formatters.Formatter.run
+    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
+    formatted = clang_format_files(texts, style, size=4000)
+    assert len(calls) == 2 and sum(len(args) - 2 for args in calls) > len(texts)  # two processes, many files
+    assert formatted == {name: clang_format(text, name, style) for name, text in texts.items()}
+
+
+def test_a_failing_clang_format_names_the_header_not_the_private_copy(tmp_path, monkeypatch):
+    fake = tmp_path / "clang-format"
+    fake.write_text("#!/bin/sh\necho \"error: cannot format $3\" >&2\nexit 1\n", encoding="utf-8")
+    fake.chmod(0o755)
+    monkeypatch.setitem(formatters.FORMATTERS, "clang-format", formatters.Formatter("clang-format", "-", lambda: str(fake)))
+    with pytest.raises(formatters.FormatterError) as err:
+        clang_format_files({"gw_messages.h": "int x;\n"}, tmp_path / ".clang-format")
+    assert "clang-format failed on gw_messages.h: error: cannot format 00000-gw_messages.h" in str(err.value)
+    assert "canspec-c-" not in str(err.value)

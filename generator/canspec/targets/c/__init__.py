@@ -1,16 +1,13 @@
 """Header-only C99 for ECUs (`c/<protocol>*.h`): model.py and the modules it uses hold the
 meaning, templates/c/ the text, check.py what the target refuses. Output is formatted by
-clang-format with the committed templates/c/.clang-format, run on the text in memory so that
+clang-format with the committed templates/c/.clang-format, run on private copies of the text so that
 generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
-
 from canspec import ir, resources
 from canspec.render.environment import render
-from canspec.render.formatters import CHUNK_CHARS, clang_format, in_chunks
+from canspec.render.formatters import clang_format_files
 from canspec.targets import Target
 from canspec.targets.c.check import c_problems
 from canspec.targets.c.model import build_model
@@ -20,19 +17,13 @@ STYLE_FILE = ".clang-format"
 MISRA_RECORD = "MISRA.md"  # the deviation record firmware teams file with the headers
 
 
-def _format(text: str, name: str, style: Path, size: int = CHUNK_CHARS) -> str:
-    return in_chunks(text, lambda piece: clang_format(piece, name, style), size)
-
-
 def render_c(spec: ir.Spec) -> dict[str, bytes]:
     if spec.can is None:
         return {}
     model = build_model(spec)
     rendered = {f"{model.prefix}{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
     style = resources.templates_dir() / "c" / STYLE_FILE
-    with ThreadPoolExecutor(max_workers=len(rendered)) as pool:  # clang-format runs in parallel processes
-        formatted = dict(zip(rendered, pool.map(lambda text, name: _format(text, name, style), rendered.values(), rendered)))
-    out = {f"c/{name}": text.encode("utf-8") for name, text in formatted.items()}
+    out = {f"c/{name}": text.encode("utf-8") for name, text in clang_format_files(rendered, style).items()}
     out[f"c/{STYLE_FILE}"] = (resources.templates_dir() / "c" / STYLE_FILE).read_bytes()
     out[f"c/{MISRA_RECORD}"] = render("c/MISRA.md.j2", spec, "c", c=model).encode("utf-8")
     return out

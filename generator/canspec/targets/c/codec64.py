@@ -172,11 +172,11 @@ def word_fields(sigs: tuple[CSignal, ...], order: str) -> tuple[CSignal, ...]:
     cross bytes off byte boundaries; all of them where every field crosses bytes (the compiler then
     merges their stores too). A byte-aligned field of whole bytes among others is read from its
     bytes, whose reads the compiler merges into one load itself."""
-    crossing = [s for s in sigs if len(s.sig.segments) > 1]
-    if sigs and len(crossing) == len(sigs) and all(s.sig.word_order == order for s in sigs):
+    crossing = [len(s.sig.segments) > 1 for s in sigs]
+    if sigs and all(crossing) and all(s.sig.word_order == order for s in sigs):
         return tuple(sigs)
-    same = (s for s in sigs if s.sig.word_order == order)
-    return tuple(s for s in same if s.sig.storage_bits == 64 or (s in crossing and (s.word_shift % 8 or s.length % 8)))
+    return tuple(s for s, crosses in zip(sigs, crossing)
+                 if s.sig.word_order == order and (s.sig.storage_bits == 64 or (crosses and (s.word_shift % 8 or s.length % 8))))
 
 
 def _word_store(s: CSignal) -> list[str]:
@@ -201,10 +201,11 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
     words = word_fields(sigs, order)
     if not words:
         return None
+    in_word = {id(s) for s in words}  # by identity: comparing CSignals compares their whole IR
     held: list[int] = []
     body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in span(words, dlc, checksum)) + ";"]
     for s in sigs:
-        if s in words:
+        if id(s) in in_word:
             body += _word_store(s)
             continue
         for k in sorted({seg.byte for seg in s.sig.segments} - set(held)):
@@ -215,9 +216,9 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
         body += [*FOLD, "x &= 0xFFu;"]
     local = [f"uint32_t b{k};" for k in sorted(held)]
     local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
-    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if s not in words) else []  # codec.store's halves
+    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if id(s) not in in_word) else []  # codec.store's halves
     # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
-    narrow = {s.sig.name: (32 if s in words else 33) for s in sigs if s.sig.signed}
+    narrow = {s.sig.name: (32 if id(s) in in_word else 33) for s in sigs if s.sig.signed}
     local += ["uint32_t t;"] if any(s.length < narrow[s.sig.name] for s in sigs if s.sig.signed) else []
     local += ["uint64_t t64;"] if any(s.length >= narrow[s.sig.name] for s in sigs if s.sig.signed) else []
     return (*local, *float_locals(sigs)), tuple(body)

@@ -120,7 +120,19 @@ class CNames:
 
 def named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
     """The protocol's C names, and every global name the headers declare (some only where the
-    spec uses the feature) with the element it comes from."""
+    spec uses the feature) with the element it comes from. The last protocol's are kept: the
+    check asks twice and the model once (0.1 s each at 1,000 messages); the IR is immutable."""
+    if _NAMED and _NAMED[0][0] is can:
+        return _NAMED[0][1]
+    result = _named(can)
+    _NAMED[:] = [(can, result)]
+    return result
+
+
+_NAMED: list[tuple[ir.CanProtocol, tuple[CNames, list[tuple[str, Origin]]]]] = []
+
+
+def _named(can: ir.CanProtocol) -> tuple[CNames, list[tuple[str, Origin]]]:
     plain = CNames.plain(can)
     runtime = plain.runtime()
     taken = {name for name, _ in runtime}

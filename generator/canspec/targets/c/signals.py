@@ -16,8 +16,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from canspec import ir
-from canspec.render.literals import C
 from canspec.ir.bits import describe
+from canspec.render.literals import C
 from canspec.targets.c.floats import CFloat, float_path
 from canspec.targets.c.names import CNames
 from canspec.targets.c.physical import CDouble, CFixed, double_path, fixed_path, int_lit
