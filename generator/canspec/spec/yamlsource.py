@@ -279,6 +279,15 @@ def _expanded_size(data: Any, memo: dict[int, int]) -> int:
 def load_yaml(path: Path, display_name: str | None = None) -> Any:
     """Parse one YAML file into LocDict/LocList data; every failure is a SpecError."""
     name = display_name or str(path)
+    text = _read_text(path, name)
+    try:
+        return fast_load(text, name)
+    except _Unsupported:
+        return _load_with_loader(text, name)
+
+
+def _read_text(path: Path, name: str) -> str:
+    """The file's text (UTF-8, no BOM); a SpecError where it is too large, unreadable or empty."""
     try:
         size = path.stat().st_size
         if size > MAX_FILE_BYTES:
@@ -303,10 +312,11 @@ def load_yaml(path: Path, display_name: str | None = None) -> Any:
     text = text.removeprefix("\ufeff")
     if not text.strip():
         raise SpecError([error("file is empty", Loc(name), "a spec file starts with `schema_version:` and `kind:`")])
-    try:
-        return fast_load(text, name)
-    except _Unsupported:
-        pass
+    return text
+
+
+def _load_with_loader(text: str, name: str) -> Any:
+    """PyYAML's loader, for what the fast path does not take; its errors become SpecErrors."""
     loader = None
     try:
         loader = _Loader(text)
