@@ -50,20 +50,39 @@ class JsonBuilder:
     def render(self) -> str:
         b = self.b
         name = b.pick(JSON_PROTOCOL_NAMES)
-        parties = [b.pick(PARTIES)]
-        others = [p for p in PARTIES if p != parties[0]]
-        parties.append(b.pick(others))
-        if b.p(0.2):
-            parties.append(b.pick([p for p in PARTIES if p not in parties]))
+        parties = self.parties()
         shared: dict[str, Any] = {
             "ts": {"type": self.type("U64"), "unit": "ms", "zh": "时间戳"},
             "bn": {"type": self.type("U64"), "zh": "流水号"},
         }
         messages: list[dict[str, Any]] = []
         msg_names = _Names()
+        self.plain_messages(parties, messages, msg_names)
+        self.command_messages(parties, shared, messages, msg_names)
+        doc: dict[str, Any] = {"schema_version": 1, "kind": "json_protocol", "protocol": {"name": name, "version": f"1.{b.ch.integer(0, 3)}.0"}}
+        doc["parties"] = [{"name": p, **({"zh": b.zh()} if b.p(0.5) else {})} for p in parties]
+        doc["types"] = self.types_used
+        doc["fields"] = shared
+        doc["messages"] = messages
+        self.shared = shared
+        return _text(doc)
+
+    def parties(self) -> list[str]:
+        """Two parties, sometimes three."""
+        b = self.b
+        parties = [b.pick(PARTIES)]
+        others = [p for p in PARTIES if p != parties[0]]
+        parties.append(b.pick(others))
+        if b.p(0.2):
+            parties.append(b.pick([p for p in PARTIES if p not in parties]))
+        return parties
+
+    def plain_messages(self, parties: list[str], messages: list[dict[str, Any]], msg_names: _Names) -> None:
+        """One to three messages told apart by a marker field, not by a command number."""
+        b = self.b
         markers = _Names(["ts", "bn", "cmd", "res"])
         plain = 1 + b.ch.integer(0, 2)
-        for i in range(plain):
+        for _ in range(plain):
             frm, to = self.direction(parties)
             fields: list[Any] = []
             if b.p(0.6):
@@ -76,6 +95,10 @@ class JsonBuilder:
             for _ in range(b.ch.integer(0, 2)):
                 fields.append(self.field(markers, keys))
             messages.append(self.message(msg_names, frm, to, fields, None))
+
+    def command_messages(self, parties: list[str], shared: dict[str, Any], messages: list[dict[str, Any]], msg_names: _Names) -> None:
+        """Up to two commands: a request, mostly with its reply (cmd, res and the request's bn)."""
+        b = self.b
         ncmd = b.ch.integer(0, 2)
         if ncmd:
             shared["cmd"] = {"type": self.type("U16"), "zh": "消息类型"}
@@ -96,20 +119,6 @@ class JsonBuilder:
                 rextra = [self.field(_Names(["ts", "bn", "cmd", "res"]), _Names(["cmd", "bn", "res"]))] if b.p(0.3) else []
                 rep = self.message(msg_names, to, frm, ["cmd", "res", bn, *rextra], cmd, "reply", req["name"])
                 messages.append(rep)
-        doc: dict[str, Any] = {"schema_version": 1, "kind": "json_protocol", "protocol": {"name": name, "version": f"1.{b.ch.integer(0, 3)}.0"}}
-        doc["parties"] = [{"name": p, **({"zh": b.zh()} if b.p(0.5) else {})} for p in parties]
-        doc["types"] = self.types_used
-        doc["fields"] = shared
-        doc["messages"] = messages
-        out = block({k: doc[k] for k in ("schema_version", "kind", "protocol")}, 0, 0)
-        out += "parties:\n" + "".join(f"  - {flow(p)}\n" for p in doc["parties"])
-        out += "types:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["types"].items())
-        out += "fields:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["fields"].items())
-        out += "messages:\n"
-        for m in messages:
-            out += "  - " + "\n    ".join(f"{_scalar(k)}: {flow(v)}" for k, v in m.items()) + "\n"
-        self.shared = shared
-        return out
 
     def direction(self, parties: list[str]) -> tuple[str, str]:
         frm = self.b.pick(parties)
@@ -212,3 +221,15 @@ class JsonBuilder:
             return b.ch.integer(int(lo), int(min(hi, lo + 1000)))
         v = Decimal(lo) + Decimal(b.ch.integer(0, 1000)) / 100
         return min(v, Decimal(hi))
+
+
+def _text(doc: dict[str, Any]) -> str:
+    """The document as YAML, one flow mapping per party, type, field and message key."""
+    out = block({k: doc[k] for k in ("schema_version", "kind", "protocol")}, 0, 0)
+    out += "parties:\n" + "".join(f"  - {flow(p)}\n" for p in doc["parties"])
+    out += "types:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["types"].items())
+    out += "fields:\n" + "".join(f"  {k}: {flow(v)}\n" for k, v in doc["fields"].items())
+    out += "messages:\n"
+    for m in doc["messages"]:
+        out += "  - " + "\n    ".join(f"{_scalar(k)}: {flow(v)}" for k, v in m.items()) + "\n"
+    return out
