@@ -147,7 +147,8 @@ def _balanced(items: list[Path], sizes: list[int], bins: int, chunk: int) -> lis
 
 
 def _clang_format_in_place(paths: list[Path], style: Path, folder: str) -> None:
-    what = ", ".join(path.name.split("-", 1)[1] for path in paths[:3]) + (" …" if len(paths) > 3 else "")
+    headers = list(dict.fromkeys(path.name.split("-", 1)[1] for path in paths))  # the chunks of one header name it once
+    what = ", ".join(headers[:3]) + (" …" if len(headers) > 3 else "")
     try:
         FORMATTERS["clang-format"].run([f"--style=file:{style}", "-i", *map(str, paths)], "", what)
     except FormatterError as exc:  # its message names the private folder's files: name the headers
