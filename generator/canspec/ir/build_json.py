@@ -55,7 +55,7 @@ def _json_field(key: str, fdef: LocDict, types: LocDict) -> ir.JsonField:
 
 
 def plain(value: Any) -> Any:
-    """LocDict/Decimal → plain JSON-able Python values (examples)."""
+    """LocDict/Decimal → plain JSON-able Python values (JSON examples, changelog changes)."""
     if isinstance(value, dict):
         return {str(k): plain(v) for k, v in value.items()}
     if isinstance(value, list):

@@ -50,3 +50,22 @@ def test_a_failing_clang_format_names_the_header_not_the_private_copy(tmp_path, 
         clang_format_files({"gw_messages.h": "int x;\n"}, tmp_path / ".clang-format")
     assert "clang-format failed on gw_messages.h: error: cannot format 00000-gw_messages.h" in str(err.value)
     assert "canspec-c-" not in str(err.value)
+
+
+def test_without_room_for_working_copies_each_chunk_goes_through_stdin(monkeypatch):
+    """A TMPDIR that cannot take the working copies (full, read-only) costs speed, not the bytes."""
+    spec = compile_spec(None).spec
+    model = build_model(spec)
+    texts = {f"x{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
+    style = resources.templates_dir() / "c" / ".clang-format"
+    want = clang_format_files(texts, style, size=4000)
+
+    def full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(formatters.tempfile, "TemporaryDirectory", full)
+    calls = []
+    real_run = formatters.Formatter.run
+    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
+    assert clang_format_files(texts, style, size=4000) == want
+    assert len(calls) > len(texts) and not any("-i" in args for args in calls)  # a process per chunk, on stdin
