@@ -4,6 +4,7 @@ messages); the oracle is clang-format run on the whole text, which must give the
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import pytest
 from canspec import resources
@@ -25,20 +26,30 @@ def test_chunked_format_equals_whole(template: str, suffix: str) -> None:
     assert clang_format_files({suffix: text}, style, size=4000) == {suffix: clang_format(text, suffix, style)}
 
 
+def _shipped_headers() -> tuple[dict[str, str], Path]:
+    """The shipped spec's headers before formatting, and the style file."""
+    spec = compile_spec(None).spec
+    model = build_model(spec)
+    return {f"x{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}, resources.templates_dir() / "c" / ".clang-format"
+
+
+def _recorded_runs(monkeypatch) -> list[list[str]]:
+    """The arguments of every formatter process started from now on."""
+    calls: list[list[str]] = []
+    real_run = formatters.Formatter.run
+    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
+    return calls
+
+
 def test_headers_formatted_together_in_one_process_per_core_equal_each_alone(monkeypatch):
     """Every header of the shipped spec in one call, cut in 4,000-character chunks spread over
     two clang-format processes: the same bytes as clang-format on each whole header."""
     monkeypatch.setattr(os, "cpu_count", lambda: 2)
-    spec = compile_spec(None).spec
-    model = build_model(spec)
-    texts = {f"x{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
-    style = resources.templates_dir() / "c" / ".clang-format"
-    calls = []
-    real_run = formatters.Formatter.run
-    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
-    formatted = clang_format_files(texts, style, size=4000)
+    texts, style = _shipped_headers()
+    want = {name: clang_format(text, name, style) for name, text in texts.items()}
+    calls = _recorded_runs(monkeypatch)
+    assert clang_format_files(texts, style, size=4000) == want
     assert len(calls) == 2 and sum(len(args) - 2 for args in calls) > len(texts)  # two processes, many files
-    assert formatted == {name: clang_format(text, name, style) for name, text in texts.items()}
 
 
 def test_a_failing_clang_format_names_the_header_not_the_private_copy(tmp_path, monkeypatch):
@@ -54,18 +65,13 @@ def test_a_failing_clang_format_names_the_header_not_the_private_copy(tmp_path, 
 
 def test_without_room_for_working_copies_each_chunk_goes_through_stdin(monkeypatch):
     """A TMPDIR that cannot take the working copies (full, read-only) costs speed, not the bytes."""
-    spec = compile_spec(None).spec
-    model = build_model(spec)
-    texts = {f"x{suffix}": render(template, spec, "c", c=model) for template, suffix in HEADERS}
-    style = resources.templates_dir() / "c" / ".clang-format"
-    want = clang_format_files(texts, style, size=4000)
+    texts, style = _shipped_headers()
+    want = {name: clang_format(text, name, style) for name, text in texts.items()}
 
     def full(*args, **kwargs):
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(formatters.tempfile, "TemporaryDirectory", full)
-    calls = []
-    real_run = formatters.Formatter.run
-    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
+    calls = _recorded_runs(monkeypatch)
     assert clang_format_files(texts, style, size=4000) == want
     assert len(calls) > len(texts) and not any("-i" in args for args in calls)  # a process per chunk, on stdin

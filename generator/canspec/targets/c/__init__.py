@@ -1,7 +1,7 @@
 """Header-only C99 for ECUs (`c/<protocol>*.h`): model.py and the modules it uses hold the
 meaning, templates/c/ the text, check.py what the target refuses. Output is formatted by
-clang-format with the committed templates/c/.clang-format, run on private copies of the text so that
-generation stays deterministic and atomic."""
+clang-format with the committed templates/c/.clang-format, run on private copies of the text
+so that generation stays deterministic and atomic."""
 
 from __future__ import annotations
 
