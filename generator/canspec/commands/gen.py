@@ -11,6 +11,7 @@ from canspec.commands.common import compile_or_report
 from canspec.generation import GenerationError, generate
 from canspec.ir.nodeview import for_node, node_names
 from canspec.render import writer
+from canspec.render.formatters import version_notes
 from canspec.targets import registry
 
 
@@ -43,6 +44,8 @@ def run(args: argparse.Namespace) -> int:
     except GenerationError as exc:
         print(f"canspec gen: {exc}; nothing written", file=sys.stderr)
         return 1
+    for note in version_notes(f for name in names for f in known[name].formatters):  # why output may differ from the committed files
+        print(f"canspec gen: warning: {note}", file=sys.stderr)
     if out.exists() and not out.is_dir():
         print(f"canspec gen: {out} exists and is not a directory", file=sys.stderr)
         return 1

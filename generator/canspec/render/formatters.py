@@ -6,14 +6,16 @@ it: generated code is never written unformatted."""
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import shutil
 import subprocess
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 TIMEOUT_S = 300
@@ -34,11 +36,48 @@ def _ruff_binary() -> str | None:
     return str(find_ruff_bin())
 
 
+def _clang_format_wheel() -> str | None:
+    """The binary of the `clang-format` wheel (canspec depends on the pinned one), if installed."""
+    spec = importlib.util.find_spec("clang_format")
+    if spec is None or spec.origin is None:
+        return None
+    exe = Path(spec.origin).parent / "data" / "bin" / ("clang-format.exe" if os.name == "nt" else "clang-format")
+    return str(exe) if exe.is_file() else None
+
+
+def _clang_format_binary() -> str | None:
+    """The wheel's clang-format before any other on PATH: another version lays the C out
+    differently, and a PATH entry may be a shim that costs more than the formatting."""
+    return _clang_format_wheel() or shutil.which("clang-format")
+
+
+@lru_cache(maxsize=None)
+def _version(exe: str) -> str | None:
+    """The x.y.z an executable's `--version` prints (None when it prints none or fails)."""
+    try:
+        proc = subprocess.run([exe, "--version"], capture_output=True, check=False, timeout=TIMEOUT_S)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    found = re.search(r"\b(\d+\.\d+\.\d+)\b", proc.stdout.decode("utf-8", "replace"))
+    return found.group(1) if found else None
+
+
 @dataclass(frozen=True)
 class Formatter:
     name: str
     install: str  # how to install it: the hint of the error when it is missing
     locate: Callable[[], str | None]  # the executable, or None when it is not installed
+    pinned: str | None = None  # the version whose layout the committed output has (None: stable layout)
+
+    def version_note(self) -> str | None:
+        """A warning when the installed version is not the pinned one: the code is the same, but
+        its layout may differ from what other machines write, so `gen --check` may see changes."""
+        exe = self.locate()
+        found = _version(exe) if exe is not None and self.pinned is not None else None
+        if found is None or found == self.pinned:
+            return None
+        return (f"{self.name} {found} is installed, but generated code is laid out by {self.name} {self.pinned}: files may differ "
+                f"in layout from other machines' output (pip install {self.name}=={self.pinned})")
 
     def executable(self) -> str:
         exe = self.locate()
@@ -57,13 +96,20 @@ class Formatter:
         return proc.stdout.decode("utf-8")
 
 
+# rustfmt is not pinned: its default style is stable across versions (Rust's style guarantee).
 FORMATTERS = {
     "clang-format": Formatter(
-        "clang-format", f"pip install clang-format=={CLANG_FORMAT_VERSION}, or apt-get install clang-format", lambda: shutil.which("clang-format")
+        "clang-format", f"pip install clang-format=={CLANG_FORMAT_VERSION}, or apt-get install clang-format", _clang_format_binary, CLANG_FORMAT_VERSION
     ),
-    "ruff": Formatter("ruff", f"pip install ruff=={RUFF_VERSION}", _ruff_binary),
+    "ruff": Formatter("ruff", f"pip install ruff=={RUFF_VERSION}", _ruff_binary, RUFF_VERSION),
     "rustfmt": Formatter("rustfmt", "rustup component add rustfmt", lambda: shutil.which("rustfmt")),
 }
+
+
+def version_notes(names: Iterable[str]) -> list[str]:
+    """The version warnings of the named formatters, in registry order."""
+    wanted = set(names)
+    return [note for name, formatter in FORMATTERS.items() if name in wanted and (note := formatter.version_note()) is not None]
 
 
 def clang_format(text: str, name: str, style: Path) -> str:

@@ -25,6 +25,7 @@ class Target:
     order: int = 50  # generation order; lower first
     cost: int = 1  # relative render time, to schedule slow targets first
     check: Callable[[ir.Spec], Iterable[Problem]] | None = None  # what this target cannot express
+    formatters: tuple[str, ...] = ()  # the external formatters its output goes through (render/formatters.py)
 
 
 def target_problems(spec: ir.Spec, names: Iterable[str] | None = None) -> list[Problem]:

@@ -36,6 +36,7 @@ def test_generated_headers_are_current_and_deterministic(spec):
 
 
 def test_missing_clang_format_fails_generation(spec, monkeypatch):
+    monkeypatch.setattr(formatters, "_clang_format_wheel", lambda: None)
     monkeypatch.setattr(formatters.shutil, "which", lambda name: None)
     with pytest.raises(gen_mod.GenerationError, match="clang-format not found.*install"):
         gen_mod.generate(spec, ["c"])

@@ -29,4 +29,5 @@ def render_c(spec: ir.Spec) -> dict[str, bytes]:
     return out
 
 
-TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10, check=c_problems)
+TARGET = Target("c", "header-only C99 (pack/unpack, physical, J1939, VIN, receive monitor)", "c/", render_c, order=30, cost=10, check=c_problems,
+                formatters=("clang-format",))

@@ -24,4 +24,5 @@ def render_bindings(spec: ir.Spec) -> dict[str, bytes]:
     return out
 
 
-TARGET = Target("json_bindings", "typed bindings of the JSON protocol (Python, Rust, TypeScript)", "json/", render_bindings, order=41, cost=3, check=problems)
+TARGET = Target("json_bindings", "typed bindings of the JSON protocol (Python, Rust, TypeScript)", "json/", render_bindings, order=41, cost=3, check=problems,
+                formatters=("rustfmt",))

@@ -78,4 +78,4 @@ def problems(spec: ir.Spec) -> Iterator[Problem]:
 
 
 TARGET = Target(TARGET_NAME, "Python package (typed dataclasses, stdlib only; python-can optional)", "python/", render_python, order=30, cost=8,
-                check=problems)
+                check=problems, formatters=("ruff",))

@@ -58,4 +58,4 @@ def _format(text: str, rel: str, size: int = CHUNK_CHARS) -> str:
     return in_chunks(text, lambda piece: rustfmt(piece, rel), size)
 
 
-TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems)
+TARGET = Target("rust", "Rust crate (no_std, serde optional)", "rust/", render_rust, order=40, cost=8, check=problems, formatters=("rustfmt",))
