@@ -10,11 +10,6 @@ from canspec.ir.labels import Label, SpecialValue, ValueEntry, ValueTable
 from canspec.ir.model import (
     EXACT_LIMIT,
     EXACT_LIMIT_TEXT,
-    FAULT_TIMEOUT_ENTRY,
-    FAULT_XOR_ERROR_SUFFIX,
-    MONITOR_COUNTER_TOLERANCE,
-    MONITOR_TIMEOUT_CYCLES,
-    MONITOR_VALID_AFTER,
     TIE_EPSILON,
     TIE_EPSILON_TEXT,
     Checksum,
@@ -28,7 +23,17 @@ from canspec.ir.model import (
     to_physical,
 )
 from canspec.ir.mux import MuxCondition, MuxGroup
-from canspec.ir.protocol_model import Bus, CanProtocol, FaultTable, Node
+from canspec.ir.protocol_model import (
+    FAULT_TIMEOUT_ENTRY,
+    FAULT_XOR_ERROR_SUFFIX,
+    MONITOR_COUNTER_TOLERANCE,
+    MONITOR_TIMEOUT_CYCLES,
+    MONITOR_VALID_AFTER,
+    Bus,
+    CanProtocol,
+    FaultTable,
+    Node,
+)
 from canspec.ir.spec_model import ChangeItem, Changelog, ChangeVersion, Spec
 
 __all__ = [

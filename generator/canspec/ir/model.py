@@ -28,16 +28,6 @@ TIE_EPSILON = 1e-9
 TIE_EPSILON_TEXT = "1e-9"
 EXACT_LIMIT = 2**52
 EXACT_LIMIT_TEXT = "4503599627370496.0"
-# Receive monitors time a cyclic message out after this many cycle times without a frame,
-# accept a counter step of up to 1 + MONITOR_COUNTER_TOLERANCE (frames lost in between) and hold a
-# message valid after MONITOR_VALID_AFTER good frames in a row (runtime/monitor.py states the rules).
-MONITOR_TIMEOUT_CYCLES = 3
-MONITOR_COUNTER_TOLERANCE = 1
-MONITOR_VALID_AFTER = 2
-# The value-table entries that make a table a receive-fault code table: `message_timeout` (with a
-# raw-0 "no fault" entry) and `<layout>_xor_error` for a checksum failure of a message of that layout.
-FAULT_TIMEOUT_ENTRY = "message_timeout"
-FAULT_XOR_ERROR_SUFFIX = "_xor_error"
 
 
 def to_physical(raw: int | Fraction, factor: Fraction, offset: Fraction) -> Fraction:
@@ -284,7 +274,7 @@ class Message:
     id_text: str  # "0x1801B0A0" (29-bit) / "0x123" (11-bit)
     dlc: int
     cycle_ms: int | None  # None: event-driven (sent on change or on request)
-    timeout_ms: int | None  # receive monitors' default timeout: MONITOR_TIMEOUT_CYCLES cycles; None when event-driven
+    timeout_ms: int | None  # receive monitors' default timeout: protocol_model.MONITOR_TIMEOUT_CYCLES cycles; None when event-driven
     sender: str  # a node name, or "ALL"
     receivers: tuple[str, ...]
     j1939: J1939Id | None  # the ID's J1939 fields when the bus uses J1939 addressing

@@ -10,6 +10,17 @@ from canspec.ir.labels import ValueTable
 from canspec.ir.model import Message
 from canspec.spec.problems import Loc
 
+# Receive monitors time a cyclic message out after this many cycle times without a frame,
+# accept a counter step of up to 1 + MONITOR_COUNTER_TOLERANCE (frames lost in between) and hold a
+# message valid after MONITOR_VALID_AFTER good frames in a row (runtime/monitor.py states the rules).
+MONITOR_TIMEOUT_CYCLES = 3
+MONITOR_COUNTER_TOLERANCE = 1
+MONITOR_VALID_AFTER = 2
+# The value-table entries that make a table a receive-fault code table: `message_timeout` (with a
+# raw-0 "no fault" entry) and `<layout>_xor_error` for a checksum failure of a message of that layout.
+FAULT_TIMEOUT_ENTRY = "message_timeout"
+FAULT_XOR_ERROR_SUFFIX = "_xor_error"
+
 
 @dataclass(frozen=True)
 class Node:

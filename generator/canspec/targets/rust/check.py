@@ -11,7 +11,7 @@ from canspec import ir
 from canspec.spec.problems import Problem, error
 from canspec.targets.rust import naming, values
 from canspec.targets.rust.encode import has_range_consts
-from canspec.targets.rust.model import MAX_TEXT_FRAMES
+from canspec.targets.rust.text import MAX_TEXT_FRAMES
 
 
 def problems(spec: ir.Spec) -> Iterator[Problem]:
