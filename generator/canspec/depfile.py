@@ -6,7 +6,10 @@ headers keep their times unless their bytes changed, so nothing that includes th
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import os
+import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -25,7 +28,22 @@ def rule(target: Path, inputs: Iterable[Path]) -> str:
 
 
 def write(depfile: Path, target: Path, inputs: Iterable[Path]) -> None:
-    """Writes the rule and touches the target (the build system's up-to-date mark)."""
+    """Writes the rule atomically (a temporary file renamed over it): a directory or an unwritable
+    path fails here, before gen changes any output."""
     depfile.parent.mkdir(parents=True, exist_ok=True)
-    depfile.write_text(rule(target, inputs), encoding="utf-8")
+    if depfile.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "is a directory", str(depfile))
+    fd, temp = tempfile.mkstemp(dir=depfile.parent, prefix=f".{depfile.name}.")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(rule(target, inputs))
+        os.replace(temp, depfile)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(temp)
+        raise
+
+
+def touch(target: Path) -> None:
+    """Marks the output up to date for the build system (the depfile rule's target)."""
     target.touch()

@@ -81,3 +81,19 @@ def test_escape_round_trips_through_the_parser():
     target, inputs = parse(depfile.rule(Path("/out/m.json"), []))
     assert target == "/out/m.json" and inputs == []
     assert parse(f"t: {depfile.escape(str(odd))}\n")[1] == [str(odd)]
+
+
+def test_a_depfile_that_cannot_be_written_stops_before_any_output_changes(tmp_path):
+    """The depfile is written first: when its path is a directory, gen fails and every earlier
+    output keeps its bytes (the message says so, and it is true)."""
+    spec = copy_spec(tmp_path / "spec", errata=False)
+    out = tmp_path / "out"
+    assert gen(spec, out, tmp_path / "gw.d", cwd=ROOT).returncode == 0
+    header = out / "c" / "kaiwo_gateway.h"
+    header.write_text("/* an older header */\n", encoding="utf-8")
+    (tmp_path / "a_dir").mkdir()
+    r = gen(spec, out, tmp_path / "a_dir", cwd=ROOT)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert f"canspec gen: cannot write {tmp_path / 'a_dir'}: is a directory; previous files left unchanged" in r.stderr, r.stderr
+    assert header.read_text(encoding="utf-8") == "/* an older header */\n"
+    assert not list((tmp_path).glob(".a_dir.*")) and not list((tmp_path / "a_dir").iterdir())

@@ -264,3 +264,39 @@ def test_gen_check_exit_codes(previous: Path) -> None:
     empty = previous.parent / "empty"
     none = run_canspec("gen", spec, "-o", empty, "--check")
     assert none.returncode == 1 and not empty.exists() and none.stdout.count("missing: ") == len(before) - 1, none.stdout
+
+
+def test_manifest_entries_outside_the_output_are_never_removed(tmp_path: Path) -> None:
+    """gen removes the files its manifest says an earlier run wrote; the manifest is a plain file,
+    so an entry that leaves the output directory (`..`, an absolute path, a symbolic link out) is
+    ignored, never followed."""
+    spec = ROOT / "tests" / "fixtures" / "valid" / "minimal_can.yaml"
+    out, victim, elsewhere = tmp_path / "out", tmp_path / "victim.txt", tmp_path / "elsewhere"
+    assert run_canspec("gen", spec, "-o", out, "-t", "dbc").returncode == 0
+    victim.write_text("not canspec's\n")
+    elsewhere.mkdir()
+    (elsewhere / "x.dbc").write_text("not canspec's either\n")
+    (out / "link").symlink_to(elsewhere, target_is_directory=True)
+    manifest = json.loads((out / ".canspec-manifest.json").read_text(encoding="utf-8"))
+    for rel in ("../victim.txt", str(victim), "dbc/../../victim.txt", "link/x.dbc"):
+        manifest["files"][rel] = {"sha256": "0" * 64, "target": "dbc"}
+    (out / ".canspec-manifest.json").write_text(json.dumps(manifest), encoding="utf-8")
+    proc = run_canspec("gen", spec, "-o", out, "-t", "dbc")
+    assert_no_traceback(proc)
+    assert proc.returncode == 0 and "0 removed" in proc.stderr, proc.stderr
+    assert victim.read_text() == "not canspec's\n" and (elsewhere / "x.dbc").exists()
+    assert all(rel.startswith("dbc/") for rel in json.loads((out / ".canspec-manifest.json").read_text(encoding="utf-8"))["files"])
+
+
+@pytest.mark.parametrize("target, rel", [("docs", "docs/mkdocs.nav.yml"), ("vectors", "vectors/can.json")])
+def test_gen_never_replaces_a_file_the_spec_reads(tmp_path: Path, target: str, rel: str) -> None:
+    """A spec file that sits where a target writes (here, named like the output) stays as it was."""
+    spec = tmp_path / "out" / rel
+    spec.parent.mkdir(parents=True)
+    shutil.copy(ROOT / "tests" / "fixtures" / "valid" / "minimal_can.yaml", spec)
+    before = snapshot(tmp_path / "out")
+    proc = run_canspec("gen", spec, "-o", tmp_path / "out", "-t", target)
+    assert_no_traceback(proc)
+    assert proc.returncode == 1
+    assert f"canspec gen: {tmp_path / 'out' / rel} is a file the spec reads, and this run would overwrite it" in proc.stderr, proc.stderr
+    assert snapshot(tmp_path / "out") == before

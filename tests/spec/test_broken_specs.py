@@ -141,6 +141,22 @@ def test_paths_that_are_not_specs(tmp_path: Path) -> None:
     check_fails("dangling.yaml", "dangling.yaml", "no such file or directory", cwd=tmp_path)
 
 
+def test_devices_and_pipes_are_refused_without_reading(tmp_path: Path) -> None:
+    """A device or FIFO has no size to check: /dev/zero would be read without end, a FIFO blocks
+    the open. Both are refused from their file type, as a spec path and as a bundle entry."""
+    os.mkfifo(tmp_path / "pipe.yaml")
+    check_fails("pipe.yaml", "pipe.yaml", "is not a regular file (a device, pipe or socket)", cwd=tmp_path)
+    check_fails("/dev/zero", "/dev/zero", "is not a regular file (a device, pipe or socket)", cwd=tmp_path)
+    (tmp_path / "canspec.yaml").write_text("schema_version: 1\nkind: bundle\nfiles:\n  - pipe.yaml\n", encoding="utf-8")
+    check_fails("canspec.yaml", "canspec.yaml:4:5", "bundle file 'pipe.yaml' is not a regular file", cwd=tmp_path)
+
+
+def test_a_bundle_file_listed_twice(tmp_path: Path) -> None:
+    (tmp_path / "can.yaml").write_text(VALID_CAN, encoding="utf-8")
+    (tmp_path / "canspec.yaml").write_text("schema_version: 1\nkind: bundle\nfiles:\n  - can.yaml\n  - ./can.yaml\n", encoding="utf-8")
+    check_fails("canspec.yaml", "canspec.yaml:5:5", "bundle file './can.yaml' is listed twice (also as entry 1)", cwd=tmp_path)
+
+
 def test_read_errors_are_reported_in_process(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     """The EACCES/EIO path itself, independent of who runs the tests (root reads anything)."""
     from canspec import cli

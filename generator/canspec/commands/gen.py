@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+from collections.abc import Iterable
 from pathlib import Path
 
 from canspec import depfile, gen_record
 from canspec.commands.common import compile_or_report
 from canspec.generation import GenerationError, generate
 from canspec.ir.nodeview import for_node, node_names
+from canspec.pipeline import Compiled
 from canspec.render import writer
 from canspec.render.formatters import version_notes
 from canspec.targets import registry
@@ -50,23 +53,37 @@ def run(args: argparse.Namespace) -> int:
         print(f"canspec gen: {out} exists and is not a directory", file=sys.stderr)
         return 1
     plan = writer.plan(out, outputs)
-    if args.check:
-        for rel in plan.write:
-            print(f"{'stale' if (out / rel).exists() else 'missing'}: {out / rel}")
-        for rel in plan.remove:
-            print(f"extra: {out / rel}")
-        if plan.stale:
-            print(f"canspec gen --check: {len(plan.stale)} file(s) out of date; run `canspec gen`", file=sys.stderr)
-            return 1
-        gen_record.write(args.spec, out, options, compiled.files, plan.unchanged)
-        print(f"canspec gen --check: {len(plan.unchanged)} file(s) up to date", file=sys.stderr)
-        return 0
+    if (clash := _spec_file_in(out, plan, compiled.files)) is not None:
+        verb = "remove" if clash in plan.remove else "overwrite"
+        print(f"canspec gen: {out / clash} is a file the spec reads, and this run would {verb} it; choose an output directory apart from the spec's "
+              "files; nothing written", file=sys.stderr)
+        return 1
+    return _report_check(args, out, plan, compiled, options) if args.check else _write(args, out, plan, compiled, options)
+
+
+def _report_check(args: argparse.Namespace, out: Path, plan: writer.Plan, compiled: Compiled, options: list[str]) -> int:
+    """`--check`: list what a run would change; exit 1 if anything."""
+    for rel in plan.write:
+        print(f"{'stale' if (out / rel).exists() else 'missing'}: {out / rel}")
+    for rel in plan.remove:
+        print(f"extra: {out / rel}")
+    if plan.stale:
+        print(f"canspec gen --check: {len(plan.stale)} file(s) out of date; run `canspec gen`", file=sys.stderr)
+        return 1
+    gen_record.write(args.spec, out, options, compiled.files, plan.unchanged)
+    print(f"canspec gen --check: {len(plan.unchanged)} file(s) up to date", file=sys.stderr)
+    return 0
+
+
+def _write(args: argparse.Namespace, out: Path, plan: writer.Plan, compiled: Compiled, options: list[str]) -> int:
     try:
+        if args.depfile is not None:  # first: a depfile that cannot be written stops the run before any output changes
+            depfile.write(Path(args.depfile), out / writer.MANIFEST, compiled.files)
         out.mkdir(parents=True, exist_ok=True)
         writer.clean_stale_temporaries(out)
         writer.apply(out, plan)
         if args.depfile is not None:
-            depfile.write(Path(args.depfile), out / writer.MANIFEST, compiled.files)
+            depfile.touch(out / writer.MANIFEST)
         gen_record.write(args.spec, out, options, compiled.files, [*plan.unchanged, *plan.write])
     except OSError as exc:
         print(f"canspec gen: cannot write {exc.filename or out}: {exc.strerror}; previous files left unchanged", file=sys.stderr)
@@ -74,6 +91,13 @@ def run(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(f"canspec gen: {len(plan.write)} written, {len(plan.unchanged)} unchanged, {len(plan.remove)} removed in {out}", file=sys.stderr)
     return 0
+
+
+def _spec_file_in(out: Path, plan: writer.Plan, read: Iterable[Path]) -> str | None:
+    """The output (relative to `out`) this run would write or remove that is one of the files the
+    spec's compile read: generating must never replace its own input."""
+    inputs = {os.path.realpath(p) for p in read}
+    return next((rel for rel in [*plan.write, *plan.remove] if os.path.realpath(out / rel) in inputs), None)
 
 
 def register(sub) -> None:  # type: ignore[no-untyped-def]

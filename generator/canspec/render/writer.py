@@ -10,7 +10,7 @@ import json
 import os
 import tempfile
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 MANIFEST = ".canspec-manifest.json"
 TMP_PREFIX = ".canspec-tmp-"
@@ -28,11 +28,25 @@ class Plan:
 
 
 def _read_manifest(out: Path) -> dict[str, dict[str, str]]:
+    """The files an earlier run wrote, by relative path. Only paths that stay inside `out` count:
+    the manifest is a file anyone can edit, and gen removes what it lists."""
     try:
         data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        return {k: dict(v) for k, v in data.get("files", {}).items()}
+        files = {k: dict(v) for k, v in data.get("files", {}).items()}
     except (OSError, ValueError, AttributeError, TypeError):
         return {}
+    return {rel: info for rel, info in files.items() if _inside(out, rel)}
+
+
+def _inside(out: Path, rel: str) -> bool:
+    """`rel` is a relative path without `..` whose file, symbolic links followed, lies under `out`."""
+    parts = PurePosixPath(rel).parts
+    if not parts or PurePosixPath(rel).is_absolute() or ".." in parts or "\\" in rel or ":" in parts[0]:
+        return False
+    try:
+        return (out / rel).resolve().is_relative_to(out.resolve())
+    except (OSError, RuntimeError):  # a symbolic link loop
+        return False
 
 
 def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:

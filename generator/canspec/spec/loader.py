@@ -202,11 +202,17 @@ def _load(path: Path) -> LoadedSpec:
         loaded.bundle_name = first.data.get("name")
         problems: list[Problem] = []
         files = first.data["files"]
+        listed: dict[Path, int] = {}
         for i, rel in enumerate(files):
-            if not (path.parent / rel).is_file():
+            entry = path.parent / rel
+            if not entry.is_file():
                 # Point at the bundle's entry: that is the line to fix.
-                what = "is a directory" if (path.parent / rel).is_dir() else "does not exist"
+                what = "is a directory" if entry.is_dir() else "is not a regular file" if entry.exists() else "does not exist"
                 problems.append(error(f"bundle file {rel!r} {what}", files.loc_of(i), f"paths are relative to {display_name(path.parent) or '.'}/"))
+                continue
+            first_at = listed.setdefault(entry.resolve(), i)
+            if first_at != i:
+                problems.append(error(f"bundle file {rel!r} is listed twice (also as entry {first_at + 1})", files.loc_of(i), "list each file once"))
                 continue
             try:
                 doc = _load_document(path.parent / rel)

@@ -8,6 +8,7 @@ key is an error instead of a silent overwrite.
 from __future__ import annotations
 
 import re
+import stat
 from decimal import Decimal
 from pathlib import Path
 from typing import Any
@@ -289,9 +290,11 @@ def load_yaml(path: Path, display_name: str | None = None) -> Any:
 def _read_text(path: Path, name: str) -> str:
     """The file's text (UTF-8, no BOM); a SpecError where it is too large, unreadable or empty."""
     try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise SpecError([error(f"file is {size / 2**20:.0f} MiB; spec files are limited to {MAX_FILE_BYTES >> 20} MiB", Loc(name),
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode) and not stat.S_ISDIR(info.st_mode):  # a device or FIFO: endless, or blocks on open
+            raise SpecError([error("is not a regular file (a device, pipe or socket)", Loc(name), "pass the spec's YAML file or its directory")])
+        if info.st_size > MAX_FILE_BYTES:
+            raise SpecError([error(f"file is {info.st_size / 2**20:.0f} MiB; spec files are limited to {MAX_FILE_BYTES >> 20} MiB", Loc(name),
                                    "split the spec into several files listed in a bundle")])
         raw = path.read_bytes()
     except FileNotFoundError:
