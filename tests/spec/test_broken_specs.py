@@ -157,6 +157,27 @@ def test_a_bundle_file_listed_twice(tmp_path: Path) -> None:
     check_fails("canspec.yaml", "canspec.yaml:5:5", "bundle file './can.yaml' is listed twice (also as entry 1)", cwd=tmp_path)
 
 
+@pytest.mark.parametrize(
+    "entry, where, words",
+    [
+        ("0: [off, 关, extra, more]", "12:8", "value_tables.mode.0: expected at most 2 items, got 4"),
+        ("0: []", "12:8", "value_tables.mode.0: expected at least 1 item, got 0"),
+        ("0: [1, 关]", "12:9", "value_tables.mode.0.0: expected string, got number 1"),
+        ("-1: [off, 关]", None, "value -1 (-0x1) does not fit the 2-bit field 'mode' of 'command' (0..3)"),
+    ],
+)
+def test_value_table_entries_are_judged_in_their_own_form(tmp_path: Path, entry: str, where: str | None, words: str) -> None:
+    """An entry is a label or a [name, 中文] list: a list is told what is wrong with it as a list,
+    not that it is not a string; a negative raw value is written -0x1, not 0x-1."""
+    assert "    0: [off, 关]\n" in VALID_CAN
+    (tmp_path / "vt.yaml").write_text(VALID_CAN.replace("    0: [off, 关]\n", f"    {entry}\n"), encoding="utf-8")
+    proc = run_canspec("check", "vt.yaml", cwd=tmp_path, timeout=120)
+    assert_no_traceback(proc)
+    assert proc.returncode == 1 and words in proc.stderr, proc.stderr
+    if where is not None:
+        assert proc.stderr.startswith(f"vt.yaml:{where}: error: {words}"), proc.stderr
+
+
 def test_read_errors_are_reported_in_process(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     """The EACCES/EIO path itself, independent of who runs the tests (root reads anything)."""
     from canspec import cli

@@ -119,9 +119,22 @@ def _describe(err: jsonschema.ValidationError) -> tuple[str, str | None]:
         return f"{where}: {err.instance!r} does not match {err.validator_value}", (
             "identifiers are lower_snake_case ASCII" if "a-z][a-z0-9_]" in str(err.validator_value) else None
         )
+    if v in ("minItems", "maxItems"):
+        bound = "at least" if v == "minItems" else "at most"
+        return f"{where}: expected {bound} {err.validator_value} item{'s' if err.validator_value != 1 else ''}, got {len(err.instance)}", None
     if v in ("minimum", "maximum"):
         return f"{where}: {err.instance!r} is out of range ({v} {err.validator_value})", None
     return f"{where}: {err.message}", None
+
+
+def _specific(err: jsonschema.ValidationError) -> jsonschema.ValidationError:
+    """The most specific error inside a combinator. Of oneOf/anyOf alternatives, those of another
+    type than the value are left out: a list given for "a string or a [name, 中文] list" is told
+    what is wrong with it as a list, not that it is not a string."""
+    context = list(err.context)
+    if err.validator in ("oneOf", "anyOf"):
+        context = [e for e in context if not (e.validator == "type" and len(e.relative_schema_path) == 2)] or context
+    return jsonschema.exceptions.best_match(context) or err
 
 
 def schema_problems(data: LocDict, name: str) -> list[Problem]:
@@ -150,7 +163,7 @@ def schema_problems(data: LocDict, name: str) -> list[Problem]:
     for err in errors:
         # Inside if/then and oneOf the most specific error is the useful one.
         if err.validator in ("if", "allOf", "oneOf", "anyOf") and err.context:
-            err = jsonschema.exceptions.best_match(err.context) or err
+            err = _specific(err)
         message, hint = _describe(err)
         container, key = _walk(data, err.absolute_path)
         loc = (container.loc_of(key) if key is not None else container.loc) if isinstance(container, (LocDict, LocList)) else top

@@ -253,8 +253,9 @@ def value_fit(can: ResolvedCan) -> Iterator[Problem]:
                     continue
                 for raw in table:
                     if not tmin <= raw <= tmax:
+                        hex_raw = f"{'-' if raw < 0 else ''}0x{abs(raw):X}"
                         yield error(
-                            f"{what} {raw} (0x{raw:X}) does not fit the {sig['len']}-bit field {sig['name']!r} of {msg['name']!r} ({tmin}..{tmax})",
+                            f"{what} {raw} ({hex_raw}) does not fit the {sig['len']}-bit field {sig['name']!r} of {msg['name']!r} ({tmin}..{tmax})",
                             sig.loc_of("values" if what == "value" else "special"), "widen the field or drop the value", "value-out-of-field")
             if sig["role"] == "reserved" and any(k in sig for k in ("values", "special", "range")):
                 yield warning(f"reserved field {sig['name']!r} has values or a range", sig.loc, "reserved bits carry no meaning", "reserved-with-meaning")
