@@ -300,3 +300,19 @@ def test_gen_never_replaces_a_file_the_spec_reads(tmp_path: Path, target: str, r
     assert proc.returncode == 1
     assert f"canspec gen: {tmp_path / 'out' / rel} is a file the spec reads, and this run would overwrite it" in proc.stderr, proc.stderr
     assert snapshot(tmp_path / "out") == before
+
+
+def test_a_failed_run_leaves_no_folders_behind(tmp_path: Path) -> None:
+    """Where one output cannot be placed (a file stands where the python/ folder goes), the run
+    fails and the folders it had made for the other targets are gone again, the output folder too."""
+    out = tmp_path / "new" / "out"
+    out.mkdir(parents=True)
+    (out / "python").write_text("in the way\n")
+    proc = run_canspec("gen", "-o", out)
+    assert_no_traceback(proc)
+    assert proc.returncode == 1 and "previous files left unchanged" in proc.stderr, proc.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["python"]
+    (out / "python").unlink()
+    out.rmdir()
+    proc = run_canspec("gen", "-o", out / "deeper", "-t", "dbc")  # missing parents are made as before
+    assert proc.returncode == 0 and (out / "deeper" / ".canspec-manifest.json").is_file(), proc.stderr

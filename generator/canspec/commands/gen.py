@@ -79,7 +79,6 @@ def _write(args: argparse.Namespace, out: Path, plan: writer.Plan, compiled: Com
     try:
         if args.depfile is not None:  # first: a depfile that cannot be written stops the run before any output changes
             depfile.write(Path(args.depfile), out / writer.MANIFEST, compiled.files)
-        out.mkdir(parents=True, exist_ok=True)
         writer.clean_stale_temporaries(out)
         writer.apply(out, plan)
         if args.depfile is not None:

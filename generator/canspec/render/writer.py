@@ -5,6 +5,7 @@ files a previous run generated but this one does not are removed (tracked in a m
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -80,10 +81,12 @@ def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:
 
 def apply(out: Path, p: Plan) -> None:
     staged: list[tuple[str, Path]] = []
+    created: list[Path] = []  # folders this run made: removed again when staging fails
     try:
+        _make_dirs(out, created)
         for rel, data in p.write.items():
             target = out / rel
-            target.parent.mkdir(parents=True, exist_ok=True)
+            _make_dirs(target.parent, created)
             fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, dir=target.parent)
             staged.append((rel, Path(tmp)))
             with os.fdopen(fd, "wb") as fh:
@@ -94,6 +97,9 @@ def apply(out: Path, p: Plan) -> None:
     except BaseException:
         for _, tmp in staged:
             tmp.unlink(missing_ok=True)
+        for folder in reversed(created):
+            with contextlib.suppress(OSError):
+                folder.rmdir()
         raise
     # The manifest goes last so it never describes files that are not in place yet.
     staged.sort(key=lambda item: item[0] == MANIFEST)
@@ -101,6 +107,17 @@ def apply(out: Path, p: Plan) -> None:
         os.replace(tmp, out / rel)
     for rel in p.remove:
         (out / rel).unlink(missing_ok=True)
+
+
+def _make_dirs(folder: Path, created: list[Path]) -> None:
+    """mkdir -p, noting in `created` each folder it made, outermost first."""
+    missing = []
+    while not folder.is_dir() and folder != folder.parent:
+        missing.append(folder)
+        folder = folder.parent
+    for new in reversed(missing):
+        new.mkdir()
+        created.append(new)
 
 
 def clean_stale_temporaries(out: Path) -> None:
