@@ -90,7 +90,11 @@ def test_the_pinned_clang_format_wheel_comes_before_path(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize(
     ("line", "warned"),
-    [("Ubuntu clang-format version 15.0.7", True), ("clang-format version 14.0.6 (https://github.com/ssciwr/clang-format-wheel)", False), ("no version here", False)],
+    [
+        ("Ubuntu clang-format version 15.0.7", True),
+        ("clang-format version 14.0.6 (https://github.com/ssciwr/clang-format-wheel)", False),
+        ("no version here", False),
+    ],
 )
 def test_another_formatter_version_is_a_warning(tmp_path, line, warned):
     note = _fake(tmp_path, line).version_note()
