@@ -6,7 +6,8 @@ written frame by frame in log order. Unknown IDs, malformed lines, wrong lengths
 mismatches go to stderr as `FILE:LINE: problem` and are counted; one summary line per input
 ends the run. Exit status: 2 when an input cannot be read (or is not in its format), 1 when an
 input has nothing decodable (or, with --strict, any problem), else 0. Nothing in a log makes it
-crash; a closed stdout ends it quietly."""
+crash; a closed stdout ends it quietly. `-o FILE` is replaced only by a run that exits 0 or 1
+(commands/outfile.py): after exit 2 the old file is as it was."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ import os
 import sys
 from typing import IO
 
+from canspec.commands import outfile
 from canspec.commands.logrun import EXTRA_HINT, PROBLEM_KINDS, add_input_arguments, each_chunk, load_protocol, summarize
 
 FORMATS = ("text", "json", "csv", "parquet")
@@ -71,12 +73,30 @@ def run(args: argparse.Namespace) -> int:
     if args.report and args.format not in ("text", "json"):
         print("canspec decode: --report is text or json", file=sys.stderr)
         return 2
+    if args.format == "parquet" and (problem := outfile.directory_problem(args.output)):
+        print(f"canspec decode: cannot write {args.output}: {problem}", file=sys.stderr)
+        return 2
     decoder = Decoder(can.messages, raw=args.raw)
+    target = outfile.OutputFile(args.output) if args.output and args.format != "parquet" else None
     try:
-        out: IO[str] = open(args.output, "w", encoding="utf-8") if args.output and args.format != "parquet" else sys.stdout  # noqa: SIM115
+        out: IO[str] = target.open() if target is not None else sys.stdout
     except OSError as exc:
         print(f"canspec decode: cannot write {args.output}: {exc.strerror}", file=sys.stderr)
         return 2
+    status = 2  # an exception (an internal error, Ctrl-C) keeps the old output file
+    try:
+        status = _decode(args, can, decoder, out)
+    finally:
+        if target is not None:
+            try:
+                target.finish(out, keep=status < 2)  # exit 2: an input was unreadable, the output is not complete
+            except OSError as exc:
+                print(f"canspec decode: cannot write {args.output}: {exc.strerror or exc}", file=sys.stderr)
+                status = 2
+    return status
+
+
+def _decode(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # type: ignore[no-untyped-def]
     try:
         if args.report:
             return _report(args, can, decoder, out)
@@ -89,9 +109,6 @@ def run(args: argparse.Namespace) -> int:
     except BrokenPipeError:  # `canspec decode big.log | head`: stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
-    finally:
-        if out is not sys.stdout:
-            out.close()
 
 
 def register(sub) -> None:  # type: ignore[no-untyped-def]

@@ -43,8 +43,10 @@ def _start_time(header: tuple[int, ...]) -> float:
         return 0.0
 
 
-def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int]]:
-    """(batch, objects walked) per bulk step."""
+def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int, list[tuple[int, str]]]]:
+    """(batch, objects walked, problems as (record, text)) per bulk step. A file that ends inside
+    an object, or an object that claims more bytes than follow, is one problem (the frames before
+    it are read): python-can drops the rest silently."""
     head = stream.read(FILE_HEADER.size)
     if len(head) < FILE_HEADER.size:
         raise BlfError("truncated BLF file header")
@@ -53,7 +55,7 @@ def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int]]:
         raise BlfError(f"BLF file header of {header[1]} bytes (at least {FILE_HEADER.size})")
     stream.read(header[1] - FILE_HEADER.size)
     start = _start_time(header)
-    pending, size, tail, record = [], 0, b"", 0
+    pending, size, tail, record, at, cut = [], 0, b"", 0, header[1], ""
     while True:
         base = stream.read(OBJ_BASE.size)
         if base:
@@ -62,7 +64,10 @@ def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int]]:
             _, _, _, obj_size, obj_type = OBJ_BASE.unpack(base)
             body = stream.read(obj_size - OBJ_BASE.size)
             stream.read(obj_size % 4)
-            if obj_type != LOG_CONTAINER:
+            if len(body) < obj_size - OBJ_BASE.size:
+                cut = f"truncated BLF file: it ends inside the object at byte {at} ({obj_size - OBJ_BASE.size - len(body)} of its {obj_size} bytes missing)"
+            at += obj_size + obj_size % 4
+            if obj_type != LOG_CONTAINER or len(body) < CONTAINER.size:
                 continue
             method, _ = CONTAINER.unpack_from(body)
             if method == NO_COMPRESSION:
@@ -79,9 +84,23 @@ def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int]]:
         batch, consumed = _objects(buf, start, record)
         tail = buf[consumed:]
         record += len(batch)
-        yield batch, len(batch)
-        if not base:
+        # the end of the file, or an object longer than a bulk step (a bad size: memory would grow to it)
+        lost = cut or _incomplete(tail, not base or len(tail) > BUFFER_BYTES)
+        yield batch, len(batch), [(record + 1, lost)] if lost else []
+        if not base or lost:
             return
+
+
+def _incomplete(tail: bytes, final: bool) -> str:
+    """What is wrong with the object left over at the start of `tail` once nothing more comes ("" if
+    nothing: up to 8 bytes of padding)."""
+    found = tail.find(b"LOBJ", 0, 8)
+    if not final or found < 0:
+        return ""
+    if len(tail) - found < OBJ_BASE.size:
+        return f"a BLF object header is cut short; the rest of the file ({len(tail)} bytes) is not read"
+    claimed = OBJ_BASE.unpack_from(tail, found)[3]
+    return f"a BLF object claims {claimed} bytes but {len(tail) - found} follow; the rest of the file ({len(tail)} bytes) is not read"
 
 
 def _walk(buf: bytes) -> tuple[list[int], list[int], list[int], list[int], int]:

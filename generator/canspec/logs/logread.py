@@ -20,7 +20,7 @@ from typing import IO, Any
 
 import numpy as np
 
-from canspec.ir.ids import MAX_EXTENDED_ID
+from canspec.ir.ids import MAX_EXTENDED_ID, max_id
 from canspec.logs import frames as fr
 from canspec.logs.candump import DATA, ERROR, REMOTE, Frame
 from canspec.logs.candump_bulk import read_chunk
@@ -174,39 +174,75 @@ def _binary(reader: Any) -> Any:
 def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
     from canspec.logs.blf_bulk import read_blf
 
-    for batch, objects in read_blf(stream):
-        yield Chunk(batch, [], objects)
+    for batch, objects, problems in read_blf(stream):
+        yield Chunk(batch, problems, objects)
 
 
 def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
     """ASC and TRC through python-can: batches of its messages turned into columns. The
-    text readers see a line-counting file, so frames carry their line numbers."""
+    text readers see a line-counting file, so frames carry their line numbers. A record the
+    reader cannot parse, or whose ID does not fit, is one malformed problem at its line and
+    reading goes on with the next line, as for a candump line; a header it cannot parse makes
+    the file unreadable."""
     can = _import_can()
-    counter = _LineCounter(stream) if fmt in TEXT_FORMATS else None
+    counter = _LineCounter(stream)
     kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
-    reader_cls = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt]
-    reader = reader_cls(counter if counter is not None else stream, **kwargs)
+    reader = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt](counter, **kwargs)
+    header = _HeaderOnce(reader)
     frames: list[Frame] = []
     lines: list[int] = []
-    record = done = 0
-    try:
-        for msg in reader:
-            record += 1
-            kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
-            channel = None if msg.channel is None else str(msg.channel)
-            flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
-            data = bytes(msg.data) if kind == DATA else b""
-            frames.append(Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, data, kind, flags))
-            lines.append(counter.line if counter is not None else record)
-            if len(frames) == CHUNK_FRAMES:
-                yield Chunk(fr.from_frames(frames, lines), [], lines[-1] - done)
-                done, frames, lines = lines[-1], [], []
-    except Exception as exc:  # noqa: BLE001 - a reader's parse error: the rest of the file cannot be read
-        at = counter.line if counter is not None else record + 1
-        yield Chunk(fr.from_frames(frames, lines), [(at, f"unreadable {fmt.upper()} record ({type(exc).__name__}: {exc}); the rest of the file is not read")])
-        return
-    end = counter.line if counter is not None else record
-    yield Chunk(fr.from_frames(frames, lines), [], end - done)
+    problems: list[tuple[int, str]] = []
+    done, failed_at = 0, -1
+    while True:
+        try:
+            for msg in reader:  # after a bad record: a new pass over the same reader, from the next line
+                frame = _frame(msg)
+                if isinstance(frame, str):
+                    problems.append((counter.line, f"malformed line: {frame}: {counter.text}"))
+                    continue
+                frames.append(frame)
+                lines.append(counter.line)
+                if len(frames) == CHUNK_FRAMES:
+                    yield Chunk(fr.from_frames(frames, lines), problems, counter.line - done)
+                    done, frames, lines, problems = counter.line, [], [], []
+            break
+        except Exception as exc:  # noqa: BLE001 - the reader's parse error on one record (or the header)
+            what = f"{type(exc).__name__}: {str(exc).strip()}"
+            if not header.done:
+                raise InputError(f"not a readable {fmt.upper()} file ({what})") from None
+            if counter.line == failed_at:  # failed again without reading a line: nothing left to resume
+                problems.append((counter.line, f"unreadable {fmt.upper()} file ({what}); the rest of the file is not read"))
+                break
+            failed_at = counter.line
+            problems.append((counter.line, f"malformed line: unreadable {fmt.upper()} record ({what}): {counter.text}"))
+    yield Chunk(fr.from_frames(frames, lines), problems, counter.line - done)
+
+
+class _HeaderOnce:
+    """Makes a python-can text reader parse its header only on its first pass, so a second pass
+    (after a bad record ended the first) resumes at the next record with the header's settings."""
+
+    def __init__(self, reader: Any) -> None:
+        self.reader, self.parse, self.done = reader, reader._extract_header, False
+        reader._extract_header = self
+
+    def __call__(self) -> Any:
+        if self.done:
+            return None  # TRC: no first line to parse again
+        first = self.parse()
+        self.done = True
+        return first
+
+
+def _frame(msg: Any) -> Frame | str:
+    """A python-can message as a Frame; what is wrong with it when it cannot be one."""
+    if msg.arbitration_id > max_id(msg.is_extended_id) or msg.arbitration_id < 0:  # python-can does not check
+        return f"frame ID {msg.arbitration_id:X} does not fit {29 if msg.is_extended_id else 11} bits"
+    kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
+    channel = None if msg.channel is None else str(msg.channel)
+    flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
+    data = bytes(msg.data) if kind == DATA else b""
+    return Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, data, kind, flags)
 
 
 def _import_can() -> Any:
@@ -228,7 +264,12 @@ class _LineCounter(io.TextIOBase):
     """A text view of a byte stream that counts the lines handed out."""
 
     def __init__(self, stream: IO[bytes]) -> None:
-        self.stream, self.line = stream, 0
+        self.stream, self.line, self.last = stream, 0, ""
+
+    @property
+    def text(self) -> str:
+        """The last line handed out, as a problem quotes it (like a malformed candump line)."""
+        return repr(self.last.strip()[:80])
 
     def __iter__(self) -> _LineCounter:
         return self
@@ -238,7 +279,8 @@ class _LineCounter(io.TextIOBase):
         if not raw:
             raise StopIteration
         self.line += 1
-        return raw.decode("utf-8", errors="replace")
+        self.last = raw.decode("utf-8", errors="replace")
+        return self.last
 
     def readline(self, size: int = -1) -> str:  # type: ignore[override]
         try:
