@@ -44,6 +44,8 @@ CASES = [
      {("message_receivers_changed", "compatible", None)}),
     ("message_title_changed", [("    title: Status\n    zh: 状态\n", "    title: Status frame\n    zh: 状态报文\n")],
      {("message_title_changed", "docs", None)}),
+    ("message_description_changed", [("    title: Command\n    zh: 命令\n", "    title: Command\n    zh: 命令\n    desc: Sent every cycle.\n")],
+     {("message_description_changed", "docs", None)}),
     ("message_checksum_changed", [("start: 56, len: 8, range: [0, 255], role: checksum}", "start: 56, len: 8, range: [0, 255]}")],
      {("message_checksum_changed", "wire", None), ("signal_role_changed", "wire", "checksum")}),
     ("signal_added_in_reserved_bits", [("      - {role: reserved, start: 2, len: 6}\n",

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import cantools
 import pytest
 from canspec.diff.inputs import load_model
@@ -115,3 +117,17 @@ def _mutated_text(source, tmp_path, old: str, new: str):
     path = tmp_path / "edited.dbc"
     path.write_text(text.replace(old, new), encoding="utf-8")
     return path
+
+
+def test_two_dbcs_compare_their_comments(tmp_path):
+    """Between two databases the comments are compared (class docs); between a spec and its DBC they
+    are not: the DBC's comments are composed from the spec's names and descriptions."""
+    dbc = _mutated(tmp_path, 'CM_ BO_ 2550247584 "智能控制器 EPS 命令 | AUTOCAR EPS Command | §3.1";',
+                   'CM_ BO_ 2550247584 "智能控制器 EPS 命令 | AUTOCAR EPS Command | §3.1 (edited)";')
+    text = dbc.read_text(encoding="utf-8").replace('counter "心跳值 | 每次递增加1";', 'counter "心跳值 | 每次加1";', 1)
+    dbc.write_text(text, encoding="utf-8")
+    code, out, _ = run_cli("diff", DBC, dbc, "--format", "json")
+    changes = {(c["kind"], c["class"], c.get("signal")) for c in json.loads(out)["changes"]}
+    assert code == 0 and changes == {("message_description_changed", "docs", None), ("signal_description_changed", "docs", "counter")}, out
+    code, out, _ = run_cli("diff", SPEC, DBC, "--format", "json")
+    assert code == 0 and not [c for c in json.loads(out)["changes"] if c["kind"].endswith("description_changed")], out

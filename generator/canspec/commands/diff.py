@@ -21,7 +21,7 @@ import sys
 
 from canspec.diff.classes import FAIL_ON
 from canspec.diff.compare import compare
-from canspec.diff.inputs import InputError, load_model
+from canspec.diff.inputs import InputError, is_database, load_model
 from canspec.diff.report import FORMATS as TEXT_FORMATS
 from canspec.diff.report_html import html
 
@@ -30,8 +30,9 @@ FORMATS = {**TEXT_FORMATS, "html": html}
 
 def run(args: argparse.Namespace) -> int:
     try:
-        old = load_model(args.old)
-        new = load_model(args.new)
+        comments = is_database(args.old) and is_database(args.new)  # a spec's descriptions are not its DBC's comments
+        old = load_model(args.old, comments)
+        new = load_model(args.new, comments)
     except InputError as exc:
         print(f"canspec diff: {exc}", file=sys.stderr)
         return 2

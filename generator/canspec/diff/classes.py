@@ -32,6 +32,7 @@ KINDS: dict[str, str] = {
     "message_fd_changed": "wire",  # a classic controller cannot receive an FD frame (nor sends one where FD is expected)
     "message_brs_changed": "compatible",  # timing only: see the ladder above
     "message_title_changed": "docs",
+    "message_description_changed": "docs",
     "signal_added": "wire",  # compatible when its bits were free (reserved or unused) before
     "signal_removed": "wire",
     "signal_renamed": "source",

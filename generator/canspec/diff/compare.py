@@ -199,6 +199,8 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_checksum_changed", n, None, f"checksum {_checksum_text(o)} → {_checksum_text(n)}", None, None)
     if both_specs and o.multiframe != n.multiframe:
         c.add("message_multiframe_changed", n, None, "multi-frame text layout changed", _plain(o.multiframe), _plain(n.multiframe))
+    if _both(o.desc, n.desc) and o.desc != n.desc:
+        c.add("message_description_changed", n, None, "description changed", o.desc, n.desc)
     for attr in ("title", "zh"):
         a, b = getattr(o, attr), getattr(n, attr)
         if _both(a, b) and a != b:

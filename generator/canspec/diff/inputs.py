@@ -26,12 +26,17 @@ class InputError(Exception):
     """A diff input that cannot be read: the message says what and how to fix it."""
 
 
-def load_model(arg: str) -> ProtocolModel:
+def is_database(arg: str) -> bool:
+    return Path(arg).is_file() and Path(arg).suffix.lower() in DATABASES
+
+
+def load_model(arg: str, comments: bool = False) -> ProtocolModel:
+    """`comments`: a database's comments are compared (both inputs are databases)."""
     path = Path(arg)
     if not path.exists():
         raise InputError(f"{arg}: no such file or directory (pass a spec bundle, spec directory or a {', '.join(DATABASES)} file)")
-    if path.is_file() and path.suffix.lower() in DATABASES:
-        return _database(path, arg)
+    if is_database(arg):
+        return _database(path, arg, comments)
     if path.is_file() and path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError(f"{arg}: not a spec (.yaml) or database ({', '.join(DATABASES)}) file")
     return from_spec(_compiled(path, arg, f"run `canspec check {arg}`"), arg)
@@ -48,7 +53,7 @@ def _compiled(path: Path, arg: str, hint: str):  # type: ignore[no-untyped-def]
     return compiled.spec
 
 
-def _database(path: Path, arg: str) -> ProtocolModel:
+def _database(path: Path, arg: str, comments: bool) -> ProtocolModel:
     try:
         import cantools  # noqa: F401 - the import extra: reading databases needs it
     except ImportError as exc:
@@ -74,7 +79,7 @@ def _database(path: Path, arg: str) -> ProtocolModel:
         yaml_path = Path(tmp) / "spec.yaml"
         yaml_path.write_text(dump_with_lines(spec, [])[0], encoding="utf-8")
         ir_spec = _compiled(yaml_path, arg, f"run `canspec import {arg}` and `canspec check` on the result")
-    return from_database(ir_spec, loaded, arg)
+    return from_database(ir_spec, loaded, arg, comments)
 
 
 def _where(warning: tuple[str, int | None, str]) -> str:

@@ -80,6 +80,7 @@ class MessageModel:
     loc: Loc | None = None
     fd: bool = False  # a CAN FD frame (FDF)
     brs: bool | None = False  # bit-rate switching of an FD frame; None: the source does not say
+    desc: str | None = None  # None: the source's description is not compared (see diff/fromdb.py)
 
     @property
     def used_bits(self) -> frozenset[int]:
@@ -145,7 +146,7 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
                 frame_id=msg.frame_id, extended=msg.is_extended, name=msg.name, title=msg.title, zh=msg.zh, dlc=msg.dlc,
                 cycle_ms=msg.cycle_ms, sender=msg.sender, receivers=tuple(sorted(msg.receivers)),
                 signals=tuple(_signal(s) for s in msg.signals if not s.is_reserved), checksum=checksum,
-                multiframe=multiframe, loc=msg.loc, fd=msg.is_fd, brs=msg.brs,
+                multiframe=multiframe, loc=msg.loc, fd=msg.is_fd, brs=msg.brs, desc=msg.desc,
             )
         )
     name = spec.can.name if spec.can is not None else spec.name
