@@ -316,3 +316,17 @@ def test_a_failed_run_leaves_no_folders_behind(tmp_path: Path) -> None:
     out.rmdir()
     proc = run_canspec("gen", "-o", out / "deeper", "-t", "dbc")  # missing parents are made as before
     assert proc.returncode == 0 and (out / "deeper" / ".canspec-manifest.json").is_file(), proc.stderr
+
+
+def test_an_unreadable_manifest_is_said_and_replaced(tmp_path: Path) -> None:
+    """Without a readable manifest gen cannot know which files an earlier run wrote: it says so,
+    removes nothing, and writes a good manifest again."""
+    spec = ROOT / "tests" / "fixtures" / "valid" / "minimal_can.yaml"
+    out = tmp_path / "out"
+    assert run_canspec("gen", spec, "-o", out, "-t", "dbc").returncode == 0
+    (out / ".canspec-manifest.json").write_text("{not json", encoding="utf-8")
+    proc = run_canspec("gen", spec, "-o", out, "-t", "dbc")
+    assert proc.returncode == 0, proc.stderr
+    assert (f"canspec gen: warning: {out / '.canspec-manifest.json'} cannot be read as canspec's manifest: files an earlier run wrote "
+            "and this one does not are left in place") in proc.stderr, proc.stderr
+    assert "dbc/fixture.dbc" in json.loads((out / ".canspec-manifest.json").read_text(encoding="utf-8"))["files"]

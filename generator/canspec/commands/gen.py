@@ -53,6 +53,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"canspec gen: {out} exists and is not a directory", file=sys.stderr)
         return 1
     plan = writer.plan(out, outputs)
+    for note in plan.notes:
+        print(f"canspec gen: warning: {note}", file=sys.stderr)
     if (clash := _spec_file_in(out, plan, compiled.files)) is not None:
         verb = "remove" if clash in plan.remove else "overwrite"
         print(f"canspec gen: {out / clash} is a file the spec reads, and this run would {verb} it; choose an output directory apart from the spec's "

@@ -22,19 +22,23 @@ class Plan:
     write: dict[str, bytes] = field(default_factory=dict)  # new or changed
     unchanged: list[str] = field(default_factory=list)
     remove: list[str] = field(default_factory=list)  # generated before, not now
+    notes: list[str] = field(default_factory=list)  # what the user should know (an unreadable manifest)
 
     @property
     def stale(self) -> list[str]:
         return sorted([*self.write, *self.remove])
 
 
-def _read_manifest(out: Path) -> dict[str, dict[str, str]]:
+def _read_manifest(out: Path, notes: list[str]) -> dict[str, dict[str, str]]:
     """The files an earlier run wrote, by relative path. Only paths that stay inside `out` count:
     the manifest is a file anyone can edit, and gen removes what it lists."""
     try:
         data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
         files = {k: dict(v) for k, v in data.get("files", {}).items()}
+    except FileNotFoundError:
+        return {}
     except (OSError, ValueError, AttributeError, TypeError):
+        notes.append(f"{out / MANIFEST} cannot be read as canspec's manifest: files an earlier run wrote and this one does not are left in place")
         return {}
     return {rel: info for rel, info in files.items() if _inside(out, rel)}
 
@@ -53,7 +57,8 @@ def _inside(out: Path, rel: str) -> bool:
 def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:
     """What writing `outputs` (target name → relative path → bytes) into `out` would change.
     Files an earlier run generated for one of these targets, and this run does not, are stale."""
-    owned = _read_manifest(out)
+    notes: list[str] = []
+    owned = _read_manifest(out, notes)
     targets = set(outputs)
     manifest = {k: v for k, v in owned.items() if v.get("target") not in targets}
     files: dict[str, bytes] = {}
@@ -63,7 +68,7 @@ def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:
             manifest[rel] = {"sha256": hashlib.sha256(data).hexdigest(), "target": target}
     everything = dict(files)
     everything[MANIFEST] = (json.dumps({"generator": "canspec", "files": dict(sorted(manifest.items()))}, indent=1, sort_keys=True) + "\n").encode()
-    p = Plan()
+    p = Plan(notes=notes)
     for rel, data in sorted(everything.items()):
         try:
             same = (out / rel).read_bytes() == data
