@@ -9,7 +9,7 @@ from pathlib import Path
 
 import cantools
 import pytest
-from canspec_cli import FIXTURES, run_canspec
+from canspec_cli import FIXTURES, assert_no_traceback, run_canspec
 
 DIRTY = """VERSION ""
 
@@ -194,3 +194,85 @@ def test_a_multiplexed_dbc_comes_back_as_it_was(tmp_path: Path) -> None:
                     b.get_message_by_frame_id(m.frame_id).decode(data, decode_choices=False)
                 continue
             assert b.get_message_by_frame_id(m.frame_id).decode(data, decode_choices=False) == want
+
+
+def _dbc(tmp_path: Path, name: str, body: str) -> Path:
+    path = tmp_path / name
+    path.write_text(f'VERSION ""\n\nNS_ :\n\nBS_:\n\nBU_: ECU CTRL\n\n{body}', encoding="utf-8")
+    return path
+
+
+COMMAND = 'BO_ 2550247584 command: 8 CTRL\n SG_ mode : 0|2@1+ (1,0) [0|1] "" ECU\n'
+
+
+def test_two_signals_of_one_name_in_a_message_are_refused_naming_both_lines(tmp_path: Path) -> None:
+    """CM_ and VAL_ name a signal by its name: with two `mode`s which one they mean has no reading
+    (this ended in an internal KeyError in import and in diff)."""
+    dup = _dbc(tmp_path, "dup.dbc", COMMAND + ' SG_ mode : 8|16@1+ (0.1,-100) [-100|100] "km/h" ECU\n\nVAL_ 2550247584 mode 0 "off" 1 "on" ;\n')
+    says = f"{dup}:11: message command has two signals named mode (lines 10 and 11)"
+    r = run_canspec("import", dup, "-o", tmp_path / "out")
+    assert r.returncode == 1 and r.stderr.startswith(f"canspec import: {says}") and "hint:" in r.stderr, r.stderr
+    assert_no_traceback(r)
+    assert not (tmp_path / "out").exists()
+    base = _dbc(tmp_path, "base.dbc", COMMAND)
+    r = run_canspec("diff", base, dup)
+    assert r.returncode == 2 and f"canspec diff: {says}" in r.stderr, r.stderr
+    assert_no_traceback(r)
+
+
+def test_an_sg_line_repeated_word_for_word_is_dropped_with_a_warning(tmp_path: Path) -> None:
+    twice = _dbc(tmp_path, "twice.dbc", COMMAND + COMMAND.splitlines()[1] + "\n")
+    r = run_canspec("import", twice, "-o", tmp_path / "out")
+    assert r.returncode == 0 and f"{twice}:11: warning: SG_ line of signal mode repeats line 10 of message command word for word: dropped" \
+        in r.stderr, r.stderr
+    assert (tmp_path / "out" / "twice.yaml").read_text(encoding="utf-8").count("{name: mode,") == 1
+
+
+def test_a_cycle_time_that_is_not_a_number_is_a_warning_at_its_ba_line(tmp_path: Path) -> None:
+    """GenMsgCycleTime defined as STRING holds text: no cycle time (this was an internal ValueError)."""
+    weird = _dbc(tmp_path, "weird.dbc", COMMAND + '\nBA_DEF_ BO_ "GenMsgCycleTime" STRING ;\nBA_DEF_DEF_ "GenMsgCycleTime" "abc";\n'
+                 'BA_ "GenMsgCycleTime" BO_ 2550247584 "fast";\n')
+    r = run_canspec("import", weird, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    assert f"{weird}:14: warning: GenMsgCycleTime of message command is 'fast', not a number of milliseconds: " \
+           "message taken without a cycle time" in r.stderr, r.stderr
+    assert "cycle_ms" not in (tmp_path / "out" / "weird.yaml").read_text(encoding="utf-8")
+
+
+def test_an_output_that_is_a_file_is_one_error_line_and_nothing_written(tmp_path: Path) -> None:
+    dbc, afile = _dbc(tmp_path, "base.dbc", COMMAND), tmp_path / "afile"
+    afile.write_bytes(b"")
+    for out, says in ((afile, f"-o {afile}: exists and is not a directory"), (afile / "sub", f"cannot write {afile / 'sub'}: ")):
+        r = run_canspec("import", dbc, "-o", out)
+        assert r.returncode == 1 and f"canspec import: {says}" in r.stderr, r.stderr
+        assert_no_traceback(r)
+    assert afile.read_bytes() == b""
+
+
+def test_files_import_did_not_write_or_that_were_edited_are_kept_unless_forced(tmp_path: Path) -> None:
+    """Another spec's canspec.yaml, or an imported spec edited since, is not replaced without
+    --force; the same import again, or a changed source over an unedited import, replaces."""
+    dbc, out = _dbc(tmp_path, "base.dbc", COMMAND), tmp_path / "out"
+    out.mkdir()
+    (out / "canspec.yaml").write_text("kind: bundle\n", encoding="utf-8")
+    r = run_canspec("import", dbc, "-o", out)
+    assert r.returncode == 1 and "canspec.yaml already there, not written by canspec import or edited since: nothing written" in r.stderr
+    assert "--force" in r.stderr and [p.name for p in out.iterdir()] == ["canspec.yaml"]
+    assert run_canspec("import", "--force", dbc, "-o", out).returncode == 0
+    assert run_canspec("import", dbc, "-o", out).returncode == 0  # the same import again
+    dbc.write_text(dbc.read_text(encoding="utf-8").replace("mode", "state"), encoding="utf-8")
+    assert run_canspec("import", dbc, "-o", out).returncode == 0  # a changed source over an unedited import
+    spec = out / "base.yaml"
+    assert "state" in spec.read_text(encoding="utf-8")
+    spec.write_text(spec.read_text(encoding="utf-8") + "# my note\n", encoding="utf-8")
+    r = run_canspec("import", dbc, "-o", out)
+    assert r.returncode == 1 and "base.yaml already there" in r.stderr and spec.read_text(encoding="utf-8").endswith("# my note\n")
+    assert run_canspec("import", "--force", dbc, "-o", out).returncode == 0 and "# my note" not in spec.read_text(encoding="utf-8")
+
+
+def test_a_protocol_named_canspec_keeps_its_spec_beside_the_bundle(tmp_path: Path) -> None:
+    dbc = _dbc(tmp_path, "canspec.dbc", COMMAND)
+    assert run_canspec("import", dbc, "-o", tmp_path / "out").returncode == 0
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["canspec.yaml", "canspec_spec.yaml"]
+    checked = run_canspec("check", tmp_path / "out")
+    assert checked.returncode == 0 and "1 messages" in checked.stderr, checked.stderr

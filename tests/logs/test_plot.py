@@ -69,3 +69,32 @@ def test_unknown_signal_and_missing_log(drive):
     assert proc.returncode == 2 and "no signal matches 'no_such_*'" in proc.stderr and "Traceback" not in proc.stderr
     proc = subprocess.run([sys.executable, "-m", "canspec", "plot", "missing.blf", "accel_cmd"], capture_output=True, text=True, env=CANSPEC_ENV, check=False)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
+
+
+def _plot(*args):
+    return subprocess.run([sys.executable, "-m", "canspec", "plot", *map(str, args)], capture_output=True, text=True, env=CANSPEC_ENV, check=False, timeout=120)
+
+
+@pytest.mark.parametrize(("args", "says"), [
+    (["--dpi", "100000"], "argument --dpi: 100000 is not in 1..600"),  # was std::bad_alloc, an internal error
+    (["--dpi", "0"], "argument --dpi: 0 is not in 1..600"),
+    (["--start", "nan"], "argument --start: nan is not a finite number"),  # was an empty plot, exit 0
+    (["--stop", "inf"], "argument --stop: inf is not a finite number"),
+    (["--start", "5", "--stop", "1"], "--start 5 is not before --stop 1: nothing to plot"),
+])
+def test_arguments_no_plot_can_have_are_refused(drive, tmp_path, args, says):
+    log, _ = drive
+    proc = _plot(log, "accel_*", "-o", tmp_path / "c.png", *args)
+    assert proc.returncode == 2 and says in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
+    assert not (tmp_path / "c.png").exists()
+
+
+def test_a_window_without_frames_and_an_image_too_large_are_refused(drive, tmp_path):
+    """A window past the log's end would be an empty plot (a dead bus, to the reader); one panel
+    per signal at 600 dpi is more pixels than the renderer can allocate."""
+    log, _ = drive
+    proc = _plot(log, "accel_*", "-o", tmp_path / "c.png", "--start", "1000")
+    assert proc.returncode == 1 and "the chosen signals have no frame from 1000 s to the end of the logs" in proc.stderr, proc.stderr
+    proc = _plot(log, "*", "--stack", "-o", tmp_path / "c.png", "--dpi", "600")
+    assert proc.returncode == 2 and "pixel image at --dpi 600 is more than 50,000,000 pixels (hint: a lower --dpi" in proc.stderr, proc.stderr
+    assert "Traceback" not in proc.stderr and not (tmp_path / "c.png").exists()

@@ -8,6 +8,8 @@ The measured periods are written to build/simulate/periods.json."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 import threading
 import time
 import uuid
@@ -17,7 +19,7 @@ import pytest
 from canspec import cli
 from canspec.runtime import supervision
 from canspec.runtime.simulate import RestBus, SimFault, SimulationError
-from repo_paths import ROOT
+from repo_paths import CANSPEC_ENV, ROOT
 
 from targets.python import pkgpath  # noqa: F401  (puts the generated package on sys.path)
 from runtime.test_sequences import spec_ir
@@ -215,3 +217,17 @@ def test_a_multiplexed_message_sends_the_page_its_multiplexers_select():
     assert [set(s) - {"mode", "status", "counter"} for s in seen] == [{"temperature"}, {"pressure", "level"}, {"channel", "gain"}, {"channel", "voltage"}]
     assert (seen[0]["temperature"], seen[1]["pressure"], seen[1]["level"], seen[2]["gain"]) == (-12.5, 1000.5, 7, 3)
     assert seen[3]["voltage"] == pytest.approx(12.34) and seen[3]["channel"] == 3
+
+
+@pytest.mark.parametrize(("args", "says"), [
+    (["--duration", "1e400"], "argument --duration: 1e400 is not a finite number"),  # was an internal OverflowError
+    (["--duration", "nan"], "argument --duration: nan is not a finite number"),  # nan and -1 ran one frame, exit 0
+    (["--duration", "-1"], "argument --duration: -1 is not in 0..31536000 (seconds;"),
+    (["--bitrate", "-5"], "argument --bitrate: -5 is not in 1..20000000 (bit/s)"),
+    (["--bitrate", "fast"], "argument --bitrate: 'fast' is not an integer"),
+])
+def test_arguments_no_run_can_have_are_usage_errors(args, says):
+    proc = subprocess.run([sys.executable, "-m", "canspec", "simulate", "--node", NODE, "--channel", channel(), *args],
+                          capture_output=True, text=True, env=CANSPEC_ENV, check=False, timeout=60)
+    assert proc.returncode == 2 and proc.stderr.startswith("usage: canspec simulate") and f"canspec simulate: error: {says}" in proc.stderr, proc.stderr
+    assert "Traceback" not in proc.stderr and "frames sent" not in proc.stderr

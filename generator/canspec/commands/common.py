@@ -1,8 +1,12 @@
-"""Helpers shared by subcommands: compile a spec and print its problems."""
+"""Helpers shared by subcommands: compile a spec and print its problems; numeric arguments checked
+where argparse reads them."""
 
 from __future__ import annotations
 
+import argparse
+import math
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from canspec.pipeline import Compiled, compile_spec
@@ -30,3 +34,24 @@ def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warni
 
 def add_spec_argument(parser, nargs: str | None = "?") -> None:  # type: ignore[no-untyped-def]
     parser.add_argument("spec", nargs=nargs, default=None, help="spec bundle, directory or file (default: the shipped spec)")
+
+
+def number_in(kind: type, low: float, high: float, what: str = "") -> Callable[[str], float]:
+    """An argparse `type`: a finite number of `kind` in low..high, else argparse's usage error (nan,
+    inf, a negative duration or a bitrate of -5 would otherwise run, or fail deep inside as an
+    internal error)."""
+
+    def parse(text: str) -> float:
+        shown = text if len(text) <= 40 else text[:37] + "..."
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{shown!r} is not {'an integer' if kind is int else 'a number'}") from None
+        if kind is not int and not math.isfinite(value):  # an int is finite (and may not fit a float)
+            raise argparse.ArgumentTypeError(f"{shown} is not a finite number")
+        if not low <= value <= high:
+            bounds = "..".join(str(int(b)) if float(b).is_integer() else f"{b:g}" for b in (low, high))
+            raise argparse.ArgumentTypeError(f"{shown} is not in {bounds}{f' ({what})' if what else ''}")
+        return value
+
+    return parse

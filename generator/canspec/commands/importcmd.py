@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from canspec.importer import yamlout
+from canspec.importer import outdir, yamlout
 from canspec.importer.dbctext import DbcError
 from canspec.importer.run import import_sources
 from canspec.render import writer
@@ -17,6 +17,10 @@ def _where(source: str, line: int | None) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    out = Path(args.output)
+    if (why := outdir.refusal(out, {}, args.force)) is not None:  # before the import's work: -o names a file
+        print(f"canspec import: {why}", file=sys.stderr)
+        return 1
     try:
         spec, report, compiled = import_sources(args.source)
     except DbcError as exc:
@@ -30,10 +34,18 @@ def run(args: argparse.Namespace) -> int:
     name = spec["protocol"]["name"]
     header = [f"Imported by `canspec import` from {', '.join(Path(s).name for s in args.source)}.",
               "Edit this file (it is the source of truth now); `canspec check` says what is wrong."]
-    bundle = f"# canspec bundle written by `canspec import`\nschema_version: 1\nkind: bundle\nname: {name}\nfiles:\n  - {name}.yaml\n"
-    out = Path(args.output)
-    writer.apply(out, writer.Plan(write={f"{name}.yaml": yamlout.dump(spec, header).encode(), "canspec.yaml": bundle.encode()}))
-    print(f"canspec import: {len(spec['messages'])} messages into {out}/{name}.yaml ({len(report.warnings)} warning(s))", file=sys.stderr)
+    text = yamlout.dump(spec, header).encode()
+    file = outdir.spec_file(name)
+    files = {file: text, outdir.BUNDLE: outdir.bundle(name, file, text)}
+    if (why := outdir.refusal(out, files, args.force)) is not None:
+        print(f"canspec import: {why}", file=sys.stderr)
+        return 1
+    try:
+        writer.apply(out, writer.Plan(write=files))
+    except OSError as exc:
+        print(f"canspec import: cannot write {out}: {exc.strerror or exc}; nothing written", file=sys.stderr)
+        return 1
+    print(f"canspec import: {len(spec['messages'])} messages into {out / file} ({len(report.warnings)} warning(s))", file=sys.stderr)
     if compiled.errors:  # what the importer could not decide: the spec is written for the user to fix
         print(f"canspec import: `canspec check {out}` finds {len(compiled.errors)} error(s) to fix in the written spec, e.g. "
               f"{compiled.errors[0].message}", file=sys.stderr)
@@ -45,5 +57,7 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p = sub.add_parser("import", help="write a spec from a DBC, ARXML, KCD or SYM file (several are merged into one spec)")
     p.add_argument("source", nargs="+", help="the files to import (.dbc, .arxml, .kcd, .sym)")
     p.add_argument("-o", "--output", required=True, help="directory to write the spec bundle to (canspec.yaml and <name>.yaml)")
+    p.add_argument("--force", action="store_true",
+                   help="replace files in the -o directory that an earlier import did not write, or that were edited since")
     p.add_argument("--strict", action="store_true", help="treat every warning as an error (nothing is written)")
     p.set_defaults(func=run)

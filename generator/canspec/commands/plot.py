@@ -16,7 +16,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from canspec import ir
+from canspec.commands.common import number_in
 from canspec.commands.logrun import EXTRA_HINT, LOG_FORMATS, each_chunk, load_protocol, summarize
+
+MAX_DPI = 600  # a print resolution; the image at it is bounded by MAX_PIXELS too
+MAX_PIXELS = 50_000_000  # 200 MB of RGBA: beyond it the renderer's allocation fails (std::bad_alloc)
 
 
 @dataclass
@@ -98,6 +102,18 @@ def figure(series: list[Series], stack: bool, title: str):  # type: ignore[no-un
     return fig
 
 
+def _stop_text(stop: float | None) -> str:
+    return "the end of the logs" if stop is None else f"{stop:g} s"
+
+
+def _too_large(fig: Any, dpi: int) -> str | None:
+    """Why the image at `dpi` is too large to render (its size grows with dpi and the panels)."""
+    width, height = (round(inches * dpi) for inches in fig.get_size_inches())
+    if width * height <= MAX_PIXELS:
+        return None
+    return f"a {width} x {height} pixel image at --dpi {dpi} is more than {MAX_PIXELS:,} pixels (hint: a lower --dpi, or fewer signals)"
+
+
 def run(args: argparse.Namespace) -> int:
     try:
         import matplotlib
@@ -105,6 +121,9 @@ def run(args: argparse.Namespace) -> int:
         from canspec.logs.bulk import Decoder
     except ImportError as exc:
         print(f"canspec plot: {exc.name} is missing; {EXTRA_HINT}", file=sys.stderr)
+        return 2
+    if args.start is not None and args.stop is not None and args.start >= args.stop:
+        print(f"canspec plot: --start {args.start:g} is not before --stop {args.stop:g}: nothing to plot", file=sys.stderr)
         return 2
     logs = [a for a in args.items if a == "-" or os.path.exists(a)]
     patterns = args.items[len(logs):] if args.items[: len(logs)] == logs else None
@@ -133,7 +152,13 @@ def run(args: argparse.Namespace) -> int:
     if not series:
         print("canspec plot: none of the chosen signals' messages is in the logs", file=sys.stderr)
         return max(status, 1)
+    if not any(len(s.time) for s in series):  # --start/--stop cut every frame: an empty plot would look like a dead bus
+        print(f"canspec plot: the chosen signals have no frame from {args.start or 0:g} s to {_stop_text(args.stop)}", file=sys.stderr)
+        return max(status, 1)
     fig = figure(series, args.stack, ", ".join(os.path.basename(p) for p in logs))
+    if args.output and (why := _too_large(fig, args.dpi)) is not None:
+        print(f"canspec plot: {why}", file=sys.stderr)
+        return 2
     if args.output:
         try:
             fig.savefig(args.output, dpi=args.dpi)
@@ -154,8 +179,8 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("--spec", default=None, help="spec bundle, directory or file (default: the shipped spec)")
     p.add_argument("-o", "--output", metavar="FILE", help="write the plot to FILE (.png, .svg, .pdf); default: open a window")
     p.add_argument("--stack", action="store_true", help="one subplot per signal (default: one per unit; value-table signals get their own)")
-    p.add_argument("--start", type=float, default=None, metavar="S", help="from S seconds after the first frame")
-    p.add_argument("--stop", type=float, default=None, metavar="S", help="up to S seconds after the first frame")
-    p.add_argument("--dpi", type=int, default=100, help="resolution of PNG output (default 100)")
+    p.add_argument("--start", type=number_in(float, 0, 1e9), default=None, metavar="S", help="from S seconds after the first frame")
+    p.add_argument("--stop", type=number_in(float, 0, 1e9), default=None, metavar="S", help="up to S seconds after the first frame")
+    p.add_argument("--dpi", type=number_in(int, 1, MAX_DPI), default=100, help=f"resolution of PNG output, 1..{MAX_DPI} (default 100)")
     p.add_argument("--max-problems", type=int, default=20, metavar="N", help="print at most N problems per input (default 20)")
     p.set_defaults(func=run)

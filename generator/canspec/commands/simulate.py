@@ -18,8 +18,11 @@ import threading
 import time
 from collections.abc import Iterable
 
-from canspec.commands.common import add_spec_argument, compile_or_report
+from canspec.commands.common import add_spec_argument, compile_or_report, number_in
 from canspec.runtime.simulate import RestBus, SimulationError
+
+MAX_DURATION = 365 * 24 * 3600  # a year; without --duration it runs until Ctrl-C
+MAX_BITRATE = 20_000_000  # CAN XL's fastest data phase; no CAN controller runs faster
 
 
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -29,8 +32,9 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument("--node", required=True, help="the node to simulate (its messages are sent)")
     p.add_argument("--interface", default="virtual", help="python-can interface: virtual, socketcan, pcan, ... (default virtual)")
     p.add_argument("--channel", default="canspec", help="python-can channel, e.g. vcan0 (default canspec)")
-    p.add_argument("--bitrate", type=int, help="bitrate for interfaces that set it (default: the spec's)")
-    p.add_argument("--duration", type=float, help="seconds to run (default: until Ctrl-C)")
+    p.add_argument("--bitrate", type=number_in(int, 1, MAX_BITRATE, "bit/s"), help="bitrate for interfaces that set it (default: the spec's)")
+    p.add_argument("--duration", type=number_in(float, 0, MAX_DURATION, "seconds; without --duration it runs until Ctrl-C"),
+                   help="seconds to run, 0 sends each message once (default: until Ctrl-C)")
     p.add_argument("--message", action="append", default=[], metavar="NAME", help="also send this message (e.g. one whose sender is ALL)")
     p.add_argument("--set", action="append", default=[], metavar="MESSAGE.SIGNAL=VALUE", help="a physical value at start")
     p.add_argument("--fault", action="append", default=[], metavar="MESSAGE=KIND", help="a fault at start: drop, corrupt_checksum, freeze_counter")

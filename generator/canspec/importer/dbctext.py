@@ -8,7 +8,11 @@ refused with `file:line` and a hint where none is. Repairs (the corpus of real f
 - a statement (`CM_`, `VAL_`, `BA_`, …) without its closing `;`: closed; `CM_ 145 "…"` (no object
   type): a message comment; `CM_ SG_ 304 "…"` (no signal name): dropped;
 - `VAL_` for a signal that does not exist: dropped;
-- a frame ID that does not fit 29 bits: that message left out (no reading of it is sensible).
+- a frame ID that does not fit 29 bits: that message left out (no reading of it is sensible);
+- an SG_ line repeated word for word in its message: the repeat dropped.
+
+Two different SG_ lines of one name in one message are refused: CM_, VAL_ and BA_ name a signal by
+its name, so which of the two they mean has no sensible reading.
 """
 
 from __future__ import annotations
@@ -95,10 +99,29 @@ def _check_sizes(rep: Repairs) -> None:
                            f"these bits (at most {bits}, numbered 0..{bits - 1}; hint: correct the SG_ line's start|length)")
 
 
+def _check_signal_names(rep: Repairs) -> None:
+    """One SG_ name per message: a word-for-word repeat is dropped, two definitions are refused."""
+    message, seen = "", {}
+    for i, line in enumerate(rep.lines):
+        if (bo := _BO.match(line)) is not None:
+            message, seen = bo.group(4), {}
+        elif (sg := _SG.match(line)) is not None and message:
+            first = seen.setdefault(sg.group(1), i)
+            if first == i:
+                continue
+            if rep.lines[first].strip() == line.strip():
+                rep.warn(i, f"SG_ line of signal {sg.group(1)} repeats line {first + 1} of message {message} word for word: dropped")
+                rep.lines[i] = ""
+                continue
+            raise DbcError(f"{rep.source}:{i + 1}: message {message} has two signals named {sg.group(1)} (lines {first + 1} and {i + 1}): "
+                           "CM_, VAL_ and BA_ lines could mean either (hint: rename one of them, and the lines naming it)")
+
+
 def prepass(rep: Repairs) -> None:
     """The repairs a scan of the lines finds, made before cantools first parses the text: each
     would otherwise cost a parse of the whole file to discover (a large DBC takes seconds)."""
     _check_sizes(rep)
+    _check_signal_names(rep)
     for i, line in enumerate(rep.lines):
         if (m := _SG_OR_BO_NAME.match(line)) is not None and m.group(1)[0].isdigit() and not m.group(1).isdigit():
             _rename_digit_name(rep, i, m.group(1))

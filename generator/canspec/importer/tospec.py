@@ -3,6 +3,7 @@ with a warning for every decision a source did not make for us."""
 
 from __future__ import annotations
 
+import math
 import re
 from collections import Counter
 from dataclasses import dataclass, field
@@ -178,8 +179,8 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
         out["dbc_senders"] = senders[1:]
     receivers = sorted({r for s in msg.signals for r in s.receivers if r != NO_NODE} - {out["sender"]})
     out["receivers"] = receivers
-    if msg.cycle_time:
-        out["cycle_ms"] = int(msg.cycle_time)
+    if (cycle := _cycle_ms(loaded, msg, dbc_id, source_name, line, report)) is not None:
+        out["cycle_ms"] = cycle
     out["dlc"] = msg.length
     if msg.length > 8 and not msg.is_fd:
         report.warn(loaded.source, line, f"message {source_name} has {msg.length} bytes but no CAN FD frame format: taken as CAN FD")
@@ -199,3 +200,23 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
     if values := kept_values(msg, kept, lambda text: report.warn(loaded.source, line, text), f"message {source_name}"):
         out["dbc_attributes"] = values
     return out
+
+
+def _cycle_ms(loaded: Loaded, msg: Any, dbc_id: int, name: str, line: int | None, report: Report) -> int | None:
+    """GenMsgCycleTime as a number of ms; a definition of another type (STRING: "fast") can hold
+    text, which is no cycle time: warned at its BA_ line and left out (the attribute is canspec's
+    to compute from cycle_ms, so it is not kept either)."""
+    value = msg.cycle_time
+    if not value:
+        return None
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if math.isfinite(number):
+        return int(number)  # out of range is `canspec check`'s to say, in the written spec
+    at = re.compile(rf'^\s*BA_\s+"GenMsgCycleTime"\s+BO_\s+{dbc_id}\s')
+    ba = next((i for i, text in enumerate((loaded.text or "").split("\n"), 1) if at.match(text)), line)
+    report.warn(loaded.source, ba, f"GenMsgCycleTime of message {name} is {value!r}, not a number of milliseconds: "
+                "message taken without a cycle time (set cycle_ms in the spec)")
+    return None
