@@ -34,7 +34,7 @@ def _sink(args: argparse.Namespace, decoder, out: IO[str]):  # type: ignore[no-u
 def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # type: ignore[no-untyped-def]
     """One health report per input (a recording each: monitor state starts afresh)."""
     from canspec.logs.fields import MessageFrames
-    from canspec.logs.loghealth import HealthReport, format_text
+    from canspec.logs.loghealth import HealthReport, backwards_warning, format_text
 
     reports: dict[str, HealthReport] = {}
 
@@ -42,7 +42,7 @@ def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # typ
         health = reports.get(source) or reports.setdefault(source, HealthReport(can.messages))
         for name, rows in decoded.groups.items():
             msg = can.message(name)
-            health.feed_message(msg, batch.timestamp[rows], MessageFrames.of(msg, batch, rows).payloads())
+            health.feed_message(msg, batch.timestamp[rows], MessageFrames.of(msg, batch, rows).payloads(), batch.line[rows])
         health.feed_unknown(batch.frame_id[decoded.unknown], batch.extended[decoded.unknown])
 
     results = each_chunk(args, decoder, "decode", False, feed)
@@ -51,6 +51,8 @@ def _report(args: argparse.Namespace, can, decoder, out: IO[str]) -> int:  # typ
         if st.failed is None:
             counts = {k: st.counts[k] for k in ("lines", "frames", "decoded", "remote", "error")} | {k: st.problems[k] for k in PROBLEM_KINDS}
             records.append({"source": st.source, **(reports.get(st.source) or HealthReport(can.messages)).result(counts)})
+            if warning := backwards_warning(records[-1]):  # a warning, not a problem: the frames themselves are sound
+                print(f"{st.source}:{warning}", file=sys.stderr)
     if args.format == "json":
         out.write(json.dumps({"inputs": records}, ensure_ascii=False, indent=1) + "\n")
     else:

@@ -55,40 +55,46 @@ def read_blf(stream: IO[bytes]) -> Iterator[tuple[fr.Batch, int, list[tuple[int,
         raise BlfError(f"BLF file header of {header[1]} bytes (at least {FILE_HEADER.size})")
     stream.read(header[1] - FILE_HEADER.size)
     start = _start_time(header)
-    pending, size, tail, record, at, cut = [], 0, b"", 0, header[1], ""
+    pending, size, tail, record, at = [], 0, b"", 0, header[1]
     while True:
         base = stream.read(OBJ_BASE.size)
+        cut = skipped = ""  # why the file stops here; why a container's frames are not read
         if base:
             if len(base) < OBJ_BASE.size or base[:4] != b"LOBJ":
                 raise BlfError("expected a BLF object ('LOBJ') in the file")
             _, _, _, obj_size, obj_type = OBJ_BASE.unpack(base)
-            body = stream.read(obj_size - OBJ_BASE.size)
-            stream.read(obj_size % 4)
-            if len(body) < obj_size - OBJ_BASE.size:
-                cut = f"truncated BLF file: it ends inside the object at byte {at} ({obj_size - OBJ_BASE.size - len(body)} of its {obj_size} bytes missing)"
+            cut, body = _body(stream, obj_size, at)
+            if obj_type == LOG_CONTAINER and len(body) >= CONTAINER.size:
+                method, _ = CONTAINER.unpack_from(body)
+                if method in (NO_COMPRESSION, ZLIB_DEFLATE):
+                    pending.append(body[CONTAINER.size:] if method == NO_COMPRESSION else zlib.decompressobj().decompress(body[CONTAINER.size:]))
+                    size += len(pending[-1])
+                else:  # python-can skips it silently
+                    skipped = f"the BLF log container at byte {at} has unknown compression method {method} (0 none, 2 zlib); its frames are not read"
             at += obj_size + obj_size % 4
-            if obj_type != LOG_CONTAINER or len(body) < CONTAINER.size:
+            if size < BUFFER_BYTES and not cut and not skipped:
                 continue
-            method, _ = CONTAINER.unpack_from(body)
-            if method == NO_COMPRESSION:
-                pending.append(body[CONTAINER.size:])
-            elif method == ZLIB_DEFLATE:
-                pending.append(zlib.decompressobj().decompress(body[CONTAINER.size:]))
-            else:
-                continue
-            size += len(pending[-1])
-            if size < BUFFER_BYTES:
-                continue
-        buf = tail + b"".join(pending)
+        buf = tail + b"".join(pending)  # a problem flushes the buffer first, so it is placed after the frames before it
         pending, size = [], 0
         batch, consumed = _objects(buf, start, record)
         tail = buf[consumed:]
         record += len(batch)
         # the end of the file, or an object longer than a bulk step (a bad size: memory would grow to it)
         lost = cut or _incomplete(tail, not base or len(tail) > BUFFER_BYTES)
-        yield batch, len(batch), [(record + 1, lost)] if lost else []
+        yield batch, len(batch), [(record + 1, problem) for problem in (skipped, lost) if problem]
         if not base or lost:
             return
+
+
+def _body(stream: IO[bytes], obj_size: int, at: int) -> tuple[str, bytes]:
+    """(why the file stops at this object, or ""; the object's bytes after its base header)."""
+    if obj_size < OBJ_BASE.size:  # python-can fails on a negative read; the next object cannot be found
+        return f"the BLF object at byte {at} claims {obj_size} bytes, less than its {OBJ_BASE.size}-byte header; the rest of the file is not read", b""
+    body = stream.read(obj_size - OBJ_BASE.size)
+    stream.read(obj_size % 4)
+    if len(body) < obj_size - OBJ_BASE.size:
+        return f"truncated BLF file: it ends inside the object at byte {at} ({obj_size - OBJ_BASE.size - len(body)} of its {obj_size} bytes missing)", body
+    return "", body
 
 
 def _incomplete(tail: bytes, final: bool) -> str:

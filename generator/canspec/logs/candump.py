@@ -16,6 +16,7 @@ Remote frames (`ID#R`, `remote request`) and error frames (the ID carries CAN_ER
 
 from __future__ import annotations
 
+import re
 from datetime import datetime
 from typing import NamedTuple
 
@@ -43,6 +44,8 @@ class Frame(NamedTuple):
 
 HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
 TIME_CHARS = frozenset("0123456789.")
+# can-utils lib.c: `R`, then an optional DLC digit (9..F: a raw DLC, 8 bytes), candump's own 8_9..8_F form too
+REMOTE_DLC = re.compile(r"([0-9A-Fa-f]|8_[9A-Fa-f])?")
 
 
 def parse_id(text: str) -> tuple[int, bool, int]:
@@ -68,14 +71,21 @@ def _hex_bytes(text: str) -> bytes:
     return data
 
 
+def _seconds(text: str) -> bool:
+    return bool(text) and TIME_CHARS.issuperset(text) and text.count(".") <= 1 and text != "."
+
+
 def parse_time(text: str) -> float:
     """A candump time stamp: seconds (`-ta/-td/-tz`, log files) or a local date and time (`-tA`)."""
-    if text and TIME_CHARS.issuperset(text) and text.count(".") <= 1 and text != ".":
+    if _seconds(text):
         return float(text)
     try:
         return datetime.strptime(text, "%Y-%m-%d %H:%M:%S.%f").timestamp()
     except ValueError:
-        raise LineError(f"time stamp ({text}) is not a number") from None
+        pass
+    if text[:1] == "-" and _seconds(text[1:]):  # candump never writes one: a damaged or hand-made log
+        raise LineError(f"time stamp ({text}) is negative (refused)")
+    raise LineError(f"time stamp ({text}) is not a number")
 
 
 def _compact(text: str, timestamp: float | None, channel: str | None) -> Frame:
@@ -91,6 +101,8 @@ def _compact(text: str, timestamp: float | None, channel: str | None) -> Frame:
         flags = FD_FLAG | (BRS_FLAG if int(data[1], 16) & 1 else 0) | (ESI_FLAG if int(data[1], 16) & 2 else 0)
         data = data[2:]
     elif data[:1] in ("R", "r"):
+        if not REMOTE_DLC.fullmatch(data[1:]):
+            raise LineError(f"remote frame {text!r}: expected nothing, one DLC digit (0-F) or 8_9..8_F after 'R'")
         return Frame(timestamp, channel, frame_id, extended, b"", REMOTE)
     return Frame(timestamp, channel, frame_id, extended, _hex_bytes(data.replace(".", "")), kind, flags)
 

@@ -20,17 +20,20 @@ from typing import IO, Any
 
 import numpy as np
 
-from canspec.ir.ids import MAX_EXTENDED_ID, max_id
+from canspec.ir.ids import MAX_EXTENDED_ID
 from canspec.logs import frames as fr
-from canspec.logs.candump import DATA, ERROR, REMOTE, Frame
+from canspec.logs.candump import DATA, ERROR, REMOTE
 from canspec.logs.candump_bulk import read_chunk
+from canspec.logs.pycan import trc_version_problem
 
 FORMATS = ("candump", "asc", "blf", "trc", "mf4")
 EXTENSIONS = {".log": "candump", ".candump": "candump", ".txt": "candump", ".asc": "asc", ".blf": "blf", ".trc": "trc", ".mf4": "mf4"}
 TEXT_FORMATS = ("candump", "asc", "trc")
 MAGIC = {"blf": b"LOGG", "mf4": b"MDF     "}
+UTF8_BOM = b"\xef\xbb\xbf"
+# UTF-32 first: its little-endian mark FF FE 00 00 starts with UTF-16's FF FE
+WIDE_BOMS = ((b"\xff\xfe\0\0", "UTF-32"), (b"\0\0\xfe\xff", "UTF-32"), (b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"))
 CHUNK_BYTES = 2 << 20  # candump text per bulk step (bounds the working memory)
-CHUNK_FRAMES = 1 << 18  # frames per batch from the python-can readers
 MF4_CHUNK = 1 << 20  # records per asammdf read (about 90 MiB of 64-byte data records)
 
 
@@ -74,7 +77,8 @@ def _open(path: str) -> tuple[IO[bytes], IO[bytes] | None]:
 
 
 def _head(stream: IO[bytes], fmt: str) -> bytes:
-    """The first bytes, checked against the format; the caller re-reads them."""
+    """The first bytes, checked against the format; the caller re-reads them (all but a UTF-8 byte
+    order mark, read past here)."""
     try:
         head = stream.peek(4096)[:4096] if hasattr(stream, "peek") else b""
     except (OSError, EOFError, gzip.BadGzipFile) as exc:
@@ -84,12 +88,20 @@ def _head(stream: IO[bytes], fmt: str) -> bytes:
     magic = MAGIC.get(fmt)
     if magic is not None and not head.startswith(magic):
         raise InputError(f"not a {fmt.upper()} file (no {magic.decode().strip()!r} signature at the start)")
+    for bom, unicode in WIDE_BOMS if fmt in TEXT_FORMATS else ():
+        if head.startswith(bom):  # the readers take ASCII-compatible text only
+            raise InputError(f"the file is {unicode} text (byte order mark {bom.hex(' ').upper()}); re-save it as UTF-8 or ASCII")
+    if fmt in TEXT_FORMATS and head.startswith(UTF8_BOM):  # Windows editors write one; it is not part of the first line
+        stream.read(len(UTF8_BOM))
+        head = head[len(UTF8_BOM):]
     if fmt in TEXT_FORMATS and (b"\0" in head or head.startswith((b"LOGG", b"MDF "))):
         raise InputError(f"binary data, not a {fmt} text log (name the format with --input-format)")
     if fmt == "asc" and not any(line.strip().lower().startswith((b"date", b"base")) for line in head.splitlines()[:20]):
         raise InputError("not a Vector ASC log (no 'date' or 'base' header line)")
     if fmt == "trc" and not head.lstrip().startswith(b";"):
         raise InputError("not a PEAK TRC log (no ';' header)")
+    if fmt == "trc" and (problem := trc_version_problem(head)):
+        raise InputError(problem)
     return head
 
 
@@ -179,114 +191,14 @@ def _blf(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
 
 
 def _python_can(stream: IO[bytes], fmt: str) -> Iterator[Chunk]:
-    """ASC and TRC through python-can: batches of its messages turned into columns. The
-    text readers see a line-counting file, so frames carry their line numbers. A record the
-    reader cannot parse, or whose ID does not fit, is one malformed problem at its line and
-    reading goes on with the next line, as for a candump line; a header it cannot parse makes
-    the file unreadable."""
-    can = _import_can()
-    counter = _LineCounter(stream)
-    kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
-    reader = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt](counter, **kwargs)
-    header = _HeaderOnce(reader)
-    frames: list[Frame] = []
-    lines: list[int] = []
-    problems: list[tuple[int, str]] = []
-    done, failed_at = 0, -1
-    while True:
-        try:
-            for msg in reader:  # after a bad record: a new pass over the same reader, from the next line
-                frame = _frame(msg)
-                if isinstance(frame, str):
-                    problems.append((counter.line, f"malformed line: {frame}: {counter.text}"))
-                    continue
-                frames.append(frame)
-                lines.append(counter.line)
-                if len(frames) == CHUNK_FRAMES:
-                    yield Chunk(fr.from_frames(frames, lines), problems, counter.line - done)
-                    done, frames, lines, problems = counter.line, [], [], []
-            break
-        except Exception as exc:  # noqa: BLE001 - the reader's parse error on one record (or the header)
-            what = f"{type(exc).__name__}: {str(exc).strip()}"
-            if not header.done:
-                raise InputError(f"not a readable {fmt.upper()} file ({what})") from None
-            if counter.line == failed_at:  # failed again without reading a line: nothing left to resume
-                problems.append((counter.line, f"unreadable {fmt.upper()} file ({what}); the rest of the file is not read"))
-                break
-            failed_at = counter.line
-            problems.append((counter.line, f"malformed line: unreadable {fmt.upper()} record ({what}): {counter.text}"))
-    yield Chunk(fr.from_frames(frames, lines), problems, counter.line - done)
+    """ASC and TRC through python-can (logs/pycan.py)."""
+    from canspec.logs.pycan import Unreadable, read_text
 
-
-class _HeaderOnce:
-    """Makes a python-can text reader parse its header only on its first pass, so a second pass
-    (after a bad record ended the first) resumes at the next record with the header's settings."""
-
-    def __init__(self, reader: Any) -> None:
-        self.reader, self.parse, self.done = reader, reader._extract_header, False
-        reader._extract_header = self
-
-    def __call__(self) -> Any:
-        if self.done:
-            return None  # TRC: no first line to parse again
-        first = self.parse()
-        self.done = True
-        return first
-
-
-def _frame(msg: Any) -> Frame | str:
-    """A python-can message as a Frame; what is wrong with it when it cannot be one."""
-    if msg.arbitration_id > max_id(msg.is_extended_id) or msg.arbitration_id < 0:  # python-can does not check
-        return f"frame ID {msg.arbitration_id:X} does not fit {29 if msg.is_extended_id else 11} bits"
-    kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
-    channel = None if msg.channel is None else str(msg.channel)
-    flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
-    data = bytes(msg.data) if kind == DATA else b""
-    return Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, data, kind, flags)
-
-
-def _import_can() -> Any:
-    """python-can without the 2 s import of asammdf that its MF4 module does on `import can`:
-    these readers do not need it, and MF4 files are read with asammdf directly (_mf4)."""
-    if "can" in sys.modules or "asammdf" in sys.modules:
-        import can
-
-        return can
-    sys.modules["asammdf"] = None  # type: ignore[assignment]  # makes python-can's `import asammdf` fail fast, as if absent
     try:
-        import can
-    finally:
-        del sys.modules["asammdf"]
-    return can
-
-
-class _LineCounter(io.TextIOBase):
-    """A text view of a byte stream that counts the lines handed out."""
-
-    def __init__(self, stream: IO[bytes]) -> None:
-        self.stream, self.line, self.last = stream, 0, ""
-
-    @property
-    def text(self) -> str:
-        """The last line handed out, as a problem quotes it (like a malformed candump line)."""
-        return repr(self.last.strip()[:80])
-
-    def __iter__(self) -> _LineCounter:
-        return self
-
-    def __next__(self) -> str:
-        raw = self.stream.readline()
-        if not raw:
-            raise StopIteration
-        self.line += 1
-        self.last = raw.decode("utf-8", errors="replace")
-        return self.last
-
-    def readline(self, size: int = -1) -> str:  # type: ignore[override]
-        try:
-            return next(self)
-        except StopIteration:
-            return ""
+        for batch, problems, lines in read_text(stream, fmt):
+            yield Chunk(batch, problems, lines)
+    except Unreadable as exc:
+        raise InputError(str(exc)) from None
 
 
 MF4_GROUPS = {"CAN_DataFrame": DATA, "CAN_RemoteFrame": REMOTE, "CAN_ErrorFrame": ERROR}
