@@ -38,6 +38,11 @@ KINDS = (  # (kind, words its message holds), first match wins
     ("not a frame length: message left out", "not a CAN frame length"),
     ("signal over 64 bits: left out", "bits long: left out"),
     ("value labels of a float signal: dropped", "has value labels: dropped"),
+    ("not UTF-8: encoding guessed", "not UTF-8"),
+    ("message name twice: later one renamed", "is given to two messages"),
+    ("SG_MUL_VAL_ naming a signal its own multiplexer: message left out", "as its own multiplexer"),
+    ("multiplexed signal without multiplexer: message left out", "has no multiplexer of the message"),
+    ("cantools log line", "cantools: "),
 )
 
 

@@ -55,3 +55,20 @@ def number_in(kind: type, low: float, high: float, what: str = "") -> Callable[[
         return value
 
     return parse
+
+
+def add_encoding_argument(parser) -> None:  # type: ignore[no-untyped-def]
+    """--encoding of the commands that read DBC (and SYM) text: a codec Python knows, checked
+    before any file is read."""
+    import codecs
+
+    def name(text: str) -> str:
+        try:
+            codecs.lookup(text)
+        except LookupError:
+            raise argparse.ArgumentTypeError(f"unknown encoding {text!r} (e.g. utf-8, cp1252, gbk, gb18030)") from None
+        return text
+
+    parser.add_argument("--encoding", type=name, metavar="NAME",
+                        help="the encoding of .dbc and .sym text (default: UTF-8; a file that is not is read as cp1252, "
+                             "or as GB18030 when its text is plainly Chinese, with a warning)")

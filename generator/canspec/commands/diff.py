@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from canspec.commands.common import add_encoding_argument
 from canspec.diff.classes import FAIL_ON
 from canspec.diff.compare import compare
 from canspec.diff.inputs import InputError, is_database, load_model
@@ -31,8 +32,8 @@ FORMATS = {**TEXT_FORMATS, "html": html}
 def run(args: argparse.Namespace) -> int:
     try:
         comments = is_database(args.old) and is_database(args.new)  # a spec's descriptions are not its DBC's comments
-        old = load_model(args.old, comments)
-        new = load_model(args.new, comments)
+        old = load_model(args.old, comments, args.encoding)
+        new = load_model(args.new, comments, args.encoding)
     except InputError as exc:
         print(f"canspec diff: {exc}", file=sys.stderr)
         return 2
@@ -53,4 +54,5 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("new", help="new revision: spec bundle, directory or file, or a .dbc, .arxml, .kcd or .sym file")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
     p.add_argument("--fail-on", choices=list(FAIL_ON), help="exit 1 if any change is of this class or stricter (any: every change)")
+    add_encoding_argument(p)  # of both revisions' DBC files
     p.set_defaults(func=run)

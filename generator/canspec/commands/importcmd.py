@@ -6,6 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from canspec.commands.common import add_encoding_argument
 from canspec.importer import outdir, yamlout
 from canspec.importer.dbctext import DbcError
 from canspec.importer.run import import_sources
@@ -22,7 +23,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"canspec import: {why}", file=sys.stderr)
         return 1
     try:
-        spec, report, compiled = import_sources(args.source)
+        spec, report, compiled = import_sources(args.source, args.encoding)
     except DbcError as exc:
         print(f"canspec import: {exc}", file=sys.stderr)
         return 1
@@ -60,4 +61,5 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("--force", action="store_true",
                    help="replace files in the -o directory that an earlier import did not write, or that were edited since")
     p.add_argument("--strict", action="store_true", help="treat every warning as an error (nothing is written)")
+    add_encoding_argument(p)
     p.set_defaults(func=run)

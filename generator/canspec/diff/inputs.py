@@ -30,13 +30,14 @@ def is_database(arg: str) -> bool:
     return Path(arg).is_file() and Path(arg).suffix.lower() in DATABASES
 
 
-def load_model(arg: str, comments: bool = False) -> ProtocolModel:
-    """`comments`: a database's comments are compared (both inputs are databases)."""
+def load_model(arg: str, comments: bool = False, encoding: str | None = None) -> ProtocolModel:
+    """`comments`: a database's comments are compared (both inputs are databases); `encoding`: a
+    DBC's or SYM's text encoding (None: UTF-8, else a guess with a warning)."""
     path = Path(arg)
     if not path.exists():
         raise InputError(f"{arg}: no such file or directory (pass a spec bundle, spec directory or a {', '.join(DATABASES)} file)")
     if is_database(arg):
-        return _database(path, arg, comments)
+        return _database(path, arg, comments, encoding)
     if path.is_file() and path.suffix.lower() not in (".yaml", ".yml"):
         raise InputError(f"{arg}: not a spec (.yaml) or database ({', '.join(DATABASES)}) file")
     return from_spec(_compiled(path, arg, f"run `canspec check {arg}`"), arg)
@@ -53,7 +54,7 @@ def _compiled(path: Path, arg: str, hint: str):  # type: ignore[no-untyped-def]
     return compiled.spec
 
 
-def _database(path: Path, arg: str, comments: bool) -> ProtocolModel:
+def _database(path: Path, arg: str, comments: bool, encoding: str | None) -> ProtocolModel:
     try:
         import cantools  # noqa: F401 - the import extra: reading databases needs it
     except ImportError as exc:
@@ -64,7 +65,7 @@ def _database(path: Path, arg: str, comments: bool) -> ProtocolModel:
     from canspec.importer.yamlout import dump_with_lines
 
     try:
-        loaded = load(path, arg)
+        loaded = load(path, arg, encoding)
     except DbcError as exc:
         raise InputError(str(exc)) from None
     report = tospec.Report([(arg, line, text) for line, text in loaded.warnings])

@@ -12,7 +12,9 @@ refused with `file:line` and a hint where none is. Repairs (the corpus of real f
 - an SG_ line repeated word for word in its message: the repeat dropped.
 
 Two different SG_ lines of one name in one message are refused: CM_, VAL_ and BA_ name a signal by
-its name, so which of the two they mean has no sensible reading.
+its name, so which of the two they mean has no sensible reading. So are two BO_ lines of one frame
+ID: they name a message by its ID, and a DBC is one bus, where an ID is one message (cantools keeps
+the later in its lookup by ID, silently but for a log line).
 """
 
 from __future__ import annotations
@@ -32,6 +34,9 @@ _EXTENDED_TOO_BIG = re.compile(r"Extended frame id 0x([0-9a-fA-F]+) is more than
 _STATEMENT = re.compile(r"^\s*(CM_|VAL_|BA_|BA_DEF_|BA_DEF_DEF_|VAL_TABLE_|SIG_VALTYPE_|SG_MUL_VAL_)\s")
 _UNUSED_VAL = re.compile(r"unused VAL_ entries in DBC")
 _BO = re.compile(r"^(\s*BO_\s+)(\d+)(\s+)(\w+)(\s*:)")
+BO_LINE = _BO
+MAX_DBC_ID = 0xFFFF_FFFF  # a BO_ ID is 32 bits (flag and 29-bit ID); cantools wraps a larger one
+ECHO = 200  # characters of source text an error or warning repeats
 _DOT_NUMBER = re.compile(r"(?<![\w.])\.(\d)")
 _CM_BARE = re.compile(r"^(\s*CM_\s+)(\d+)(\s+\")")
 _CM_SG_NO_NAME = re.compile(r"^\s*CM_\s+SG_\s+\d+\s+\"")
@@ -46,6 +51,11 @@ Numbers = tuple[Fraction, Fraction, Fraction, Fraction]  # factor, offset, minim
 
 class DbcError(Exception):
     """A DBC no repair makes readable: `file:line: what` and a hint."""
+
+
+def clip(text: str, limit: int = ECHO) -> str:
+    """Source text as a message repeats it: a line of a damaged file can be megabytes long."""
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text) - limit} more characters)"
 
 
 def written_numbers(text: str) -> dict[tuple[int, str], Numbers]:
@@ -134,7 +144,25 @@ def prepass(rep: Repairs) -> None:
     for line in list(rep.lines):
         if (m := _BO.match(line)) is not None and MAX_STANDARD_ID < int(m.group(2)) < DBC_EXTENDED_FLAG:
             _extend_id(rep, int(m.group(2)), m.group(4))
+        elif m is not None and int(m.group(2)) > MAX_DBC_ID:  # before cantools wraps it to 32 bits
+            _drop_message(rep, int(m.group(2)), m.group(4))
     _drop_unused_vals(rep)
+    _check_frame_ids(rep)
+
+
+def _check_frame_ids(rep: Repairs) -> None:
+    """One message per frame ID (after the repairs above made every ID above 0x7FF extended)."""
+    seen: dict[int, int] = {}
+    for i, line in enumerate(rep.lines):
+        if (m := _BO.match(line)) is None:
+            continue
+        first = seen.setdefault(int(m.group(2)), i)
+        if first != i:
+            other = _BO.match(rep.lines[first]).group(4)  # type: ignore[union-attr]
+            names = [rep.renamed.get(n, n) for n in (other, m.group(4))]
+            raise DbcError(f"{rep.source}:{i + 1}: messages {names[0]} (line {first + 1}) and {names[1]} (line {i + 1}) have one frame ID, "
+                           f"0x{int(m.group(2)) & ~DBC_EXTENDED_FLAG:X}: a DBC describes one bus, where an ID is one message "
+                           "(hint: renumber or remove one of them; CM_, BA_ and VAL_ lines name a message by its ID)")
 
 
 def repair_step(rep: Repairs, error: str) -> bool:
@@ -167,7 +195,8 @@ def _drop_message(rep: Repairs, dbc_id: int, name: str) -> bool:
         m = _BO.match(line)
         if m and int(m.group(2)) in (dbc_id, dbc_id & ~DBC_EXTENDED_FLAG) and m.group(4) == name:
             dbc_id = int(m.group(2))
-            rep.warn(i, f"ID 0x{dbc_id & ~DBC_EXTENDED_FLAG:X} of {name} does not fit 29 bits: message left out")
+            written = f"{dbc_id} (0x{dbc_id:X})" if dbc_id > MAX_DBC_ID else f"0x{dbc_id & ~DBC_EXTENDED_FLAG:X}"
+            rep.warn(i, f"ID {written} of {name} does not fit 29 bits: message left out")
             rep.lines[i] = ""
             j = i + 1
             while j < len(rep.lines) and _SG.match(rep.lines[j]):

@@ -13,9 +13,9 @@ from canspec.importer.load import Loaded, load
 from canspec.pipeline import Compiled
 
 
-def import_sources(sources: list[str]) -> tuple[dict[str, Any], tospec.Report, Compiled]:
+def import_sources(sources: list[str], encoding: str | None = None) -> tuple[dict[str, Any], tospec.Report, Compiled]:
     """The spec, the warnings, and the spec compiled (its problems are what `canspec check` says)."""
-    return import_loaded([load(Path(source), source) for source in sources])
+    return import_loaded([load(Path(source), source, encoding) for source in sources])
 
 
 def import_loaded(sources: list[Loaded]) -> tuple[dict[str, Any], tospec.Report, Compiled]:

@@ -54,7 +54,7 @@ def convert_signals(at: Where, msg: Any, default_order: str, tables: dict[str, d
     its bits); None when its multiplexing cannot be expressed (warned)."""
     out, names, pages = [], Namer(tuple(at.loaded.renamed.get(s.name, s.name) for s in msg.signals)), Pages(msg, at.source_msg)
     if (refusal := pages.refusal()) is not None:
-        at.warn(at.lines.get((at.dbc_id, "")), f"message {at.source_msg}: {refusal}: left out")
+        at.warn(*_refusal_at(at, refusal, [n for n, (by, _) in pages.parent.items() if by is None]))
         return None
     for name, text in pages.oddities():
         at.warn(at.lines.get((at.dbc_id, name)), text)
@@ -73,6 +73,18 @@ def convert_signals(at: Where, msg: Any, default_order: str, tables: dict[str, d
             converted["dbc_attributes"] = values
         out.append(converted)
     return pages.attach(out, spec_names, lambda name, text: at.warn(at.lines.get((at.dbc_id, name)), text))
+
+
+def _refusal_at(at: Where, refusal: str, orphans: list[str]) -> tuple[int | None, str]:
+    """The warning for a message left out for its multiplexing, at the SG_MUL_VAL_ line that names a
+    signal its own multiplexer (cantools then finds none) where there is one, else at the BO_ line."""
+    for i, line in enumerate((at.loaded.text or "").split("\n"), 1):
+        words = line.replace(";", " ").split()
+        if len(words) >= 4 and words[0] == "SG_MUL_VAL_" and words[1] == str(at.dbc_id) and words[2] == words[3] and words[2] in orphans:
+            name = at.loaded.renamed.get(words[2], words[2])
+            return i, f"message {at.source_msg}: SG_MUL_VAL_ names signal {name} as its own multiplexer: left out (hint: name the M signal " \
+                      "that selects its pages)"
+    return at.lines.get((at.dbc_id, "")), f"message {at.source_msg}: {refusal}: left out"
 
 
 def _unfit(sig: Any, msg: Any, pages: Pages) -> str | None:
