@@ -174,3 +174,14 @@ def test_an_unsupported_trc_version_is_named(tmp_path):
     proc = decode(str(path))
     assert proc.returncode == 2
     assert proc.stderr.strip() == f"canspec decode: {path}: unsupported TRC version 3.0 (supported: 1.0, 1.1, 1.3, 2.0, 2.1)"
+
+
+def test_a_trc_record_without_a_finite_time_is_malformed(tmp_path):
+    """python-can reads a TRC time offset `nan` as a time stamp nan: the frame had no time."""
+    path = tmp_path / "nan.trc"
+    path.write_text(";$FILEVERSION=2.1\n;$STARTTIME=44548.6\n;$COLUMNS=N,O,T,B,I,d,R,L,D\n"
+                    + "".join(f"      {n}         {t} DT  1 1801B0A0 Rx -  8    {DATA}\n" for n, t in ((1, "0.000"), (2, "nan"), (3, "7.000"))))
+    proc = decode(str(path))
+    assert proc.returncode == 0, proc.stderr
+    assert f"{path}:5: error: malformed line: time stamp nan is not a finite number: " in proc.stderr, proc.stderr
+    assert f"{path}: 6 lines, 2 frames, 2 decoded" in summary(proc.stderr) and "1 malformed" in summary(proc.stderr)

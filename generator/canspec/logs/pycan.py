@@ -166,6 +166,8 @@ def _frame(msg: Any) -> Frame | str:
     """A python-can message as a Frame; what is wrong with it when it cannot be one."""
     if msg.arbitration_id > max_id(msg.is_extended_id) or msg.arbitration_id < 0:  # python-can does not check
         return f"frame ID {msg.arbitration_id:X} does not fit {29 if msg.is_extended_id else 11} bits"
+    if not math.isfinite(msg.timestamp):  # TRC: python-can reads `nan` as a time offset
+        return f"time stamp {msg.timestamp} is not a finite number"
     kind = ERROR if msg.is_error_frame else REMOTE if msg.is_remote_frame else DATA
     channel = None if msg.channel is None else str(msg.channel)
     flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
