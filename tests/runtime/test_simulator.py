@@ -17,6 +17,7 @@ import uuid
 import can
 import pytest
 from canspec import cli
+from canspec.commands.simulate import command
 from canspec.runtime import supervision
 from canspec.runtime.simulate import RestBus, SimFault, SimulationError
 from repo_paths import CANSPEC_ENV, ROOT
@@ -117,10 +118,23 @@ def test_values_are_settable_while_it_runs(spec):
             sim.set("autocar_speed_command", checksum=1)
         with pytest.raises(SimulationError, match="does not send"):
             sim.set("vehicle_state_1", speed=1)
+        sim.set("autocar_eps_command", eps_ctrl_mode="auto_angle")  # a value name: raw 0x20
+        assert command(sim, "set autocar_eps_command eps_ctrl_mode=manual_assist") == "set autocar_eps_command {'eps_ctrl_mode': 'manual_assist'}"
+        with pytest.raises(SimulationError) as err:
+            sim.set("autocar_eps_command", eps_ctrl_mode="stop")
+        assert str(err.value) == ("autocar_eps_command.eps_ctrl_mode: 'stop' is neither a number nor a value name "
+                                  "(its value names: auto_angle, manual_assist, stop_control)")
+        for line, usage in (("set", "set MESSAGE SIGNAL=VALUE..."), ("set autocar_eps_command eps_ctrl_mode", "set MESSAGE SIGNAL=VALUE..."),
+                            ("fault autocar_eps_command", "fault MESSAGE KIND")):
+            with pytest.raises(SimulationError) as err:
+                command(sim, line)
+            assert str(err.value) == f"{line!r}: expected `{usage}`"
         mon = kg.new_monitor()
         watch(rx, mon, 0.2, lambda ev, frame: seen.append(kg.bus.decode_frame(frame)))
     speeds = [m for m in seen if isinstance(m, kg.AutocarSpeedCommand)]
     assert speeds and speeds[-1].accel_cmd == pytest.approx(-1.5) and speeds[-1].gear_cmd == kg.Gear.DRIVE
+    eps = [m for m in seen if isinstance(m, kg.AutocarEpsCommand)]
+    assert eps and eps[-1].eps_ctrl_mode == kg.EpsModeCmd.MANUAL_ASSIST
 
 
 def test_command_line(spec, capsys):

@@ -47,7 +47,7 @@ def command(sim: RestBus, line: str) -> str:
     if not words:
         return ""
     verb, args = words[0], words[1:]
-    if verb == "set" and len(args) >= 2:
+    if verb == "set" and len(args) >= 2 and all("=" in a for a in args[1:]):
         values = dict(a.split("=", 1) for a in args[1:] if "=" in a)
         sim.set(args[0], **{k: _number(v) for k, v in values.items()})
         return f"set {args[0]} {values}"
@@ -59,6 +59,9 @@ def command(sim: RestBus, line: str) -> str:
         return f"cleared {args[0]}"
     if verb == "send" and len(args) == 1:
         return f"sent {args[0]}" if sim.send(args[0]) else f"{args[0]} is dropped"
+    usage = {"set": "set MESSAGE SIGNAL=VALUE...", "fault": "fault MESSAGE KIND", "clear": "clear MESSAGE", "send": "send MESSAGE"}
+    if verb in usage:
+        raise SimulationError(f"{line.strip()!r}: expected `{usage[verb]}`")
     raise SimulationError(f"unknown command {line.strip()!r}: set, fault, clear or send")
 
 

@@ -96,6 +96,9 @@ class RestBus:
         raw = {}
         for name, value in physical.items():
             sig = self._signal(entry.msg, name)
+            if isinstance(value, str):  # a value name of the signal's table or its special values
+                raw[name] = _named_raw(message, sig, value)
+                continue
             try:
                 raw[name] = codec.to_raw(sig, value)
             except codec.CodecError as exc:
@@ -222,3 +225,13 @@ class RestBus:
             wait = min((e.due for e in cyclic), default=now + 1.0) - self.clock()
             if wait > 0:
                 self._stop.wait(wait)
+
+
+def _named_raw(message: str, sig: ir.Signal, name: str) -> int:
+    """The raw value a signal's value table or special values give `name`."""
+    named = {e.name: e.raw for e in (sig.value_table.entries if sig.value_table is not None else ())}
+    named.update({sp.name: sp.raw for sp in sig.specials})
+    if name in named:
+        return named[name]
+    known = f"its value names: {', '.join(sorted(named))}" if named else "it has no value names"
+    raise SimulationError(f"{message}.{sig.name}: {name!r} is neither a number nor a value name ({known})")
