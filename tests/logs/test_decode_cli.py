@@ -120,6 +120,8 @@ def test_binary_garbage_and_limits(tmp_path):
     assert sum(line.startswith("<stdin>:") for line in proc.stderr.splitlines()) == 4  # three problems and the note that more are not shown
     assert "more problems not shown (--max-problems 3)" in proc.stderr
     assert proc.stdout.count("autocar_eps_command") == 1
+    proc = canspec_decode("--max-problems", "-1", str(log))
+    assert proc.returncode == 2 and "argument --max-problems: -1 is not in 0..1000000000" in proc.stderr, proc.stderr
 
 
 def test_csv_output(vectors, tmp_path):

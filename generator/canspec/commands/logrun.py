@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import IO, Any
 
 from canspec import ir
-from canspec.commands.common import compile_or_report
+from canspec.commands.common import compile_or_report, number_in
 from canspec.commands.extras import install_hint
 
 PROBLEM_KINDS = ("malformed", "unknown_id", "wrong_length", "checksum")
@@ -25,7 +25,8 @@ def add_input_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("logs", nargs="+", metavar="LOG", help="log files (.log candump, .asc, .blf, .trc, .mf4; .gz too); - reads a text log from stdin")
     p.add_argument("--input-format", choices=LOG_FORMATS, default=None, help="the logs' format (default: from the extension; stdin: candump)")
     p.add_argument("--spec", default=None, help="spec bundle, directory or file (default: the shipped spec)")
-    p.add_argument("--max-problems", type=int, default=1000, metavar="N", help="print at most N problems per input (all are counted; default 1000)")
+    p.add_argument("--max-problems", type=number_in(int, 0, 10**9), default=1000,
+                   metavar="N", help="print at most N problems per input (all are counted; default 1000)")
 
 
 def load_protocol(command: str, spec: str | None) -> ir.CanProtocol | None:

@@ -182,5 +182,5 @@ def register(sub) -> None:  # type: ignore[no-untyped-def]
     p.add_argument("--start", type=number_in(float, 0, 1e9), default=None, metavar="S", help="from S seconds after the first frame")
     p.add_argument("--stop", type=number_in(float, 0, 1e9), default=None, metavar="S", help="up to S seconds after the first frame")
     p.add_argument("--dpi", type=number_in(int, 1, MAX_DPI), default=100, help=f"resolution of PNG output, 1..{MAX_DPI} (default 100)")
-    p.add_argument("--max-problems", type=int, default=20, metavar="N", help="print at most N problems per input (default 20)")
+    p.add_argument("--max-problems", type=number_in(int, 0, 10**9), default=20, metavar="N", help="print at most N problems per input (default 20)")
     p.set_defaults(func=run)
