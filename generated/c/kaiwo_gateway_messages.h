@@ -8597,7 +8597,8 @@ kaiwo_gateway_device_id_id_frame_index_encode_fixed(int32_t value, uint8_t *raw)
 
 /** id_chars: raw → physical × 1, integers only. */
 static inline int64_t kaiwo_gateway_device_id_id_chars_decode_fixed(uint64_t raw) {
-    return (int64_t)raw;
+    const uint64_t field = (uint64_t)raw & UINT64_C(0xFFFFFFFFFFFFFF);
+    return (int64_t)field;
 }
 
 /** id_chars: physical × 1 → raw, integers only, rounding half away from zero.

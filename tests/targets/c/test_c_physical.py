@@ -53,6 +53,10 @@ class Sig:
     def is_identity(self) -> bool:
         return self.factor == 1 and self.offset == 0
 
+    @property
+    def storage_bits(self) -> int:
+        return next(b for b in (8, 16, 32, 64) if self.length <= b)
+
 
 TYPE_RANGES = {"int32_t": (-(2**31), 2**31 - 1), "int64_t": (-(2**63), 2**63 - 1), "uint64_t": (0, 2**64 - 1)}
 
@@ -166,7 +170,9 @@ def test_fixed_encode_divides_64_bit_values_by_a_multiply():
     strain = _check_agrees(_wide(48, True, Fraction(1, 1000)))
     assert strain.rounded == "p_div_round64_mulhi((int64_t)value, UINT64_C(5), UINT64_C(0x199999999999999A), 0u)"
     assert strain.note == "divide by 10: (|num| + 5) * 0x199999999999999A >> (64 + 0), exact up to 1407374883553285"
-    assert strain.decode_expr == "p_mul64((int64_t)raw, INT64_C(10))"
+    assert strain.decode_expr == "p_mul64((int64_t)field, INT64_C(10))"  # an int64_t argument times 10 can overflow: its 48 bits, sign-extended
+    assert strain.decode_pre == ("const uint64_t bits = ((uint64_t)raw & UINT64_C(0xFFFFFFFFFFFF)) ^ UINT64_C(0x800000000000);",
+                                 "const int64_t field = (int64_t)bits - INT64_C(140737488355328);")
     huge = _check_agrees(_wide(2, True, Fraction(2**62 - 2)))
     # an accepted range wider than INT64_MAX: one unsigned compare (cppcheck misjudges two)
     assert huge.outside == "((uint64_t)value + UINT64_C(9223372036854775804)) > UINT64_C(13835058055282163706)"

@@ -107,12 +107,13 @@ class CFixed:
     scale: int  # 10^k
     scale_lit: str
     type: str  # int32_t / int64_t / uint64_t
-    decode_expr: str  # physical × scale from `raw`
+    decode_expr: str  # physical × scale from `raw` (or from `field`, which decode_pre sets)
     outside: str  # condition: the input lies beyond the raw type widened by one step ("" if its type keeps it inside)
     rounded: str  # r from `value`: (value - fo) / ff rounded half away from zero
     r_type: str
     ranges: CRanges
     note: str = ""  # comment beside `rounded`: the divisor and the multiply that divides by it
+    decode_pre: tuple[str, ...] = ()  # statements before decode_expr: `field`, the argument as the field's bits
 
 
 def _ranges(sig: ir.Signal, r_signed: bool, value_terms: list[str], r_reach: tuple[int, int] | None) -> CRanges:
@@ -243,7 +244,8 @@ def _difference_fits(ff: int, fo: int, vlo: int, vhi: int, bits: int = 64) -> bo
 def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int, int], ctype: str, bounds: tuple[int, int], trange: tuple[int, int]) -> CFixed:
     ff, fo = scaling
     lit = lambda v: C.integer(v, 32 if ctype == "int32_t" else 64)
-    expr = f"({ctype})raw"
+    pre, arg = _field_value(sig, (ff, fo), trange)
+    expr = f"({ctype}){arg}"
     if ff != 1:
         expr = f"{expr} * {lit(ff)}" if ctype == "int32_t" else f"{names.fn('mul64')}({expr}, {lit(ff)})"
     if fo:
@@ -262,8 +264,26 @@ def _signed_fixed(names: CNames, sig: ir.Signal, scale: int, scaling: tuple[int,
         rounded, note = _divided(names, num, abs(ff), max(abs(v - fo) for v in reach), "" if narrow else "64")
     return CFixed(
         scale=scale, scale_lit=C.integer(scale), type=ctype, decode_expr=expr, outside=any_of(outside),
-        rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note,
+        rounded=rounded, r_type="int64_t", ranges=_fixed_ranges(sig, True, scale, scaling, reach, lit), note=note, decode_pre=pre,
     )
+
+
+def _field_value(sig: ir.Signal, scaling: tuple[int, int], trange: tuple[int, int]) -> tuple[tuple[str, ...], str]:
+    """(statements, name) of decode_fixed's input. The result type holds every value of the field,
+    not every value of the argument's type: where an argument beyond the field's bits (none that
+    unpack gives) would overflow it, the argument is first read as the field's bits (the low bits,
+    sign-extended), so the function has no undefined behaviour for any argument."""
+    ff, fo = scaling
+    b, n = sig.storage_bits, sig.length
+    pmin, pmax = (-(2 ** (b - 1)), 2 ** (b - 1) - 1) if sig.signed else (0, 2**b - 1)
+    if n == b or all(trange[0] <= v <= trange[1] for v in (pmin, pmax, pmin * ff + fo, pmax * ff + fo, pmin * ff, pmax * ff)):
+        return (), "raw"
+    w = 64 if b > 32 else 32  # locals (not composite expressions) are what is cast: MISRA 10.8
+    if not sig.signed:
+        return (f"const uint{w}_t field = (uint{w}_t)raw & {C.hex((1 << n) - 1, bits=w)};",), "field"
+    sign = 1 << (n - 1)
+    return (f"const uint{w}_t bits = ((uint{w}_t)raw & {C.hex((1 << n) - 1, bits=w)}) ^ {C.hex(sign, bits=w)};",
+            f"const int{w}_t field = (int{w}_t)bits - {C.integer(sign, w)};"), "field"
 
 
 def _unsigned_fixed(names: CNames, sig: ir.Signal, scale: int, ff: int, above: int) -> CFixed:
