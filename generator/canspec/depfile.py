@@ -6,12 +6,12 @@ headers keep their times unless their bytes changed, so nothing that includes th
 
 from __future__ import annotations
 
-import contextlib
 import errno
 import os
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
+
+from canspec.render import writer
 
 
 def escape(path: str) -> str:
@@ -33,15 +33,7 @@ def write(depfile: Path, target: Path, inputs: Iterable[Path]) -> None:
     depfile.parent.mkdir(parents=True, exist_ok=True)
     if depfile.is_dir():
         raise IsADirectoryError(errno.EISDIR, "is a directory", str(depfile))
-    fd, temp = tempfile.mkstemp(dir=depfile.parent, prefix=f".{depfile.name}.")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(rule(target, inputs))
-        os.replace(temp, depfile)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(temp)
-        raise
+    writer.apply(depfile.parent, writer.Plan(write={depfile.name: rule(target, inputs).encode("utf-8")}))
 
 
 def touch(target: Path) -> None:
