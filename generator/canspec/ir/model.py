@@ -117,6 +117,13 @@ class Signal:
         return self.role == "reserved"
 
     @property
+    def decodes_to_enum(self) -> bool:
+        """Its physical value is a value-table entry: a table on an unscaled field (factor 1,
+        offset 0). A scaled field's table names raw values (a DBC's VAL_ on a scaled signal):
+        the field decodes to its scaled number like any other, in every language."""
+        return self.value_table is not None and self.is_identity
+
+    @property
     def is_big_endian(self) -> bool:
         return self.byte_order == "big_endian"
 

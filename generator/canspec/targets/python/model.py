@@ -192,7 +192,7 @@ class _Builder:
         self.lookups: dict[tuple[str, int, bool], PyLookup] = {}
 
     def lookup(self, sig: ir.Signal) -> PyLookup | None:
-        if sig.value_table is None or not sig.is_identity:
+        if not sig.decodes_to_enum:
             return None
         key = (sig.value_table.name, sig.length, sig.signed)  # a signed field's raw may be negative: never a tuple index
         if key not in self.lookups:

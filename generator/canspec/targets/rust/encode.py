@@ -50,7 +50,7 @@ def kind_of(sig: ir.Signal) -> str:
     physical values in an integer type), "float" (scaled, in doubles) or "ieee" (an IEEE 754 field)."""
     if sig.is_float:
         return "ieee"
-    if sig.value_table is not None:
+    if sig.decodes_to_enum:
         return "enum"
     if sig.is_identity:
         return "int"

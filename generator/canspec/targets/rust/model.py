@@ -204,7 +204,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
     names = field_names(sig)
     kind = kind_of(sig)
     ty = raw_type(sig)
-    enum = enums[sig.value_table.name] if sig.value_table is not None else None
+    enum = enums[sig.value_table.name] if kind == "enum" and sig.value_table is not None else None
     phys_type = {"enum": enum.name if enum else "", "int": ty, "scaled_int": scaled_int_type(sig) or "", "float": "f64", "ieee": f"f{sig.length}"}[kind]
     encoding = int_encoding(sig) if kind == "scaled_int" else float_encoding(sig) if kind == "float" else None
     ieee = ieee_encoding(sig) if kind == "ieee" else None

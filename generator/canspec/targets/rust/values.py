@@ -34,11 +34,11 @@ class RustEnum:
 
 
 def enum_users(can: ir.CanProtocol) -> dict[str, list[ir.Signal]]:
-    """The signals of each value table a signal uses, by table name (sorted)."""
+    """The signals that decode to each value table's enum, by table name (sorted)."""
     users: dict[str, list[ir.Signal]] = {}
     for msg in can.messages:
         for s in msg.data_signals:
-            if s.value_table is not None and s.role != "checksum":
+            if s.value_table is not None and s.decodes_to_enum and s.role != "checksum":
                 users.setdefault(s.value_table.name, []).append(s)
     return dict(sorted(users.items()))
 
