@@ -1,0 +1,36 @@
+"""DBC edits an independent mutation probe over opendbc's files found diff missing or crashing on:
+each pair differs in one thing the DBC says, and the expectation is what that line means."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from diff_helpers import diff_paths, run_cli
+
+_HEAD = 'VERSION ""\n\nNS_ :\n\nBS_:\n\nBU_: GW ECU1 ECU2\n\n'
+_MUX_EXT = (
+    "BO_ 257 MUX_EXT: 8 GW\n"
+    ' SG_ SEL M : 0|4@1+ (1,0) [0|15] "" ECU1\n'
+    ' SG_ SUBSEL m1M : 4|4@1+ (1,0) [0|15] "" ECU1\n'
+    ' SG_ DEEP_A m2 : 8|16@1+ (1,0) [0|65535] "" ECU1\n'
+    ' SG_ RANGED m4 : 24|8@1+ (1,0) [0|255] "" ECU1\n\n'
+)
+_MUL_VAL = "SG_MUL_VAL_ 257 SUBSEL SEL 1-1;\nSG_MUL_VAL_ 257 DEEP_A SUBSEL 2-2;\nSG_MUL_VAL_ 257 RANGED SEL 4-7;\n"
+
+
+def _dbc(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / f"{name}.dbc"
+    path.write_text(_HEAD + text, encoding="utf-8")
+    return path
+
+
+def test_extended_multiplexing_naming_an_unmarked_signal_is_refused_not_a_crash(tmp_path):
+    """RANGED loses its m4 but SG_MUL_VAL_ still gives it pages of SEL: cantools reads page values
+    without a multiplexer. The import cannot say which frames carry RANGED: refused (exit 2), naming
+    it — it was an internal error (None joined as a top-level multiplexer's name)."""
+    old = _dbc(tmp_path, "old", _MUX_EXT + _MUL_VAL)
+    new = _dbc(tmp_path, "new", _MUX_EXT.replace(" RANGED m4 :", " RANGED :") + _MUL_VAL)
+    assert {(c.kind, c.signal) for c in diff_paths(old, old)} == set()
+    code, _, err = run_cli("diff", old, new)
+    assert code == 2 and "internal error" not in err
+    assert "signal RANGED is multiplexed (mN) but has no multiplexer" in err
