@@ -34,3 +34,16 @@ def test_extended_multiplexing_naming_an_unmarked_signal_is_refused_not_a_crash(
     code, _, err = run_cli("diff", old, new)
     assert code == 2 and "internal error" not in err
     assert "signal RANGED is multiplexed (mN) but has no multiplexer" in err
+
+
+_CYCLE_DEF = 'BA_DEF_ BO_ "GenMsgCycleTime" INT 0 65535;\nBA_DEF_DEF_ "GenMsgCycleTime" 0;\n'
+_PLAIN = 'BO_ 768 CLASSIC: 8 ECU2\n SG_ SPEED : 7|16@0+ (0.01,0) [0|655.35] "km/h" GW\n SG_ GEAR : 16|3@1+ (1,0) [0|7] "" GW,ECU1\n\n'
+
+
+def test_a_cycle_time_given_where_there_was_none_is_a_cycle_change(tmp_path):
+    """No GenMsgCycleTime (default 0: not cyclic) → 40 ms: the message becomes cyclic, compatible
+    (cycle time is on the ladder's compatible rung). It printed 'no differences'."""
+    old = _dbc(tmp_path, "old", _PLAIN + _CYCLE_DEF)
+    new = _dbc(tmp_path, "new", _PLAIN + _CYCLE_DEF + 'BA_ "GenMsgCycleTime" BO_ 768 40;\n')
+    assert {(c.kind, c.cls, c.old, c.new) for c in diff_paths(old, new)} == {("message_cycle_changed", "compatible", None, 40)}
+    assert {(c.kind, c.cls, c.old, c.new) for c in diff_paths(new, old)} == {("message_cycle_changed", "compatible", 40, None)}

@@ -189,8 +189,8 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_fd_changed", n, None, f"frame format {_frame_format(o.fd)} → {_frame_format(n.fd)}", o.fd, n.fd)
     elif o.fd and _both(o.brs, n.brs) and o.brs != n.brs:
         c.add("message_brs_changed", n, None, f"bit-rate switching {'on' if o.brs else 'off'} → {'on' if n.brs else 'off'}", o.brs, n.brs)
-    if _both(o.cycle_ms, n.cycle_ms) and o.cycle_ms != n.cycle_ms:
-        c.add("message_cycle_changed", n, None, f"cycle {o.cycle_ms} ms → {n.cycle_ms} ms", o.cycle_ms, n.cycle_ms)
+    if o.cycle_ms != n.cycle_ms:  # None is a statement too: event-driven (a spec) or no GenMsgCycleTime (a DBC)
+        c.add("message_cycle_changed", n, None, f"cycle {_cycle(o)} → {_cycle(n)}", o.cycle_ms, n.cycle_ms)
     if _both(o.sender, n.sender) and o.sender != n.sender:
         c.add("message_sender_changed", n, None, f"sender {o.sender} → {n.sender}", o.sender, n.sender)
     if _both(o.receivers, n.receivers) and o.receivers != n.receivers:
@@ -215,6 +215,10 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
     for a, b in pairs:
         _signal_pair(c, n, a, b)
+
+
+def _cycle(m: MessageModel) -> str:
+    return "event-driven" if m.cycle_ms is None else f"{m.cycle_ms} ms"
 
 
 def _frame_format(fd: bool) -> str:
