@@ -42,6 +42,9 @@ CASES = [
     ("message_cycle_changed", [("    cycle_ms: 20\n", "    cycle_ms: 50\n")], {("message_cycle_changed", "compatible", None)}),
     ("message_receivers_changed", [("    sender: ECU\n    receivers: ALL\n", "    sender: ECU\n    receivers: [HOST]\n")],
      {("message_receivers_changed", "compatible", None)}),
+    # status goes to HOST and VIEW (ALL but its sender); speed is now read by HOST alone
+    ("signal_receivers_changed", [(SPEED, SPEED.replace('desc: "Vehicle speed."', 'desc: "Vehicle speed.", receivers: [HOST]'))],
+     {("signal_receivers_changed", "compatible", "speed")}),
     ("message_title_changed", [("    title: Status\n    zh: 状态\n", "    title: Status frame\n    zh: 状态报文\n")],
      {("message_title_changed", "docs", None)}),
     ("message_description_changed", [("    title: Command\n    zh: 命令\n", "    title: Command\n    zh: 命令\n    desc: Sent every cycle.\n")],

@@ -47,3 +47,14 @@ def test_a_cycle_time_given_where_there_was_none_is_a_cycle_change(tmp_path):
     new = _dbc(tmp_path, "new", _PLAIN + _CYCLE_DEF + 'BA_ "GenMsgCycleTime" BO_ 768 40;\n')
     assert {(c.kind, c.cls, c.old, c.new) for c in diff_paths(old, new)} == {("message_cycle_changed", "compatible", None, 40)}
     assert {(c.kind, c.cls, c.old, c.new) for c in diff_paths(new, old)} == {("message_cycle_changed", "compatible", 40, None)}
+
+
+def test_a_signal_gaining_a_reader_its_message_already_had_is_a_receivers_change(tmp_path):
+    """GEAR's SG_ line gains ECU2, which SPEED's already names: the message's readers (the union) stay
+    GW, ECU1, ECU2 but GEAR's are now GW, ECU1, ECU2 — compatible, like a message's receivers. It
+    printed 'no differences'."""
+    plain = _PLAIN.replace('"km/h" GW', '"km/h" GW,ECU2')
+    old = _dbc(tmp_path, "old", plain)
+    new = _dbc(tmp_path, "new", plain.replace('"" GW,ECU1', '"" GW,ECU1,ECU2'))
+    got = {(c.kind, c.cls, c.signal, tuple(c.old), tuple(c.new)) for c in diff_paths(old, new)}
+    assert got == {("signal_receivers_changed", "compatible", "GEAR", ("ECU1", "GW"), ("ECU1", "ECU2", "GW"))}

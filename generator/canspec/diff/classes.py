@@ -46,6 +46,7 @@ KINDS: dict[str, str] = {
     "signal_unit_changed": "wire",
     "signal_range_changed": "wire",  # compatible when only widened
     "signal_role_changed": "wire",
+    "signal_receivers_changed": "compatible",  # who reads a field, as sender/receivers of a message
     "signal_values_table_renamed": "source",
     "signal_label_changed": "docs",
     "signal_description_changed": "docs",

@@ -145,6 +145,17 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         c.add("signal_description_changed", msg, n, "description changed", o.desc, n.desc)
 
 
+def _receivers(c: _Collector, om: MessageModel, nm: MessageModel, o: SignalModel, n: SignalModel) -> None:
+    """A signal's readers: its own list (a DBC's SG_ receivers), else its message's. Said only where a
+    revision gives the signal a list of its own: the message's list alone is message_receivers_changed."""
+    if o.receivers is None and n.receivers is None:
+        return
+    old = o.receivers if o.receivers is not None else om.receivers
+    new = n.receivers if n.receivers is not None else nm.receivers
+    if old is not None and new is not None and set(old) != set(new):
+        c.add("signal_receivers_changed", nm, n, f"receivers {', '.join(old) or '(none)'} → {', '.join(new) or '(none)'}", old, new)
+
+
 _ORDER = {"little_endian": "Intel (little-endian)", "big_endian": "Motorola (big-endian)"}
 
 
@@ -215,6 +226,7 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
     for a, b in pairs:
         _signal_pair(c, n, a, b)
+        _receivers(c, o, n, a, b)
 
 
 def _cycle(m: MessageModel) -> str:

@@ -46,6 +46,7 @@ class SignalModel:
     is_float: bool = False  # an IEEE 754 field (the raw value is its bit pattern)
     mux: tuple[str, Ranges] | None = None  # multiplexed: its multiplexer and the raw values that select it (ir/mux.py)
     is_multiplexer: bool = False
+    receivers: tuple[str, ...] | None = None  # the nodes that read it where not all its message's receivers do (a DBC's SG_ receivers)
 
     @property
     def positions(self) -> tuple[int, ...]:
@@ -131,7 +132,7 @@ def _signal(sig: ir.Signal) -> SignalModel:
         values_table=sig.value_table.name if sig.value_table is not None else None,
         specials={s.raw: Entry(s.name, s.label_zh) for s in sig.specials}, zh=sig.zh, desc=desc, loc=sig.loc,
         byte_order=sig.byte_order, is_float=sig.is_float, mux=(sig.mux.by, sig.mux.ranges) if sig.mux is not None else None,
-        is_multiplexer=sig.is_multiplexer,
+        is_multiplexer=sig.is_multiplexer, receivers=tuple(sorted(sig.receivers)) if sig.receivers is not None else None,
     )
 
 
