@@ -98,6 +98,8 @@ CASES += [
     ("signal_byte_order_changed", [(TORQUE, TORQUE.replace("start: 0,", "start: 7, byte_order: big_endian,"))],
      {("signal_byte_order_changed", "wire", "torque")}),
     ("message_fd_changed", [("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")], {("message_fd_changed", "wire", None)}),
+    # every node runs at the bus's rate: a wire break
+    ("bus_bitrate_changed", [("bus: {bitrate: 250000,", "bus: {bitrate: 500000,")], {("bus_bitrate_changed", "wire", None)}),
 ]
 
 _COMMAND_BLOCK = BASE.read_text(encoding="utf-8").split("  - name: command\n")[1]

@@ -58,3 +58,22 @@ def test_a_signal_gaining_a_reader_its_message_already_had_is_a_receivers_change
     new = _dbc(tmp_path, "new", plain.replace('"" GW,ECU1', '"" GW,ECU1,ECU2'))
     got = {(c.kind, c.cls, c.signal, tuple(c.old), tuple(c.new)) for c in diff_paths(old, new)}
     assert got == {("signal_receivers_changed", "compatible", "GEAR", ("ECU1", "GW"), ("ECU1", "ECU2", "GW"))}
+
+
+_RATE_DEF = 'BA_DEF_ "Baudrate" INT 1000 1000000;\nBA_DEF_DEF_ "Baudrate" 500000;\n'
+
+
+def test_the_bus_bit_rate_is_compared(tmp_path):
+    """BA_ "Baudrate" 500000 → 250000: a node at the old rate cannot take part on the bus, a wire
+    break. It printed 'no differences' (and did between two specs' `bus: {bitrate}` too)."""
+    old = _dbc(tmp_path, "old", _PLAIN + _RATE_DEF + 'BA_ "Baudrate" 500000;\n')
+    new = _dbc(tmp_path, "new", _PLAIN + _RATE_DEF + 'BA_ "Baudrate" 250000;\n')
+    assert {(c.kind, c.cls, c.old, c.new) for c in diff_paths(old, new)} == {("bus_bitrate_changed", "wire", 500000, 250000)}
+    code, out, _ = run_cli("diff", old, new, "--fail-on", "wire")
+    assert code == 1 and "bus (bus)" in out and "bit rate 500 kbit/s → 250 kbit/s" in out
+
+
+def test_a_bit_rate_the_file_does_not_state_is_not_compared(tmp_path):
+    """Without a Baudrate the import assumes one (with a warning): that is no statement of the file's."""
+    old = _dbc(tmp_path, "old", _PLAIN + _RATE_DEF + 'BA_ "Baudrate" 250000;\n')
+    assert diff_paths(old, _dbc(tmp_path, "new", _PLAIN)) == []

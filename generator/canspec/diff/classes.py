@@ -1,6 +1,7 @@
 """The breaking-change ladder, strictest first, and the version bump each class suggests.
 
-wire       an old receiver would decode different values (layout, byte order, integer ↔ IEEE
+wire       an old receiver would decode different values, or could not take part (the bus's bit
+           rates; layout, byte order, integer ↔ IEEE
            float, factor, offset, signedness, unit, ID, DLC, classic ↔ CAN FD frame, enum meaning,
            checksum/counter roles, removed message or signal, the page a field is in)
 source     the wire is the same but generated identifiers change (renames)
@@ -19,6 +20,7 @@ TITLES = {"wire": "wire-breaking", "source": "source-breaking", "compatible": "c
 # Every change kind and its class; kinds whose class depends on the change are listed with the
 # strictest class and decided in compare.py (signal_added, signal_range_changed).
 KINDS: dict[str, str] = {
+    "bus_bitrate_changed": "wire",  # every node must run at the bus's rates: old ones could not take part
     "message_added": "compatible",
     "message_removed": "wire",
     "message_id_changed": "wire",

@@ -12,9 +12,22 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from canspec.diff.classes import KINDS, LADDER
-from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, meaningful_entries
+from canspec.diff.model import (
+    Entry,
+    MessageModel,
+    ProtocolModel,
+    SignalModel,
+    meaningful_entries,
+)
 from canspec.ir.mux import ranges_text
 from canspec.spec.problems import Loc
+
+BUS = -1  # Change.frame_id of a change of the whole bus (its bit rates), which no message holds
+
+
+def subject(frame_id: int) -> str:
+    """The frame ID as printed, or `bus` for a change of the whole bus."""
+    return "bus" if frame_id == BUS else f"0x{frame_id:08X}"
 
 
 @dataclass(frozen=True)
@@ -30,9 +43,13 @@ class Change:
     loc: Loc | None = field(default=None, compare=False)  # where in the NEW spec (or old, if removed)
     position: int = field(default=-1, compare=False)  # start bit of the signal, for ordering
 
+    @property
+    def subject(self) -> str:
+        return subject(self.frame_id)
+
     def as_json(self) -> dict:  # type: ignore[type-arg]
         return {
-            "kind": self.kind, "class": self.cls, "frame_id": f"0x{self.frame_id:08X}", "message": self.message,
+            "kind": self.kind, "class": self.cls, "frame_id": self.subject, "message": self.message,
             "signal": self.signal, "detail": self.detail, "old": _plain(self.old), "new": _plain(self.new),
         }
 
@@ -244,8 +261,22 @@ def _checksum_text(m: MessageModel) -> str:
     return f"{alg} of bytes {covers[0]}..{covers[-1]} in byte {byte}"
 
 
+def _bus(c: _Collector, old: ProtocolModel, new: ProtocolModel) -> None:
+    """Every node of a bus runs at its bit rates: another (arbitration or FD data phase) rate is a
+    wire break for the whole bus. A rate a source does not state (None) is not compared."""
+    for what, a, b in (("bit rate", old.bitrate, new.bitrate), ("CAN FD data bit rate", old.data_bitrate, new.data_bitrate)):
+        if _both(a, b) and a != b:
+            detail = f"{what} {_rate(a)} → {_rate(b)}"
+            c.changes.append(Change("bus_bitrate_changed", KINDS["bus_bitrate_changed"], BUS, "(bus)", None, detail, a, b))
+
+
+def _rate(rate: int | None) -> str:
+    return "none" if rate is None else f"{rate / 1000:g} kbit/s"
+
+
 def compare(old: ProtocolModel, new: ProtocolModel) -> list[Change]:
     c = _Collector()
+    _bus(c, old, new)
     both_specs = old.kind == new.kind == "spec"
     pairs: list[tuple[MessageModel, MessageModel]] = []
     left_old = list(old.messages)

@@ -49,4 +49,12 @@ def from_database(spec: ir.Spec, loaded: Any, source: str, comments: bool = Fals
     spec_named = _spec_named(loaded.db)
     messages = tuple(_message(m, msg, spec_named, loaded.renamed, comments) for m, msg in zip(model.messages, spec.can.messages))
     version = spec.can.version if spec.can.version != "0.0.0" else None
-    return replace(model, kind="dbc", messages=messages, version=version, changelog=None)
+    bitrate, data_bitrate = _stated(loaded.db, "Baudrate", "baudrate"), _stated(loaded.db, "BaudrateCANFD", "fd_baudrate")
+    return replace(model, kind="dbc", messages=messages, version=version, changelog=None,
+                   bitrate=model.bitrate if bitrate else None, data_bitrate=model.data_bitrate if data_bitrate else None)
+
+
+def _stated(db: Any, name: str, bus_field: str) -> bool:
+    """Whether the file states a bus rate (as importer/tospec reads it): one the import assumed, with
+    a warning, is not the file's and is not compared."""
+    return bool(attribute(db, name) or any(getattr(b, bus_field, None) for b in db.buses))

@@ -19,7 +19,7 @@ from canspec.spec.problems import Problem, SpecError, error, warning
 
 def _describe(c: Change) -> str:
     what = f"{c.message}.{c.signal}" if c.signal else c.message
-    return f"{c.kind} 0x{c.frame_id:08X} {what} ({c.detail})"
+    return f"{c.kind} {c.subject} {what} ({c.detail})"
 
 
 def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Problem]:

@@ -99,6 +99,8 @@ class ProtocolModel:
     version: str | None
     messages: tuple[MessageModel, ...]
     changelog: ir.Changelog | None = None  # the revision's own change record (spec only): what it declares
+    bitrate: int | None = None  # the bus's (arbitration) bit rate; None: the source does not say (an import's assumption)
+    data_bitrate: int | None = None  # the CAN FD data phase's; None: none, or not said
 
     def by_id(self, frame_id: int) -> MessageModel | None:
         return next((m for m in self.messages if m.frame_id == frame_id), None)
@@ -152,4 +154,6 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
         )
     name = spec.can.name if spec.can is not None else spec.name
     version = spec.can.version if spec.can is not None else spec.version
-    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog)
+    bus = spec.can.bus if spec.can is not None else None
+    rates = (bus.bitrate, bus.data_bitrate) if bus is not None else (None, None)
+    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog, *rates)
