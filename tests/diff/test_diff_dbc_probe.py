@@ -5,6 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+from canspec.diff.compare import compare
+from canspec.diff.inputs import load_model
 from diff_helpers import diff_paths, run_cli
 
 _HEAD = 'VERSION ""\n\nNS_ :\n\nBS_:\n\nBU_: GW ECU1 ECU2\n\n'
@@ -16,6 +19,11 @@ _MUX_EXT = (
     ' SG_ RANGED m4 : 24|8@1+ (1,0) [0|255] "" ECU1\n\n'
 )
 _MUL_VAL = "SG_MUL_VAL_ 257 SUBSEL SEL 1-1;\nSG_MUL_VAL_ 257 DEEP_A SUBSEL 2-2;\nSG_MUL_VAL_ 257 RANGED SEL 4-7;\n"
+
+
+def _dbs(old: Path, new: Path):  # type: ignore[no-untyped-def]
+    """Two databases compared as the CLI compares them: with their comments and attributes."""
+    return compare(load_model(str(old), True), load_model(str(new), True))
 
 
 def _dbc(tmp_path: Path, name: str, text: str) -> Path:
@@ -77,3 +85,40 @@ def test_a_bit_rate_the_file_does_not_state_is_not_compared(tmp_path):
     """Without a Baudrate the import assumes one (with a warning): that is no statement of the file's."""
     old = _dbc(tmp_path, "old", _PLAIN + _RATE_DEF + 'BA_ "Baudrate" 250000;\n')
     assert diff_paths(old, _dbc(tmp_path, "new", _PLAIN)) == []
+
+
+_ATTR_DEFS = ('BA_DEF_ BO_ "GenMsgSendType" ENUM "Cyclic","OnEvent";\nBA_DEF_ SG_ "GenSigStartValue" INT 0 100000;\n'
+              'BA_DEF_ BU_ "NodeLayer" INT 0 10;\nBA_DEF_ "ProjectCode" STRING;\n'
+              'BA_DEF_DEF_ "GenMsgSendType" "Cyclic";\nBA_DEF_DEF_ "GenSigStartValue" 0;\nBA_DEF_DEF_ "NodeLayer" 0;\nBA_DEF_DEF_ "ProjectCode" "";\n')
+
+
+@pytest.mark.parametrize(("old_tail", "new_tail", "expected"), [
+    # an ENUM BA_ holds the index: 1 is OnEvent
+    ("", 'BA_ "GenMsgSendType" BO_ 768 1;\n', {("message_attribute_changed", None, "Cyclic", "OnEvent")}),
+    ('BA_ "GenSigStartValue" SG_ 768 GEAR 2;\n', 'BA_ "GenSigStartValue" SG_ 768 GEAR 1;\n', {("signal_attribute_changed", "GEAR", 2, 1)}),
+    ('BA_ "ProjectCode" "P1";\n', 'BA_ "ProjectCode" "P2";\n', {("network_attribute_changed", None, "P1", "P2")}),
+    ('BA_ "NodeLayer" BU_ ECU2 3;\n', 'BA_ "NodeLayer" BU_ ECU2 2;\n', {("network_attribute_changed", None, 3, 2)}),
+], ids=["message_enum_value", "signal_value", "network_value", "node_value"])
+def test_two_dbcs_compare_their_own_attributes(tmp_path, old_tail, new_tail, expected):
+    """A BA_ value of an attribute canspec carries but does not interpret: compatible (tools act on
+    it; the bits decode as before). Each printed 'no differences'."""
+    old = _dbc(tmp_path, "old", _PLAIN + _ATTR_DEFS + old_tail)
+    new = _dbc(tmp_path, "new", _PLAIN + _ATTR_DEFS + new_tail)
+    changes = _dbs(old, new)
+    assert {(c.kind, c.signal, c.old, c.new) for c in changes} == expected and {c.cls for c in changes} == {"compatible"}
+
+
+def test_a_changed_attribute_default_changes_every_object_without_a_value(tmp_path):
+    """BA_DEF_DEF_ "GenSigStartValue" 0 → 5: SPEED and FLAG have no BA_ of it and start at 5 now; GEAR keeps its own 2."""
+    plain = _PLAIN.replace(' SG_ GEAR', ' SG_ FLAG : 19|1@1+ (1,0) [0|1] "" GW\n SG_ GEAR')
+    old = _dbc(tmp_path, "old", plain + _ATTR_DEFS + 'BA_ "GenSigStartValue" SG_ 768 GEAR 2;\n')
+    new = _dbc(tmp_path, "new", plain + _ATTR_DEFS.replace('"GenSigStartValue" 0;', '"GenSigStartValue" 5;') + 'BA_ "GenSigStartValue" SG_ 768 GEAR 2;\n')
+    assert {(c.kind, c.signal, c.old, c.new) for c in _dbs(old, new)} == {
+        ("signal_attribute_changed", "SPEED", 0, 5), ("signal_attribute_changed", "FLAG", 0, 5)}
+
+
+def test_the_cli_reports_an_attribute_change_between_two_dbcs(tmp_path):
+    old = _dbc(tmp_path, "old", _PLAIN + _ATTR_DEFS)
+    new = _dbc(tmp_path, "new", _PLAIN + _ATTR_DEFS + 'BA_ "GenMsgSendType" BO_ 768 1;\n')
+    code, out, _ = run_cli("diff", old, new, "--fail-on", "compatible")
+    assert code == 1 and "message_attribute_changed" in out and "attribute GenMsgSendType 'Cyclic' → 'OnEvent'" in out

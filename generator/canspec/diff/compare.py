@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from canspec.diff import attributes
 from canspec.diff.classes import KINDS, LADDER
 from canspec.diff.model import (
     Entry,
@@ -156,6 +157,8 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
     if o.values is not None or n.values is not None:
         _entries(c, msg, n, "value", meaningful_entries(o.values or {}), meaningful_entries(n.values or {}))
     _entries(c, msg, n, "special", o.specials, n.specials)
+    for name, a, b in attributes.changed(o.attributes or (), n.attributes or ()) if _both(o.attributes, n.attributes) else ():
+        c.add("signal_attribute_changed", msg, n, attributes.text(name, a, b), a, b)
     if _both(o.zh, n.zh) and o.zh != n.zh:
         c.add("signal_label_changed", msg, n, f"name as printed {o.zh} → {n.zh}", o.zh, n.zh)
     if _both(o.desc, n.desc) and o.desc != n.desc:
@@ -227,6 +230,8 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_checksum_changed", n, None, f"checksum {_checksum_text(o)} → {_checksum_text(n)}", None, None)
     if both_specs and o.multiframe != n.multiframe:
         c.add("message_multiframe_changed", n, None, "multi-frame text layout changed", _plain(o.multiframe), _plain(n.multiframe))
+    for name, a, b in attributes.changed(o.attributes or (), n.attributes or ()) if _both(o.attributes, n.attributes) else ():
+        c.add("message_attribute_changed", n, None, attributes.text(name, a, b), a, b)
     if _both(o.desc, n.desc) and o.desc != n.desc:
         c.add("message_description_changed", n, None, "description changed", o.desc, n.desc)
     for attr in ("title", "zh"):
@@ -263,11 +268,14 @@ def _checksum_text(m: MessageModel) -> str:
 
 def _bus(c: _Collector, old: ProtocolModel, new: ProtocolModel) -> None:
     """Every node of a bus runs at its bit rates: another (arbitration or FD data phase) rate is a
-    wire break for the whole bus. A rate a source does not state (None) is not compared."""
+    wire break for the whole bus. A rate a source does not state (None) is not compared. The
+    network's and nodes' own attributes belong to no message either."""
     for what, a, b in (("bit rate", old.bitrate, new.bitrate), ("CAN FD data bit rate", old.data_bitrate, new.data_bitrate)):
         if _both(a, b) and a != b:
             detail = f"{what} {_rate(a)} → {_rate(b)}"
             c.changes.append(Change("bus_bitrate_changed", KINDS["bus_bitrate_changed"], BUS, "(bus)", None, detail, a, b))
+    for name, a, b in attributes.changed(old.attributes or (), new.attributes or ()) if _both(old.attributes, new.attributes) else ():
+        c.changes.append(Change("network_attribute_changed", KINDS["network_attribute_changed"], BUS, "(bus)", None, attributes.text(name, a, b), a, b))
 
 
 def _rate(rate: int | None) -> str:

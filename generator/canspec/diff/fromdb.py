@@ -26,7 +26,8 @@ def _signal(model: SignalModel, sig: ir.Signal, names: dict[str, str], comments:
     if sig.value_table is not None:
         values = {e.raw: Entry(e.dbc_text or e.name, None) for e in sig.value_table.entries}
     mux = (names[model.mux[0]], model.mux[1]) if model.mux is not None else None
-    return replace(model, name=names[sig.name], values=values, values_table=None, zh=None, desc=model.desc if comments else None, loc=None, mux=mux)
+    return replace(model, name=names[sig.name], values=values, values_table=None, zh=None, desc=model.desc if comments else None, loc=None, mux=mux,
+                   attributes=model.attributes if comments else None)
 
 
 def _message(model: MessageModel, msg: ir.Message, spec_named: set[tuple[int, str]], renamed: dict[str, str], comments: bool) -> MessageModel:
@@ -36,14 +37,15 @@ def _message(model: MessageModel, msg: ir.Message, spec_named: set[tuple[int, st
     return replace(
         model, name=renamed.get(msg.dbc_name, msg.dbc_name), title=None, zh=None, checksum=None, multiframe=None, loc=None,
         receivers=model.receivers or None, signals=tuple(_signal(m, by_name[m.name], names, comments) for m in model.signals),
-        desc=model.desc if comments else None,
+        desc=model.desc if comments else None, attributes=model.attributes if comments else None,
     )
 
 
 def from_database(spec: ir.Spec, loaded: Any, source: str, comments: bool = False) -> ProtocolModel:
     """`loaded`: the import's source (importer/load.py), for the names cantools read. `comments`:
-    keep the database's comments as descriptions, to compare with another database's (a spec's
-    descriptions are not what its generated DBC comments say, so against a spec they stay None)."""
+    keep the database's comments as descriptions and its attributes, to compare with another
+    database's (a spec's descriptions are not what its generated DBC comments say, and the DBC
+    target adds attributes of its own, GenMsgSendType: against a spec they stay None)."""
     model = from_spec(spec, source)
     assert spec.can is not None
     spec_named = _spec_named(loaded.db)
@@ -51,7 +53,8 @@ def from_database(spec: ir.Spec, loaded: Any, source: str, comments: bool = Fals
     version = spec.can.version if spec.can.version != "0.0.0" else None
     bitrate, data_bitrate = _stated(loaded.db, "Baudrate", "baudrate"), _stated(loaded.db, "BaudrateCANFD", "fd_baudrate")
     return replace(model, kind="dbc", messages=messages, version=version, changelog=None,
-                   bitrate=model.bitrate if bitrate else None, data_bitrate=model.data_bitrate if data_bitrate else None)
+                   bitrate=model.bitrate if bitrate else None, data_bitrate=model.data_bitrate if data_bitrate else None,
+                   attributes=model.attributes if comments else None)
 
 
 def _stated(db: Any, name: str, bus_field: str) -> bool:
