@@ -122,3 +122,16 @@ def test_the_cli_reports_an_attribute_change_between_two_dbcs(tmp_path):
     new = _dbc(tmp_path, "new", _PLAIN + _ATTR_DEFS + 'BA_ "GenMsgSendType" BO_ 768 1;\n')
     code, out, _ = run_cli("diff", old, new, "--fail-on", "compatible")
     assert code == 1 and "message_attribute_changed" in out and "attribute GenMsgSendType 'Cyclic' → 'OnEvent'" in out
+
+
+_MUX = ('BO_ 256 MUXED: 8 GW\n SG_ MODE M : 0|8@1+ (1,0) [0|255] "" ECU1\n SG_ VOLTS m0 : 8|16@1+ (0.1,0) [0|6553.5] "V" ECU1\n'
+        ' SG_ AMPS m1 : 8|16@1- (1,0) [-32768|32767] "A" ECU1\n\n')
+
+
+def test_a_renamed_multiplexer_is_a_rename_not_new_pages(tmp_path):
+    """MODE → PAGE_SEL, in its SG_ line only (nothing else names it): the same bits select the same
+    pages, a source-breaking rename. VOLTS and AMPS were each reported signal_mux_changed, wire
+    ('present while MODE = 0 → present while PAGE_SEL = 0')."""
+    old = _dbc(tmp_path, "old", _MUX)
+    new = _dbc(tmp_path, "new", _MUX.replace(" SG_ MODE M :", " SG_ PAGE_SEL M :"))
+    assert {(c.kind, c.cls, c.signal) for c in _dbs(old, new)} == {("signal_renamed", "source", "PAGE_SEL")}

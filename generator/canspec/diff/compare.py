@@ -8,7 +8,7 @@ bits that were reserved or unused is compatible."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 from canspec.diff import attributes
@@ -246,7 +246,12 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         free = not (sig.bits & old_used) and max(sig.bits) < o.dlc * 8
         where = "in formerly reserved bits" if free else "over bits that carried another signal"
         c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
+    # A page names its multiplexer: a renamed multiplexer is the same one (signal_renamed says it), not
+    # another page for every field it selects.
+    renamed = {a.name: b.name for a, b in pairs}
     for a, b in pairs:
+        if a.mux is not None:
+            a = replace(a, mux=(renamed.get(a.mux[0], a.mux[0]), a.mux[1]))
         _signal_pair(c, n, a, b)
         _receivers(c, o, n, a, b)
 
