@@ -135,3 +135,13 @@ def test_a_renamed_multiplexer_is_a_rename_not_new_pages(tmp_path):
     old = _dbc(tmp_path, "old", _MUX)
     new = _dbc(tmp_path, "new", _MUX.replace(" SG_ MODE M :", " SG_ PAGE_SEL M :"))
     assert {(c.kind, c.cls, c.signal) for c in _dbs(old, new)} == {("signal_renamed", "source", "PAGE_SEL")}
+
+
+def test_renamed_fields_of_pages_sharing_bits_are_renames(tmp_path):
+    """VOLTS (page 0) → VOLTAGE and AMPS (page 1) → CURRENT: both in bits 8..23, so bits alone match
+    each to two fields; the page tells them apart. Each was reported removed and added, wire (so was
+    every paged field of a spec against its source DBC, the spec's names being its own)."""
+    old = _dbc(tmp_path, "old", _MUX)
+    new = _dbc(tmp_path, "new", _MUX.replace(" VOLTS m0", " VOLTAGE m0").replace(" AMPS m1", " CURRENT m1"))
+    assert {(c.kind, c.cls, c.old, c.new) for c in _dbs(old, new)} == {
+        ("signal_renamed", "source", "VOLTS", "VOLTAGE"), ("signal_renamed", "source", "AMPS", "CURRENT")}

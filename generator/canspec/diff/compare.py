@@ -191,6 +191,14 @@ def _number_type(sig: SignalModel) -> str:
     return "signed integer" if sig.signed else "unsigned integer"
 
 
+def _same_bits(o: SignalModel, n: SignalModel) -> bool:
+    return (o.start, o.length) == (n.start, n.length) or o.positions == n.positions
+
+
+def _page(sig: SignalModel) -> object:
+    return (sig.mux[1] if sig.mux is not None else None, sig.is_multiplexer)
+
+
 def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[SignalModel, SignalModel]], list[SignalModel], list[SignalModel]]:
     pairs: list[tuple[SignalModel, SignalModel]] = []
     left_old, left_new = list(old.signals), list(new.signals)
@@ -204,7 +212,10 @@ def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[Sig
                 left_new.remove(cands[0])
 
     take(lambda o, n: o.name == n.name)
-    take(lambda o, n: (o.start, o.length) == (n.start, n.length) or o.positions == n.positions)
+    # Fields of different pages may share bits: the one of the same page first (its values; the
+    # multiplexer's name may be what was renamed), then bits alone.
+    take(lambda o, n: _same_bits(o, n) and _page(o) == _page(n))
+    take(_same_bits)
     take(lambda o, n: bool(o.zh) and o.zh == n.zh)
     return pairs, left_old, left_new
 
