@@ -145,3 +145,12 @@ def test_renamed_fields_of_pages_sharing_bits_are_renames(tmp_path):
     new = _dbc(tmp_path, "new", _MUX.replace(" VOLTS m0", " VOLTAGE m0").replace(" AMPS m1", " CURRENT m1"))
     assert {(c.kind, c.cls, c.old, c.new) for c in _dbs(old, new)} == {
         ("signal_renamed", "source", "VOLTS", "VOLTAGE"), ("signal_renamed", "source", "AMPS", "CURRENT")}
+
+
+def test_a_reserved_label_is_a_placeholder_in_a_dbc_too(tmp_path):
+    """VAL_ 2 "RESERVED" (opendbc's tesla_can.dbc writes it so) marks an unused raw value, as a spec's
+    `reserved`: the DBC's import as a spec against the DBC itself reported value 2 added."""
+    dbc = _dbc(tmp_path, "old", _PLAIN + 'VAL_ 768 GEAR 0 "P" 1 "R" 2 "RESERVED" ;\n')
+    out = tmp_path / "imported"
+    assert run_cli("import", dbc, "-o", out)[0] == 0
+    assert [c for c in diff_paths(out, dbc) if c.cls != "source"] == []

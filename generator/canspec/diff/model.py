@@ -119,10 +119,11 @@ class ProtocolModel:
 
 
 def meaningful_entries(entries: dict[int, Entry]) -> dict[int, Entry]:
-    """Drop placeholder entries (`reserved_3: 保留`): a reserved raw value carries no meaning."""
+    """Drop placeholder entries (`reserved_3: 保留`): a reserved raw value carries no meaning. A DBC's
+    label is its own text (`RESERVED`) where a spec's name is lower case: one placeholder either way."""
     return {
         raw: e for raw, e in entries.items()
-        if not (e.name == "reserved" or e.name.startswith("reserved_") or (e.label or "").strip() in _RESERVED_LABELS)
+        if not (e.name.lower() == "reserved" or e.name.lower().startswith("reserved_") or (e.label or "").strip() in _RESERVED_LABELS)
     }
 
 
