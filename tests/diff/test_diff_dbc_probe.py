@@ -154,3 +154,11 @@ def test_a_reserved_label_is_a_placeholder_in_a_dbc_too(tmp_path):
     out = tmp_path / "imported"
     assert run_cli("import", dbc, "-o", out)[0] == 0
     assert [c for c in diff_paths(out, dbc) if c.cls != "source"] == []
+
+
+def test_a_standard_id_made_extended_says_so(tmp_path):
+    """BO_ 768 → BO_ 2147484416 (bit 31: the same number as a 29-bit ID): another frame on the bus.
+    The change read 'frame ID 0x00000300 → 0x00000300'."""
+    old = _dbc(tmp_path, "old", _PLAIN)
+    new = _dbc(tmp_path, "new", _PLAIN.replace("BO_ 768 ", f"BO_ {0x80000000 | 768} "))
+    assert [(c.kind, c.cls, c.detail) for c in diff_paths(old, new)] == [("message_id_changed", "wire", "frame ID 0x300 (11-bit) → 0x00000300 (29-bit)")]

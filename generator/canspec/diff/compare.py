@@ -222,7 +222,7 @@ def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[Sig
 
 def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: bool) -> None:
     if (o.frame_id, o.extended) != (n.frame_id, n.extended):
-        c.add("message_id_changed", n, None, f"frame ID 0x{o.frame_id:08X} → 0x{n.frame_id:08X}", o.frame_id, n.frame_id)
+        c.add("message_id_changed", n, None, f"frame ID {_id(o)} → {_id(n)}", o.frame_id, n.frame_id)
     if o.name != n.name:
         c.add("message_renamed", n, None, f"{o.name} → {n.name}", o.name, n.name)
     if o.dlc != n.dlc:
@@ -265,6 +265,11 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
             a = replace(a, mux=(renamed.get(a.mux[0], a.mux[0]), a.mux[1]))
         _signal_pair(c, n, a, b)
         _receivers(c, o, n, a, b)
+
+
+def _id(m: MessageModel) -> str:
+    """With its format: 0x100 as an 11-bit and as a 29-bit ID are two frames."""
+    return f"0x{m.frame_id:08X} (29-bit)" if m.extended else f"0x{m.frame_id:03X} (11-bit)"
 
 
 def _cycle(m: MessageModel) -> str:
