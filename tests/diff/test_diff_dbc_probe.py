@@ -162,3 +162,13 @@ def test_a_standard_id_made_extended_says_so(tmp_path):
     old = _dbc(tmp_path, "old", _PLAIN)
     new = _dbc(tmp_path, "new", _PLAIN.replace("BO_ 768 ", f"BO_ {0x80000000 | 768} "))
     assert [(c.kind, c.cls, c.detail) for c in diff_paths(old, new)] == [("message_id_changed", "wire", "frame ID 0x300 (11-bit) → 0x00000300 (29-bit)")]
+
+
+def test_a_message_read_by_no_node_gaining_a_reader_is_a_receivers_change(tmp_path):
+    """Every SG_ line's receiver Vector__XXX (none), then ECU1 for GEAR: the message is now read by
+    ECU1, between two DBCs a receivers change (compatible). It printed 'no differences'."""
+    plain = _PLAIN.replace('"km/h" GW', '"km/h" Vector__XXX').replace('"" GW,ECU1', '"" Vector__XXX')
+    old = _dbc(tmp_path, "old", plain)
+    new = _dbc(tmp_path, "new", plain.replace('[0|7] "" Vector__XXX', '[0|7] "" ECU1'))
+    got = {(c.kind, c.cls, c.signal, tuple(c.old or ()), tuple(c.new or ())) for c in _dbs(old, new)}
+    assert got == {("message_receivers_changed", "compatible", None, (), ("ECU1",))}

@@ -34,9 +34,11 @@ def _message(model: MessageModel, msg: ir.Message, spec_named: set[tuple[int, st
     own = {s.name: renamed.get(s.dbc_name, s.dbc_name) for s in msg.signals}
     names = {s.name: s.name if (msg.frame_id, s.dbc_name) in spec_named else own[s.name] for s in msg.signals}
     by_name = {s.name: s for s in msg.signals}
+    # No receiver (Vector__XXX) is not said against a spec, whose DBC may leave it so; between two
+    # databases it is what the file says: a message gaining its first reader is a receivers change.
     return replace(
         model, name=renamed.get(msg.dbc_name, msg.dbc_name), title=None, zh=None, checksum=None, multiframe=None, loc=None,
-        receivers=model.receivers or None, signals=tuple(_signal(m, by_name[m.name], names, comments) for m in model.signals),
+        receivers=model.receivers if comments else model.receivers or None, signals=tuple(_signal(m, by_name[m.name], names, comments) for m in model.signals),
         desc=model.desc if comments else None, attributes=model.attributes if comments else None,
     )
 
