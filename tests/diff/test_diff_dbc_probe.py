@@ -172,3 +172,23 @@ def test_a_message_read_by_no_node_gaining_a_reader_is_a_receivers_change(tmp_pa
     new = _dbc(tmp_path, "new", plain.replace('[0|7] "" Vector__XXX', '[0|7] "" ECU1'))
     got = {(c.kind, c.cls, c.signal, tuple(c.old or ()), tuple(c.new or ())) for c in _dbs(old, new)}
     assert got == {("message_receivers_changed", "compatible", None, (), ("ECU1",))}
+
+
+_UNFLAGGED = ('BO_ 2048 BIG_ID: 8 GW\n SG_ STATE : 0|8@1+ (1,0) [0|255] "" ECU1\n\n' + _CYCLE_DEF
+              + 'CM_ BO_ 2048 "sent by the gateway";\nBA_ "GenMsgCycleTime" BO_ 2048 100;\nVAL_ 2048 STATE 0 "Off" 1 "On" ;\n')
+
+
+@pytest.mark.parametrize(("old_text", "new_text", "expected"), [
+    ('BA_ "GenMsgCycleTime" BO_ 2048 100;', 'BA_ "GenMsgCycleTime" BO_ 2048 200;', {("message_cycle_changed", None, 100, 200)}),
+    ('1 "On" ;', '1 "On" 2 "Fault" ;', {("value_added", "STATE", None, "Fault")}),
+    ('"sent by the gateway"', '"sent by the body controller"', {("message_description_changed", None, "sent by the gateway", "sent by the body controller")}),
+], ids=["cycle_time", "value_label", "comment"])
+def test_the_statements_of_a_29_bit_id_written_without_its_flag_are_kept(tmp_path, old_text, new_text, expected):
+    """BO_ 2048 (above 0x7FF, no extended flag) is read as the 29-bit ID 0x800 with a warning; its
+    CM_, BA_ and VAL_ lines name it by 2048 too. Only the BO_ line was rewritten, so they named no
+    message and were lost: each edit printed 'no differences'."""
+    old = _dbc(tmp_path, "old", _UNFLAGGED)
+    new = _dbc(tmp_path, "new", _UNFLAGGED.replace(old_text, new_text))
+    got = {(c.kind, c.signal, c.old, c.new) for c in _dbs(old, new)}
+    assert got == expected
+    assert load_model(str(old)).by_id(0x800).cycle_ms == 100
