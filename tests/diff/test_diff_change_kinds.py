@@ -42,6 +42,9 @@ CASES = [
     ("message_cycle_changed", [("    cycle_ms: 20\n", "    cycle_ms: 50\n")], {("message_cycle_changed", "compatible", None)}),
     ("message_receivers_changed", [("    sender: ECU\n    receivers: ALL\n", "    sender: ECU\n    receivers: [HOST]\n")],
      {("message_receivers_changed", "compatible", None)}),
+    # status goes to HOST and VIEW (ALL but its sender); speed is now read by HOST alone
+    ("signal_receivers_changed", [(SPEED, SPEED.replace('desc: "Vehicle speed."', 'desc: "Vehicle speed.", receivers: [HOST]'))],
+     {("signal_receivers_changed", "compatible", "speed")}),
     ("message_title_changed", [("    title: Status\n    zh: 状态\n", "    title: Status frame\n    zh: 状态报文\n")],
      {("message_title_changed", "docs", None)}),
     ("message_description_changed", [("    title: Command\n    zh: 命令\n", "    title: Command\n    zh: 命令\n    desc: Sent every cycle.\n")],
@@ -95,6 +98,8 @@ CASES += [
     ("signal_byte_order_changed", [(TORQUE, TORQUE.replace("start: 0,", "start: 7, byte_order: big_endian,"))],
      {("signal_byte_order_changed", "wire", "torque")}),
     ("message_fd_changed", [("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")], {("message_fd_changed", "wire", None)}),
+    # every node runs at the bus's rate: a wire break
+    ("bus_bitrate_changed", [("bus: {bitrate: 250000,", "bus: {bitrate: 500000,")], {("bus_bitrate_changed", "wire", None)}),
 ]
 
 _COMMAND_BLOCK = BASE.read_text(encoding="utf-8").split("  - name: command\n")[1]
@@ -130,6 +135,9 @@ LEVEL = "      - {name: level, start: 16, len: 32}\n      - {role: reserved, sta
 PAGED = ("      - {name: mode, start: 16, len: 8}\n      - {name: level, start: 24, len: 16, mux: {by: mode, values: [1]}}\n"
          "      - {role: reserved, start: 40, len: 24}\n")
 # (case id, edits of the old revision, edits of the new one, expected): pairs whose old side is not the base
+ATTRIBUTE_DEFS = ("value_tables:\n", "dbc_attributes:\n  ProbeMsg: {object: message, type: INT, min: 0, max: 100, default: 0}\n"
+                  "  ProbeSig: {object: signal, type: INT, min: 0, max: 100, default: 0}\n"
+                  "  ProbeNet: {object: network, type: STRING, default: \"\", value: a}\nvalue_tables:\n")
 BOTH_EDITED = [
     ("signal_float_changed", [(CMD_RESERVED, LEVEL)], [(CMD_RESERVED, LEVEL.replace("len: 32}", "len: 32, float: true}"))],
      {("signal_float_changed", "wire", "level")}),
@@ -137,6 +145,16 @@ BOTH_EDITED = [
      [FD_BUS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n    brs: false\n")], {("message_brs_changed", "compatible", None)}),
     ("signal_mux_changed", [(CMD_RESERVED, PAGED)], [(CMD_RESERVED, PAGED.replace("values: [1]", "values: [1, [4, 6]]"))],
      {("signal_mux_changed", "wire", "level")}),
+    # a source DBC's own attributes, as a spec keeps them: a value of its own, or a changed default (every object without one)
+    ("message_attribute_changed", [ATTRIBUTE_DEFS], [ATTRIBUTE_DEFS, ("    cycle_ms: 20\n", "    cycle_ms: 20\n    dbc_attributes: {ProbeMsg: 5}\n")],
+     {("message_attribute_changed", "compatible", None)}),
+    ("message_attribute_default_changed", [ATTRIBUTE_DEFS], [(ATTRIBUTE_DEFS[0], ATTRIBUTE_DEFS[1].replace("default: 0}", "default: 3}", 1))],
+     {("message_attribute_changed", "compatible", None)}),
+    ("signal_attribute_changed", [ATTRIBUTE_DEFS],
+     [ATTRIBUTE_DEFS, (TORQUE, TORQUE.replace("range: [-1000, 1000]}", "range: [-1000, 1000], dbc_attributes: {ProbeSig: 7}}"))],
+     {("signal_attribute_changed", "compatible", "torque")}),
+    ("network_attribute_changed", [ATTRIBUTE_DEFS], [(ATTRIBUTE_DEFS[0], ATTRIBUTE_DEFS[1].replace("value: a}", "value: b}"))],
+     {("network_attribute_changed", "compatible", None)}),
     # a byte-aligned byte is the same field in either order: start 56 Intel and start 63 Motorola are byte 7
     ("byte_order_of_a_whole_byte", [], [("start: 56, len: 8, range: [0, 255], role: checksum}",
                                          "start: 63, len: 8, byte_order: big_endian, range: [0, 255], role: checksum}")],

@@ -178,3 +178,14 @@ def test_schema_shapes_declared_changes(tmp_path, entry, message):
     line = next(i for i, text in enumerate(log.read_text(encoding="utf-8").splitlines(), 1) if entry in text)
     assert len(errors) == 1 and errors[0].rule == "schema" and message in errors[0].message
     assert errors[0].loc.file.endswith("history/changelog.yaml") and errors[0].loc.line == line
+
+
+def test_a_bus_change_is_recorded_with_message_bus(tmp_path):
+    """A bit rate change belongs to no message: the check asks for `message: bus`, and accepts it."""
+    dest = _copy_spec(tmp_path)
+    _edit(dest / "can" / "gateway.yaml", "  bitrate: 250000\n", "  bitrate: 500000\n")
+    problems = _check(dest)
+    assert [p.rule for p in problems] == ["changelog-missing"] and "message: bus}" in problems[0].hint
+    _edit(dest / "history" / "changelog.yaml", "          - {kind: signal_added, message: 0x1805B0D0, signal: drive_mode_reset}\n",
+          "          - {kind: signal_added, message: 0x1805B0D0, signal: drive_mode_reset}\n          - {kind: bus_bitrate_changed, message: bus}\n")
+    assert _check(dest) == []

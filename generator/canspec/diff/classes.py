@@ -1,11 +1,13 @@
 """The breaking-change ladder, strictest first, and the version bump each class suggests.
 
-wire       an old receiver would decode different values (layout, byte order, integer ↔ IEEE
+wire       an old receiver would decode different values, or could not take part (the bus's bit
+           rates; layout, byte order, integer ↔ IEEE
            float, factor, offset, signedness, unit, ID, DLC, classic ↔ CAN FD frame, enum meaning,
            checksum/counter roles, removed message or signal, the page a field is in)
 source     the wire is the same but generated identifiers change (renames)
 compatible old code keeps working (new message, new signal in formerly free bits, new enum
-           value, widened range, cycle time, sender/receivers, bit-rate switching of an FD frame:
+           value, widened range, cycle time, sender/receivers, a DBC's own attributes (send type,
+           start value: tools act on them, the bits decode as before), bit-rate switching of an FD frame:
            the data phase's speed changes, not its bits — an FD controller follows the frame's BRS
            bit on receive, so only timing and bus load change)
 docs       names as printed, descriptions
@@ -19,6 +21,11 @@ TITLES = {"wire": "wire-breaking", "source": "source-breaking", "compatible": "c
 # Every change kind and its class; kinds whose class depends on the change are listed with the
 # strictest class and decided in compare.py (signal_added, signal_range_changed).
 KINDS: dict[str, str] = {
+    "bus_bitrate_changed": "wire",  # every node must run at the bus's rates: old ones could not take part
+    # a source DBC's own attributes (diff/attributes.py): tools act on them, the bits decode as before
+    "network_attribute_changed": "compatible",
+    "message_attribute_changed": "compatible",
+    "signal_attribute_changed": "compatible",
     "message_added": "compatible",
     "message_removed": "wire",
     "message_id_changed": "wire",
@@ -46,6 +53,7 @@ KINDS: dict[str, str] = {
     "signal_unit_changed": "wire",
     "signal_range_changed": "wire",  # compatible when only widened
     "signal_role_changed": "wire",
+    "signal_receivers_changed": "compatible",  # who reads a field, as sender/receivers of a message
     "signal_values_table_renamed": "source",
     "signal_label_changed": "docs",
     "signal_description_changed": "docs",

@@ -8,13 +8,27 @@ bits that were reserved or unused is compatible."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
+from canspec.diff import attributes
 from canspec.diff.classes import KINDS, LADDER
-from canspec.diff.model import Entry, MessageModel, ProtocolModel, SignalModel, meaningful_entries
+from canspec.diff.model import (
+    Entry,
+    MessageModel,
+    ProtocolModel,
+    SignalModel,
+    meaningful_entries,
+)
 from canspec.ir.mux import ranges_text
 from canspec.spec.problems import Loc
+
+BUS = -1  # Change.frame_id of a change of the whole bus (its bit rates), which no message holds
+
+
+def subject(frame_id: int) -> str:
+    """The frame ID as printed, or `bus` for a change of the whole bus."""
+    return "bus" if frame_id == BUS else f"0x{frame_id:08X}"
 
 
 @dataclass(frozen=True)
@@ -30,9 +44,13 @@ class Change:
     loc: Loc | None = field(default=None, compare=False)  # where in the NEW spec (or old, if removed)
     position: int = field(default=-1, compare=False)  # start bit of the signal, for ordering
 
+    @property
+    def subject(self) -> str:
+        return subject(self.frame_id)
+
     def as_json(self) -> dict:  # type: ignore[type-arg]
         return {
-            "kind": self.kind, "class": self.cls, "frame_id": f"0x{self.frame_id:08X}", "message": self.message,
+            "kind": self.kind, "class": self.cls, "frame_id": self.subject, "message": self.message,
             "signal": self.signal, "detail": self.detail, "old": _plain(self.old), "new": _plain(self.new),
         }
 
@@ -139,10 +157,23 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
     if o.values is not None or n.values is not None:
         _entries(c, msg, n, "value", meaningful_entries(o.values or {}), meaningful_entries(n.values or {}))
     _entries(c, msg, n, "special", o.specials, n.specials)
+    for name, a, b in attributes.changed(o.attributes or (), n.attributes or ()) if _both(o.attributes, n.attributes) else ():
+        c.add("signal_attribute_changed", msg, n, attributes.text(name, a, b), a, b)
     if _both(o.zh, n.zh) and o.zh != n.zh:
         c.add("signal_label_changed", msg, n, f"name as printed {o.zh} → {n.zh}", o.zh, n.zh)
     if _both(o.desc, n.desc) and o.desc != n.desc:
         c.add("signal_description_changed", msg, n, "description changed", o.desc, n.desc)
+
+
+def _receivers(c: _Collector, om: MessageModel, nm: MessageModel, o: SignalModel, n: SignalModel) -> None:
+    """A signal's readers: its own list (a DBC's SG_ receivers), else its message's. Said only where a
+    revision gives the signal a list of its own: the message's list alone is message_receivers_changed."""
+    if o.receivers is None and n.receivers is None:
+        return
+    old = o.receivers if o.receivers is not None else om.receivers
+    new = n.receivers if n.receivers is not None else nm.receivers
+    if old is not None and new is not None and set(old) != set(new):
+        c.add("signal_receivers_changed", nm, n, f"receivers {', '.join(old) or '(none)'} → {', '.join(new) or '(none)'}", old, new)
 
 
 _ORDER = {"little_endian": "Intel (little-endian)", "big_endian": "Motorola (big-endian)"}
@@ -160,6 +191,14 @@ def _number_type(sig: SignalModel) -> str:
     return "signed integer" if sig.signed else "unsigned integer"
 
 
+def _same_bits(o: SignalModel, n: SignalModel) -> bool:
+    return (o.start, o.length) == (n.start, n.length) or o.positions == n.positions
+
+
+def _page(sig: SignalModel) -> object:
+    return (sig.mux[1] if sig.mux is not None else None, sig.is_multiplexer)
+
+
 def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[SignalModel, SignalModel]], list[SignalModel], list[SignalModel]]:
     pairs: list[tuple[SignalModel, SignalModel]] = []
     left_old, left_new = list(old.signals), list(new.signals)
@@ -173,14 +212,17 @@ def _match_signals(old: MessageModel, new: MessageModel) -> tuple[list[tuple[Sig
                 left_new.remove(cands[0])
 
     take(lambda o, n: o.name == n.name)
-    take(lambda o, n: (o.start, o.length) == (n.start, n.length) or o.positions == n.positions)
+    # Fields of different pages may share bits: the one of the same page first (its values; the
+    # multiplexer's name may be what was renamed), then bits alone.
+    take(lambda o, n: _same_bits(o, n) and _page(o) == _page(n))
+    take(_same_bits)
     take(lambda o, n: bool(o.zh) and o.zh == n.zh)
     return pairs, left_old, left_new
 
 
 def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: bool) -> None:
     if (o.frame_id, o.extended) != (n.frame_id, n.extended):
-        c.add("message_id_changed", n, None, f"frame ID 0x{o.frame_id:08X} → 0x{n.frame_id:08X}", o.frame_id, n.frame_id)
+        c.add("message_id_changed", n, None, f"frame ID {_id(o)} → {_id(n)}", o.frame_id, n.frame_id)
     if o.name != n.name:
         c.add("message_renamed", n, None, f"{o.name} → {n.name}", o.name, n.name)
     if o.dlc != n.dlc:
@@ -189,8 +231,8 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_fd_changed", n, None, f"frame format {_frame_format(o.fd)} → {_frame_format(n.fd)}", o.fd, n.fd)
     elif o.fd and _both(o.brs, n.brs) and o.brs != n.brs:
         c.add("message_brs_changed", n, None, f"bit-rate switching {'on' if o.brs else 'off'} → {'on' if n.brs else 'off'}", o.brs, n.brs)
-    if _both(o.cycle_ms, n.cycle_ms) and o.cycle_ms != n.cycle_ms:
-        c.add("message_cycle_changed", n, None, f"cycle {o.cycle_ms} ms → {n.cycle_ms} ms", o.cycle_ms, n.cycle_ms)
+    if o.cycle_ms != n.cycle_ms:  # None is a statement too: event-driven (a spec) or no GenMsgCycleTime (a DBC)
+        c.add("message_cycle_changed", n, None, f"cycle {_cycle(o)} → {_cycle(n)}", o.cycle_ms, n.cycle_ms)
     if _both(o.sender, n.sender) and o.sender != n.sender:
         c.add("message_sender_changed", n, None, f"sender {o.sender} → {n.sender}", o.sender, n.sender)
     if _both(o.receivers, n.receivers) and o.receivers != n.receivers:
@@ -199,6 +241,8 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         c.add("message_checksum_changed", n, None, f"checksum {_checksum_text(o)} → {_checksum_text(n)}", None, None)
     if both_specs and o.multiframe != n.multiframe:
         c.add("message_multiframe_changed", n, None, "multi-frame text layout changed", _plain(o.multiframe), _plain(n.multiframe))
+    for name, a, b in attributes.changed(o.attributes or (), n.attributes or ()) if _both(o.attributes, n.attributes) else ():
+        c.add("message_attribute_changed", n, None, attributes.text(name, a, b), a, b)
     if _both(o.desc, n.desc) and o.desc != n.desc:
         c.add("message_description_changed", n, None, "description changed", o.desc, n.desc)
     for attr in ("title", "zh"):
@@ -213,8 +257,23 @@ def _message_pair(c: _Collector, o: MessageModel, n: MessageModel, both_specs: b
         free = not (sig.bits & old_used) and max(sig.bits) < o.dlc * 8
         where = "in formerly reserved bits" if free else "over bits that carried another signal"
         c.add("signal_added", n, sig, f"{sig.name} ({sig.span()}) added {where}", None, sig.name, cls="compatible" if free else "wire")
+    # A page names its multiplexer: a renamed multiplexer is the same one (signal_renamed says it), not
+    # another page for every field it selects.
+    renamed = {a.name: b.name for a, b in pairs}
     for a, b in pairs:
+        if a.mux is not None:
+            a = replace(a, mux=(renamed.get(a.mux[0], a.mux[0]), a.mux[1]))
         _signal_pair(c, n, a, b)
+        _receivers(c, o, n, a, b)
+
+
+def _id(m: MessageModel) -> str:
+    """With its format: 0x100 as an 11-bit and as a 29-bit ID are two frames."""
+    return f"0x{m.frame_id:08X} (29-bit)" if m.extended else f"0x{m.frame_id:03X} (11-bit)"
+
+
+def _cycle(m: MessageModel) -> str:
+    return "event-driven" if m.cycle_ms is None else f"{m.cycle_ms} ms"
 
 
 def _frame_format(fd: bool) -> str:
@@ -228,8 +287,25 @@ def _checksum_text(m: MessageModel) -> str:
     return f"{alg} of bytes {covers[0]}..{covers[-1]} in byte {byte}"
 
 
+def _bus(c: _Collector, old: ProtocolModel, new: ProtocolModel) -> None:
+    """Every node of a bus runs at its bit rates: another (arbitration or FD data phase) rate is a
+    wire break for the whole bus. A rate a source does not state (None) is not compared. The
+    network's and nodes' own attributes belong to no message either."""
+    for what, a, b in (("bit rate", old.bitrate, new.bitrate), ("CAN FD data bit rate", old.data_bitrate, new.data_bitrate)):
+        if _both(a, b) and a != b:
+            detail = f"{what} {_rate(a)} → {_rate(b)}"
+            c.changes.append(Change("bus_bitrate_changed", KINDS["bus_bitrate_changed"], BUS, "(bus)", None, detail, a, b))
+    for name, a, b in attributes.changed(old.attributes or (), new.attributes or ()) if _both(old.attributes, new.attributes) else ():
+        c.changes.append(Change("network_attribute_changed", KINDS["network_attribute_changed"], BUS, "(bus)", None, attributes.text(name, a, b), a, b))
+
+
+def _rate(rate: int | None) -> str:
+    return "none" if rate is None else f"{rate / 1000:g} kbit/s"
+
+
 def compare(old: ProtocolModel, new: ProtocolModel) -> list[Change]:
     c = _Collector()
+    _bus(c, old, new)
     both_specs = old.kind == new.kind == "spec"
     pairs: list[tuple[MessageModel, MessageModel]] = []
     left_old = list(old.messages)

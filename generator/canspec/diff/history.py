@@ -19,7 +19,7 @@ from canspec.spec.problems import Problem, SpecError, error, warning
 
 def _describe(c: Change) -> str:
     what = f"{c.message}.{c.signal}" if c.signal else c.message
-    return f"{c.kind} 0x{c.frame_id:08X} {what} ({c.detail})"
+    return f"{c.kind} {c.subject} {what} ({c.detail})"
 
 
 def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Problem]:
@@ -71,7 +71,8 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
             hits = [i for i, c in enumerate(changes) if declares(d, c)]
             if not hits:
                 what = f" {d['signal']}" if "signal" in d else ""
-                problems.append(error(f"{label} item {n} declares {d['kind']}{what} in 0x{d['message']:08X}, which the diff from {old.version} does not show",
+                where = "the bus" if d["message"] == "bus" else f"0x{d['message']:08X}"
+                problems.append(error(f"{label} item {n} declares {d['kind']}{what} in {where}, which the diff from {old.version} does not show",
                                       declared.loc_of(j), "remove the entry or make the spec change it describes", "changelog-invented"))
             covered.update(hits)
     problems.extend(_since_problems(spec, changes, str(newest["version"]), old.version))
@@ -79,7 +80,7 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
         if i not in covered:
             problems.append(error(f"{label}: the diff from {old.version} shows a {c.cls} change that no item records: {_describe(c)}",
                                   versions.loc_of(len(versions) - 1),
-                                  f"add an item (with `changes: [{{kind: {c.kind}, message: 0x{c.frame_id:08X}"
+                                  f"add an item (with `changes: [{{kind: {c.kind}, message: {c.subject}"
                                   + (f", signal: {c.signal}" if c.signal else "") + "}]`) or undo the change", "changelog-missing"))
     return problems
 

@@ -8,7 +8,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from canspec import ir
+from canspec.diff.attributes import Values, effective, protocol
 from canspec.ir.bits import LITTLE, describe, positions
+from canspec.ir.dbc_attributes import DbcAttributeDef
 from canspec.ir.mux import Ranges
 from canspec.spec.problems import Loc
 
@@ -46,6 +48,8 @@ class SignalModel:
     is_float: bool = False  # an IEEE 754 field (the raw value is its bit pattern)
     mux: tuple[str, Ranges] | None = None  # multiplexed: its multiplexer and the raw values that select it (ir/mux.py)
     is_multiplexer: bool = False
+    receivers: tuple[str, ...] | None = None  # the nodes that read it where not all its message's receivers do (a DBC's SG_ receivers)
+    attributes: Values | None = None  # the source DBC's own attributes (diff/attributes.py); None: not compared
 
     @property
     def positions(self) -> tuple[int, ...]:
@@ -81,6 +85,7 @@ class MessageModel:
     fd: bool = False  # a CAN FD frame (FDF)
     brs: bool | None = False  # bit-rate switching of an FD frame; None: the source does not say
     desc: str | None = None  # None: the source's description is not compared (see diff/fromdb.py)
+    attributes: Values | None = None  # the source DBC's own attributes (diff/attributes.py); None: not compared
 
     @property
     def used_bits(self) -> frozenset[int]:
@@ -98,6 +103,9 @@ class ProtocolModel:
     version: str | None
     messages: tuple[MessageModel, ...]
     changelog: ir.Changelog | None = None  # the revision's own change record (spec only): what it declares
+    bitrate: int | None = None  # the bus's (arbitration) bit rate; None: the source does not say (an import's assumption)
+    data_bitrate: int | None = None  # the CAN FD data phase's; None: none, or not said
+    attributes: Values | None = None  # the network's and nodes' own DBC attributes (diff/attributes.py); None: not compared
 
     def by_id(self, frame_id: int) -> MessageModel | None:
         return next((m for m in self.messages if m.frame_id == frame_id), None)
@@ -111,14 +119,15 @@ class ProtocolModel:
 
 
 def meaningful_entries(entries: dict[int, Entry]) -> dict[int, Entry]:
-    """Drop placeholder entries (`reserved_3: 保留`): a reserved raw value carries no meaning."""
+    """Drop placeholder entries (`reserved_3: 保留`): a reserved raw value carries no meaning. A DBC's
+    label is its own text (`RESERVED`) where a spec's name is lower case: one placeholder either way."""
     return {
         raw: e for raw, e in entries.items()
-        if not (e.name == "reserved" or e.name.startswith("reserved_") or (e.label or "").strip() in _RESERVED_LABELS)
+        if not (e.name.lower() == "reserved" or e.name.lower().startswith("reserved_") or (e.label or "").strip() in _RESERVED_LABELS)
     }
 
 
-def _signal(sig: ir.Signal) -> SignalModel:
+def _signal(sig: ir.Signal, defs: tuple[DbcAttributeDef, ...]) -> SignalModel:
     values = None
     if sig.value_table is not None:
         values = {e.raw: Entry(e.name, e.label_zh) for e in sig.value_table.entries}
@@ -131,12 +140,14 @@ def _signal(sig: ir.Signal) -> SignalModel:
         values_table=sig.value_table.name if sig.value_table is not None else None,
         specials={s.raw: Entry(s.name, s.label_zh) for s in sig.specials}, zh=sig.zh, desc=desc, loc=sig.loc,
         byte_order=sig.byte_order, is_float=sig.is_float, mux=(sig.mux.by, sig.mux.ranges) if sig.mux is not None else None,
-        is_multiplexer=sig.is_multiplexer,
+        is_multiplexer=sig.is_multiplexer, receivers=tuple(sorted(sig.receivers)) if sig.receivers is not None else None,
+        attributes=effective(defs, "signal", sig.dbc_attributes),
     )
 
 
 def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
     messages = []
+    defs = spec.can.dbc_attribute_defs if spec.can is not None else ()
     for msg in spec.can.messages if spec.can is not None else ():
         checksum = (msg.checksum.algorithm, msg.checksum.byte, msg.checksum.covers) if msg.checksum else None
         mf = msg.multiframe
@@ -145,10 +156,13 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
             MessageModel(
                 frame_id=msg.frame_id, extended=msg.is_extended, name=msg.name, title=msg.title, zh=msg.zh, dlc=msg.dlc,
                 cycle_ms=msg.cycle_ms, sender=msg.sender, receivers=tuple(sorted(msg.receivers)),
-                signals=tuple(_signal(s) for s in msg.signals if not s.is_reserved), checksum=checksum,
-                multiframe=multiframe, loc=msg.loc, fd=msg.is_fd, brs=msg.brs, desc=msg.desc,
+                signals=tuple(_signal(s, defs) for s in msg.signals if not s.is_reserved), checksum=checksum,
+                multiframe=multiframe, loc=msg.loc, fd=msg.is_fd, brs=msg.brs, desc=msg.desc, attributes=effective(defs, "message", msg.dbc_attributes),
             )
         )
     name = spec.can.name if spec.can is not None else spec.name
     version = spec.can.version if spec.can is not None else spec.version
-    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog)
+    bus = spec.can.bus if spec.can is not None else None
+    rates = (bus.bitrate, bus.data_bitrate) if bus is not None else (None, None)
+    attributes = protocol(spec.can) if spec.can is not None else None
+    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog, *rates, attributes)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from itertools import groupby
 
 from canspec.diff.classes import LADDER, TITLES, bump_note, suggest_bump
-from canspec.diff.compare import Change
+from canspec.diff.compare import Change, subject
 from canspec.diff.model import ProtocolModel
 
 
@@ -49,10 +49,10 @@ def text(old: ProtocolModel, new: ProtocolModel, changes: list[Change]) -> str:
     lines = [f"canspec diff: {old.source} ({old.label}) → {new.source} ({new.label})", ""]
     width = max((len(TITLES[c]) for c in LADDER), default=10)
     for (frame_id, name), items in _groups(changes):
-        lines.append(f"0x{frame_id:08X} {name}")
+        lines.append(f"{subject(frame_id)} {name}")
         for ch in items:
-            subject = f"{ch.signal}: " if ch.signal and ch.kind not in ("signal_added", "signal_removed", "signal_renamed") else ""
-            lines.append(f"  {TITLES[ch.cls]:<{width}}  {ch.kind:<28} {subject}{ch.detail}")
+            what = f"{ch.signal}: " if ch.signal and ch.kind not in ("signal_added", "signal_removed", "signal_renamed") else ""
+            lines.append(f"  {TITLES[ch.cls]:<{width}}  {ch.kind:<28} {what}{ch.detail}")
         lines.append("")
     if not changes:
         lines += ["no differences", ""]
@@ -72,7 +72,7 @@ def markdown(old: ProtocolModel, new: ProtocolModel, changes: list[Change]) -> s
     if s.note:
         lines += [f"> Note: {s.note}", ""]
     for (frame_id, name), items in _groups(changes):
-        lines += [f"## `0x{frame_id:08X}` {name}", "", "| Class | Kind | Signal | Change |", "|---|---|---|---|"]
+        lines += [f"## `{subject(frame_id)}` {name}", "", "| Class | Kind | Signal | Change |", "|---|---|---|---|"]
         for ch in items:
             detail = ch.detail.replace("|", "\\|")
             lines.append(f"| {TITLES[ch.cls]} | `{ch.kind}` | {'`' + ch.signal + '`' if ch.signal else ''} | {detail} |")

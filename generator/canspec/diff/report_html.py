@@ -52,7 +52,7 @@ def _rows(changes: list[Change], rel: Release | None) -> list[Row]:
     out = []
     for i, ch in enumerate(changes):
         declared = ", ".join(rel.declared_in(i)) if rel is not None else ""
-        out.append(Row(ch.cls, f"0x{ch.frame_id:08X}", ch.message, ch.signal or "", ch.kind, ch.detail, declared,
+        out.append(Row(ch.cls, ch.subject, ch.message, ch.signal or "", ch.kind, ch.detail, declared,
                        rel is not None and i in rel.undeclared))
     return out
 

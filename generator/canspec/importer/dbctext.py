@@ -186,8 +186,19 @@ def _extend_id(rep: Repairs, frame_id: int, name: str) -> bool:
         if m and int(m.group(2)) == frame_id and m.group(4) == name:
             rep.lines[i] = f"{m.group(1)}{frame_id | DBC_EXTENDED_FLAG}{line[m.end(2):]}"
             rep.warn(i, f"ID 0x{frame_id:X} of {name} is above 0x7FF but has no extended flag: taken as 29-bit")
+            # The message's other statements name it by the ID as written: with the BO_ line alone
+            # rewritten, its comments, attributes (cycle time), value labels and float types were lost.
+            ref = _references(frame_id)
+            for k, other in enumerate(rep.lines):
+                if (r := ref.match(other)) is not None:
+                    rep.lines[k] = f"{other[:r.start('id')]}{frame_id | DBC_EXTENDED_FLAG}{other[r.end('id'):]}"
             return True
     return False
+
+
+def _references(dbc_id: int) -> re.Pattern[str]:
+    """The statements after the BO_ blocks that name message `dbc_id` (as written) by its ID."""
+    return re.compile(rf"^\s*(?:CM_\s+(?:BO_|SG_)|BA_\s+\"\w+\"\s+(?:BO_|SG_)|VAL_|SIG_VALTYPE_|SG_MUL_VAL_|BO_TX_BU_)\s+(?P<id>{dbc_id})\s")
 
 
 def _drop_message(rep: Repairs, dbc_id: int, name: str) -> bool:
@@ -202,7 +213,7 @@ def _drop_message(rep: Repairs, dbc_id: int, name: str) -> bool:
             while j < len(rep.lines) and _SG.match(rep.lines[j]):
                 rep.lines[j] = ""
                 j += 1
-            ref = re.compile(rf"^\s*(CM_\s+(BO_|SG_)|BA_\s+\"\w+\"\s+(BO_|SG_)|VAL_|SIG_VALTYPE_)\s+{dbc_id}\s")
+            ref = _references(dbc_id)
             for k, other in enumerate(rep.lines):
                 if ref.match(other):
                     _drop_statement(rep, k, "", warn=False)

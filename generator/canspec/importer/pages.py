@@ -29,14 +29,17 @@ class Pages:
     def refusal(self) -> str | None:
         """Why the message's multiplexing cannot be expressed, or None."""
         used = list(dict.fromkeys(by for by, _ in self.parent.values()))
+        # cantools found no multiplexer (None) for a field with page values: SG_MUL_VAL_ names the
+        # signal itself, names one whose SG_ line is not marked mN, or an `mNM` has no M above it.
+        # Said first: None is no name to count or join as a root.
+        if None in used:
+            orphans = ", ".join(n for n, (by, _) in self.parent.items() if by is None)
+            return f"signal {orphans} is multiplexed (mN) but has no multiplexer of the message to select it"
         roots = [name for name in used if name not in self.parent]
         if len(roots) > 1:
             return f"has {len(roots)} top-level multiplexers ({', '.join(roots)}; canspec multiplexes a message by one, nested ones under it)"
         for name in used:
             sig = self.by_name.get(name)
-            if name is None:  # cantools found none: SG_MUL_VAL_ names the signal itself, or an `mNM` has no M above it
-                orphans = ", ".join(n for n, (by, _) in self.parent.items() if by is None)
-                return f"signal {orphans} is multiplexed (mN) but has no multiplexer of the message to select it"
             if sig is None:
                 return f"names a multiplexer {name} it does not have"
             if sig.is_float or sig.is_signed or sig.scale != 1 or sig.offset != 0:
