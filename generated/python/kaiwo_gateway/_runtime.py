@@ -95,7 +95,9 @@ def physical_to_raw(value: object, s: SignalSpec) -> int:
     # bound beyond 2^53 is not exact in a double: its nearest double is the bound)
     if raw in s.specials or (float(s.lo) <= x <= float(s.hi) and s.raw_min <= raw <= s.raw_max):
         return raw
-    raise RangeError(s.message, s.signal, value, s.allowed)
+    raise RangeError(
+        s.message, s.signal, value, s.allowed, (raw, s.raw_min, s.raw_max) if float(s.lo) <= x <= float(s.hi) else None
+    )
 
 
 def check_raw(value: object, s: SignalSpec) -> int:

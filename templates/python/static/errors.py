@@ -79,8 +79,11 @@ class EncodeError(Error, ValueError):
 class RangeError(EncodeError):
     """A physical value is outside the signal's allowed range (nothing is clamped or wrapped)."""
 
-    def __init__(self, message: str, signal: str, value: object, allowed: str) -> None:
-        super().__init__(f"{message}.{signal}: {value!r} is outside the allowed range {allowed}")
+    def __init__(self, message: str, signal: str, value: object, allowed: str, raw: tuple[int, int, int] | None = None) -> None:
+        # raw: (the raw value it rounds to, the range's first and last raw value), for a value whose
+        # double lies in the range but whose raw does not (the range's end is not a raw step)
+        why = f" (it is raw {raw[0]}, beyond the range's raw values {raw[1]}..{raw[2]})" if raw is not None else ""
+        super().__init__(f"{message}.{signal}: {value!r} is outside the allowed range {allowed}{why}")
         self.message = message
         self.signal = signal
         self.value = value
