@@ -33,6 +33,7 @@ KINDS = (  # (kind, words its message holds), first match wins
     ("range holding no value: dropped", "holds no value of the field"),
     ("C/Rust name clash: spec name renamed", "name clashes"),
     ("attribute value its definition refuses: left out", "is refused by its definition"),
+    ("ENUM attribute value not an index of its values: dropped", "is not an index of its ENUM"),
     ("attribute of other objects: left out", "objects: left out"),
     ("scaled float: scaling dropped", "scaling dropped"),
     ("not a frame length: message left out", "not a CAN frame length"),

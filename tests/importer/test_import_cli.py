@@ -239,6 +239,24 @@ def test_a_cycle_time_that_is_not_a_number_is_a_warning_at_its_ba_line(tmp_path:
     assert "cycle_ms" not in (tmp_path / "out" / "weird.yaml").read_text(encoding="utf-8")
 
 
+@pytest.mark.parametrize("attribute", ["VFrameFormat", "Mode"])
+def test_an_enum_value_that_is_no_index_of_its_values_is_dropped_at_its_line(tmp_path: Path, attribute: str) -> None:
+    """A BA_ line holds an ENUM attribute's index: 99 of VFrameFormat's 16 values made cantools fail
+    ('list index out of range', no line), 7 of a two-value ENUM was an internal IndexError."""
+    enums = ('BA_DEF_ BO_ "VFrameFormat" ENUM "StandardCAN","ExtendedCAN","reserved","J1939PG"' + ',"reserved"' * 10
+             + ',"StandardCAN_FD","ExtendedCAN_FD";\nBA_DEF_ BO_ "Mode" ENUM "A","B";\n')
+    bad = _dbc(tmp_path, "bad.dbc", COMMAND + "\n" + enums + f'BA_ "{attribute}" BO_ 2550247584 {99 if attribute == "VFrameFormat" else 7};\n'
+               + 'BA_ "Mode" BO_ 2550247584 1;\n')
+    r = run_canspec("import", bad, "-o", tmp_path / "out")
+    assert_no_traceback(r)
+    size, value = (16, 99) if attribute == "VFrameFormat" else (2, 7)
+    assert r.returncode == 0 and f"{bad}:14: warning: BA_ {attribute} value {value} is not an index of its ENUM's {size} values " \
+        f"(0..{size - 1}): dropped" in r.stderr, r.stderr
+    written = (tmp_path / "out" / "bad.yaml").read_text(encoding="utf-8")
+    assert "dbc_attributes: {Mode: B}" in written, written  # the valid BA_ line after it is kept
+    assert run_canspec("import", "--strict", bad, "-o", tmp_path / "strict").returncode != 0
+
+
 def test_an_output_that_is_a_file_is_one_error_line_and_nothing_written(tmp_path: Path) -> None:
     dbc, afile = _dbc(tmp_path, "base.dbc", COMMAND), tmp_path / "afile"
     afile.write_bytes(b"")

@@ -9,7 +9,9 @@ refused with `file:line` and a hint where none is. Repairs (the corpus of real f
   type): a message comment; `CM_ SG_ 304 "…"` (no signal name): dropped;
 - `VAL_` for a signal that does not exist: dropped;
 - a frame ID that does not fit 29 bits: that message left out (no reading of it is sensible);
-- an SG_ line repeated word for word in its message: the repeat dropped.
+- an SG_ line repeated word for word in its message: the repeat dropped;
+- a `BA_` value of an ENUM attribute that is not an index of its values: dropped (cantools fails
+  on it or gives no value).
 
 Two different SG_ lines of one name in one message are refused: CM_, VAL_ and BA_ name a signal by
 its name, so which of the two they mean has no sensible reading. So are two BO_ lines of one frame
@@ -45,6 +47,8 @@ _SG = re.compile(r"^\s*SG_\s+(\w+)")
 # SG_ name [multiplexing] : start|length@order sign (factor,offset) [minimum|maximum]
 _SG_NUMBERS = re.compile(r"^\s*SG_\s+(\w+)[^:]*:\s*\d+\|\d+@[01][+-]\s*\(([^,()]+),([^,()]+)\)\s*\[([^|\]]+)\|([^\]]+)\]")
 _BO_ID = re.compile(r"^\s*BO_\s+(\d+)\s")
+_ENUM_DEF = re.compile(r'^\s*BA_DEF_\s+(?:(?:BU_|BO_|SG_|EV_)\s+)?"(\w+)"\s+ENUM\s+(.*)$')
+_BA_INDEX = re.compile(r'^\s*BA_\s+"(\w+)"\s+(?:[^;"]*?\s)?(-?\d+)\s*;\s*$')
 
 Numbers = tuple[Fraction, Fraction, Fraction, Fraction]  # factor, offset, minimum, maximum
 
@@ -147,7 +151,18 @@ def prepass(rep: Repairs) -> None:
         elif m is not None and int(m.group(2)) > MAX_DBC_ID:  # before cantools wraps it to 32 bits
             _drop_message(rep, int(m.group(2)), m.group(4))
     _drop_unused_vals(rep)
+    _drop_bad_enum_indices(rep)
     _check_frame_ids(rep)
+
+
+def _drop_bad_enum_indices(rep: Repairs) -> None:
+    """A BA_ line stores an ENUM attribute's value as an index of its BA_DEF_ values: one past them
+    names no value (cantools fails on VFrameFormat's with 'list index out of range')."""
+    sizes = {m.group(1): len(re.findall(r'"[^"]*"', m.group(2))) for line in rep.lines if (m := _ENUM_DEF.match(line)) is not None}
+    for i, line in enumerate(rep.lines):
+        if (m := _BA_INDEX.match(line)) is not None and m.group(1) in sizes and not 0 <= int(m.group(2)) < sizes[m.group(1)]:
+            _drop_statement(rep, i, f"BA_ {m.group(1)} value {m.group(2)} is not an index of its ENUM's {sizes[m.group(1)]} values "
+                                    f"(0..{sizes[m.group(1)] - 1}): dropped")
 
 
 def _check_frame_ids(rep: Repairs) -> None:
