@@ -257,6 +257,24 @@ def test_an_enum_value_that_is_no_index_of_its_values_is_dropped_at_its_line(tmp
     assert run_canspec("import", "--strict", bad, "-o", tmp_path / "strict").returncode != 0
 
 
+def test_attribute_defaults_state_the_bus_rates_and_bit_rate_switching(tmp_path: Path) -> None:
+    """An object without a BA_ value has its definition's BA_DEF_DEF_ default: the bus rates that only
+    a default states were taken as not given (500 kbit/s and 2000 kbit/s assumed, with a warning),
+    and a CANFD_BRS default "0" as bit-rate switching on."""
+    fd = 'BO_ 2550247585 fast: 16 CTRL\n SG_ x : 0|8@1+ (1,0) [0|255] "" ECU\n'
+    defs = ('BA_DEF_ "Baudrate" INT 0 1000000;\nBA_DEF_ "BaudrateCANFD" INT 0 16000000;\nBA_DEF_ BO_ "CANFD_BRS" ENUM "0","1";\n'
+            'BA_DEF_ BO_ "VFrameFormat" ENUM "StandardCAN","ExtendedCAN","reserved","J1939PG"' + ',"reserved"' * 10
+            + ',"StandardCAN_FD","ExtendedCAN_FD";\nBA_DEF_DEF_ "Baudrate" 250000;\nBA_DEF_DEF_ "BaudrateCANFD" 5000000;\n'
+            'BA_DEF_DEF_ "CANFD_BRS" "0";\nBA_DEF_DEF_ "VFrameFormat" "StandardCAN";\nBA_ "VFrameFormat" BO_ 2550247585 15;\n')
+    src = _dbc(tmp_path, "defaults.dbc", COMMAND + fd + "\n" + defs)
+    r = run_canspec("import", "--strict", src, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr  # --strict: no rate assumed
+    written = (tmp_path / "out" / "defaults.yaml").read_text(encoding="utf-8")
+    assert "bitrate: 250000" in written and "data_bitrate: 5000000" in written and "brs: false" in written, written
+    db = cantools.database.load_file(str(src))
+    assert db.get_message_by_name("fast").is_fd and db.dbc.attribute_definitions["CANFD_BRS"].default_value == "0"
+
+
 def test_an_output_that_is_a_file_is_one_error_line_and_nothing_written(tmp_path: Path) -> None:
     dbc, afile = _dbc(tmp_path, "base.dbc", COMMAND), tmp_path / "afile"
     afile.write_bytes(b"")

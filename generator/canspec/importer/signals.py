@@ -42,10 +42,16 @@ def _number(value: Fraction) -> int | Fraction:
     return value.numerator if value.denominator == 1 else value
 
 
-def attribute(obj: Any, name: str) -> Any:
-    """A cantools object's DBC attribute value, or None."""
+def attribute(obj: Any, name: str, db: Any = None) -> Any:
+    """A cantools object's DBC attribute value, or None. Given its database, an object without a BA_
+    value of its own has the definition's BA_DEF_DEF_ default, as in every DBC tool (a bus whose
+    `Baudrate` only the default states runs at that rate)."""
     attrs = getattr(getattr(obj, "dbc", None), "attributes", None) or {}
-    return getattr(attrs.get(name), "value", None)
+    own = getattr(attrs.get(name), "value", None)
+    if own is not None or db is None:
+        return own
+    definitions = getattr(getattr(db, "dbc", None), "attribute_definitions", None) or {}
+    return getattr(definitions.get(name), "default_value", None)
 
 
 def convert_signals(at: Where, msg: Any, default_order: str, tables: dict[str, dict[int, Any]], written: dict[tuple[int, str], Numbers],

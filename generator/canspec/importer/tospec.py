@@ -45,7 +45,7 @@ def _lines(text: str | None) -> dict[tuple[int, str], int]:
 
 def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
     db = loaded.db
-    rate = attribute(db, "Baudrate") or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
+    rate = attribute(db, "Baudrate", db) or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
     if not rate:
         rate = DEFAULT_BITRATE
         report.warn(loaded.source, None, f"no bit rate given: {rate // 1000} kbit/s assumed")
@@ -57,17 +57,17 @@ def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
         "addressing": "none",
         "byte_order": "big_endian" if orders["big_endian"] > orders["little_endian"] else "little_endian",
     }
-    data_rate = attribute(db, "BaudrateCANFD") or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
+    data_rate = attribute(db, "BaudrateCANFD", db) or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
     if data_rate:
         bus["data_bitrate"] = int(data_rate)
-    elif any(m.is_fd and _brs(m) for m in db.messages):
+    elif any(m.is_fd and _brs(m, db) for m in db.messages):
         bus["data_bitrate"] = DEFAULT_DATA_BITRATE
         report.warn(loaded.source, None, f"CAN FD frames switch bit rate but no data bit rate is given: {DEFAULT_DATA_BITRATE // 1000} kbit/s assumed")
     return bus
 
 
-def _brs(msg: Any) -> bool:
-    value = attribute(msg, "CANFD_BRS")
+def _brs(msg: Any, db: Any) -> bool:
+    value = attribute(msg, "CANFD_BRS", db)
     return True if value is None else str(value) in ("1", "True")
 
 
@@ -186,7 +186,7 @@ def _message(loaded: Loaded, msg: Any, bus: dict[str, Any], names: Namer, tables
         report.warn(loaded.source, line, f"message {source_name} has {msg.length} bytes but no CAN FD frame format: taken as CAN FD")
     if msg.is_fd or msg.length > 8:
         out["fd"] = True
-        if not _brs(msg):
+        if not _brs(msg, loaded.db):
             out["brs"] = False
     if msg.comment:
         out["desc"] = str(msg.comment)
