@@ -31,6 +31,11 @@ def subject(frame_id: int) -> str:
     return "bus" if frame_id == BUS else f"0x{frame_id:08X}"
 
 
+def declared_frame_id(message: int | str) -> int:
+    """A changelog entry's `message` (a frame ID, or `bus` for a change of the whole bus) as Change.frame_id."""
+    return BUS if message == "bus" else int(message)
+
+
 @dataclass(frozen=True)
 class Change:
     kind: str

@@ -62,4 +62,4 @@ def from_database(spec: ir.Spec, loaded: Any, source: str, comments: bool = Fals
 def _stated(db: Any, name: str, bus_field: str) -> bool:
     """Whether the file states a bus rate (as importer/tospec reads it): one the import assumed, with
     a warning, is not the file's and is not compared."""
-    return bool(attribute(db, name, db) or any(getattr(b, bus_field, None) for b in db.buses))
+    return bool(attribute(db, name) or any(getattr(b, bus_field, None) for b in db.buses))

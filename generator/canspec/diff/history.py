@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from canspec import ir
-from canspec.diff.compare import Change, compare
+from canspec.diff.compare import Change, compare, declared_frame_id, subject
 from canspec.diff.model import from_spec
 from canspec.diff.release import UNRECONSTRUCTED, declares
 from canspec.pipeline import compile_spec
@@ -71,7 +71,7 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
             hits = [i for i, c in enumerate(changes) if declares(d, c)]
             if not hits:
                 what = f" {d['signal']}" if "signal" in d else ""
-                where = "the bus" if d["message"] == "bus" else f"0x{d['message']:08X}"
+                where = subject(declared_frame_id(d["message"]))
                 problems.append(error(f"{label} item {n} declares {d['kind']}{what} in {where}, which the diff from {old.version} does not show",
                                       declared.loc_of(j), "remove the entry or make the spec change it describes", "changelog-invented"))
             covered.update(hits)

@@ -13,15 +13,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from canspec import ir
-from canspec.diff.compare import BUS, Change
+from canspec.diff.compare import Change, declared_frame_id
 
 UNRECONSTRUCTED = "unreconstructed"  # a declared change the reconstructed revisions cannot show
 
 
 def declares(entry: Mapping[str, Any], change: Change) -> bool:
     """Whether a declared `changes` entry is this computed change."""
-    message = BUS if entry["message"] == "bus" else entry["message"]  # a change of the whole bus is declared `message: bus`
-    return change.kind == entry["kind"] and change.frame_id == message and ("signal" not in entry or change.signal == entry["signal"])
+    same_place = change.frame_id == declared_frame_id(entry["message"]) and ("signal" not in entry or change.signal == entry["signal"])
+    return change.kind == entry["kind"] and same_place
 
 
 @dataclass(frozen=True)

@@ -43,14 +43,14 @@ def _number(value: Fraction) -> int | Fraction:
 
 
 def attribute(obj: Any, name: str, db: Any = None) -> Any:
-    """A cantools object's DBC attribute value, or None. Given its database, an object without a BA_
-    value of its own has the definition's BA_DEF_DEF_ default, as in every DBC tool (a bus whose
-    `Baudrate` only the default states runs at that rate)."""
+    """A cantools object's DBC attribute value, or None. Without a BA_ value of its own it has the
+    definition's BA_DEF_DEF_ default, as in every DBC tool (a bus whose `Baudrate` only the default
+    states runs at that rate): the definitions of `db`, its database, or its own when it is one."""
     attrs = getattr(getattr(obj, "dbc", None), "attributes", None) or {}
     own = getattr(attrs.get(name), "value", None)
-    if own is not None or db is None:
+    if own is not None:
         return own
-    definitions = getattr(getattr(db, "dbc", None), "attribute_definitions", None) or {}
+    definitions = getattr(getattr(obj if db is None else db, "dbc", None), "attribute_definitions", None) or {}
     return getattr(definitions.get(name), "default_value", None)
 
 

@@ -45,7 +45,7 @@ def _lines(text: str | None) -> dict[tuple[int, str], int]:
 
 def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
     db = loaded.db
-    rate = attribute(db, "Baudrate", db) or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
+    rate = attribute(db, "Baudrate") or next((b.baudrate for b in db.buses if getattr(b, "baudrate", None)), None)
     if not rate:
         rate = DEFAULT_BITRATE
         report.warn(loaded.source, None, f"no bit rate given: {rate // 1000} kbit/s assumed")
@@ -57,7 +57,7 @@ def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
         "addressing": "none",
         "byte_order": "big_endian" if orders["big_endian"] > orders["little_endian"] else "little_endian",
     }
-    data_rate = attribute(db, "BaudrateCANFD", db) or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
+    data_rate = attribute(db, "BaudrateCANFD") or next((b.fd_baudrate for b in db.buses if getattr(b, "fd_baudrate", None)), None)
     if data_rate:
         bus["data_bitrate"] = int(data_rate)
     elif any(m.is_fd and _brs(m, db) for m in db.messages):
