@@ -100,6 +100,10 @@ CASES += [
     ("message_fd_changed", [("    cycle_ms: 20\n", "    cycle_ms: 20\n    fd: true\n")], {("message_fd_changed", "wire", None)}),
     # every node runs at the bus's rate: a wire break
     ("bus_bitrate_changed", [("bus: {bitrate: 250000,", "bus: {bitrate: 500000,")], {("bus_bitrate_changed", "wire", None)}),
+    # a node changes no frame (but `receivers: ALL` now names it too); its description is docs
+    ("node_added", [("  - {name: VIEW,", "  - {name: LOGGER, label: LOGGER, sa: 0xD0, zh: 记录仪}\n  - {name: VIEW,")],
+     {("node_added", "compatible", None), ("message_receivers_changed", "compatible", None)}),
+    ("node_description_changed", [("zh: 显示}", "zh: 显示屏}")], {("node_description_changed", "docs", None)}),
 ]
 
 _COMMAND_BLOCK = BASE.read_text(encoding="utf-8").split("  - name: command\n")[1]
@@ -116,6 +120,9 @@ def test_change_kind(tmp_path, case, edits, expected):
 def test_reverse_of_an_addition_is_a_removal(tmp_path):
     new = edited(tmp_path, [("messages:\n", "messages:\n" + NEW_MESSAGE)])
     assert {(c.kind, c.cls) for c in diff_paths(new, BASE)} == {("message_removed", "wire")}
+    logger = edited(tmp_path, [("  - {name: VIEW,", "  - {name: LOGGER, label: LOGGER, sa: 0xD0, zh: 记录仪}\n  - {name: VIEW,")], "logger.yaml")
+    nodes = {(c.kind, c.cls, c.subject, c.old) for c in diff_paths(logger, BASE) if c.kind.startswith("node")}
+    assert nodes == {("node_removed", "compatible", "bus", "LOGGER")}
 
 
 def test_identical_specs_have_no_changes():
@@ -171,6 +178,7 @@ def test_change_kind_between_edited_revisions(tmp_path, case, old_edits, new_edi
 
 def test_every_kind_has_a_fixture():
     covered = {kind for _, _, expected in CASES for kind, _, _ in expected} | {"message_sender_changed", "message_multiframe_changed"}
+    covered |= {"node_removed"}  # test_reverse_of_an_addition_is_a_removal
     covered |= {kind for *_, expected in BOTH_EDITED for kind, _, _ in expected}
     assert covered == set(KINDS)
 

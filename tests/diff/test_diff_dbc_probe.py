@@ -192,3 +192,18 @@ def test_the_statements_of_a_29_bit_id_written_without_its_flag_are_kept(tmp_pat
     got = {(c.kind, c.signal, c.old, c.new) for c in _dbs(old, new)}
     assert got == expected
     assert load_model(str(old)).by_id(0x800).cycle_ms == 100
+
+
+def test_nodes_of_two_dbcs_are_compared(tmp_path):
+    """A node added to BU_, and a node's CM_ BU_ edited, printed 'no differences' (the left list of
+    the probe): compatible (a node alone sends and reads nothing) and docs. Against a spec a
+    database's comments are not compared, so the comment edit says nothing there."""
+    old = _dbc(tmp_path, "old", _PLAIN + 'CM_ BU_ ECU1 "Body controller";\n')
+    new = _dbc(tmp_path, "new", (_PLAIN + 'CM_ BU_ ECU1 "Body control module";\n'))
+    new.write_text(new.read_text(encoding="utf-8").replace("BU_: GW ECU1 ECU2", "BU_: GW ECU1 ECU2 LOGGER"), encoding="utf-8")
+    got = {(c.kind, c.cls, c.subject, c.old, c.new) for c in _dbs(old, new)}
+    assert got == {("node_added", "compatible", "bus", None, "LOGGER"),
+                   ("node_description_changed", "docs", "bus", "Body controller", "Body control module")}
+    assert {(c.kind, c.old) for c in _dbs(new, old) if c.kind == "node_removed"} == {("node_removed", "LOGGER")}
+    code, out, _ = run_cli("diff", old, new)
+    assert code == 0 and "node LOGGER added" in out

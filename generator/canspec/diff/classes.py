@@ -26,6 +26,10 @@ KINDS: dict[str, str] = {
     "network_attribute_changed": "compatible",
     "message_attribute_changed": "compatible",
     "signal_attribute_changed": "compatible",
+    # a node's frames are its messages' (their senders and receivers): a node alone changes no frame
+    "node_added": "compatible",
+    "node_removed": "compatible",
+    "node_description_changed": "docs",
     "message_added": "compatible",
     "message_removed": "wire",
     "message_id_changed": "wire",

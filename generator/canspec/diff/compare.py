@@ -304,6 +304,23 @@ def _bus(c: _Collector, old: ProtocolModel, new: ProtocolModel) -> None:
         c.changes.append(Change("network_attribute_changed", KINDS["network_attribute_changed"], BUS, "(bus)", None, attributes.text(name, a, b), a, b))
 
 
+def _nodes(c: _Collector, old: ProtocolModel, new: ProtocolModel) -> None:
+    """Nodes by name (a rename reads as one removed and one added, as a DBC's BU_ line says no more);
+    a description is compared where both sides state one."""
+    a, b = {n.name: n for n in old.nodes}, {n.name: n for n in new.nodes}
+    for name in sorted(set(a) | set(b)):
+        o, n = a.get(name), b.get(name)
+        if n is None:
+            kind, detail, before, after = "node_removed", f"node {name} removed", name, None
+        elif o is None:
+            kind, detail, before, after = "node_added", f"node {name} added", None, name
+        elif _both(o.desc, n.desc) and o.desc != n.desc:
+            kind, detail, before, after = "node_description_changed", f"node {name}: description {o.desc!r} → {n.desc!r}", o.desc, n.desc
+        else:
+            continue
+        c.changes.append(Change(kind, KINDS[kind], BUS, "(bus)", None, detail, before, after, (n or o).loc))
+
+
 def _rate(rate: int | None) -> str:
     return "none" if rate is None else f"{rate / 1000:g} kbit/s"
 
@@ -311,6 +328,7 @@ def _rate(rate: int | None) -> str:
 def compare(old: ProtocolModel, new: ProtocolModel) -> list[Change]:
     c = _Collector()
     _bus(c, old, new)
+    _nodes(c, old, new)
     both_specs = old.kind == new.kind == "spec"
     pairs: list[tuple[MessageModel, MessageModel]] = []
     left_old = list(old.messages)

@@ -56,7 +56,8 @@ def from_database(spec: ir.Spec, loaded: Any, source: str, comments: bool = Fals
     bitrate, data_bitrate = _stated(loaded.db, "Baudrate", "baudrate"), _stated(loaded.db, "BaudrateCANFD", "fd_baudrate")
     return replace(model, kind="dbc", messages=messages, version=version, changelog=None,
                    bitrate=model.bitrate if bitrate else None, data_bitrate=model.data_bitrate if data_bitrate else None,
-                   attributes=model.attributes if comments else None)
+                   attributes=model.attributes if comments else None,
+                   nodes=tuple(replace(n, desc=n.desc if comments else None, loc=None) for n in model.nodes))
 
 
 def _stated(db: Any, name: str, bus_field: str) -> bool:

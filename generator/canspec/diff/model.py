@@ -96,6 +96,15 @@ class MessageModel:
 
 
 @dataclass(frozen=True)
+class NodeModel:
+    """A node of the bus, by the name its DBC writes; what it does is its messages' senders and receivers."""
+
+    name: str
+    desc: str | None  # printed name, Chinese name and description; None: not compared (a database against a spec)
+    loc: Loc | None = None
+
+
+@dataclass(frozen=True)
 class ProtocolModel:
     source: str  # what the user passed, for the report
     kind: str  # "spec" | "dbc"
@@ -106,6 +115,7 @@ class ProtocolModel:
     bitrate: int | None = None  # the bus's (arbitration) bit rate; None: the source does not say (an import's assumption)
     data_bitrate: int | None = None  # the CAN FD data phase's; None: none, or not said
     attributes: Values | None = None  # the network's and nodes' own DBC attributes (diff/attributes.py); None: not compared
+    nodes: tuple[NodeModel, ...] = ()
 
     def by_id(self, frame_id: int) -> MessageModel | None:
         return next((m for m in self.messages if m.frame_id == frame_id), None)
@@ -165,4 +175,10 @@ def from_spec(spec: ir.Spec, source: str) -> ProtocolModel:
     bus = spec.can.bus if spec.can is not None else None
     rates = (bus.bitrate, bus.data_bitrate) if bus is not None else (None, None)
     attributes = protocol(spec.can) if spec.can is not None else None
-    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog, *rates, attributes)
+    nodes = tuple(_node(n) for n in spec.can.nodes) if spec.can is not None else ()
+    return ProtocolModel(source, "spec", name, version, tuple(messages), spec.changelog, *rates, attributes, nodes)
+
+
+def _node(node: ir.Node) -> NodeModel:
+    label = node.label if node.label != node.name else ""
+    return NodeModel(node.dbc_name or node.name, " / ".join(t for t in (label, node.zh, node.desc) if t), node.loc)
