@@ -98,3 +98,19 @@ def test_a_window_without_frames_and_an_image_too_large_are_refused(drive, tmp_p
     proc = _plot(log, "*", "--stack", "-o", tmp_path / "c.png", "--dpi", "600")
     assert proc.returncode == 2 and "pixel image at --dpi 600 is more than 50,000,000 pixels (hint: a lower --dpi" in proc.stderr, proc.stderr
     assert "Traceback" not in proc.stderr and not (tmp_path / "c.png").exists()
+
+
+def test_an_output_without_an_image_extension_is_refused_and_a_failed_write_keeps_the_old_file(drive, tmp_path):
+    """`-o e` wrote `e.png` (matplotlib appends its default format): the name the user gave is now
+    refused with the formats it may end in. A write into a directory that is not there fails with
+    the path, and an existing image is replaced only by a whole new one (no temporary left)."""
+    log, _ = drive
+    proc = _plot(log, "accel_*", "-o", tmp_path / "e", "--dpi", "50")
+    assert proc.returncode == 2 and "e: name the image format by the file's extension (" in proc.stderr and ".png" in proc.stderr, proc.stderr
+    assert list(tmp_path.iterdir()) == []
+    proc = _plot(log, "accel_*", "-o", tmp_path / "missing" / "p.png", "--dpi", "50")
+    assert proc.returncode == 2 and "cannot write" in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
+    old = tmp_path / "p.png"
+    old.write_bytes(b"old")
+    assert _plot(log, "accel_*", "-o", old, "--dpi", "50").returncode == 0
+    assert old.read_bytes().startswith(b"\x89PNG") and [p.name for p in tmp_path.iterdir()] == ["p.png"]

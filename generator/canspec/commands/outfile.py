@@ -1,4 +1,4 @@
-"""Where `canspec decode -o` writes. A file is written to a temporary file beside it and renamed
+"""Where `canspec decode -o` and `canspec plot -o` write. A file is written to a temporary file beside it and renamed
 over it only when the run succeeds, so a failed run (an unreadable input, an internal error,
 Ctrl-C) leaves an existing file as it was and no temporary behind. A device or FIFO (`-o
 /dev/null`) is written in place: renaming over it would replace the device node. For Parquet's
@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
-from typing import IO
+from typing import IO, Any
 
 
 class OutputFile:
@@ -17,8 +17,8 @@ class OutputFile:
         self.path = os.path.realpath(path)  # through a symlink: its target is replaced, not the link
         self.temp: str | None = None
 
-    def open(self) -> IO[str]:
-        """The stream to write; OSError when the file cannot be written there."""
+    def open(self, binary: bool = False) -> IO[Any]:
+        """The stream to write (text, or bytes when `binary`); OSError when the file cannot be written there."""
         try:
             st = os.stat(self.path)
         except FileNotFoundError:
@@ -26,14 +26,14 @@ class OutputFile:
         if st is not None and stat.S_ISDIR(st.st_mode):
             raise IsADirectoryError(21, "Is a directory")
         if st is not None and not stat.S_ISREG(st.st_mode):
-            return open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed by finish()
+            return open(self.path, "wb") if binary else open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed by finish()
         folder, name = os.path.split(self.path)
         fd, self.temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
         # the mode an ordinary open() would give: the old file's, else 0666 less the umask
         os.chmod(fd, stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~_umask())
-        return os.fdopen(fd, "w", encoding="utf-8")
+        return os.fdopen(fd, "wb") if binary else os.fdopen(fd, "w", encoding="utf-8")
 
-    def finish(self, out: IO[str], keep: bool) -> None:
+    def finish(self, out: IO[Any], keep: bool) -> None:
         """Closes `out`; the temporary replaces the file when `keep`, else is removed. OSError
         (a full disk on the last flush) leaves the file as it was."""
         try:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from canspec import ir
+from canspec.commands import outfile
 from canspec.commands.common import number_in
 from canspec.commands.logrun import EXTRA_HINT, LOG_FORMATS, each_chunk, load_protocol, summarize
 
@@ -114,6 +115,35 @@ def _too_large(fig: Any, dpi: int) -> str | None:
     return f"a {width} x {height} pixel image at --dpi {dpi} is more than {MAX_PIXELS:,} pixels (hint: a lower --dpi, or fewer signals)"
 
 
+def _format_problem(path: str) -> str | None:
+    """Why `path` names no image format: matplotlib would append `.png` to a name without one."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    known = FigureCanvasBase.get_supported_filetypes()
+    if os.path.splitext(path)[1][1:].lower() in known:
+        return None
+    return f"{path}: name the image format by the file's extension ({', '.join('.' + k for k in sorted(known))})"
+
+
+def _save(fig: Any, path: str, dpi: int) -> int:
+    """Writes the image atomically (commands/outfile.py): a failed write leaves an old file as it was. 0, or 2."""
+    target = outfile.OutputFile(path)
+    try:
+        out = target.open(binary=True)
+    except OSError as exc:
+        print(f"canspec plot: cannot write {path}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    written = False
+    try:
+        fig.savefig(out, format=os.path.splitext(path)[1][1:].lower(), dpi=dpi)
+        written = True
+    except (OSError, ValueError) as exc:
+        print(f"canspec plot: cannot write {path}: {exc}", file=sys.stderr)
+    finally:
+        target.finish(out, written)
+    return 0 if written else 2
+
+
 def run(args: argparse.Namespace) -> int:
     try:
         import matplotlib
@@ -124,6 +154,9 @@ def run(args: argparse.Namespace) -> int:
         return 2
     if args.start is not None and args.stop is not None and args.start >= args.stop:
         print(f"canspec plot: --start {args.start:g} is not before --stop {args.stop:g}: nothing to plot", file=sys.stderr)
+        return 2
+    if args.output and (why := _format_problem(args.output)) is not None:
+        print(f"canspec plot: {why}", file=sys.stderr)
         return 2
     logs = [a for a in args.items if a == "-" or os.path.exists(a)]
     patterns = args.items[len(logs):] if args.items[: len(logs)] == logs else None
@@ -160,11 +193,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"canspec plot: {why}", file=sys.stderr)
         return 2
     if args.output:
-        try:
-            fig.savefig(args.output, dpi=args.dpi)
-        except (OSError, ValueError) as exc:
-            print(f"canspec plot: cannot write {args.output}: {exc}", file=sys.stderr)
-            return 2
+        return _save(fig, args.output, args.dpi) or status
     else:
         import matplotlib.pyplot as plt
 
