@@ -12,6 +12,7 @@ import subprocess
 import sys
 
 import can
+import pytest
 from canspec.logs import blf_bulk, logread
 from repo_paths import CANSPEC_ENV
 
@@ -62,6 +63,19 @@ def test_one_bad_asc_or_trc_record_is_counted_and_the_rest_is_read(tmp_path):
         assert f"{path}: {first + 199} lines, 199 frames, 199 decoded" in summary(proc.stderr) and "1 malformed" in summary(proc.stderr)
         assert len(proc.stdout.splitlines()) == 199
         assert decode("--strict", str(path)).returncode == 1
+
+
+@pytest.mark.parametrize("after_header", ["", "internal events logged\n", "Begin Triggerblock Thu Jan 01 00:16:40.0 1970\n"])
+def test_the_first_asc_record_right_after_the_header_is_read(tmp_path, after_header):
+    """python-can's ASC header parse consumes the line after `date`/`base` (`Begin Triggerblock`
+    where a file has one): a file without it lost its first frame, with no word."""
+    path = tmp_path / "short.asc"
+    head = "date Sat Dec 05 23:46:14.732 2026\nbase hex  timestamps absolute\n" + after_header
+    path.write_text(head + "".join(asc_line(i, "1801B0A0") for i in range(3)))
+    proc = decode(str(path))
+    first = head.count("\n") + 1
+    assert proc.returncode == 0 and len(proc.stdout.splitlines()) == 3, proc.stderr
+    assert f"{path}: {first + 2} lines, 3 frames, 3 decoded" in summary(proc.stderr)
 
 
 def test_an_unparsable_trc_header_makes_the_file_unreadable(tmp_path):

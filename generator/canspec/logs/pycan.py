@@ -56,7 +56,7 @@ def read_text(stream: IO[bytes], fmt: str) -> Iterator[tuple[fr.Batch, list[tupl
     counter = _LineCounter(stream, _asc_skipped if fmt == "asc" else None)
     kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
     reader = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt](counter, **kwargs)
-    header = _HeaderOnce(reader)
+    header = _HeaderOnce(reader, counter if fmt == "asc" else None)
     frames: list[Frame] = []
     lines: list[int] = []
     problems: list[tuple[int, str]] = []
@@ -148,10 +148,12 @@ class _LibraryLog(logging.Handler):
 
 class _HeaderOnce:
     """Makes a python-can text reader parse its header only on its first pass, so a second pass
-    (after a bad record ended the first) resumes at the next record with the header's settings."""
+    (after a bad record ended the first) resumes at the next record with the header's settings.
+    ASC (`counter`): the header parse ends by consuming the line after the header, `Begin
+    Triggerblock` in a file that has one; a frame record there is handed out again, not lost."""
 
-    def __init__(self, reader: Any) -> None:
-        self.reader, self.parse, self.done = reader, reader._extract_header, False
+    def __init__(self, reader: Any, counter: _LineCounter | None = None) -> None:
+        self.reader, self.parse, self.done, self.counter = reader, reader._extract_header, False, counter
         reader._extract_header = self
 
     def __call__(self) -> Any:
@@ -159,6 +161,8 @@ class _HeaderOnce:
             return None  # TRC: no first line to parse again
         first = self.parse()
         self.done = True
+        if self.counter is not None and (ASC_RECORD.match(self.counter.last.strip()) or ASC_UNTIMED.match(self.counter.last.strip())):
+            self.counter.unread()
         return first
 
 
@@ -195,8 +199,12 @@ class _LineCounter(io.TextIOBase):
     them (`check`: what is wrong with a line the reader will skip)."""
 
     def __init__(self, stream: IO[bytes], check: Any = None) -> None:
-        self.stream, self.line, self.last, self.check = stream, 0, "", check
+        self.stream, self.line, self.last, self.check, self.again = stream, 0, "", check, False
         self.problems: list[tuple[int, str]] = []
+
+    def unread(self) -> None:
+        """The next line handed out is the last one again (its number and problems stay as they were)."""
+        self.again = True
 
     @property
     def text(self) -> str:
@@ -211,6 +219,9 @@ class _LineCounter(io.TextIOBase):
         return self
 
     def __next__(self) -> str:
+        if self.again:
+            self.again = False
+            return self.last
         raw = self.stream.readline()
         if not raw:
             raise StopIteration
