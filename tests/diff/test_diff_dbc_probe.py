@@ -207,3 +207,17 @@ def test_nodes_of_two_dbcs_are_compared(tmp_path):
     assert {(c.kind, c.old) for c in _dbs(new, old) if c.kind == "node_removed"} == {("node_removed", "LOGGER")}
     code, out, _ = run_cli("diff", old, new)
     assert code == 0 and "node LOGGER added" in out
+
+
+def test_a_dbc_and_the_dbc_canspec_writes_from_its_import_do_not_differ(tmp_path):
+    """The written DBC declares `BA_DEF_DEF_ "SpecSignalName" ""`; read as the name of every signal
+    (the attribute's default, once defaults counted), the comparison used the spec's lower-case
+    names on that side: `SPEED` → `speed` reported as a rename of every signal of opendbc's files.
+    A comment part that begins `spec name: ` is the user's text when the signal carries no name."""
+    dbc = _dbc(tmp_path, "source", _PLAIN + 'CM_ SG_ 768 GEAR "spec name: as the driver calls it";\n')
+    assert run_cli("import", dbc, "-o", tmp_path / "imported")[0] == 0
+    assert run_cli("gen", tmp_path / "imported", "-o", tmp_path / "gen", "-t", "dbc")[0] == 0
+    (written,) = (tmp_path / "gen" / "dbc").glob("*.dbc")
+    assert 'BA_DEF_DEF_  "SpecSignalName" "";' in written.read_text(encoding="utf-8")
+    assert _dbs(dbc, written) == []
+    assert "spec name: as the driver calls it" in written.read_text(encoding="utf-8")

@@ -17,8 +17,9 @@ from canspec.targets.dbc.naming import SPEC_NAME_ATTRIBUTE
 
 
 def _spec_named(db: Any) -> set[tuple[int, str]]:
-    """(frame ID, DBC signal name) of the signals whose DBC carries the spec's name."""
-    return {(msg.frame_id, sig.name) for msg in db.messages for sig in msg.signals if attribute(sig, SPEC_NAME_ATTRIBUTE) is not None}
+    """(frame ID, DBC signal name) of the signals whose DBC carries the spec's name (the definition's
+    default, "", says no name)."""
+    return {(msg.frame_id, sig.name) for msg in db.messages for sig in msg.signals if attribute(sig, SPEC_NAME_ATTRIBUTE)}
 
 
 def _signal(model: SignalModel, sig: ir.Signal, names: dict[str, str], comments: bool) -> SignalModel:

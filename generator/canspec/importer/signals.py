@@ -109,8 +109,9 @@ def _unfit(sig: Any, msg: Any, pages: Pages) -> str | None:
 def _signal(at: Where, sig: Any, default_order: str, names: Namer, numbers: Numbers | None, tables: dict[str, dict[int, Any]],
             line: int | None) -> dict[str, Any]:
     source_name = at.loaded.renamed.get(sig.name, sig.name)
-    spec_name = attribute(sig, SPEC_NAME_ATTRIBUTE)  # canspec renamed it in the DBC (targets/dbc/naming.py): the spec's name comes back
-    name = names.name(str(spec_name or source_name), "signal")
+    # canspec renamed it in the DBC (targets/dbc/naming.py): the spec's name comes back ("", the default, is none)
+    spec_name = str(attribute(sig, SPEC_NAME_ATTRIBUTE) or "")
+    name = names.name(spec_name or source_name, "signal")
     out: dict[str, Any] = {"name": name}
     if name != source_name:
         out["dbc_name"] = names.dbc(source_name, lambda text: at.warn(line, text))
@@ -125,7 +126,7 @@ def _signal(at: Where, sig: Any, default_order: str, names: Namer, numbers: Numb
     if sig.unit:
         out["unit"] = str(sig.unit)
     choices = _choices(at, sig, source_name, line)
-    desc, specials = _comment(sig, dict(choices), spec_name is not None)
+    desc, specials = _comment(sig, dict(choices), bool(spec_name))
     if desc:
         out["desc"] = desc
     choices = [(raw, text) for raw, text in choices if raw not in specials]
