@@ -2174,9 +2174,9 @@ impl Frame for DrivingState {
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct AutocarControlCommand1 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for AutocarControlCommand1 {
@@ -2308,9 +2308,7 @@ impl AutocarControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -2497,23 +2495,29 @@ impl AutocarControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3] & 0x1F;
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -2537,13 +2541,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -2586,13 +2590,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        ((self.bits >> 2) & 3) as u8
+        (self.bytes[0] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_door_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 243) | value << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -2633,13 +2637,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 4) & 3) as u8
+        (self.bytes[0] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_horn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 207) | value << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -2680,13 +2684,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        ((self.bits >> 6) & 3) as u8
+        self.bytes[0] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drl_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 63) | value << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -2727,13 +2731,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 8) & 3) as u8
+        self.bytes[1] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 252) | value;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -2774,13 +2778,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 10) & 3) as u8
+        (self.bytes[1] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 243) | value << 2;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -2821,13 +2825,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        ((self.bits >> 12) & 3) as u8
+        (self.bytes[1] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_hazard_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 207) | value << 4;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -2868,13 +2872,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 14) & 3) as u8
+        self.bytes[1] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_position_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 63) | value << 6;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -2915,13 +2919,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        ((self.bits >> 16) & 3) as u8
+        self.bytes[2] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_headlight_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = (self.bytes[2] & 252) | value;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -2962,13 +2966,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 18) & 3) as u8
+        (self.bytes[2] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_rear_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
+        self.bytes[2] = (self.bytes[2] & 243) | value << 2;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -3009,13 +3013,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 20) & 3) as u8
+        (self.bytes[2] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
+        self.bytes[2] = (self.bytes[2] & 207) | value << 4;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -3056,13 +3060,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 22) & 3) as u8
+        self.bytes[2] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
+        self.bytes[2] = (self.bytes[2] & 63) | value << 6;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -3103,13 +3107,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 24) & 3) as u8
+        self.bytes[3] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_dome_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = (self.bytes[3] & 252) | value;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -3150,13 +3154,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 26) & 3) as u8
+        (self.bytes[3] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ambient_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
+        self.bytes[3] = (self.bytes[3] & 243) | value << 2;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -3197,13 +3201,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        ((self.bits >> 28) & 1) as u8
+        (self.bytes[3] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_reset(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
+        self.bytes[3] = (self.bytes[3] & 239) | value << 4;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -3244,13 +3248,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        ((self.bits >> 32) & 3) as u8
+        self.bytes[4] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 252) | value;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -3291,13 +3295,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        ((self.bits >> 34) & 3) as u8
+        (self.bytes[4] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_reliability(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
+        self.bytes[4] = (self.bytes[4] & 243) | value << 2;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -3338,13 +3342,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 36) & 3) as u8
+        (self.bytes[4] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 207) | value << 4;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -3387,13 +3391,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        ((self.bits >> 38) & 3) as u8
+        self.bytes[4] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_lock_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
+        self.bytes[4] = (self.bytes[4] & 63) | value << 6;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -3438,13 +3442,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        ((self.bits >> 40) & 7) as u8
+        self.bytes[5] & 7
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 248) | value;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -3487,13 +3491,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        ((self.bits >> 43) & 31) as u8
+        self.bytes[5] >> 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_set_temp(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
+        self.bytes[5] = (self.bytes[5] & 7) | value << 3;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -3537,13 +3541,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        ((self.bits >> 48) & 15) as u8
+        self.bytes[6] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_a(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
+        self.bytes[6] = (self.bytes[6] & 240) | value;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -3585,13 +3589,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        ((self.bits >> 52) & 15) as u8
+        self.bytes[6] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_b(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
+        self.bytes[6] = (self.bytes[6] & 15) | value << 4;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -3633,13 +3637,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        ((self.bits >> 56) & 15) as u8
+        self.bytes[7] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_c(&mut self, value: u8) {
-        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = (self.bytes[7] & 240) | value;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -3681,13 +3685,13 @@ impl AutocarControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 60) as u8
+        self.bytes[7] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
+        self.bytes[7] = (self.bytes[7] & 15) | value << 4;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -10633,9 +10637,9 @@ impl Frame for RgateSpeedCommand {
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RgateControlCommand1 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for RgateControlCommand1 {
@@ -10767,9 +10771,7 @@ impl RgateControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -10956,23 +10958,29 @@ impl RgateControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3] & 0x1F;
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -10996,13 +11004,13 @@ impl RgateControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -11045,13 +11053,13 @@ impl RgateControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        ((self.bits >> 2) & 3) as u8
+        (self.bytes[0] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_door_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 243) | value << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -11092,13 +11100,13 @@ impl RgateControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 4) & 3) as u8
+        (self.bytes[0] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_horn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 207) | value << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -11139,13 +11147,13 @@ impl RgateControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        ((self.bits >> 6) & 3) as u8
+        self.bytes[0] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drl_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 63) | value << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -11186,13 +11194,13 @@ impl RgateControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 8) & 3) as u8
+        self.bytes[1] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 252) | value;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -11233,13 +11241,13 @@ impl RgateControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 10) & 3) as u8
+        (self.bytes[1] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 243) | value << 2;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -11280,13 +11288,13 @@ impl RgateControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        ((self.bits >> 12) & 3) as u8
+        (self.bytes[1] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_hazard_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 207) | value << 4;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -11327,13 +11335,13 @@ impl RgateControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 14) & 3) as u8
+        self.bytes[1] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_position_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 63) | value << 6;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -11374,13 +11382,13 @@ impl RgateControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        ((self.bits >> 16) & 3) as u8
+        self.bytes[2] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_headlight_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = (self.bytes[2] & 252) | value;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -11421,13 +11429,13 @@ impl RgateControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 18) & 3) as u8
+        (self.bytes[2] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_rear_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
+        self.bytes[2] = (self.bytes[2] & 243) | value << 2;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -11468,13 +11476,13 @@ impl RgateControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 20) & 3) as u8
+        (self.bytes[2] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
+        self.bytes[2] = (self.bytes[2] & 207) | value << 4;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -11515,13 +11523,13 @@ impl RgateControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 22) & 3) as u8
+        self.bytes[2] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
+        self.bytes[2] = (self.bytes[2] & 63) | value << 6;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -11562,13 +11570,13 @@ impl RgateControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 24) & 3) as u8
+        self.bytes[3] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_dome_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = (self.bytes[3] & 252) | value;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -11609,13 +11617,13 @@ impl RgateControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 26) & 3) as u8
+        (self.bytes[3] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ambient_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
+        self.bytes[3] = (self.bytes[3] & 243) | value << 2;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -11656,13 +11664,13 @@ impl RgateControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        ((self.bits >> 28) & 1) as u8
+        (self.bytes[3] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_reset(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
+        self.bytes[3] = (self.bytes[3] & 239) | value << 4;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -11703,13 +11711,13 @@ impl RgateControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        ((self.bits >> 32) & 3) as u8
+        self.bytes[4] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 252) | value;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -11750,13 +11758,13 @@ impl RgateControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        ((self.bits >> 34) & 3) as u8
+        (self.bytes[4] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_reliability(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
+        self.bytes[4] = (self.bytes[4] & 243) | value << 2;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -11797,13 +11805,13 @@ impl RgateControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 36) & 3) as u8
+        (self.bytes[4] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 207) | value << 4;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -11846,13 +11854,13 @@ impl RgateControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        ((self.bits >> 38) & 3) as u8
+        self.bytes[4] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_lock_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
+        self.bytes[4] = (self.bytes[4] & 63) | value << 6;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -11897,13 +11905,13 @@ impl RgateControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        ((self.bits >> 40) & 7) as u8
+        self.bytes[5] & 7
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 248) | value;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -11946,13 +11954,13 @@ impl RgateControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        ((self.bits >> 43) & 31) as u8
+        self.bytes[5] >> 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_set_temp(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
+        self.bytes[5] = (self.bytes[5] & 7) | value << 3;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -11996,13 +12004,13 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        ((self.bits >> 48) & 15) as u8
+        self.bytes[6] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_a(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
+        self.bytes[6] = (self.bytes[6] & 240) | value;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -12044,13 +12052,13 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        ((self.bits >> 52) & 15) as u8
+        self.bytes[6] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_b(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
+        self.bytes[6] = (self.bytes[6] & 15) | value << 4;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -12092,13 +12100,13 @@ impl RgateControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        ((self.bits >> 56) & 15) as u8
+        self.bytes[7] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_c(&mut self, value: u8) {
-        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = (self.bytes[7] & 240) | value;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -12140,13 +12148,13 @@ impl RgateControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 60) as u8
+        self.bytes[7] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
+        self.bytes[7] = (self.bytes[7] & 15) | value << 4;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -17111,9 +17119,9 @@ impl Frame for TeleSpeedCommand {
 /// | `counter` | 心跳值 | 60 | 4 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct TeleControlCommand1 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for TeleControlCommand1 {
@@ -17245,9 +17253,7 @@ impl TeleControlCommand1 {
         type_max: 31,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_1FFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -17434,23 +17440,29 @@ impl TeleControlCommand1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3] & 0x1F;
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -17476,13 +17488,13 @@ impl TeleControlCommand1 {
     /// Raw value of `drive_mode_cmd` (bits 0..=1).
     #[inline]
     pub fn drive_mode_cmd_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
@@ -17525,13 +17537,13 @@ impl TeleControlCommand1 {
     /// Raw value of `door_cmd` (bits 2..=3).
     #[inline]
     pub fn door_cmd_raw(&self) -> u8 {
-        ((self.bits >> 2) & 3) as u8
+        (self.bytes[0] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_door_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF3) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 243) | value << 2;
     }
 
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
@@ -17572,13 +17584,13 @@ impl TeleControlCommand1 {
     /// Raw value of `horn_cmd` (bits 4..=5).
     #[inline]
     pub fn horn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 4) & 3) as u8
+        (self.bytes[0] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_horn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFCF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 207) | value << 4;
     }
 
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
@@ -17619,13 +17631,13 @@ impl TeleControlCommand1 {
     /// Raw value of `drl_cmd` (bits 6..=7).
     #[inline]
     pub fn drl_cmd_raw(&self) -> u8 {
-        ((self.bits >> 6) & 3) as u8
+        self.bytes[0] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drl_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF3F) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 63) | value << 6;
     }
 
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
@@ -17666,13 +17678,13 @@ impl TeleControlCommand1 {
     /// Raw value of `left_turn_cmd` (bits 8..=9).
     #[inline]
     pub fn left_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 8) & 3) as u8
+        self.bytes[1] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 252) | value;
     }
 
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
@@ -17713,13 +17725,13 @@ impl TeleControlCommand1 {
     /// Raw value of `right_turn_cmd` (bits 10..=11).
     #[inline]
     pub fn right_turn_cmd_raw(&self) -> u8 {
-        ((self.bits >> 10) & 3) as u8
+        (self.bytes[1] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_turn_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F3FF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 243) | value << 2;
     }
 
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
@@ -17760,13 +17772,13 @@ impl TeleControlCommand1 {
     /// Raw value of `hazard_cmd` (bits 12..=13).
     #[inline]
     pub fn hazard_cmd_raw(&self) -> u8 {
-        ((self.bits >> 12) & 3) as u8
+        (self.bytes[1] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_hazard_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_CFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 207) | value << 4;
     }
 
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
@@ -17807,13 +17819,13 @@ impl TeleControlCommand1 {
     /// Raw value of `position_light_cmd` (bits 14..=15).
     #[inline]
     pub fn position_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 14) & 3) as u8
+        self.bytes[1] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_position_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_3FFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 63) | value << 6;
     }
 
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
@@ -17854,13 +17866,13 @@ impl TeleControlCommand1 {
     /// Raw value of `headlight_cmd` (bits 16..=17).
     #[inline]
     pub fn headlight_cmd_raw(&self) -> u8 {
-        ((self.bits >> 16) & 3) as u8
+        self.bytes[2] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_headlight_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFC_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = (self.bytes[2] & 252) | value;
     }
 
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
@@ -17901,13 +17913,13 @@ impl TeleControlCommand1 {
     /// Raw value of `rear_fog_cmd` (bits 18..=19).
     #[inline]
     pub fn rear_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 18) & 3) as u8
+        (self.bytes[2] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_rear_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFF3_FFFF) | u64::from(value) << 18;
+        self.bytes[2] = (self.bytes[2] & 243) | value << 2;
     }
 
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
@@ -17948,13 +17960,13 @@ impl TeleControlCommand1 {
     /// Raw value of `left_fog_cmd` (bits 20..=21).
     #[inline]
     pub fn left_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 20) & 3) as u8
+        (self.bytes[2] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_left_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFCF_FFFF) | u64::from(value) << 20;
+        self.bytes[2] = (self.bytes[2] & 207) | value << 4;
     }
 
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
@@ -17995,13 +18007,13 @@ impl TeleControlCommand1 {
     /// Raw value of `right_fog_cmd` (bits 22..=23).
     #[inline]
     pub fn right_fog_cmd_raw(&self) -> u8 {
-        ((self.bits >> 22) & 3) as u8
+        self.bytes[2] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_right_fog_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF3F_FFFF) | u64::from(value) << 22;
+        self.bytes[2] = (self.bytes[2] & 63) | value << 6;
     }
 
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
@@ -18042,13 +18054,13 @@ impl TeleControlCommand1 {
     /// Raw value of `dome_light_cmd` (bits 24..=25).
     #[inline]
     pub fn dome_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 24) & 3) as u8
+        self.bytes[3] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_dome_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = (self.bytes[3] & 252) | value;
     }
 
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
@@ -18089,13 +18101,13 @@ impl TeleControlCommand1 {
     /// Raw value of `ambient_light_cmd` (bits 26..=27).
     #[inline]
     pub fn ambient_light_cmd_raw(&self) -> u8 {
-        ((self.bits >> 26) & 3) as u8
+        (self.bytes[3] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ambient_light_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
+        self.bytes[3] = (self.bytes[3] & 243) | value << 2;
     }
 
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
@@ -18136,13 +18148,13 @@ impl TeleControlCommand1 {
     /// Raw value of `drive_mode_reset` (bits 28..=28).
     #[inline]
     pub fn drive_mode_reset_raw(&self) -> u8 {
-        ((self.bits >> 28) & 1) as u8
+        (self.bytes[3] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_drive_mode_reset(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_EFFF_FFFF) | u64::from(value) << 28;
+        self.bytes[3] = (self.bytes[3] & 239) | value << 4;
     }
 
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
@@ -18185,13 +18197,13 @@ impl TeleControlCommand1 {
     /// Raw value of `system_state` (bits 32..=33).
     #[inline]
     pub fn system_state_raw(&self) -> u8 {
-        ((self.bits >> 32) & 3) as u8
+        self.bytes[4] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 252) | value;
     }
 
     /// Set `system_state` from its physical value; outside the documented range is an error.
@@ -18232,13 +18244,13 @@ impl TeleControlCommand1 {
     /// Raw value of `system_reliability` (bits 34..=35).
     #[inline]
     pub fn system_reliability_raw(&self) -> u8 {
-        ((self.bits >> 34) & 3) as u8
+        (self.bytes[4] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_reliability(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
+        self.bytes[4] = (self.bytes[4] & 243) | value << 2;
     }
 
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
@@ -18279,13 +18291,13 @@ impl TeleControlCommand1 {
     /// Raw value of `system_fault_level` (bits 36..=37).
     #[inline]
     pub fn system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 36) & 3) as u8
+        (self.bytes[4] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 207) | value << 4;
     }
 
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
@@ -18328,13 +18340,13 @@ impl TeleControlCommand1 {
     /// Raw value of `lock_cmd` (bits 38..=39).
     #[inline]
     pub fn lock_cmd_raw(&self) -> u8 {
-        ((self.bits >> 38) & 3) as u8
+        self.bytes[4] >> 6
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_lock_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
+        self.bytes[4] = (self.bytes[4] & 63) | value << 6;
     }
 
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
@@ -18379,13 +18391,13 @@ impl TeleControlCommand1 {
     /// Raw value of `ac_cmd` (bits 40..=42).
     #[inline]
     pub fn ac_cmd_raw(&self) -> u8 {
-        ((self.bits >> 40) & 7) as u8
+        self.bytes[5] & 7
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_F8FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 248) | value;
     }
 
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
@@ -18428,13 +18440,13 @@ impl TeleControlCommand1 {
     /// Raw value of `ac_set_temp` (bits 43..=47).
     #[inline]
     pub fn ac_set_temp_raw(&self) -> u8 {
-        ((self.bits >> 43) & 31) as u8
+        self.bytes[5] >> 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_ac_set_temp(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_07FF_FFFF_FFFF) | u64::from(value) << 43;
+        self.bytes[5] = (self.bytes[5] & 7) | value << 3;
     }
 
     /// Set `ac_set_temp` from its physical value; outside the documented range is an error.
@@ -18478,13 +18490,13 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_a` (bits 48..=51).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        ((self.bits >> 48) & 15) as u8
+        self.bytes[6] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_a(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF0_FFFF_FFFF_FFFF) | u64::from(value) << 48;
+        self.bytes[6] = (self.bytes[6] & 240) | value;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -18526,13 +18538,13 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_b` (bits 52..=55).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        ((self.bits >> 52) & 15) as u8
+        self.bytes[6] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_b(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF0F_FFFF_FFFF_FFFF) | u64::from(value) << 52;
+        self.bytes[6] = (self.bytes[6] & 15) | value << 4;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -18574,13 +18586,13 @@ impl TeleControlCommand1 {
     /// Raw value of `protocol_version_c` (bits 56..=59).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        ((self.bits >> 56) & 15) as u8
+        self.bytes[7] & 15
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_protocol_version_c(&mut self, value: u8) {
-        self.bits = (self.bits & 0xF0FF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = (self.bytes[7] & 240) | value;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -18622,13 +18634,13 @@ impl TeleControlCommand1 {
     /// Raw value of `counter` (bits 60..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 60) as u8
+        self.bytes[7] >> 4
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFF_FFFF_FFFF_FFFF) | u64::from(value) << 60;
+        self.bytes[7] = (self.bytes[7] & 15) | value << 4;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
