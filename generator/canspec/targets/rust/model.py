@@ -150,9 +150,9 @@ class RustMessage:
         return tuple(sorted(self.fields, key=lambda f: f.mux.depth if f.mux else 0))
 
     @property
-    def needs_word(self) -> bool:
-        """`decode` reads the frame word (to store fields or to check the checksum)."""
-        return bool(self.fields) or self.msg.checksum is not None
+    def length_only(self) -> bool:
+        """`decode` tests the length and nothing else: no field, no checksum, some bytes."""
+        return not self.fields and self.msg.checksum is None and self.msg.dlc > 0
 
 
 @dataclass(frozen=True)
