@@ -448,9 +448,9 @@ impl Frame for AutocarEpsCommand {
 /// | `counter` | 心跳值 | 56 | 8 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct EpsState {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for EpsState {
@@ -570,9 +570,7 @@ impl EpsState {
         type_max: 63,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFF03_3FFF_FFFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -649,23 +647,29 @@ impl EpsState {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5] & 0x3F;
+        msg.bytes[6] = bytes[6] & 0x03;
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -689,13 +693,13 @@ impl EpsState {
     /// Raw value of `eps_ctrl_state` (bits 0..=7).
     #[inline]
     pub fn eps_ctrl_state_raw(&self) -> u8 {
-        self.bits as u8
+        self.bytes[0]
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_eps_ctrl_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF00) | u64::from(value);
+        self.bytes[0] = value;
     }
 
     /// Set `eps_ctrl_state` from its physical value; outside the documented range is an error.
@@ -728,13 +732,13 @@ impl EpsState {
     /// Raw value of `steering_torque` (bits 8..=15).
     #[inline]
     pub fn steering_torque_raw(&self) -> u8 {
-        (self.bits >> 8) as u8
+        self.bytes[1]
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_steering_torque(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_00FF) | u64::from(value) << 8;
+        self.bytes[1] = value;
     }
 
     /// Set `steering_torque` from its physical value; outside the documented range is an error.
@@ -773,13 +777,13 @@ impl EpsState {
     /// Raw value of `eps_output_torque` (bits 16..=23).
     #[inline]
     pub fn eps_output_torque_raw(&self) -> u8 {
-        (self.bits >> 16) as u8
+        self.bytes[2]
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_eps_output_torque(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = value;
     }
 
     /// Set `eps_output_torque` from its physical value; outside the documented range is an error.
@@ -822,13 +826,13 @@ impl EpsState {
     /// Raw value of `steering_angle` (bits 24..=39).
     #[inline]
     pub fn steering_angle_raw(&self) -> u16 {
-        (self.bits >> 24) as u16
+        u16::from_le_bytes([self.bytes[3], self.bytes[4]])
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_steering_angle(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFFFF_FF00_00FF_FFFF) | u64::from(value) << 24;
+        self.bytes[3..5].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `steering_angle` from its physical value; outside the documented range is an error.
@@ -865,13 +869,13 @@ impl EpsState {
     /// Raw value of `controller_temp` (bits 40..=45).
     #[inline]
     pub fn controller_temp_raw(&self) -> u8 {
-        ((self.bits >> 40) & 63) as u8
+        self.bytes[5] & 63
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_controller_temp(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_C0FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 192) | value;
     }
 
     /// Set `controller_temp` from its physical value; outside the documented range is an error.
@@ -913,13 +917,13 @@ impl EpsState {
     /// Raw value of `eps_fault_level` (bits 48..=49).
     #[inline]
     pub fn eps_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 48) & 3) as u8
+        self.bytes[6] & 3
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_eps_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFC_FFFF_FFFF_FFFF) | u64::from(value) << 48;
+        self.bytes[6] = (self.bytes[6] & 252) | value;
     }
 
     /// Set `eps_fault_level` from its physical value; outside the documented range is an error.
@@ -962,13 +966,13 @@ impl EpsState {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 56) as u8
+        self.bytes[7]
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = value;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -6000,9 +6004,9 @@ impl Frame for AutocarControlCommand2 {
 /// | `battery_discharge_energy` | 电池组累计放电电量 | 48 | 16 | 1 | 0 | kWh |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState2 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for VehicleState2 {
@@ -6086,9 +6090,7 @@ impl VehicleState2 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -6147,23 +6149,29 @@ impl VehicleState2 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// 动力电池电压
@@ -6179,13 +6187,13 @@ impl VehicleState2 {
     /// Raw value of `battery_voltage` (bits 0..=15).
     #[inline]
     pub fn battery_voltage_raw(&self) -> u16 {
-        self.bits as u16
+        u16::from_le_bytes([self.bytes[0], self.bytes[1]])
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_battery_voltage(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_0000) | u64::from(value);
+        self.bytes[0..2].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `battery_voltage` from its physical value; outside the documented range is an error.
@@ -6224,13 +6232,13 @@ impl VehicleState2 {
     /// Raw value of `battery_current` (bits 16..=31).
     #[inline]
     pub fn battery_current_raw(&self) -> u16 {
-        (self.bits >> 16) as u16
+        u16::from_le_bytes([self.bytes[2], self.bytes[3]])
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_battery_current(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFFFF_FFFF_0000_FFFF) | u64::from(value) << 16;
+        self.bytes[2..4].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `battery_current` from its physical value; outside the documented range is an error.
@@ -6267,13 +6275,13 @@ impl VehicleState2 {
     /// Raw value of `battery_charge_energy` (bits 32..=47).
     #[inline]
     pub fn battery_charge_energy_raw(&self) -> u16 {
-        (self.bits >> 32) as u16
+        u16::from_le_bytes([self.bytes[4], self.bytes[5]])
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_battery_charge_energy(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFFFF_0000_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4..6].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `battery_charge_energy` from its physical value; outside the documented range is an error.
@@ -6305,13 +6313,13 @@ impl VehicleState2 {
     /// Raw value of `battery_discharge_energy` (bits 48..=63).
     #[inline]
     pub fn battery_discharge_energy_raw(&self) -> u16 {
-        (self.bits >> 48) as u16
+        u16::from_le_bytes([self.bytes[6], self.bytes[7]])
     }
 
     /// Put a raw value that fits the field into the frame word.
     #[inline(always)]
     fn store_battery_discharge_energy(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF) | u64::from(value) << 48;
+        self.bytes[6..8].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `battery_discharge_energy` from its physical value; outside the documented range is an error.
