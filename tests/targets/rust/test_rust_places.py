@@ -31,25 +31,31 @@ def field(start: int, length: int, signed: bool, order: str, dlc: int) -> ir.Sig
                                word_mask=((1 << length) - 1) << shift, byte_order=order, sign_bit=1 << (length - 1) if signed else 0)
 
 
-def fields() -> list[tuple[ir.Signal, int]]:
+def fields() -> list[tuple[ir.Signal, int, bool]]:
+    """Fields and the frames they are in: the length, and whether held as bytes (FD frames, and
+    classic 8-byte ones whose fields each lie in one byte or are 2 or 4 whole Intel bytes, layout.py)."""
     out = []
     for dlc in (3, 8, 12, 64):
         for order in ("little_endian", "big_endian"):
-            if order == "little_endian" and dlc <= 8:
-                continue  # the Intel frame word: test_rust_bits.py
-            for length in LENGTHS:
+            for length in LENGTHS + ((2, 8, 16) if dlc == 8 else ()):
                 starts = [s for s in range(8 * dlc) if fits(s, length, order, dlc)]
                 for start in sorted({starts[0], starts[len(starts) // 2], starts[-1]} if starts else set()):
-                    out += [(field(start, length, signed, order, dlc), dlc) for signed in (False, True)]
+                    for signed in (False, True):
+                        sig = field(start, length, signed, order, dlc)
+                        if order == "big_endian" or dlc > 8:  # the Intel frame word: test_rust_bits.py
+                            out.append((sig, dlc, dlc > 8))
+                        whole = order == "little_endian" and length in (16, 32) and start % 8 == 0
+                        if dlc == 8 and (whole or len({seg.byte for seg in sig.segments}) == 1):
+                            out.append((sig, dlc, True))
     return out
 
 
-def case(i: int, sig: ir.Signal, dlc: int) -> str:
+def case(i: int, sig: ir.Signal, dlc: int, as_bytes: bool) -> str:
     ty = raw_type(sig)
-    at = place(sig, dlc)
-    holder = f"bytes: [u8; {dlc}]" if dlc > 8 else "bits: u64"
-    load = "bytes: frame.try_into().unwrap()" if dlc > 8 else "bits: u64::from_le_bytes(padded(frame))"
-    unload = "self.bytes.to_vec()" if dlc > 8 else f"self.bits.to_le_bytes()[..{dlc}].to_vec()"
+    at = place(sig, dlc, as_bytes)
+    holder = f"bytes: [u8; {dlc}]" if as_bytes else "bits: u64"
+    load = "bytes: frame.try_into().unwrap()" if as_bytes else "bits: u64::from_le_bytes(padded(frame))"
+    unload = "self.bytes.to_vec()" if as_bytes else f"self.bits.to_le_bytes()[..{dlc}].to_vec()"
     pos = ", ".join(str(p) for p in positions(sig.start, sig.length, sig.byte_order))
     return f"""
 struct F{i} {{ {holder} }}
@@ -112,7 +118,7 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
     cases = fields()
     assert len(cases) > 100
     source = ["#![allow(dead_code, clippy::unusual_byte_groupings)]", ORACLE]
-    source += [case(i, s, dlc) for i, (s, dlc) in enumerate(cases)]
+    source += [case(i, s, dlc, as_bytes) for i, (s, dlc, as_bytes) in enumerate(cases)]
     source.append(
         "fn main() {\n    let mut s = 0x9E37_79B9_7F4A_7C15_u64;\n"
         "    let mut frames = vec![vec![0u8; 64], vec![0xFF; 64], vec![0x55; 64], vec![0xAA; 64]];\n"
@@ -135,15 +141,21 @@ def test_motorola_and_fd_places(tmp_path: Path) -> None:
 
 def test_each_field_is_read_as_the_narrowest_integer_that_holds_its_bytes() -> None:
     """An FD frame's field is read as u8, u16, u32, u64 or u128, the narrowest that holds the bytes
-    its bits lie in (from the bit positions, not the segments the place is computed from); a
-    Motorola field inside one byte of a classic frame is read from the frame word unswapped, like an
-    Intel one (the two orders agree within a byte)."""
+    its bits lie in (from the bit positions, not the segments the place is computed from); a field
+    of a classic frame held as bytes is its byte indexed, or its whole bytes as one integer; a Motorola field inside
+    one byte of the frame word is read unswapped, like an Intel one (the two orders agree within a byte)."""
     seen = set()
-    for sig, dlc in fields():
-        at = place(sig, dlc)
+    for sig, dlc, as_bytes in fields():
+        at = place(sig, dlc, as_bytes)
         touched = {p // 8 for p in positions(sig.start, sig.length, sig.byte_order)}
         span = max(touched) - min(touched) + 1
-        if dlc > 8:
+        if dlc <= 8 and as_bytes and span == 1:
+            assert at.bits == 8 and at.read == f"self.bytes[{min(touched)}]", (sig.start, sig.length, sig.byte_order, dlc, at)
+            seen.add("classic byte held as bytes")
+        elif dlc <= 8 and as_bytes:
+            assert at.bits == 8 * span and at.read.startswith(f"u{8 * span}::from_le_bytes([self.bytes[{min(touched)}], "), (sig.start, dlc, at)
+            seen.add("classic whole bytes")
+        elif as_bytes:
             want = next(n for n in (1, 2, 4, 8, 16) if n >= span)
             assert at.bits == 8 * want and at.read.startswith(f"u{8 * want}::from_"), (sig.start, sig.length, sig.byte_order, dlc, at)
             assert at.window is not None and at.window[0] == min(touched)
@@ -153,4 +165,4 @@ def test_each_field_is_read_as_the_narrowest_integer_that_holds_its_bytes() -> N
             seen.add("classic byte")
         else:
             assert at.swapped, (sig.start, sig.length, dlc, at)
-    assert seen == {1, 2, 4, 8, 16, "classic byte"}
+    assert seen == {1, 2, 4, 8, 16, "classic byte", "classic byte held as bytes", "classic whole bytes"}

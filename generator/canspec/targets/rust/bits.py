@@ -3,9 +3,12 @@
 A classic frame (at most 8 bytes) is held as one little-endian `u64` (`self.bits`): an Intel
 field is `(bits >> word_shift) & mask`, a Motorola one the same over `bits.swap_bytes()` (the
 frame read big-endian), its shift moved up by the bytes the frame lacks to 8 — unless it lies in
-one byte, where the orders agree and no swap is needed. An FD frame is held as its bytes: a field
-is read from its first byte as the narrowest integer (u8 … u128) that holds the bytes it lies in,
-in its own order (`Place`): a flag costs a byte load, not an 8-byte load and a byte swap. Each
+one byte, where the orders agree and no swap is needed. A classic frame whose fields each lie in one
+byte or are whole Intel bytes, and read cheaper so (layout.py), is held as its bytes: a field is its
+byte indexed, or its bytes as one integer. An FD
+frame is held as its bytes: a field is read from its first byte as the narrowest integer (u8 …
+u128) that holds the bytes it lies in, in its own order (`Place`): a flag costs a byte load, not an
+8-byte load and a byte swap. Each
 expression is written for its exact widths, so no cast is a no-op and no mask or shift is an
 identity (clippy rejects both).
 """
@@ -36,10 +39,15 @@ class Place:
     window: tuple[int, str] | None = None
 
 
-def place(sig: ir.Signal, dlc: int) -> Place:
-    """The field's place in a message of `dlc` bytes."""
+def place(sig: ir.Signal, dlc: int, held_as_bytes: bool) -> Place:
+    """The field's place in a message of `dlc` bytes, held as its bytes or as the frame word."""
     first, last = min(s.byte for s in sig.segments), max(s.byte for s in sig.segments)
-    if dlc <= CLASSIC_BYTES:
+    if dlc <= CLASSIC_BYTES and held_as_bytes and first == last:  # the byte, a load LLVM keeps narrow
+        return Place(f"self.bytes[{first}]", 8, sig.segments[0].byte_shift, window=(first, "le"))
+    if dlc <= CLASSIC_BYTES and held_as_bytes:  # whole Intel bytes (layout.py): one narrow load, as LLVM combines them
+        read = f"u{sig.length}::from_le_bytes([{', '.join(f'self.bytes[{i}]' for i in range(first, last + 1))}])"
+        return Place(read, sig.length, 0, window=(first, "bytes"))
+    if not held_as_bytes:
         if not sig.is_big_endian:
             return Place("self.bits", WORD_BITS, sig.word_shift)
         if first == last:  # within one byte the orders agree: no byte swap
@@ -132,6 +140,11 @@ def store_stmt(sig: ir.Signal, var: str = "value", at: Place | None = None) -> s
     at = at or _intel(sig, "self.bits")
     packed = pack_expr(sig, var, at)
     in_word = sig.mask << at.shift
+    if at.read.startswith("self.bytes["):
+        return f"{at.read} = {packed};" if in_word == 0xFF else f"{at.read} = ({at.read} & {RUST.integer(0xFF ^ in_word)}) | {packed};"
+    if at.window is not None and at.window[1] == "bytes":  # the field is the whole window
+        first = at.window[0]
+        return f"self.bytes[{first}..{first + at.bits // 8}].copy_from_slice(&{_operand(packed)}.to_le_bytes());"
     if at.window is not None:
         first, order = at.window
         full = (1 << at.bits) - 1

@@ -30,6 +30,7 @@ from canspec.targets.rust.bits import (
 )
 from canspec.targets.rust.encode import Encoding, float_encoding, int_encoding, kind_of, scaled_int_type
 from canspec.targets.rust.ieee import IeeeEncoding, ieee_encoding
+from canspec.targets.rust.layout import holds_bytes
 from canspec.targets.rust.mux import RustMuxField, mux_field
 from canspec.targets.rust.naming import FieldNames, enum_type_names, field_names, special_const, stored_signals, type_name
 from canspec.targets.rust.text import RustText, build_text
@@ -118,7 +119,8 @@ class RustMessage:
     da: str  # J1939 destination address as an Option<u8>
     defined_mask: str  # frame bits the message defines (not reserved, not undefined): a u64, or per byte for FD frames
     fields_mask: str  # frame bits of the fields the type stores (no checksum, no reserved): a u64, or per byte for FD frames
-    kept_bytes: tuple[tuple[int, str], ...]  # FD frames: each byte a field lies in, and its value as decode keeps it (the fields' bits)
+    kept_bytes: tuple[tuple[int, str], ...]  # held as bytes: each byte a field lies in, and its value as decode keeps it (the fields' bits)
+    holds_bytes: bool  # held as its bytes (`bytes: [u8; DLC]`), not as the u64 frame word (layout.py)
     frame_bytes: int  # what `encode` returns: 8 bytes (a classic frame, the u64 frame word), or an FD frame's dlc
     checksum_shift: int  # bit position of the checksum byte in the frame word
     cover_mask: str  # frame-word bits the checksum covers
@@ -135,7 +137,7 @@ class RustMessage:
 
     @property
     def is_fd_frame(self) -> bool:
-        """Held as its bytes (`bytes: [u8; DLC]`), not as the u64 frame word."""
+        """Over 8 bytes: `encode` returns DLC bytes, and the tests build frames byte by byte."""
         return not self.msg.is_classic_length
 
     @property
@@ -148,9 +150,9 @@ class RustMessage:
         return tuple(sorted(self.fields, key=lambda f: f.mux.depth if f.mux else 0))
 
     @property
-    def needs_word(self) -> bool:
-        """`decode` reads the frame word (to store fields or to check the checksum)."""
-        return bool(self.fields) or self.msg.checksum is not None
+    def length_only(self) -> bool:
+        """`decode` tests the length and nothing else: no field, no checksum, some bytes."""
+        return not self.fields and self.msg.checksum is None and self.msg.dlc > 0
 
 
 @dataclass(frozen=True)
@@ -171,7 +173,7 @@ class RustCrate:
     kinds: frozenset[str]  # the field kinds that occur
     frame_bytes: int  # the longest frame `encode` returns (8 without FD frames over 8 bytes)
     has_fd_frames: bool  # some message is held as its bytes (module `fd`)
-    messages_use_fd: bool  # messages.rs calls into `fd`: an FD message with a field (its window reads) or a checksum
+    messages_use_fd: bool  # messages.rs calls into `fd`: a field over several bytes of an FD frame (its window reads), or an FD checksum
 
 
 def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEnum | None) -> str:
@@ -200,7 +202,7 @@ def _phys_expr(sig: ir.Signal, kind: str, raw: str, phys_type: str, enum: RustEn
     return expr
 
 
-def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str, RustEnum], bilingual: bool) -> RustField:
+def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str, RustEnum], bilingual: bool, held_as_bytes: bool) -> RustField:
     names = field_names(sig)
     kind = kind_of(sig)
     ty = raw_type(sig)
@@ -208,7 +210,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
     phys_type = {"enum": enum.name if enum else "", "int": ty, "scaled_int": scaled_int_type(sig) or "", "float": "f64", "ieee": f"f{sig.length}"}[kind]
     encoding = int_encoding(sig) if kind == "scaled_int" else float_encoding(sig) if kind == "float" else None
     ieee = ieee_encoding(sig) if kind == "ieee" else None
-    at = place(sig, msg.dlc)
+    at = place(sig, msg.dlc, held_as_bytes)
     set_arg, set_check, store_arg = "value", None, "value"
     if ieee is not None:
         store_arg = "raw"
@@ -261,7 +263,7 @@ def build_field(msg: ir.Message, type_name: str, sig: ir.Signal, enums: dict[str
 
 
 def kept_bytes(mask: int, dlc: int) -> tuple[tuple[int, str], ...]:
-    """The bytes an FD frame's decode copies, each with the expression it keeps (`bytes[i]`, masked
+    """The bytes the decode of a message held as bytes copies, each with the expression it keeps (`bytes[i]`, masked
     where the fields hold part of it): the others stay 0, so decode does work for the bytes its
     fields lie in, not for the whole frame."""
     out = []
@@ -276,7 +278,8 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
     name = type_name(msg.name)
     flagged = id_flag_matters and msg.is_extended
     table_bilingual = any(s.zh for s in stored_signals(msg))
-    fields = tuple(build_field(msg, name, s, enums, table_bilingual) for s in stored_signals(msg))
+    as_bytes = holds_bytes(msg)
+    fields = tuple(build_field(msg, name, s, enums, table_bilingual, as_bytes) for s in stored_signals(msg))
     counter = next((f for f in fields if msg.counter and f.sig.name == msg.counter.signal), None)
     defined = stored = 0
     for s in msg.data_signals:
@@ -292,8 +295,8 @@ def build_message(msg: ir.Message, enums: dict[str, RustEnum], id_flag_matters: 
         table=(*docs.table_head(table_bilingual), *(f.table_row for f in fields)) if fields else (),
         frame_id=msg.id_text, da="None" if j is None or j.da is None else f"Some({RUST.hex(j.da, 2)})",
         defined_mask=masks(defined), fields_mask=masks(stored),
-        frame_bytes=CLASSIC_BYTES if msg.is_classic_length else msg.dlc,
-        kept_bytes=() if msg.is_classic_length else kept_bytes(stored, msg.dlc),
+        holds_bytes=as_bytes, frame_bytes=CLASSIC_BYTES if msg.is_classic_length else msg.dlc,
+        kept_bytes=kept_bytes(stored, msg.dlc) if as_bytes else (),
         checksum_shift=8 * msg.checksum.byte if msg.checksum else 0, cover_mask=RUST.integer(msg.checksum.cover_mask) if msg.checksum else "",
         many_arguments=len(fields) > MAX_ARGUMENTS, local="msg_" if any(f.names.field == "msg" for f in fields) else "msg",
     )
@@ -316,7 +319,7 @@ def build_crate(can: ir.CanProtocol) -> RustCrate:
         id_flag_matters=id_flag_matters, max_standard_id=RUST.integer(MAX_STANDARD_ID),
         uses_codec=bool(kinds & {"scaled_int", "float"}) or can.has_counters or any(m.checksum and not m.is_fd_frame for m in messages), kinds=kinds,
         frame_bytes=max((m.frame_bytes for m in messages), default=CLASSIC_BYTES), has_fd_frames=any(m.is_fd_frame for m in messages),
-        messages_use_fd=any(m.is_fd_frame and (m.fields or m.checksum) for m in messages),
+        messages_use_fd=any(m.is_fd_frame and m.checksum or any("fd::" in f.raw_expr for f in m.fields) for m in messages),
     )
 
 
