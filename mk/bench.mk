@@ -1,10 +1,14 @@
 # Generation speed (issue 25, item 5): time and peak memory per target over 10..1,000 messages,
 # the gcc -O2 time of the 1,000-message headers and `gen --check`. Not part of `make test`.
 BENCH_GEN_SIZES ?= 10 100 300 1000
-.PHONY: bench-gen
+BENCH_CORPUS_RUNS ?= 3
+.PHONY: bench-gen bench-corpus
 
 bench-gen:  ## canspec gen per target: seconds and peak MB over spec sizes (goal: 1,000 messages in 10 s / 500 MB)
 	$(PYTHON) bench/bench_gen.py --sizes $(BENCH_GEN_SIZES)
+
+bench-corpus:  ## the largest opendbc DBC: canspec import and gen of every target, seconds, CPU s and peak MB of each (goal: within 5 s)
+	$(PYTHON) bench/bench_gen.py --corpus-only --runs $(BENCH_CORPUS_RUNS)
 
 # The second benchmark spec (issue 24 item 4): bench/motorola_fd, imported from public opendbc DBCs — Motorola-heavy,
 # CAN FD frames up to 64 bytes, two multiplexed messages (every target carries them; BENCH_SPEC2_PAGES=--no-pages

@@ -124,7 +124,7 @@ def test_full_disk_while_staging_leaves_output_untouched(
     assert gen_in_process(edited_spec, "-o", previous) == 1
     err = capsys.readouterr().err
     assert "No space left on device" in err and "previous files left unchanged" in err, err
-    assert calls["n"] == limit
+    assert calls["n"] >= limit  # files are staged by several threads: those already started finish
     assert snapshot(previous) == before and not leftovers(previous)
     monkeypatch.setattr(os, "fsync", real_fsync)
     assert gen_in_process(edited_spec, "-o", previous) == 0

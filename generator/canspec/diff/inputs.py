@@ -13,6 +13,7 @@ from pathlib import Path
 from canspec.commands.extras import install_hint
 from canspec.diff.fromdb import from_database
 from canspec.diff.model import ProtocolModel, from_spec
+from canspec.nomf4 import import_without_mf4
 from canspec.pipeline import compile_spec
 
 DATABASES = (".dbc", ".arxml", ".kcd", ".sym")
@@ -56,7 +57,7 @@ def _compiled(path: Path, arg: str, hint: str):  # type: ignore[no-untyped-def]
 
 def _database(path: Path, arg: str, comments: bool, encoding: str | None) -> ProtocolModel:
     try:
-        import cantools  # noqa: F401 - the import extra: reading databases needs it
+        import_without_mf4("cantools")  # the import extra: reading databases needs it
     except ImportError as exc:
         raise InputError(f"{arg}: reading {path.suffix} files needs cantools; {install_hint('import')}") from exc
     from canspec.importer import tospec

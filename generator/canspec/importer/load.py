@@ -16,6 +16,7 @@ from typing import Any
 
 from canspec.importer.dbctext import BO_LINE, MAX_REPAIRS, DbcError, Repairs, clip, prepass, repair_step
 from canspec.importer.encoding import TextError, decode
+from canspec.nomf4 import import_without_mf4
 
 FORMATS = {".dbc": "dbc", ".arxml": "arxml", ".kcd": "kcd", ".sym": "sym"}
 
@@ -63,9 +64,7 @@ def _cantools_log() -> Iterator[_Records]:
 
 
 def _cantools() -> Any:
-    import cantools  # the [import] extra; the CLI names it when missing
-
-    return cantools
+    return import_without_mf4("cantools")  # the [import] extra; the CLI names it when missing
 
 
 def load_dbc(path: Path, source: str, encoding: str | None = None) -> Loaded:

@@ -4,6 +4,7 @@ concatenation in a template."""
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 
 C_KEYWORDS = frozenset(
     [
@@ -30,14 +31,24 @@ RUST_KEYWORDS = frozenset(
 )
 
 
+_CAMEL = re.compile(r"([a-z0-9])([A-Z])")
+_SEPARATORS = re.compile(r"[^A-Za-z0-9]+")
+
+
+@lru_cache(maxsize=1 << 16)
+def _words(name: str) -> tuple[str, ...]:
+    """words(), kept: a compile derives the names of each message and signal several times (38,000
+    splits of 5,000 names for the Ford DBC's spec)."""
+    return tuple(w.lower() for w in _SEPARATORS.split(_CAMEL.sub(r"\1 \2", name)) if w)
+
+
 def words(name: str) -> list[str]:
     """Split snake_case, camelCase or Title Case text into lower-case words."""
-    spaced = re.sub(r"([a-z0-9])([A-Z])", r"\1 \2", name)
-    return [w.lower() for w in re.split(r"[^A-Za-z0-9]+", spaced) if w]
+    return list(_words(name))
 
 
 def snake(name: str) -> str:
-    return "_".join(words(name))
+    return "_".join(_words(name))
 
 
 def upper_snake(name: str) -> str:
@@ -45,13 +56,13 @@ def upper_snake(name: str) -> str:
 
 
 def pascal(name: str) -> str:
-    out = "".join(w[:1].upper() + w[1:] for w in words(name))
+    out = "".join(w[:1].upper() + w[1:] for w in _words(name))
     return f"_{out}" if out[:1].isdigit() else out
 
 
 def humanize(name: str) -> str:
     """English label from an identifier: `manual_assist` → `Manual assist`."""
-    text = " ".join(words(name))
+    text = " ".join(_words(name))
     return text[:1].upper() + text[1:]
 
 

@@ -14,13 +14,13 @@ import io
 import logging
 import math
 import re
-import sys
 from collections.abc import Iterator
 from typing import IO, Any
 
 from canspec.ir.ids import max_id
 from canspec.logs import frames as fr
 from canspec.logs.candump import DATA, ERROR, REMOTE, Frame
+from canspec.nomf4 import import_without_mf4
 
 CHUNK_FRAMES = 1 << 18  # frames per batch
 TRC_VERSIONS = ("1.0", "1.1", "1.3", "2.0", "2.1")  # what python-can's TRCReader parses (no version line: 1.0)
@@ -52,7 +52,7 @@ def read_text(stream: IO[bytes], fmt: str) -> Iterator[tuple[fr.Batch, list[tupl
     """(batch, problems as (line, text), lines read) per CHUNK_FRAMES frames. A record the reader
     cannot parse, or whose ID does not fit, is one malformed problem at its line and reading goes
     on with the next line; a header it cannot parse raises Unreadable."""
-    can = _import_can()
+    can = import_without_mf4("can")
     counter = _LineCounter(stream, _asc_skipped if fmt == "asc" else None)
     kwargs: dict[str, Any] = {"relative_timestamp": False} if fmt == "asc" else {}
     reader = {"asc": can.ASCReader, "trc": can.TRCReader}[fmt](counter, **kwargs)
@@ -177,21 +177,6 @@ def _frame(msg: Any) -> Frame | str:
     flags = (fr.FD | fr.BRS * msg.bitrate_switch | fr.ESI * msg.error_state_indicator) if msg.is_fd else 0
     data = bytes(msg.data) if kind == DATA else b""
     return Frame(msg.timestamp, channel, msg.arbitration_id, msg.is_extended_id, data, kind, flags)
-
-
-def _import_can() -> Any:
-    """python-can without the 2 s import of asammdf that its MF4 module does on `import can`:
-    these readers do not need it, and MF4 files are read with asammdf directly (logread._mf4)."""
-    if "can" in sys.modules or "asammdf" in sys.modules:
-        import can
-
-        return can
-    sys.modules["asammdf"] = None  # type: ignore[assignment]  # makes python-can's `import asammdf` fail fast, as if absent
-    try:
-        import can
-    finally:
-        del sys.modules["asammdf"]
-    return can
 
 
 class _LineCounter(io.TextIOBase):

@@ -4,6 +4,8 @@ to ship a static source file with that header."""
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 from functools import lru_cache
 from pathlib import PurePosixPath
 from typing import Any, Callable
@@ -28,19 +30,54 @@ FILTERS: dict[str, dict[str, Callable[..., str]]] = {
 }
 
 
+# The settings every environment shares: they decide the compiled code, so they also name its cache.
+SETTINGS: dict[str, Any] = {"keep_trailing_newline": True, "trim_blocks": True, "lstrip_blocks": True, "autoescape": False}
+
+
 @lru_cache(maxsize=None)
 def environment(folder: str) -> jinja2.Environment:
     """The environment of one template folder (a target's language): its own filters, the shared settings."""
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(resources.templates_dir())),
         undefined=jinja2.StrictUndefined,
-        keep_trailing_newline=True,
-        trim_blocks=True,
-        lstrip_blocks=True,
-        autoescape=False,
+        bytecode_cache=_bytecode_cache(folder),
+        **SETTINGS,
     )
     env.filters.update(FILTERS.get(folder, {}))
     return env
+
+
+class _QuietCache(jinja2.FileSystemBytecodeCache):
+    """A cache that is only ever a shortcut: an unreadable entry is compiled again, an unwritable one not kept."""
+
+    def load_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        try:
+            super().load_bytecode(bucket)
+        except Exception:  # noqa: BLE001 - a truncated or foreign file: compile the template instead
+            bucket.reset()
+
+    def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        with contextlib.suppress(OSError):
+            super().dump_bytecode(bucket)
+
+
+def _bytecode_cache(folder: str) -> jinja2.BytecodeCache | None:
+    """Compiled templates kept in spec_cache's directory: compiling them took 0.1 s of each large
+    target's run (0.6 s over all). An entry is named by the template's path and checked against
+    its source (Jinja's own bucket check, with Python's version); the folder is named by Jinja's
+    version, the settings and the folder's filters, which the compiled code also depends on."""
+    from canspec.spec_cache import cache_dir
+
+    base = cache_dir()
+    if base is None:
+        return None
+    key = hashlib.sha256(repr((jinja2.__version__, sorted(SETTINGS.items()), sorted(FILTERS.get(folder, {})))).encode()).hexdigest()[:16]
+    path = base / f"templates-{folder}-{key}"
+    try:
+        path.mkdir(mode=0o700, parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return _QuietCache(str(path))
 
 
 def header_lines(spec: ir.Spec, target: str) -> list[str]:

@@ -10,6 +10,7 @@ import hashlib
 import json
 import os
 import tempfile
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
@@ -84,34 +85,56 @@ def plan(out: Path, outputs: dict[str, dict[str, bytes]]) -> Plan:
     return p
 
 
+# Staging threads: fsyncs issued together share the file system's journal commits (ext4: 800
+# files one after another 3 s, together 0.1 s).
+STAGING_THREADS = 32
+
+
 def apply(out: Path, p: Plan) -> None:
-    staged: list[tuple[str, Path]] = []
+    staged: dict[str, Path] = {}
     created: list[Path] = []  # folders this run made: removed again when staging fails
     try:
         _make_dirs(out, created)
-        for rel, data in p.write.items():
-            target = out / rel
-            _make_dirs(target.parent, created)
-            fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, dir=target.parent)
-            staged.append((rel, Path(tmp)))
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.chmod(tmp, 0o644)
+        for rel in p.write:
+            _make_dirs((out / rel).parent, created)
+        _stage_all(out, p.write, staged)
     except BaseException:
-        for _, tmp in staged:
+        for tmp in staged.values():
             tmp.unlink(missing_ok=True)
         for folder in reversed(created):
             with contextlib.suppress(OSError):
                 folder.rmdir()
         raise
     # The manifest goes last so it never describes files that are not in place yet.
-    staged.sort(key=lambda item: item[0] == MANIFEST)
-    for rel, tmp in staged:
-        os.replace(tmp, out / rel)
+    for rel in sorted(staged, key=lambda rel: rel == MANIFEST):
+        os.replace(staged[rel], out / rel)
     for rel in p.remove:
         (out / rel).unlink(missing_ok=True)
+
+
+def _stage_all(out: Path, files: dict[str, bytes], staged: dict[str, Path]) -> None:
+    """Every file written and synced to a temporary next to its target (noted in `staged` as soon
+    as it exists); the first failure stops the files not yet started and is raised."""
+    if not files:
+        return
+    with ThreadPoolExecutor(max_workers=min(STAGING_THREADS, len(files))) as pool:
+        futures = [pool.submit(_stage, out / rel, data, rel, staged) for rel, data in files.items()]
+        try:
+            for future in futures:
+                future.result()
+        except BaseException:
+            pool.shutdown(cancel_futures=True)
+            raise
+
+
+def _stage(target: Path, data: bytes, rel: str, staged: dict[str, Path]) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, dir=target.parent)
+    staged[rel] = Path(tmp)
+    with os.fdopen(fd, "wb") as fh:
+        fh.write(data)
+        fh.flush()
+        os.fsync(fh.fileno())
+    os.chmod(tmp, 0o644)
 
 
 def _make_dirs(folder: Path, created: list[Path]) -> None:

@@ -11,14 +11,15 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
-from typing import Any
-
-import jsonschema
+from typing import TYPE_CHECKING, Any
 
 from canspec import resources
 from canspec.spec import fastschema
 from canspec.spec.problems import Loc, Problem, SpecError, error
 from canspec.spec.yamlsource import LocDict, LocList, load_yaml
+
+if TYPE_CHECKING:  # jsonschema itself only for a document the fast check rejects (its import: 0.06 s of every compile)
+    import jsonschema
 
 SUPPORTED_SCHEMA_VERSIONS = (1,)
 KINDS = ("bundle", "can_protocol", "value_tables", "json_protocol", "changelog")
@@ -62,11 +63,15 @@ def _ecma_pattern(validator: Any, pattern: str, instance: Any, schema: Any) -> I
     """`pattern` as JSON Schema means it (ECMA-262): `$` is the end of the text. Python's `$` also matches
     before a final newline, so jsonschema would take the name "brake\\n" as an identifier."""
     if validator.is_type(instance, "string") and not re.search(_UNESCAPED_DOLLAR.sub(r"\\Z", pattern), instance):
+        import jsonschema
+
         yield jsonschema.ValidationError(f"{instance!r} does not match {pattern!r}")
 
 
 @cache
 def _validator(version: int) -> jsonschema.protocols.Validator:
+    import jsonschema
+
     schema = json.loads(resources.spec_schema_path(version).read_text(encoding="utf-8"))
     cls = jsonschema.validators.extend(jsonschema.validators.validator_for(schema), {"pattern": _ecma_pattern})
     return cls(schema)
@@ -131,6 +136,8 @@ def _specific(err: jsonschema.ValidationError) -> jsonschema.ValidationError:
     """The most specific error inside a combinator. Of oneOf/anyOf alternatives, those of another
     type than the value are left out: a list given for "a string or a [name, 中文] list" is told
     what is wrong with it as a list, not that it is not a string."""
+    import jsonschema
+
     context = list(err.context)
     if err.validator in ("oneOf", "anyOf"):
         context = [e for e in context if not (e.validator == "type" and len(e.relative_schema_path) == 2)] or context

@@ -184,6 +184,10 @@ class _Unsupported(Exception):
 class _EventBuilder:
     def __init__(self, loader: _Loader, name: str) -> None:
         self.loader, self.name, self.next = loader, name, loader.get_event
+        # Scalars by (text, tag, implicit): a spec repeats the same words and numbers thousands of
+        # times, and resolving and constructing each again was a third of the load. Their values
+        # (str, int, Decimal, float, bool, None) are immutable, so one object can serve every use.
+        self.scalars: dict[tuple[str, str | None, tuple[bool, bool]], Any] = {}
 
     def document(self) -> Any:
         kinds = [type(self.next()) for _ in range(2)]
@@ -233,6 +237,12 @@ class _EventBuilder:
     def scalar(self, event: yaml.ScalarEvent) -> Any:
         if event.anchor is not None:
             raise _Unsupported
+        key = (event.value, event.tag, event.implicit)
+        if key not in self.scalars:
+            self.scalars[key] = self._construct(event)
+        return self.scalars[key]
+
+    def _construct(self, event: yaml.ScalarEvent) -> Any:
         tag = event.tag
         if tag is None or tag == "!":
             tag = self.loader.resolve(yaml.ScalarNode, event.value, event.implicit)

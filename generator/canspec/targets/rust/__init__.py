@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from canspec import ir
 from canspec.render.environment import render, static_file
-from canspec.render.formatters import CHUNK_CHARS, in_chunks, rustfmt
+from canspec.render.formatters import RUSTFMT_CHUNK_CHARS, in_chunks, rustfmt
 from canspec.targets import Target
 from canspec.targets.rust.check import problems
 from canspec.targets.rust.model import RustCrate, build_crate
@@ -54,7 +54,7 @@ def render_rust(spec: ir.Spec) -> dict[str, bytes]:
     return {f"rust/{rel}": (_format(text, rel) if rel.endswith(".rs") else text).encode("utf-8") for rel, text in sorted(sources.items())}
 
 
-def _format(text: str, rel: str, size: int = CHUNK_CHARS) -> str:
+def _format(text: str, rel: str, size: int = RUSTFMT_CHUNK_CHARS) -> str:
     return in_chunks(text, lambda piece: rustfmt(piece, rel), size)
 
 

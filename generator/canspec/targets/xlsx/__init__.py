@@ -45,4 +45,4 @@ def render_xlsx(spec: ir.Spec) -> dict[str, bytes]:
 
 
 TARGET = Target("xlsx", "communication matrix spreadsheet (通信矩阵): signals × node S/R, value tables, nodes, history, errata", OUT, render_xlsx,
-                order=85)
+                order=85, cost=2)
