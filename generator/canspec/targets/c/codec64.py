@@ -118,9 +118,13 @@ def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: 
 
 
 def _placed(s: CSignal) -> str:
-    """The field's bits at their place in the frame word (a signed field cut to its bits)."""
+    """The field's bits at their place in the frame word: a signed field cut to its bits, and in a
+    big-endian word an unsigned one of several bytes at a byte boundary (unmasked, gcc traces the
+    word's bytes back to the struct's and, finding no byte swap of one load, stores them one by one,
+    shifted and OR'd, instead of the word's byte-swapped store)."""
     v = f"(uint64_t){s.value}"
-    if s.sig.signed and s.length < 64:
+    swapped = s.sig.word_order == "big" and 8 < s.length < s.sig.storage_bits and s.word_shift % 8 == 0
+    if (s.sig.signed and s.length < 64) or swapped:
         v = f"({v} & {C.hex(s.sig.mask, bits=64)})"
     return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
 
@@ -145,6 +149,17 @@ def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: s
     covered = span(sigs, dlc, checksum is not None)
     out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" if k in covered else f"dst[{k}] = 0u;" for k in range(dlc)]
     return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
+
+
+def _unswapped(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, order: str) -> bool:
+    """Whether gcc stores a big-endian word's bytes one by one, each with its shift, instead of
+    one byte-swapped store: where a byte it covers carries no field (stored as a constant 0) or
+    it covers no 2, 4 or 8 bytes (a little-endian word it stores whole)."""
+    if order != "big":
+        return False
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
+    covered = span(sigs, dlc, checksum is not None)
+    return len(covered) not in (2, 4, 8) or any(k not in used for k in covered)
 
 
 def _cost_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> int:
@@ -247,14 +262,15 @@ def _struct_run(fields: tuple[CSignal, ...]) -> bool:
 
 
 def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fields: tuple[CSignal, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """(locals, statements): the frame word where its estimate is lower (and no struct run), the
-    byte sum form where fields share a bit count (their one check saves a branch per byte), else
-    the byte form."""
+    """(locals, statements): the frame word where its estimate is lower (and no struct run, no
+    byte-swapped store lost), the byte sum form where fields share a bit count (their one check
+    saves a branch per byte), else the byte form."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     locals_ = _check_locals(sigs)
     order = word_order(sigs)
     one_order = all(s.sig.word_order == order for s in sigs)
-    if sigs and one_order and _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields):
+    word = _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields) and not _unswapped(sigs, msg.dlc, ck, order)
+    if sigs and one_order and word:
         locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
         return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
     if _shared(sigs):
