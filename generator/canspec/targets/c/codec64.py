@@ -26,14 +26,15 @@ The frame word's byte order is its fields' (ir.Signal.word_order): read big-endi
 most significant) where most fields are Motorola, in which each of them is contiguous at its
 word_shift; a field of the other order is taken from its bytes as codec.py does, and pack uses
 the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) has no
-word: the byte form.
+word: the byte form, whose pack zeroes the frame with one memset first where most bytes carry no
+field (x86-64 stores 16 bytes at a time; byte stores of 0 split at each field byte).
 """
 
 from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, paren, shl, shr, store, store_bits
+from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, pack_bytes, paren, shl, shr, store, store_bits
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -278,11 +279,23 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
     return bytewise.pack_locals, bytewise.pack
 
 
+def _zeroed(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
+    """A CAN FD frame most of whose bytes are reserved: zeroed by one memset (a few 16-byte
+    stores), then the byte form's stores of the bytes that carry fields; None where most carry one."""
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({msg.checksum.byte} if msg.checksum is not None else set())
+    if not sigs or 2 * len(used) >= msg.dlc:
+        return None
+    pack = (f"(void)memset(dst, 0, {msg.dlc}u);", *pack_bytes(sigs, msg.dlc, msg.checksum.byte if msg.checksum else None, err, zeroed=True))
+    return CCodec(pack, bytewise.unpack_locals, bytewise.unpack, bytewise.pack_locals)
+
+
 def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
     """The message's pack/unpack under <PREFIX>_STRATEGY 3, or None where it is the byte form.
     `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
-    if not msg.dlc or not msg.is_classic_length:
+    if not msg.dlc:
         return None
+    if not msg.is_classic_length:
+        return _zeroed(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise)
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
     unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
