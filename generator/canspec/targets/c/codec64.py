@@ -212,6 +212,32 @@ def _word_store(s: CSignal) -> list[str]:
     return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
+def _chunk_locals(covered: range) -> list[str]:
+    """The uint32_t locals `w<bits>` of _load_word's chunks of 4 and 2 bytes (a composite
+    expression is not cast wider: MISRA C:2012 rule 10.8)."""
+    return [] if len(covered) in (1, 2, 4, 8) else [f"uint32_t w{8 * n};" for n in (4, 2) if len(covered) & n]
+
+
+def _load_word(covered: range, dlc: int, order: str) -> list[str]:
+    """The statements reading the covered bytes into `w`. gcc merges byte loads into one
+    (byte-swapped) load of 2, 4 or 8 bytes only: a run of another length is read in runs of 4, 2
+    and 1 bytes (6 bytes: 4 and 2), each placed at the word bit of its least significant byte."""
+    if len(covered) in (1, 2, 4, 8):
+        return ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in covered) + ";"]
+    body, parts, at = [], [], covered.start
+    for n in (4, 2, 1):
+        if covered.stop - at < n:
+            continue
+        chunk, at = range(at, at + n), at + n
+        low = byte_at(chunk[-1] if order == "big" else chunk[0], dlc, order)
+        if n == 1:
+            parts.append(shl(f"(uint64_t)src[{chunk[0]}]", low))
+            continue
+        body.append(f"w{8 * n} = " + " | ".join(shl(f"(uint32_t)src[{k}]", byte_at(k, dlc, order) - low) for k in chunk) + ";")
+        parts.append(shl(f"(uint64_t)w{8 * n}", low))
+    return [*body, "w = " + " | ".join(parts) + ";"]
+
+
 def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """None where no field is read from the word (the byte form of codec.py then)."""
     words = word_fields(sigs, order)
@@ -219,7 +245,8 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
         return None
     in_word = {id(s) for s in words}  # by identity: comparing CSignals compares their whole IR
     held: list[int] = []
-    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in span(words, dlc, checksum)) + ";"]
+    covered = span(words, dlc, checksum)
+    body = _load_word(covered, dlc, order)
     for s in sigs:
         if id(s) in in_word:
             body += _word_store(s)
@@ -231,7 +258,7 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
     if checksum:
         body += [*FOLD, "x &= 0xFFu;"]
     local = [f"uint32_t b{k};" for k in sorted(held)]
-    local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
+    local += [*_chunk_locals(covered), "uint64_t w;", *(["uint64_t x;"] if checksum else [])]
     local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if id(s) not in in_word) else []  # codec.store's halves
     # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
     narrow = {s.sig.name: (32 if id(s) in in_word else 33) for s in sigs if s.sig.signed}
