@@ -14,7 +14,8 @@ and an OR per byte it touches (a store to dst may alias src). Per message the ge
 - pack, byte sum: each byte once as the sum of its fields' pieces (disjoint bits once the fields
   fit, so the sum is their OR; x86 folds a shift by 1-3 and an add into one `lea`);
 - otherwise the byte form's pack.
-Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
+Either byte form zeroes the frame with one memset first where its bytes without a field, in runs
+apart, would take more stores, and then leaves them out. Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
 fields of a bit count shared by several are OR'd into `ored<n>` byte by byte, read again after the
 byte's store (a memory operand on x86), a lone field compared in the check itself.
 
@@ -100,7 +101,7 @@ def word_order(sigs: tuple[CSignal, ...]) -> str:
     return "big" if 2 * big > len(sigs) else "little"
 
 
-def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
+def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, zeroed: bool = False) -> list[str]:
     pieces, starting = byte_pieces(sigs)
     out: list[str] = float_copies(sigs, "&{local}", "&src->{field}")
     seen: set[int] = set()
@@ -112,7 +113,7 @@ def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: 
         elif k in pieces:
             terms = pieces[k]
             out.append(f"dst[{k}] = (uint8_t){paren(terms[0] if len(terms) == 1 else '(' + ' + '.join(terms) + ')')};")
-        else:
+        elif not zeroed:
             out.append(f"dst[{k}] = 0u;")
         out += _accumulate(tuple(starting.get(k, ())), shared, seen)
     return out + _check(sigs, err)
@@ -301,9 +302,25 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
     if sigs and one_order and word:
         locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
         return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
+    zero = _zero_first(sigs, msg.dlc, ck)
+    fill = (f"(void)memset(dst, 0, {msg.dlc}u);",) if zero else ()
     if _shared(sigs):
-        return (*locals_, *float_locals(sigs)), tuple(_pack_bytes(sigs, msg.dlc, ck, err))
-    return bytewise.pack_locals, bytewise.pack
+        return (*locals_, *float_locals(sigs)), (*fill, *_pack_bytes(sigs, msg.dlc, ck, err, zeroed=zero))
+    return bytewise.pack_locals, (*fill, *pack_bytes(sigs, msg.dlc, ck, err, zeroed=True)) if zero else bytewise.pack
+
+
+def _zero_first(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> bool:
+    """Whether the byte forms zero the frame first (one memset: an 8-byte store) rather than store
+    its runs of bytes without a field (an access per set bit of a run's length, each run apart)."""
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
+    runs, run = [], 0
+    for k in range(dlc + 1):
+        if k < dlc and k not in used:
+            run += 1
+        elif run:
+            runs.append(run)
+            run = 0
+    return sum(bin(n).count("1") for n in runs) > bin(dlc).count("1")
 
 
 def _zeroed(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
