@@ -713,6 +713,27 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
                                          const kaiwo_gateway_autocar_speed_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    (void)memset(dst, 0, 8u);
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -734,6 +755,7 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -6815,6 +6837,27 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_rgate_speed_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    (void)memset(dst, 0, 8u);
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -6836,6 +6879,7 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -8161,15 +8205,11 @@ kaiwo_gateway_rgate_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
+    (void)memset(dst, 0, 8u);
     dst[0] = (uint8_t)(src->downhill_regen_enable + ((uint32_t)src->cargo_lift << 1u) +
                        ((uint32_t)src->cargo_lift_speed << 3u) + ((uint32_t)src->pto_enable << 7u));
     ored1 = src->downhill_regen_enable | src->pto_enable;
     dst[1] = (uint8_t)src->downhill_regen_speed;
-    dst[2] = 0u;
-    dst[3] = 0u;
-    dst[4] = 0u;
-    dst[5] = 0u;
-    dst[6] = 0u;
     dst[7] = (uint8_t)src->counter;
     if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
@@ -11259,6 +11299,27 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
                                       const kaiwo_gateway_tele_speed_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    (void)memset(dst, 0, 8u);
+    if ((src->throttle_brake_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->throttle_brake_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->throttle_brake_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -11280,6 +11341,7 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -12609,15 +12671,11 @@ kaiwo_gateway_tele_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
+    (void)memset(dst, 0, 8u);
     dst[0] = (uint8_t)(src->downhill_regen_enable + ((uint32_t)src->cargo_lift << 1u) +
                        ((uint32_t)src->cargo_lift_speed << 3u) + ((uint32_t)src->pto_enable << 7u));
     ored1 = src->downhill_regen_enable | src->pto_enable;
     dst[1] = (uint8_t)src->downhill_regen_speed;
-    dst[2] = 0u;
-    dst[3] = 0u;
-    dst[4] = 0u;
-    dst[5] = 0u;
-    dst[6] = 0u;
     dst[7] = (uint8_t)src->counter;
     if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;

@@ -144,12 +144,13 @@ def byte_pieces(sigs: tuple[CSignal, ...]) -> tuple[dict[int, list[str]], dict[i
     return pieces, starting
 
 
-def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> tuple[str, ...]:
+def pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, zeroed: bool = False) -> tuple[str, ...]:
     """Each byte stored as soon as it is computed (holding them all would spill on small cores),
     with the check of the checked fields that start in it: before the byte where it checks at
     most HELD_FIELDS of them (the values stay in registers for the byte), after it otherwise
     (the fields are read again: a store to dst may alias src; cheaper than spilling them). On
-    ERR_RANGE the frame's bytes are unspecified."""
+    ERR_RANGE the frame's bytes are unspecified. `zeroed`: the frame is already 0, the bytes
+    without fields are not stored."""
     pieces, starting = byte_pieces(sigs)
     out = float_copies(sigs, "&{local}", "&src->{field}")
     for k in range(dlc):
@@ -162,7 +163,7 @@ def _pack(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -
             out.append(f"dst[{k}] = (uint8_t)({' ^ '.join(others)});" if len(others) > 1 else f"dst[{k}] = {others[0]};" if others else f"dst[{k}] = 0u;")
         elif k in pieces:
             out.append(f"dst[{k}] = (uint8_t){paren(ored(pieces[k]))};")
-        else:
+        elif not zeroed:
             out.append(f"dst[{k}] = 0u;")
         out += [] if before else check
     return tuple(out)
@@ -261,4 +262,4 @@ def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
     locals_, unpack = unpack_parts(sigs, msg.dlc, ck is not None)
-    return CCodec(_pack(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))
+    return CCodec(pack_bytes(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))

@@ -14,7 +14,8 @@ and an OR per byte it touches (a store to dst may alias src). Per message the ge
 - pack, byte sum: each byte once as the sum of its fields' pieces (disjoint bits once the fields
   fit, so the sum is their OR; x86 folds a shift by 1-3 and an add into one `lea`);
 - otherwise the byte form's pack.
-Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
+Either byte form zeroes the frame with one memset first where its bytes without a field, in runs
+apart, would take more stores, and then leaves them out. Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
 fields of a bit count shared by several are OR'd into `ored<n>` byte by byte, read again after the
 byte's store (a memory operand on x86), a lone field compared in the check itself.
 
@@ -26,14 +27,15 @@ The frame word's byte order is its fields' (ir.Signal.word_order): read big-endi
 most significant) where most fields are Motorola, in which each of them is contiguous at its
 word_shift; a field of the other order is taken from its bytes as codec.py does, and pack uses
 the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) has no
-word: the byte form.
+word: the byte form, whose pack zeroes the frame with one memset first where most bytes carry no
+field (x86-64 stores 16 bytes at a time; byte stores of 0 split at each field byte).
 """
 
 from __future__ import annotations
 
 from canspec import ir
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, paren, shl, shr, store, store_bits
+from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, pack_bytes, paren, shl, shr, store, store_bits
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -99,7 +101,7 @@ def word_order(sigs: tuple[CSignal, ...]) -> str:
     return "big" if 2 * big > len(sigs) else "little"
 
 
-def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str) -> list[str]:
+def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, zeroed: bool = False) -> list[str]:
     pieces, starting = byte_pieces(sigs)
     out: list[str] = float_copies(sigs, "&{local}", "&src->{field}")
     seen: set[int] = set()
@@ -111,16 +113,20 @@ def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: 
         elif k in pieces:
             terms = pieces[k]
             out.append(f"dst[{k}] = (uint8_t){paren(terms[0] if len(terms) == 1 else '(' + ' + '.join(terms) + ')')};")
-        else:
+        elif not zeroed:
             out.append(f"dst[{k}] = 0u;")
         out += _accumulate(tuple(starting.get(k, ())), shared, seen)
     return out + _check(sigs, err)
 
 
 def _placed(s: CSignal) -> str:
-    """The field's bits at their place in the frame word (a signed field cut to its bits)."""
+    """The field's bits at their place in the frame word: a signed field cut to its bits, and in a
+    big-endian word an unsigned one of several bytes at a byte boundary (unmasked, gcc traces the
+    word's bytes back to the struct's and, finding no byte swap of one load, stores them one by one,
+    shifted and OR'd, instead of the word's byte-swapped store)."""
     v = f"(uint64_t){s.value}"
-    if s.sig.signed and s.length < 64:
+    swapped = s.sig.word_order == "big" and 8 < s.length < s.sig.storage_bits and s.word_shift % 8 == 0
+    if (s.sig.signed and s.length < 64) or swapped:
         v = f"({v} & {C.hex(s.sig.mask, bits=64)})"
     return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
 
@@ -145,6 +151,17 @@ def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: s
     covered = span(sigs, dlc, checksum is not None)
     out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" if k in covered else f"dst[{k}] = 0u;" for k in range(dlc)]
     return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
+
+
+def _unswapped(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, order: str) -> bool:
+    """Whether gcc stores a big-endian word's bytes one by one, each with its shift, instead of
+    one byte-swapped store: where a byte it covers carries no field (stored as a constant 0) or
+    it covers no 2, 4 or 8 bytes (a little-endian word it stores whole)."""
+    if order != "big":
+        return False
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
+    covered = span(sigs, dlc, checksum is not None)
+    return len(covered) not in (2, 4, 8) or any(k not in used for k in covered)
 
 
 def _cost_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> int:
@@ -196,6 +213,32 @@ def _word_store(s: CSignal) -> list[str]:
     return [f"t64 = {bits} ^ {C.hex(sign, bits=64)};", f"{field} = ({t})((int64_t)t64 - {C.integer(sign, 64)});"]
 
 
+def _chunk_locals(covered: range) -> list[str]:
+    """The uint32_t locals `w<bits>` of _load_word's chunks of 4 and 2 bytes (a composite
+    expression is not cast wider: MISRA C:2012 rule 10.8)."""
+    return [] if len(covered) in (1, 2, 4, 8) else [f"uint32_t w{8 * n};" for n in (4, 2) if len(covered) & n]
+
+
+def _load_word(covered: range, dlc: int, order: str) -> list[str]:
+    """The statements reading the covered bytes into `w`. gcc merges byte loads into one
+    (byte-swapped) load of 2, 4 or 8 bytes only: a run of another length is read in runs of 4, 2
+    and 1 bytes (6 bytes: 4 and 2), each placed at the word bit of its least significant byte."""
+    if len(covered) in (1, 2, 4, 8):
+        return ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in covered) + ";"]
+    body, parts, at = [], [], covered.start
+    for n in (4, 2, 1):
+        if covered.stop - at < n:
+            continue
+        chunk, at = range(at, at + n), at + n
+        low = byte_at(chunk[-1] if order == "big" else chunk[0], dlc, order)
+        if n == 1:
+            parts.append(shl(f"(uint64_t)src[{chunk[0]}]", low))
+            continue
+        body.append(f"w{8 * n} = " + " | ".join(shl(f"(uint32_t)src[{k}]", byte_at(k, dlc, order) - low) for k in chunk) + ";")
+        parts.append(shl(f"(uint64_t)w{8 * n}", low))
+    return [*body, "w = " + " | ".join(parts) + ";"]
+
+
 def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """None where no field is read from the word (the byte form of codec.py then)."""
     words = word_fields(sigs, order)
@@ -203,7 +246,8 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
         return None
     in_word = {id(s) for s in words}  # by identity: comparing CSignals compares their whole IR
     held: list[int] = []
-    body = ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in span(words, dlc, checksum)) + ";"]
+    covered = span(words, dlc, checksum)
+    body = _load_word(covered, dlc, order)
     for s in sigs:
         if id(s) in in_word:
             body += _word_store(s)
@@ -215,7 +259,7 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
     if checksum:
         body += [*FOLD, "x &= 0xFFu;"]
     local = [f"uint32_t b{k};" for k in sorted(held)]
-    local += ["uint64_t w;", *(["uint64_t x;"] if checksum else [])]
+    local += [*_chunk_locals(covered), "uint64_t w;", *(["uint64_t x;"] if checksum else [])]
     local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if id(s) not in in_word) else []  # codec.store's halves
     # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
     narrow = {s.sig.name: (32 if id(s) in in_word else 33) for s in sigs if s.sig.signed}
@@ -247,26 +291,55 @@ def _struct_run(fields: tuple[CSignal, ...]) -> bool:
 
 
 def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fields: tuple[CSignal, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """(locals, statements): the frame word where its estimate is lower (and no struct run), the
-    byte sum form where fields share a bit count (their one check saves a branch per byte), else
-    the byte form."""
+    """(locals, statements): the frame word where its estimate is lower (and no struct run, no
+    byte-swapped store lost), the byte sum form where fields share a bit count (their one check
+    saves a branch per byte), else the byte form."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     locals_ = _check_locals(sigs)
     order = word_order(sigs)
     one_order = all(s.sig.word_order == order for s in sigs)
-    if sigs and one_order and _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields):
+    word = _cost_word(sigs, ck) + MARGIN <= _cost_bytes(sigs, msg.dlc, ck) and not _struct_run(fields) and not _unswapped(sigs, msg.dlc, ck, order)
+    if sigs and one_order and word:
         locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
         return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
+    zero = _zero_first(sigs, msg.dlc, ck)
+    fill = (f"(void)memset(dst, 0, {msg.dlc}u);",) if zero else ()
     if _shared(sigs):
-        return (*locals_, *float_locals(sigs)), tuple(_pack_bytes(sigs, msg.dlc, ck, err))
-    return bytewise.pack_locals, bytewise.pack
+        return (*locals_, *float_locals(sigs)), (*fill, *_pack_bytes(sigs, msg.dlc, ck, err, zeroed=zero))
+    return bytewise.pack_locals, (*fill, *pack_bytes(sigs, msg.dlc, ck, err, zeroed=True)) if zero else bytewise.pack
+
+
+def _zero_first(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> bool:
+    """Whether the byte forms zero the frame first (one memset: an 8-byte store) rather than store
+    its runs of bytes without a field (an access per set bit of a run's length, each run apart)."""
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
+    runs, run = [], 0
+    for k in range(dlc + 1):
+        if k < dlc and k not in used:
+            run += 1
+        elif run:
+            runs.append(run)
+            run = 0
+    return sum(bin(n).count("1") for n in runs) > bin(dlc).count("1")
+
+
+def _zeroed(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
+    """A CAN FD frame most of whose bytes are reserved: zeroed by one memset (a few 16-byte
+    stores), then the byte form's stores of the bytes that carry fields; None where most carry one."""
+    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({msg.checksum.byte} if msg.checksum is not None else set())
+    if not sigs or 2 * len(used) >= msg.dlc:
+        return None
+    pack = (f"(void)memset(dst, 0, {msg.dlc}u);", *pack_bytes(sigs, msg.dlc, msg.checksum.byte if msg.checksum else None, err, zeroed=True))
+    return CCodec(pack, bytewise.unpack_locals, bytewise.unpack, bytewise.pack_locals)
 
 
 def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
     """The message's pack/unpack under <PREFIX>_STRATEGY 3, or None where it is the byte form.
     `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
-    if not msg.dlc or not msg.is_classic_length:
+    if not msg.dlc:
         return None
+    if not msg.is_classic_length:
+        return _zeroed(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise)
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
     unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
