@@ -18,13 +18,17 @@ BENCH_SPEC2_DIR := build/bench-spec2/$(if $(BENCH_SPEC2_PAGES),no-pages,pages)
 BENCH_SPEC2 := $(if $(BENCH_SPEC2_PAGES),$(BENCH_SPEC2_DIR)/spec,bench/motorola_fd)
 BENCH_SPEC2_GEN := $(BENCH_SPEC2_DIR)/generated
 BENCH_SPEC2_C_ARGS = --spec $(BENCH_SPEC2) --headers $(BENCH_SPEC2_GEN)/c --dbc $(BENCH_SPEC2_GEN)/dbc/gwm.dbc --vectors $(BENCH_SPEC2_GEN)/vectors/can.json
-.PHONY: bench-spec2 bench-c-spec2 bench-c-cross-spec2 bench-python-spec2 bench-rust-spec2
+.PHONY: bench-spec2 bench-c-spec2 bench-c-bound bench-c-cross-spec2 bench-python-spec2 bench-rust-spec2
 
 bench-spec2:  ## generate the second benchmark spec's C, DBC, vectors, Python and Rust into build/bench-spec2/
 	$(PYTHON) bench/spec2.py $(BENCH_SPEC2_PAGES)
 
 bench-c-spec2: bench-spec2  ## bench-c (x86-64 -O2) on the second benchmark spec
 	$(PYTHON) tests/targets/c/bench.py build/c-bench-spec2 $(BENCH_SPEC2_C_ARGS)
+
+bench-c-bound: bench-spec2  ## bench-c-spec2, then the fewest instructions any C codec could run per message (bench/c_bound.py): the best ratio to cantools reachable
+	$(PYTHON) tests/targets/c/bench.py build/c-bench-spec2 $(BENCH_SPEC2_C_ARGS) > build/bench-c-spec2.txt || { cat build/bench-c-spec2.txt; exit 1; }
+	$(PYTHON) bench/c_bound.py $(BENCH_SPEC2) build/bench-c-spec2.txt
 
 bench-c-cross-spec2: bench-spec2  ## bench-c-cross (Cortex-M0+/M4) on the second benchmark spec
 	$(PYTHON) tests/targets/c/cross/bench_cross.py --build build/c-bench-cross-spec2 $(BENCH_SPEC2_C_ARGS)
