@@ -561,11 +561,11 @@ class AutocarEpsCommand:
         return _encode_autocar_eps_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarEpsCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_autocar_eps_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarEpsCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -606,7 +606,7 @@ class AutocarEpsCommand:
         return _pack_autocar_eps_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> AutocarEpsCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_autocar_eps_command(data, verify_checksum)
 
@@ -787,11 +787,11 @@ class EpsState:
         return _encode_eps_state(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> EpsState:
+    def decode(data: Buffer, verify_checksum: bool = True) -> EpsState:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_eps_state(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> EpsState:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> EpsState:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -828,7 +828,7 @@ class EpsState:
         return _pack_eps_state(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> EpsStateRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> EpsStateRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_eps_state(data, verify_checksum)
 
@@ -1011,11 +1011,11 @@ class AutocarSpeedCommand:
         return _encode_autocar_speed_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarSpeedCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_autocar_speed_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarSpeedCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -1057,7 +1057,7 @@ class AutocarSpeedCommand:
         return _pack_autocar_speed_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> AutocarSpeedCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_autocar_speed_command(data, verify_checksum)
 
@@ -1249,11 +1249,11 @@ class DrivingState:
         return _encode_driving_state(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> DrivingState:
+    def decode(data: Buffer, verify_checksum: bool = True) -> DrivingState:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_driving_state(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> DrivingState:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> DrivingState:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -1298,7 +1298,7 @@ class DrivingState:
         return _pack_driving_state(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> DrivingStateRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> DrivingStateRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_driving_state(data, verify_checksum)
 
@@ -1565,11 +1565,11 @@ class AutocarControlCommand1:
         return _encode_autocar_control_command_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_autocar_control_command_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -1624,7 +1624,7 @@ class AutocarControlCommand1:
         return _pack_autocar_control_command_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_autocar_control_command_1(data, verify_checksum)
 
@@ -2042,11 +2042,11 @@ class VehicleState1:
         return _encode_vehicle_state_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleState1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleState1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -2098,7 +2098,7 @@ class VehicleState1:
         return _pack_vehicle_state_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleState1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleState1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_state_1(data, verify_checksum)
 
@@ -2441,11 +2441,11 @@ class AutocarControlCommand2:
         return _encode_autocar_control_command_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_autocar_control_command_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -2485,7 +2485,7 @@ class AutocarControlCommand2:
         return _pack_autocar_control_command_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> AutocarControlCommand2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_autocar_control_command_2(data, verify_checksum)
 
@@ -2687,11 +2687,11 @@ class VehicleState2:
         return _encode_vehicle_state_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleState2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleState2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -2725,7 +2725,7 @@ class VehicleState2:
         return _pack_vehicle_state_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleState2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleState2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_state_2(data, verify_checksum)
 
@@ -2872,11 +2872,11 @@ class VehicleState3:
         return _encode_vehicle_state_3(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState3:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleState3:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_3(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState3:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleState3:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -2912,7 +2912,7 @@ class VehicleState3:
         return _pack_vehicle_state_3(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleState3Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleState3Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_state_3(data, verify_checksum)
 
@@ -3095,11 +3095,11 @@ class VehicleState4:
         return _encode_vehicle_state_4(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState4:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleState4:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_4(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState4:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleState4:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -3141,7 +3141,7 @@ class VehicleState4:
         return _pack_vehicle_state_4(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleState4Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleState4Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_state_4(data, verify_checksum)
 
@@ -3466,11 +3466,11 @@ class VehicleFault:
         return _encode_vehicle_fault(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleFault:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleFault:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_fault(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleFault:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleFault:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -3529,7 +3529,7 @@ class VehicleFault:
         return _pack_vehicle_fault(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleFaultRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleFaultRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_fault(data, verify_checksum)
 
@@ -3882,11 +3882,11 @@ class VehicleState5:
         return _encode_vehicle_state_5(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> VehicleState5:
+    def decode(data: Buffer, verify_checksum: bool = True) -> VehicleState5:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_vehicle_state_5(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> VehicleState5:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> VehicleState5:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(self, _decode_vehicle_state_5(data, verify_checksum), ())
 
@@ -3911,7 +3911,7 @@ class VehicleState5:
         return _pack_vehicle_state_5(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> VehicleState5Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> VehicleState5Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_vehicle_state_5(data, verify_checksum)
 
@@ -4011,11 +4011,11 @@ class RgateEpsCommand:
         return _encode_rgate_eps_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateEpsCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_rgate_eps_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateEpsCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RgateEpsCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -4056,7 +4056,7 @@ class RgateEpsCommand:
         return _pack_rgate_eps_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RgateEpsCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RgateEpsCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_rgate_eps_command(data, verify_checksum)
 
@@ -4235,11 +4235,11 @@ class RgateSpeedCommand:
         return _encode_rgate_speed_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateSpeedCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_rgate_speed_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateSpeedCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -4281,7 +4281,7 @@ class RgateSpeedCommand:
         return _pack_rgate_speed_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RgateSpeedCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_rgate_speed_command(data, verify_checksum)
 
@@ -4537,11 +4537,11 @@ class RgateControlCommand1:
         return _encode_rgate_control_command_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rgate_control_command_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -4596,7 +4596,7 @@ class RgateControlCommand1:
         return _pack_rgate_control_command_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_rgate_control_command_1(data, verify_checksum)
 
@@ -4951,11 +4951,11 @@ class RgateControlCommand2:
         return _encode_rgate_control_command_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rgate_control_command_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -4991,7 +4991,7 @@ class RgateControlCommand2:
         return _pack_rgate_control_command_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RgateControlCommand2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RgateControlCommand2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_rgate_control_command_2(data, verify_checksum)
 
@@ -5149,11 +5149,11 @@ class DeviceId:
         return _encode_device_id(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> DeviceId:
+    def decode(data: Buffer, verify_checksum: bool = True) -> DeviceId:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_device_id(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> DeviceId:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> DeviceId:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -5186,7 +5186,7 @@ class DeviceId:
         return _pack_device_id(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> DeviceIdRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> DeviceIdRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_device_id(data, verify_checksum)
 
@@ -5331,11 +5331,11 @@ class FrontSensorDistance1:
         return _encode_front_sensor_distance_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_front_sensor_distance_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -5372,7 +5372,7 @@ class FrontSensorDistance1:
         return _pack_front_sensor_distance_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_front_sensor_distance_1(data, verify_checksum)
 
@@ -5580,11 +5580,11 @@ class FrontSensorDistance2:
         return _encode_front_sensor_distance_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_front_sensor_distance_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -5628,7 +5628,7 @@ class FrontSensorDistance2:
         return _pack_front_sensor_distance_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> FrontSensorDistance2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_front_sensor_distance_2(data, verify_checksum)
 
@@ -5890,11 +5890,11 @@ class RearSensorDistance1:
         return _encode_rear_sensor_distance_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rear_sensor_distance_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -5931,7 +5931,7 @@ class RearSensorDistance1:
         return _pack_rear_sensor_distance_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_rear_sensor_distance_1(data, verify_checksum)
 
@@ -6139,11 +6139,11 @@ class RearSensorDistance2:
         return _encode_rear_sensor_distance_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_rear_sensor_distance_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -6187,7 +6187,7 @@ class RearSensorDistance2:
         return _pack_rear_sensor_distance_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> RearSensorDistance2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> RearSensorDistance2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_rear_sensor_distance_2(data, verify_checksum)
 
@@ -6438,11 +6438,11 @@ class TeleEpsCommand:
         return _encode_tele_eps_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleEpsCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_tele_eps_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleEpsCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> TeleEpsCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -6483,7 +6483,7 @@ class TeleEpsCommand:
         return _pack_tele_eps_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> TeleEpsCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> TeleEpsCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_tele_eps_command(data, verify_checksum)
 
@@ -6662,11 +6662,11 @@ class TeleSpeedCommand:
         return _encode_tele_speed_command(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleSpeedCommand:
+    def decode(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
         """The message in a frame's data bytes; FrameLengthError, ChecksumError."""
         return _decode_tele_speed_command(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleSpeedCommand:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommand:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -6708,7 +6708,7 @@ class TeleSpeedCommand:
         return _pack_tele_speed_command(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> TeleSpeedCommandRaw:
         """Raw values in a frame's data bytes."""
         return _unpack_tele_speed_command(data, verify_checksum)
 
@@ -6964,11 +6964,11 @@ class TeleControlCommand1:
         return _encode_tele_control_command_1(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand1:
+    def decode(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_tele_control_command_1(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand1:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -7023,7 +7023,7 @@ class TeleControlCommand1:
         return _pack_tele_control_command_1(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand1Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand1Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_tele_control_command_1(data, verify_checksum)
 
@@ -7378,11 +7378,11 @@ class TeleControlCommand2:
         return _encode_tele_control_command_2(self)
 
     @staticmethod
-    def decode(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand2:
+    def decode(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
         """The message in a frame's data bytes; FrameLengthError."""
         return _decode_tele_control_command_2(data, verify_checksum)
 
-    def update(self, data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand2:
+    def update(self, data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2:
         """Decode a frame into this message and return it: the fields the frame holds are set."""
         return _update(
             self,
@@ -7418,7 +7418,7 @@ class TeleControlCommand2:
         return _pack_tele_control_command_2(raw)
 
     @staticmethod
-    def unpack_raw(data: Buffer, *, verify_checksum: bool = True) -> TeleControlCommand2Raw:
+    def unpack_raw(data: Buffer, verify_checksum: bool = True) -> TeleControlCommand2Raw:
         """Raw values in a frame's data bytes."""
         return _unpack_tele_control_command_2(data, verify_checksum)
 
@@ -7667,7 +7667,9 @@ _PACKERS: dict[int, Callable[[Mapping[str, object]], bytes]] = {
 }
 
 
-def decode(frame_id: int, data: Buffer, *, verify_checksum: bool = True) -> Message:
+# verify_checksum is not keyword-only, here and in the classes' decode: CPython 3.11 specializes only
+# calls of functions without keyword-only parameters (keyword-only, the dispatch cost a tenth of a decode).
+def decode(frame_id: int, data: Buffer, verify_checksum: bool = True) -> Message:
     """The message in a frame: UnknownFrameError, FrameLengthError or ChecksumError when it cannot be."""
     try:
         decoder = _DECODERS[frame_id]
@@ -7681,7 +7683,7 @@ def encode(message: Message) -> bytes:
     return message.encode()
 
 
-def decode_raw(frame_id: int, data: Buffer, *, verify_checksum: bool = True) -> dict[str, int]:
+def decode_raw(frame_id: int, data: Buffer, verify_checksum: bool = True) -> dict[str, int]:
     """Raw values of every signal in a frame, by signal name."""
     unpacker = _UNPACKERS.get(frame_id)
     if unpacker is None:
