@@ -302,7 +302,7 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
     if sigs and one_order and word:
         locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
         return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
-    zero = _zero_first(sigs, msg.dlc, ck)
+    zero = bool(sigs) and _zero_first(sigs, msg.dlc, ck)  # without fields: the byte form's, which says `(void)src`
     fill = (f"(void)memset(dst, 0, {msg.dlc}u);",) if zero else ()
     if _shared(sigs):
         return (*locals_, *float_locals(sigs)), (*fill, *_pack_bytes(sigs, msg.dlc, ck, err, zeroed=zero))
