@@ -199,6 +199,20 @@ _UNMANNED_ENTRY_FAULT_4 = _lookup(UnmannedEntryFault, 4)
 _USS_SYSTEM_STATE_2 = _lookup(UssSystemState, 2)
 _VEHICLE_FAULT_LEVEL_2 = _lookup(VehicleFaultLevel, 2)
 
+# Raw bits → physical value of the fields of at most 8 bits that decode scales or sign-extends: one
+# tuple index per field instead of the arithmetic (each entry is the expression decode would evaluate).
+_SCALE_1 = tuple([r * 2 for r in range(256)])
+_SCALE_2 = tuple([r * 0.1 - 12.8 for r in range(256)])
+_SCALE_3 = tuple([r * 0.3 - 38.4 for r in range(256)])
+_SCALE_4 = tuple([r * 2 for r in range(64)])
+_SCALE_5 = tuple([r + 1 for r in range(256)])
+_SCALE_6 = tuple([r * 0.05 - 9.0 for r in range(256)])
+_SCALE_7 = tuple([r * 0.5 + 16.0 for r in range(32)])
+_SCALE_8 = tuple([r - 50 for r in range(256)])
+_SCALE_9 = tuple([r * 0.5 for r in range(256)])
+_SCALE_10 = tuple([r - 40 for r in range(256)])
+_SCALE_11 = tuple([r * 0.5 - 30.0 for r in range(256)])
+
 # What the slow path of encode needs per signal: message, signal, direct, factor, offset, integer offset,
 # documented range, raw range of a physical value, raw range of the field, special raws, allowed text.
 # fmt: off
@@ -642,7 +656,7 @@ def _decode_autocar_eps_command(data: Buffer, verify_checksum: bool = True) -> A
     m = _new(AutocarEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
-    m.max_angular_speed = d2 * 2
+    m.max_angular_speed = _SCALE_1[d2]
     m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
@@ -859,10 +873,10 @@ def _decode_eps_state(data: Buffer, verify_checksum: bool = True) -> EpsState:
         raise FrameLengthError("eps_state", 0x1802A0B0, 8, len(data), id_text="0x1802A0B0") from None
     m = _new(EpsState)  # slot stores are faster than a call of __init__
     m.eps_ctrl_state = _EPS_MODE_STATE_8[d0]
-    m.steering_torque = d1 * 0.1 - 12.8
-    m.eps_output_torque = d2 * 0.3 - 38.4
+    m.steering_torque = _SCALE_2[d1]
+    m.eps_output_torque = _SCALE_3[d2]
     m.steering_angle = h3 * 0.1 - 1080.0
-    m.controller_temp = (d5 & 0x3F) * 2
+    m.controller_temp = _SCALE_4[d5 & 0x3F]
     m.eps_fault_level = _EPS_FAULT_LEVEL_2[d6 & 0x3]
     m.counter = d7
     return m
@@ -1328,8 +1342,8 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
     m.uss_brake_state = _BRAKE_STATE_1[d0 >> 7]
     m.motor_speed = (d1 | d2 << 8) - 15000
     m.motor_torque = (d3 | d4 << 8) - 5000
-    m.motor_speed_ratio = d5 + 1
-    m.current_accel = d6 * 0.05 - 9.0
+    m.motor_speed_ratio = _SCALE_5[d5]
+    m.current_accel = _SCALE_6[d6]
     m.checksum = d7
     return m
 
@@ -1674,7 +1688,7 @@ def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
     m.system_fault_level = _FAULT_LEVEL_AUTOCAR_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.ac_set_temp = _SCALE_7[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -2142,8 +2156,8 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.dome_light_state = _OFF_ON_1[(d1 >> 5) & 0x1]
     m.ambient_light_state = _OFF_ON_1[(d1 >> 6) & 0x1]
     m.door_button_state = _BUTTON_1[d1 >> 7]
-    m.vehicle_speed = d2 - 50
-    m.soc = d3 * 0.5
+    m.vehicle_speed = _SCALE_8[d2]
+    m.soc = _SCALE_9[d3]
     m.system_power_cmd = _POWER_CMD_2[d4 & 0x3]
     m.charge_state = _CHARGE_STATE_2[(d4 >> 2) & 0x3]
     m.charge_connection = _CHARGE_CONNECTION_2[(d4 >> 4) & 0x3]
@@ -2519,7 +2533,7 @@ def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = d1 * 0.5
+    m.downhill_regen_speed = _SCALE_9[d1]
     m.chassis_pitch = ((d2 | d3 << 8) & 0x3FF) * 0.05 - 25.0
     m.chassis_roll = (((d3 | d4 << 8) >> 2) & 0x3FF) * 0.1 - 40.0
     m.cargo_pitch = (((d4 | d5 << 8) >> 4) & 0x3FF) * 0.2 - 30.0
@@ -2932,12 +2946,12 @@ def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
     except ValueError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0") from None
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
-    m.battery_max_temp = d0 - 40
-    m.battery_min_temp = d1 - 40
+    m.battery_max_temp = _SCALE_10[d0]
+    m.battery_min_temp = _SCALE_10[d1]
     m.max_cell_voltage = ((d2 | d3 << 8) & 0xFFF) * 0.0015
     m.min_cell_voltage = ((d3 | d4 << 8) >> 4) * 0.0015
-    m.motor_temp = d5 - 40
-    m.motor_controller_temp = d6 - 40
+    m.motor_temp = _SCALE_10[d5]
+    m.motor_controller_temp = _SCALE_10[d6]
     return m
 
 
@@ -3161,8 +3175,8 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
-    m.outside_temp = d0 * 0.5 - 30.0
-    m.inside_temp = d1 * 0.5 - 30.0
+    m.outside_temp = _SCALE_11[d0]
+    m.inside_temp = _SCALE_11[d1]
     m.ac_state = _AC_STATE_4[d2 & 0xF]
     m.vehicle_power_state = _POWER_STATE_2[(d2 >> 4) & 0x3]
     m.hill_hold_state = _INACTIVE_ACTIVE_1[(d2 >> 6) & 0x1]
@@ -3170,7 +3184,7 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.remaining_range = h3 & 0xFFF
     m.manual_takeover_state = _TAKEOVER_STATE_1[(h3 >> 12) & 0x1]
     m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[h3 >> 15]
-    m.ac_set_temp = (d5 & 0x1F) * 0.5 + 16.0
+    m.ac_set_temp = _SCALE_7[d5 & 0x1F]
     m.pto_state = _PTO_STATE_1[(d5 >> 5) & 0x1]
     m.battery_power = h6 * 0.01 - 325.0
     return m
@@ -4092,7 +4106,7 @@ def _decode_rgate_eps_command(data: Buffer, verify_checksum: bool = True) -> Rga
     m = _new(RgateEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
-    m.max_angular_speed = d2 * 2
+    m.max_angular_speed = _SCALE_1[d2]
     m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
@@ -4646,7 +4660,7 @@ def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
     m.system_fault_level = _FAULT_LEVEL_RGATE_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.ac_set_temp = _SCALE_7[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -5026,7 +5040,7 @@ def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = d1 * 0.5
+    m.downhill_regen_speed = _SCALE_9[d1]
     m.counter = d7
     return m
 
@@ -6519,7 +6533,7 @@ def _decode_tele_eps_command(data: Buffer, verify_checksum: bool = True) -> Tele
     m = _new(TeleEpsCommand)  # slot stores are faster than a call of __init__
     m.eps_ctrl_mode = _EPS_MODE_CMD_8[d0]
     m.counter = d1
-    m.max_angular_speed = d2 * 2
+    m.max_angular_speed = _SCALE_1[d2]
     m.steering_angle_cmd = (d3 | d4 << 8) * 0.1 - 1080.0
     m.checksum = d7
     return m
@@ -7073,7 +7087,7 @@ def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
     m.system_fault_level = _FAULT_LEVEL_TELE_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = (d5 >> 3) * 0.5 + 16.0
+    m.ac_set_temp = _SCALE_7[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -7453,7 +7467,7 @@ def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = d1 * 0.5
+    m.downhill_regen_speed = _SCALE_9[d1]
     m.counter = d7
     return m
 

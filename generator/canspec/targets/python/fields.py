@@ -4,7 +4,8 @@ expressions and decisions its decode and encode need (`code.py` turns them into 
 Decode reads a field of up to three bytes from those bytes (`d3 | d4 << 8`, small ints), or from a 16-bit word
 `hN` when it spans exactly two bytes that no other field shares (word_pairs); a wider one from the whole frame as
 one integer, little-endian `v` for Intel fields and big-endian `b` for Motorola ones (ir.Signal.word_order). Each is
-a shift, a mask and a sign extension. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
+a shift, a mask and a sign extension. A field of at most 8 bits that is scaled or signed decodes by indexing a precomputed
+tuple with its bits (PyScale). Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
 literals are the shortest repr of the nearest double of the exact decimal. An IEEE float field's
 raw value is its bit pattern, turned into the float and back by `struct` (`_unpack_f32`, ...).
 """
@@ -23,6 +24,8 @@ from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 from canspec.targets.python.reads import frame_bytes, own_bytes, pair_of
 
 # Method names of every message class: an attribute never takes one of these.
+# The widest field decoded through a PyScale table (256 entries).
+MAX_SCALE_BITS = 8
 METHODS = frozenset({"encode", "decode", "update", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter",
                      "present_signals", "is_present"})
 ATTRIBUTE_RESERVED = METHODS | CLASS_SCOPE_BUILTINS
@@ -44,6 +47,17 @@ class PyLookup:
     enum: str
     bits: int
     is_tuple: bool  # a tuple indexed by raw (every raw of the field); else a dict of the members
+
+
+@dataclass(frozen=True)
+class PyScale:
+    """Raw bits → physical value of a narrow field, for decode: one tuple index replaces the sign extension
+    and the scaling (CPython does not specialize int × float; an index of a tuple by an int it does). Each
+    entry is computed by the same expression decode would evaluate, so the values are the same doubles."""
+
+    var: str
+    bits: int
+    value: str  # the physical value of the raw bits `r`, as decode writes it
 
 
 @dataclass(frozen=True)
@@ -115,6 +129,21 @@ def word_var(sig: ir.Signal) -> str:
 def raw_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None = None) -> str:
     """The raw value from its frame bytes, 16-bit word (`pair`: its first byte and the field's shift, see pair_of) or
     frame word: shift, mask, sign-extend (no outer parentheses)."""
+    expr, var = _bits_expr(sig, frame_bits, pair)
+    if sig.signed:
+        # Bytes joined by `|` bind looser than `^`: parenthesized, so the sign flip applies to the whole value.
+        value = f"({expr})" if expr == var and " | " in var else expr
+        expr = f"({value} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
+    return expr
+
+
+def bits_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None = None) -> str:
+    """The field's bits as an unsigned int (raw_expr without the sign extension)."""
+    return _bits_expr(sig, frame_bits, pair)[0]
+
+
+def _bits_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None) -> tuple[str, str]:
+    """The field's bits (shifted and masked) and what they are read from."""
     parts = frame_bytes(sig, frame_bits)
     if pair is not None:
         var, shift, bits = f"h{pair[0]}", pair[1], 16
@@ -128,11 +157,17 @@ def raw_expr(sig: ir.Signal, frame_bits: int, pair: tuple[int, int] | None = Non
     expr = var if shift == 0 else f"{_paren(var)} >> {shift}"
     if shift + sig.length < bits:
         expr = f"{_paren(expr)} & {PYTHON.hex(sig.mask)}"
-    if sig.signed:
-        # Bytes joined by `|` bind looser than `^`: parenthesized, so the sign flip applies to the whole value.
-        value = f"({expr})" if expr == var and " | " in var else expr
-        expr = f"({value} ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}"
-    return expr
+    return expr, var
+
+
+def scale_value(sig: ir.Signal, enum: str | None) -> str | None:
+    """What a PyScale table holds for raw bits `r` of this field, or None where decode computes the value
+    itself: a float, enum or multiplexer field, a wide one, or one whose raw value is its physical value."""
+    if sig.is_float or enum is not None or sig.is_multiplexer or sig.length > MAX_SCALE_BITS:
+        return None
+    raw = f"(r ^ {PYTHON.hex(sig.sign_bit)}) - {PYTHON.hex(sig.sign_bit)}" if sig.signed else "r"
+    value = phys_expr(sig, raw, _kind(sig, enum))
+    return None if value == "r" else value
 
 
 def float_offset(sig: ir.Signal, dlc: int) -> int | None:
@@ -296,6 +331,7 @@ class SignalContext:
     enum: str | None  # the enum class of its value table, when it decodes to one
     members: dict[int, str]  # raw → member name of that enum
     lookup: PyLookup | None
+    scale: PyScale | None = None
     chain: tuple[ir.MuxCondition, ...] = ()  # ir.Message.mux_chain of the signal
     pairs: tuple[str, frozenset[int]] = ("<", frozenset())  # word_pairs of the message
 
@@ -308,10 +344,12 @@ def _specials(sig: ir.Signal, consts: Namespace, as_int: bool) -> tuple[PySpecia
     )
 
 
-def _phys(sig: ir.Signal, raw: str, kind: str, ctx: SignalContext) -> str:
-    """The physical value from the raw expression `raw`: scaled, or the enum member."""
+def _phys(sig: ir.Signal, raw: str, kind: str, ctx: SignalContext, pair: tuple[int, int] | None = None) -> str:
+    """The physical value from the raw expression `raw`: scaled (from its scale table, indexed by its bits), or the enum member."""
     if ctx.lookup is not None:
         return f"{ctx.lookup.var}[{raw}]" if ctx.lookup.is_tuple else f"_member({ctx.lookup.var}, {raw})"
+    if ctx.scale is not None:
+        return f"{ctx.scale.var}[{bits_expr(sig, ctx.frame_bits, pair)}]"
     return phys_expr(sig, raw, kind, ctx.frame_bits // 8)
 
 
@@ -320,7 +358,7 @@ def build_signal(sig: ir.Signal, ctx: SignalContext) -> PySignal:
     as_int = kind != "float"
     pair = pair_of(sig, ctx.frame_bits, ctx.pairs)
     raw = raw_expr(sig, ctx.frame_bits, pair)
-    phys = _phys(sig, raw, kind, ctx)
+    phys = _phys(sig, raw, kind, ctx, pair)
     key_var = f"k{ctx.index}" if sig.is_multiplexer else ""
     direct = sig.factor == 1 and sig.offset.denominator == 1 and sig.check_min <= sig.phys_min and sig.phys_max <= sig.check_max and not sig.is_float
     lo, hi = sig.accept_min, sig.accept_max  # the runtime comparison (display uses check_min/max)

@@ -12,7 +12,7 @@ from canspec import ir
 from canspec.ir.names import pascal, snake
 from canspec.render.literals import PYTHON
 from canspec.targets.python import code, pages
-from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PySignal, SignalContext, build_signal, float_offset, label_comment
+from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PyScale, PySignal, SignalContext, build_signal, float_offset, label_comment, scale_value
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 from canspec.targets.python.reads import word_pairs
 
@@ -145,6 +145,7 @@ class PyPackage:
     enums: tuple[PyEnum, ...]
     used_enums: tuple[str, ...]  # enum classes messages.py names (fields that decode to them)
     lookups: tuple[PyLookup, ...]
+    scales: tuple[PyScale, ...]  # in order of first use
     messages: tuple[PyMessage, ...]
     example: PyMessage | None
     modules: tuple[str, ...]  # submodules __init__ imports (all but `bus`, which needs python-can)
@@ -190,6 +191,7 @@ class _Builder:
         )
         self.members = {e.table: {m.raw: m.name for m in e.members} for e in self.enums}
         self.lookups: dict[tuple[str, int, bool], PyLookup] = {}
+        self.scales: dict[tuple[int, str], PyScale] = {}
 
     def lookup(self, sig: ir.Signal) -> PyLookup | None:
         if not sig.decodes_to_enum:
@@ -201,6 +203,15 @@ class _Builder:
             self.lookups[key] = PyLookup(var, self.enum_names[sig.value_table.name], sig.length, is_tuple)
         return self.lookups[key]
 
+    def scale(self, sig: ir.Signal, enum: str | None) -> PyScale | None:
+        value = scale_value(sig, enum)
+        if value is None:
+            return None
+        key = (sig.length, value)
+        if key not in self.scales:
+            self.scales[key] = PyScale(self.module.take(f"_SCALE_{len(self.scales) + 1}"), sig.length, value)
+        return self.scales[key]
+
     def signals(self, msg: ir.Message, pairs: tuple[str, frozenset[int]]) -> tuple[PySignal, ...]:
         attrs, consts = Namespace(ATTRIBUTE_RESERVED), Namespace(CLASS_CONSTANTS)
         out = []
@@ -208,7 +219,7 @@ class _Builder:
             lookup = self.lookup(sig)
             enum = lookup.enum if lookup is not None else None
             members = self.members[sig.value_table.name] if lookup is not None and sig.value_table is not None else {}
-            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup, msg.mux_chain(sig), pairs)
+            ctx = SignalContext(msg.name, i, msg.dlc * 8, attrs, consts, self.module, enum, members, lookup, self.scale(sig, enum), msg.mux_chain(sig), pairs)
             out.append(build_signal(sig, ctx))
         return tuple(out)
 
@@ -295,7 +306,8 @@ def build_package(spec: ir.Spec) -> PyPackage:
     return PyPackage(
         package=package_name(can.name), protocol=can.name, dist_name=snake(can.name).replace("_", "-"), version=can.version, title=PYTHON.doc(title),
         description=f"{title} V{can.version}: generated CAN bindings", document=can.document, bitrate=can.bus.bitrate, is_j1939=can.bus.is_j1939,
-        enums=b.enums, used_enums=tuple(sorted({lk.enum for lk in lookups})), lookups=lookups, messages=messages, example=example,
+        enums=b.enums, used_enums=tuple(sorted({lk.enum for lk in lookups})), lookups=lookups, scales=tuple(b.scales.values()),
+        messages=messages, example=example,
         modules=tuple(sorted(m for m in MODULE_DOCS if m != "bus" and present[m])), modules_doc=_modules_doc(present),
         has_signals=any(m.signals for m in messages), has_values=any(not s.is_checksum for m in messages for s in m.signals),
         has_checksums=can.has_checksums, has_counters=can.has_counters, has_multiframe=can.has_multiframe,
