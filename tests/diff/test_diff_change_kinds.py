@@ -125,6 +125,15 @@ def test_reverse_of_an_addition_is_a_removal(tmp_path):
     assert nodes == {("node_removed", "compatible", "bus", "LOGGER")}
 
 
+def test_a_range_moved_beyond_what_the_field_carries_is_docs(tmp_path):
+    """speed (8 bits, offset -50) carries [-50, 205]: both ranges hold all of it, so the wire is the same."""
+    old = edited(tmp_path, [(SPEED, SPEED.replace("[-50, 200]", "[-60, 210]"))], "old.yaml")
+    new = edited(tmp_path, [(SPEED, SPEED.replace("[-50, 200]", "[-70, 220]"))])
+    (change,) = diff_paths(old, new)
+    assert (change.kind, change.cls, change.signal, change.old, change.new) == ("signal_range_changed", "docs", "speed", [-60, 210], [-70, 220])
+    assert "the field carries [-50, 205]" in change.detail
+
+
 def test_identical_specs_have_no_changes():
     assert diff_paths(BASE, BASE) == []
 

@@ -88,6 +88,11 @@ class _Collector:
         )
 
 
+def _beyond(sig: SignalModel) -> bool:
+    """The source states a range the field does not carry all of."""
+    return sig.documented is not None and sig.documented != (sig.minimum, sig.maximum)
+
+
 def _both(a: object, b: object) -> bool:
     return a is not None and b is not None
 
@@ -155,6 +160,12 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
             [n.minimum, n.maximum],
             cls="compatible" if widened else "wire",
         )
+    elif _beyond(o) and _beyond(n) and o.documented != n.documented and o.is_float == n.is_float:
+        # the same values on the wire: only the stated range moved, beyond what the field carries on both sides (a side
+        # that states just what the field carries may be a DBC canspec wrote, which states no more: not compared)
+        (olo, ohi), (nlo, nhi) = o.documented, n.documented
+        detail = f"documented range [{num(olo)}, {num(ohi)}] → [{num(nlo)}, {num(nhi)}] (the field carries [{num(n.minimum)}, {num(n.maximum)}] of it either way)"
+        c.add("signal_range_changed", msg, n, detail, [olo, ohi], [nlo, nhi], cls="docs")
     if o.role != n.role:
         c.add("signal_role_changed", msg, n, f"role {o.role} → {n.role}", o.role, n.role)
     if _both(o.values_table, n.values_table) and o.values_table != n.values_table:

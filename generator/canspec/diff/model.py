@@ -50,6 +50,7 @@ class SignalModel:
     is_multiplexer: bool = False
     receivers: tuple[str, ...] | None = None  # the nodes that read it where not all its message's receivers do (a DBC's SG_ receivers)
     attributes: Values | None = None  # the source DBC's own attributes (diff/attributes.py); None: not compared
+    documented: tuple[Fraction, Fraction] | None = None  # the range as the source states it (minimum/maximum: what the field carries of it)
 
     @property
     def positions(self) -> tuple[int, ...]:
@@ -152,6 +153,7 @@ def _signal(sig: ir.Signal, defs: tuple[DbcAttributeDef, ...]) -> SignalModel:
         byte_order=sig.byte_order, is_float=sig.is_float, mux=(sig.mux.by, sig.mux.ranges) if sig.mux is not None else None,
         is_multiplexer=sig.is_multiplexer, receivers=tuple(sorted(sig.receivers)) if sig.receivers is not None else None,
         attributes=effective(defs, "signal", sig.dbc_attributes),
+        documented=(sig.doc_min, sig.doc_max) if sig.doc_min is not None and sig.doc_max is not None else None,
     )
 
 
