@@ -164,7 +164,8 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         # the same values on the wire: only the stated range moved, beyond what the field carries on both sides (a side
         # that states just what the field carries may be a DBC canspec wrote, which states no more: not compared)
         (olo, ohi), (nlo, nhi) = o.documented, n.documented
-        detail = f"documented range [{num(olo)}, {num(ohi)}] → [{num(nlo)}, {num(nhi)}] (the field carries [{num(n.minimum)}, {num(n.maximum)}] of it either way)"
+        carried = f"the field carries [{num(n.minimum)}, {num(n.maximum)}] of it either way"
+        detail = f"documented range [{num(olo)}, {num(ohi)}] → [{num(nlo)}, {num(nhi)}] ({carried})"
         c.add("signal_range_changed", msg, n, detail, [olo, ohi], [nlo, nhi], cls="docs")
     if o.role != n.role:
         c.add("signal_role_changed", msg, n, f"role {o.role} → {n.role}", o.role, n.role)
