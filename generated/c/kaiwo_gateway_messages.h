@@ -4764,9 +4764,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
     if (size < KAIWO_GATEWAY_VEHICLE_STATE_4_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
-    w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
-        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
-        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+    w = (uint64_t)src[3] | (((uint64_t)src[4]) << 8u);
     b0 = src[0];
     dst->outside_temp = (uint8_t)b0;
     b1 = src[1];
@@ -4776,7 +4774,7 @@ kaiwo_gateway_vehicle_state_4_unpack(kaiwo_gateway_vehicle_state_4_t *dst, const
     dst->vehicle_power_state = (uint8_t)((b2 >> 4u) & 0x3u);
     dst->hill_hold_state = (uint8_t)((b2 >> 6u) & 0x1u);
     dst->regen_brake_state = (uint8_t)(b2 >> 7u);
-    dst->remaining_range = (uint16_t)((w >> 24u) & UINT64_C(0xFFF));
+    dst->remaining_range = (uint16_t)(w & UINT64_C(0xFFF));
     b4 = src[4];
     dst->manual_takeover_state = (uint8_t)((b4 >> 4u) & 0x1u);
     dst->remote_driving_allowed = (uint8_t)(b4 >> 7u);
@@ -8480,6 +8478,10 @@ kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_devi
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
+    if ((src->id_frame_index > 3u) || (src->device_type > 63u) ||
+        (src->id_chars > UINT64_C(72057594037927935))) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     w = (uint64_t)src->device_type | ((uint64_t)src->id_frame_index << 6u) |
         ((uint64_t)src->id_chars << 8u);
     dst[0] = (uint8_t)w;
@@ -8490,10 +8492,6 @@ kaiwo_gateway_device_id_pack(uint8_t *dst, size_t size, const kaiwo_gateway_devi
     dst[5] = (uint8_t)(w >> 40u);
     dst[6] = (uint8_t)(w >> 48u);
     dst[7] = (uint8_t)(w >> 56u);
-    if ((src->id_frame_index > 3u) || (src->device_type > 63u) ||
-        (src->id_chars > UINT64_C(72057594037927935))) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
 #else
     if (size < KAIWO_GATEWAY_DEVICE_ID_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -8733,6 +8731,11 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
+    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
+    if ((src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     w = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 10u) |
         ((uint64_t)src->sensor_3_distance << 20u) | ((uint64_t)src->sensor_4_distance << 30u) |
         ((uint64_t)src->sensor_5_distance << 40u) | ((uint64_t)src->sensor_6_distance << 50u) |
@@ -8745,11 +8748,6 @@ kaiwo_gateway_front_sensor_distance_1_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)(w >> 40u);
     dst[6] = (uint8_t)(w >> 48u);
     dst[7] = (uint8_t)(w >> 56u);
-    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
-             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
-    if ((src->counter > 15u) || (ored10 > 1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
 #else
     if (size < KAIWO_GATEWAY_FRONT_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -9323,8 +9321,7 @@ kaiwo_gateway_front_sensor_distance_2_unpack(kaiwo_gateway_front_sensor_distance
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
-        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
-        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+        (((uint64_t)src[3]) << 24u);
     dst->sensor_7_distance = (uint16_t)(w & UINT64_C(0x3FF));
     dst->sensor_8_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
     dst->sensor_9_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));
@@ -9917,6 +9914,11 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
+    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
+             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
+    if ((src->counter > 15u) || (ored10 > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
     w = (uint64_t)src->sensor_1_distance | ((uint64_t)src->sensor_2_distance << 10u) |
         ((uint64_t)src->sensor_3_distance << 20u) | ((uint64_t)src->sensor_4_distance << 30u) |
         ((uint64_t)src->sensor_5_distance << 40u) | ((uint64_t)src->sensor_6_distance << 50u) |
@@ -9929,11 +9931,6 @@ kaiwo_gateway_rear_sensor_distance_1_pack(uint8_t *dst, size_t size,
     dst[5] = (uint8_t)(w >> 40u);
     dst[6] = (uint8_t)(w >> 48u);
     dst[7] = (uint8_t)(w >> 56u);
-    ored10 = src->sensor_1_distance | src->sensor_2_distance | src->sensor_3_distance |
-             src->sensor_4_distance | src->sensor_5_distance | src->sensor_6_distance;
-    if ((src->counter > 15u) || (ored10 > 1023u)) {
-        return KAIWO_GATEWAY_ERR_RANGE;
-    }
 #else
     if (size < KAIWO_GATEWAY_REAR_SENSOR_DISTANCE_1_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -10500,8 +10497,7 @@ kaiwo_gateway_rear_sensor_distance_2_unpack(kaiwo_gateway_rear_sensor_distance_2
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
     w = (uint64_t)src[0] | (((uint64_t)src[1]) << 8u) | (((uint64_t)src[2]) << 16u) |
-        (((uint64_t)src[3]) << 24u) | (((uint64_t)src[4]) << 32u) | (((uint64_t)src[5]) << 40u) |
-        (((uint64_t)src[6]) << 48u) | (((uint64_t)src[7]) << 56u);
+        (((uint64_t)src[3]) << 24u);
     dst->sensor_7_distance = (uint16_t)(w & UINT64_C(0x3FF));
     dst->sensor_8_distance = (uint16_t)((w >> 10u) & UINT64_C(0x3FF));
     dst->sensor_9_distance = (uint16_t)((w >> 20u) & UINT64_C(0x3FF));

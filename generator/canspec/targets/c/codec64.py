@@ -15,20 +15,28 @@ and an OR per byte it touches (a store to dst may alias src). Per message the ge
   fit, so the sum is their OR; x86 folds a shift by 1-3 and an add into one `lea`);
 - otherwise the byte form's pack.
 Either byte form zeroes the frame with one memset first where its bytes without a field, in runs
-apart, would take more stores, and then leaves them out. Both new forms check the ranges once, after the last byte (ERR_RANGE leaves dst unspecified): the
-fields of a bit count shared by several are OR'd into `ored<n>` byte by byte, read again after the
-byte's store (a memory operand on x86), a lone field compared in the check itself.
+apart, would take more stores than the memset (memset_stores: gcc zeroes 3-15 bytes with two
+overlapping stores), and then leaves them out; the frame word's pack does so for the bytes outside
+its span at a tie too. Both new forms check the ranges once (ERR_RANGE leaves dst unspecified): the
+fields of a bit count shared by several are OR'd into `ored<n>`, a lone field compared in the check
+itself. The frame word's pack checks before its stores where the checked fields fit the free
+registers (FREE_REGS: they are loaded once for the check and the word; after the stores a lone
+check became a branch-free select of the status when inlined), else after its stores, like the byte
+sum form after the last byte: the fields are read again there (a memory operand on x86), cheaper
+than spilling them.
 
 Unpack reads a field that crosses bytes off byte boundaries (and every 64-bit field) from `w` by
 its start bit and mask, every field from `w` where all of them cross bytes, the others from their
-byte as codec.py does; with `w` loaded the XOR checksum is folded from it.
+byte as codec.py does; with `w` loaded the XOR checksum is folded from it. `w` holds the bytes it
+covers from bit 0 (word_base: gcc merges byte loads into one wider load only there).
 
 The frame word's byte order is its fields' (ir.Signal.word_order): read big-endian (byte 0 its
 most significant) where most fields are Motorola, in which each of them is contiguous at its
 word_shift; a field of the other order is taken from its bytes as codec.py does, and pack uses
-the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) has no
-word: the byte form, whose pack zeroes the frame with one memset first where most bytes carry no
-field (x86-64 stores 16 bytes at a time; byte stores of 0 split at each field byte).
+the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) packs in
+the byte form, which zeroes the frame with one memset first where most bytes carry no field
+(x86-64 stores 16 bytes at a time; byte stores of 0 split at each field byte), and without a
+checksum unpacks in windows of up to 8 bytes (_windows), each a frame word of its fields.
 """
 
 from __future__ import annotations
@@ -40,6 +48,7 @@ from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
 FOLD_COST = 14  # x86-64 instructions to fold the word and merge the checksum byte into it
+FREE_REGS = 7  # x86-64 registers a leaf function may use without saving them, beside dst and src
 MARGIN = 2  # the word form where its estimate is at least this much lower (near ties go either way)
 
 
@@ -131,26 +140,34 @@ def _placed(s: CSignal) -> str:
     return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
 
 
-def span(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> range:
+def span(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, unpack: bool = False) -> range:
     """The frame bytes the word covers: every byte, or first to last byte of these fields where
     that takes fewer loads and stores (a run of n bytes is one access per set bit of n: 8 bytes
     one, 7 bytes three). Bytes outside are 0 on pack and never read on unpack, so a 7-byte frame
-    whose fields lie in bytes 1-3 moves 3 bytes, not 7. A checksum folds every byte."""
+    whose fields lie in bytes 1-3 moves 3 bytes, not 7. A checksum folds every byte. Unpack takes
+    the fewer bytes at a tie too (2 of 8: a 16-bit load and rotate, as few instructions as the
+    8-byte load and swap, and the byte loads and stores of the other fields are left as they are:
+    gcc merges them with the 8-byte load's value into one shifted and OR'd struct store)."""
     touched = [seg.byte for s in sigs for seg in s.sig.segments]
     if checksum or not touched:
         return range(dlc)
     inner = range(min(touched), max(touched) + 1)
-    return inner if bin(len(inner)).count("1") < bin(dlc).count("1") else range(dlc)
+    fewer, same = bin(len(inner)).count("1"), bin(dlc).count("1")
+    return inner if fewer < same or (unpack and fewer == same) else range(dlc)
 
 
 def _pack_word(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, order: str) -> list[str]:
-    out = [*float_copies(sigs, "&{local}", "&src->{field}"), "w = " + " | ".join(_placed(s) for s in sigs) + ";"]
+    check = [*_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
+    first = sum(s.checked for s in sigs) <= FREE_REGS
+    out = [*float_copies(sigs, "&{local}", "&src->{field}"), *(check if first else ()), "w = " + " | ".join(_placed(s) for s in sigs) + ";"]
     if checksum is not None:
         at = byte_at(checksum, dlc, order)
         out += [*FOLD, f"w |= (x & 0xFFu) << {at}u;" if at else "w |= x & 0xFFu;"]
     covered = span(sigs, dlc, checksum is not None)
-    out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" if k in covered else f"dst[{k}] = 0u;" for k in range(dlc)]
-    return [*out, *_accumulate(sigs, _shared(sigs), set()), *_check(sigs, err)]
+    zero = _zero_first(set(covered), dlc, ties=True)
+    out += [f"(void)memset(dst, 0, {dlc}u);"] if zero else []
+    out += [f"dst[{k}] = (uint8_t){shr('w', byte_at(k, dlc, order))};" if k in covered else f"dst[{k}] = 0u;" for k in range(dlc) if k in covered or not zero]
+    return out if first else [*out, *check]
 
 
 def _unswapped(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, order: str) -> bool:
@@ -196,9 +213,11 @@ def word_fields(sigs: tuple[CSignal, ...], order: str) -> tuple[CSignal, ...]:
                  if s.sig.word_order == order and (s.sig.storage_bits == 64 or (crosses and (s.word_shift % 8 or s.length % 8))))
 
 
-def _word_store(s: CSignal) -> list[str]:
+def _word_store(s: CSignal, base: int, w: str = "w") -> list[str]:
+    """The field from `w`, the frame word shifted right by `base` bits."""
     field, n, t = f"dst->{s.field}", s.length, s.type
-    at = "w" if s.word_shift == 0 else f"(w >> {s.word_shift}u)"
+    shift = s.word_shift - base
+    at = w if shift == 0 else f"({w} >> {shift}u)"
     exact = n == 64 or (n == s.sig.storage_bits and not s.sig.signed)  # the store's conversion cuts the rest
     bits = at if exact else f"({at} & {C.hex(s.sig.mask, bits=64)})"
     if s.float is not None:
@@ -206,7 +225,7 @@ def _word_store(s: CSignal) -> list[str]:
     if not s.sig.signed:
         return [f"{field} = ({t}){bits};"]
     if n == 64:
-        return [negate64("w", "t64", field)]
+        return [f"t64 = {w};", negate64("t64", "t64", field)]  # t64 at the function's scope, as codec.store's (cppcheck: variableScope)
     sign = s.sig.sign_bit
     if n < 32:  # bits ^ sign is below 2^n: an int32_t holds it and the subtraction
         return [f"t = (uint32_t){paren(bits)} ^ {C.hex(sign)};", f"{field} = ({t})((int32_t)t - {C.integer(sign)});"]
@@ -219,38 +238,81 @@ def _chunk_locals(covered: range) -> list[str]:
     return [] if len(covered) in (1, 2, 4, 8) else [f"uint32_t w{8 * n};" for n in (4, 2) if len(covered) & n]
 
 
-def _load_word(covered: range, dlc: int, order: str) -> list[str]:
-    """The statements reading the covered bytes into `w`. gcc merges byte loads into one
-    (byte-swapped) load of 2, 4 or 8 bytes only: a run of another length is read in runs of 4, 2
-    and 1 bytes (6 bytes: 4 and 2), each placed at the word bit of its least significant byte."""
+def word_base(covered: range, dlc: int, order: str) -> int:
+    """The frame word bit of the covered bytes' least significant one: `w` holds the frame word
+    shifted right by it (gcc merges byte loads into one wider load only at bit 0)."""
+    return min(byte_at(k, dlc, order) for k in covered)
+
+
+def _load_word(covered: range, dlc: int, order: str, w: str = "w") -> list[str]:
+    """The statements reading the covered bytes into `w`, from bit 0 (word_base). gcc merges byte
+    loads into one (byte-swapped) load of 2, 4 or 8 bytes only: a run of another length is read in
+    runs of 4, 2 and 1 bytes (6 bytes: 4 and 2), each placed at the word bit of its least
+    significant byte."""
+    base = word_base(covered, dlc, order)
     if len(covered) in (1, 2, 4, 8):
-        return ["w = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order)) for k in covered) + ";"]
+        return [f"{w} = " + " | ".join(shl(f"(uint64_t)src[{k}]", byte_at(k, dlc, order) - base) for k in covered) + ";"]
     body, parts, at = [], [], covered.start
     for n in (4, 2, 1):
         if covered.stop - at < n:
             continue
         chunk, at = range(at, at + n), at + n
-        low = byte_at(chunk[-1] if order == "big" else chunk[0], dlc, order)
+        low = byte_at(chunk[-1] if order == "big" else chunk[0], dlc, order) - base
         if n == 1:
             parts.append(shl(f"(uint64_t)src[{chunk[0]}]", low))
             continue
-        body.append(f"w{8 * n} = " + " | ".join(shl(f"(uint32_t)src[{k}]", byte_at(k, dlc, order) - low) for k in chunk) + ";")
+        body.append(f"w{8 * n} = " + " | ".join(shl(f"(uint32_t)src[{k}]", byte_at(k, dlc, order) - base - low) for k in chunk) + ";")
         parts.append(shl(f"(uint64_t)w{8 * n}", low))
-    return [*body, "w = " + " | ".join(parts) + ";"]
+    return [*body, f"{w} = " + " | ".join(parts) + ";"]
+
+
+def _windows(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> list[tuple[tuple[CSignal, ...], range]]:
+    """The words unpack loads: (the fields read from it, the bytes it covers). A classic frame has
+    one, over span(). A CAN FD frame has one per window of at most 8 bytes: its fields grouped in
+    frame order while they fit 8 bytes from the first one's first byte, each group's word fields
+    (word_fields, as in a classic frame) read from a load of their bytes (widened to 8 where that
+    takes fewer loads and the frame has them); a field over more than 8 bytes from its bytes."""
+    if dlc <= 8:
+        words = word_fields(sigs, order)
+        return [(words, span(words, dlc, checksum, unpack=True))] if words else []
+    groups: list[list[CSignal]] = []
+    for s in sorted(sigs, key=lambda s: min(seg.byte for seg in s.sig.segments)):
+        lo, hi = min(seg.byte for seg in s.sig.segments), max(seg.byte for seg in s.sig.segments)
+        if hi - lo >= 8:
+            continue
+        first = min(seg.byte for seg in groups[-1][0].sig.segments) if groups else -8
+        groups.append([s]) if hi - first >= 8 else groups[-1].append(s)
+    out = []
+    for group in groups:
+        words = word_fields(tuple(group), order)
+        if not words:
+            continue
+        touched = [seg.byte for s in words for seg in s.sig.segments]
+        inner = range(min(touched), max(touched) + 1)
+        if bin(len(inner)).count("1") > 1:
+            start = min(inner.start, dlc - 8)
+            inner = range(start, start + 8)
+        out.append((words, inner))
+    return out
 
 
 def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: str) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
-    """None where no field is read from the word (the byte form of codec.py then)."""
-    words = word_fields(sigs, order)
-    if not words:
+    """None where no field is read from a word (the byte form of codec.py then)."""
+    windows = _windows(sigs, dlc, checksum, order)
+    if not windows:
         return None
-    in_word = {id(s) for s in words}  # by identity: comparing CSignals compares their whole IR
+    names = ["w" if i == 0 else f"w{i}" for i in range(len(windows))]  # w1..w7: apart from the chunks' w16, w32
+    where = {id(s): i for i, (words, _) in enumerate(windows) for s in words}  # by identity: comparing CSignals compares their whole IR
     held: list[int] = []
-    covered = span(words, dlc, checksum)
-    body = _load_word(covered, dlc, order)
+    body = _load_word(windows[0][1], dlc, order)  # first (gcc: byte loads before it may merge into its value); the others before their first field
+    loaded = {0}
     for s in sigs:
-        if id(s) in in_word:
-            body += _word_store(s)
+        if id(s) in where:
+            i = where[id(s)]
+            if i not in loaded:
+                body += _load_word(windows[i][1], dlc, order, names[i])
+                loaded.add(i)
+            body += _word_store(s, word_base(windows[i][1], dlc, order), names[i])
             continue
         for k in sorted({seg.byte for seg in s.sig.segments} - set(held)):
             body.append(f"b{k} = src[{k}];")
@@ -258,11 +320,12 @@ def unpack_parts64(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, order: s
         body += store(s)
     if checksum:
         body += [*FOLD, "x &= 0xFFu;"]
+    chunks = sorted({line for _, covered in windows for line in _chunk_locals(covered)}, reverse=True)
     local = [f"uint32_t b{k};" for k in sorted(held)]
-    local += [*_chunk_locals(covered), "uint64_t w;", *(["uint64_t x;"] if checksum else [])]
-    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if id(s) not in in_word) else []  # codec.store's halves
+    local += [*chunks, *(f"uint64_t {n};" for n in names), *(["uint64_t x;"] if checksum else [])]
+    local += ["uint32_t lo;", "uint32_t hi;"] if any(s.sig.storage_bits == 64 for s in sigs if id(s) not in where) else []  # codec.store's halves
     # the temporaries of signed fields: from the word, t below 32 bits; from bytes (codec.store), up to 32
-    narrow = {s.sig.name: (32 if id(s) in in_word else 33) for s in sigs if s.sig.signed}
+    narrow = {s.sig.name: (32 if id(s) in where else 33) for s in sigs if s.sig.signed}
     local += ["uint32_t t;"] if any(s.length < narrow[s.sig.name] for s in sigs if s.sig.signed) else []
     local += ["uint64_t t64;"] if any(s.length >= narrow[s.sig.name] for s in sigs if s.sig.signed) else []
     return (*local, *float_locals(sigs)), tuple(body)
@@ -302,25 +365,37 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec
     if sigs and one_order and word:
         locals_ += ["uint64_t w;", *(["uint64_t x;"] if ck is not None else []), *float_locals(sigs)]
         return tuple(locals_), tuple(_pack_word(sigs, msg.dlc, ck, err, order))
-    zero = bool(sigs) and _zero_first(sigs, msg.dlc, ck)  # without fields: the byte form's, which says `(void)src`
+    zero = bool(sigs) and _zero_first(_used(sigs, ck), msg.dlc)  # without fields: the byte form's, which says `(void)src`
     fill = (f"(void)memset(dst, 0, {msg.dlc}u);",) if zero else ()
     if _shared(sigs):
         return (*locals_, *float_locals(sigs)), (*fill, *_pack_bytes(sigs, msg.dlc, ck, err, zeroed=zero))
     return bytewise.pack_locals, (*fill, *pack_bytes(sigs, msg.dlc, ck, err, zeroed=True)) if zero else bytewise.pack
 
 
-def _zero_first(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None) -> bool:
-    """Whether the byte forms zero the frame first (one memset: an 8-byte store) rather than store
-    its runs of bytes without a field (an access per set bit of a run's length, each run apart)."""
-    used = {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
+def memset_stores(n: int) -> int:
+    """The stores x86-64 gcc -O2 zeroes n bytes with: one where n is a power of 2 up to 16, else
+    two overlapping ones up to 16 (7 bytes: 4 at 0 and 4 at 3), then one per 16 bytes."""
+    return 1 if n in (1, 2, 4, 8, 16) else 2 if n < 16 else -(-n // 16)
+
+
+def _zero_first(written: set[int], dlc: int, ties: bool = False) -> bool:
+    """Whether a pack zeroes the frame first (one memset) rather than store its runs of bytes
+    that it does not otherwise write (`written`): an access per set bit of a run's length, each
+    run apart; the memset's stores where they are fewer."""
     runs, run = [], 0
     for k in range(dlc + 1):
-        if k < dlc and k not in used:
+        if k < dlc and k not in written:
             run += 1
         elif run:
             runs.append(run)
             run = 0
-    return sum(bin(n).count("1") for n in runs) > bin(dlc).count("1")
+    stores = sum(bin(n).count("1") for n in runs)
+    return stores > memset_stores(dlc) or (ties and stores == memset_stores(dlc))
+
+
+def _used(sigs: tuple[CSignal, ...], checksum: int | None) -> set[int]:
+    """The frame bytes that carry a field or the checksum."""
+    return {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
 
 
 def _zeroed(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
@@ -338,8 +413,11 @@ def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise
     `sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
     if not msg.dlc:
         return None
-    if not msg.is_classic_length:
-        return _zeroed(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise)
+    if not msg.is_classic_length:  # CAN FD: the byte form's pack (zeroed first where most bytes are reserved), unpack by windows
+        zeroed = _zeroed(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise) or bytewise
+        windows = unpack_parts64(sigs, msg.dlc, False, word_order(sigs)) if msg.checksum is None else None
+        out = CCodec(zeroed.pack, *(windows or (bytewise.unpack_locals, bytewise.unpack)), zeroed.pack_locals)
+        return None if out == bytewise else out
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
     unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
