@@ -88,6 +88,29 @@ class _Collector:
         )
 
 
+def _range(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalModel) -> None:
+    """The values a field carries of its range (narrowed: wire, widened: compatible), else the range as stated (docs)."""
+    if (o.minimum, o.maximum) != (n.minimum, n.maximum):
+        widened = n.minimum <= o.minimum and n.maximum >= o.maximum
+        c.add(
+            "signal_range_changed",
+            msg,
+            n,
+            f"range [{num(o.minimum)}, {num(o.maximum)}] → [{num(n.minimum)}, {num(n.maximum)}]" + (" (widened)" if widened else ""),
+            [o.minimum, o.maximum],
+            [n.minimum, n.maximum],
+            cls="compatible" if widened else "wire",
+        )
+    elif _beyond(o) and _beyond(n) and o.documented != n.documented:
+        # the same values on the wire: only the stated range moved, beyond what the field carries on both sides (a side
+        # that states just what the field carries may be a DBC canspec wrote, which states no more: not compared)
+        assert o.documented is not None and n.documented is not None
+        (olo, ohi), (nlo, nhi) = o.documented, n.documented
+        carried = f"the field carries [{num(n.minimum)}, {num(n.maximum)}] of it either way"
+        detail = f"documented range [{num(olo)}, {num(ohi)}] → [{num(nlo)}, {num(nhi)}] ({carried})"
+        c.add("signal_range_changed", msg, n, detail, [olo, ohi], [nlo, nhi], cls="docs")
+
+
 def _beyond(sig: SignalModel) -> bool:
     """The source states a range the field does not carry all of."""
     return sig.documented is not None and sig.documented != (sig.minimum, sig.maximum)
@@ -149,24 +172,8 @@ def _signal_pair(c: _Collector, msg: MessageModel, o: SignalModel, n: SignalMode
         c.add("signal_mux_changed", msg, n, f"{_presence(o)} → {_presence(n)}", _presence(o), _presence(n))
     if o.unit != n.unit:
         c.add("signal_unit_changed", msg, n, f"unit {o.unit or '(none)'} → {n.unit or '(none)'}", o.unit, n.unit)
-    if (o.minimum, o.maximum) != (n.minimum, n.maximum) and o.is_float == n.is_float:  # integer ↔ float: reported above
-        widened = n.minimum <= o.minimum and n.maximum >= o.maximum
-        c.add(
-            "signal_range_changed",
-            msg,
-            n,
-            f"range [{num(o.minimum)}, {num(o.maximum)}] → [{num(n.minimum)}, {num(n.maximum)}]" + (" (widened)" if widened else ""),
-            [o.minimum, o.maximum],
-            [n.minimum, n.maximum],
-            cls="compatible" if widened else "wire",
-        )
-    elif _beyond(o) and _beyond(n) and o.documented != n.documented and o.is_float == n.is_float:
-        # the same values on the wire: only the stated range moved, beyond what the field carries on both sides (a side
-        # that states just what the field carries may be a DBC canspec wrote, which states no more: not compared)
-        (olo, ohi), (nlo, nhi) = o.documented, n.documented
-        carried = f"the field carries [{num(n.minimum)}, {num(n.maximum)}] of it either way"
-        detail = f"documented range [{num(olo)}, {num(ohi)}] → [{num(nlo)}, {num(nhi)}] ({carried})"
-        c.add("signal_range_changed", msg, n, detail, [olo, ohi], [nlo, nhi], cls="docs")
+    if o.is_float == n.is_float:  # integer ↔ float: reported above
+        _range(c, msg, o, n)
     if o.role != n.role:
         c.add("signal_role_changed", msg, n, f"role {o.role} → {n.role}", o.role, n.role)
     if _both(o.values_table, n.values_table) and o.values_table != n.values_table:
