@@ -7,6 +7,7 @@ changes (names as printed, descriptions) are not required in the record."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from canspec import ir
 from canspec.diff.compare import Change, compare, declared_frame_id, subject
@@ -20,6 +21,35 @@ from canspec.spec.problems import Problem, SpecError, error, warning
 def _describe(c: Change) -> str:
     what = f"{c.message}.{c.signal}" if c.signal else c.message
     return f"{c.kind} {c.subject} {what} ({c.detail})"
+
+
+def _item_problems(item: Any, item_label: str, changes: list[Change], old_version: str, covered: set[int]) -> list[Problem]:
+    """One changelog item against the diff: what it names that the diff does not show; the changes it covers go into `covered`."""
+    problems: list[Problem] = []
+    declared = item.get("changes")
+    if declared is None:
+        ids = item.get("ids", [])
+        if not ids:
+            problems.append(warning(f"{item_label} names no message, so it cannot be checked against the diff", item.loc,
+                                    "add `ids: [0x...]` or `changes: [...]`", "changelog-unchecked"))
+        for fid in ids:
+            hits = [i for i, c in enumerate(changes) if c.frame_id == fid]
+            if not hits:
+                problems.append(error(f"{item_label} names 0x{fid:08X}, but the diff from {old_version} shows no change there", item.loc_of("ids"),
+                                      "remove the entry or make the spec change it describes", "changelog-invented"))
+            covered.update(hits)
+        return problems
+    for j, d in enumerate(declared):
+        if d["kind"] == UNRECONSTRUCTED:
+            continue
+        hits = [i for i, c in enumerate(changes) if declares(d, c)]
+        if not hits:
+            what = f" {d['signal']}" if "signal" in d else ""
+            where = subject(declared_frame_id(d["message"]))
+            problems.append(error(f"{item_label} declares {d['kind']}{what} in {where}, which the diff from {old_version} does not show",
+                                  declared.loc_of(j), "remove the entry or make the spec change it describes", "changelog-invented"))
+        covered.update(hits)
+    return problems
 
 
 def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Problem]:
@@ -52,29 +82,7 @@ def changelog_problems(spec_path: str | Path | None, spec: ir.Spec) -> list[Prob
     covered: set[int] = set()
     label = f"V{newest['version']}"
     for n, item in enumerate(newest["items"], start=1):
-        declared = item.get("changes")
-        if declared is None:
-            ids = item.get("ids", [])
-            if not ids:
-                problems.append(warning(f"{label} item {n} names no message, so it cannot be checked against the diff", item.loc,
-                                        "add `ids: [0x...]` or `changes: [...]`", "changelog-unchecked"))
-            for fid in ids:
-                hits = [i for i, c in enumerate(changes) if c.frame_id == fid]
-                if not hits:
-                    problems.append(error(f"{label} item {n} names 0x{fid:08X}, but the diff from {old.version} shows no change there", item.loc_of("ids"),
-                                          "remove the entry or make the spec change it describes", "changelog-invented"))
-                covered.update(hits)
-            continue
-        for j, d in enumerate(declared):
-            if d["kind"] == UNRECONSTRUCTED:
-                continue
-            hits = [i for i, c in enumerate(changes) if declares(d, c)]
-            if not hits:
-                what = f" {d['signal']}" if "signal" in d else ""
-                where = subject(declared_frame_id(d["message"]))
-                problems.append(error(f"{label} item {n} declares {d['kind']}{what} in {where}, which the diff from {old.version} does not show",
-                                      declared.loc_of(j), "remove the entry or make the spec change it describes", "changelog-invented"))
-            covered.update(hits)
+        problems.extend(_item_problems(item, f"{label} item {n}", changes, old.version, covered))
     problems.extend(_since_problems(spec, changes, str(newest["version"]), old.version))
     for i, c in enumerate(changes):
         if i not in covered:
