@@ -258,7 +258,7 @@ impl AutocarEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -706,7 +706,7 @@ impl EpsState {
     /// Set `eps_ctrl_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_state(&mut self, value: EpsModeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_state(value);
         Ok(())
     }
@@ -930,7 +930,7 @@ impl EpsState {
     /// Set `eps_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_fault_level(&mut self, value: EpsFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "eps_state.eps_fault_level",
@@ -1295,7 +1295,7 @@ impl AutocarSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.epb_cmd",
@@ -1344,7 +1344,7 @@ impl AutocarSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.gear_cmd",
@@ -1431,7 +1431,7 @@ impl AutocarSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.emergency_brake_cmd",
@@ -1774,7 +1774,7 @@ impl DrivingState {
     /// Set `epb_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_state(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.epb_state",
@@ -1821,7 +1821,7 @@ impl DrivingState {
     /// Set `gear_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_state(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.gear_state",
@@ -1868,7 +1868,7 @@ impl DrivingState {
     /// Set `emergency_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.emergency_brake_state",
@@ -1917,7 +1917,7 @@ impl DrivingState {
     /// Set `uss_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.uss_brake_state",
@@ -2570,7 +2570,7 @@ impl AutocarControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drive_mode_cmd",
@@ -2619,7 +2619,7 @@ impl AutocarControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.door_cmd",
@@ -2666,7 +2666,7 @@ impl AutocarControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.horn_cmd",
@@ -2713,7 +2713,7 @@ impl AutocarControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drl_cmd",
@@ -2760,7 +2760,7 @@ impl AutocarControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.left_turn_cmd",
@@ -2807,7 +2807,7 @@ impl AutocarControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.right_turn_cmd",
@@ -2854,7 +2854,7 @@ impl AutocarControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.hazard_cmd",
@@ -2901,7 +2901,7 @@ impl AutocarControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.position_light_cmd",
@@ -2948,7 +2948,7 @@ impl AutocarControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.headlight_cmd",
@@ -2995,7 +2995,7 @@ impl AutocarControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.rear_fog_cmd",
@@ -3042,7 +3042,7 @@ impl AutocarControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.left_fog_cmd",
@@ -3089,7 +3089,7 @@ impl AutocarControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.right_fog_cmd",
@@ -3136,7 +3136,7 @@ impl AutocarControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.dome_light_cmd",
@@ -3183,7 +3183,7 @@ impl AutocarControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.ambient_light_cmd",
@@ -3230,7 +3230,7 @@ impl AutocarControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drive_mode_reset",
@@ -3277,7 +3277,7 @@ impl AutocarControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: SystemStateAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_state",
@@ -3324,7 +3324,7 @@ impl AutocarControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_reliability",
@@ -3371,7 +3371,7 @@ impl AutocarControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_fault_level",
@@ -3420,7 +3420,7 @@ impl AutocarControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.lock_cmd",
@@ -3471,7 +3471,7 @@ impl AutocarControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.ac_cmd",
@@ -4174,7 +4174,7 @@ impl VehicleState1 {
     /// Set `drive_mode_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_state(&mut self, value: DriveModeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.drive_mode_state",
@@ -4221,7 +4221,7 @@ impl VehicleState1 {
     /// Set `door_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.door_state",
@@ -4268,7 +4268,7 @@ impl VehicleState1 {
     /// Set `drl_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.drl_state",
@@ -4315,7 +4315,7 @@ impl VehicleState1 {
     /// Set `left_turn_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.left_turn_state",
@@ -4362,7 +4362,7 @@ impl VehicleState1 {
     /// Set `right_turn_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.right_turn_state",
@@ -4409,7 +4409,7 @@ impl VehicleState1 {
     /// Set `hazard_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.hazard_state",
@@ -4456,7 +4456,7 @@ impl VehicleState1 {
     /// Set `position_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.position_light_state",
@@ -4505,7 +4505,7 @@ impl VehicleState1 {
     /// Set `headlight_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_state(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.headlight_state",
@@ -4552,7 +4552,7 @@ impl VehicleState1 {
     /// Set `rear_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.rear_fog_state",
@@ -4599,7 +4599,7 @@ impl VehicleState1 {
     /// Set `left_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.left_fog_state",
@@ -4646,7 +4646,7 @@ impl VehicleState1 {
     /// Set `right_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.right_fog_state",
@@ -4693,7 +4693,7 @@ impl VehicleState1 {
     /// Set `dome_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.dome_light_state",
@@ -4740,7 +4740,7 @@ impl VehicleState1 {
     /// Set `ambient_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.ambient_light_state",
@@ -4787,7 +4787,7 @@ impl VehicleState1 {
     /// Set `door_button_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_button_state(&mut self, value: Button) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.door_button_state",
@@ -4922,7 +4922,7 @@ impl VehicleState1 {
     /// Set `system_power_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_power_cmd(&mut self, value: PowerCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.system_power_cmd",
@@ -4969,7 +4969,7 @@ impl VehicleState1 {
     /// Set `charge_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_charge_state(&mut self, value: ChargeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.charge_state",
@@ -5016,7 +5016,7 @@ impl VehicleState1 {
     /// Set `charge_connection` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_charge_connection(&mut self, value: ChargeConnection) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.charge_connection",
@@ -5063,7 +5063,7 @@ impl VehicleState1 {
     /// Set `vehicle_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_fault_level(&mut self, value: VehicleFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.vehicle_fault_level",
@@ -5513,7 +5513,7 @@ impl AutocarControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.downhill_regen_enable",
@@ -5560,7 +5560,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.cargo_lift",
@@ -5655,7 +5655,7 @@ impl AutocarControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.pto_enable",
@@ -7324,7 +7324,7 @@ impl VehicleState4 {
     /// Set `ac_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_state(&mut self, value: AcState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.ac_state",
@@ -7371,7 +7371,7 @@ impl VehicleState4 {
     /// Set `vehicle_power_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_power_state(&mut self, value: PowerState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.vehicle_power_state",
@@ -7420,7 +7420,7 @@ impl VehicleState4 {
     /// Set `hill_hold_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hill_hold_state(&mut self, value: InactiveActive) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.hill_hold_state",
@@ -7469,7 +7469,7 @@ impl VehicleState4 {
     /// Set `regen_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_regen_brake_state(&mut self, value: InactiveActive) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.regen_brake_state",
@@ -7562,7 +7562,7 @@ impl VehicleState4 {
     /// Set `manual_takeover_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_manual_takeover_state(&mut self, value: TakeoverState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.manual_takeover_state",
@@ -7614,7 +7614,7 @@ impl VehicleState4 {
         &mut self,
         value: RemoteTakeoverPermission,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.remote_driving_allowed",
@@ -7711,7 +7711,7 @@ impl VehicleState4 {
     /// Set `pto_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_state(&mut self, value: PtoState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.pto_state",
@@ -8242,7 +8242,7 @@ impl VehicleFault {
     /// Set `insulation_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_insulation_fault_level(&mut self, value: InsulationFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.insulation_fault_level",
@@ -8291,7 +8291,7 @@ impl VehicleFault {
     /// Set `dc_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dc_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.dc_fault",
@@ -8338,7 +8338,7 @@ impl VehicleFault {
     /// Set `soc_low` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_soc_low(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.soc_low",
@@ -8385,7 +8385,7 @@ impl VehicleFault {
     /// Set `cell_undervoltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cell_undervoltage(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.cell_undervoltage",
@@ -8432,7 +8432,7 @@ impl VehicleFault {
     /// Set `brake_boost_pressure_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_brake_boost_pressure_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.brake_boost_pressure_fault",
@@ -8479,7 +8479,7 @@ impl VehicleFault {
     /// Set `vacuum_pump_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vacuum_pump_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.vacuum_pump_fault",
@@ -8526,7 +8526,7 @@ impl VehicleFault {
     /// Set `vehicle_system_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_system_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.vehicle_system_fault",
@@ -8573,7 +8573,7 @@ impl VehicleFault {
     /// Set `battery_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_overheat",
@@ -8620,7 +8620,7 @@ impl VehicleFault {
     /// Set `motor_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_overheat",
@@ -8667,7 +8667,7 @@ impl VehicleFault {
     /// Set `traction_battery_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_traction_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.traction_battery_fault",
@@ -8714,7 +8714,7 @@ impl VehicleFault {
     /// Set `motor_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_fault",
@@ -8761,7 +8761,7 @@ impl VehicleFault {
     /// Set `battery_comm_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_comm_fault",
@@ -8808,7 +8808,7 @@ impl VehicleFault {
     /// Set `motor_comm_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_comm_fault",
@@ -8855,7 +8855,7 @@ impl VehicleFault {
     /// Set `eps_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.eps_fault",
@@ -8902,7 +8902,7 @@ impl VehicleFault {
     /// Set `ac_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.ac_fault",
@@ -8951,7 +8951,7 @@ impl VehicleFault {
     /// Set `aux_battery_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_aux_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.aux_battery_fault",
@@ -8998,7 +8998,7 @@ impl VehicleFault {
     /// Set `epb_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.epb_fault",
@@ -9045,7 +9045,7 @@ impl VehicleFault {
     /// Set `brake_by_wire_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_brake_by_wire_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.brake_by_wire_fault",
@@ -9092,7 +9092,7 @@ impl VehicleFault {
     /// Set `key_not_detected` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_key_not_detected(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.key_not_detected",
@@ -9139,7 +9139,7 @@ impl VehicleFault {
     /// Set `tire_pressure_low` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_tire_pressure_low(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.tire_pressure_low",
@@ -9186,7 +9186,7 @@ impl VehicleFault {
     /// Set `body_motor_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_body_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.body_motor_fault",
@@ -9233,7 +9233,7 @@ impl VehicleFault {
     /// Set `body_motor_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_body_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.body_motor_overheat",
@@ -9283,7 +9283,7 @@ impl VehicleFault {
         &mut self,
         value: BatterySystemFaultLevel,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_system_fault_level",
@@ -9333,7 +9333,7 @@ impl VehicleFault {
         &mut self,
         value: MotorSystemFaultLevel,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_system_fault_level",
@@ -9382,7 +9382,7 @@ impl VehicleFault {
     /// Set `unmanned_entry_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_unmanned_entry_fault(&mut self, value: UnmannedEntryFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 15 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.unmanned_entry_fault",
@@ -9577,7 +9577,7 @@ impl VehicleFault {
     /// Set `remote_entry_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_remote_entry_fault(&mut self, value: RemoteEntryFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 15 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.remote_entry_fault",
@@ -9981,7 +9981,7 @@ impl RgateEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -10429,7 +10429,7 @@ impl RgateSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.epb_cmd",
@@ -10478,7 +10478,7 @@ impl RgateSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.gear_cmd",
@@ -10565,7 +10565,7 @@ impl RgateSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.emergency_brake_cmd",
@@ -11032,7 +11032,7 @@ impl RgateControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drive_mode_cmd",
@@ -11081,7 +11081,7 @@ impl RgateControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.door_cmd",
@@ -11128,7 +11128,7 @@ impl RgateControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.horn_cmd",
@@ -11175,7 +11175,7 @@ impl RgateControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drl_cmd",
@@ -11222,7 +11222,7 @@ impl RgateControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.left_turn_cmd",
@@ -11269,7 +11269,7 @@ impl RgateControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.right_turn_cmd",
@@ -11316,7 +11316,7 @@ impl RgateControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.hazard_cmd",
@@ -11363,7 +11363,7 @@ impl RgateControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.position_light_cmd",
@@ -11410,7 +11410,7 @@ impl RgateControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.headlight_cmd",
@@ -11457,7 +11457,7 @@ impl RgateControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.rear_fog_cmd",
@@ -11504,7 +11504,7 @@ impl RgateControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.left_fog_cmd",
@@ -11551,7 +11551,7 @@ impl RgateControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.right_fog_cmd",
@@ -11598,7 +11598,7 @@ impl RgateControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.dome_light_cmd",
@@ -11645,7 +11645,7 @@ impl RgateControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.ambient_light_cmd",
@@ -11692,7 +11692,7 @@ impl RgateControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drive_mode_reset",
@@ -11739,7 +11739,7 @@ impl RgateControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_state",
@@ -11786,7 +11786,7 @@ impl RgateControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_reliability",
@@ -11833,7 +11833,7 @@ impl RgateControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_fault_level",
@@ -11882,7 +11882,7 @@ impl RgateControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.lock_cmd",
@@ -11933,7 +11933,7 @@ impl RgateControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.ac_cmd",
@@ -12448,7 +12448,7 @@ impl RgateControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.downhill_regen_enable",
@@ -12495,7 +12495,7 @@ impl RgateControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.cargo_lift",
@@ -12590,7 +12590,7 @@ impl RgateControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.pto_enable",
@@ -12884,7 +12884,7 @@ impl DeviceId {
     /// Set `device_type` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_device_type(&mut self, value: DeviceType) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 63 {
             return Err(Error::OutOfRange {
                 signal: "device_id.device_type",
@@ -12933,7 +12933,7 @@ impl DeviceId {
     /// Set `id_frame_index` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_id_frame_index(&mut self, value: IdFrameIndex) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "device_id.id_frame_index",
@@ -14181,7 +14181,7 @@ impl FrontSensorDistance2 {
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.uss_system_state",
@@ -14228,7 +14228,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_1_fault",
@@ -14275,7 +14275,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_2_fault",
@@ -14322,7 +14322,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_3_fault",
@@ -14369,7 +14369,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_4_fault",
@@ -14416,7 +14416,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_5_fault",
@@ -14463,7 +14463,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_6_fault",
@@ -14510,7 +14510,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_7_fault",
@@ -14557,7 +14557,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_8_fault",
@@ -14604,7 +14604,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_9_fault",
@@ -15709,7 +15709,7 @@ impl RearSensorDistance2 {
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.uss_system_state",
@@ -15756,7 +15756,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_1_fault",
@@ -15803,7 +15803,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_2_fault",
@@ -15850,7 +15850,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_3_fault",
@@ -15897,7 +15897,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_4_fault",
@@ -15944,7 +15944,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_5_fault",
@@ -15991,7 +15991,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_6_fault",
@@ -16038,7 +16038,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_7_fault",
@@ -16085,7 +16085,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_8_fault",
@@ -16132,7 +16132,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_9_fault",
@@ -16463,7 +16463,7 @@ impl TeleEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -16911,7 +16911,7 @@ impl TeleSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.epb_cmd",
@@ -16960,7 +16960,7 @@ impl TeleSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.gear_cmd",
@@ -17047,7 +17047,7 @@ impl TeleSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.emergency_brake_cmd",
@@ -17516,7 +17516,7 @@ impl TeleControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drive_mode_cmd",
@@ -17565,7 +17565,7 @@ impl TeleControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.door_cmd",
@@ -17612,7 +17612,7 @@ impl TeleControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.horn_cmd",
@@ -17659,7 +17659,7 @@ impl TeleControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drl_cmd",
@@ -17706,7 +17706,7 @@ impl TeleControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.left_turn_cmd",
@@ -17753,7 +17753,7 @@ impl TeleControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.right_turn_cmd",
@@ -17800,7 +17800,7 @@ impl TeleControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.hazard_cmd",
@@ -17847,7 +17847,7 @@ impl TeleControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.position_light_cmd",
@@ -17894,7 +17894,7 @@ impl TeleControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.headlight_cmd",
@@ -17941,7 +17941,7 @@ impl TeleControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.rear_fog_cmd",
@@ -17988,7 +17988,7 @@ impl TeleControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.left_fog_cmd",
@@ -18035,7 +18035,7 @@ impl TeleControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.right_fog_cmd",
@@ -18082,7 +18082,7 @@ impl TeleControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.dome_light_cmd",
@@ -18129,7 +18129,7 @@ impl TeleControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.ambient_light_cmd",
@@ -18176,7 +18176,7 @@ impl TeleControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drive_mode_reset",
@@ -18225,7 +18225,7 @@ impl TeleControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_state",
@@ -18272,7 +18272,7 @@ impl TeleControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_reliability",
@@ -18319,7 +18319,7 @@ impl TeleControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_fault_level",
@@ -18368,7 +18368,7 @@ impl TeleControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.lock_cmd",
@@ -18419,7 +18419,7 @@ impl TeleControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.ac_cmd",
@@ -18934,7 +18934,7 @@ impl TeleControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.downhill_regen_enable",
@@ -18981,7 +18981,7 @@ impl TeleControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.cargo_lift",
@@ -19076,7 +19076,7 @@ impl TeleControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.pto_enable",

@@ -164,6 +164,31 @@ def test_value_tables_get_the_narrowest_type_holding_every_user(can):
     assert values.build_enum(neg, [signed], "Neg").other_tag == "1"
 
 
+def test_raw_is_two_halves_when_the_bits_carry_two_or_more_values_the_table_leaves_out(can):
+    gear = sig(can, "autocar_speed_command", "gear_cmd")
+
+    def table(*raws: int) -> ir.ValueTable:
+        return ir.ValueTable("t", tuple(ir.ValueEntry(r, f"v{r}", "", f"V{r}") for r in raws))
+
+    def field(bits: int) -> ir.Signal:
+        return dataclasses.replace(gear, length=bits, raw_type_min=0, raw_type_max=(1 << bits) - 1)
+
+    # Counted by hand: the values 0 .. 2^bits - 1 the table does not name.
+    assert not values.raw_halves(table(0, 1), [field(1)])  # none left out
+    assert not values.raw_halves(table(0, 1, 3), [field(2)])  # only 2
+    assert values.raw_halves(table(0, 1), [field(2)])  # 2 and 3
+    assert values.raw_halves(table(1, 2, 3), [field(8)])  # 0 and 4 .. 255
+    assert values.raw_halves(table(0, 1), [field(1), field(8)])  # the widest user counts
+    # A signed 2-bit field carries -2 .. 1.
+    signed = dataclasses.replace(gear, length=2, signed=True, raw_type_min=-2, raw_type_max=1)
+    assert not values.raw_halves(table(-2, -1, 0), [signed]) and values.raw_halves(table(0, 1), [signed])
+    # The enum carries it; a table naming every value of its type has no catch-all and one match.
+    assert values.build_enum(table(1, 2, 3), [field(8)], "T").halves
+    assert not values.build_enum(table(0, 1, 3), [field(2)], "T").halves
+    full = table(*range(256))
+    assert not values.build_enum(full, [field(8)], "Full").halves
+
+
 def test_encode_paths(can):
     steering = sig(can, "autocar_eps_command", "steering_angle_cmd")  # 0.1, -1080..1080 deg: quotients 0..21600
     assert encode.float_encoding(steering).function == "to_raw_documented_unsigned_recip"
