@@ -3798,9 +3798,9 @@ impl Frame for AutocarControlCommand1 {
 /// | `counter` | 心跳值 | 56 | 8 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState1 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for VehicleState1 {
@@ -3951,9 +3951,7 @@ impl VehicleState1 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -4122,23 +4120,29 @@ impl VehicleState1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -4162,13 +4166,13 @@ impl VehicleState1 {
     /// Raw value of `drive_mode_state` (bits 0..=1).
     #[inline]
     pub fn drive_mode_state_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_drive_mode_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `drive_mode_state` from its physical value; outside the documented range is an error.
@@ -4209,13 +4213,13 @@ impl VehicleState1 {
     /// Raw value of `door_state` (bits 2..=2).
     #[inline]
     pub fn door_state_raw(&self) -> u8 {
-        ((self.bits >> 2) & 1) as u8
+        (self.bytes[0] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_door_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 251) | value << 2;
     }
 
     /// Set `door_state` from its physical value; outside the documented range is an error.
@@ -4256,13 +4260,13 @@ impl VehicleState1 {
     /// Raw value of `drl_state` (bits 3..=3).
     #[inline]
     pub fn drl_state_raw(&self) -> u8 {
-        ((self.bits >> 3) & 1) as u8
+        (self.bytes[0] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_drl_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
+        self.bytes[0] = (self.bytes[0] & 247) | value << 3;
     }
 
     /// Set `drl_state` from its physical value; outside the documented range is an error.
@@ -4303,13 +4307,13 @@ impl VehicleState1 {
     /// Raw value of `left_turn_state` (bits 4..=4).
     #[inline]
     pub fn left_turn_state_raw(&self) -> u8 {
-        ((self.bits >> 4) & 1) as u8
+        (self.bytes[0] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_left_turn_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 239) | value << 4;
     }
 
     /// Set `left_turn_state` from its physical value; outside the documented range is an error.
@@ -4350,13 +4354,13 @@ impl VehicleState1 {
     /// Raw value of `right_turn_state` (bits 5..=5).
     #[inline]
     pub fn right_turn_state_raw(&self) -> u8 {
-        ((self.bits >> 5) & 1) as u8
+        (self.bytes[0] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_right_turn_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
+        self.bytes[0] = (self.bytes[0] & 223) | value << 5;
     }
 
     /// Set `right_turn_state` from its physical value; outside the documented range is an error.
@@ -4397,13 +4401,13 @@ impl VehicleState1 {
     /// Raw value of `hazard_state` (bits 6..=6).
     #[inline]
     pub fn hazard_state_raw(&self) -> u8 {
-        ((self.bits >> 6) & 1) as u8
+        (self.bytes[0] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_hazard_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 191) | value << 6;
     }
 
     /// Set `hazard_state` from its physical value; outside the documented range is an error.
@@ -4444,13 +4448,13 @@ impl VehicleState1 {
     /// Raw value of `position_light_state` (bits 7..=7).
     #[inline]
     pub fn position_light_state_raw(&self) -> u8 {
-        ((self.bits >> 7) & 1) as u8
+        self.bytes[0] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_position_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
+        self.bytes[0] = (self.bytes[0] & 127) | value << 7;
     }
 
     /// Set `position_light_state` from its physical value; outside the documented range is an error.
@@ -4493,13 +4497,13 @@ impl VehicleState1 {
     /// Raw value of `headlight_state` (bits 8..=9).
     #[inline]
     pub fn headlight_state_raw(&self) -> u8 {
-        ((self.bits >> 8) & 3) as u8
+        self.bytes[1] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_headlight_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 252) | value;
     }
 
     /// Set `headlight_state` from its physical value; outside the documented range is an error.
@@ -4540,13 +4544,13 @@ impl VehicleState1 {
     /// Raw value of `rear_fog_state` (bits 10..=10).
     #[inline]
     pub fn rear_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 10) & 1) as u8
+        (self.bytes[1] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_rear_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 251) | value << 2;
     }
 
     /// Set `rear_fog_state` from its physical value; outside the documented range is an error.
@@ -4587,13 +4591,13 @@ impl VehicleState1 {
     /// Raw value of `left_fog_state` (bits 11..=11).
     #[inline]
     pub fn left_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 11) & 1) as u8
+        (self.bytes[1] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_left_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
+        self.bytes[1] = (self.bytes[1] & 247) | value << 3;
     }
 
     /// Set `left_fog_state` from its physical value; outside the documented range is an error.
@@ -4634,13 +4638,13 @@ impl VehicleState1 {
     /// Raw value of `right_fog_state` (bits 12..=12).
     #[inline]
     pub fn right_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 12) & 1) as u8
+        (self.bytes[1] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_right_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 239) | value << 4;
     }
 
     /// Set `right_fog_state` from its physical value; outside the documented range is an error.
@@ -4681,13 +4685,13 @@ impl VehicleState1 {
     /// Raw value of `dome_light_state` (bits 13..=13).
     #[inline]
     pub fn dome_light_state_raw(&self) -> u8 {
-        ((self.bits >> 13) & 1) as u8
+        (self.bytes[1] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_dome_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
+        self.bytes[1] = (self.bytes[1] & 223) | value << 5;
     }
 
     /// Set `dome_light_state` from its physical value; outside the documented range is an error.
@@ -4728,13 +4732,13 @@ impl VehicleState1 {
     /// Raw value of `ambient_light_state` (bits 14..=14).
     #[inline]
     pub fn ambient_light_state_raw(&self) -> u8 {
-        ((self.bits >> 14) & 1) as u8
+        (self.bytes[1] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_ambient_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 191) | value << 6;
     }
 
     /// Set `ambient_light_state` from its physical value; outside the documented range is an error.
@@ -4775,13 +4779,13 @@ impl VehicleState1 {
     /// Raw value of `door_button_state` (bits 15..=15).
     #[inline]
     pub fn door_button_state_raw(&self) -> u8 {
-        ((self.bits >> 15) & 1) as u8
+        self.bytes[1] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_door_button_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
+        self.bytes[1] = (self.bytes[1] & 127) | value << 7;
     }
 
     /// Set `door_button_state` from its physical value; outside the documented range is an error.
@@ -4822,13 +4826,13 @@ impl VehicleState1 {
     /// Raw value of `vehicle_speed` (bits 16..=23).
     #[inline]
     pub fn vehicle_speed_raw(&self) -> u8 {
-        (self.bits >> 16) as u8
+        self.bytes[2]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_speed(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = value;
     }
 
     /// Set `vehicle_speed` from its physical value; outside the documented range is an error.
@@ -4867,13 +4871,13 @@ impl VehicleState1 {
     /// Raw value of `soc` (bits 24..=31).
     #[inline]
     pub fn soc_raw(&self) -> u8 {
-        (self.bits >> 24) as u8
+        self.bytes[3]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_soc(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_00FF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = value;
     }
 
     /// Set `soc` from its physical value; outside the documented range is an error.
@@ -4910,13 +4914,13 @@ impl VehicleState1 {
     /// Raw value of `system_power_cmd` (bits 32..=33).
     #[inline]
     pub fn system_power_cmd_raw(&self) -> u8 {
-        ((self.bits >> 32) & 3) as u8
+        self.bytes[4] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_system_power_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 252) | value;
     }
 
     /// Set `system_power_cmd` from its physical value; outside the documented range is an error.
@@ -4957,13 +4961,13 @@ impl VehicleState1 {
     /// Raw value of `charge_state` (bits 34..=35).
     #[inline]
     pub fn charge_state_raw(&self) -> u8 {
-        ((self.bits >> 34) & 3) as u8
+        (self.bytes[4] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_charge_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
+        self.bytes[4] = (self.bytes[4] & 243) | value << 2;
     }
 
     /// Set `charge_state` from its physical value; outside the documented range is an error.
@@ -5004,13 +5008,13 @@ impl VehicleState1 {
     /// Raw value of `charge_connection` (bits 36..=37).
     #[inline]
     pub fn charge_connection_raw(&self) -> u8 {
-        ((self.bits >> 36) & 3) as u8
+        (self.bytes[4] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_charge_connection(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 207) | value << 4;
     }
 
     /// Set `charge_connection` from its physical value; outside the documented range is an error.
@@ -5051,13 +5055,13 @@ impl VehicleState1 {
     /// Raw value of `vehicle_fault_level` (bits 38..=39).
     #[inline]
     pub fn vehicle_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 38) & 3) as u8
+        self.bytes[4] >> 6
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
+        self.bytes[4] = (self.bytes[4] & 63) | value << 6;
     }
 
     /// Set `vehicle_fault_level` from its physical value; outside the documented range is an error.
@@ -5098,13 +5102,13 @@ impl VehicleState1 {
     /// Raw value of `odometer` (bits 40..=55).
     #[inline]
     pub fn odometer_raw(&self) -> u16 {
-        (self.bits >> 40) as u16
+        u16::from_le_bytes([self.bytes[5], self.bytes[6]])
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_odometer(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFF00_00FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5..7].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `odometer` from its physical value; outside the documented range is an error.
@@ -5143,13 +5147,13 @@ impl VehicleState1 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 56) as u8
+        self.bytes[7]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = value;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -7846,9 +7850,9 @@ impl Frame for VehicleState4 {
 /// | `remote_entry_fault` | 无法进入远程驾驶系统故障状态 | 44 | 4 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleFault {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for VehicleFault {
@@ -7985,9 +7989,7 @@ impl VehicleFault {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0x8C6BDE86;
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FF7F_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -8198,23 +8200,27 @@ impl VehicleFault {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2] & 0x7F;
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        Ok(msg)
     }
 
     /// 绝缘故障等级
@@ -8230,13 +8236,13 @@ impl VehicleFault {
     /// Raw value of `insulation_fault_level` (bits 0..=1).
     #[inline]
     pub fn insulation_fault_level_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_insulation_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `insulation_fault_level` from its physical value; outside the documented range is an error.
@@ -8279,13 +8285,13 @@ impl VehicleFault {
     /// Raw value of `dc_fault` (bits 2..=2).
     #[inline]
     pub fn dc_fault_raw(&self) -> u8 {
-        ((self.bits >> 2) & 1) as u8
+        (self.bytes[0] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_dc_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 251) | value << 2;
     }
 
     /// Set `dc_fault` from its physical value; outside the documented range is an error.
@@ -8326,13 +8332,13 @@ impl VehicleFault {
     /// Raw value of `soc_low` (bits 3..=3).
     #[inline]
     pub fn soc_low_raw(&self) -> u8 {
-        ((self.bits >> 3) & 1) as u8
+        (self.bytes[0] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_soc_low(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
+        self.bytes[0] = (self.bytes[0] & 247) | value << 3;
     }
 
     /// Set `soc_low` from its physical value; outside the documented range is an error.
@@ -8373,13 +8379,13 @@ impl VehicleFault {
     /// Raw value of `cell_undervoltage` (bits 4..=4).
     #[inline]
     pub fn cell_undervoltage_raw(&self) -> u8 {
-        ((self.bits >> 4) & 1) as u8
+        (self.bytes[0] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_cell_undervoltage(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 239) | value << 4;
     }
 
     /// Set `cell_undervoltage` from its physical value; outside the documented range is an error.
@@ -8420,13 +8426,13 @@ impl VehicleFault {
     /// Raw value of `brake_boost_pressure_fault` (bits 5..=5).
     #[inline]
     pub fn brake_boost_pressure_fault_raw(&self) -> u8 {
-        ((self.bits >> 5) & 1) as u8
+        (self.bytes[0] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_brake_boost_pressure_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
+        self.bytes[0] = (self.bytes[0] & 223) | value << 5;
     }
 
     /// Set `brake_boost_pressure_fault` from its physical value; outside the documented range is an error.
@@ -8467,13 +8473,13 @@ impl VehicleFault {
     /// Raw value of `vacuum_pump_fault` (bits 6..=6).
     #[inline]
     pub fn vacuum_pump_fault_raw(&self) -> u8 {
-        ((self.bits >> 6) & 1) as u8
+        (self.bytes[0] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vacuum_pump_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 191) | value << 6;
     }
 
     /// Set `vacuum_pump_fault` from its physical value; outside the documented range is an error.
@@ -8514,13 +8520,13 @@ impl VehicleFault {
     /// Raw value of `vehicle_system_fault` (bits 7..=7).
     #[inline]
     pub fn vehicle_system_fault_raw(&self) -> u8 {
-        ((self.bits >> 7) & 1) as u8
+        self.bytes[0] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_system_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
+        self.bytes[0] = (self.bytes[0] & 127) | value << 7;
     }
 
     /// Set `vehicle_system_fault` from its physical value; outside the documented range is an error.
@@ -8561,13 +8567,13 @@ impl VehicleFault {
     /// Raw value of `battery_overheat` (bits 8..=8).
     #[inline]
     pub fn battery_overheat_raw(&self) -> u8 {
-        ((self.bits >> 8) & 1) as u8
+        self.bytes[1] & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FEFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 254) | value;
     }
 
     /// Set `battery_overheat` from its physical value; outside the documented range is an error.
@@ -8608,13 +8614,13 @@ impl VehicleFault {
     /// Raw value of `motor_overheat` (bits 9..=9).
     #[inline]
     pub fn motor_overheat_raw(&self) -> u8 {
-        ((self.bits >> 9) & 1) as u8
+        (self.bytes[1] >> 1) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FDFF) | u64::from(value) << 9;
+        self.bytes[1] = (self.bytes[1] & 253) | value << 1;
     }
 
     /// Set `motor_overheat` from its physical value; outside the documented range is an error.
@@ -8655,13 +8661,13 @@ impl VehicleFault {
     /// Raw value of `traction_battery_fault` (bits 10..=10).
     #[inline]
     pub fn traction_battery_fault_raw(&self) -> u8 {
-        ((self.bits >> 10) & 1) as u8
+        (self.bytes[1] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_traction_battery_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 251) | value << 2;
     }
 
     /// Set `traction_battery_fault` from its physical value; outside the documented range is an error.
@@ -8702,13 +8708,13 @@ impl VehicleFault {
     /// Raw value of `motor_fault` (bits 11..=11).
     #[inline]
     pub fn motor_fault_raw(&self) -> u8 {
-        ((self.bits >> 11) & 1) as u8
+        (self.bytes[1] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
+        self.bytes[1] = (self.bytes[1] & 247) | value << 3;
     }
 
     /// Set `motor_fault` from its physical value; outside the documented range is an error.
@@ -8749,13 +8755,13 @@ impl VehicleFault {
     /// Raw value of `battery_comm_fault` (bits 12..=12).
     #[inline]
     pub fn battery_comm_fault_raw(&self) -> u8 {
-        ((self.bits >> 12) & 1) as u8
+        (self.bytes[1] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_comm_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 239) | value << 4;
     }
 
     /// Set `battery_comm_fault` from its physical value; outside the documented range is an error.
@@ -8796,13 +8802,13 @@ impl VehicleFault {
     /// Raw value of `motor_comm_fault` (bits 13..=13).
     #[inline]
     pub fn motor_comm_fault_raw(&self) -> u8 {
-        ((self.bits >> 13) & 1) as u8
+        (self.bytes[1] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_comm_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
+        self.bytes[1] = (self.bytes[1] & 223) | value << 5;
     }
 
     /// Set `motor_comm_fault` from its physical value; outside the documented range is an error.
@@ -8843,13 +8849,13 @@ impl VehicleFault {
     /// Raw value of `eps_fault` (bits 14..=14).
     #[inline]
     pub fn eps_fault_raw(&self) -> u8 {
-        ((self.bits >> 14) & 1) as u8
+        (self.bytes[1] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_eps_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 191) | value << 6;
     }
 
     /// Set `eps_fault` from its physical value; outside the documented range is an error.
@@ -8890,13 +8896,13 @@ impl VehicleFault {
     /// Raw value of `ac_fault` (bits 15..=15).
     #[inline]
     pub fn ac_fault_raw(&self) -> u8 {
-        ((self.bits >> 15) & 1) as u8
+        self.bytes[1] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_ac_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
+        self.bytes[1] = (self.bytes[1] & 127) | value << 7;
     }
 
     /// Set `ac_fault` from its physical value; outside the documented range is an error.
@@ -8939,13 +8945,13 @@ impl VehicleFault {
     /// Raw value of `aux_battery_fault` (bits 16..=16).
     #[inline]
     pub fn aux_battery_fault_raw(&self) -> u8 {
-        ((self.bits >> 16) & 1) as u8
+        self.bytes[2] & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_aux_battery_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFE_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = (self.bytes[2] & 254) | value;
     }
 
     /// Set `aux_battery_fault` from its physical value; outside the documented range is an error.
@@ -8986,13 +8992,13 @@ impl VehicleFault {
     /// Raw value of `epb_fault` (bits 17..=17).
     #[inline]
     pub fn epb_fault_raw(&self) -> u8 {
-        ((self.bits >> 17) & 1) as u8
+        (self.bytes[2] >> 1) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_epb_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFD_FFFF) | u64::from(value) << 17;
+        self.bytes[2] = (self.bytes[2] & 253) | value << 1;
     }
 
     /// Set `epb_fault` from its physical value; outside the documented range is an error.
@@ -9033,13 +9039,13 @@ impl VehicleFault {
     /// Raw value of `brake_by_wire_fault` (bits 18..=18).
     #[inline]
     pub fn brake_by_wire_fault_raw(&self) -> u8 {
-        ((self.bits >> 18) & 1) as u8
+        (self.bytes[2] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_brake_by_wire_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFB_FFFF) | u64::from(value) << 18;
+        self.bytes[2] = (self.bytes[2] & 251) | value << 2;
     }
 
     /// Set `brake_by_wire_fault` from its physical value; outside the documented range is an error.
@@ -9080,13 +9086,13 @@ impl VehicleFault {
     /// Raw value of `key_not_detected` (bits 19..=19).
     #[inline]
     pub fn key_not_detected_raw(&self) -> u8 {
-        ((self.bits >> 19) & 1) as u8
+        (self.bytes[2] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_key_not_detected(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFF7_FFFF) | u64::from(value) << 19;
+        self.bytes[2] = (self.bytes[2] & 247) | value << 3;
     }
 
     /// Set `key_not_detected` from its physical value; outside the documented range is an error.
@@ -9127,13 +9133,13 @@ impl VehicleFault {
     /// Raw value of `tire_pressure_low` (bits 20..=20).
     #[inline]
     pub fn tire_pressure_low_raw(&self) -> u8 {
-        ((self.bits >> 20) & 1) as u8
+        (self.bytes[2] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_tire_pressure_low(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFEF_FFFF) | u64::from(value) << 20;
+        self.bytes[2] = (self.bytes[2] & 239) | value << 4;
     }
 
     /// Set `tire_pressure_low` from its physical value; outside the documented range is an error.
@@ -9174,13 +9180,13 @@ impl VehicleFault {
     /// Raw value of `body_motor_fault` (bits 21..=21).
     #[inline]
     pub fn body_motor_fault_raw(&self) -> u8 {
-        ((self.bits >> 21) & 1) as u8
+        (self.bytes[2] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_body_motor_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFDF_FFFF) | u64::from(value) << 21;
+        self.bytes[2] = (self.bytes[2] & 223) | value << 5;
     }
 
     /// Set `body_motor_fault` from its physical value; outside the documented range is an error.
@@ -9221,13 +9227,13 @@ impl VehicleFault {
     /// Raw value of `body_motor_overheat` (bits 22..=22).
     #[inline]
     pub fn body_motor_overheat_raw(&self) -> u8 {
-        ((self.bits >> 22) & 1) as u8
+        (self.bytes[2] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_body_motor_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFBF_FFFF) | u64::from(value) << 22;
+        self.bytes[2] = (self.bytes[2] & 191) | value << 6;
     }
 
     /// Set `body_motor_overheat` from its physical value; outside the documented range is an error.
@@ -9268,13 +9274,13 @@ impl VehicleFault {
     /// Raw value of `battery_system_fault_level` (bits 24..=25).
     #[inline]
     pub fn battery_system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 24) & 3) as u8
+        self.bytes[3] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = (self.bytes[3] & 252) | value;
     }
 
     /// Set `battery_system_fault_level` from its physical value; outside the documented range is an error.
@@ -9318,13 +9324,13 @@ impl VehicleFault {
     /// Raw value of `motor_system_fault_level` (bits 26..=27).
     #[inline]
     pub fn motor_system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 26) & 3) as u8
+        (self.bytes[3] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
+        self.bytes[3] = (self.bytes[3] & 243) | value << 2;
     }
 
     /// Set `motor_system_fault_level` from its physical value; outside the documented range is an error.
@@ -9370,13 +9376,13 @@ impl VehicleFault {
     /// Raw value of `unmanned_entry_fault` (bits 28..=31).
     #[inline]
     pub fn unmanned_entry_fault_raw(&self) -> u8 {
-        ((self.bits >> 28) & 15) as u8
+        self.bytes[3] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_unmanned_entry_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_0FFF_FFFF) | u64::from(value) << 28;
+        self.bytes[3] = (self.bytes[3] & 15) | value << 4;
     }
 
     /// Set `unmanned_entry_fault` from its physical value; outside the documented range is an error.
@@ -9419,13 +9425,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_a` (bits 32..=35).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        ((self.bits >> 32) & 15) as u8
+        self.bytes[4] & 15
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_a(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF0_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 240) | value;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -9467,13 +9473,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_b` (bits 36..=39).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        ((self.bits >> 36) & 15) as u8
+        self.bytes[4] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_b(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF0F_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 15) | value << 4;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -9515,13 +9521,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_c` (bits 40..=43).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        ((self.bits >> 40) & 15) as u8
+        self.bytes[5] & 15
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_c(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_F0FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 240) | value;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -9565,13 +9571,13 @@ impl VehicleFault {
     /// Raw value of `remote_entry_fault` (bits 44..=47).
     #[inline]
     pub fn remote_entry_fault_raw(&self) -> u8 {
-        ((self.bits >> 44) & 15) as u8
+        self.bytes[5] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_remote_entry_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_0FFF_FFFF_FFFF) | u64::from(value) << 44;
+        self.bytes[5] = (self.bytes[5] & 15) | value << 4;
     }
 
     /// Set `remote_entry_fault` from its physical value; outside the documented range is an error.

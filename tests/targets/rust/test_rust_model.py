@@ -17,7 +17,7 @@ from canspec.ir.encoding import fits_runtime, to_raw_runtime
 from canspec.pipeline import compile_spec
 from canspec.render import formatters
 from canspec.targets import rust as rust_target
-from canspec.targets.rust import bits, check, docs, encode, naming, tests_view, values
+from canspec.targets.rust import bits, check, docs, encode, layout, naming, tests_view, values
 from canspec.targets.rust import model as rm
 from repo_paths import GENERATED, ROOT
 
@@ -308,3 +308,18 @@ def test_static_modules_are_copied_with_the_header(spec):
     assert "rust/src/j1939.rs" not in files and "rust/src/values.rs" not in files and "rust/src/codec.rs" in files
     lib = files["rust/src/lib.rs"].decode("utf-8")
     assert "pub mod j1939" not in lib and "values::*" not in lib and "PDU2_MIN_PF" not in files["rust/src/constants.rs"].decode("utf-8")
+
+
+def test_many_flags_count_one_instruction_each_held_as_bytes(can):
+    # Counted by hand from the spec's tables (layout.py's costs):
+    # vehicle_fault: 21 flags, a 2-bit field at bit 0 (word 2, bytes 2), 2-bit fields at 24 and 26
+    # (word 3 + 3, bytes 2 + 3), 4-bit fields at 28, 32, 36, 40, 44 (word 3 each, bytes 1, 2, 1, 2, 1)
+    # in bytes 0..5: word 21 + 2 + 6 + 15 = 44; bytes 6 loads + 21 + 2 + 5 + 7 = 41 (21 flags >= FLAG_RUN).
+    fault = can.message("vehicle_fault")
+    assert layout.holds_bytes(fault)
+    # rgate_control_command_2: 2 flags (bits 0 and 7), 2-bit at 1 and 4-bit at 3 (3 and 3 either way),
+    # whole bytes 1 and 7 (word 3 and 2): word 1 + 1 + 3 + 3 + 3 + 2 = 13; bytes 3 loads + 2 + 2 + 3 + 3 = 13: a tie keeps the word.
+    assert not layout.holds_bytes(can.message("rgate_control_command_2"))
+    flag = next(s for s in fault.signals if s.name == "dc_fault")
+    assert (layout._byte_cost(flag, layout.FLAG_RUN - 1), layout._byte_cost(flag, layout.FLAG_RUN), layout._word_cost(flag)) == (2, 1, 1)
+    assert next(m for m in rm.build_crate(can).messages if m.msg.name == "vehicle_fault").holds_bytes
