@@ -258,7 +258,7 @@ impl AutocarEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -706,7 +706,7 @@ impl EpsState {
     /// Set `eps_ctrl_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_state(&mut self, value: EpsModeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_state(value);
         Ok(())
     }
@@ -930,7 +930,7 @@ impl EpsState {
     /// Set `eps_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_fault_level(&mut self, value: EpsFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "eps_state.eps_fault_level",
@@ -1295,7 +1295,7 @@ impl AutocarSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.epb_cmd",
@@ -1344,7 +1344,7 @@ impl AutocarSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.gear_cmd",
@@ -1431,7 +1431,7 @@ impl AutocarSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_speed_command.emergency_brake_cmd",
@@ -1774,7 +1774,7 @@ impl DrivingState {
     /// Set `epb_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_state(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.epb_state",
@@ -1821,7 +1821,7 @@ impl DrivingState {
     /// Set `gear_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_state(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.gear_state",
@@ -1868,7 +1868,7 @@ impl DrivingState {
     /// Set `emergency_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.emergency_brake_state",
@@ -1917,7 +1917,7 @@ impl DrivingState {
     /// Set `uss_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_brake_state(&mut self, value: BrakeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "driving_state.uss_brake_state",
@@ -2570,7 +2570,7 @@ impl AutocarControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drive_mode_cmd",
@@ -2619,7 +2619,7 @@ impl AutocarControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.door_cmd",
@@ -2666,7 +2666,7 @@ impl AutocarControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.horn_cmd",
@@ -2713,7 +2713,7 @@ impl AutocarControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drl_cmd",
@@ -2760,7 +2760,7 @@ impl AutocarControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.left_turn_cmd",
@@ -2807,7 +2807,7 @@ impl AutocarControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.right_turn_cmd",
@@ -2854,7 +2854,7 @@ impl AutocarControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.hazard_cmd",
@@ -2901,7 +2901,7 @@ impl AutocarControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.position_light_cmd",
@@ -2948,7 +2948,7 @@ impl AutocarControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.headlight_cmd",
@@ -2995,7 +2995,7 @@ impl AutocarControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.rear_fog_cmd",
@@ -3042,7 +3042,7 @@ impl AutocarControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.left_fog_cmd",
@@ -3089,7 +3089,7 @@ impl AutocarControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.right_fog_cmd",
@@ -3136,7 +3136,7 @@ impl AutocarControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.dome_light_cmd",
@@ -3183,7 +3183,7 @@ impl AutocarControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.ambient_light_cmd",
@@ -3230,7 +3230,7 @@ impl AutocarControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.drive_mode_reset",
@@ -3277,7 +3277,7 @@ impl AutocarControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: SystemStateAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_state",
@@ -3324,7 +3324,7 @@ impl AutocarControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_reliability",
@@ -3371,7 +3371,7 @@ impl AutocarControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelAutocar) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.system_fault_level",
@@ -3420,7 +3420,7 @@ impl AutocarControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.lock_cmd",
@@ -3471,7 +3471,7 @@ impl AutocarControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_1.ac_cmd",
@@ -3798,9 +3798,9 @@ impl Frame for AutocarControlCommand1 {
 /// | `counter` | 心跳值 | 56 | 8 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleState1 {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for VehicleState1 {
@@ -3951,9 +3951,7 @@ impl VehicleState1 {
         type_max: 65535,
     };
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FFFF_FFFF_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -4122,23 +4120,29 @@ impl VehicleState1 {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2];
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        msg.bytes[6] = bytes[6];
+        msg.bytes[7] = bytes[7];
+        Ok(msg)
     }
 
     /// This message with its rolling counter advanced by one (wrapping to 0).
@@ -4162,19 +4166,19 @@ impl VehicleState1 {
     /// Raw value of `drive_mode_state` (bits 0..=1).
     #[inline]
     pub fn drive_mode_state_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_drive_mode_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `drive_mode_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_state(&mut self, value: DriveModeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.drive_mode_state",
@@ -4209,19 +4213,19 @@ impl VehicleState1 {
     /// Raw value of `door_state` (bits 2..=2).
     #[inline]
     pub fn door_state_raw(&self) -> u8 {
-        ((self.bits >> 2) & 1) as u8
+        (self.bytes[0] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_door_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 251) | value << 2;
     }
 
     /// Set `door_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.door_state",
@@ -4256,19 +4260,19 @@ impl VehicleState1 {
     /// Raw value of `drl_state` (bits 3..=3).
     #[inline]
     pub fn drl_state_raw(&self) -> u8 {
-        ((self.bits >> 3) & 1) as u8
+        (self.bytes[0] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_drl_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
+        self.bytes[0] = (self.bytes[0] & 247) | value << 3;
     }
 
     /// Set `drl_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.drl_state",
@@ -4303,19 +4307,19 @@ impl VehicleState1 {
     /// Raw value of `left_turn_state` (bits 4..=4).
     #[inline]
     pub fn left_turn_state_raw(&self) -> u8 {
-        ((self.bits >> 4) & 1) as u8
+        (self.bytes[0] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_left_turn_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 239) | value << 4;
     }
 
     /// Set `left_turn_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.left_turn_state",
@@ -4350,19 +4354,19 @@ impl VehicleState1 {
     /// Raw value of `right_turn_state` (bits 5..=5).
     #[inline]
     pub fn right_turn_state_raw(&self) -> u8 {
-        ((self.bits >> 5) & 1) as u8
+        (self.bytes[0] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_right_turn_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
+        self.bytes[0] = (self.bytes[0] & 223) | value << 5;
     }
 
     /// Set `right_turn_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.right_turn_state",
@@ -4397,19 +4401,19 @@ impl VehicleState1 {
     /// Raw value of `hazard_state` (bits 6..=6).
     #[inline]
     pub fn hazard_state_raw(&self) -> u8 {
-        ((self.bits >> 6) & 1) as u8
+        (self.bytes[0] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_hazard_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 191) | value << 6;
     }
 
     /// Set `hazard_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_state(&mut self, value: OffFlashing) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.hazard_state",
@@ -4444,19 +4448,19 @@ impl VehicleState1 {
     /// Raw value of `position_light_state` (bits 7..=7).
     #[inline]
     pub fn position_light_state_raw(&self) -> u8 {
-        ((self.bits >> 7) & 1) as u8
+        self.bytes[0] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_position_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
+        self.bytes[0] = (self.bytes[0] & 127) | value << 7;
     }
 
     /// Set `position_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.position_light_state",
@@ -4493,19 +4497,19 @@ impl VehicleState1 {
     /// Raw value of `headlight_state` (bits 8..=9).
     #[inline]
     pub fn headlight_state_raw(&self) -> u8 {
-        ((self.bits >> 8) & 3) as u8
+        self.bytes[1] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_headlight_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FCFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 252) | value;
     }
 
     /// Set `headlight_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_state(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.headlight_state",
@@ -4540,19 +4544,19 @@ impl VehicleState1 {
     /// Raw value of `rear_fog_state` (bits 10..=10).
     #[inline]
     pub fn rear_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 10) & 1) as u8
+        (self.bytes[1] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_rear_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 251) | value << 2;
     }
 
     /// Set `rear_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.rear_fog_state",
@@ -4587,19 +4591,19 @@ impl VehicleState1 {
     /// Raw value of `left_fog_state` (bits 11..=11).
     #[inline]
     pub fn left_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 11) & 1) as u8
+        (self.bytes[1] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_left_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
+        self.bytes[1] = (self.bytes[1] & 247) | value << 3;
     }
 
     /// Set `left_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.left_fog_state",
@@ -4634,19 +4638,19 @@ impl VehicleState1 {
     /// Raw value of `right_fog_state` (bits 12..=12).
     #[inline]
     pub fn right_fog_state_raw(&self) -> u8 {
-        ((self.bits >> 12) & 1) as u8
+        (self.bytes[1] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_right_fog_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 239) | value << 4;
     }
 
     /// Set `right_fog_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.right_fog_state",
@@ -4681,19 +4685,19 @@ impl VehicleState1 {
     /// Raw value of `dome_light_state` (bits 13..=13).
     #[inline]
     pub fn dome_light_state_raw(&self) -> u8 {
-        ((self.bits >> 13) & 1) as u8
+        (self.bytes[1] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_dome_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
+        self.bytes[1] = (self.bytes[1] & 223) | value << 5;
     }
 
     /// Set `dome_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.dome_light_state",
@@ -4728,19 +4732,19 @@ impl VehicleState1 {
     /// Raw value of `ambient_light_state` (bits 14..=14).
     #[inline]
     pub fn ambient_light_state_raw(&self) -> u8 {
-        ((self.bits >> 14) & 1) as u8
+        (self.bytes[1] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_ambient_light_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 191) | value << 6;
     }
 
     /// Set `ambient_light_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_state(&mut self, value: OffOn) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.ambient_light_state",
@@ -4775,19 +4779,19 @@ impl VehicleState1 {
     /// Raw value of `door_button_state` (bits 15..=15).
     #[inline]
     pub fn door_button_state_raw(&self) -> u8 {
-        ((self.bits >> 15) & 1) as u8
+        self.bytes[1] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_door_button_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
+        self.bytes[1] = (self.bytes[1] & 127) | value << 7;
     }
 
     /// Set `door_button_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_button_state(&mut self, value: Button) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.door_button_state",
@@ -4822,13 +4826,13 @@ impl VehicleState1 {
     /// Raw value of `vehicle_speed` (bits 16..=23).
     #[inline]
     pub fn vehicle_speed_raw(&self) -> u8 {
-        (self.bits >> 16) as u8
+        self.bytes[2]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_speed(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FF00_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = value;
     }
 
     /// Set `vehicle_speed` from its physical value; outside the documented range is an error.
@@ -4867,13 +4871,13 @@ impl VehicleState1 {
     /// Raw value of `soc` (bits 24..=31).
     #[inline]
     pub fn soc_raw(&self) -> u8 {
-        (self.bits >> 24) as u8
+        self.bytes[3]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_soc(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_00FF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = value;
     }
 
     /// Set `soc` from its physical value; outside the documented range is an error.
@@ -4910,19 +4914,19 @@ impl VehicleState1 {
     /// Raw value of `system_power_cmd` (bits 32..=33).
     #[inline]
     pub fn system_power_cmd_raw(&self) -> u8 {
-        ((self.bits >> 32) & 3) as u8
+        self.bytes[4] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_system_power_cmd(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFC_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 252) | value;
     }
 
     /// Set `system_power_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_power_cmd(&mut self, value: PowerCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.system_power_cmd",
@@ -4957,19 +4961,19 @@ impl VehicleState1 {
     /// Raw value of `charge_state` (bits 34..=35).
     #[inline]
     pub fn charge_state_raw(&self) -> u8 {
-        ((self.bits >> 34) & 3) as u8
+        (self.bytes[4] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_charge_state(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF3_FFFF_FFFF) | u64::from(value) << 34;
+        self.bytes[4] = (self.bytes[4] & 243) | value << 2;
     }
 
     /// Set `charge_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_charge_state(&mut self, value: ChargeState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.charge_state",
@@ -5004,19 +5008,19 @@ impl VehicleState1 {
     /// Raw value of `charge_connection` (bits 36..=37).
     #[inline]
     pub fn charge_connection_raw(&self) -> u8 {
-        ((self.bits >> 36) & 3) as u8
+        (self.bytes[4] >> 4) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_charge_connection(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFCF_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 207) | value << 4;
     }
 
     /// Set `charge_connection` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_charge_connection(&mut self, value: ChargeConnection) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.charge_connection",
@@ -5051,19 +5055,19 @@ impl VehicleState1 {
     /// Raw value of `vehicle_fault_level` (bits 38..=39).
     #[inline]
     pub fn vehicle_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 38) & 3) as u8
+        self.bytes[4] >> 6
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF3F_FFFF_FFFF) | u64::from(value) << 38;
+        self.bytes[4] = (self.bytes[4] & 63) | value << 6;
     }
 
     /// Set `vehicle_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_fault_level(&mut self, value: VehicleFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_1.vehicle_fault_level",
@@ -5098,13 +5102,13 @@ impl VehicleState1 {
     /// Raw value of `odometer` (bits 40..=55).
     #[inline]
     pub fn odometer_raw(&self) -> u16 {
-        (self.bits >> 40) as u16
+        u16::from_le_bytes([self.bytes[5], self.bytes[6]])
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_odometer(&mut self, value: u16) {
-        self.bits = (self.bits & 0xFF00_00FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5..7].copy_from_slice(&value.to_le_bytes());
     }
 
     /// Set `odometer` from its physical value; outside the documented range is an error.
@@ -5143,13 +5147,13 @@ impl VehicleState1 {
     /// Raw value of `counter` (bits 56..=63).
     #[inline]
     pub fn counter_raw(&self) -> u8 {
-        (self.bits >> 56) as u8
+        self.bytes[7]
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_counter(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFF_FFFF_FFFF_FFFF) | u64::from(value) << 56;
+        self.bytes[7] = value;
     }
 
     /// Set `counter` from its physical value; outside the documented range is an error.
@@ -5513,7 +5517,7 @@ impl AutocarControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.downhill_regen_enable",
@@ -5560,7 +5564,7 @@ impl AutocarControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.cargo_lift",
@@ -5655,7 +5659,7 @@ impl AutocarControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "autocar_control_command_2.pto_enable",
@@ -7324,7 +7328,7 @@ impl VehicleState4 {
     /// Set `ac_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_state(&mut self, value: AcState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.ac_state",
@@ -7371,7 +7375,7 @@ impl VehicleState4 {
     /// Set `vehicle_power_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_power_state(&mut self, value: PowerState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.vehicle_power_state",
@@ -7420,7 +7424,7 @@ impl VehicleState4 {
     /// Set `hill_hold_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hill_hold_state(&mut self, value: InactiveActive) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.hill_hold_state",
@@ -7469,7 +7473,7 @@ impl VehicleState4 {
     /// Set `regen_brake_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_regen_brake_state(&mut self, value: InactiveActive) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.regen_brake_state",
@@ -7562,7 +7566,7 @@ impl VehicleState4 {
     /// Set `manual_takeover_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_manual_takeover_state(&mut self, value: TakeoverState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.manual_takeover_state",
@@ -7614,7 +7618,7 @@ impl VehicleState4 {
         &mut self,
         value: RemoteTakeoverPermission,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.remote_driving_allowed",
@@ -7711,7 +7715,7 @@ impl VehicleState4 {
     /// Set `pto_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_state(&mut self, value: PtoState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_state_4.pto_state",
@@ -7846,9 +7850,9 @@ impl Frame for VehicleState4 {
 /// | `remote_entry_fault` | 无法进入远程驾驶系统故障状态 | 44 | 4 | 1 | 0 | — |
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VehicleFault {
-    /// The fields' raw values in place in the frame word (checksum and reserved bits 0), so
-    /// that decoding is a check and a copy and each getter extracts only its own field.
-    bits: u64,
+    /// The fields' raw values in place in the frame (checksum and reserved bits 0), so that
+    /// decoding is a check and a copy and each getter extracts only its own field.
+    bytes: [u8; 8],
 }
 
 impl core::fmt::Debug for VehicleFault {
@@ -7985,9 +7989,7 @@ impl VehicleFault {
     /// Layout fingerprint: a hash of everything that decides the bytes on the wire.
     pub const FINGERPRINT: u32 = 0x8C6BDE86;
 
-    const ZERO: Self = Self { bits: 0 };
-    /// Frame-word bits of the fields.
-    const FIELDS_MASK: u64 = 0xFFFF_FF7F_FFFF;
+    const ZERO: Self = Self { bytes: [0; 8] };
 
     /// A message from physical values, each checked against its documented range.
     #[inline]
@@ -8198,23 +8200,27 @@ impl VehicleFault {
     /// The frame bytes: reserved bits 0.
     #[inline]
     pub fn encode(&self) -> [u8; 8] {
-        self.bits.to_le_bytes()
+        self.bytes
     }
 
     /// Decode a frame: at least [`Self::DLC`] bytes.
     #[inline]
     pub fn decode(data: &[u8]) -> Result<Self, Error> {
-        let Some(bytes) = data.first_chunk::<8>() else {
+        let Some(&bytes) = data.first_chunk::<8>() else {
             return Err(Error::Length {
                 frame_id: Self::FRAME_ID,
                 expected: Self::DLC,
                 actual: data.len(),
             });
         };
-        let bits = u64::from_le_bytes(*bytes);
-        Ok(Self {
-            bits: bits & Self::FIELDS_MASK,
-        })
+        let mut msg = Self::ZERO;
+        msg.bytes[0] = bytes[0];
+        msg.bytes[1] = bytes[1];
+        msg.bytes[2] = bytes[2] & 0x7F;
+        msg.bytes[3] = bytes[3];
+        msg.bytes[4] = bytes[4];
+        msg.bytes[5] = bytes[5];
+        Ok(msg)
     }
 
     /// 绝缘故障等级
@@ -8230,19 +8236,19 @@ impl VehicleFault {
     /// Raw value of `insulation_fault_level` (bits 0..=1).
     #[inline]
     pub fn insulation_fault_level_raw(&self) -> u8 {
-        (self.bits & 3) as u8
+        self.bytes[0] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_insulation_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFC) | u64::from(value);
+        self.bytes[0] = (self.bytes[0] & 252) | value;
     }
 
     /// Set `insulation_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_insulation_fault_level(&mut self, value: InsulationFaultLevel) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.insulation_fault_level",
@@ -8279,19 +8285,19 @@ impl VehicleFault {
     /// Raw value of `dc_fault` (bits 2..=2).
     #[inline]
     pub fn dc_fault_raw(&self) -> u8 {
-        ((self.bits >> 2) & 1) as u8
+        (self.bytes[0] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_dc_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFFB) | u64::from(value) << 2;
+        self.bytes[0] = (self.bytes[0] & 251) | value << 2;
     }
 
     /// Set `dc_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dc_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.dc_fault",
@@ -8326,19 +8332,19 @@ impl VehicleFault {
     /// Raw value of `soc_low` (bits 3..=3).
     #[inline]
     pub fn soc_low_raw(&self) -> u8 {
-        ((self.bits >> 3) & 1) as u8
+        (self.bytes[0] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_soc_low(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFF7) | u64::from(value) << 3;
+        self.bytes[0] = (self.bytes[0] & 247) | value << 3;
     }
 
     /// Set `soc_low` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_soc_low(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.soc_low",
@@ -8373,19 +8379,19 @@ impl VehicleFault {
     /// Raw value of `cell_undervoltage` (bits 4..=4).
     #[inline]
     pub fn cell_undervoltage_raw(&self) -> u8 {
-        ((self.bits >> 4) & 1) as u8
+        (self.bytes[0] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_cell_undervoltage(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFEF) | u64::from(value) << 4;
+        self.bytes[0] = (self.bytes[0] & 239) | value << 4;
     }
 
     /// Set `cell_undervoltage` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cell_undervoltage(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.cell_undervoltage",
@@ -8420,19 +8426,19 @@ impl VehicleFault {
     /// Raw value of `brake_boost_pressure_fault` (bits 5..=5).
     #[inline]
     pub fn brake_boost_pressure_fault_raw(&self) -> u8 {
-        ((self.bits >> 5) & 1) as u8
+        (self.bytes[0] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_brake_boost_pressure_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFDF) | u64::from(value) << 5;
+        self.bytes[0] = (self.bytes[0] & 223) | value << 5;
     }
 
     /// Set `brake_boost_pressure_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_brake_boost_pressure_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.brake_boost_pressure_fault",
@@ -8467,19 +8473,19 @@ impl VehicleFault {
     /// Raw value of `vacuum_pump_fault` (bits 6..=6).
     #[inline]
     pub fn vacuum_pump_fault_raw(&self) -> u8 {
-        ((self.bits >> 6) & 1) as u8
+        (self.bytes[0] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vacuum_pump_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FFBF) | u64::from(value) << 6;
+        self.bytes[0] = (self.bytes[0] & 191) | value << 6;
     }
 
     /// Set `vacuum_pump_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vacuum_pump_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.vacuum_pump_fault",
@@ -8514,19 +8520,19 @@ impl VehicleFault {
     /// Raw value of `vehicle_system_fault` (bits 7..=7).
     #[inline]
     pub fn vehicle_system_fault_raw(&self) -> u8 {
-        ((self.bits >> 7) & 1) as u8
+        self.bytes[0] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_vehicle_system_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FF7F) | u64::from(value) << 7;
+        self.bytes[0] = (self.bytes[0] & 127) | value << 7;
     }
 
     /// Set `vehicle_system_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_vehicle_system_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.vehicle_system_fault",
@@ -8561,19 +8567,19 @@ impl VehicleFault {
     /// Raw value of `battery_overheat` (bits 8..=8).
     #[inline]
     pub fn battery_overheat_raw(&self) -> u8 {
-        ((self.bits >> 8) & 1) as u8
+        self.bytes[1] & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FEFF) | u64::from(value) << 8;
+        self.bytes[1] = (self.bytes[1] & 254) | value;
     }
 
     /// Set `battery_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_overheat",
@@ -8608,19 +8614,19 @@ impl VehicleFault {
     /// Raw value of `motor_overheat` (bits 9..=9).
     #[inline]
     pub fn motor_overheat_raw(&self) -> u8 {
-        ((self.bits >> 9) & 1) as u8
+        (self.bytes[1] >> 1) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FDFF) | u64::from(value) << 9;
+        self.bytes[1] = (self.bytes[1] & 253) | value << 1;
     }
 
     /// Set `motor_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_overheat",
@@ -8655,19 +8661,19 @@ impl VehicleFault {
     /// Raw value of `traction_battery_fault` (bits 10..=10).
     #[inline]
     pub fn traction_battery_fault_raw(&self) -> u8 {
-        ((self.bits >> 10) & 1) as u8
+        (self.bytes[1] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_traction_battery_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_FBFF) | u64::from(value) << 10;
+        self.bytes[1] = (self.bytes[1] & 251) | value << 2;
     }
 
     /// Set `traction_battery_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_traction_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.traction_battery_fault",
@@ -8702,19 +8708,19 @@ impl VehicleFault {
     /// Raw value of `motor_fault` (bits 11..=11).
     #[inline]
     pub fn motor_fault_raw(&self) -> u8 {
-        ((self.bits >> 11) & 1) as u8
+        (self.bytes[1] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_F7FF) | u64::from(value) << 11;
+        self.bytes[1] = (self.bytes[1] & 247) | value << 3;
     }
 
     /// Set `motor_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_fault",
@@ -8749,19 +8755,19 @@ impl VehicleFault {
     /// Raw value of `battery_comm_fault` (bits 12..=12).
     #[inline]
     pub fn battery_comm_fault_raw(&self) -> u8 {
-        ((self.bits >> 12) & 1) as u8
+        (self.bytes[1] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_comm_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_EFFF) | u64::from(value) << 12;
+        self.bytes[1] = (self.bytes[1] & 239) | value << 4;
     }
 
     /// Set `battery_comm_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_battery_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_comm_fault",
@@ -8796,19 +8802,19 @@ impl VehicleFault {
     /// Raw value of `motor_comm_fault` (bits 13..=13).
     #[inline]
     pub fn motor_comm_fault_raw(&self) -> u8 {
-        ((self.bits >> 13) & 1) as u8
+        (self.bytes[1] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_comm_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_DFFF) | u64::from(value) << 13;
+        self.bytes[1] = (self.bytes[1] & 223) | value << 5;
     }
 
     /// Set `motor_comm_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_motor_comm_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_comm_fault",
@@ -8843,19 +8849,19 @@ impl VehicleFault {
     /// Raw value of `eps_fault` (bits 14..=14).
     #[inline]
     pub fn eps_fault_raw(&self) -> u8 {
-        ((self.bits >> 14) & 1) as u8
+        (self.bytes[1] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_eps_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_BFFF) | u64::from(value) << 14;
+        self.bytes[1] = (self.bytes[1] & 191) | value << 6;
     }
 
     /// Set `eps_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.eps_fault",
@@ -8890,19 +8896,19 @@ impl VehicleFault {
     /// Raw value of `ac_fault` (bits 15..=15).
     #[inline]
     pub fn ac_fault_raw(&self) -> u8 {
-        ((self.bits >> 15) & 1) as u8
+        self.bytes[1] >> 7
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_ac_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFF_7FFF) | u64::from(value) << 15;
+        self.bytes[1] = (self.bytes[1] & 127) | value << 7;
     }
 
     /// Set `ac_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.ac_fault",
@@ -8939,19 +8945,19 @@ impl VehicleFault {
     /// Raw value of `aux_battery_fault` (bits 16..=16).
     #[inline]
     pub fn aux_battery_fault_raw(&self) -> u8 {
-        ((self.bits >> 16) & 1) as u8
+        self.bytes[2] & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_aux_battery_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFE_FFFF) | u64::from(value) << 16;
+        self.bytes[2] = (self.bytes[2] & 254) | value;
     }
 
     /// Set `aux_battery_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_aux_battery_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.aux_battery_fault",
@@ -8986,19 +8992,19 @@ impl VehicleFault {
     /// Raw value of `epb_fault` (bits 17..=17).
     #[inline]
     pub fn epb_fault_raw(&self) -> u8 {
-        ((self.bits >> 17) & 1) as u8
+        (self.bytes[2] >> 1) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_epb_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFD_FFFF) | u64::from(value) << 17;
+        self.bytes[2] = (self.bytes[2] & 253) | value << 1;
     }
 
     /// Set `epb_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.epb_fault",
@@ -9033,19 +9039,19 @@ impl VehicleFault {
     /// Raw value of `brake_by_wire_fault` (bits 18..=18).
     #[inline]
     pub fn brake_by_wire_fault_raw(&self) -> u8 {
-        ((self.bits >> 18) & 1) as u8
+        (self.bytes[2] >> 2) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_brake_by_wire_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFFB_FFFF) | u64::from(value) << 18;
+        self.bytes[2] = (self.bytes[2] & 251) | value << 2;
     }
 
     /// Set `brake_by_wire_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_brake_by_wire_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.brake_by_wire_fault",
@@ -9080,19 +9086,19 @@ impl VehicleFault {
     /// Raw value of `key_not_detected` (bits 19..=19).
     #[inline]
     pub fn key_not_detected_raw(&self) -> u8 {
-        ((self.bits >> 19) & 1) as u8
+        (self.bytes[2] >> 3) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_key_not_detected(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFF7_FFFF) | u64::from(value) << 19;
+        self.bytes[2] = (self.bytes[2] & 247) | value << 3;
     }
 
     /// Set `key_not_detected` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_key_not_detected(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.key_not_detected",
@@ -9127,19 +9133,19 @@ impl VehicleFault {
     /// Raw value of `tire_pressure_low` (bits 20..=20).
     #[inline]
     pub fn tire_pressure_low_raw(&self) -> u8 {
-        ((self.bits >> 20) & 1) as u8
+        (self.bytes[2] >> 4) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_tire_pressure_low(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFEF_FFFF) | u64::from(value) << 20;
+        self.bytes[2] = (self.bytes[2] & 239) | value << 4;
     }
 
     /// Set `tire_pressure_low` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_tire_pressure_low(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.tire_pressure_low",
@@ -9174,19 +9180,19 @@ impl VehicleFault {
     /// Raw value of `body_motor_fault` (bits 21..=21).
     #[inline]
     pub fn body_motor_fault_raw(&self) -> u8 {
-        ((self.bits >> 21) & 1) as u8
+        (self.bytes[2] >> 5) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_body_motor_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFDF_FFFF) | u64::from(value) << 21;
+        self.bytes[2] = (self.bytes[2] & 223) | value << 5;
     }
 
     /// Set `body_motor_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_body_motor_fault(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.body_motor_fault",
@@ -9221,19 +9227,19 @@ impl VehicleFault {
     /// Raw value of `body_motor_overheat` (bits 22..=22).
     #[inline]
     pub fn body_motor_overheat_raw(&self) -> u8 {
-        ((self.bits >> 22) & 1) as u8
+        (self.bytes[2] >> 6) & 1
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_body_motor_overheat(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FFBF_FFFF) | u64::from(value) << 22;
+        self.bytes[2] = (self.bytes[2] & 191) | value << 6;
     }
 
     /// Set `body_motor_overheat` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_body_motor_overheat(&mut self, value: NormalFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.body_motor_overheat",
@@ -9268,13 +9274,13 @@ impl VehicleFault {
     /// Raw value of `battery_system_fault_level` (bits 24..=25).
     #[inline]
     pub fn battery_system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 24) & 3) as u8
+        self.bytes[3] & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_battery_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_FCFF_FFFF) | u64::from(value) << 24;
+        self.bytes[3] = (self.bytes[3] & 252) | value;
     }
 
     /// Set `battery_system_fault_level` from its physical value; outside the documented range is an error.
@@ -9283,7 +9289,7 @@ impl VehicleFault {
         &mut self,
         value: BatterySystemFaultLevel,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.battery_system_fault_level",
@@ -9318,13 +9324,13 @@ impl VehicleFault {
     /// Raw value of `motor_system_fault_level` (bits 26..=27).
     #[inline]
     pub fn motor_system_fault_level_raw(&self) -> u8 {
-        ((self.bits >> 26) & 3) as u8
+        (self.bytes[3] >> 2) & 3
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_motor_system_fault_level(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_F3FF_FFFF) | u64::from(value) << 26;
+        self.bytes[3] = (self.bytes[3] & 243) | value << 2;
     }
 
     /// Set `motor_system_fault_level` from its physical value; outside the documented range is an error.
@@ -9333,7 +9339,7 @@ impl VehicleFault {
         &mut self,
         value: MotorSystemFaultLevel,
     ) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.motor_system_fault_level",
@@ -9370,19 +9376,19 @@ impl VehicleFault {
     /// Raw value of `unmanned_entry_fault` (bits 28..=31).
     #[inline]
     pub fn unmanned_entry_fault_raw(&self) -> u8 {
-        ((self.bits >> 28) & 15) as u8
+        self.bytes[3] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_unmanned_entry_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFFF_0FFF_FFFF) | u64::from(value) << 28;
+        self.bytes[3] = (self.bytes[3] & 15) | value << 4;
     }
 
     /// Set `unmanned_entry_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_unmanned_entry_fault(&mut self, value: UnmannedEntryFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 15 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.unmanned_entry_fault",
@@ -9419,13 +9425,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_a` (bits 32..=35).
     #[inline]
     pub fn protocol_version_a_raw(&self) -> u8 {
-        ((self.bits >> 32) & 15) as u8
+        self.bytes[4] & 15
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_a(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FFF0_FFFF_FFFF) | u64::from(value) << 32;
+        self.bytes[4] = (self.bytes[4] & 240) | value;
     }
 
     /// Set `protocol_version_a` from its physical value; outside the documented range is an error.
@@ -9467,13 +9473,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_b` (bits 36..=39).
     #[inline]
     pub fn protocol_version_b_raw(&self) -> u8 {
-        ((self.bits >> 36) & 15) as u8
+        self.bytes[4] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_b(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_FF0F_FFFF_FFFF) | u64::from(value) << 36;
+        self.bytes[4] = (self.bytes[4] & 15) | value << 4;
     }
 
     /// Set `protocol_version_b` from its physical value; outside the documented range is an error.
@@ -9515,13 +9521,13 @@ impl VehicleFault {
     /// Raw value of `protocol_version_c` (bits 40..=43).
     #[inline]
     pub fn protocol_version_c_raw(&self) -> u8 {
-        ((self.bits >> 40) & 15) as u8
+        self.bytes[5] & 15
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_protocol_version_c(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_F0FF_FFFF_FFFF) | u64::from(value) << 40;
+        self.bytes[5] = (self.bytes[5] & 240) | value;
     }
 
     /// Set `protocol_version_c` from its physical value; outside the documented range is an error.
@@ -9565,19 +9571,19 @@ impl VehicleFault {
     /// Raw value of `remote_entry_fault` (bits 44..=47).
     #[inline]
     pub fn remote_entry_fault_raw(&self) -> u8 {
-        ((self.bits >> 44) & 15) as u8
+        self.bytes[5] >> 4
     }
 
     /// Put a raw value that fits the field into the frame.
     #[inline(always)]
     fn store_remote_entry_fault(&mut self, value: u8) {
-        self.bits = (self.bits & 0xFFFF_0FFF_FFFF_FFFF) | u64::from(value) << 44;
+        self.bytes[5] = (self.bytes[5] & 15) | value << 4;
     }
 
     /// Set `remote_entry_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_remote_entry_fault(&mut self, value: RemoteEntryFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 15 {
             return Err(Error::OutOfRange {
                 signal: "vehicle_fault.remote_entry_fault",
@@ -9981,7 +9987,7 @@ impl RgateEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -10429,7 +10435,7 @@ impl RgateSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.epb_cmd",
@@ -10478,7 +10484,7 @@ impl RgateSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.gear_cmd",
@@ -10565,7 +10571,7 @@ impl RgateSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_speed_command.emergency_brake_cmd",
@@ -11032,7 +11038,7 @@ impl RgateControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drive_mode_cmd",
@@ -11081,7 +11087,7 @@ impl RgateControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.door_cmd",
@@ -11128,7 +11134,7 @@ impl RgateControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.horn_cmd",
@@ -11175,7 +11181,7 @@ impl RgateControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drl_cmd",
@@ -11222,7 +11228,7 @@ impl RgateControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.left_turn_cmd",
@@ -11269,7 +11275,7 @@ impl RgateControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.right_turn_cmd",
@@ -11316,7 +11322,7 @@ impl RgateControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.hazard_cmd",
@@ -11363,7 +11369,7 @@ impl RgateControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.position_light_cmd",
@@ -11410,7 +11416,7 @@ impl RgateControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.headlight_cmd",
@@ -11457,7 +11463,7 @@ impl RgateControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.rear_fog_cmd",
@@ -11504,7 +11510,7 @@ impl RgateControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.left_fog_cmd",
@@ -11551,7 +11557,7 @@ impl RgateControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.right_fog_cmd",
@@ -11598,7 +11604,7 @@ impl RgateControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.dome_light_cmd",
@@ -11645,7 +11651,7 @@ impl RgateControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.ambient_light_cmd",
@@ -11692,7 +11698,7 @@ impl RgateControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.drive_mode_reset",
@@ -11739,7 +11745,7 @@ impl RgateControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_state",
@@ -11786,7 +11792,7 @@ impl RgateControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_reliability",
@@ -11833,7 +11839,7 @@ impl RgateControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelRgate) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.system_fault_level",
@@ -11882,7 +11888,7 @@ impl RgateControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.lock_cmd",
@@ -11933,7 +11939,7 @@ impl RgateControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_1.ac_cmd",
@@ -12448,7 +12454,7 @@ impl RgateControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.downhill_regen_enable",
@@ -12495,7 +12501,7 @@ impl RgateControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.cargo_lift",
@@ -12590,7 +12596,7 @@ impl RgateControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rgate_control_command_2.pto_enable",
@@ -12884,7 +12890,7 @@ impl DeviceId {
     /// Set `device_type` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_device_type(&mut self, value: DeviceType) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 63 {
             return Err(Error::OutOfRange {
                 signal: "device_id.device_type",
@@ -12933,7 +12939,7 @@ impl DeviceId {
     /// Set `id_frame_index` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_id_frame_index(&mut self, value: IdFrameIndex) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "device_id.id_frame_index",
@@ -14181,7 +14187,7 @@ impl FrontSensorDistance2 {
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.uss_system_state",
@@ -14228,7 +14234,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_1_fault",
@@ -14275,7 +14281,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_2_fault",
@@ -14322,7 +14328,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_3_fault",
@@ -14369,7 +14375,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_4_fault",
@@ -14416,7 +14422,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_5_fault",
@@ -14463,7 +14469,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_6_fault",
@@ -14510,7 +14516,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_7_fault",
@@ -14557,7 +14563,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_8_fault",
@@ -14604,7 +14610,7 @@ impl FrontSensorDistance2 {
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "front_sensor_distance_2.sensor_9_fault",
@@ -15709,7 +15715,7 @@ impl RearSensorDistance2 {
     /// Set `uss_system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_uss_system_state(&mut self, value: UssSystemState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.uss_system_state",
@@ -15756,7 +15762,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_1_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_1_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_1_fault",
@@ -15803,7 +15809,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_2_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_2_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_2_fault",
@@ -15850,7 +15856,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_3_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_3_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_3_fault",
@@ -15897,7 +15903,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_4_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_4_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_4_fault",
@@ -15944,7 +15950,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_5_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_5_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_5_fault",
@@ -15991,7 +15997,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_6_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_6_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_6_fault",
@@ -16038,7 +16044,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_7_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_7_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_7_fault",
@@ -16085,7 +16091,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_8_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_8_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_8_fault",
@@ -16132,7 +16138,7 @@ impl RearSensorDistance2 {
     /// Set `sensor_9_fault` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_sensor_9_fault(&mut self, value: SensorFault) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "rear_sensor_distance_2.sensor_9_fault",
@@ -16463,7 +16469,7 @@ impl TeleEpsCommand {
     /// Set `eps_ctrl_mode` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_eps_ctrl_mode(&mut self, value: EpsModeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         self.store_eps_ctrl_mode(value);
         Ok(())
     }
@@ -16911,7 +16917,7 @@ impl TeleSpeedCommand {
     /// Set `epb_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_epb_cmd(&mut self, value: Epb) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.epb_cmd",
@@ -16960,7 +16966,7 @@ impl TeleSpeedCommand {
     /// Set `gear_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_gear_cmd(&mut self, value: Gear) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.gear_cmd",
@@ -17047,7 +17053,7 @@ impl TeleSpeedCommand {
     /// Set `emergency_brake_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_emergency_brake_cmd(&mut self, value: EmergencyBrakeCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_speed_command.emergency_brake_cmd",
@@ -17516,7 +17522,7 @@ impl TeleControlCommand1 {
     /// Set `drive_mode_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_cmd(&mut self, value: DriveModeCmdTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drive_mode_cmd",
@@ -17565,7 +17571,7 @@ impl TeleControlCommand1 {
     /// Set `door_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_door_cmd(&mut self, value: DoorCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.door_cmd",
@@ -17612,7 +17618,7 @@ impl TeleControlCommand1 {
     /// Set `horn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_horn_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.horn_cmd",
@@ -17659,7 +17665,7 @@ impl TeleControlCommand1 {
     /// Set `drl_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drl_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drl_cmd",
@@ -17706,7 +17712,7 @@ impl TeleControlCommand1 {
     /// Set `left_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.left_turn_cmd",
@@ -17753,7 +17759,7 @@ impl TeleControlCommand1 {
     /// Set `right_turn_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_turn_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.right_turn_cmd",
@@ -17800,7 +17806,7 @@ impl TeleControlCommand1 {
     /// Set `hazard_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_hazard_cmd(&mut self, value: FlashCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.hazard_cmd",
@@ -17847,7 +17853,7 @@ impl TeleControlCommand1 {
     /// Set `position_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_position_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.position_light_cmd",
@@ -17894,7 +17900,7 @@ impl TeleControlCommand1 {
     /// Set `headlight_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_headlight_cmd(&mut self, value: Headlight) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.headlight_cmd",
@@ -17941,7 +17947,7 @@ impl TeleControlCommand1 {
     /// Set `rear_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_rear_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.rear_fog_cmd",
@@ -17988,7 +17994,7 @@ impl TeleControlCommand1 {
     /// Set `left_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_left_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.left_fog_cmd",
@@ -18035,7 +18041,7 @@ impl TeleControlCommand1 {
     /// Set `right_fog_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_right_fog_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.right_fog_cmd",
@@ -18082,7 +18088,7 @@ impl TeleControlCommand1 {
     /// Set `dome_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_dome_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.dome_light_cmd",
@@ -18129,7 +18135,7 @@ impl TeleControlCommand1 {
     /// Set `ambient_light_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ambient_light_cmd(&mut self, value: SwitchCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 2 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.ambient_light_cmd",
@@ -18176,7 +18182,7 @@ impl TeleControlCommand1 {
     /// Set `drive_mode_reset` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_drive_mode_reset(&mut self, value: ModeReset) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.drive_mode_reset",
@@ -18225,7 +18231,7 @@ impl TeleControlCommand1 {
     /// Set `system_state` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_state(&mut self, value: LinkState) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_state",
@@ -18272,7 +18278,7 @@ impl TeleControlCommand1 {
     /// Set `system_reliability` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_reliability(&mut self, value: ReliabilityTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_reliability",
@@ -18319,7 +18325,7 @@ impl TeleControlCommand1 {
     /// Set `system_fault_level` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_system_fault_level(&mut self, value: FaultLevelTele) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.system_fault_level",
@@ -18368,7 +18374,7 @@ impl TeleControlCommand1 {
     /// Set `lock_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_lock_cmd(&mut self, value: LockCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.lock_cmd",
@@ -18419,7 +18425,7 @@ impl TeleControlCommand1 {
     /// Set `ac_cmd` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_ac_cmd(&mut self, value: AcCmd) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_1.ac_cmd",
@@ -18934,7 +18940,7 @@ impl TeleControlCommand2 {
     /// Set `downhill_regen_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_downhill_regen_enable(&mut self, value: DownhillRegenEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.downhill_regen_enable",
@@ -18981,7 +18987,7 @@ impl TeleControlCommand2 {
     /// Set `cargo_lift` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_cargo_lift(&mut self, value: CargoLift) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 3 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.cargo_lift",
@@ -19076,7 +19082,7 @@ impl TeleControlCommand2 {
     /// Set `pto_enable` from its physical value; outside the documented range is an error.
     #[inline(always)]
     pub fn set_pto_enable(&mut self, value: PtoEnable) -> Result<(), Error> {
-        let value = value.raw();
+        let value = value.wire();
         if value > 1 {
             return Err(Error::OutOfRange {
                 signal: "tele_control_command_2.pto_enable",

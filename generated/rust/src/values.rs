@@ -28,6 +28,26 @@ impl AcCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::NoAction => 0,
+            Self::Cool => 1,
+            Self::Heat => 2,
+            Self::TurnOff => 3,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Cool => 1,
@@ -87,6 +107,26 @@ impl AcState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::Off => 0,
+            Self::Cool => 1,
+            Self::Heat => 2,
+            Self::Auto => 3,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Off => 0,
             Self::Cool => 1,
@@ -146,6 +186,14 @@ impl BatterySystemFaultLevel {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Minor => 1,
@@ -201,6 +249,14 @@ impl BrakeState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NotBraking => 0,
             Self::Braking => 1,
@@ -252,6 +308,14 @@ impl Button {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Released => 0,
             Self::Pressed => 1,
@@ -307,6 +371,14 @@ impl CargoLift {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Raise => 1,
@@ -362,6 +434,24 @@ impl ChargeConnection {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::Disconnected => 0,
+            Self::PluggedIn => 1,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Disconnected => 0,
             Self::PluggedIn => 1,
@@ -417,6 +507,14 @@ impl ChargeState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NotNeeded => 0,
             Self::Complete => 1,
@@ -472,6 +570,24 @@ impl DeviceType {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::Vehicle => 0,
+            Self::RemoteCockpit => 1,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Vehicle => 0,
             Self::RemoteCockpit => 1,
@@ -527,6 +643,14 @@ impl DoorCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Open => 1,
@@ -582,6 +706,14 @@ impl DownhillRegenEnable {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Disabled => 0,
             Self::Enabled => 1,
@@ -637,6 +769,14 @@ impl DriveModeCmdAutocar {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Manual => 0,
             Self::Autonomous => 1,
@@ -696,6 +836,14 @@ impl DriveModeCmdRgate {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Manual => 0,
             Self::Reserved1 => 1,
@@ -755,6 +903,14 @@ impl DriveModeCmdTele {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Manual => 0,
             Self::Reserved1 => 1,
@@ -814,6 +970,14 @@ impl DriveModeState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Manual => 0,
             Self::Autonomous => 1,
@@ -869,6 +1033,14 @@ impl EmergencyBrakeCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Normal => 0,
             Self::EmergencyBrake => 1,
@@ -924,6 +1096,14 @@ impl Epb {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Apply => 1,
@@ -983,6 +1163,14 @@ impl EpsFaultLevel {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Minor => 1,
@@ -1040,6 +1228,25 @@ impl EpsModeCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::StopControl => 0,
+            Self::ManualAssist => 16,
+            Self::AutoAngle => 32,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::StopControl => 0,
             Self::ManualAssist => 16,
@@ -1099,6 +1306,27 @@ impl EpsModeState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::StopControl => 0,
+            Self::ManualAssist => 16,
+            Self::AutoAngle => 32,
+            Self::XorError => 85,
+            Self::CommFault => 86,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::StopControl => 0,
             Self::ManualAssist => 16,
@@ -1160,6 +1388,14 @@ impl FaultLevelAutocar {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Level1 => 1,
@@ -1219,6 +1455,14 @@ impl FaultLevelRgate {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Level1 => 1,
@@ -1278,6 +1522,14 @@ impl FaultLevelTele {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Level1 => 1,
@@ -1337,6 +1589,14 @@ impl FlashCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Flash => 1,
@@ -1396,6 +1656,26 @@ impl Gear {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::Neutral => 0,
+            Self::Drive => 1,
+            Self::Reverse => 2,
+            Self::Reserved => 3,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Neutral => 0,
             Self::Drive => 1,
@@ -1455,6 +1735,14 @@ impl Headlight {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::LowBeam => 1,
@@ -1514,6 +1802,14 @@ impl IdFrameIndex {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Frame1 => 0,
             Self::Frame2 => 1,
@@ -1569,6 +1865,14 @@ impl InactiveActive {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Inactive => 0,
             Self::Active => 1,
@@ -1624,6 +1928,14 @@ impl InsulationFaultLevel {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Normal => 0,
             Self::General => 1,
@@ -1683,6 +1995,14 @@ impl LinkState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Connecting => 0,
             Self::Connected => 1,
@@ -1742,6 +2062,14 @@ impl LockCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::Lock => 1,
@@ -1797,6 +2125,14 @@ impl ModeReset {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoRequest => 0,
             Self::ResetRequest => 1,
@@ -1852,6 +2188,14 @@ impl MotorSystemFaultLevel {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Minor => 1,
@@ -1907,6 +2251,14 @@ impl NormalFault {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Normal => 0,
             Self::Fault => 1,
@@ -1958,6 +2310,14 @@ impl OffFlashing {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Off => 0,
             Self::Flashing => 1,
@@ -2009,6 +2369,14 @@ impl OffOn {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Off => 0,
             Self::On => 1,
@@ -2064,6 +2432,14 @@ impl PowerCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Start => 0,
             Self::Shutdown => 1,
@@ -2123,6 +2499,14 @@ impl PowerState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Off => 0,
             Self::Acc => 1,
@@ -2178,6 +2562,14 @@ impl PtoEnable {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Disabled => 0,
             Self::Enabled => 1,
@@ -2229,6 +2621,14 @@ impl PtoState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Off => 0,
             Self::On => 1,
@@ -2284,6 +2684,14 @@ impl ReliabilityAutocar {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Untrusted => 0,
             Self::LowQuality => 1,
@@ -2343,6 +2751,14 @@ impl ReliabilityRgate {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Untrusted => 0,
             Self::LowQuality => 1,
@@ -2402,6 +2818,14 @@ impl ReliabilityTele {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Untrusted => 0,
             Self::LowQuality => 1,
@@ -2469,6 +2893,30 @@ impl RemoteEntryFault {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::NoFault => 0,
+            Self::VehicleFaultLevel => 1,
+            Self::SystemFaultLevel => 2,
+            Self::ReliabilityFault => 3,
+            Self::StartupStateAbnormal => 4,
+            Self::EpsCommandXorError => 5,
+            Self::SpeedCommandXorError => 6,
+            Self::MessageTimeout => 7,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::VehicleFaultLevel => 1,
@@ -2532,6 +2980,14 @@ impl RemoteTakeoverPermission {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Forbidden => 0,
             Self::Allowed => 1,
@@ -2583,6 +3039,14 @@ impl SensorFault {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Fault => 1,
@@ -2638,6 +3102,14 @@ impl SwitchCmd {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoAction => 0,
             Self::TurnOn => 1,
@@ -2697,6 +3169,14 @@ impl SystemStateAutocar {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Starting => 0,
             Self::Started => 1,
@@ -2752,6 +3232,14 @@ impl TakeoverState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NotTakenOver => 0,
             Self::TakenOver => 1,
@@ -2815,6 +3303,30 @@ impl UnmannedEntryFault {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        // Two halves, each 0 where the other applies, so that a getter's `from_raw(x).raw()`
+        // folds to `x` (the fields' bits carry several values the table leaves out; one match
+        // leaves a compare and a select once the result is widened).
+        (match self {
+            Self::NoFault => 0,
+            Self::VehicleFaultLevel => 1,
+            Self::SystemFaultLevel => 2,
+            Self::ReliabilityFault => 3,
+            Self::StartupStateAbnormal => 4,
+            Self::EpsCommandXorError => 5,
+            Self::SpeedCommandXorError => 6,
+            Self::MessageTimeout => 7,
+            Self::_Other(_) => 0,
+        }) | (match self {
+            Self::_Other(raw) => raw,
+            _ => 0,
+        })
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::VehicleFaultLevel => 1,
@@ -2880,6 +3392,14 @@ impl UssSystemState {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::Standby => 0,
             Self::Working => 1,
@@ -2937,6 +3457,14 @@ impl VehicleFaultLevel {
     /// The raw value on the wire.
     #[inline]
     pub const fn raw(self) -> u8 {
+        self.wire()
+    }
+
+    /// The raw value as one match, what the setters store: the enum comes from the caller, and
+    /// the setter's range check folds into a compare with the catch-all's tag, where `raw`'s two
+    /// halves cost a few instructions more per field.
+    #[inline]
+    pub(crate) const fn wire(self) -> u8 {
         match self {
             Self::NoFault => 0,
             Self::Level1 => 1,

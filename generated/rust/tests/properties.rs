@@ -1279,6 +1279,1085 @@ proptest! {
     }
 }
 
+/// Every value-table enum names exactly its table's values (as the spec lists them) and gives
+/// back the raw value it was made from (every value of an 8-bit type; others around the table).
+#[test]
+fn value_table_enums_keep_their_raw_values() {
+    {
+        use kaiwo_gateway::AcCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Cool.raw(), 1);
+        assert_eq!(E::Heat.raw(), 2);
+        assert_eq!(E::TurnOff.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "AcCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "AcCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::AcState as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Off.raw(), 0);
+        assert_eq!(E::Cool.raw(), 1);
+        assert_eq!(E::Heat.raw(), 2);
+        assert_eq!(E::Auto.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "AcState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "AcState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::BatterySystemFaultLevel as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Minor.raw(), 1);
+        assert_eq!(E::General.raw(), 2);
+        assert_eq!(E::Severe.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "BatterySystemFaultLevel", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "BatterySystemFaultLevel",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::BrakeState as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::NotBraking.raw(), 0);
+        assert_eq!(E::Braking.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "BrakeState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "BrakeState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::Button as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Released.raw(), 0);
+        assert_eq!(E::Pressed.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "Button", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "Button",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::CargoLift as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Raise.raw(), 1);
+        assert_eq!(E::Lower.raw(), 2);
+        assert_eq!(E::Stop.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "CargoLift", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "CargoLift",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ChargeConnection as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Disconnected.raw(), 0);
+        assert_eq!(E::PluggedIn.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ChargeConnection", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ChargeConnection",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ChargeState as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NotNeeded.raw(), 0);
+        assert_eq!(E::Complete.raw(), 1);
+        assert_eq!(E::Charging.raw(), 2);
+        assert_eq!(E::LowBattery.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ChargeState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ChargeState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DeviceType as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Vehicle.raw(), 0);
+        assert_eq!(E::RemoteCockpit.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DeviceType", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DeviceType",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DoorCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Open.raw(), 1);
+        assert_eq!(E::Close.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DoorCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DoorCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DownhillRegenEnable as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Disabled.raw(), 0);
+        assert_eq!(E::Enabled.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DownhillRegenEnable", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DownhillRegenEnable",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DriveModeCmdAutocar as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Manual.raw(), 0);
+        assert_eq!(E::Autonomous.raw(), 1);
+        assert_eq!(E::Reserved2.raw(), 2);
+        assert_eq!(E::Reserved3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DriveModeCmdAutocar", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DriveModeCmdAutocar",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DriveModeCmdRgate as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Manual.raw(), 0);
+        assert_eq!(E::Reserved1.raw(), 1);
+        assert_eq!(E::Reserved2.raw(), 2);
+        assert_eq!(E::Remote.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DriveModeCmdRgate", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DriveModeCmdRgate",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DriveModeCmdTele as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Manual.raw(), 0);
+        assert_eq!(E::Reserved1.raw(), 1);
+        assert_eq!(E::Tele.raw(), 2);
+        assert_eq!(E::Reserved3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DriveModeCmdTele", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DriveModeCmdTele",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::DriveModeState as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Manual.raw(), 0);
+        assert_eq!(E::Autonomous.raw(), 1);
+        assert_eq!(E::Tele.raw(), 2);
+        assert_eq!(E::Remote.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "DriveModeState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "DriveModeState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::EmergencyBrakeCmd as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Normal.raw(), 0);
+        assert_eq!(E::EmergencyBrake.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "EmergencyBrakeCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "EmergencyBrakeCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::Epb as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Apply.raw(), 1);
+        assert_eq!(E::Release.raw(), 2);
+        assert_eq!(E::DynamicBrake.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "Epb", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "Epb",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::EpsFaultLevel as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Minor.raw(), 1);
+        assert_eq!(E::General.raw(), 2);
+        assert_eq!(E::Severe.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "EpsFaultLevel", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "EpsFaultLevel",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::EpsModeCmd as E;
+        let named: &[u8] = &[0, 16, 32];
+        assert_eq!(E::StopControl.raw(), 0);
+        assert_eq!(E::ManualAssist.raw(), 16);
+        assert_eq!(E::AutoAngle.raw(), 32);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "EpsModeCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "EpsModeCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::EpsModeState as E;
+        let named: &[u8] = &[0, 16, 32, 85, 86];
+        assert_eq!(E::StopControl.raw(), 0);
+        assert_eq!(E::ManualAssist.raw(), 16);
+        assert_eq!(E::AutoAngle.raw(), 32);
+        assert_eq!(E::XorError.raw(), 85);
+        assert_eq!(E::CommFault.raw(), 86);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "EpsModeState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "EpsModeState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::FaultLevelAutocar as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Level1.raw(), 1);
+        assert_eq!(E::Level2.raw(), 2);
+        assert_eq!(E::Level3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "FaultLevelAutocar", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "FaultLevelAutocar",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::FaultLevelRgate as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Level1.raw(), 1);
+        assert_eq!(E::Level2.raw(), 2);
+        assert_eq!(E::Level3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "FaultLevelRgate", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "FaultLevelRgate",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::FaultLevelTele as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Level1.raw(), 1);
+        assert_eq!(E::Level2.raw(), 2);
+        assert_eq!(E::LinkLost.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "FaultLevelTele", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "FaultLevelTele",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::FlashCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Flash.raw(), 1);
+        assert_eq!(E::TurnOff.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "FlashCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "FlashCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::Gear as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Neutral.raw(), 0);
+        assert_eq!(E::Drive.raw(), 1);
+        assert_eq!(E::Reverse.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "Gear", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "Gear",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::Headlight as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::LowBeam.raw(), 1);
+        assert_eq!(E::HighBeam.raw(), 2);
+        assert_eq!(E::TurnOff.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "Headlight", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "Headlight",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::IdFrameIndex as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Frame1.raw(), 0);
+        assert_eq!(E::Frame2.raw(), 1);
+        assert_eq!(E::Frame3.raw(), 2);
+        assert_eq!(E::Frame4Unused.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "IdFrameIndex", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "IdFrameIndex",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::InactiveActive as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Inactive.raw(), 0);
+        assert_eq!(E::Active.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "InactiveActive", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "InactiveActive",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::InsulationFaultLevel as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Normal.raw(), 0);
+        assert_eq!(E::General.raw(), 1);
+        assert_eq!(E::Severe.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "InsulationFaultLevel", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "InsulationFaultLevel",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::LinkState as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Connecting.raw(), 0);
+        assert_eq!(E::Connected.raw(), 1);
+        assert_eq!(E::Disconnecting.raw(), 2);
+        assert_eq!(E::Disconnected.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "LinkState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "LinkState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::LockCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::Lock.raw(), 1);
+        assert_eq!(E::Unlock.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "LockCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "LockCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ModeReset as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::NoRequest.raw(), 0);
+        assert_eq!(E::ResetRequest.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ModeReset", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ModeReset",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::MotorSystemFaultLevel as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Minor.raw(), 1);
+        assert_eq!(E::General.raw(), 2);
+        assert_eq!(E::Severe.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "MotorSystemFaultLevel", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "MotorSystemFaultLevel",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::NormalFault as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Normal.raw(), 0);
+        assert_eq!(E::Fault.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "NormalFault", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "NormalFault",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::OffFlashing as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Off.raw(), 0);
+        assert_eq!(E::Flashing.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "OffFlashing", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "OffFlashing",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::OffOn as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Off.raw(), 0);
+        assert_eq!(E::On.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "OffOn", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "OffOn",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::PowerCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Start.raw(), 0);
+        assert_eq!(E::Shutdown.raw(), 1);
+        assert_eq!(E::Reserved2.raw(), 2);
+        assert_eq!(E::Reserved3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "PowerCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "PowerCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::PowerState as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Off.raw(), 0);
+        assert_eq!(E::Acc.raw(), 1);
+        assert_eq!(E::On.raw(), 2);
+        assert_eq!(E::Ready.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "PowerState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "PowerState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::PtoEnable as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Disabled.raw(), 0);
+        assert_eq!(E::Enabled.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "PtoEnable", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "PtoEnable",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::PtoState as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Off.raw(), 0);
+        assert_eq!(E::On.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "PtoState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "PtoState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ReliabilityAutocar as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Untrusted.raw(), 0);
+        assert_eq!(E::LowQuality.raw(), 1);
+        assert_eq!(E::Optimal.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ReliabilityAutocar", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ReliabilityAutocar",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ReliabilityRgate as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Untrusted.raw(), 0);
+        assert_eq!(E::LowQuality.raw(), 1);
+        assert_eq!(E::Optimal.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ReliabilityRgate", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ReliabilityRgate",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::ReliabilityTele as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Untrusted.raw(), 0);
+        assert_eq!(E::LowQuality.raw(), 1);
+        assert_eq!(E::Optimal.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "ReliabilityTele", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "ReliabilityTele",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::RemoteEntryFault as E;
+        let named: &[u8] = &[0, 1, 2, 3, 4, 5, 6, 7];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::VehicleFaultLevel.raw(), 1);
+        assert_eq!(E::SystemFaultLevel.raw(), 2);
+        assert_eq!(E::ReliabilityFault.raw(), 3);
+        assert_eq!(E::StartupStateAbnormal.raw(), 4);
+        assert_eq!(E::EpsCommandXorError.raw(), 5);
+        assert_eq!(E::SpeedCommandXorError.raw(), 6);
+        assert_eq!(E::MessageTimeout.raw(), 7);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "RemoteEntryFault", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "RemoteEntryFault",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::RemoteTakeoverPermission as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::Forbidden.raw(), 0);
+        assert_eq!(E::Allowed.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(
+                e.raw(),
+                v,
+                "{}::from_raw({})",
+                "RemoteTakeoverPermission",
+                v
+            );
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "RemoteTakeoverPermission",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::SensorFault as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Fault.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "SensorFault", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "SensorFault",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::SwitchCmd as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoAction.raw(), 0);
+        assert_eq!(E::TurnOn.raw(), 1);
+        assert_eq!(E::TurnOff.raw(), 2);
+        assert_eq!(E::Reserved.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "SwitchCmd", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "SwitchCmd",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::SystemStateAutocar as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::Starting.raw(), 0);
+        assert_eq!(E::Started.raw(), 1);
+        assert_eq!(E::ShuttingDown.raw(), 2);
+        assert_eq!(E::ShutDown.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "SystemStateAutocar", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "SystemStateAutocar",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::TakeoverState as E;
+        let named: &[u8] = &[0, 1];
+        assert_eq!(E::NotTakenOver.raw(), 0);
+        assert_eq!(E::TakenOver.raw(), 1);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "TakeoverState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "TakeoverState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::UnmannedEntryFault as E;
+        let named: &[u8] = &[0, 1, 2, 3, 4, 5, 6, 7];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::VehicleFaultLevel.raw(), 1);
+        assert_eq!(E::SystemFaultLevel.raw(), 2);
+        assert_eq!(E::ReliabilityFault.raw(), 3);
+        assert_eq!(E::StartupStateAbnormal.raw(), 4);
+        assert_eq!(E::EpsCommandXorError.raw(), 5);
+        assert_eq!(E::SpeedCommandXorError.raw(), 6);
+        assert_eq!(E::MessageTimeout.raw(), 7);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "UnmannedEntryFault", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "UnmannedEntryFault",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::UssSystemState as E;
+        let named: &[u8] = &[0, 1, 2];
+        assert_eq!(E::Standby.raw(), 0);
+        assert_eq!(E::Working.raw(), 1);
+        assert_eq!(E::Fault.raw(), 2);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "UssSystemState", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "UssSystemState",
+                v
+            );
+        }
+    }
+    {
+        use kaiwo_gateway::VehicleFaultLevel as E;
+        let named: &[u8] = &[0, 1, 2, 3];
+        assert_eq!(E::NoFault.raw(), 0);
+        assert_eq!(E::Level1.raw(), 1);
+        assert_eq!(E::Level2.raw(), 2);
+        assert_eq!(E::Level3.raw(), 3);
+        let probes = u8::MIN..=u8::MAX;
+        for v in probes {
+            let e = E::from_raw(v);
+            assert_eq!(e.raw(), v, "{}::from_raw({})", "VehicleFaultLevel", v);
+            assert_eq!(u8::from(e), v);
+            assert_eq!(
+                matches!(e, E::_Other(_)),
+                !named.contains(&v),
+                "{}::from_raw({})",
+                "VehicleFaultLevel",
+                v
+            );
+        }
+    }
+}
+
 fn frame_id() -> impl proptest::strategy::Strategy<Value = u32> {
     prop_oneof![
         proptest::sample::select(Messages::FRAME_IDS.to_vec()),

@@ -17,7 +17,7 @@ from canspec.ir.encoding import fits_runtime, to_raw_runtime
 from canspec.pipeline import compile_spec
 from canspec.render import formatters
 from canspec.targets import rust as rust_target
-from canspec.targets.rust import bits, check, docs, encode, naming, tests_view, values
+from canspec.targets.rust import bits, check, docs, encode, layout, naming, tests_view, values
 from canspec.targets.rust import model as rm
 from repo_paths import GENERATED, ROOT
 
@@ -164,6 +164,31 @@ def test_value_tables_get_the_narrowest_type_holding_every_user(can):
     assert values.build_enum(neg, [signed], "Neg").other_tag == "1"
 
 
+def test_raw_is_two_halves_when_the_bits_carry_two_or_more_values_the_table_leaves_out(can):
+    gear = sig(can, "autocar_speed_command", "gear_cmd")
+
+    def table(*raws: int) -> ir.ValueTable:
+        return ir.ValueTable("t", tuple(ir.ValueEntry(r, f"v{r}", "", f"V{r}") for r in raws))
+
+    def field(bits: int) -> ir.Signal:
+        return dataclasses.replace(gear, length=bits, raw_type_min=0, raw_type_max=(1 << bits) - 1)
+
+    # Counted by hand: the values 0 .. 2^bits - 1 the table does not name.
+    assert not values.raw_halves(table(0, 1), [field(1)])  # none left out
+    assert not values.raw_halves(table(0, 1, 3), [field(2)])  # only 2
+    assert values.raw_halves(table(0, 1), [field(2)])  # 2 and 3
+    assert values.raw_halves(table(1, 2, 3), [field(8)])  # 0 and 4 .. 255
+    assert values.raw_halves(table(0, 1), [field(1), field(8)])  # the widest user counts
+    # A signed 2-bit field carries -2 .. 1.
+    signed = dataclasses.replace(gear, length=2, signed=True, raw_type_min=-2, raw_type_max=1)
+    assert not values.raw_halves(table(-2, -1, 0), [signed]) and values.raw_halves(table(0, 1), [signed])
+    # The enum carries it; a table naming every value of its type has no catch-all and one match.
+    assert values.build_enum(table(1, 2, 3), [field(8)], "T").halves
+    assert not values.build_enum(table(0, 1, 3), [field(2)], "T").halves
+    full = table(*range(256))
+    assert not values.build_enum(full, [field(8)], "Full").halves
+
+
 def test_encode_paths(can):
     steering = sig(can, "autocar_eps_command", "steering_angle_cmd")  # 0.1, -1080..1080 deg: quotients 0..21600
     assert encode.float_encoding(steering).function == "to_raw_documented_unsigned_recip"
@@ -283,3 +308,18 @@ def test_static_modules_are_copied_with_the_header(spec):
     assert "rust/src/j1939.rs" not in files and "rust/src/values.rs" not in files and "rust/src/codec.rs" in files
     lib = files["rust/src/lib.rs"].decode("utf-8")
     assert "pub mod j1939" not in lib and "values::*" not in lib and "PDU2_MIN_PF" not in files["rust/src/constants.rs"].decode("utf-8")
+
+
+def test_many_flags_count_one_instruction_each_held_as_bytes(can):
+    # Counted by hand from the spec's tables (layout.py's costs):
+    # vehicle_fault: 21 flags, a 2-bit field at bit 0 (word 2, bytes 2), 2-bit fields at 24 and 26
+    # (word 3 + 3, bytes 2 + 3), 4-bit fields at 28, 32, 36, 40, 44 (word 3 each, bytes 1, 2, 1, 2, 1)
+    # in bytes 0..5: word 21 + 2 + 6 + 15 = 44; bytes 6 loads + 21 + 2 + 5 + 7 = 41 (21 flags >= FLAG_RUN).
+    fault = can.message("vehicle_fault")
+    assert layout.holds_bytes(fault)
+    # rgate_control_command_2: 2 flags (bits 0 and 7), 2-bit at 1 and 4-bit at 3 (3 and 3 either way),
+    # whole bytes 1 and 7 (word 3 and 2): word 1 + 1 + 3 + 3 + 3 + 2 = 13; bytes 3 loads + 2 + 2 + 3 + 3 = 13: a tie keeps the word.
+    assert not layout.holds_bytes(can.message("rgate_control_command_2"))
+    flag = next(s for s in fault.signals if s.name == "dc_fault")
+    assert (layout._byte_cost(flag, layout.FLAG_RUN - 1), layout._byte_cost(flag, layout.FLAG_RUN), layout._word_cost(flag)) == (2, 1, 1)
+    assert next(m for m in rm.build_crate(can).messages if m.msg.name == "vehicle_fault").holds_bytes

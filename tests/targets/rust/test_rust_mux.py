@@ -39,7 +39,7 @@ def test_presence_conditions_follow_the_document():
         "gain": "self.load_mode() == 2 && self.load_channel() == 0", "voltage": "self.load_mode() == 2 && matches!(self.load_channel(), 1..=3)",
     }
     # on the values struct: mode is the value table's enum, channel a plain integer
-    assert fields["voltage"].mux.values_cond == "self.mode.raw() == 2 && matches!(self.channel, 1..=3)"
+    assert fields["voltage"].mux.values_cond == "self.mode.wire() == 2 && matches!(self.channel, 1..=3)"
     assert [f.name for f in report.set_order][:4] == ["mode", "status", "counter", "channel"]  # multiplexers before their pages
     assert [f.name for f in report.fields if f.is_paged] == ["channel", "temperature", "pressure", "gain", "voltage", "level"]
     assert [f.name for f in report.fields if f.is_settable] == ["status", "counter"]  # a multiplexer's setter would re-page the frame

@@ -44,5 +44,5 @@ def mux_field(msg: ir.Message, sig: ir.Signal) -> RustMuxField | None:
         by = msg.signal(cond.by)
         names = field_names(by)
         frame.append(_matches(f"self.{names.load}()", cond.ranges))
-        values.append(_matches(f"self.{names.field}.raw()" if by.decodes_to_enum else f"self.{names.field}", cond.ranges))
+        values.append(_matches(f"self.{names.field}.wire()" if by.decodes_to_enum else f"self.{names.field}", cond.ranges))
     return RustMuxField(len(chain), " && ".join(frame), " && ".join(values))

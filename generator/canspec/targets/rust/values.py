@@ -31,6 +31,7 @@ class RustEnum:
     variants: tuple[RustVariant, ...]
     other: str | None  # the catch-all variant; None when the table defines every value of `repr`
     other_tag: str  # discriminant of the catch-all: the first raw value the table leaves free
+    halves: bool = False  # `raw()` as two halves (see raw_halves)
 
 
 def enum_users(can: ir.CanProtocol) -> dict[str, list[ir.Signal]]:
@@ -65,6 +66,20 @@ def problems(users: dict[str, list[ir.Signal]]) -> Iterator[Problem]:
             )
 
 
+def raw_halves(table: ir.ValueTable, signals: list[ir.Signal]) -> bool:
+    """Whether `raw()` is written as two halves (table value or 0) | (payload or 0) rather than
+    one match: true when the fields' bits can carry two or more values the table leaves out.
+    A getter's `from_raw(x).raw()` is then a switch whose default covers several values, and
+    LLVM folds the one match back to `x` only in the i8 it matched in, not once the result is
+    widened (`raw() as u64`: a compare and a select per read); the halves fold. With at most one
+    value left out the switch covers every value the bits carry and the one match folds, where
+    the halves leave LLVM a compare with the catch-all (2-bit fields of 3 values)."""
+    lo = min(s.raw_type_min for s in signals)
+    hi = max(s.raw_type_max for s in signals)
+    named = {e.raw for e in table.entries if lo <= e.raw <= hi}
+    return hi - lo + 1 - len(named) >= 2
+
+
 def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> RustEnum:
     repr_ = repr_type(signals)
     assert repr_ is not None, "refused by `canspec check` (rust-value-table-width)"
@@ -74,5 +89,6 @@ def build_enum(table: ir.ValueTable, signals: list[ir.Signal], name: str) -> Rus
     free = next((v for v in range(hi + 1) if v not in used), None) if len(used) <= hi - lo else None
     if free is None and len(used) <= hi - lo:
         free = next(v for v in range(-1, lo - 1, -1) if v not in used)
-    return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, RUST.integer(free) if free is not None else "")
+    return RustEnum(name, table.name, repr_, variants, OTHER_VARIANT if free is not None else None, RUST.integer(free) if free is not None else "",
+                    free is not None and raw_halves(table, signals))
 
