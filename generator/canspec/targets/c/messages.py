@@ -13,9 +13,9 @@ from canspec import ir
 from canspec.ir import j1939
 from canspec.ir.names import snake
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, build_codec
+from canspec.targets.c.codec import CCodec, build_codec, word_zeros, zero_first
 from canspec.targets.c.codec64 import build_codec64
-from canspec.targets.c.mux import CPresence, build_mux_codecs, presence
+from canspec.targets.c.mux import CPresence, build_mux_codecs, mux_words, presence
 from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal, build_signal
 
@@ -51,6 +51,8 @@ class CMessage:
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
     codec: CCodec  # the byte form: every core
     pack64: CCodec | None  # the form of <PREFIX>_STRATEGY 3 (64-bit registers), where its pack differs
+    pack_words: CCodec | None  # <PREFIX>_STRATEGY 2 (unaligned word stores), where its pack differs (codec.word_zeros)
+    pack_small: CCodec | None  # below <PREFIX>_STRATEGY 3, built for size: where its pack differs (codec.zero_first)
     unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
     presence: tuple[CPresence, ...]  # a multiplexed message's `<field>_is_present` tests (mux.py)
     counter: CSignal | None
@@ -106,6 +108,8 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
         signals=sigs,
         codec=codec,
         pack64=pack64,
+        pack_words=(mux_words if msg.is_multiplexed else word_zeros)(msg, sigs, err, codec),
+        pack_small=zero_first(msg, sigs, err, codec) if not msg.is_multiplexed else None,
         unpack64=unpack64,
         presence=presence(msg, sigs),
         counter=counter,

@@ -101,11 +101,11 @@ def _every_frame(sigs: tuple[CSignal, ...]) -> frozenset[str]:
     return frozenset(s.sig.name for s in sigs if s.sig.mux is None)
 
 
-def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool) -> tuple[str, ...]:
+def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool, words: bool = False) -> tuple[str, ...]:
     def leaf(present: tuple[CSignal, ...], added: tuple[CSignal, ...]) -> list[str]:
         if added:  # a branch: its leaves pack
             return []
-        codec = build_codec(msg, present, err)
+        codec = build_codec(msg, present, err, words)
         form = (build_codec64(msg, present, err, codec) or codec) if wide else codec
         return [*form.pack_locals, *form.pack]
 
@@ -153,3 +153,9 @@ def presence(msg: ir.Message, sigs: tuple[CSignal, ...]) -> tuple[CPresence, ...
 
 def _ranges_text(ranges: Ranges) -> str:
     return "{" + ", ".join(str(lo) if lo == hi else f"{lo}..{hi}" for lo, hi in ranges) + "}"
+
+
+def mux_words(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
+    """The pack of <PREFIX>_STRATEGY 2 (codec.word_zeros in each leaf), None where it is the byte form's."""
+    pack = _pack(msg, sigs, err, False, words=True) if msg.dlc else ()
+    return None if pack == bytewise.pack else replace(bytewise, pack=pack)
