@@ -10,7 +10,9 @@ length (CAN FD's 64 bytes too). A float field's bit pattern goes through a local
 (floats.py).
 
 Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits 0, no memset,
-no read-modify-write), with the check that the fields starting in it fit their bits. Unpack reads each frame
+no read-modify-write), with the check that the fields starting in it fit their bits. Two variants
+zero the bytes without a field otherwise (the header picks by <PREFIX>_STRATEGY and -Os):
+word_zeros (unaligned word stores, level 2) and zero_first (a long CAN FD frame zeroed first). Unpack reads each frame
 byte once into a local when its first field needs it (stores to *dst may alias src, so reading
 it again later would cost a load each time), and folds it into the XOR the checksum needs.
 
@@ -286,19 +288,26 @@ def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, words: boo
     return CCodec(pack_bytes(packed, msg.dlc, ck, err, words=words) if packed else (), locals_, unpack, tuple(float_locals(packed)))
 
 
-ZERO_FIRST_BYTES = 32
+ZERO_FIRST_BYTES = 32  # a CAN FD frame with at least this many bytes without a field is zeroed first (zero_first)
 
 
-def zero_first(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
-    """A CAN FD frame most of whose bytes carry no field, for a build for size: zeroed by one
-    memset call first, then the byte form's stores of the bytes that carry fields; None otherwise."""
+def zero_first(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fill: str) -> CCodec | None:
+    """A CAN FD frame with at least ZERO_FIRST_BYTES bytes without a field: zeroed whole by the
+    statement `fill` first (a memset call, or the shared word stores of zero_fill), then only the
+    bytes that carry fields are stored; None for any other frame."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
     used = {seg.byte for s in packed for seg in s.sig.segments} | ({ck} if ck is not None else set())
-    if msg.is_classic_length or not packed or msg.dlc - len(used) < ZERO_FIRST_BYTES:
+    if msg.is_classic_length or msg.is_multiplexed or not packed or msg.dlc - len(used) < ZERO_FIRST_BYTES:
         return None
-    pack = (f"(void)memset(dst, 0, {msg.dlc}u);", *pack_bytes(packed, msg.dlc, ck, err, zeroed=True))
+    pack = (fill, *pack_bytes(packed, msg.dlc, ck, err, zeroed=True))
     return CCodec(pack, bytewise.unpack_locals, bytewise.unpack, bytewise.pack_locals)
+
+
+def zero_fill(dlc: int) -> tuple[str, ...]:
+    """The body of the shared function that zeroes a frame of `dlc` bytes with word stores
+    (<PREFIX>_STRATEGY 2): out of line in a build for size, one copy for every message."""
+    return tuple(f"(void)memset(&dst[{a}], 0, {n}u);" for a, n in zero_pieces(0, dlc))
 
 
 def word_zeros(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:

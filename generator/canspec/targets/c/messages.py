@@ -52,7 +52,8 @@ class CMessage:
     codec: CCodec  # the byte form: every core
     pack64: CCodec | None  # the form of <PREFIX>_STRATEGY 3 (64-bit registers), where its pack differs
     pack_words: CCodec | None  # <PREFIX>_STRATEGY 2 (unaligned word stores), where its pack differs (codec.word_zeros)
-    pack_small: CCodec | None  # below <PREFIX>_STRATEGY 3, built for size: where its pack differs (codec.zero_first)
+    zero_fill: str  # the shared function that zeroes the frame first in pack_words ("" where none: model.zero_fills)
+    pack_small: CCodec | None  # below <PREFIX>_STRATEGY 2, built for size: where its pack differs (codec.zero_first)
     unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
     presence: tuple[CPresence, ...]  # a multiplexed message's `<field>_is_present` tests (mux.py)
     counter: CSignal | None
@@ -84,11 +85,13 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     base = names.message(msg.name)
     err = names.const("err_range")
     if msg.is_multiplexed:
-        codec, codec64 = build_mux_codecs(msg, sigs, err)
+        codec, codec64 = build_mux_codecs(msg, sigs, err, names.const("ok"))
     else:
         codec = build_codec(msg, sigs, err)
         codec64 = build_codec64(msg, sigs, err, codec)
     pack64, unpack64 = _word64(codec, codec64)
+    fill = names.fn("zero", str(msg.dlc))
+    filled = zero_first(msg, sigs, err, codec, f"{fill}(dst);")
     return CMessage(
         msg=msg,
         name=snake(msg.name),
@@ -108,8 +111,9 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
         signals=sigs,
         codec=codec,
         pack64=pack64,
-        pack_words=(mux_words if msg.is_multiplexed else word_zeros)(msg, sigs, err, codec),
-        pack_small=zero_first(msg, sigs, err, codec) if not msg.is_multiplexed else None,
+        pack_words=filled or (mux_words(msg, sigs, err, codec, names.const("ok")) if msg.is_multiplexed else word_zeros(msg, sigs, err, codec)),
+        zero_fill=fill if filled else "",
+        pack_small=zero_first(msg, sigs, err, codec, f"(void)memset(dst, 0, {msg.dlc}u);"),
         unpack64=unpack64,
         presence=presence(msg, sigs),
         counter=counter,
