@@ -54,9 +54,11 @@ static inline int64_t kaiwo_gateway_round_half_away(double q) {
  *   0  bytes only, 64-bit products from 16-bit halves (Thumb-1: Cortex-M0/M0+/M23, where a
  *      32 x 32 -> 64 multiply is a call to libgcc's __aeabi_lmul);
  *   1  + the 32 x 32 -> 64 multiply (UMULL, mulhwu: other cores without unaligned word access);
- *   2  + unaligned word stores (Cortex-M3/M4/M7/M33, x86): the frame of a message without fields
- *      is zeroed by memset, which compilers turn into word stores (below, where it is a call,
- *      byte by byte);
+ *   2  + unaligned word stores (Cortex-M3/M4/M7/M33, x86): pack zeroes each run of bytes
+ *      without a field by memsets of at most 8 bytes, which compilers turn into word stores (below,
+ *      where they would be calls, byte by byte), a CAN FD frame most of whose bytes carry no field
+ *      by one shared function first; built for size (__OPTIMIZE_SIZE__, -Os) below level 2, such a
+ *      frame is zeroed by one memset call first;
  *   3  + 64-bit registers (x86-64, AArch64): a message's pack and unpack take the forms the
  *      generator estimated cheaper there, where they differ from the byte form: the frame as one
  *      uint64_t (byte k is its bits 8k..8k+7, built and taken apart byte by byte, which compilers

@@ -142,6 +142,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
                                        const kaiwo_gateway_autocar_eps_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -153,6 +154,30 @@ kaiwo_gateway_autocar_eps_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    (void)memset(&dst[5], 0, 2u);
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_AUTOCAR_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -732,6 +757,26 @@ kaiwo_gateway_autocar_speed_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    (void)memset(&dst[4], 0, 3u);
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
 #else
     if (size < KAIWO_GATEWAY_AUTOCAR_SPEED_COMMAND_DLC) {
@@ -5478,6 +5523,58 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
     if ((ored1 > 1u) || (ored2 > 3u) || (ored4 > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)(src->insulation_fault_level | ((uint32_t)src->dc_fault << 2u) |
+                       ((uint32_t)src->soc_low << 3u) | ((uint32_t)src->cell_undervoltage << 4u) |
+                       ((uint32_t)src->brake_boost_pressure_fault << 5u) |
+                       ((uint32_t)src->vacuum_pump_fault << 6u) |
+                       ((uint32_t)src->vehicle_system_fault << 7u));
+    if (((src->dc_fault | src->soc_low | src->cell_undervoltage | src->brake_boost_pressure_fault |
+          src->vacuum_pump_fault | src->vehicle_system_fault) > 1u) ||
+        (src->insulation_fault_level > 3u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] =
+        (uint8_t)(src->battery_overheat | ((uint32_t)src->motor_overheat << 1u) |
+                  ((uint32_t)src->traction_battery_fault << 2u) |
+                  ((uint32_t)src->motor_fault << 3u) | ((uint32_t)src->battery_comm_fault << 4u) |
+                  ((uint32_t)src->motor_comm_fault << 5u) | ((uint32_t)src->eps_fault << 6u) |
+                  ((uint32_t)src->ac_fault << 7u));
+    if (((src->battery_overheat | src->motor_overheat | src->traction_battery_fault |
+          src->motor_fault | src->battery_comm_fault | src->motor_comm_fault | src->eps_fault |
+          src->ac_fault) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[2] = (uint8_t)(src->aux_battery_fault | ((uint32_t)src->epb_fault << 1u) |
+                       ((uint32_t)src->brake_by_wire_fault << 2u) |
+                       ((uint32_t)src->key_not_detected << 3u) |
+                       ((uint32_t)src->tire_pressure_low << 4u) |
+                       ((uint32_t)src->body_motor_fault << 5u) |
+                       ((uint32_t)src->body_motor_overheat << 6u));
+    if (((src->aux_battery_fault | src->epb_fault | src->brake_by_wire_fault |
+          src->key_not_detected | src->tire_pressure_low | src->body_motor_fault |
+          src->body_motor_overheat) > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    if (((src->battery_system_fault_level | src->motor_system_fault_level) > 3u) ||
+        (src->unmanned_entry_fault > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)(src->battery_system_fault_level |
+                       ((uint32_t)src->motor_system_fault_level << 2u) |
+                       ((uint32_t)src->unmanned_entry_fault << 4u));
+    if (((src->protocol_version_a | src->protocol_version_b) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[4] = (uint8_t)(src->protocol_version_a | ((uint32_t)src->protocol_version_b << 4u));
+    if (((src->protocol_version_c | src->remote_entry_fault) > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[5] = (uint8_t)(src->protocol_version_c | ((uint32_t)src->remote_entry_fault << 4u));
+    (void)memset(&dst[6], 0, 2u);
 #else
     if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -6603,6 +6700,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
                                      const kaiwo_gateway_rgate_eps_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -6614,6 +6712,30 @@ kaiwo_gateway_rgate_eps_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    (void)memset(&dst[5], 0, 2u);
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_RGATE_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -6854,6 +6976,26 @@ kaiwo_gateway_rgate_speed_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->accel_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->accel_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->accel_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    (void)memset(&dst[4], 0, 3u);
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
 #else
     if (size < KAIWO_GATEWAY_RGATE_SPEED_COMMAND_DLC) {
@@ -8212,6 +8354,19 @@ kaiwo_gateway_rgate_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
     if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if (((src->downhill_regen_enable | src->pto_enable) > 1u) || (src->cargo_lift > 3u) ||
+        (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)(src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1u) |
+                       ((uint32_t)src->cargo_lift_speed << 3u) | ((uint32_t)src->pto_enable << 7u));
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    (void)memset(&dst[2], 0, 5u);
+    dst[7] = (uint8_t)src->counter;
 #else
     if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
@@ -11064,6 +11219,7 @@ typedef struct {
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
                                     const kaiwo_gateway_tele_eps_command_t *src) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
     if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;
     }
@@ -11075,6 +11231,30 @@ kaiwo_gateway_tele_eps_command_pack(uint8_t *dst, size_t size,
     dst[5] = 0u;
     dst[6] = 0u;
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    (void)memset(&dst[5], 0, 2u);
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#else
+    if (size < KAIWO_GATEWAY_TELE_EPS_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst[0] = (uint8_t)src->eps_ctrl_mode;
+    dst[1] = (uint8_t)src->counter;
+    dst[2] = (uint8_t)src->max_angular_speed;
+    dst[3] = (uint8_t)src->steering_angle_cmd;
+    dst[4] = (uint8_t)(src->steering_angle_cmd >> 8u);
+    dst[5] = 0u;
+    dst[6] = 0u;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#endif
     return KAIWO_GATEWAY_OK;
 }
 
@@ -11314,6 +11494,26 @@ kaiwo_gateway_tele_speed_command_pack(uint8_t *dst, size_t size,
         return KAIWO_GATEWAY_ERR_RANGE;
     }
     dst[3] = (uint8_t)src->emergency_brake_cmd;
+    dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if ((src->throttle_brake_cmd > 1023u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)src->throttle_brake_cmd;
+    if ((src->epb_cmd > 3u) || (src->gear_cmd > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[1] = (uint8_t)((src->throttle_brake_cmd >> 8u) | ((uint32_t)src->epb_cmd << 2u) |
+                       ((uint32_t)src->gear_cmd << 4u));
+    dst[2] = (uint8_t)src->counter;
+    if ((src->emergency_brake_cmd > 1u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[3] = (uint8_t)src->emergency_brake_cmd;
+    (void)memset(&dst[4], 0, 3u);
     dst[7] = (uint8_t)(dst[0] ^ dst[1] ^ dst[2] ^ dst[3] ^ dst[4] ^ dst[5] ^ dst[6]);
 #else
     if (size < KAIWO_GATEWAY_TELE_SPEED_COMMAND_DLC) {
@@ -12676,6 +12876,19 @@ kaiwo_gateway_tele_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
     if ((ored1 > 1u) || (src->cargo_lift > 3u) || (src->cargo_lift_speed > 15u)) {
         return KAIWO_GATEWAY_ERR_RANGE;
     }
+#elif KAIWO_GATEWAY_STRATEGY >= 2 /* unaligned word stores */
+    if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    if (((src->downhill_regen_enable | src->pto_enable) > 1u) || (src->cargo_lift > 3u) ||
+        (src->cargo_lift_speed > 15u)) {
+        return KAIWO_GATEWAY_ERR_RANGE;
+    }
+    dst[0] = (uint8_t)(src->downhill_regen_enable | ((uint32_t)src->cargo_lift << 1u) |
+                       ((uint32_t)src->cargo_lift_speed << 3u) | ((uint32_t)src->pto_enable << 7u));
+    dst[1] = (uint8_t)src->downhill_regen_speed;
+    (void)memset(&dst[2], 0, 5u);
+    dst[7] = (uint8_t)src->counter;
 #else
     if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
         return KAIWO_GATEWAY_ERR_LENGTH;

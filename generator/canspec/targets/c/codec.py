@@ -10,7 +10,9 @@ length (CAN FD's 64 bytes too). A float field's bit pattern goes through a local
 (floats.py).
 
 Pack writes each frame byte once, as the OR of its fields' pieces (reserved bits 0, no memset,
-no read-modify-write), with the check that the fields starting in it fit their bits. Unpack reads each frame
+no read-modify-write), with the check that the fields starting in it fit their bits. Two variants
+zero the bytes without a field otherwise (the header picks by <PREFIX>_STRATEGY and -Os):
+word_zeros (unaligned word stores, level 2) and zero_first (a long CAN FD frame zeroed first). Unpack reads each frame
 byte once into a local when its first field needs it (stores to *dst may alias src, so reading
 it again later would cost a load each time), and folds it into the XOR the checksum needs.
 
@@ -144,7 +146,23 @@ def byte_pieces(sigs: tuple[CSignal, ...]) -> tuple[dict[int, list[str]], dict[i
     return pieces, starting
 
 
-def pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, zeroed: bool = False) -> tuple[str, ...]:
+WORD_PIECE = 8  # bytes: a run of bytes without a field is zeroed in pieces of at most this many, aligned in the frame
+
+
+def zero_pieces(a: int, b: int) -> list[tuple[int, int]]:
+    """(first byte, count): the run of bytes [a, b) without a field cut at each multiple of
+    WORD_PIECE, each piece one memset that compilers turn into at most two word stores and a
+    halfword and byte store (unaligned word stores: <PREFIX>_STRATEGY 2)."""
+    out, k = [], a
+    while k < b:
+        end = min(b, (k // WORD_PIECE + 1) * WORD_PIECE)
+        out.append((k, end - k))
+        k = end
+    return out
+
+
+def pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: str, zeroed: bool = False,
+               words: bool = False) -> tuple[str, ...]:
     """Each byte stored as soon as it is computed (holding them all would spill on small cores),
     with the check of the checked fields that start in it: before the byte where it checks at
     most HELD_FIELDS of them (the values stay in registers for the byte), after it otherwise
@@ -163,6 +181,10 @@ def pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: s
             out.append(f"dst[{k}] = (uint8_t)({' ^ '.join(others)});" if len(others) > 1 else f"dst[{k}] = {others[0]};" if others else f"dst[{k}] = 0u;")
         elif k in pieces:
             out.append(f"dst[{k}] = (uint8_t){paren(ored(pieces[k]))};")
+        elif words:
+            if k == 0 or (k - 1) in pieces or k - 1 == checksum:  # the run starts here
+                end = next((j for j in range(k, dlc) if j in pieces or j == checksum), dlc)
+                out += [f"(void)memset(&dst[{a}], 0, {n}u);" if n > 1 else f"dst[{a}] = 0u;" for a, n in zero_pieces(k, end)]
         elif not zeroed:
             out.append(f"dst[{k}] = 0u;")
         out += [] if before else check
@@ -257,9 +279,39 @@ def unpack_parts(sigs: tuple[CSignal, ...], dlc: int, checksum: bool) -> tuple[t
     return (*local, *float_locals(sigs)), tuple(body)
 
 
-def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> CCodec:
-    """`sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it)."""
+def build_codec(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, words: bool = False) -> CCodec:
+    """`sigs`: the struct's fields (the checksum's too: unpack stores it, pack computes it).
+    `words`: pack zeroes the runs of bytes without a field a word at a time (zero_pieces)."""
     ck = msg.checksum.byte if msg.checksum is not None else None
     packed = tuple(s for s in sigs if s.sig.role != "checksum")
     locals_, unpack = unpack_parts(sigs, msg.dlc, ck is not None)
-    return CCodec(pack_bytes(packed, msg.dlc, ck, err) if packed else (), locals_, unpack, tuple(float_locals(packed)))
+    return CCodec(pack_bytes(packed, msg.dlc, ck, err, words=words) if packed else (), locals_, unpack, tuple(float_locals(packed)))
+
+
+ZERO_FIRST_BYTES = 32  # a CAN FD frame with at least this many bytes without a field is zeroed first (zero_first)
+
+
+def zero_first(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fill: str) -> CCodec | None:
+    """A CAN FD frame with at least ZERO_FIRST_BYTES bytes without a field: zeroed whole by the
+    statement `fill` first (a memset call, or the shared word stores of zero_fill), then only the
+    bytes that carry fields are stored; None for any other frame."""
+    ck = msg.checksum.byte if msg.checksum is not None else None
+    packed = tuple(s for s in sigs if s.sig.role != "checksum")
+    used = {seg.byte for s in packed for seg in s.sig.segments} | ({ck} if ck is not None else set())
+    if msg.is_classic_length or msg.is_multiplexed or not packed or msg.dlc - len(used) < ZERO_FIRST_BYTES:
+        return None
+    pack = (fill, *pack_bytes(packed, msg.dlc, ck, err, zeroed=True))
+    return CCodec(pack, bytewise.unpack_locals, bytewise.unpack, bytewise.pack_locals)
+
+
+def zero_fill(dlc: int) -> tuple[str, ...]:
+    """The body of the shared function that zeroes a frame of `dlc` bytes with word stores
+    (<PREFIX>_STRATEGY 2): out of line in a build for size, one copy for every message."""
+    return tuple(f"(void)memset(&dst[{a}], 0, {n}u);" for a, n in zero_pieces(0, dlc))
+
+
+def word_zeros(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
+    """The pack of <PREFIX>_STRATEGY 2 (unaligned word stores): the byte form's, each run of bytes
+    without a field zeroed a word at a time (zero_pieces); None where it is the byte form's."""
+    words = build_codec(msg, sigs, err, words=True)
+    return None if words.pack == bytewise.pack else words

@@ -13,9 +13,9 @@ from canspec import ir
 from canspec.ir import j1939
 from canspec.ir.names import snake
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, build_codec
+from canspec.targets.c.codec import CCodec, build_codec, word_zeros, zero_first
 from canspec.targets.c.codec64 import build_codec64
-from canspec.targets.c.mux import CPresence, build_mux_codecs, presence
+from canspec.targets.c.mux import CPresence, build_mux_codecs, mux_words, presence
 from canspec.targets.c.names import CNames
 from canspec.targets.c.signals import CSignal, build_signal
 
@@ -51,6 +51,9 @@ class CMessage:
     signals: tuple[CSignal, ...]  # data signals incl. counter/checksum, not reserved
     codec: CCodec  # the byte form: every core
     pack64: CCodec | None  # the form of <PREFIX>_STRATEGY 3 (64-bit registers), where its pack differs
+    pack_words: CCodec | None  # <PREFIX>_STRATEGY 2 (unaligned word stores), where its pack differs (codec.word_zeros)
+    zero_fill: str  # the shared function that zeroes the frame first in pack_words ("" where none: model.zero_fills)
+    pack_small: CCodec | None  # below <PREFIX>_STRATEGY 2, built for size: where its pack differs (codec.zero_first)
     unpack64: CCodec | None  # the same, where its unpack differs (each function is written once where not)
     presence: tuple[CPresence, ...]  # a multiplexed message's `<field>_is_present` tests (mux.py)
     counter: CSignal | None
@@ -82,11 +85,13 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
     base = names.message(msg.name)
     err = names.const("err_range")
     if msg.is_multiplexed:
-        codec, codec64 = build_mux_codecs(msg, sigs, err)
+        codec, codec64 = build_mux_codecs(msg, sigs, err, names.const("ok"))
     else:
         codec = build_codec(msg, sigs, err)
         codec64 = build_codec64(msg, sigs, err, codec)
     pack64, unpack64 = _word64(codec, codec64)
+    fill = names.fn("zero", str(msg.dlc))
+    filled = zero_first(msg, sigs, err, codec, f"{fill}(dst);")
     return CMessage(
         msg=msg,
         name=snake(msg.name),
@@ -106,6 +111,9 @@ def build_message(names: CNames, msg: ir.Message, enum_types: dict[str, str]) ->
         signals=sigs,
         codec=codec,
         pack64=pack64,
+        pack_words=filled or (mux_words(msg, sigs, err, codec, names.const("ok")) if msg.is_multiplexed else word_zeros(msg, sigs, err, codec)),
+        zero_fill=fill if filled else "",
+        pack_small=zero_first(msg, sigs, err, codec, f"(void)memset(dst, 0, {msg.dlc}u);"),
         unpack64=unpack64,
         presence=presence(msg, sigs),
         counter=counter,

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from canspec import ir
 from canspec.ir import j1939
 from canspec.render.literals import C
+from canspec.targets.c.codec import zero_fill
 from canspec.targets.c.messages import CMessage, build_message
 from canspec.targets.c.names import CNames
 from canspec.targets.c.physical import phys_store, with_descriptor
@@ -111,6 +112,7 @@ class CModel:
     has_phys: bool  # some signal encodes through the runtime's `<prefix>_phys_*` functions
     has_phys_round: bool  # ... one with special values or with a q beyond phys_encode's domain (through `<prefix>_phys_round`)
     phys_stores: tuple[tuple[str, str], ...]  # (function, field type): the `<prefix>_phys_encode_<type>` encoders used
+    zero_fills: tuple[tuple[str, int, tuple[str, ...]], ...]  # (function, frame bytes, body): codec.zero_fill, for the packs that call it
     phys_q_min: str  # the rounding's domain [min, max) as double literals
     phys_q_max: str
     format_arg: bool  # the protocol has 11-bit IDs: lookups by ID take the frame's format too
@@ -250,6 +252,7 @@ def build_model(spec: ir.Spec) -> CModel:
         has_phys=bool(phys_users),
         has_phys_round=any(s.double is not None and (s.double.window_test or s.double.special_test) for s in phys_users),
         phys_stores=tuple(sorted({(names.fn(phys_store(s.sig)), s.type) for s in phys_users if s.double is not None and s.double.encode_tail})),
+        zero_fills=tuple(sorted({(cm.zero_fill, cm.msg.dlc, zero_fill(cm.msg.dlc)) for cm in messages if cm.zero_fill})),
         phys_q_min=C.double(-(2**63)),
         phys_q_max=C.double(2**63),
         format_arg=can.has_standard,

@@ -7,7 +7,9 @@ holds. Fields of different pages may share bits, so no one set of byte pieces se
   one set of present fields, and packs that set as a plain message (codec.py / codec64.py, each
   leaf in its own block with its own locals; a multiplexer whose branch holds only values of its
   bits is not checked again: MISRA C:2012 rule 14.3). The other pages' fields are neither checked
-  nor written. A multiplexer value no page holds leaves only the fields of every frame;
+  nor written. A multiplexer value no page holds leaves only the fields of every frame. Where
+  the pages of a message's one multiplexer lay out their fields alike (a bank of cells), the byte
+  forms pick a pointer per field by page and pack once (_shared_pages);
 - unpack writes the fields of every frame (and checks the checksum over the whole frame), then
   branches on the multiplexer values just written and writes the selected page's fields the same
   way. Every other field of *dst keeps its value (cantools #193 wipes them).
@@ -17,6 +19,7 @@ holds. Fields of different pages may share bits, so no one set of byte pieces se
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
@@ -101,11 +104,56 @@ def _every_frame(sigs: tuple[CSignal, ...]) -> frozenset[str]:
     return frozenset(s.sig.name for s in sigs if s.sig.mux is None)
 
 
-def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool) -> tuple[str, ...]:
+def _layout(page: tuple[CSignal, ...]) -> tuple[object, ...]:
+    return tuple((s.sig.segments, s.sig.storage_bits, s.sig.signed, s.length, s.type, s.sig.role, s.checked) for s in page)
+
+
+def _shared_pages(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, ok: str, words: bool) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+    """(locals, statements): the byte form's pack of a message whose one multiplexer's pages all
+    lay out their fields alike (same bits, types and checks, none a float or a multiplexer) and
+    take no branch below it: the page picks a pointer per field (`page_f<i>`), then one pack
+    serves every page, with the fields read through them (a value no page holds packs the fields
+    of every frame and returns `ok`); None for any other message."""
+    muxes = [s for s in sigs if s.sig.is_multiplexer]
+    if len(muxes) != 1 or muxes[0].sig.mux is not None:
+        return None
+    by = muxes[0]
+    groups = [g for g in msg.mux_groups if g.multiplexer == by.sig.name]
+    pages = [tuple(s for s in sigs if s.sig.name in g.signals) for g in groups]
+    if len(pages) < 2 or not pages[0] or any(s.sig.is_multiplexer or s.float is not None for p in pages for s in p):
+        return None
+    if len({_layout(p) for p in pages}) != 1:
+        return None
+    tests: list[str] = []
+    excluded: Ranges = ()
+    for g in groups:
+        tests.append(holds(by, g.ranges, "src->", excluded))
+        excluded = ranges_of([*excluded, *g.ranges])
+    if not all(tests[:-1]):
+        return None
+    inside = tuple(replace(s, range_known=True) if s is by else s for s in sigs)
+    first = {s.sig.name for s in pages[0]}
+    present = tuple(s for s in inside if s.sig.mux is None or s.sig.name in first)
+    body = list(build_codec(msg, present, err, words).pack)
+    for i, s in enumerate(pages[0]):
+        pattern = re.compile(rf"src->{re.escape(s.field)}(?!\w)")
+        body = [pattern.sub(f"(*page_f{i})", line) for line in body]
+    locals_ = tuple(f"const {s.type} *page_f{i};" for i, s in enumerate(pages[0]))
+    pick: list[str] = []
+    for k, (test, page) in enumerate(zip(tests, pages)):
+        pick.append(f"if ({test}) {{" if k == 0 else f"}} else if ({test}) {{" if test else "} else {")
+        pick += [f"page_f{i} = &src->{s.field};" for i, s in enumerate(page)]
+    if tests[-1]:  # values no page holds: the fields of every frame, and done
+        rest = tuple(s for s in sigs if s.sig.mux is None)  # the multiplexer checked: no page's value
+        pick += ["} else {", *build_codec(msg, rest, err, words).pack, f"return {ok};"]
+    return locals_, (*pick, "}", *body)
+
+
+def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool, words: bool = False) -> tuple[str, ...]:
     def leaf(present: tuple[CSignal, ...], added: tuple[CSignal, ...]) -> list[str]:
         if added:  # a branch: its leaves pack
             return []
-        codec = build_codec(msg, present, err)
+        codec = build_codec(msg, present, err, words)
         form = (build_codec64(msg, present, err, codec) or codec) if wide else codec
         return [*form.pack_locals, *form.pack]
 
@@ -126,10 +174,12 @@ def _unpack(msg: ir.Message, sigs: tuple[CSignal, ...], wide: bool) -> tuple[tup
     return tuple(declared), tuple(body)
 
 
-def build_mux_codecs(msg: ir.Message, sigs: tuple[CSignal, ...], err: str) -> tuple[CCodec, CCodec | None]:
+def build_mux_codecs(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, ok: str) -> tuple[CCodec, CCodec | None]:
     """The byte form (every core) and the form of <PREFIX>_STRATEGY 3 (None where there is none)."""
     byte_locals, byte_unpack = _unpack(msg, sigs, False)
-    bytewise = CCodec(_pack(msg, sigs, err, False), byte_locals, byte_unpack)
+    shared = _shared_pages(msg, sigs, err, ok, False) if msg.dlc else None
+    pack_locals, pack = shared or ((), _pack(msg, sigs, err, False))
+    bytewise = CCodec(pack, byte_locals, byte_unpack, pack_locals)
     if not msg.dlc or not msg.is_classic_length:
         return bytewise, None
     word_locals, word_unpack = _unpack(msg, sigs, True)
@@ -153,3 +203,10 @@ def presence(msg: ir.Message, sigs: tuple[CSignal, ...]) -> tuple[CPresence, ...
 
 def _ranges_text(ranges: Ranges) -> str:
     return "{" + ", ".join(str(lo) if lo == hi else f"{lo}..{hi}" for lo, hi in ranges) + "}"
+
+
+def mux_words(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, ok: str) -> CCodec | None:
+    """The pack of <PREFIX>_STRATEGY 2 (codec.word_zeros in each leaf), None where it is the byte form's."""
+    shared = _shared_pages(msg, sigs, err, ok, True) if msg.dlc else None
+    locals_, pack = shared or ((), _pack(msg, sigs, err, False, words=True) if msg.dlc else ())
+    return None if (locals_, pack) == (bytewise.pack_locals, bytewise.pack) else replace(bytewise, pack=pack, pack_locals=locals_)

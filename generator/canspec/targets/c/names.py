@@ -36,6 +36,7 @@ RUNTIME_FUNCTIONS = (
     "status_t", "round_abs", "round_half_away", "mul_hi32", "div_round_mul", "div_round_mulhi", "div_round_mulrem",
     "mul_wide", "mul64_u", "mul64", "mul_hi64", "shr64", "div_round_u64_mulhi", "div_round_u64_mulrem", "div_round64_mulhi", "div_round64_mulrem",
     "phys_t", "phys_q", "phys_round", "phys_encode", "copy_bits", "bits_differ",
+    *(f"zero_{n}" for n in (12, 16, 20, 24, 32, 48, 64)),  # messages.h: a CAN FD frame's zeroing (codec.zero_fill)
     *(f"phys_encode_{s}{bits}" for s in "ui" for bits in (8, 16, 32, 64)),
     "j1939_id_t", "j1939_decompose", "j1939_compose",
     "msg_t", "msg_info_t", "msg_info", "lookup_id", "lookup_id_any_priority", "lookup_pgn", "any_t", "unpack_any", "pack_any", "any_counter",
