@@ -74,12 +74,14 @@ def holds(s: CSignal, ranges: Ranges, access: str, excluded: Ranges = ()) -> str
 Step = Callable[[tuple[CSignal, ...], tuple[CSignal, ...]], list[str]]  # (fields present, fields a branch adds) -> statements
 
 
-def _branches(msg: ir.Message, sigs: tuple[CSignal, ...], present: frozenset[str], decided: frozenset[str], access: str, step: Step) -> list[str]:
+def _branches(msg: ir.Message, sigs: tuple[CSignal, ...], present: frozenset[str], decided: frozenset[str], access: str, step: Step,
+              refuse: tuple[str, ...] = ()) -> list[str]:
     """The statements for the frames whose fields include `present`: an if / else if / else on
     the first multiplexer among them not decided yet, each branch starting with what `step` writes
     for the fields its page adds; at the bottom (every multiplexer decided) what `step` writes for
     no added field. The fields `step` gets are those of `sigs`, a multiplexer inside one of its
-    pages' branches marked as known to fit its bits."""
+    pages' branches marked as known to fit its bits. `refuse` (pack): the else of a multiplexer whose
+    pages hold every value its bits carry, reached only by a value that does not fit them."""
     def of(names: frozenset[str] | tuple[str, ...]) -> tuple[CSignal, ...]:
         return tuple(s for s in sigs if s.sig.name in names)
 
@@ -92,12 +94,19 @@ def _branches(msg: ir.Message, sigs: tuple[CSignal, ...], present: frozenset[str
     for group in (g for g in msg.mux_groups if g.multiplexer == by.sig.name):
         test = holds(by, group.ranges, access, excluded)
         excluded = ranges_of([*excluded, *group.ranges])
-        inner = [*step(of(present), of(group.signals)), *_branches(msg, inside, present | set(group.signals), decided | {by.sig.name}, access, step)]
+        inner = [*step(of(present), of(group.signals)), *_branches(msg, inside, present | set(group.signals), decided | {by.sig.name}, access, step, refuse)]
         if not test:  # every value left: the last branch
             return [*out, "} else {", *inner, "}"] if out else ["{", *inner, "}"]
         out += [f"{'} else if' if out else 'if'} ({test}) {{", *inner]
-    rest = _branches(msg, sigs, present, decided | {by.sig.name}, access, step)
+    if refuse and _fills_bits(by, excluded):  # its range check there would always fail (MISRA C:2012 rule 14.3)
+        return [*out, "} else {", *refuse, "}"]
+    rest = _branches(msg, sigs, present, decided | {by.sig.name}, access, step, refuse)
     return [*out, "} else {", *(rest or ["/* no page: the fields of every frame only */"]), "}"]
+
+
+def _fills_bits(by: CSignal, ranges: Ranges) -> bool:
+    """The pages' values `ranges` hold every value the multiplexer's bits carry."""
+    return any(lo <= by.sig.raw_type_min and by.sig.raw_type_max <= hi for lo, hi in ranges_of(list(ranges)))
 
 
 def _every_frame(sigs: tuple[CSignal, ...]) -> frozenset[str]:
@@ -143,7 +152,9 @@ def _shared_pages(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, ok: str,
     for k, (test, page) in enumerate(zip(tests, pages)):
         pick.append(f"if ({test}) {{" if k == 0 else f"}} else if ({test}) {{" if test else "} else {")
         pick += [f"page_f{i} = &src->{s.field};" for i, s in enumerate(page)]
-    if tests[-1]:  # values no page holds: the fields of every frame, and done
+    if tests[-1] and _fills_bits(by, excluded):  # a value beyond the multiplexer's bits
+        pick += ["} else {", f"return {err};"]
+    elif tests[-1]:  # values no page holds: the fields of every frame, and done
         rest = tuple(s for s in sigs if s.sig.mux is None)  # the multiplexer checked: no page's value
         pick += ["} else {", *build_codec(msg, rest, err, words).pack, f"return {ok};"]
     return locals_, (*pick, "}", *body)
@@ -157,7 +168,7 @@ def _pack(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, wide: bool, word
         form = (build_codec64(msg, present, err, codec) or codec) if wide else codec
         return [*form.pack_locals, *form.pack]
 
-    return tuple(_branches(msg, sigs, _every_frame(sigs), frozenset(), "src->", leaf))
+    return tuple(_branches(msg, sigs, _every_frame(sigs), frozenset(), "src->", leaf, (f"return {err};",)))
 
 
 def _unpack(msg: ir.Message, sigs: tuple[CSignal, ...], wide: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
