@@ -5,7 +5,7 @@ word. And the corners still take the strategy 3 forms they exist for: a CAN FD f
 8-byte windows (a field over 9 bytes from its bytes, a window widened to the frame's end), its pack
 in windows of 2, 4 and 8 bytes that carry fields in every byte (of one byte order, Motorola and
 Intel), a frame word pack that zeroes the frame first, unpack words shifted to their least
-significant byte."""
+significant byte, a classic frame's byte form unpack reading each field's bytes from src."""
 
 from __future__ import annotations
 
@@ -43,7 +43,7 @@ def wide(spec) -> dict[str, str]:
 def test_every_corner_case_agrees_with_cantools(spec, tmp_path):
     doc = vectors(spec)
     names = {c["message"] for c in doc["cases"]}
-    assert {"fd_windows", "word_zeroed", "motorola_tail", "motorola_inner", "checksum_only", "fd_pack_windows", "fd_pack_sparse"} <= names
+    assert {"fd_windows", "word_zeroed", "motorola_tail", "motorola_inner", "checksum_only", "fd_pack_windows", "fd_pack_sparse", "byte_fields"} <= names
     assert check_oracle(load_cantools(write_dbc(spec, tmp_path)), doc) == len(doc["cases"])
 
 
@@ -80,3 +80,10 @@ def test_fd_frame_packs_in_windows(wide):
     assert "(void)memset(dst, 0, 48u);" in sparse and "= 0u;" not in sparse and "dst[40] = (uint8_t)src->ps_c;" in sparse
     assert re.search(r"w = \(\(uint64_t\)src->ps_a & UINT64_C\(0x7FF\)\) \| \(\(uint64_t\)src->ps_b << 11u\);", sparse)
     assert "dst[20] = (uint8_t)w;" in sparse and "dst[23] = (uint8_t)(w >> 24u);" in sparse
+
+
+def test_byte_form_unpack_reads_src_per_field(wide):
+    body = wide["byte_fields_unpack"]  # strategy 3 has its own form: without it, the function has no #if
+    assert "b0" not in body and "uint32_t b" not in body
+    assert "dst->bf_b = (uint8_t)(((uint32_t)src[0] >> 1u) & 0x3u);" in body and "dst->bf_d = (uint8_t)((uint32_t)src[0] >> 7u);" in body
+    assert "dst->bf_e = (uint8_t)src[1];" in body and "dst->bf_f = (uint8_t)src[7];" in body
