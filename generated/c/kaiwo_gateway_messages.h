@@ -444,6 +444,19 @@ kaiwo_gateway_eps_state_pack(uint8_t *dst, size_t size, const kaiwo_gateway_eps_
 /** Unpack src[0..7] into raw values. Returns KAIWO_GATEWAY_ERR_LENGTH if size < 8. */
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *src, size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_EPS_STATE_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->eps_ctrl_state = (uint8_t)src[0];
+    dst->steering_torque = (uint8_t)src[1];
+    dst->eps_output_torque = (uint8_t)src[2];
+    dst->steering_angle = (uint16_t)((uint32_t)src[3] | ((uint32_t)src[4] << 8u));
+    dst->controller_temp = (uint8_t)((uint32_t)src[5] & 0x3Fu);
+    dst->eps_fault_level = (uint8_t)((uint32_t)src[6] & 0x3u);
+    dst->counter = (uint8_t)src[7];
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -471,6 +484,7 @@ kaiwo_gateway_eps_state_unpack(kaiwo_gateway_eps_state_t *dst, const uint8_t *sr
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A eps_state with every raw field 0. */
@@ -1717,6 +1731,37 @@ kaiwo_gateway_autocar_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_autocar_ctrl_cmd_1_unpack(kaiwo_gateway_autocar_ctrl_cmd_1_t *dst, const uint8_t *src,
                                         size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_AUTOCAR_CTRL_CMD_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->drive_mode_cmd = (uint8_t)((uint32_t)src[0] & 0x3u);
+    dst->door_cmd = (uint8_t)(((uint32_t)src[0] >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)(((uint32_t)src[0] >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)((uint32_t)src[0] >> 6u);
+    dst->left_turn_cmd = (uint8_t)((uint32_t)src[1] & 0x3u);
+    dst->right_turn_cmd = (uint8_t)(((uint32_t)src[1] >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)(((uint32_t)src[1] >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)((uint32_t)src[1] >> 6u);
+    dst->headlight_cmd = (uint8_t)((uint32_t)src[2] & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)((uint32_t)src[2] >> 6u);
+    dst->dome_light_cmd = (uint8_t)((uint32_t)src[3] & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)(((uint32_t)src[3] >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)(((uint32_t)src[3] >> 4u) & 0x1u);
+    dst->system_state = (uint8_t)((uint32_t)src[4] & 0x3u);
+    dst->system_reliability = (uint8_t)(((uint32_t)src[4] >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)(((uint32_t)src[4] >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)((uint32_t)src[4] >> 6u);
+    dst->ac_cmd = (uint8_t)((uint32_t)src[5] & 0x7u);
+    dst->ac_set_temp = (uint8_t)((uint32_t)src[5] >> 3u);
+    dst->protocol_version_a = (uint8_t)((uint32_t)src[6] & 0xFu);
+    dst->protocol_version_b = (uint8_t)((uint32_t)src[6] >> 4u);
+    dst->protocol_version_c = (uint8_t)((uint32_t)src[7] & 0xFu);
+    dst->counter = (uint8_t)((uint32_t)src[7] >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -1762,6 +1807,7 @@ kaiwo_gateway_autocar_ctrl_cmd_1_unpack(kaiwo_gateway_autocar_ctrl_cmd_1_t *dst,
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A autocar_control_command_1 with every raw field 0. */
@@ -2767,6 +2813,34 @@ kaiwo_gateway_vehicle_state_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_VEHICLE_STATE_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->drive_mode_state = (uint8_t)((uint32_t)src[0] & 0x3u);
+    dst->door_state = (uint8_t)(((uint32_t)src[0] >> 2u) & 0x1u);
+    dst->drl_state = (uint8_t)(((uint32_t)src[0] >> 3u) & 0x1u);
+    dst->left_turn_state = (uint8_t)(((uint32_t)src[0] >> 4u) & 0x1u);
+    dst->right_turn_state = (uint8_t)(((uint32_t)src[0] >> 5u) & 0x1u);
+    dst->hazard_state = (uint8_t)(((uint32_t)src[0] >> 6u) & 0x1u);
+    dst->position_light_state = (uint8_t)((uint32_t)src[0] >> 7u);
+    dst->headlight_state = (uint8_t)((uint32_t)src[1] & 0x3u);
+    dst->rear_fog_state = (uint8_t)(((uint32_t)src[1] >> 2u) & 0x1u);
+    dst->left_fog_state = (uint8_t)(((uint32_t)src[1] >> 3u) & 0x1u);
+    dst->right_fog_state = (uint8_t)(((uint32_t)src[1] >> 4u) & 0x1u);
+    dst->dome_light_state = (uint8_t)(((uint32_t)src[1] >> 5u) & 0x1u);
+    dst->ambient_light_state = (uint8_t)(((uint32_t)src[1] >> 6u) & 0x1u);
+    dst->door_button_state = (uint8_t)((uint32_t)src[1] >> 7u);
+    dst->vehicle_speed = (uint8_t)src[2];
+    dst->soc = (uint8_t)src[3];
+    dst->system_power_cmd = (uint8_t)((uint32_t)src[4] & 0x3u);
+    dst->charge_state = (uint8_t)(((uint32_t)src[4] >> 2u) & 0x3u);
+    dst->charge_connection = (uint8_t)(((uint32_t)src[4] >> 4u) & 0x3u);
+    dst->vehicle_fault_level = (uint8_t)((uint32_t)src[4] >> 6u);
+    dst->odometer = (uint16_t)((uint32_t)src[5] | ((uint32_t)src[6] << 8u));
+    dst->counter = (uint8_t)src[7];
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -2809,6 +2883,7 @@ kaiwo_gateway_vehicle_state_1_unpack(kaiwo_gateway_vehicle_state_1_t *dst, const
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_state_1 with every raw field 0. */
@@ -5636,6 +5711,41 @@ kaiwo_gateway_vehicle_fault_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uint8_t *src,
                                    size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_VEHICLE_FAULT_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->insulation_fault_level = (uint8_t)((uint32_t)src[0] & 0x3u);
+    dst->dc_fault = (uint8_t)(((uint32_t)src[0] >> 2u) & 0x1u);
+    dst->soc_low = (uint8_t)(((uint32_t)src[0] >> 3u) & 0x1u);
+    dst->cell_undervoltage = (uint8_t)(((uint32_t)src[0] >> 4u) & 0x1u);
+    dst->brake_boost_pressure_fault = (uint8_t)(((uint32_t)src[0] >> 5u) & 0x1u);
+    dst->vacuum_pump_fault = (uint8_t)(((uint32_t)src[0] >> 6u) & 0x1u);
+    dst->vehicle_system_fault = (uint8_t)((uint32_t)src[0] >> 7u);
+    dst->battery_overheat = (uint8_t)((uint32_t)src[1] & 0x1u);
+    dst->motor_overheat = (uint8_t)(((uint32_t)src[1] >> 1u) & 0x1u);
+    dst->traction_battery_fault = (uint8_t)(((uint32_t)src[1] >> 2u) & 0x1u);
+    dst->motor_fault = (uint8_t)(((uint32_t)src[1] >> 3u) & 0x1u);
+    dst->battery_comm_fault = (uint8_t)(((uint32_t)src[1] >> 4u) & 0x1u);
+    dst->motor_comm_fault = (uint8_t)(((uint32_t)src[1] >> 5u) & 0x1u);
+    dst->eps_fault = (uint8_t)(((uint32_t)src[1] >> 6u) & 0x1u);
+    dst->ac_fault = (uint8_t)((uint32_t)src[1] >> 7u);
+    dst->aux_battery_fault = (uint8_t)((uint32_t)src[2] & 0x1u);
+    dst->epb_fault = (uint8_t)(((uint32_t)src[2] >> 1u) & 0x1u);
+    dst->brake_by_wire_fault = (uint8_t)(((uint32_t)src[2] >> 2u) & 0x1u);
+    dst->key_not_detected = (uint8_t)(((uint32_t)src[2] >> 3u) & 0x1u);
+    dst->tire_pressure_low = (uint8_t)(((uint32_t)src[2] >> 4u) & 0x1u);
+    dst->body_motor_fault = (uint8_t)(((uint32_t)src[2] >> 5u) & 0x1u);
+    dst->body_motor_overheat = (uint8_t)(((uint32_t)src[2] >> 6u) & 0x1u);
+    dst->battery_system_fault_level = (uint8_t)((uint32_t)src[3] & 0x3u);
+    dst->motor_system_fault_level = (uint8_t)(((uint32_t)src[3] >> 2u) & 0x3u);
+    dst->unmanned_entry_fault = (uint8_t)((uint32_t)src[3] >> 4u);
+    dst->protocol_version_a = (uint8_t)((uint32_t)src[4] & 0xFu);
+    dst->protocol_version_b = (uint8_t)((uint32_t)src[4] >> 4u);
+    dst->protocol_version_c = (uint8_t)((uint32_t)src[5] & 0xFu);
+    dst->remote_entry_fault = (uint8_t)((uint32_t)src[5] >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -5681,6 +5791,7 @@ kaiwo_gateway_vehicle_fault_unpack(kaiwo_gateway_vehicle_fault_t *dst, const uin
     dst->protocol_version_c = (uint8_t)(b5 & 0xFu);
     dst->remote_entry_fault = (uint8_t)(b5 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A vehicle_fault with every raw field 0. */
@@ -7484,6 +7595,37 @@ kaiwo_gateway_rgate_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_1_unpack(kaiwo_gateway_rgate_ctrl_cmd_1_t *dst, const uint8_t *src,
                                       size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->drive_mode_cmd = (uint8_t)((uint32_t)src[0] & 0x3u);
+    dst->door_cmd = (uint8_t)(((uint32_t)src[0] >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)(((uint32_t)src[0] >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)((uint32_t)src[0] >> 6u);
+    dst->left_turn_cmd = (uint8_t)((uint32_t)src[1] & 0x3u);
+    dst->right_turn_cmd = (uint8_t)(((uint32_t)src[1] >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)(((uint32_t)src[1] >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)((uint32_t)src[1] >> 6u);
+    dst->headlight_cmd = (uint8_t)((uint32_t)src[2] & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)((uint32_t)src[2] >> 6u);
+    dst->dome_light_cmd = (uint8_t)((uint32_t)src[3] & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)(((uint32_t)src[3] >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)(((uint32_t)src[3] >> 4u) & 0x1u);
+    dst->system_state = (uint8_t)((uint32_t)src[4] & 0x3u);
+    dst->system_reliability = (uint8_t)(((uint32_t)src[4] >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)(((uint32_t)src[4] >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)((uint32_t)src[4] >> 6u);
+    dst->ac_cmd = (uint8_t)((uint32_t)src[5] & 0x7u);
+    dst->ac_set_temp = (uint8_t)((uint32_t)src[5] >> 3u);
+    dst->protocol_version_a = (uint8_t)((uint32_t)src[6] & 0xFu);
+    dst->protocol_version_b = (uint8_t)((uint32_t)src[6] >> 4u);
+    dst->protocol_version_c = (uint8_t)((uint32_t)src[7] & 0xFu);
+    dst->counter = (uint8_t)((uint32_t)src[7] >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -7529,6 +7671,7 @@ kaiwo_gateway_rgate_ctrl_cmd_1_unpack(kaiwo_gateway_rgate_ctrl_cmd_1_t *dst, con
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rgate_control_command_1 with every raw field 0. */
@@ -8392,6 +8535,18 @@ kaiwo_gateway_rgate_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_rgate_ctrl_cmd_2_unpack(kaiwo_gateway_rgate_ctrl_cmd_2_t *dst, const uint8_t *src,
                                       size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_RGATE_CTRL_CMD_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->downhill_regen_enable = (uint8_t)((uint32_t)src[0] & 0x1u);
+    dst->cargo_lift = (uint8_t)(((uint32_t)src[0] >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)(((uint32_t)src[0] >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)((uint32_t)src[0] >> 7u);
+    dst->downhill_regen_speed = (uint8_t)src[1];
+    dst->counter = (uint8_t)src[7];
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -8408,6 +8563,7 @@ kaiwo_gateway_rgate_ctrl_cmd_2_unpack(kaiwo_gateway_rgate_ctrl_cmd_2_t *dst, con
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A rgate_control_command_2 with every raw field 0. */
@@ -12005,6 +12161,37 @@ kaiwo_gateway_tele_ctrl_cmd_1_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_1_unpack(kaiwo_gateway_tele_ctrl_cmd_1_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_1_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->drive_mode_cmd = (uint8_t)((uint32_t)src[0] & 0x3u);
+    dst->door_cmd = (uint8_t)(((uint32_t)src[0] >> 2u) & 0x3u);
+    dst->horn_cmd = (uint8_t)(((uint32_t)src[0] >> 4u) & 0x3u);
+    dst->drl_cmd = (uint8_t)((uint32_t)src[0] >> 6u);
+    dst->left_turn_cmd = (uint8_t)((uint32_t)src[1] & 0x3u);
+    dst->right_turn_cmd = (uint8_t)(((uint32_t)src[1] >> 2u) & 0x3u);
+    dst->hazard_cmd = (uint8_t)(((uint32_t)src[1] >> 4u) & 0x3u);
+    dst->position_light_cmd = (uint8_t)((uint32_t)src[1] >> 6u);
+    dst->headlight_cmd = (uint8_t)((uint32_t)src[2] & 0x3u);
+    dst->rear_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 2u) & 0x3u);
+    dst->left_fog_cmd = (uint8_t)(((uint32_t)src[2] >> 4u) & 0x3u);
+    dst->right_fog_cmd = (uint8_t)((uint32_t)src[2] >> 6u);
+    dst->dome_light_cmd = (uint8_t)((uint32_t)src[3] & 0x3u);
+    dst->ambient_light_cmd = (uint8_t)(((uint32_t)src[3] >> 2u) & 0x3u);
+    dst->drive_mode_reset = (uint8_t)(((uint32_t)src[3] >> 4u) & 0x1u);
+    dst->system_state = (uint8_t)((uint32_t)src[4] & 0x3u);
+    dst->system_reliability = (uint8_t)(((uint32_t)src[4] >> 2u) & 0x3u);
+    dst->system_fault_level = (uint8_t)(((uint32_t)src[4] >> 4u) & 0x3u);
+    dst->lock_cmd = (uint8_t)((uint32_t)src[4] >> 6u);
+    dst->ac_cmd = (uint8_t)((uint32_t)src[5] & 0x7u);
+    dst->ac_set_temp = (uint8_t)((uint32_t)src[5] >> 3u);
+    dst->protocol_version_a = (uint8_t)((uint32_t)src[6] & 0xFu);
+    dst->protocol_version_b = (uint8_t)((uint32_t)src[6] >> 4u);
+    dst->protocol_version_c = (uint8_t)((uint32_t)src[7] & 0xFu);
+    dst->counter = (uint8_t)((uint32_t)src[7] >> 4u);
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b2;
@@ -12050,6 +12237,7 @@ kaiwo_gateway_tele_ctrl_cmd_1_unpack(kaiwo_gateway_tele_ctrl_cmd_1_t *dst, const
     dst->protocol_version_c = (uint8_t)(b7 & 0xFu);
     dst->counter = (uint8_t)(b7 >> 4u);
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A tele_control_command_1 with every raw field 0. */
@@ -12914,6 +13102,18 @@ kaiwo_gateway_tele_ctrl_cmd_2_pack(uint8_t *dst, size_t size,
 static inline kaiwo_gateway_status_t
 kaiwo_gateway_tele_ctrl_cmd_2_unpack(kaiwo_gateway_tele_ctrl_cmd_2_t *dst, const uint8_t *src,
                                      size_t size) {
+#if KAIWO_GATEWAY_STRATEGY >= 3 /* 64-bit registers */
+    if (size < KAIWO_GATEWAY_TELE_CTRL_CMD_2_DLC) {
+        return KAIWO_GATEWAY_ERR_LENGTH;
+    }
+    dst->downhill_regen_enable = (uint8_t)((uint32_t)src[0] & 0x1u);
+    dst->cargo_lift = (uint8_t)(((uint32_t)src[0] >> 1u) & 0x3u);
+    dst->cargo_lift_speed = (uint8_t)(((uint32_t)src[0] >> 3u) & 0xFu);
+    dst->pto_enable = (uint8_t)((uint32_t)src[0] >> 7u);
+    dst->downhill_regen_speed = (uint8_t)src[1];
+    dst->counter = (uint8_t)src[7];
+    return KAIWO_GATEWAY_OK;
+#else
     uint32_t b0;
     uint32_t b1;
     uint32_t b7;
@@ -12930,6 +13130,7 @@ kaiwo_gateway_tele_ctrl_cmd_2_unpack(kaiwo_gateway_tele_ctrl_cmd_2_t *dst, const
     b7 = src[7];
     dst->counter = (uint8_t)b7;
     return KAIWO_GATEWAY_OK;
+#endif
 }
 
 /** A tele_control_command_2 with every raw field 0. */

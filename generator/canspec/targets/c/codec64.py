@@ -27,7 +27,9 @@ than spilling them.
 
 Unpack reads a field that crosses bytes off byte boundaries (and every 64-bit field) from `w` by
 its start bit and mask, every field from `w` where all of them cross bytes, the others from their
-byte as codec.py does; with `w` loaded the XOR checksum is folded from it. `w` holds the bytes it
+byte as codec.py does; with `w` loaded the XOR checksum is folded from it. A classic frame without
+such a field and without a checksum takes codec.py's unpack with each field reading its bytes from
+src, not from byte locals (reread: gcc keeps the fields' stores apart). `w` holds the bytes it
 covers from bit 0 (word_base: gcc merges byte loads into one wider load only there).
 
 The frame word's byte order is its fields' (ir.Signal.word_order): read big-endian (byte 0 its
@@ -36,14 +38,19 @@ word_shift; a field of the other order is taken from its bytes as codec.py does,
 the word only where every field shares its order. A frame longer than 8 bytes (CAN FD) packs in
 the byte form, which zeroes the frame with one memset first where most bytes carry no field
 (x86-64 stores 16 bytes at a time; byte stores of 0 split at each field byte), and without a
-checksum unpacks in windows of up to 8 bytes (_windows), each a frame word of its fields.
+checksum unpacks in windows of up to 8 bytes (_windows), each a frame word of its fields, and
+packs the runs of 2, 4 or 8 bytes that carry fields of one order in every byte, and no other
+field, from a word each (pack_windows: one (byte-swapped) store, where the estimate says fewer
+instructions; a byte without a field inside would be known 0 to gcc, which then splits the store).
 """
 
 from __future__ import annotations
 
+import re
+
 from canspec import ir
 from canspec.render.literals import C
-from canspec.targets.c.codec import CCodec, byte_pieces, float_copies, float_locals, negate64, pack_bytes, paren, shl, shr, store, store_bits
+from canspec.targets.c.codec import CCodec, _range_check, byte_pieces, float_copies, float_locals, negate64, pack_bytes, paren, shl, shr, store, store_bits
 from canspec.targets.c.signals import CSignal
 
 FOLD = ("x = w ^ (w >> 32u);", "x ^= x >> 16u;", "x ^= x >> 8u;")  # XOR of the word's 8 bytes, in x's low byte
@@ -128,7 +135,7 @@ def _pack_bytes(sigs: tuple[CSignal, ...], dlc: int, checksum: int | None, err: 
     return out + _check(sigs, err)
 
 
-def _placed(s: CSignal) -> str:
+def _placed(s: CSignal, base: int = 0) -> str:
     """The field's bits at their place in the frame word: a signed field cut to its bits, and in a
     big-endian word an unsigned one of several bytes at a byte boundary (unmasked, gcc traces the
     word's bytes back to the struct's and, finding no byte swap of one load, stores them one by one,
@@ -137,7 +144,7 @@ def _placed(s: CSignal) -> str:
     swapped = s.sig.word_order == "big" and 8 < s.length < s.sig.storage_bits and s.word_shift % 8 == 0
     if (s.sig.signed and s.length < 64) or swapped:
         v = f"({v} & {C.hex(s.sig.mask, bits=64)})"
-    return v if s.word_shift == 0 else f"({v} << {s.word_shift}u)"
+    return v if s.word_shift == base else f"({v} << {s.word_shift - base}u)"
 
 
 def span(sigs: tuple[CSignal, ...], dlc: int, checksum: bool, unpack: bool = False) -> range:
@@ -398,6 +405,134 @@ def _used(sigs: tuple[CSignal, ...], checksum: int | None) -> set[int]:
     return {seg.byte for s in sigs for seg in s.sig.segments} | ({checksum} if checksum is not None else set())
 
 
+def _fd_clusters(sigs: tuple[CSignal, ...]) -> list[tuple[range, list[CSignal]]]:
+    """The fields grouped by shared frame bytes (a byte is stored whole: its fields go in one
+    store), each group with its first to last byte, in frame order."""
+    groups: list[tuple[set[int], list[CSignal]]] = []
+    for s in sigs:
+        own = {seg.byte for seg in s.sig.segments}
+        hit = [g for g in groups if g[0] & own]
+        for g in hit:
+            groups.remove(g)
+            own |= g[0]
+        groups.append((own, [f for g in hit for f in g[1]] + [s]))
+    return sorted(((range(min(b), max(b) + 1), fs) for b, fs in groups), key=lambda g: g[0].start)
+
+
+def _window_run(group: list[CSignal], fields: tuple[CSignal, ...]) -> bool:
+    """_struct_run for the fields of one pack window: two fields that fill their types, next to
+    each other in the struct and in the word (gcc would load both at once); a narrower field's
+    bits are not its type's bytes, and gcc loads it alone."""
+    if all(f.length == f.sig.storage_bits for f in group):
+        return False
+    inside = {id(f) for f in group}
+    offset = 0
+    ends: dict[int, tuple[int, int]] = {}  # struct offset just past a field of the window that fills its type -> its word bits
+    for f in fields:
+        size = f.sig.storage_bits // 8
+        offset += -offset % size
+        lo, hi = ends.get(offset, (-1, -1))
+        if id(f) in inside and f.length == f.sig.storage_bits and (f.word_shift == hi or f.word_shift + f.length == lo):
+            return True
+        offset += size
+        if f.length == f.sig.storage_bits and id(f) in inside:
+            ends[offset] = (f.word_shift, f.word_shift + f.length)
+    return False
+
+
+def _cost_window(group: list[CSignal], base: int) -> int:
+    """_cost_word for a window whose word starts at frame word bit `base`, and the mask of a
+    Motorola field _placed masks."""
+    swapped = sum(1 for s in group if s.sig.word_order == "big" and 8 < s.length < s.sig.storage_bits and s.word_shift % 8 == 0)
+    return swapped + sum(2 + (s.word_shift > base) + (s.sig.signed and s.length < 64) for s in group)
+
+
+def _cost_window_bytes(group: list[CSignal]) -> int:
+    """_cost_bytes for a window's fields, but a field alone in its bytes from bit 0 of its least
+    significant one: a load and store of its first byte, then per byte a load again (the store
+    to dst may alias src), a shift and a store."""
+    count: dict[int, int] = {}
+    for s in group:
+        for b in {seg.byte for seg in s.sig.segments}:
+            count[b] = count.get(b, 0) + 1
+    own: list[CSignal] = []
+    others: list[CSignal] = []
+    for s in group:
+        nbytes = {seg.byte for seg in s.sig.segments}
+        alone = all(count[b] == 1 for b in nbytes) and s.word_shift % 8 == 0
+        (own if alone else others).append(s)
+    shared = {seg.byte for s in others for seg in s.sig.segments}
+    cost = sum(3 * len({seg.byte for seg in s.sig.segments}) - 1 for s in own)
+    return cost + (_cost_bytes(tuple(others), len(shared), None) if others else 0)
+
+
+def pack_windows(sigs: tuple[CSignal, ...], dlc: int, fields: tuple[CSignal, ...]) -> list[tuple[list[CSignal], range, str]]:
+    """The windows a CAN FD frame packs from a word: (its fields, its bytes, their order). A window
+    is a run of 2, 4 or 8 bytes every one of which carries a field of it, and no other field's
+    (its store writes them whole, and gcc splits a byte-swapped store at a byte it knows is 0),
+    its fields of one byte order, taken where its estimate is at least MARGIN below the byte
+    form's (_cost_window_bytes) and no two of its fields load as one (_window_run). Runs of fields
+    are tried from the frame's start, 8 bytes first."""
+    clusters = _fd_clusters(sigs)
+    out: list[tuple[list[CSignal], range, str]] = []
+    i = 0
+    while i < len(clusters):
+        taken = None
+        for n in (8, 4, 2):
+            group: list[CSignal] = []
+            j, end = i, clusters[i][0].start
+            while j < len(clusters) and clusters[j][0].start == end and clusters[j][0].stop - clusters[i][0].start <= n:
+                group += clusters[j][1]
+                end = clusters[j][0].stop
+                j += 1
+            covered = range(clusters[i][0].start, end)
+            orders = {s.sig.word_order for s in group}
+            if len(covered) != n or len(orders) != 1:
+                continue
+            order = orders.pop()
+            base = word_base(covered, dlc, order)
+            if _cost_window(group, base) + MARGIN <= _cost_window_bytes(group) and not _window_run(group, fields):
+                taken = (group, covered, order, j)
+                break
+        if taken is None:
+            i += 1
+            continue
+        out.append(taken[:3])
+        i = taken[3]
+    return out
+
+
+def _pack_fd(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec, fields: tuple[CSignal, ...]) -> CCodec | None:
+    """A CAN FD frame without a checksum whose pack_windows are some: the frame zeroed as the
+    byte form does (one memset where most bytes carry no field, else a store per run), the other
+    fields' bytes as the byte form's, then per window its check, its word and one store of it
+    (byte-swapped for a Motorola window); None without windows."""
+    windows = pack_windows(sigs, msg.dlc, fields)
+    if not windows:
+        return None
+    inside = {id(s) for group, _, _ in windows for s in group}
+    rest = tuple(s for s in sigs if id(s) not in inside)
+    used = _used(sigs, None)
+    names = ["w" if i == 0 else f"w{i}" for i in range(len(windows))]
+    out: list[str] = []
+    if 2 * len(used) < msg.dlc:
+        out.append(f"(void)memset(dst, 0, {msg.dlc}u);")
+    else:
+        out += [f"dst[{k}] = 0u;" for k in range(msg.dlc) if k not in used]
+    out += pack_bytes(rest, msg.dlc, None, err, zeroed=True) if rest else ()
+    for (group, covered, order), w in zip(windows, names):
+        base = word_base(covered, msg.dlc, order)
+        checked = tuple(s for s in group if s.checked)
+        check = [f"if ({_range_check(checked)}) {{", f"return {err};", "}"] if checked else []
+        first = len(checked) <= FREE_REGS
+        out += [*float_copies(tuple(group), "&{local}", "&src->{field}"), *(check if first else ())]
+        out.append(f"{w} = " + " | ".join(_placed(s, base) for s in group) + ";")
+        out += [f"dst[{k}] = (uint8_t){shr(w, byte_at(k, msg.dlc, order) - base)};" for k in covered]
+        out += [] if first else check
+    locals_ = (*bytewise.pack_locals, *(f"uint64_t {w};" for w in names))
+    return CCodec(tuple(out), bytewise.unpack_locals, bytewise.unpack, locals_)
+
+
 def _zeroed(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise: CCodec) -> CCodec | None:
     """A CAN FD frame most of whose bytes are reserved: zeroed by one memset (a few 16-byte
     stores), then the byte form's stores of the bytes that carry fields; None where most carry one."""
@@ -414,11 +549,31 @@ def build_codec64(msg: ir.Message, sigs: tuple[CSignal, ...], err: str, bytewise
     if not msg.dlc:
         return None
     if not msg.is_classic_length:  # CAN FD: the byte form's pack (zeroed first where most bytes are reserved), unpack by windows
-        zeroed = _zeroed(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise) or bytewise
+        data = tuple(s for s in sigs if s.sig.role != "checksum")
+        zeroed = (_pack_fd(msg, data, err, bytewise, sigs) if msg.checksum is None else None) or _zeroed(msg, data, err, bytewise) or bytewise
         windows = unpack_parts64(sigs, msg.dlc, False, word_order(sigs)) if msg.checksum is None else None
         out = CCodec(zeroed.pack, *(windows or (bytewise.unpack_locals, bytewise.unpack)), zeroed.pack_locals)
         return None if out == bytewise else out
     pack_locals, pack = _pack(msg, tuple(s for s in sigs if s.sig.role != "checksum"), err, bytewise, sigs)
-    unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or (bytewise.unpack_locals, bytewise.unpack)
+    unpack_locals, unpack = unpack_parts64(sigs, msg.dlc, msg.checksum is not None, word_order(sigs)) or reread(msg, bytewise)
     out = CCodec(pack, unpack_locals, unpack, pack_locals)
     return None if out == bytewise else out
+
+
+
+def reread(msg: ir.Message, bytewise: CCodec) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The byte form's unpack with each field reading its bytes from src (`b<k>` -> `src[k]`), not
+    from byte locals: a store to dst may alias src, so gcc loads the byte again per field and keeps
+    the fields' stores apart. From the locals it merges the stores of a byte's fields into one wider
+    store built with a shift and an OR per field (gcc 12 store merging; a byte of 4 fields: 17
+    instructions, 15 when read again). Not for a checksum (its XOR reads every byte once), nor where
+    the byte form's statements are not of that shape (then unchanged)."""
+    loads = [line for line in bytewise.unpack if re.fullmatch(r"b(\d+) = src\[\1\];", line)]
+    if msg.checksum is not None or not loads:
+        return bytewise.unpack_locals, bytewise.unpack
+    body = [re.sub(r"\bb(\d+)\b", r"(uint32_t)src[\1]", line) for line in bytewise.unpack if line not in loads]
+    body = [line.replace("(uint8_t)(uint32_t)src[", "(uint8_t)src[") for line in body]
+    locals_ = tuple(line for line in bytewise.unpack_locals if not re.fullmatch(r"uint32_t b\d+;", line))
+    if len(locals_) + len(loads) != len(bytewise.unpack_locals) or any(re.search(r"\bb\d+\b", line) for line in body):
+        return bytewise.unpack_locals, bytewise.unpack
+    return locals_, tuple(body)
