@@ -199,19 +199,25 @@ _UNMANNED_ENTRY_FAULT_4 = _lookup(UnmannedEntryFault, 4)
 _USS_SYSTEM_STATE_2 = _lookup(UssSystemState, 2)
 _VEHICLE_FAULT_LEVEL_2 = _lookup(VehicleFaultLevel, 2)
 
-# Raw bits → physical value of the fields of at most 8 bits that decode scales or sign-extends: one
+# Raw bits → physical value of the narrow fields that decode scales or sign-extends: one
 # tuple index per field instead of the arithmetic (each entry is the expression decode would evaluate).
 _SCALE_1 = tuple([r * 2 for r in range(256)])
 _SCALE_2 = tuple([r * 0.1 - 12.8 for r in range(256)])
 _SCALE_3 = tuple([r * 0.3 - 38.4 for r in range(256)])
 _SCALE_4 = tuple([r * 2 for r in range(64)])
-_SCALE_5 = tuple([r + 1 for r in range(256)])
-_SCALE_6 = tuple([r * 0.05 - 9.0 for r in range(256)])
-_SCALE_7 = tuple([r * 0.5 + 16.0 for r in range(32)])
-_SCALE_8 = tuple([r - 50 for r in range(256)])
-_SCALE_9 = tuple([r * 0.5 for r in range(256)])
-_SCALE_10 = tuple([r - 40 for r in range(256)])
-_SCALE_11 = tuple([r * 0.5 - 30.0 for r in range(256)])
+_SCALE_5 = tuple([r * 0.02 - 9.0 for r in range(1024)])
+_SCALE_6 = tuple([r + 1 for r in range(256)])
+_SCALE_7 = tuple([r * 0.05 - 9.0 for r in range(256)])
+_SCALE_8 = tuple([r * 0.5 + 16.0 for r in range(32)])
+_SCALE_9 = tuple([r - 50 for r in range(256)])
+_SCALE_10 = tuple([r * 0.5 for r in range(256)])
+_SCALE_11 = tuple([r * 0.05 - 25.0 for r in range(1024)])
+_SCALE_12 = tuple([r * 0.1 - 40.0 for r in range(1024)])
+_SCALE_13 = tuple([r * 0.2 - 30.0 for r in range(1024)])
+_SCALE_14 = tuple([r - 40 for r in range(256)])
+_SCALE_15 = tuple([r * 0.0015 for r in range(4096)])
+_SCALE_16 = tuple([r * 0.5 - 30.0 for r in range(256)])
+_SCALE_17 = tuple([r * 0.2 - 100.0 for r in range(1024)])
 
 # What the slow path of encode needs per signal: message, signal, direct, factor, offset, integer offset,
 # documented range, raw range of a physical value, raw range of the field, special raws, allowed text.
@@ -1105,7 +1111,7 @@ def _decode_autocar_speed_command(data: Buffer, verify_checksum: bool = True) ->
         if c:
             raise ChecksumError("autocar_speed_command", 0x1803B0A0, c ^ d7, d7, id_text="0x1803B0A0")
     m = _new(AutocarSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
+    m.accel_cmd = _SCALE_5[(d0 | d1 << 8) & 0x3FF]
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -1342,8 +1348,8 @@ def _decode_driving_state(data: Buffer, verify_checksum: bool = True) -> Driving
     m.uss_brake_state = _BRAKE_STATE_1[d0 >> 7]
     m.motor_speed = (d1 | d2 << 8) - 15000
     m.motor_torque = (d3 | d4 << 8) - 5000
-    m.motor_speed_ratio = _SCALE_5[d5]
-    m.current_accel = _SCALE_6[d6]
+    m.motor_speed_ratio = _SCALE_6[d5]
+    m.current_accel = _SCALE_7[d6]
     m.checksum = d7
     return m
 
@@ -1688,7 +1694,7 @@ def _decode_autocar_control_command_1(data: Buffer, verify_checksum: bool = True
     m.system_fault_level = _FAULT_LEVEL_AUTOCAR_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = _SCALE_7[d5 >> 3]
+    m.ac_set_temp = _SCALE_8[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -2156,8 +2162,8 @@ def _decode_vehicle_state_1(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.dome_light_state = _OFF_ON_1[(d1 >> 5) & 0x1]
     m.ambient_light_state = _OFF_ON_1[(d1 >> 6) & 0x1]
     m.door_button_state = _BUTTON_1[d1 >> 7]
-    m.vehicle_speed = _SCALE_8[d2]
-    m.soc = _SCALE_9[d3]
+    m.vehicle_speed = _SCALE_9[d2]
+    m.soc = _SCALE_10[d3]
     m.system_power_cmd = _POWER_CMD_2[d4 & 0x3]
     m.charge_state = _CHARGE_STATE_2[(d4 >> 2) & 0x3]
     m.charge_connection = _CHARGE_CONNECTION_2[(d4 >> 4) & 0x3]
@@ -2533,11 +2539,11 @@ def _decode_autocar_control_command_2(data: Buffer, verify_checksum: bool = True
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = _SCALE_9[d1]
-    m.chassis_pitch = ((d2 | d3 << 8) & 0x3FF) * 0.05 - 25.0
-    m.chassis_roll = (((d3 | d4 << 8) >> 2) & 0x3FF) * 0.1 - 40.0
-    m.cargo_pitch = (((d4 | d5 << 8) >> 4) & 0x3FF) * 0.2 - 30.0
-    m.cargo_roll = ((d5 | d6 << 8) >> 6) * 0.1 - 40.0
+    m.downhill_regen_speed = _SCALE_10[d1]
+    m.chassis_pitch = _SCALE_11[(d2 | d3 << 8) & 0x3FF]
+    m.chassis_roll = _SCALE_12[((d3 | d4 << 8) >> 2) & 0x3FF]
+    m.cargo_pitch = _SCALE_13[((d4 | d5 << 8) >> 4) & 0x3FF]
+    m.cargo_roll = _SCALE_12[(d5 | d6 << 8) >> 6]
     m.counter = d7
     return m
 
@@ -2946,12 +2952,12 @@ def _decode_vehicle_state_3(data: Buffer, verify_checksum: bool = True) -> Vehic
     except ValueError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_3", 0x1811A0B0, 8, len(data), id_text="0x1811A0B0") from None
     m = _new(VehicleState3)  # slot stores are faster than a call of __init__
-    m.battery_max_temp = _SCALE_10[d0]
-    m.battery_min_temp = _SCALE_10[d1]
-    m.max_cell_voltage = ((d2 | d3 << 8) & 0xFFF) * 0.0015
-    m.min_cell_voltage = ((d3 | d4 << 8) >> 4) * 0.0015
-    m.motor_temp = _SCALE_10[d5]
-    m.motor_controller_temp = _SCALE_10[d6]
+    m.battery_max_temp = _SCALE_14[d0]
+    m.battery_min_temp = _SCALE_14[d1]
+    m.max_cell_voltage = _SCALE_15[(d2 | d3 << 8) & 0xFFF]
+    m.min_cell_voltage = _SCALE_15[(d3 | d4 << 8) >> 4]
+    m.motor_temp = _SCALE_14[d5]
+    m.motor_controller_temp = _SCALE_14[d6]
     return m
 
 
@@ -3175,8 +3181,8 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     except _StructError:  # not 8 bytes
         raise FrameLengthError("vehicle_state_4", 0x1812A0B0, 8, len(data), id_text="0x1812A0B0") from None
     m = _new(VehicleState4)  # slot stores are faster than a call of __init__
-    m.outside_temp = _SCALE_11[d0]
-    m.inside_temp = _SCALE_11[d1]
+    m.outside_temp = _SCALE_16[d0]
+    m.inside_temp = _SCALE_16[d1]
     m.ac_state = _AC_STATE_4[d2 & 0xF]
     m.vehicle_power_state = _POWER_STATE_2[(d2 >> 4) & 0x3]
     m.hill_hold_state = _INACTIVE_ACTIVE_1[(d2 >> 6) & 0x1]
@@ -3184,7 +3190,7 @@ def _decode_vehicle_state_4(data: Buffer, verify_checksum: bool = True) -> Vehic
     m.remaining_range = h3 & 0xFFF
     m.manual_takeover_state = _TAKEOVER_STATE_1[(h3 >> 12) & 0x1]
     m.remote_driving_allowed = _REMOTE_TAKEOVER_PERMISSION_1[h3 >> 15]
-    m.ac_set_temp = _SCALE_7[d5 & 0x1F]
+    m.ac_set_temp = _SCALE_8[d5 & 0x1F]
     m.pto_state = _PTO_STATE_1[(d5 >> 5) & 0x1]
     m.battery_power = h6 * 0.01 - 325.0
     return m
@@ -4329,7 +4335,7 @@ def _decode_rgate_speed_command(data: Buffer, verify_checksum: bool = True) -> R
         if c:
             raise ChecksumError("rgate_speed_command", 0x1803B0C0, c ^ d7, d7, id_text="0x1803B0C0")
     m = _new(RgateSpeedCommand)  # slot stores are faster than a call of __init__
-    m.accel_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.02 - 9.0
+    m.accel_cmd = _SCALE_5[(d0 | d1 << 8) & 0x3FF]
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -4660,7 +4666,7 @@ def _decode_rgate_control_command_1(data: Buffer, verify_checksum: bool = True) 
     m.system_fault_level = _FAULT_LEVEL_RGATE_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = _SCALE_7[d5 >> 3]
+    m.ac_set_temp = _SCALE_8[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -5040,7 +5046,7 @@ def _decode_rgate_control_command_2(data: Buffer, verify_checksum: bool = True) 
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = _SCALE_9[d1]
+    m.downhill_regen_speed = _SCALE_10[d1]
     m.counter = d7
     return m
 
@@ -6756,7 +6762,7 @@ def _decode_tele_speed_command(data: Buffer, verify_checksum: bool = True) -> Te
         if c:
             raise ChecksumError("tele_speed_command", 0x1803B0D0, c ^ d7, d7, id_text="0x1803B0D0")
     m = _new(TeleSpeedCommand)  # slot stores are faster than a call of __init__
-    m.throttle_brake_cmd = ((d0 | d1 << 8) & 0x3FF) * 0.2 - 100.0
+    m.throttle_brake_cmd = _SCALE_17[(d0 | d1 << 8) & 0x3FF]
     m.epb_cmd = _EPB_2[(d1 >> 2) & 0x3]
     m.gear_cmd = _GEAR_4[d1 >> 4]
     m.counter = d2
@@ -7087,7 +7093,7 @@ def _decode_tele_control_command_1(data: Buffer, verify_checksum: bool = True) -
     m.system_fault_level = _FAULT_LEVEL_TELE_2[(d4 >> 4) & 0x3]
     m.lock_cmd = _LOCK_CMD_2[d4 >> 6]
     m.ac_cmd = _AC_CMD_3[d5 & 0x7]
-    m.ac_set_temp = _SCALE_7[d5 >> 3]
+    m.ac_set_temp = _SCALE_8[d5 >> 3]
     m.protocol_version_a = d6 & 0xF
     m.protocol_version_b = d6 >> 4
     m.protocol_version_c = d7 & 0xF
@@ -7467,7 +7473,7 @@ def _decode_tele_control_command_2(data: Buffer, verify_checksum: bool = True) -
     m.cargo_lift = _CARGO_LIFT_2[(d0 >> 1) & 0x3]
     m.cargo_lift_speed = (d0 >> 3) & 0xF
     m.pto_enable = _PTO_ENABLE_1[d0 >> 7]
-    m.downhill_regen_speed = _SCALE_9[d1]
+    m.downhill_regen_speed = _SCALE_10[d1]
     m.counter = d7
     return m
 

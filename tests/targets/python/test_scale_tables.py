@@ -1,4 +1,4 @@
-"""Decode reads a field of at most 8 bits through a precomputed tuple (targets/python/fields.py, PyScale):
+"""Decode reads a narrow field through a precomputed tuple (targets/python/fields.py, PyScale, up to 12 bits):
 for every raw value of every such field, on the shipped spec (Intel) and the second benchmark spec (mostly
 Motorola, pages), the decoded value is the reference codec's (reference/codec.py: raw × factor + offset
 in doubles, exact ints for integer scaling), and of the same type."""
@@ -20,8 +20,8 @@ SPECS = {
 
 
 def _table_fields(msg):
-    """The fields decode reads from a table: what fields.scale_value takes, decided here from the IR alone."""
-    return [s for s in msg.data_signals if s.role == "data" and s.length <= 8 and not s.is_float and not s.decodes_to_enum
+    """The fields decode may read from a table (within the budget): what fields.scale_value takes, decided here from the IR alone."""
+    return [s for s in msg.data_signals if s.role == "data" and s.length <= 12 and not s.is_float and not s.decodes_to_enum
             and not s.is_multiplexer and (s.signed or s.factor != 1 or s.offset != 0)]
 
 
@@ -56,3 +56,15 @@ def test_every_raw_of_every_table_field_decodes_as_the_reference(case):
                 got = getattr(pkg.decode(msg.frame_id, data), names[sig.name])
                 want = codec.physical_number(sig, raw)
                 assert got == want and type(got) is type(want), (msg.name, sig.name, raw, got, want)
+
+
+def test_the_tables_keep_within_their_budget(monkeypatch):
+    """A package's tables hold at most MAX_SCALE_ENTRIES entries together; the fields beyond it decode by arithmetic."""
+    from canspec.targets.python import model
+
+    spec = compile_spec(SPECS["spec2"], ["python"]).spec
+    free = model.build_package(spec).scales
+    monkeypatch.setattr(model, "MAX_SCALE_ENTRIES", 1500)
+    capped = model.build_package(spec).scales
+    assert sum(1 << sc.bits for sc in free) > 1500 >= sum(1 << sc.bits for sc in capped) > 0
+    assert {sc.value for sc in capped} < {sc.value for sc in free}

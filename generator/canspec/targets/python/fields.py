@@ -4,8 +4,8 @@ expressions and decisions its decode and encode need (`code.py` turns them into 
 Decode reads a field of up to three bytes from those bytes (`d3 | d4 << 8`, small ints), or from a 16-bit word
 `hN` when it spans exactly two bytes that no other field shares (word_pairs); a wider one from the whole frame as
 one integer, little-endian `v` for Intel fields and big-endian `b` for Motorola ones (ir.Signal.word_order). Each is
-a shift, a mask and a sign extension. A field of at most 8 bits that is scaled or signed decodes by indexing a precomputed
-tuple with its bits (PyScale). Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
+a shift, a mask and a sign extension. A field of at most 12 bits that is scaled or signed decodes by indexing a precomputed
+tuple with its bits (PyScale), within a budget of entries per package. Encode follows the shared rounding rule (ir/encoding.py) in doubles; float
 literals are the shortest repr of the nearest double of the exact decimal. An IEEE float field's
 raw value is its bit pattern, turned into the float and back by `struct` (`_unpack_f32`, ...).
 """
@@ -24,8 +24,10 @@ from canspec.targets.python.naming import CLASS_SCOPE_BUILTINS, Namespace
 from canspec.targets.python.reads import frame_bytes, own_bytes, pair_of
 
 # Method names of every message class: an attribute never takes one of these.
-# The widest field decoded through a PyScale table (256 entries).
-MAX_SCALE_BITS = 8
+# The widest field decoded through a PyScale table (4,096 entries), and the most entries of all a
+# package's tables together (about 2 MB of floats): fields beyond either decode by arithmetic.
+MAX_SCALE_BITS = 12
+MAX_SCALE_ENTRIES = 1 << 16
 METHODS = frozenset({"encode", "decode", "update", "checksum_ok", "pack_raw", "unpack_raw", "to_raw", "from_raw", "next_counter", "advance_counter",
                      "present_signals", "is_present"})
 ATTRIBUTE_RESERVED = METHODS | CLASS_SCOPE_BUILTINS

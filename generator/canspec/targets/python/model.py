@@ -12,7 +12,18 @@ from canspec import ir
 from canspec.ir.names import pascal, snake
 from canspec.render.literals import PYTHON
 from canspec.targets.python import code, pages
-from canspec.targets.python.fields import ATTRIBUTE_RESERVED, PyLookup, PyScale, PySignal, SignalContext, build_signal, float_offset, label_comment, scale_value
+from canspec.targets.python.fields import (
+    ATTRIBUTE_RESERVED,
+    MAX_SCALE_ENTRIES,
+    PyLookup,
+    PyScale,
+    PySignal,
+    SignalContext,
+    build_signal,
+    float_offset,
+    label_comment,
+    scale_value,
+)
 from canspec.targets.python.naming import BUILTINS, HARD_KEYWORDS, Namespace, package_name
 from canspec.targets.python.reads import word_pairs
 
@@ -209,6 +220,8 @@ class _Builder:
             return None
         key = (sig.length, value)
         if key not in self.scales:
+            if sum(1 << sc.bits for sc in self.scales.values()) + (1 << sig.length) > MAX_SCALE_ENTRIES:
+                return None
             self.scales[key] = PyScale(self.module.take(f"_SCALE_{len(self.scales) + 1}"), sig.length, value)
         return self.scales[key]
 
