@@ -35,7 +35,7 @@ def wide(spec) -> dict[str, str]:
     text = registry()["c"].render(spec)["c/c_corners_messages.h"]
     text = text.decode() if isinstance(text, bytes) else text
     out = {}
-    for m in re.finditer(r"c_corners_(\w+?)_(pack|unpack)\([^)]*\) \{\n#if C_CORNERS_STRATEGY >= 3[^\n]*\n(.*?)\n#(?:else|endif)", text, re.S):
+    for m in re.finditer(r"c_corners_(\w+?)_(pack|unpack)\([^)]*\) \{\n#if C_CORNERS_STRATEGY >= 3[^\n]*\n(.*?)\n#(?:elif|else|endif)", text, re.S):
         out[f"{m.group(1)}_{m.group(2)}"] = m.group(3)
     return out
 
