@@ -203,6 +203,7 @@ class _Builder:
         self.members = {e.table: {m.raw: m.name for m in e.members} for e in self.enums}
         self.lookups: dict[tuple[str, int, bool], PyLookup] = {}
         self.scales: dict[tuple[int, str], PyScale] = {}
+        self.scale_entries = 0  # of all tables so far (MAX_SCALE_ENTRIES)
 
     def lookup(self, sig: ir.Signal) -> PyLookup | None:
         if not sig.decodes_to_enum:
@@ -220,8 +221,9 @@ class _Builder:
             return None
         key = (sig.length, value)
         if key not in self.scales:
-            if sum(1 << sc.bits for sc in self.scales.values()) + (1 << sig.length) > MAX_SCALE_ENTRIES:
+            if self.scale_entries + (1 << sig.length) > MAX_SCALE_ENTRIES:
                 return None
+            self.scale_entries += 1 << sig.length
             self.scales[key] = PyScale(self.module.take(f"_SCALE_{len(self.scales) + 1}"), sig.length, value)
         return self.scales[key]
 
