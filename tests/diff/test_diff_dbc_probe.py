@@ -87,6 +87,21 @@ def test_a_bit_rate_the_file_does_not_state_is_not_compared(tmp_path):
     assert diff_paths(old, _dbc(tmp_path, "new", _PLAIN)) == []
 
 
+def test_a_bus_type_the_frames_contradict_is_said_not_silently_dropped(tmp_path):
+    """BusType "CAN" → "CAN FD" with classic frames only: the spec keeps the frames (its DBC writes
+    BusType from them), so the two files mean the same frames; it printed "no differences" without a
+    word. The import now warns on the side whose BusType its DBC will not say; both diff and import
+    print it, and import --strict refuses the file."""
+    defs = 'BA_DEF_ "BusType" STRING;\nBA_DEF_DEF_ "BusType" "CAN";\n'
+    old = _dbc(tmp_path, "old", _PLAIN + defs + 'BA_ "BusType" "CAN";\n')
+    new = _dbc(tmp_path, "new", _PLAIN + defs + 'BA_ "BusType" "CAN FD";\n')
+    code, _, err = run_cli("diff", old, new)
+    said = 'BusType is "CAN FD", but no message is a CAN FD frame: the spec keeps the frames, and its DBC says "CAN"'
+    assert code == 0 and f"{new}: {said}" in err and f"{old}: BusType" not in err
+    code, _, err = run_cli("import", "--strict", new, "-o", tmp_path / "spec")
+    assert code == 1 and said in err and not (tmp_path / "spec").exists()
+
+
 _ATTR_DEFS = ('BA_DEF_ BO_ "GenMsgSendType" ENUM "Cyclic","OnEvent";\nBA_DEF_ SG_ "GenSigStartValue" INT 0 100000;\n'
               'BA_DEF_ BU_ "NodeLayer" INT 0 10;\nBA_DEF_ "ProjectCode" STRING;\n'
               'BA_DEF_DEF_ "GenMsgSendType" "Cyclic";\nBA_DEF_DEF_ "GenSigStartValue" 0;\nBA_DEF_DEF_ "NodeLayer" 0;\nBA_DEF_DEF_ "ProjectCode" "";\n')

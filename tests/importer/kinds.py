@@ -30,6 +30,7 @@ KINDS = (  # (kind, words its message holds), first match wins
     ("more than 8 bytes without FD format: taken as FD", "no CAN FD frame format"),
     ("no bit rate: 500 kbit/s assumed", "no bit rate given"),
     ("no FD data bit rate: assumed", "no data bit rate"),
+    ("BusType the frames contradict: written from the frames", "BusType is"),
     ("range holding no value: dropped", "holds no value of the field"),
     ("C/Rust name clash: spec name renamed", "name clashes"),
     ("attribute value its definition refuses: left out", "is refused by its definition"),

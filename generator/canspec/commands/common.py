@@ -22,8 +22,8 @@ def print_problems(problems: list[Problem], stream=None) -> None:  # type: ignor
 
 def compile_or_report(spec: str | Path | None, strict: bool = False, quiet_warnings: bool = False, targets: list[str] | None = None,
                       cached: bool = False) -> Compiled:
-    """The compiled spec, its problems printed. `cached`: through the compiled-spec cache (for
-    commands that only read the spec; gen and check always compile)."""
+    """The compiled spec, its problems printed. `cached`: through the compiled-spec cache (every
+    command but `check`, which always compiles)."""
     compiled = (compile_cached if cached else compile_spec)(spec, targets)
     shown = compiled.errors if quiet_warnings else compiled.problems
     print_problems(shown)

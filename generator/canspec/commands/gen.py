@@ -30,7 +30,8 @@ def run(args: argparse.Namespace) -> int:
     if args.check and (count := gen_record.up_to_date(args.spec, out, options)) is not None:  # unchanged since the last gen: no compile
         print(f"canspec gen --check: {count} file(s) up to date", file=sys.stderr)
         return 0
-    compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True, targets=names)  # only these targets' refusals
+    chosen = None if set(names) == set(known) else names  # only these targets' refusals (None: all, as `import` caches the spec)
+    compiled = compile_or_report(args.spec, strict=args.strict, quiet_warnings=True, targets=chosen, cached=True)
     if compiled.spec is None:
         print("canspec gen: nothing written (fix the errors above)", file=sys.stderr)
         return 1

@@ -7,6 +7,7 @@ is theirs to choose. Here the importer chose the spec names, so it renames the l
 from __future__ import annotations
 
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -16,21 +17,31 @@ from canspec.pipeline import Compiled, compile_spec
 CLASH_RULES = ("c-name-clash", "rust-name-clash")
 MAX_ROUNDS = 50
 
+# A round's compile of the spec as it stands: the compiled spec, the name of the file the spec's
+# YAML was compiled from, and each message's and signal's line in it (yamlout.dump_with_lines).
+RoundCompile = Callable[[dict[str, Any]], tuple[Compiled, str, dict[int, tuple[int, ...]]]]
 
-def resolve_clashes(spec: dict[str, Any], warn: Any) -> Compiled:
-    """Rename until no target reports a clash (at most MAX_ROUNDS rounds); the last compile, whose
-    other problems `canspec check` would report, comes back."""
+
+def compile_in_temp(spec: dict[str, Any]) -> tuple[Compiled, str, dict[int, tuple[int, ...]]]:
+    """The spec compiled from a private temporary file (nothing the user sees is written)."""
+    text, where = dump_with_lines(spec, [])
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "spec.yaml"
-        for _ in range(MAX_ROUNDS):
-            text, where = dump_with_lines(spec, [])
-            path.write_text(text, encoding="utf-8")
-            compiled = compile_spec(path)
-            clashes = [p for p in compiled.problems if p.rule in CLASH_RULES and p.loc is not None and p.loc.line in where]
-            if not clashes:
-                return compiled
-            for line in sorted({p.loc.line for p in clashes if p.loc is not None}):
-                _rename(spec, where[line], warn)
+        path.write_text(text, encoding="utf-8")
+        return compile_spec(path), path.name, where
+
+
+def resolve_clashes(spec: dict[str, Any], warn: Any, compile_round: RoundCompile = compile_in_temp) -> Compiled:
+    """Rename until no target reports a clash (at most MAX_ROUNDS rounds); the last compile, whose
+    other problems `canspec check` would report, comes back."""
+    for _ in range(MAX_ROUNDS):
+        compiled, name, where = compile_round(spec)
+        clashes = [p for p in compiled.problems
+                   if p.rule in CLASH_RULES and p.loc is not None and Path(p.loc.file).name == name and p.loc.line in where]
+        if not clashes:
+            return compiled
+        for line in sorted({p.loc.line for p in clashes if p.loc is not None}):
+            _rename(spec, where[line], warn)
     return compiled
 
 

@@ -63,7 +63,18 @@ def _bus(loaded: Loaded, report: Report) -> dict[str, Any]:
     elif any(m.is_fd and _brs(m, db) for m in db.messages):
         bus["data_bitrate"] = DEFAULT_DATA_BITRATE
         report.warn(loaded.source, None, f"CAN FD frames switch bit rate but no data bit rate is given: {DEFAULT_DATA_BITRATE // 1000} kbit/s assumed")
+    _bus_type(loaded, report)
     return bus
+
+
+def _bus_type(loaded: Loaded, report: Report) -> None:
+    """The DBC target writes BusType from the frames ("CAN FD" when a message is an FD frame): a file
+    whose BusType says otherwise loses it, and says so (`canspec diff` reads files through here)."""
+    stated = str(attribute(loaded.db, "BusType") or "").strip()
+    written = "CAN FD" if any(m.is_fd for m in loaded.db.messages) else "CAN"
+    if stated in ("CAN", "CAN FD") and stated != written:
+        report.warn(loaded.source, None, f'BusType is "{stated}", but {"a" if written == "CAN FD" else "no"} message is a CAN FD frame: '
+                                         f'the spec keeps the frames, and its DBC says "{written}"')
 
 
 def _brs(msg: Any, db: Any) -> bool:
