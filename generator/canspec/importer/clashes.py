@@ -13,6 +13,7 @@ from typing import Any
 
 from canspec.importer.yamlout import dump_with_lines
 from canspec.pipeline import Compiled, compile_spec
+from canspec.targets.rust.naming import type_name
 
 CLASH_RULES = ("c-name-clash", "rust-name-clash")
 MAX_ROUNDS = 50
@@ -34,6 +35,7 @@ def compile_in_temp(spec: dict[str, Any]) -> tuple[Compiled, str, dict[int, tupl
 def resolve_clashes(spec: dict[str, Any], warn: Any, compile_round: RoundCompile = compile_in_temp) -> Compiled:
     """Rename until no target reports a clash (at most MAX_ROUNDS rounds); the last compile, whose
     other problems `canspec check` would report, comes back."""
+    _rename_rust_types(spec, warn)
     for _ in range(MAX_ROUNDS):
         compiled, name, where = compile_round(spec)
         clashes = [p for p in compiled.problems
@@ -43,6 +45,17 @@ def resolve_clashes(spec: dict[str, Any], warn: Any, compile_round: RoundCompile
         for line in sorted({p.loc.line for p in clashes if p.loc is not None}):
             _rename(spec, where[line], warn)
     return compiled
+
+
+def _rename_rust_types(spec: dict[str, Any], warn: Any) -> None:
+    """The clash real DBCs have most (`ParkAid_Data2` beside `ParkAid_Data_2`: one Rust type), found
+    by the Rust target's own naming before the first compile and renamed as a round would rename it
+    (the later message): one compile of the spec fewer, 1 s of the largest opendbc DBC's import."""
+    seen: set[str] = set()
+    for i, msg in enumerate(spec["messages"]):
+        if type_name(msg["name"]) in seen:
+            _rename(spec, (i,), warn)
+        seen.add(type_name(msg["name"]))
 
 
 def _rename(spec: dict[str, Any], at: tuple[int, ...], warn: Any) -> None:

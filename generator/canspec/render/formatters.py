@@ -12,11 +12,14 @@ import re
 import shutil
 import subprocess
 import tempfile
+import zlib
 from collections.abc import Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+
+from canspec.render import format_cache
 
 TIMEOUT_S = 300
 # The formatters' versions are part of the output: CI installs exactly these (.ci/setup.d/).
@@ -85,15 +88,23 @@ class Formatter:
             raise FormatterError(f"{self.name} not found; generated code is formatted with it (install: {self.install})")
         return exe
 
-    def run(self, args: list[str], text: str, what: str) -> str:
-        """`text` as the tool writes it to stdout, given `args`; `what` names the file in errors."""
+    def run(self, args: list[str], text: str, what: str, cached: bool = True) -> str:
+        """`text` as the tool writes it to stdout, given `args`; `what` names the file in errors.
+        `cached`: from format_cache when this tool formatted the same text with the same arguments
+        before (False: the tool's effect is elsewhere, `clang-format -i`)."""
+        exe = self.executable()
+        entry = format_cache.key(exe, args, text) if cached else None
+        if (formatted := format_cache.lookup(entry)) is not None:
+            return formatted
         try:
-            proc = subprocess.run([self.executable(), *args], input=text.encode("utf-8"), capture_output=True, check=False, timeout=TIMEOUT_S)
+            proc = subprocess.run([exe, *args], input=text.encode("utf-8"), capture_output=True, check=False, timeout=TIMEOUT_S)
         except subprocess.TimeoutExpired:
             raise FormatterError(f"{self.name} took more than {TIMEOUT_S} s on {what}") from None
         if proc.returncode != 0:
             raise FormatterError(f"{self.name} failed on {what}: {proc.stderr.decode('utf-8', 'replace').strip()[:2000]}")
-        return proc.stdout.decode("utf-8")
+        formatted = proc.stdout.decode("utf-8")
+        format_cache.keep(entry, formatted)
+        return formatted
 
 
 # rustfmt is not pinned: its default style is stable across versions (Rust's style guarantee).
@@ -112,9 +123,13 @@ def version_notes(names: Iterable[str]) -> list[str]:
     return [note for name, formatter in FORMATTERS.items() if name in wanted and (note := formatter.version_note()) is not None]
 
 
+def _clang_format_args(name: str, style: Path) -> list[str]:
+    return [f"--style=file:{style}", f"--assume-filename={name}"]
+
+
 def clang_format(text: str, name: str, style: Path) -> str:
     """C in the style of the given .clang-format file."""
-    return FORMATTERS["clang-format"].run([f"--style=file:{style}", f"--assume-filename={name}"], text, name)
+    return FORMATTERS["clang-format"].run(_clang_format_args(name, style), text, name)
 
 
 def ruff_format(source: str, filename: str, package: str, line_length: int) -> str:
@@ -135,21 +150,29 @@ def rustfmt(text: str, what: str) -> str:
 # top-level item: a closing brace in column 0 and one blank line before the next item. Both tools
 # format such items independently (the C style aligns only consecutive lines; rustfmt reorders only
 # contiguous `use` lines), so the chunks give the bytes of the whole; smaller files go whole.
-CHUNK_CHARS = 256 * 1024
-# rustfmt's chunks are larger: its cost per chunk outweighs the growth (the Ford DBC's crate: 50 chunks
-# of 256 KiB 2.5 CPU s, 20 of 1 MiB 2.2 s, each rustfmt then under 60 MB).
+# clang-format: 64 KiB on average (the Ford DBC's messages header: 2.6 CPU s, 2.9 in 256 KiB pieces
+# cut at offsets; the 1,000-message one 9.4 s, 9.7).
+CHUNK_CHARS = 64 * 1024
+# rustfmt's chunks are larger: its cost per chunk outweighs the growth (the Ford DBC's crate: 42 chunks
+# of 256 KiB on average 1.8 CPU s, 17 of 1 MiB 1.5 s, each rustfmt then under 60 MB).
 RUSTFMT_CHUNK_CHARS = 1024 * 1024
+PROCESS_CHARS = 256 * 1024  # the text worth another clang-format process beside the first
 _CUT = re.compile(r"\n}\n\n(?=\S)")
 
 
 def chunks(text: str, size: int = CHUNK_CHARS) -> list[str]:
-    """The text cut into pieces of about `size` characters, each ending in an item's '}\\n' (the
-    blank line after it is dropped and restored by the join)."""
-    pieces, start = [], 0
+    """The text cut into pieces of about `size` characters on average, each ending in an item's '}\\n'
+    (the blank line after it is dropped and restored by the join). Where to cut is decided by each
+    item's own text (a hash below its share of `size`), not by offsets: an edit changes only the
+    pieces that hold the edited items, and format_cache has the others. A piece reaching 4 × `size`
+    is cut anyway, at its next item."""
+    pieces, start, item = [], 0, 0
     for cut in _CUT.finditer(text):
-        if cut.start() - start >= size:
-            pieces.append(text[start : cut.start() + 3])
+        end = cut.start() + 3
+        if zlib.crc32(text[item:end].encode("utf-8")) * size < (end - item) << 32 or end - start >= 4 * size:
+            pieces.append(text[start:end])
             start = cut.end()
+        item = cut.end()
     return [*pieces, text[start:]]
 
 
@@ -177,24 +200,31 @@ def clang_format_files(texts: dict[str, str], style: Path, size: int = CHUNK_CHA
 
 def _clang_format_copies(texts: dict[str, str], style: Path, size: int) -> dict[str, str]:
     pieces = [(name, piece) for name, text in texts.items() for piece in (chunks(text, size) if len(text) > size else [text])]
-    with tempfile.TemporaryDirectory(prefix="canspec-c-") as folder:
-        paths = [Path(folder) / f"{i:05d}-{name}" for i, (name, _) in enumerate(pieces)]
-        for path, (_, piece) in zip(paths, pieces):
-            path.write_bytes(piece.encode("utf-8"))
-        groups = _balanced(paths, [len(piece) for _, piece in pieces], os.cpu_count() or 2, size)
-        with ThreadPoolExecutor(max_workers=len(groups)) as pool:
-            list(pool.map(lambda group: _clang_format_in_place(group, style, folder), groups))
-        formatted = [path.read_bytes().decode("utf-8") for path in paths]
+    exe = FORMATTERS["clang-format"].executable()
+    keys = [format_cache.key(exe, _clang_format_args(name, style), piece) for name, piece in pieces]
+    formatted = [format_cache.lookup(key) for key in keys]
+    missing = [i for i, text in enumerate(formatted) if text is None]
+    if missing:
+        with tempfile.TemporaryDirectory(prefix="canspec-c-") as folder:
+            paths = {i: Path(folder) / f"{i:05d}-{pieces[i][0]}" for i in missing}
+            for i, path in paths.items():
+                path.write_bytes(pieces[i][1].encode("utf-8"))
+            groups = _balanced(list(paths.values()), [len(pieces[i][1]) for i in missing], os.cpu_count() or 2)
+            with ThreadPoolExecutor(max_workers=len(groups)) as pool:
+                list(pool.map(lambda group: _clang_format_in_place(group, style, folder), groups))
+            for i, path in paths.items():
+                formatted[i] = path.read_bytes().decode("utf-8")
+                format_cache.keep(keys[i], formatted[i])
     out: dict[str, list[str]] = {name: [] for name in texts}
     for (name, _), text in zip(pieces, formatted):
-        out[name].append(text)
+        out[name].append(text or "")
     return {name: "\n".join(parts) for name, parts in out.items()}
 
 
-def _balanced(items: list[Path], sizes: list[int], bins: int, chunk: int) -> list[list[Path]]:
+def _balanced(items: list[Path], sizes: list[int], bins: int) -> list[list[Path]]:
     """The items in at most `bins` groups of about equal total size (largest first, each to the
-    lightest group); one group where the whole is a single chunk's worth."""
-    bins = max(1, min(bins, sum(sizes) // chunk))
+    lightest group); one group for each PROCESS_CHARS of text (a process costs 75 ms to start)."""
+    bins = max(1, min(bins, sum(sizes) // PROCESS_CHARS))
     groups: list[list[Path]] = [[] for _ in range(bins)]
     loads = [0] * bins
     for size, item in sorted(zip(sizes, items), key=lambda pair: -pair[0]):
@@ -208,7 +238,7 @@ def _clang_format_in_place(paths: list[Path], style: Path, folder: str) -> None:
     headers = list(dict.fromkeys(path.name.split("-", 1)[1] for path in paths))  # the chunks of one header name it once
     what = ", ".join(headers[:3]) + (" …" if len(headers) > 3 else "")
     try:
-        FORMATTERS["clang-format"].run([f"--style=file:{style}", "-i", *map(str, paths)], "", what)
+        FORMATTERS["clang-format"].run([f"--style=file:{style}", "-i", *map(str, paths)], "", what, cached=False)
     except FormatterError as exc:  # its message names the private folder's files: name the headers
         raise FormatterError(str(exc).replace(folder + os.sep, "")) from None
 

@@ -37,8 +37,14 @@ def _recorded_runs(monkeypatch) -> list[list[str]]:
     """The arguments of every formatter process started from now on."""
     calls: list[list[str]] = []
     real_run = formatters.Formatter.run
-    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what: calls.append(args) or real_run(self, args, text, what))
+    monkeypatch.setattr(formatters.Formatter, "run", lambda self, args, text, what, **kw: calls.append(args) or real_run(self, args, text, what, **kw))
     return calls
+
+
+@pytest.fixture(autouse=True)
+def _no_format_cache(monkeypatch):
+    """Every test here runs clang-format itself: the oracle, and the processes some of them count."""
+    monkeypatch.setenv("CANSPEC_NO_CACHE", "1")
 
 
 def test_headers_formatted_together_in_one_process_per_core_equal_each_alone(monkeypatch):

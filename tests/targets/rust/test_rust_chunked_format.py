@@ -14,6 +14,12 @@ from canspec.targets.rust.tests_view import build_tests
 from repo_paths import ROOT
 
 
+@pytest.fixture(autouse=True)
+def _no_format_cache(monkeypatch):
+    """rustfmt runs on the whole module and on its chunks here: neither comes from format_cache."""
+    monkeypatch.setenv("CANSPEC_NO_CACHE", "1")
+
+
 @pytest.mark.parametrize("spec_path", [None, ROOT / "tests" / "fixtures" / "valid" / "multiplexed.yaml"], ids=["shipped", "multiplexed"])
 @pytest.mark.parametrize("rel", ["src/messages.rs", "tests/vectors.rs"])
 def test_chunked_format_equals_whole(spec_path, rel: str) -> None:

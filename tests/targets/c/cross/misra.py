@@ -152,7 +152,10 @@ def run_cppcheck(headers: Path, config: tuple[tuple[str, str], ...], work: Path,
 
 def analyse(headers: Path, strategies: str, jobs: int | None = None) -> dict[str, list[Finding]]:
     """configuration name → findings."""
+    headers = headers.resolve()  # cppcheck runs in a temporary directory: a relative -I found nothing, and 0 findings came back
     prefix = cross.header_prefix(headers)
+    if not (headers / f"{prefix}.h").is_file():
+        raise RuntimeError(f"no {prefix}.h in {headers}")
     configs = configurations(strategies)
 
     def one(config: tuple[tuple[str, str], ...]) -> tuple[str, list[Finding]]:
