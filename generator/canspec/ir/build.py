@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import lru_cache
 from typing import Any, NamedTuple
 
 from canspec import __version__, ir
@@ -77,14 +78,20 @@ class _Ranges(NamedTuple):
 
 
 def _ranges(sig: LocDict, factor: Fraction, offset: Fraction, doc: tuple[Fraction | None, Fraction | None]) -> _Ranges:
-    length, signed, (doc_min, doc_max) = sig["len"], bool(sig["signed"]), doc
+    return _ranges_of(sig["len"], bool(sig["signed"]), bool(sig["float"]), factor, offset, doc, sig.get("range") is not None)
+
+
+@lru_cache(maxsize=4096)  # exact arithmetic on Fractions, and real buses repeat a few scalings thousands of times
+def _ranges_of(length: int, signed: bool, is_float: bool, factor: Fraction, offset: Fraction, doc: tuple[Fraction | None, Fraction | None],
+               stated: bool) -> _Ranges:
+    doc_min, doc_max = doc
     tmin, tmax = raw_type_range(length, signed)
-    if sig["float"]:  # the bit pattern is the raw value; ranges are the float's own (ir.Signal.is_float)
+    if is_float:  # the bit pattern is the raw value; ranges are the float's own (ir.Signal.is_float)
         phys_min, phys_max = -FLOAT_MAX[length], FLOAT_MAX[length]
         check_min = doc_min if doc_min is not None else phys_min
         check_max = doc_max if doc_max is not None else phys_max
         return _Ranges(tmin, tmax, phys_min, phys_max, check_min, check_max, check_min, check_max)
-    raw_min, raw_max = raw_range(length, signed, factor, offset, doc if sig.get("range") is not None else None)
+    raw_min, raw_max = raw_range(length, signed, factor, offset, doc if stated else None)
     phys_a, phys_b = ir.to_physical(raw_min, factor, offset), ir.to_physical(raw_max, factor, offset)
     phys_min, phys_max = min(phys_a, phys_b), max(phys_a, phys_b)
     check_min = doc_min if doc_min is not None else phys_min
