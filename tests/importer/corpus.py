@@ -12,7 +12,7 @@ from typing import Any
 import cantools
 from canspec.importer.load import load
 from canspec.importer.run import import_loaded
-from canspec.importer.yamlout import dump
+from canspec.importer.yamlout import dump_with_lines
 from canspec.ir.dbc_attributes import COMPUTED
 from canspec.targets.dbc import render_dbc
 
@@ -45,7 +45,7 @@ def import_one(path: Path, out: Path) -> Imported:
     spec, report, compiled = import_loaded([loaded])
     out.mkdir(parents=True, exist_ok=True)
     name = spec["protocol"]["name"]
-    (out / f"{name}.yaml").write_text(dump(spec, ["corpus import"]), encoding="utf-8")
+    (out / f"{name}.yaml").write_text(dump_with_lines(spec, ["corpus import"])[0], encoding="utf-8")
     if compiled.spec is None:
         return Imported(path, report.warnings, out, [str(p) for p in compiled.errors], None, loaded)
     dbc = render_dbc(compiled.spec)[f"dbc/{compiled.spec.can.name}.dbc"].decode()

@@ -35,10 +35,6 @@ def scalar(value: Any, key: str = "") -> str:
     return _CONTROL.sub(lambda m: f"\\u{ord(m.group()):04x}", json.dumps(text, ensure_ascii=False))  # YAML refuses DEL and C1 raw
 
 
-def dump(spec: dict[str, Any], header: list[str]) -> str:
-    return dump_with_lines(spec, header)[0]
-
-
 def dump_with_lines(spec: dict[str, Any], header: list[str]) -> tuple[str, dict[int, tuple[int, ...]]]:
     """The text, and each message's and signal's 1-based line: (message index,) or (message, signal index)."""
     out = [f"# {line}" for line in header]
