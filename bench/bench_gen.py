@@ -101,7 +101,8 @@ def largest_corpus_dbc(work: Path, targets: list[str], runs: int = 1) -> None:
         imp_wall, imp_mb, _, imp_cpu = measured(canspec("import", largest, "-o", spec), cache)
         gen_wall, gen_mb, _, gen_cpu = measured(canspec("gen", "-q", spec, "-o", out, *(a for t in targets for a in ("-t", t))), cache)
         total = imp_wall + gen_wall
-        print(f"  run {run} (empty compiled-spec cache: import fills it, gen reads it): import {imp_wall:.2f} s / {imp_mb:.0f} MB ({imp_cpu:.2f} CPU s, one process), gen {gen_wall:.2f} s / {gen_mb:.0f} MB "
+        print(f"  run {run} (empty compiled-spec cache: import fills it, gen reads it): import {imp_wall:.2f} s / {imp_mb:.0f} MB "
+              f"({imp_cpu:.2f} CPU s, one process), gen {gen_wall:.2f} s / {gen_mb:.0f} MB "
               f"({gen_cpu:.2f} CPU s: no schedule on {CORES} cores beats {gen_cpu / CORES:.2f} s); together {total:.2f} s "
               f"({'ok' if total <= 5 else 'OVER'})", flush=True)
     edited_gen(spec, out, targets, cache)

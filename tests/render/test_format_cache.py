@@ -104,6 +104,11 @@ def test_the_key_names_the_formatter_its_arguments_style_and_text(tmp_path):
     exe.write_text("#!/bin/sh\n# another version\n", encoding="utf-8")
     assert format_cache.key(str(exe), args, "int x;") not in (base, None)
     assert format_cache.key(str(tmp_path / "absent"), args, "int x;") is None
+    config = tmp_path / "rustfmt.toml"
+    config.write_text("", encoding="utf-8")
+    rust = format_cache.key(str(exe), ["--config-path", str(config)], "fn f() {}")
+    config.write_text("max_width = 40\n", encoding="utf-8")
+    assert format_cache.key(str(exe), ["--config-path", str(config)], "fn f() {}") not in (rust, None)
 
 
 def _unformatted_messages_header(spec) -> str:

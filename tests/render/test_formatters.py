@@ -122,3 +122,22 @@ def test_gen_with_another_clang_format_warns_and_still_writes(tmp_path):
                         f"(pip install clang-format=={formatters.CLANG_FORMAT_VERSION})"], proc.stderr
     for header in (ROOT / "generated" / "c").glob("*.h"):
         assert (tmp_path / "out" / "c" / header.name).read_bytes() == header.read_bytes(), header.name
+
+
+LONG_CALL = "fn main() { let x = some_function_name(argument_one, argument_two, argument_three); }\n"
+
+
+@pytest.mark.parametrize("where", [".", "sub/dir"])
+@pytest.mark.parametrize("config", ["rustfmt.toml", ".rustfmt.toml"])
+def test_a_rustfmt_config_of_the_users_project_does_not_change_the_generated_rust(tmp_path, monkeypatch, where, config):
+    """rustfmt reads a rustfmt.toml in its working directory or above: run in a firmware repo that has
+    one, `make gen` laid the crate out by that file's rules (here max_width = 40), and `gen --check`
+    failed against the committed output. The generated crate's own rules come from the committed
+    templates/rust/rustfmt.toml instead."""
+    monkeypatch.setenv("CANSPEC_NO_CACHE", "1")
+    want = formatters.rustfmt(LONG_CALL, "x.rs")
+    assert want == "fn main() {\n    let x = some_function_name(argument_one, argument_two, argument_three);\n}\n"
+    (tmp_path / config).write_text("max_width = 40\n", encoding="utf-8")
+    (tmp_path / where).mkdir(parents=True, exist_ok=True)
+    monkeypatch.chdir(tmp_path / where)
+    assert formatters.rustfmt(LONG_CALL, "x.rs") == want

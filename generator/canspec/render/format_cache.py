@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import itertools
 import os
 import time
 import zlib
@@ -20,19 +21,22 @@ from pathlib import Path
 
 from canspec.spec_cache import MAX_AGE, cache_dir, store
 
-_STYLE_FILE = "--style=file:"
+_STYLE_FILE = "--style=file:"  # clang-format's; rustfmt's --config-path names its file as the next argument
 _pruned: set[Path] = set()  # folders already pruned by this process
 
 
 def key(exe: str, args: list[str], text: str) -> str | None:
-    """The entry name of `text` formatted by `exe args`; None when the executable cannot be read."""
+    """The entry name of `text` formatted by `exe args`; None when the executable or a style file
+    cannot be read."""
+    styles = [a[len(_STYLE_FILE):] for a in args if a.startswith(_STYLE_FILE)]
+    styles += [path for flag, path in itertools.pairwise(args) if flag == "--config-path"]
     try:
         info = os.stat(exe)
-        styles = [Path(a[len(_STYLE_FILE):]).read_bytes() for a in args if a.startswith(_STYLE_FILE)]
+        contents = [Path(style).read_bytes() for style in styles]
     except OSError:
         return None
     digest = hashlib.sha256(f"{exe}\0{info.st_size}\0{info.st_mtime_ns}\0".encode())
-    for part in [*(a.encode() for a in args if not a.startswith(_STYLE_FILE)), *styles, text.encode("utf-8")]:
+    for part in [*(a.encode() for a in args), *contents, text.encode("utf-8")]:
         digest.update(len(part).to_bytes(8, "little") + part)
     return digest.hexdigest()
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+from canspec import resources
 from canspec.render import format_cache
 
 TIMEOUT_S = 300
@@ -142,7 +143,11 @@ def ruff_format(source: str, filename: str, package: str, line_length: int) -> s
 
 
 def rustfmt(text: str, what: str) -> str:
-    return FORMATTERS["rustfmt"].run(["--edition", "2021", "--emit", "stdout"], text, what)
+    """Rust in rustfmt's default style. Its settings come from the committed templates/rust/rustfmt.toml:
+    without --config-path, rustfmt reads a rustfmt.toml in the working directory or above it (the
+    user's project) and lays the generated crate out as that file says."""
+    config = resources.templates_dir() / "rust" / "rustfmt.toml"
+    return FORMATTERS["rustfmt"].run(["--edition", "2021", "--emit", "stdout", "--config-path", str(config)], text, what)
 
 
 # clang-format's and rustfmt's time and memory grow faster than the text (a 22 MB C header took 30 s
