@@ -119,7 +119,7 @@ def _write(entry: Path, compiled: Compiled, started: int) -> None:
             return
         files = [(str(path), _file_hash(path)) for path in compiled.files]
         entry.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-        _prune(entry.parent)
+        prune(entry.parent, "*.pickle")
         fd, temp = tempfile.mkstemp(dir=entry.parent, prefix=".entry-")
     except Exception:  # noqa: BLE001 - an unwritable cache directory: the cache is only a shortcut
         return
@@ -132,11 +132,12 @@ def _write(entry: Path, compiled: Compiled, started: int) -> None:
             os.unlink(temp)
 
 
-def _prune(folder: Path) -> None:
-    """Removes entries written more than MAX_AGE ago: each edit of a spec's path, of the working
-    directory or of the generator leaves one behind."""
+def prune(folder: Path, pattern: str) -> None:
+    """Removes the entries matching `pattern` written (or, for those that touch theirs on use, used)
+    more than MAX_AGE ago: each edit of a spec's path, of the working directory or of the generator
+    leaves one behind."""
     oldest = time.time() - MAX_AGE
-    for old in folder.glob("*.pickle"):
+    for old in folder.glob(pattern):
         with contextlib.suppress(OSError):
             if old.stat().st_mtime < oldest:
                 old.unlink()

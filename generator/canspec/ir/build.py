@@ -77,10 +77,6 @@ class _Ranges(NamedTuple):
     accept_max: Fraction
 
 
-def _ranges(sig: LocDict, factor: Fraction, offset: Fraction, doc: tuple[Fraction | None, Fraction | None]) -> _Ranges:
-    return _ranges_of(sig["len"], bool(sig["signed"]), bool(sig["float"]), factor, offset, doc, sig.get("range") is not None)
-
-
 @lru_cache(maxsize=4096)  # exact arithmetic on Fractions, and real buses repeat a few scalings thousands of times
 def _ranges_of(length: int, signed: bool, is_float: bool, factor: Fraction, offset: Fraction, doc: tuple[Fraction | None, Fraction | None],
                stated: bool) -> _Ranges:
@@ -107,7 +103,7 @@ def _signal(sig: LocDict, tables: dict[str, ir.ValueTable], frame_bytes: int, mu
     tmin, tmax = raw_type_range(length, signed)
     rng = sig.get("range")
     doc_min, doc_max = (Fraction(rng[0]), Fraction(rng[1])) if rng is not None else (None, None)
-    ranges = _ranges(sig, factor, offset, (doc_min, doc_max))
+    ranges = _ranges_of(length, signed, is_float, factor, offset, (doc_min, doc_max), rng is not None)
     is_integer = _is_integer(factor, offset) and not is_float
     specials = tuple(
         ir.SpecialValue(raw, ident, zh, humanize(ident), ir.to_physical(raw, factor, offset))

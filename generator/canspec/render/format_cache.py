@@ -11,15 +11,13 @@ unreadable or corrupt entry is formatted again; CANSPEC_NO_CACHE=1 turns them of
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import itertools
 import os
-import time
 import zlib
 from pathlib import Path
 
-from canspec.spec_cache import MAX_AGE, cache_dir, store
+from canspec.spec_cache import cache_dir, prune, store
 
 _STYLE_FILE = "--style=file:"  # clang-format's; rustfmt's --config-path names its file as the next argument
 _pruned: set[Path] = set()  # folders already pruned by this process
@@ -69,11 +67,6 @@ def keep(name: str | None, formatted: str) -> None:
 
 def _prune(folder: Path) -> None:
     """Removes entries unused for MAX_AGE, once per folder and process."""
-    if folder in _pruned:
-        return
-    _pruned.add(folder)
-    oldest = time.time() - MAX_AGE
-    for old in folder.glob("format-*"):
-        with contextlib.suppress(OSError):
-            if old.stat().st_mtime < oldest:
-                old.unlink()
+    if folder not in _pruned:
+        _pruned.add(folder)
+        prune(folder, "format-*")
